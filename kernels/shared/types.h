@@ -1,0 +1,116 @@
+/* Struct layouts shared by the host (C++) and the kernels (OpenCL C).
+ *
+ * Rules (DESIGN.md): only 4-byte scalars and 4-vectors, explicit padding, every struct a multiple
+ * of 16 bytes; the host side static_asserts each size (src/render/gpu_types.h).
+ * Matrices are column-major like GLM: c[k] is column k, so a glm::mat4 is copied byte for byte.
+ *
+ * Coordinate conventions
+ *   world:   Cornell box spans [-1,1]^3, y up, the open side faces +z (the camera).
+ *   NDC:     OpenGL style, x,y,z in [-1,1] after the divide by w.
+ *   depth:   the visibility buffer stores z_ndc * 0.5 + 0.5 in [0,1]; cleared to 1.0 (far plane)
+ *            and "no hit" is marked by the id RP_ID_NONE, not by depth.
+ *   pixels:  (0,0) is the top-left pixel, its centre at (0.5, 0.5); pixel y grows downwards,
+ *            so screen y = (1 - y_ndc) * 0.5 * height.
+ */
+#ifndef ROLYPOLY_SHARED_TYPES_H
+#define ROLYPOLY_SHARED_TYPES_H
+
+#ifdef __OPENCL_VERSION__
+typedef float4 rp_float4;
+typedef uint4 rp_uint4;
+typedef uint rp_uint;
+typedef int rp_int;
+typedef float rp_float;
+#else
+#include <cstdint>
+namespace rp::gpu {
+struct alignas(16) rp_float4 { float x, y, z, w; };
+struct alignas(16) rp_uint4 { uint32_t x, y, z, w; };
+typedef uint32_t rp_uint;
+typedef int32_t rp_int;
+typedef float rp_float;
+#endif
+
+/* Column-major 4x4 matrix (GLM layout). */
+typedef struct {
+  rp_float4 c[4];
+} rp_mat4;
+
+/* Ids in the visibility buffer. instance < RP_ID_SPHERE_BIT: a mesh instance, primitive = the
+ * triangle index within its mesh. instance has RP_ID_SPHERE_BIT set: analytic sphere number
+ * (instance & ~RP_ID_SPHERE_BIT), primitive = 0. RP_ID_NONE: background. */
+#define RP_ID_NONE 0xFFFFFFFFu
+#define RP_ID_SPHERE_BIT 0x80000000u
+
+/* Texture index meaning "no texture" in Material.texture. */
+#define RP_TEXTURE_NONE 0xFFFFFFFFu
+
+/* Per-frame constants, one copy per frame (uploaded once). */
+typedef struct {
+  rp_mat4 view_proj;            /* world -> clip, including the sub-pixel jitter (rasterize with it) */
+  rp_mat4 inv_view_proj;        /* inverse of view_proj (camera rays for analytic spheres) */
+  rp_mat4 view_proj_unjittered; /* world -> clip without jitter (velocity) */
+  rp_mat4 prev_view_proj_unjittered; /* the previous frame's, without jitter (velocity) */
+  rp_mat4 view;                 /* world -> view space (linear depth = -z_view) */
+  rp_mat4 light_view_proj;      /* world -> shadow-map clip space */
+  rp_float4 camera_pos;         /* xyz world position, w unused */
+  rp_float4 jitter;             /* xy: this frame's jitter in pixels, zw: previous frame's */
+  rp_float4 light_pos;          /* xyz lamp centre (the point light), w lamp radius */
+  rp_float4 light_intensity;    /* rgb radiant intensity of the point light, w ambient (constant
+                                   ambient until cone tracing lands) */
+  rp_float4 clip;               /* x camera near, y camera far, z light near, w light far */
+  rp_uint width, height;        /* output size in pixels */
+  rp_uint shadow_size;          /* shadow map is shadow_size x shadow_size */
+  rp_uint frame_index;          /* frames since start (drives per-frame noise rotation) */
+  rp_uint instance_count, sphere_count, pad0, pad1;
+} FrameConstants;
+
+/* One vertex of a mesh in object space. 32 bytes. */
+typedef struct {
+  rp_float4 position_u; /* xyz position, w texture u */
+  rp_float4 normal_v;   /* xyz unit normal, w texture v */
+} Vertex;
+
+/* One triangle: x,y,z global vertex indices (into the shared vertex buffer), w material index. */
+typedef rp_uint4 Triangle;
+
+/* One placed copy of a mesh. 208 bytes. */
+typedef struct {
+  rp_mat4 model;         /* object -> world, this frame */
+  rp_mat4 prev_model;    /* object -> world, previous frame */
+  rp_mat4 normal_matrix; /* inverse transpose of model (upper 3x3 used) */
+  rp_uint first_triangle; /* the mesh's first triangle in the shared triangle buffer */
+  rp_uint triangle_count;
+  rp_uint casts_shadow;  /* 1: drawn into the shadow map */
+  rp_uint pad;
+} Instance;
+
+/* An analytic sphere (marble, fireball, particle). 64 bytes. */
+typedef struct {
+  rp_float4 center_radius; /* xyz world centre, w radius */
+  rp_float4 prev_center;   /* xyz previous frame's centre, w casts_shadow (1.0 or 0.0) */
+  rp_float4 albedo;        /* rgb diffuse albedo, w unused */
+  rp_float4 emission;      /* rgb emitted radiance, w unused */
+} Sphere;
+
+/* Surface material. 48 bytes. */
+typedef struct {
+  rp_float4 albedo;   /* rgb, multiplied with the texture when there is one */
+  rp_float4 emission; /* rgb emitted radiance */
+  rp_uint texture;    /* index into TextureInfo, or RP_TEXTURE_NONE */
+  rp_uint pad0, pad1, pad2;
+} Material;
+
+/* Where a texture lives in the shared RGBA8 texel buffer (one uint per texel, R in the low byte,
+ * sRGB-encoded; rows top to bottom, u right, v up so texel row = (1 - v) * height). 16 bytes. */
+typedef struct {
+  rp_uint offset; /* first texel */
+  rp_uint width, height;
+  rp_uint pad;
+} TextureInfo;
+
+#ifndef __OPENCL_VERSION__
+}  // namespace rp::gpu
+#endif
+
+#endif

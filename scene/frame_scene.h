@@ -1,0 +1,99 @@
+// What the renderer needs to draw one frame, and the static assets it draws from.
+// Plain C++ and GLM: the scene knows nothing of OpenCL (DESIGN.md). The renderer converts these
+// into the GPU layouts of kernels/shared/types.h.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace rp::scene {
+
+// Pinhole camera. Angles in degrees, distances in world units (the box spans [-1,1]^3).
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 2.75f};
+  glm::vec3 target{0.0f, 0.0f, 0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fov_y_deg = 60.0f;
+  float near_plane = 0.1f;
+  float far_plane = 4.0f;
+
+  glm::mat4 view() const;                      // world -> view (right-handed, looks down -z)
+  glm::mat4 projection(float aspect) const;    // view -> clip, OpenGL NDC (z in [-1,1])
+};
+
+// Point light at the lamp centre (outside the box, above the ceiling).
+struct PointLight {
+  glm::vec3 position{0.0f, 1.1f, 0.0f};
+  float lamp_radius = 0.35f;       // radius of the icosphere the lamp cap is cut from
+  glm::vec3 intensity{6.0f};       // radiant intensity (rgb), W/sr in scene units
+  float shadow_fov_y_deg = 120.0f; // shadow-map frustum, looking down -y
+  float shadow_near = 0.05f;
+  float shadow_far = 2.5f;
+  glm::mat4 view_proj() const;     // world -> shadow-map clip space
+};
+
+struct Vertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec2 uv;
+};
+
+// Indexed triangle mesh in object space; one material per triangle.
+struct Mesh {
+  std::string name;
+  std::vector<Vertex> vertices;
+  std::vector<glm::uvec3> triangles;   // indices into vertices, counter-clockwise seen from outside
+  std::vector<uint32_t> materials;     // per triangle, index into SceneAssets::materials
+};
+
+struct Material {
+  std::string name;
+  glm::vec3 albedo{0.8f};
+  glm::vec3 emission{0.0f};
+  int texture = -1;                    // index into SceneAssets::textures, or -1
+};
+
+// RGBA8 texture, sRGB encoded, rows top to bottom.
+struct Texture {
+  std::string name;
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;           // width * height * 4 bytes
+};
+
+// Everything uploaded once: meshes, materials, textures.
+struct SceneAssets {
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+};
+
+struct MeshInstance {
+  uint32_t mesh = 0;                   // index into SceneAssets::meshes
+  glm::mat4 model{1.0f};
+  glm::mat4 prev_model{1.0f};
+  bool casts_shadow = true;
+};
+
+struct Sphere {
+  glm::vec3 center{0.0f};
+  glm::vec3 prev_center{0.0f};
+  float radius = 0.05f;
+  glm::vec3 albedo{0.8f};
+  glm::vec3 emission{0.0f};
+  bool casts_shadow = true;            // marbles occlude; fireballs and particles only emit
+};
+
+// One frame's dynamic state.
+struct FrameScene {
+  Camera camera;
+  Camera prev_camera;
+  PointLight light;
+  std::vector<MeshInstance> instances;
+  std::vector<Sphere> spheres;
+  uint32_t frame_index = 0;
+};
+
+}  // namespace rp::scene

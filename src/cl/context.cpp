@@ -1,0 +1,149 @@
+#include "cl/context.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include "cl/error.h"
+
+namespace rp::cl {
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+std::string trim(std::string s) {
+  while (!s.empty() && (s.back() == '\0' || std::isspace(static_cast<unsigned char>(s.back()))))
+    s.pop_back();
+  return s;
+}
+
+std::string type_name(cl_device_type t) {
+  if (t & CL_DEVICE_TYPE_GPU) return "GPU";
+  if (t & CL_DEVICE_TYPE_CPU) return "CPU";
+  if (t & CL_DEVICE_TYPE_ACCELERATOR) return "accelerator";
+  if (t & CL_DEVICE_TYPE_CUSTOM) return "custom";
+  return "other";
+}
+
+std::string device_table(const std::vector<DeviceInfo>& devices) {
+  std::ostringstream out;
+  for (const DeviceInfo& d : devices)
+    out << "  [" << d.index << "] " << d.name << " (" << d.type << ", " << d.platform_name << ")\n";
+  return out.str();
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> list_devices() {
+  std::vector<::cl::Platform> platforms;
+  try {
+    ::cl::Platform::get(&platforms);
+  } catch (const ::cl::Error&) {
+    platforms.clear();  // the ICD loader reports "no platform" as an error
+  }
+  if (platforms.empty())
+    throw Error(
+        "no OpenCL platform found. Install an OpenCL driver, e.g. the CPU one: "
+        "apt-get install pocl-opencl-icd (and check /etc/OpenCL/vendors)");
+  std::vector<DeviceInfo> out;
+  for (size_t p = 0; p < platforms.size(); ++p) {
+    std::vector<::cl::Device> devices;
+    try {
+      platforms[p].getDevices(CL_DEVICE_TYPE_ALL, &devices);
+    } catch (const ::cl::Error&) {
+      continue;  // a platform without devices reports CL_DEVICE_NOT_FOUND
+    }
+    for (const ::cl::Device& dev : devices) {
+      DeviceInfo d;
+      d.index = static_cast<int>(out.size());
+      d.platform_index = static_cast<int>(p);
+      d.platform_name = trim(platforms[p].getInfo<CL_PLATFORM_NAME>());
+      d.name = trim(dev.getInfo<CL_DEVICE_NAME>());
+      d.vendor = trim(dev.getInfo<CL_DEVICE_VENDOR>());
+      cl_device_type t = dev.getInfo<CL_DEVICE_TYPE>();
+      d.type = type_name(t);
+      d.is_gpu = (t & CL_DEVICE_TYPE_GPU) != 0;
+      d.is_cpu = (t & CL_DEVICE_TYPE_CPU) != 0;
+      d.compute_units = dev.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+      d.global_mem_bytes = dev.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+      d.max_alloc_bytes = dev.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+      d.local_mem_bytes = dev.getInfo<CL_DEVICE_LOCAL_MEM_SIZE>();
+      d.max_work_group_size = dev.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
+      d.version = trim(dev.getInfo<CL_DEVICE_VERSION>());
+      d.c_version = trim(dev.getInfo<CL_DEVICE_OPENCL_C_VERSION>());
+      d.device = dev;
+      out.push_back(std::move(d));
+    }
+  }
+  if (out.empty())
+    throw Error("OpenCL platforms were found but none has a device. Install a driver, e.g. "
+                "apt-get install pocl-opencl-icd");
+  return out;
+}
+
+DeviceInfo choose_device(const std::string& spec) {
+  std::vector<DeviceInfo> devices = list_devices();
+  if (spec.empty()) {
+    for (const DeviceInfo& d : devices)
+      if (d.is_gpu) return d;
+    for (const DeviceInfo& d : devices)
+      if (d.is_cpu) return d;
+    return devices.front();
+  }
+  bool numeric = std::all_of(spec.begin(), spec.end(),
+                             [](unsigned char c) { return std::isdigit(c) != 0; });
+  if (numeric) {
+    size_t index = std::stoul(spec);
+    if (index < devices.size()) return devices[index];
+    throw Error("no OpenCL device with index " + spec + "; the devices are:\n" +
+                device_table(devices));
+  }
+  std::string needle = lower(spec);
+  for (const DeviceInfo& d : devices)
+    if (lower(d.name).find(needle) != std::string::npos ||
+        lower(d.platform_name).find(needle) != std::string::npos)
+      return d;
+  throw Error("no OpenCL device matches '" + spec + "'; the devices are:\n" + device_table(devices));
+}
+
+std::string ensure_pocl_cache_dir() {
+  if (const char* set = std::getenv("POCL_CACHE_DIR"); set && *set) return set;
+  std::filesystem::path base;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    base = xdg;
+  else if (const char* home = std::getenv("HOME"); home && *home)
+    base = std::filesystem::path(home) / ".cache";
+  else
+    return "";
+  std::filesystem::path dir = base / "rolypoly" / "pocl";
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return "";  // PoCL falls back to its own default; not worth failing for
+  setenv("POCL_CACHE_DIR", dir.c_str(), 0);
+  return dir.string();
+}
+
+Context Context::create(const std::string& device_spec) {
+  return create(choose_device(device_spec));
+}
+
+Context Context::create(const DeviceInfo& info) {
+  Context c;
+  c.info = info;
+  try {
+    c.context = ::cl::Context(info.device);
+    c.queue = ::cl::CommandQueue(c.context, info.device, CL_QUEUE_PROFILING_ENABLE);
+  } catch (const ::cl::Error& e) {
+    throw Error("cannot create an OpenCL context and queue on '" + info.name + "': " +
+                e.what() + " (" + error_name(e.err()) + ")");
+  }
+  return c;
+}
+
+}  // namespace rp::cl

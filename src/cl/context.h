@@ -1,0 +1,55 @@
+// Device discovery and choice, and the context + in-order profiling queue every pass uses.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <CL/opencl.hpp>
+
+namespace rp::cl {
+
+struct DeviceInfo {
+  int index = 0;              // position in list_devices(): what `--device N` means
+  int platform_index = 0;
+  std::string platform_name;
+  std::string name;
+  std::string vendor;
+  std::string type;           // "GPU", "CPU", "accelerator", ...
+  bool is_gpu = false;
+  bool is_cpu = false;
+  uint32_t compute_units = 0;
+  uint64_t global_mem_bytes = 0;
+  uint64_t max_alloc_bytes = 0;
+  uint64_t local_mem_bytes = 0;
+  size_t max_work_group_size = 0;
+  std::string version;        // CL_DEVICE_VERSION, e.g. "OpenCL 3.0 PoCL ..."
+  std::string c_version;      // CL_DEVICE_OPENCL_C_VERSION
+  ::cl::Device device;
+};
+
+// Every device of every platform, in platform order. Throws rp::cl::Error when there is no
+// OpenCL platform at all (with a hint on what to install).
+std::vector<DeviceInfo> list_devices();
+
+// Picks a device: empty spec = first GPU, else first CPU; a number = that index in
+// list_devices(); anything else = first device whose name (or platform name) contains spec,
+// case-insensitively. Throws rp::cl::Error listing the devices when nothing matches.
+DeviceInfo choose_device(const std::string& spec);
+
+// Unless the user set POCL_CACHE_DIR, point it at a persistent per-user folder
+// ($XDG_CACHE_HOME/rolypoly/pocl or ~/.cache/rolypoly/pocl) so PoCL's compiled kernels survive
+// between runs. Must run before the first OpenCL call. Returns the folder in use ("" if none).
+std::string ensure_pocl_cache_dir();
+
+// Context and one in-order queue with profiling enabled, on one device.
+struct Context {
+  DeviceInfo info;
+  ::cl::Context context;
+  ::cl::CommandQueue queue;
+
+  static Context create(const std::string& device_spec);
+  static Context create(const DeviceInfo& info);
+};
+
+}  // namespace rp::cl

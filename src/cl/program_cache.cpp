@@ -1,0 +1,99 @@
+#include "cl/program_cache.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "cl/error.h"
+
+namespace rp::cl {
+namespace {
+
+std::string read_file(const std::string& file) {
+  if (const char* dir = std::getenv("ROLYPOLY_KERNEL_DIR"); dir && *dir) {
+    std::filesystem::path path = std::filesystem::path(dir) / file;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("kernel file not found: " + path.string() + " (ROLYPOLY_KERNEL_DIR)");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }
+  const auto& files = embedded_kernel_files();
+  auto it = files.find(file);
+  if (it == files.end()) throw Error("kernel file not embedded in this build: kernels/" + file);
+  return std::string(it->second);
+}
+
+// Textual include expansion. Each file is included at most once per program (the shared
+// headers also have include guards; this keeps the expanded source short and readable).
+void expand(const std::string& file, std::set<std::string>& seen, std::string& out, int depth) {
+  if (depth > 16) throw Error("kernel includes nested too deeply at kernels/" + file);
+  if (!seen.insert(file).second) return;
+  std::istringstream in(read_file(file));
+  std::string line;
+  int line_no = 0;
+  out += "#line 1 \"" + file + "\"\n";
+  while (std::getline(in, line)) {
+    ++line_no;
+    size_t p = line.find_first_not_of(" \t");
+    if (p != std::string::npos && line.compare(p, 8, "#include") == 0) {
+      size_t q0 = line.find('"', p);
+      size_t q1 = q0 == std::string::npos ? q0 : line.find('"', q0 + 1);
+      if (q1 == std::string::npos)
+        throw Error("kernels/" + file + ":" + std::to_string(line_no) +
+                    ": only #include \"path\" (relative to kernels/) is supported");
+      expand(line.substr(q0 + 1, q1 - q0 - 1), seen, out, depth + 1);
+      out += "#line " + std::to_string(line_no + 1) + " \"" + file + "\"\n";
+      continue;
+    }
+    out += line;
+    out += '\n';
+  }
+}
+
+}  // namespace
+
+std::string kernel_source(const std::string& file) {
+  std::set<std::string> seen;
+  std::string out;
+  expand(file, seen, out, 0);
+  return out;
+}
+
+const ::cl::Program& ProgramCache::program(const std::string& file, const std::string& options) {
+  std::string all_options = common_options_.empty() ? options : common_options_ + " " + options;
+  auto key = std::make_tuple(file, all_options);
+  if (auto it = programs_.find(key); it != programs_.end()) return it->second;
+
+  std::string source = kernel_source(file);
+  ::cl::Program program(context_->context, source);
+  try {
+    program.build(std::vector<::cl::Device>{context_->info.device}, all_options.c_str());
+  } catch (const ::cl::Error&) {
+    std::string log;
+    try {
+      log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(context_->info.device);
+    } catch (const ::cl::Error&) {
+      log = "(no build log available)";
+    }
+    throw BuildError("failed to build kernels/" + file + " for '" + context_->info.name +
+                         "' with options '" + all_options + "'",
+                     log);
+  }
+  return programs_.emplace(key, std::move(program)).first->second;
+}
+
+::cl::Kernel ProgramCache::kernel(const std::string& file, const std::string& name,
+                                  const std::string& options) {
+  const ::cl::Program& prog = program(file, options);
+  try {
+    return ::cl::Kernel(prog, name.c_str());
+  } catch (const ::cl::Error& e) {
+    throw Error("kernel '" + name + "' not found in kernels/" + file + " (" +
+                error_name(e.err()) + ")");
+  }
+}
+
+}  // namespace rp::cl

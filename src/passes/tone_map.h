@@ -1,0 +1,21 @@
+// Tone map + sRGB encode + 8-bit quantise: HDR float4 -> RGBA8 (uint per pixel, R in the low
+// byte, A = 255). Pass name "tone_map".
+#pragma once
+
+#include "cl/profiler.h"
+#include "cl/program_cache.h"
+#include "render/gpu_scene.h"
+
+namespace rp::passes {
+
+class ToneMapPass {
+ public:
+  ToneMapPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+  void run(rp::cl::Profiler& profiler, const render::GpuScene& scene, const ::cl::Buffer& hdr,
+           ::cl::Buffer& rgba8);
+
+ private:
+  ::cl::Kernel kernel_;
+};
+
+}  // namespace rp::passes

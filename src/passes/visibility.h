@@ -1,0 +1,32 @@
+// Compute rasterizer: triangles of all instances plus analytic spheres -> visibility buffer,
+// and the same rasterizer depth-only from the lamp -> shadow map.
+#pragma once
+
+#include <memory>
+
+#include "cl/profiler.h"
+#include "cl/program_cache.h"
+#include "render/frame_buffers.h"
+#include "render/gpu_scene.h"
+
+namespace rp::passes {
+
+class VisibilityPass {
+ public:
+  VisibilityPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+
+  // Camera view (FrameConstants.view_proj, width x height of `out`). Pass name "visibility".
+  void render(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+              render::VisibilityBuffer& out);
+
+  // Lamp view (FrameConstants.light_view_proj), only instances and spheres that cast shadows,
+  // depth only. Pass name "shadow_map".
+  void render_shadow(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                     render::ShadowMap& out);
+
+ private:
+  struct Impl;
+  std::shared_ptr<Impl> impl_;
+};
+
+}  // namespace rp::passes

@@ -1,0 +1,64 @@
+// Device buffers that passes read and write. All planar, row-major, top row first
+// (index = y * width + x). Sizes change only on resize, never per frame.
+#pragma once
+
+#include <cstdint>
+
+#include <CL/opencl.hpp>
+
+namespace rp::render {
+
+// Output of the visibility pass (compute rasterizer or, later, Embree primary rays).
+struct VisibilityBuffer {
+  uint32_t width = 0, height = 0;
+  ::cl::Buffer depth;  // float: z_ndc * 0.5 + 0.5 of the nearest surface, 1.0 where nothing
+  ::cl::Buffer ids;    // uint2: (instance id, primitive id); see RP_ID_* in kernels/shared/types.h
+  ::cl::Buffer bary;   // float2: perspective-correct barycentrics (b1, b2) of the triangle's
+                       // 2nd and 3rd vertex (b0 = 1 - b1 - b2); (0, 0) for spheres/background
+
+  void resize(const ::cl::Context& context, uint32_t w, uint32_t h) {
+    width = w;
+    height = h;
+    size_t n = size_t(w) * h;
+    depth = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * sizeof(float));
+    ids = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * 2 * sizeof(uint32_t));
+    bary = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * 2 * sizeof(float));
+  }
+};
+
+// Depth seen from the lamp centre through FrameConstants.light_view_proj.
+struct ShadowMap {
+  uint32_t size = 0;   // size x size texels
+  ::cl::Buffer depth;  // float: z_ndc * 0.5 + 0.5 of the nearest occluder, 1.0 where none
+
+  void resize(const ::cl::Context& context, uint32_t s) {
+    size = s;
+    depth = ::cl::Buffer(context, CL_MEM_READ_WRITE, size_t(s) * s * sizeof(float));
+  }
+};
+
+// Surface attributes per pixel, resolved from the visibility buffer.
+struct GBuffer {
+  uint32_t width = 0, height = 0;
+  ::cl::Buffer albedo;        // float4: rgb linear albedo (texture decoded from sRGB), a = 1
+                              //         where a surface was hit, 0 for background
+  ::cl::Buffer normal_depth;  // float4: xyz world-space unit normal, w linear view depth
+                              //         (distance along the view axis; far plane for background)
+  ::cl::Buffer position;      // float4: xyz world position, w = 1 covered, 0 background
+  ::cl::Buffer emission;      // float4: rgb emitted radiance, w unused
+  ::cl::Buffer velocity;      // float2: screen motion in pixels, this frame minus previous
+                              //         (unjittered; +x right, +y down); 0 for background
+
+  void resize(const ::cl::Context& context, uint32_t w, uint32_t h) {
+    width = w;
+    height = h;
+    size_t n = size_t(w) * h;
+    albedo = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * 16);
+    normal_depth = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * 16);
+    position = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * 16);
+    emission = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * 16);
+    velocity = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * 8);
+  }
+};
+
+}  // namespace rp::render

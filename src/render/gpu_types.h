@@ -1,0 +1,31 @@
+// Host view of the structs in kernels/shared/types.h, with size checks and GLM conversions.
+#pragma once
+
+#include <cstring>
+
+#include <glm/glm.hpp>
+
+#include "kernels/shared/types.h"
+
+namespace rp::gpu {
+
+static_assert(sizeof(rp_float4) == 16);
+static_assert(sizeof(rp_mat4) == 64);
+static_assert(sizeof(FrameConstants) == 6 * 64 + 5 * 16 + 8 * 4);
+static_assert(sizeof(Vertex) == 32);
+static_assert(sizeof(Triangle) == 16);
+static_assert(sizeof(Instance) == 208);
+static_assert(sizeof(Sphere) == 64);
+static_assert(sizeof(Material) == 48);
+static_assert(sizeof(TextureInfo) == 16);
+
+inline rp_float4 to_gpu(const glm::vec4& v) { return {v.x, v.y, v.z, v.w}; }
+inline rp_float4 to_gpu(const glm::vec3& v, float w) { return {v.x, v.y, v.z, w}; }
+inline rp_mat4 to_gpu(const glm::mat4& m) {
+  rp_mat4 out;
+  static_assert(sizeof(out) == sizeof(m));
+  std::memcpy(&out, &m, sizeof(out));  // both column-major
+  return out;
+}
+
+}  // namespace rp::gpu

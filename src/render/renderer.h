@@ -1,0 +1,71 @@
+// Runs every pass of a frame in order on one device. Knows nothing of physics or windows.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "cl/context.h"
+#include "cl/profiler.h"
+#include "cl/program_cache.h"
+#include "render/frame_buffers.h"
+#include "render/gpu_scene.h"
+#include "scene/frame_scene.h"
+
+namespace rp::passes {
+class VisibilityPass;
+class GBufferPass;
+class LightPass;
+class ToneMapPass;
+}  // namespace rp::passes
+
+namespace rp::render {
+
+struct RenderSettings {
+  uint32_t width = 720, height = 720;
+  uint32_t shadow_size = 1024;  // shadow map texels per side
+  float ambient = 0.06f;        // constant ambient radiance factor (until cone tracing lands)
+};
+
+class Renderer {
+ public:
+  // Uploads the assets and builds every kernel (throws rp::cl::BuildError with the log).
+  Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+           const scene::SceneAssets& assets, RenderSettings settings);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Reallocates the per-pixel buffers (not per frame: only when the size changes).
+  void resize(uint32_t width, uint32_t height);
+
+  // Enqueues all passes for `frame`, waits, and returns the device time per pass in ms.
+  rp::cl::PassTimes render(const scene::FrameScene& frame);
+
+  // The finished image: width * height * 4 bytes RGBA8, top row first. Blocking.
+  void read_rgba8(std::vector<uint8_t>& out);
+
+  const RenderSettings& settings() const { return settings_; }
+  const GpuScene& gpu_scene() const { return *scene_; }
+  const VisibilityBuffer& visibility() const { return vis_; }
+  const ShadowMap& shadow_map() const { return shadow_; }
+  const GBuffer& gbuffer() const { return gbuffer_; }
+  const ::cl::Buffer& hdr() const { return hdr_; }
+
+ private:
+  const rp::cl::Context& context_;
+  RenderSettings settings_;
+  rp::cl::Profiler profiler_;
+  std::unique_ptr<GpuScene> scene_;
+  std::unique_ptr<passes::VisibilityPass> visibility_;
+  std::unique_ptr<passes::GBufferPass> gbuffer_pass_;
+  std::unique_ptr<passes::LightPass> light_;
+  std::unique_ptr<passes::ToneMapPass> tone_map_;
+  VisibilityBuffer vis_;
+  ShadowMap shadow_;
+  GBuffer gbuffer_;
+  ::cl::Buffer hdr_;    // float4 per pixel
+  ::cl::Buffer rgba8_;  // uint per pixel
+};
+
+}  // namespace rp::render
