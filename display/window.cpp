@@ -1,0 +1,162 @@
+#include "display/window.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+#include <GLFW/glfw3.h>  // includes <GL/gl.h>: legacy OpenGL 1.1 entry points, no loader needed
+
+namespace rp::display {
+namespace {
+
+bool env_set(const char* name) {
+  const char* v = std::getenv(name);
+  return v && *v;
+}
+
+// GLFW's description of its most recent error, or a fallback.
+std::string glfw_error(const char* fallback) {
+  const char* description = nullptr;
+  if (glfwGetError(&description) != GLFW_NO_ERROR && description) return description;
+  return fallback;
+}
+
+void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
+  if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS) glfwSetWindowShouldClose(window, GLFW_TRUE);
+}
+
+}  // namespace
+
+std::string missing_display_reason() {
+  if (!env_set("DISPLAY") && !env_set("WAYLAND_DISPLAY"))
+    return "no display: neither DISPLAY nor WAYLAND_DISPLAY is set";
+  return "";
+}
+
+Window::Window(int width, int height, const std::string& title) {
+  if (std::string why = missing_display_reason(); !why.empty()) throw DisplayError(why);
+  if (glfwInit() != GLFW_TRUE)
+    throw DisplayError("cannot initialise GLFW: " + glfw_error("unknown error"));
+  // Default hints give a compatibility context (OpenGL 2.x+), which has the fixed-function
+  // textured quad used below. No scaling to the monitor: one framebuffer pixel per image pixel.
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
+  glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_FALSE);
+  glfwWindowHint(GLFW_DOUBLEBUFFER, GLFW_TRUE);
+  window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
+  if (!window_) {
+    std::string why = glfw_error("unknown error");
+    glfwTerminate();
+    throw DisplayError("cannot open a window with OpenGL: " + why);
+  }
+  glfwMakeContextCurrent(window_);
+  glfwSwapInterval(1);
+  glfwSetKeyCallback(window_, on_key);
+
+  glGenTextures(1, &texture_);
+  glBindTexture(GL_TEXTURE_2D, texture_);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+  glDisable(GL_DITHER);  // keep presented pixels bit-exact
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+}
+
+Window::~Window() {
+  if (window_) {
+    glfwMakeContextCurrent(window_);
+    if (texture_) glDeleteTextures(1, &texture_);
+    glfwDestroyWindow(window_);
+  }
+  glfwTerminate();
+}
+
+void Window::present(const uint8_t* rgba, int width, int height) {
+  glfwMakeContextCurrent(window_);
+  glBindTexture(GL_TEXTURE_2D, texture_);
+  // Texture row 0 = image row 0 (the top row); draw() maps t = 0 to the top of the quad.
+  if (width != image_width_ || height != image_height_) {
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    image_width_ = width;
+    image_height_ = height;
+  } else {
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+  }
+  draw();
+  glfwSwapBuffers(window_);
+}
+
+void Window::draw() {
+  int fb_w = 0, fb_h = 0;
+  glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+  glViewport(0, 0, fb_w, fb_h);
+  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  if (image_width_ <= 0 || image_height_ <= 0 || fb_w <= 0 || fb_h <= 0) return;
+
+  // Largest centred rectangle with the image's aspect ratio (letterbox / pillarbox).
+  double scale = std::min(double(fb_w) / image_width_, double(fb_h) / image_height_);
+  int draw_w = std::max(1, int(std::lround(image_width_ * scale)));
+  int draw_h = std::max(1, int(std::lround(image_height_ * scale)));
+  glViewport((fb_w - draw_w) / 2, (fb_h - draw_h) / 2, draw_w, draw_h);
+
+  // At 1:1 every pixel centre lands on a texel centre: nearest sampling reproduces the image
+  // exactly. Scaled, linear filtering looks better.
+  bool one_to_one = draw_w == image_width_ && draw_h == image_height_;
+  GLint filter = one_to_one ? GL_NEAREST : GL_LINEAR;
+  glBindTexture(GL_TEXTURE_2D, texture_);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  glEnable(GL_TEXTURE_2D);
+  // The quad fills the viewport in NDC; GL's y points up, image rows go down: t = 0 at the top.
+  glBegin(GL_QUADS);
+  glTexCoord2f(0.0f, 1.0f);
+  glVertex2f(-1.0f, -1.0f);
+  glTexCoord2f(1.0f, 1.0f);
+  glVertex2f(1.0f, -1.0f);
+  glTexCoord2f(1.0f, 0.0f);
+  glVertex2f(1.0f, 1.0f);
+  glTexCoord2f(0.0f, 0.0f);
+  glVertex2f(-1.0f, 1.0f);
+  glEnd();
+  glDisable(GL_TEXTURE_2D);
+}
+
+void Window::poll_events() { glfwPollEvents(); }
+
+bool Window::should_close() const { return glfwWindowShouldClose(window_) == GLFW_TRUE; }
+
+void Window::set_title(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
+
+void Window::framebuffer_size(int& width, int& height) const {
+  glfwGetFramebufferSize(window_, &width, &height);
+}
+
+void Window::read_back(std::vector<uint8_t>& out, int& width, int& height) {
+  if (image_width_ <= 0) throw DisplayError("read_back: nothing has been presented yet");
+  glfwMakeContextCurrent(window_);
+  draw();
+  glFinish();
+  glfwGetFramebufferSize(window_, &width, &height);
+  size_t row = size_t(width) * 4;
+  std::vector<uint8_t> bottom_up(row * size_t(height));
+  glReadBuffer(GL_BACK);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+  if (GLenum err = glGetError(); err != GL_NO_ERROR)
+    throw DisplayError("glReadPixels failed (GL error " + std::to_string(err) + ")");
+  // glReadPixels returns the bottom row first; images here are top row first.
+  out.resize(bottom_up.size());
+  for (int y = 0; y < height; ++y)
+    std::memcpy(out.data() + size_t(y) * row, bottom_up.data() + size_t(height - 1 - y) * row,
+                row);
+}
+
+}  // namespace rp::display

@@ -1,0 +1,59 @@
+// A GLFW window that shows finished RGBA8 images. It knows nothing of OpenCL or the scene: the
+// image is uploaded into one texture and drawn as one quad (legacy OpenGL, no shaders), scaled
+// to fit the window with black bars (letterbox) and exactly 1:1 with nearest sampling when the
+// framebuffer has the image's size.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+struct GLFWwindow;
+
+namespace rp::display {
+
+// The window cannot be opened: no display, no OpenGL, GLFW failed. The message says why.
+class DisplayError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Why no window can be opened in this environment ("" when a display looks available). Checks
+// the DISPLAY / WAYLAND_DISPLAY variables only; opening may still fail later.
+std::string missing_display_reason();
+
+class Window {
+ public:
+  // Opens a visible, resizable window whose framebuffer is width x height pixels on a normal
+  // (non-HiDPI) screen. Throws DisplayError when there is no display or GLFW/OpenGL fail.
+  Window(int width, int height, const std::string& title);
+  ~Window();
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+
+  // Uploads `rgba` (width * height * 4 bytes, top row first) and shows it: draw, swap buffers.
+  void present(const uint8_t* rgba, int width, int height);
+
+  // Processes pending window events (keys, resize, close). Esc requests closing.
+  void poll_events();
+  bool should_close() const;
+  void set_title(const std::string& title);
+
+  // Current framebuffer size in pixels.
+  void framebuffer_size(int& width, int& height) const;
+
+  // What the window shows: re-draws the last presented image into the back buffer and reads it
+  // with glReadPixels. `out` = width * height * 4 bytes RGBA8, top row first, at the framebuffer
+  // size (returned in width/height). Throws DisplayError if nothing was presented yet.
+  void read_back(std::vector<uint8_t>& out, int& width, int& height);
+
+ private:
+  void draw();
+
+  GLFWwindow* window_ = nullptr;
+  unsigned int texture_ = 0;  // GL texture name holding the last presented image
+  int image_width_ = 0, image_height_ = 0;
+};
+
+}  // namespace rp::display

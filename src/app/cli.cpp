@@ -1,0 +1,123 @@
+#include "app/cli.h"
+
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#include "cl/context.h"
+#include "cl/error.h"
+
+namespace rp::app {
+namespace {
+
+constexpr uint32_t kMaxSize = 16384;  // pixels per side; far above any sensible render
+
+// --size sets both sides; --width / --height override one of them.
+struct SizeArgs {
+  uint32_t size = 720;
+  uint32_t width = 0, height = 0;  // 0 = take --size
+  ImageSize resolve() const { return {width ? width : size, height ? height : size}; }
+};
+
+void add_common(CLI::App* cmd, CommonOptions& common) {
+  cmd->add_option("--device", common.device,
+                  "OpenCL device: index from `rolypoly devices` or part of its name "
+                  "(case-insensitive); default: first GPU, else first CPU");
+  cmd->add_option("--assets", common.asset_dir,
+                  "folder with the scene's textures (default: the built-in asset folder)");
+}
+
+void add_size(CLI::App* cmd, SizeArgs& size) {
+  cmd->add_option("--size", size.size, "square image size in pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, kMaxSize));
+  cmd->add_option("--width", size.width, "image width in pixels (overrides --size)")
+      ->check(CLI::Range(1u, kMaxSize));
+  cmd->add_option("--height", size.height, "image height in pixels (overrides --size)")
+      ->check(CLI::Range(1u, kMaxSize));
+}
+
+int report(const std::string& message) {
+  std::fflush(stdout);
+  std::fprintf(stderr, "rolypoly: error: %s\n", message.c_str());
+  return 1;
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"rolypoly: a Cornell box of roly-poly toys, rendered entirely by OpenCL kernels",
+               "rolypoly"};
+  app.require_subcommand(1);
+
+  CommonOptions common;
+  SizeArgs render_size, run_size, bench_size;
+  RenderOptions render_opts;
+  RunOptions run_opts;
+  BenchOptions bench_opts;
+
+  CLI::App* devices = app.add_subcommand("devices", "list every OpenCL platform and device");
+
+  CLI::App* render = app.add_subcommand("render", "render frames headless into numbered PNGs");
+  add_common(render, common);
+  add_size(render, render_size);
+  render->add_option("--frames", render_opts.frames, "number of frames")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 1000000u));
+  render->add_option("--out", render_opts.out_dir, "output folder (created if missing)")
+      ->capture_default_str();
+
+  CLI::App* run = app.add_subcommand("run", "show the frames in a window (Esc quits)");
+  add_common(run, common);
+  add_size(run, run_size);
+  run->add_option("--frames", run_opts.frames, "frames to show, 0 = until the window is closed")
+      ->capture_default_str();
+  run->add_option("--capture", run_opts.capture,
+                  "after the last frame, save what the window shows to this PNG");
+
+  CLI::App* bench = app.add_subcommand("bench", "time every pass over many frames");
+  add_common(bench, common);
+  add_size(bench, bench_size);
+  bench->add_option("--frames", bench_opts.frames, "measured frames")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 1000000u));
+  bench->add_option("--warmup", bench_opts.warmup, "frames rendered first, not measured")
+      ->capture_default_str();
+  bench->add_option("--json", bench_opts.json, "also write the results as JSON to this file");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);  // prints help (code 0) or CLI11's error message
+    return code == 0 ? 0 : 2;
+  }
+
+  try {
+    rp::cl::ensure_pocl_cache_dir();  // before the first OpenCL call
+    if (devices->parsed()) return devices_command();
+    if (render->parsed()) {
+      render_opts.size = render_size.resolve();
+      return render_command(common, render_opts);
+    }
+    if (run->parsed()) {
+      run_opts.size = run_size.resolve();
+      return run_command(common, run_opts);
+    }
+    if (bench->parsed()) {
+      bench_opts.size = bench_size.resolve();
+      return bench_command(common, bench_opts);
+    }
+    return report("no subcommand given (try --help)");
+  } catch (const ::cl::Error& e) {
+    // An OpenCL call that the code did not wrap in an rp::cl::Error.
+    return report(std::string("OpenCL call ") + e.what() + " failed with " +
+                  rp::cl::error_name(e.err()));
+  } catch (const std::exception& e) {
+    return report(e.what());
+  }
+}
+
+}  // namespace rp::app

@@ -1,0 +1,45 @@
+// The subcommands of `rolypoly`. Each returns the process exit code and throws on errors
+// (rp::cl::Error, rp::scene::AssetError, rp::display::DisplayError, std::exception); cli.cpp
+// turns exceptions into "rolypoly: error: <message>" and exit code 1.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "app/render_session.h"
+
+namespace rp::app {
+
+struct ImageSize {
+  uint32_t width = 720, height = 720;
+};
+
+struct RenderOptions {
+  ImageSize size;
+  uint32_t frames = 1;
+  std::string out_dir = "out";
+};
+
+struct RunOptions {
+  ImageSize size;
+  uint32_t frames = 0;   // 0 = until the window is closed
+  std::string capture;   // PNG of the window's content after the last frame ("" = none)
+};
+
+struct BenchOptions {
+  ImageSize size;
+  uint32_t frames = 10;  // measured frames
+  uint32_t warmup = 3;   // frames rendered first and not measured
+  std::string json;      // "" = no JSON file
+};
+
+// Prints every OpenCL platform/device.
+int devices_command();
+// Headless: frame_0000.png ... into out_dir.
+int render_command(const CommonOptions& common, const RenderOptions& options);
+// Window (GLFW); throws rp::display::DisplayError when no window can be opened.
+int run_command(const CommonOptions& common, const RunOptions& options);
+// Timing table and optional JSON.
+int bench_command(const CommonOptions& common, const BenchOptions& options);
+
+}  // namespace rp::app

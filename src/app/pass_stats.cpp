@@ -1,0 +1,69 @@
+#include "app/pass_stats.h"
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+#include <string_view>
+
+namespace rp::app {
+
+int pipeline_rank(const std::string& pass) {
+  // Order of DESIGN.md's data flow; "upload" covers per-frame buffer writes.
+  static constexpr std::array<std::string_view, 12> order = {
+      "upload", "visibility", "gbuffer",     "shadow_map", "voxelize", "voxel_mips",
+      "light",  "taa",        "bloom",       "motion_blur", "tone_map", "readback"};
+  for (size_t i = 0; i < order.size(); ++i)
+    if (order[i] == pass) return static_cast<int>(i);
+  return static_cast<int>(order.size());
+}
+
+TimeSummary summarize(std::vector<double> samples) {
+  if (samples.empty()) throw std::invalid_argument("summarize: no samples");
+  std::sort(samples.begin(), samples.end());
+  size_t n = samples.size();
+  TimeSummary s;
+  s.min_ms = samples.front();
+  s.max_ms = samples.back();
+  s.median_ms = n % 2 == 1 ? samples[n / 2] : 0.5 * (samples[n / 2 - 1] + samples[n / 2]);
+  return s;
+}
+
+void PassStats::add(const rp::cl::PassTimes& passes, double frame_ms) {
+  for (const auto& [name, ms] : passes) pass_ms_[name].push_back(ms);
+  frame_ms_.push_back(frame_ms);
+}
+
+std::vector<std::string> PassStats::pass_names() const {
+  std::vector<std::string> names;
+  for (const auto& entry : pass_ms_) names.push_back(entry.first);
+  // std::map iterates alphabetically, so a stable sort by rank keeps unknown names alphabetical.
+  std::stable_sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
+    return pipeline_rank(a) < pipeline_rank(b);
+  });
+  return names;
+}
+
+TimeSummary PassStats::pass(const std::string& name) const {
+  auto it = pass_ms_.find(name);
+  if (it == pass_ms_.end()) throw std::invalid_argument("no timings for pass '" + name + "'");
+  return summarize(it->second);
+}
+
+TimeSummary PassStats::frame() const { return summarize(frame_ms_); }
+
+std::map<std::string, double> PassStats::pass_means() const {
+  std::map<std::string, double> means;
+  for (const auto& [name, ms] : pass_ms_) {
+    double sum = 0.0;
+    for (double v : ms) sum += v;
+    means[name] = ms.empty() ? 0.0 : sum / double(ms.size());
+  }
+  return means;
+}
+
+void PassStats::clear() {
+  pass_ms_.clear();
+  frame_ms_.clear();
+}
+
+}  // namespace rp::app

@@ -1,0 +1,83 @@
+#include "app/png_output.h"
+
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+#include <unistd.h>
+
+#include <stb/stb_image_write.h>
+
+namespace rp::app {
+namespace {
+
+// Hidden temporary name in the same folder (rename is atomic only within one file system).
+std::filesystem::path temporary_for(const std::filesystem::path& path) {
+  // Appending to one string (rather than "." + name + ...) also avoids a GCC 12 -Wrestrict
+  // false positive on operator+(const char*, std::string&&).
+  std::string name = ".";
+  name += path.filename().string();
+  name += ".tmp";
+  name += std::to_string(getpid());
+  std::filesystem::path tmp = path;
+  tmp.replace_filename(name);
+  return tmp;
+}
+
+void commit(const std::filesystem::path& tmp, const std::filesystem::path& path) {
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw std::runtime_error("cannot write " + path.string() + ": rename failed");
+  }
+}
+
+}  // namespace
+
+std::string frame_file_name(uint32_t index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04u.png", index);
+  return name;
+}
+
+void write_png_atomic(const std::filesystem::path& path, int width, int height,
+                      const std::vector<uint8_t>& rgba) {
+  if (width <= 0 || height <= 0 || rgba.size() != size_t(width) * size_t(height) * 4)
+    throw std::runtime_error("cannot write " + path.string() + ": image size mismatch");
+  std::filesystem::path tmp = temporary_for(path);
+  if (!stbi_write_png(tmp.c_str(), width, height, 4, rgba.data(), width * 4)) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw std::runtime_error("cannot write " + path.string() +
+                             " (is the folder writable and the disk not full?)");
+  }
+  commit(tmp, path);
+}
+
+void write_text_atomic(const std::filesystem::path& path, const std::string& text) {
+  std::filesystem::path tmp = temporary_for(path);
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) {
+      out.close();
+      std::error_code ec;
+      std::filesystem::remove(tmp, ec);
+      throw std::runtime_error("cannot write " + path.string());
+    }
+  }
+  commit(tmp, path);
+}
+
+void ensure_directory(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir))
+    throw std::runtime_error("cannot create output folder " + dir.string() +
+                             (ec ? ": " + ec.message() : ": a file of that name exists"));
+}
+
+}  // namespace rp::app

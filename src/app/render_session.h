@@ -1,0 +1,56 @@
+// Everything one rendering command needs, built in the order that reports errors cheapest first:
+// assets (missing/corrupt textures), then the OpenCL device and context (no platform, unknown
+// device), then the renderer (kernel build failures with the build log).
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cl/context.h"
+#include "cl/profiler.h"
+#include "cl/program_cache.h"
+#include "render/renderer.h"
+#include "scene/frame_scene.h"
+
+namespace rp::app {
+
+struct CommonOptions {
+  std::string device;      // --device: index or name substring ("" = first GPU, else CPU)
+  std::string asset_dir;   // --assets: folder with the scene's textures
+};
+
+// Not copyable or movable: the program cache and renderer point at the context.
+class RenderSession {
+ public:
+  RenderSession(const CommonOptions& options, uint32_t width, uint32_t height);
+  RenderSession(const RenderSession&) = delete;
+  RenderSession& operator=(const RenderSession&) = delete;
+
+  // Renders `frame` (blocking) and reads the RGBA8 result into `rgba` (top row first).
+  // Returns the device ms per pass; `frame_ms` gets the wall-clock ms of Renderer::render
+  // (enqueue of every pass until all finished; the read-back is not included).
+  rp::cl::PassTimes render(const scene::FrameScene& frame, std::vector<uint8_t>& rgba,
+                           double& frame_ms);
+
+  const rp::cl::DeviceInfo& device() const { return context_.info; }
+  const scene::SceneAssets& assets() const { return assets_; }
+  uint32_t width() const { return renderer_->settings().width; }
+  uint32_t height() const { return renderer_->settings().height; }
+
+ private:
+  scene::SceneAssets assets_;
+  rp::cl::Context context_;
+  rp::cl::ProgramCache programs_;
+  std::unique_ptr<render::Renderer> renderer_;
+};
+
+// "[0] pthread-... (CPU, Portable Computing Language)"
+std::string describe_device(const rp::cl::DeviceInfo& info);
+
+// Milliseconds since `start` on the steady clock.
+double ms_since(std::chrono::steady_clock::time_point start);
+
+}  // namespace rp::app
