@@ -1,0 +1,85 @@
+#include "cli_runner.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace rp::test {
+namespace {
+
+std::string slurp(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'')
+      out += "'\\''";
+    else
+      out += c;
+  }
+  out += "'";
+  return out;
+}
+
+CommandResult run_rolypoly(const std::string& args, const std::string& env_prefix) {
+  TempDir capture;
+  std::filesystem::path out_file = capture / "stdout.txt", err_file = capture / "stderr.txt";
+  CommandResult r;
+  r.command = (env_prefix.empty() ? "" : env_prefix + " ") + shell_quote(ROLYPOLY_BINARY) + " " +
+              args;
+  std::string full = r.command + " >" + shell_quote(out_file.string()) + " 2>" +
+                     shell_quote(err_file.string()) + " </dev/null";
+  int status = std::system(full.c_str());
+  r.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out_file);
+  r.err = slurp(err_file);
+  return r;
+}
+
+bool have_program(const std::string& program) {
+  std::string cmd = "command -v " + shell_quote(program) + " >/dev/null 2>&1";
+  return std::system(cmd.c_str()) == 0;
+}
+
+TempDir::TempDir() {
+  static std::atomic<int> counter{0};
+  path_ = std::filesystem::temp_directory_path() /
+          ("rolypoly-test-" + std::to_string(getpid()) + "-" + std::to_string(counter++));
+  std::filesystem::remove_all(path_);
+  std::filesystem::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path_, ec);
+}
+
+std::vector<std::string> files_with_suffix(const std::filesystem::path& dir,
+                                           const std::string& suffix) {
+  std::vector<std::string> names;
+  if (!std::filesystem::is_directory(dir)) return names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    std::string name = entry.path().filename().string();
+    if (entry.is_regular_file() && name.size() >= suffix.size() &&
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+      names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace rp::test

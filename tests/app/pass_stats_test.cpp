@@ -1,0 +1,75 @@
+// Timing statistics behind the render summary, the window title and the bench.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "app/bench_report.h"
+#include "app/pass_stats.h"
+#include "app/progress.h"
+
+namespace rp::app {
+namespace {
+
+TEST(PassStats, SummarizeOddCountTakesMiddleValue) {
+  TimeSummary s = summarize({5.0, 1.0, 3.0});
+  EXPECT_DOUBLE_EQ(s.median_ms, 3.0);
+  EXPECT_DOUBLE_EQ(s.min_ms, 1.0);
+  EXPECT_DOUBLE_EQ(s.max_ms, 5.0);
+}
+
+TEST(PassStats, SummarizeEvenCountAveragesTheTwoMiddleValues) {
+  TimeSummary s = summarize({4.0, 1.0, 2.0, 10.0});
+  EXPECT_DOUBLE_EQ(s.median_ms, 3.0);
+  EXPECT_DOUBLE_EQ(s.min_ms, 1.0);
+  EXPECT_DOUBLE_EQ(s.max_ms, 10.0);
+}
+
+TEST(PassStats, SummarizeRejectsNoSamples) {
+  EXPECT_THROW(summarize({}), std::invalid_argument);
+}
+
+TEST(PassStats, CollectsPerPassAndFrameTimes) {
+  PassStats stats;
+  stats.add({{"light", 10.0}, {"visibility", 2.0}}, 13.0);
+  stats.add({{"light", 30.0}, {"visibility", 4.0}}, 35.0);
+  stats.add({{"light", 20.0}, {"visibility", 3.0}}, 24.0);
+  EXPECT_EQ(stats.frames(), 3u);
+  EXPECT_DOUBLE_EQ(stats.pass("light").median_ms, 20.0);
+  EXPECT_DOUBLE_EQ(stats.pass("visibility").max_ms, 4.0);
+  EXPECT_DOUBLE_EQ(stats.frame().median_ms, 24.0);
+  EXPECT_DOUBLE_EQ(stats.pass_means().at("light"), 20.0);
+  EXPECT_THROW(stats.pass("taa"), std::invalid_argument);
+  stats.clear();
+  EXPECT_EQ(stats.frames(), 0u);
+}
+
+TEST(PassStats, PassNamesFollowThePipelineThenAlphabet) {
+  PassStats stats;
+  stats.add({{"tone_map", 1.0}, {"zeta_debug", 1.0}, {"gbuffer", 1.0}, {"alpha_debug", 1.0},
+             {"visibility", 1.0}, {"light", 1.0}},
+            1.0);
+  std::vector<std::string> expected = {"visibility", "gbuffer",    "light",
+                                       "tone_map",   "alpha_debug", "zeta_debug"};
+  EXPECT_EQ(stats.pass_names(), expected);
+}
+
+TEST(BenchReport, TableListsEveryPassAndTheFrame) {
+  PassStats stats;
+  stats.add({{"visibility", 1.5}, {"light", 7.25}}, 9.0);
+  std::string table = timing_table(stats);
+  EXPECT_NE(table.find("visibility"), std::string::npos);
+  EXPECT_NE(table.find("7.250"), std::string::npos);
+  EXPECT_NE(table.find("frame"), std::string::npos);
+  EXPECT_LT(table.find("visibility"), table.find("light"));
+  EXPECT_EQ(median_line(stats), "visibility 1.50 ms, light 7.25 ms");
+}
+
+TEST(Progress, LineShowsFractionDone) {
+  EXPECT_EQ(ProgressBar::render_line("render", 1, 4, 8), "render [##......] 1/4");
+  EXPECT_EQ(ProgressBar::render_line("render", 4, 4, 8), "render [########] 4/4");
+  EXPECT_EQ(ProgressBar::render_line("render", 9, 4, 8), "render [########] 4/4");
+  EXPECT_EQ(ProgressBar::render_line("x", 0, 0, 2), "x [##] 0/0");
+}
+
+}  // namespace
+}  // namespace rp::app
