@@ -1,0 +1,54 @@
+// The demo scene of SPEC.md section 1: the Cornell box, the ceiling lamp and five tumblers.
+// Tests, the bench and the app all build their frames from here.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "scene/frame_scene.h"
+#include "scene/tumbler_shape.h"
+
+namespace rp::scene {
+
+// Indices into SceneAssets built by make_demo_assets().
+namespace demo {
+inline constexpr uint32_t kBoxMesh = 0, kLampMesh = 1, kTumblerMesh = 2;
+inline constexpr uint32_t kFloorMaterial = 0, kCeilingMaterial = 1, kBackMaterial = 2,
+                          kLeftMaterial = 3, kRightMaterial = 4, kLampMaterial = 5,
+                          kTumblerMaterial = 6;
+inline constexpr uint32_t kWoodTexture = 0, kTumblerTexture = 1;
+inline constexpr int kTumblerCount = 5;
+}  // namespace demo
+
+// Where a tumbler stands at rest: floor position (x, z) of its bottom sphere centre and its yaw
+// (rotation about +y, radians; yaw 0 faces +z, towards the camera).
+struct TumblerPlacement {
+  glm::vec2 xz;
+  float yaw;
+};
+
+// The five resting places of the demo: spread over the floor, centres at least 0.57 apart (two
+// tumblers touch at 2b = 0.4), bodies at least 0.25 from the side and back walls, each turned roughly towards
+// the camera with a little variety.
+std::array<TumblerPlacement, demo::kTumblerCount> demo_tumbler_placements();
+
+// Model matrix of an upright tumbler at `placement`: the bottom sphere centre at
+// (x, -1 + b, z), so the tumbler touches the floor y = -1.
+glm::mat4 upright_tumbler_model(const TumblerShape& shape, const TumblerPlacement& placement);
+
+// The asset folder: $ROLYPOLY_ASSET_DIR if set, else the source tree's scene/assets.
+std::string default_asset_dir();
+
+// Meshes (box, lamp cap, tumbler), materials (walls, lamp, tumbler) and textures (wood.png,
+// tumbler_face.png from asset_dir). Throws AssetError when a texture cannot be loaded.
+SceneAssets make_demo_assets(const std::string& asset_dir);
+
+// The demo at rest: default camera and light, the box and lamp (identity model, no shadow), five
+// upright tumblers at demo_tumbler_placements() (casting shadows). Previous camera and models
+// equal the current ones (no motion).
+FrameScene make_demo_frame(const SceneAssets& assets, uint32_t frame_index = 0);
+
+}  // namespace rp::scene
