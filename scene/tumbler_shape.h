@@ -21,6 +21,11 @@ struct TumblerShape {
   float alpha = std::numbers::pi_v<float> / 9.0f;   // angle between the cone side and the axis
   float y_t = (0.2f - 0.1f) / std::sin(std::numbers::pi_v<float> / 9.0f);  // top centre height
 
+  // Another shape; y_t = (b - t) / sin(alpha) is derived (set b, t, alpha only through here).
+  static TumblerShape with(float b, float t, float alpha) {
+    return TumblerShape{b, t, alpha, (b - t) / std::sin(alpha)};
+  }
+
   float y_bottom() const { return -b; }
   float y_top() const { return y_t + t; }
   float height() const { return y_top() - y_bottom(); }

@@ -52,6 +52,17 @@ TEST(TumblerShape, ConstantsMatchSpec) {
   EXPECT_NEAR(s.y_join_top(), 0.29238044 + 0.1 * 0.3420201433, 1e-6);
 }
 
+TEST(TumblerShape, OtherParametersDeriveTheTopCentre) {
+  const TumblerShape d = TumblerShape::with(0.2f, 0.1f, static_cast<float>(kPi / 9.0));
+  EXPECT_FLOAT_EQ(d.y_t, TumblerShape{}.y_t);
+  const TumblerShape s = TumblerShape::with(0.3f, 0.1f, static_cast<float>(kPi / 6.0));
+  EXPECT_NEAR(s.y_t, 0.2 / 0.5, 1e-6);  // (b - t) / sin(30 deg)
+  // The profile stays C0 at the joins for other parameters too (slope tan 30 deg = 0.5774).
+  EXPECT_NEAR(s.radius(s.y_join_bottom() - 1e-5f), s.radius(s.y_join_bottom() + 1e-5f), 2e-5 * 0.5774 + 1e-6);
+  EXPECT_NEAR(s.radius(s.y_join_top() - 1e-5f), s.radius(s.y_join_top() + 1e-5f), 2e-5 * 0.5774 + 1e-6);
+  EXPECT_NEAR(s.sdf({0.0f, s.y_top(), 0.0f}), 0.0f, 1e-6f);
+}
+
 TEST(TumblerShape, ProfileValuesAndJoins) {
   const TumblerShape s;
   EXPECT_NEAR(s.radius(-0.2f), 0.0f, 1e-6);
