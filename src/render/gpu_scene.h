@@ -25,7 +25,8 @@ class GpuScene {
            const scene::SceneAssets& assets);
 
   // Fills FrameConstants, Instance and Sphere arrays from `frame` and writes them (non-blocking
-  // writes on `queue`; the host copies stay alive until the next update).
+  // writes on `queue`; the host copies stay alive until the next update, so the queue must
+  // have finished the previous frame before update() is called again).
   void update(const scene::FrameScene& frame, uint32_t width, uint32_t height,
               uint32_t shadow_size, float ambient);
 

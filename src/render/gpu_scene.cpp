@@ -1,0 +1,159 @@
+#include "render/gpu_scene.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "cl/error.h"
+
+namespace rp::render {
+namespace {
+
+// Creates a read-only buffer holding `data` (at least one element: OpenCL has no empty buffers).
+template <typename T>
+::cl::Buffer upload(const ::cl::Context& context, ::cl::CommandQueue& queue,
+                    const std::vector<T>& data) {
+  size_t bytes = std::max<size_t>(1, data.size()) * sizeof(T);
+  ::cl::Buffer buffer(context, CL_MEM_READ_ONLY, bytes);
+  if (!data.empty())
+    queue.enqueueWriteBuffer(buffer, CL_TRUE, 0, data.size() * sizeof(T), data.data());
+  return buffer;
+}
+
+uint32_t pack_rgba8(const uint8_t* p) {
+  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+
+}  // namespace
+
+GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue,
+                   const scene::SceneAssets& assets)
+    : context_(context), queue_(queue) {
+  std::vector<gpu::Vertex> verts;
+  std::vector<gpu::Triangle> tris;
+  for (const scene::Mesh& mesh : assets.meshes) {
+    if (mesh.materials.size() != mesh.triangles.size())
+      throw rp::cl::Error("mesh '" + mesh.name + "': one material per triangle expected");
+    MeshRange range{static_cast<uint32_t>(tris.size()),
+                    static_cast<uint32_t>(mesh.triangles.size())};
+    uint32_t base = static_cast<uint32_t>(verts.size());
+    for (const scene::Vertex& v : mesh.vertices)
+      verts.push_back({gpu::to_gpu(v.position, v.uv.x), gpu::to_gpu(v.normal, v.uv.y)});
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const glm::uvec3& tri = mesh.triangles[t];
+      if (tri.x >= mesh.vertices.size() || tri.y >= mesh.vertices.size() ||
+          tri.z >= mesh.vertices.size() || mesh.materials[t] >= assets.materials.size())
+        throw rp::cl::Error("mesh '" + mesh.name + "': triangle " + std::to_string(t) +
+                            " refers to a vertex or material that does not exist");
+      tris.push_back({base + tri.x, base + tri.y, base + tri.z, mesh.materials[t]});
+    }
+    meshes.push_back(range);
+  }
+  vertex_count = static_cast<uint32_t>(verts.size());
+  triangle_count = static_cast<uint32_t>(tris.size());
+
+  std::vector<gpu::Material> mats;
+  for (const scene::Material& m : assets.materials) {
+    if (m.texture >= static_cast<int>(assets.textures.size()))
+      throw rp::cl::Error("material '" + m.name + "' refers to a texture that does not exist");
+    gpu::Material g{};
+    g.albedo = gpu::to_gpu(m.albedo, 1.0f);
+    g.emission = gpu::to_gpu(m.emission, 0.0f);
+    g.texture = m.texture < 0 ? RP_TEXTURE_NONE : static_cast<uint32_t>(m.texture);
+    mats.push_back(g);
+  }
+
+  std::vector<uint32_t> texel_data;
+  std::vector<gpu::TextureInfo> infos;
+  for (const scene::Texture& t : assets.textures) {
+    if (t.width <= 0 || t.height <= 0 || t.rgba.size() != size_t(t.width) * t.height * 4)
+      throw rp::cl::Error("texture '" + t.name + "' has inconsistent size");
+    infos.push_back({static_cast<uint32_t>(texel_data.size()), static_cast<uint32_t>(t.width),
+                     static_cast<uint32_t>(t.height), 0});
+    for (size_t i = 0; i < t.rgba.size(); i += 4) texel_data.push_back(pack_rgba8(&t.rgba[i]));
+  }
+
+  vertices = upload(context, queue_, verts);
+  triangles = upload(context, queue_, tris);
+  materials = upload(context, queue_, mats);
+  texels = upload(context, queue_, texel_data);
+  textures = upload(context, queue_, infos);
+  frame = ::cl::Buffer(context, CL_MEM_READ_ONLY, sizeof(gpu::FrameConstants));
+}
+
+void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t height,
+                      uint32_t shadow_size, float ambient) {
+  float aspect = float(width) / float(height);
+  // Jitter (TAA) is zero until the TAA pass lands; the field layout is already in place.
+  glm::mat4 view = f.camera.view();
+  glm::mat4 view_proj = f.camera.projection(aspect) * view;
+  glm::mat4 prev_view_proj = f.prev_camera.projection(aspect) * f.prev_camera.view();
+
+  gpu::FrameConstants& c = constants;
+  c.view_proj = gpu::to_gpu(view_proj);
+  c.inv_view_proj = gpu::to_gpu(glm::inverse(view_proj));
+  c.view_proj_unjittered = gpu::to_gpu(view_proj);
+  c.prev_view_proj_unjittered = gpu::to_gpu(prev_view_proj);
+  c.view = gpu::to_gpu(view);
+  c.light_view_proj = gpu::to_gpu(f.light.view_proj());
+  c.camera_pos = gpu::to_gpu(f.camera.position, 1.0f);
+  c.jitter = {0.0f, 0.0f, 0.0f, 0.0f};
+  c.light_pos = gpu::to_gpu(f.light.position, f.light.lamp_radius);
+  c.light_intensity = gpu::to_gpu(f.light.intensity, ambient);
+  c.clip = {f.camera.near_plane, f.camera.far_plane, f.light.shadow_near, f.light.shadow_far};
+  c.width = width;
+  c.height = height;
+  c.shadow_size = shadow_size;
+  c.frame_index = f.frame_index;
+
+  host_instances.clear();
+  instance_triangle_count = 0;
+  for (const scene::MeshInstance& inst : f.instances) {
+    if (inst.mesh >= meshes.size())
+      throw rp::cl::Error("instance refers to mesh " + std::to_string(inst.mesh) +
+                          " which does not exist");
+    gpu::Instance g{};
+    g.model = gpu::to_gpu(inst.model);
+    g.prev_model = gpu::to_gpu(inst.prev_model);
+    g.normal_matrix = gpu::to_gpu(glm::inverseTranspose(inst.model));
+    g.first_triangle = meshes[inst.mesh].first_triangle;
+    g.triangle_count = meshes[inst.mesh].triangle_count;
+    g.casts_shadow = inst.casts_shadow ? 1u : 0u;
+    host_instances.push_back(g);
+    instance_triangle_count += g.triangle_count;
+  }
+  host_spheres.clear();
+  for (const scene::Sphere& s : f.spheres) {
+    gpu::Sphere g{};
+    g.center_radius = gpu::to_gpu(s.center, s.radius);
+    g.prev_center = gpu::to_gpu(s.prev_center, s.casts_shadow ? 1.0f : 0.0f);
+    g.albedo = gpu::to_gpu(s.albedo, 0.0f);
+    g.emission = gpu::to_gpu(s.emission, 0.0f);
+    host_spheres.push_back(g);
+  }
+  instance_count = static_cast<uint32_t>(host_instances.size());
+  sphere_count = static_cast<uint32_t>(host_spheres.size());
+  c.instance_count = instance_count;
+  c.sphere_count = sphere_count;
+
+  // Buffers only grow (doubling), so steady-state frames allocate nothing.
+  auto ensure = [&](::cl::Buffer& buf, size_t& capacity, size_t needed, size_t elem) {
+    needed = std::max<size_t>(needed, 1);
+    if (capacity >= needed) return;
+    capacity = std::max(needed, capacity * 2);
+    buf = ::cl::Buffer(context_, CL_MEM_READ_ONLY, capacity * elem);
+  };
+  ensure(instances, instance_capacity_, host_instances.size(), sizeof(gpu::Instance));
+  ensure(spheres, sphere_capacity_, std::max<size_t>(host_spheres.size(), 64), sizeof(gpu::Sphere));
+
+  queue_.enqueueWriteBuffer(frame, CL_FALSE, 0, sizeof(c), &c);
+  if (!host_instances.empty())
+    queue_.enqueueWriteBuffer(instances, CL_FALSE, 0,
+                              host_instances.size() * sizeof(gpu::Instance), host_instances.data());
+  if (!host_spheres.empty())
+    queue_.enqueueWriteBuffer(spheres, CL_FALSE, 0, host_spheres.size() * sizeof(gpu::Sphere),
+                              host_spheres.data());
+}
+
+}  // namespace rp::render

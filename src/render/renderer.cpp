@@ -1,0 +1,59 @@
+#include "render/renderer.h"
+
+#include "cl/error.h"
+#include "passes/gbuffer.h"
+#include "passes/light.h"
+#include "passes/tone_map.h"
+#include "passes/visibility.h"
+
+namespace rp::render {
+
+Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+                   const scene::SceneAssets& assets, RenderSettings settings)
+    : context_(context), settings_(settings), profiler_(context.queue) {
+  if (settings_.width == 0 || settings_.height == 0 || settings_.shadow_size == 0)
+    throw rp::cl::Error("render size must be at least 1x1 pixels");
+  scene_ = std::make_unique<GpuScene>(context.context, context.queue, assets);
+  visibility_ = std::make_unique<passes::VisibilityPass>(context, programs);
+  gbuffer_pass_ = std::make_unique<passes::GBufferPass>(context, programs);
+  light_ = std::make_unique<passes::LightPass>(context, programs);
+  tone_map_ = std::make_unique<passes::ToneMapPass>(context, programs);
+  shadow_.resize(context.context, settings_.shadow_size);
+  resize(settings_.width, settings_.height);
+}
+
+Renderer::~Renderer() = default;
+
+void Renderer::resize(uint32_t width, uint32_t height) {
+  if (width == 0 || height == 0) throw rp::cl::Error("render size must be at least 1x1 pixels");
+  settings_.width = width;
+  settings_.height = height;
+  size_t n = size_t(width) * height;
+  vis_.resize(context_.context, width, height);
+  gbuffer_.resize(context_.context, width, height);
+  hdr_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
+  rgba8_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 4);
+}
+
+rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
+  try {
+    scene_->update(frame, settings_.width, settings_.height, settings_.shadow_size,
+                   settings_.ambient);
+    visibility_->render(profiler_, *scene_, vis_);
+    visibility_->render_shadow(profiler_, *scene_, shadow_);
+    gbuffer_pass_->run(profiler_, *scene_, vis_, gbuffer_);
+    light_->run(profiler_, *scene_, gbuffer_, shadow_, hdr_);
+    tone_map_->run(profiler_, *scene_, hdr_, rgba8_);
+    return profiler_.collect();
+  } catch (const ::cl::Error& e) {
+    throw rp::cl::Error(std::string("OpenCL call failed while rendering: ") + e.what() + " (" +
+                        rp::cl::error_name(e.err()) + ")");
+  }
+}
+
+void Renderer::read_rgba8(std::vector<uint8_t>& out) {
+  out.resize(size_t(settings_.width) * settings_.height * 4);
+  context_.queue.enqueueReadBuffer(rgba8_, CL_TRUE, 0, out.size(), out.data());
+}
+
+}  // namespace rp::render

@@ -1,0 +1,137 @@
+// The OpenCL layer: device listing and choice, include expansion, build errors with logs,
+// and per-pass profiling.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "cl/error.h"
+#include "cl/profiler.h"
+#include "cl/program_cache.h"
+#include "support/cl_fixture.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Points ROLYPOLY_KERNEL_DIR at a temporary folder for the lifetime of the object.
+struct TempKernelDir {
+  fs::path dir;
+  TempKernelDir() {
+    dir = fs::temp_directory_path() / ("rolypoly_kernels_" + std::to_string(::getpid()));
+    fs::create_directories(dir / "shared");
+    setenv("ROLYPOLY_KERNEL_DIR", dir.c_str(), 1);
+  }
+  ~TempKernelDir() {
+    unsetenv("ROLYPOLY_KERNEL_DIR");
+    fs::remove_all(dir);
+  }
+  void write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir / name) << text;
+  }
+};
+
+TEST(Devices, ListsAtLeastOneDeviceWithSaneProperties) {
+  auto devices = rp::cl::list_devices();
+  ASSERT_FALSE(devices.empty());
+  for (size_t i = 0; i < devices.size(); ++i) {
+    EXPECT_EQ(devices[i].index, int(i));
+    EXPECT_FALSE(devices[i].name.empty());
+    EXPECT_GT(devices[i].compute_units, 0u);
+    EXPECT_GT(devices[i].global_mem_bytes, 0u);
+    EXPECT_NE(devices[i].version.find("OpenCL"), std::string::npos);
+  }
+}
+
+TEST(Devices, ChoiceByIndexNameAndDefault) {
+  auto devices = rp::cl::list_devices();
+  EXPECT_EQ(rp::cl::choose_device("0").name, devices[0].name);
+  // A case-flipped substring of the name still matches.
+  std::string part = devices[0].name.substr(0, 4);
+  for (char& c : part) c = char(std::isupper(static_cast<unsigned char>(c)) ? std::tolower(c) : std::toupper(c));
+  EXPECT_EQ(rp::cl::choose_device(part).name, devices[0].name);
+  rp::cl::DeviceInfo def = rp::cl::choose_device("");
+  bool any_gpu = std::any_of(devices.begin(), devices.end(), [](auto& d) { return d.is_gpu; });
+  EXPECT_EQ(def.is_gpu, any_gpu);
+}
+
+TEST(Devices, UnknownDeviceIsAClearError) {
+  try {
+    rp::cl::choose_device("no-such-device-anywhere");
+    FAIL() << "expected an error";
+  } catch (const rp::cl::Error& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find("no-such-device-anywhere"), std::string::npos);
+    EXPECT_NE(msg.find("[0]"), std::string::npos) << "the message should list the devices";
+  }
+  EXPECT_THROW(rp::cl::choose_device("999"), rp::cl::Error);
+}
+
+TEST(KernelSource, ExpandsIncludesOnceWithLineMarkers) {
+  TempKernelDir k;
+  k.write("shared/a.h", "#define A 1\n");
+  k.write("main.cl", "#include \"shared/a.h\"\n#include \"shared/a.h\"\nkernel void f() {}\n");
+  std::string src = rp::cl::kernel_source("main.cl");
+  EXPECT_NE(src.find("#define A 1"), std::string::npos);
+  EXPECT_EQ(src.find("#define A 1"), src.rfind("#define A 1")) << "included twice";
+  EXPECT_NE(src.find("#line 1 \"shared/a.h\""), std::string::npos);
+  EXPECT_THROW(rp::cl::kernel_source("missing.cl"), rp::cl::Error);
+  k.write("bad.cl", "#include \"shared/nothere.h\"\n");
+  EXPECT_THROW(rp::cl::kernel_source("bad.cl"), rp::cl::Error);
+}
+
+TEST(ProgramCache, BuildFailureCarriesTheBuildLog) {
+  TempKernelDir k;
+  k.write("broken.cl", "kernel void broken(global int* x) { x[0] = undeclared_name; }\n");
+  rp::cl::ProgramCache cache(rp::test::context());
+  try {
+    cache.program("broken.cl");
+    FAIL() << "expected a build error";
+  } catch (const rp::cl::BuildError& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find("broken.cl"), std::string::npos);
+    EXPECT_NE(msg.find("build log"), std::string::npos);
+    EXPECT_NE(e.log().find("undeclared_name"), std::string::npos) << e.log();
+  }
+}
+
+TEST(ProgramCache, BuildsOncePerFileAndOptions) {
+  TempKernelDir k;
+  k.write("ok.cl", "kernel void ok(global int* x) { x[get_global_id(0)] = VALUE; }\n");
+  rp::cl::ProgramCache cache(rp::test::context());
+  const cl::Program& a = cache.program("ok.cl", "-DVALUE=1");
+  const cl::Program& b = cache.program("ok.cl", "-DVALUE=1");
+  const cl::Program& c = cache.program("ok.cl", "-DVALUE=2");
+  EXPECT_EQ(a(), b());
+  EXPECT_NE(a(), c());
+}
+
+TEST(Profiler, RecordsTimePerPassName) {
+  TempKernelDir k;
+  k.write("fill.cl", "kernel void fill(global int* x, int v) { x[get_global_id(0)] = v; }\n");
+  rp::cl::ProgramCache cache(rp::test::context());
+  cl::Kernel kernel = cache.kernel("fill.cl", "fill");
+  cl::Buffer buf(rp::test::context().context, CL_MEM_READ_WRITE, 1024 * sizeof(int));
+  kernel.setArg(0, buf);
+  kernel.setArg(1, 7);
+  rp::cl::Profiler profiler(rp::test::context().queue);
+  profiler.enqueue("first", kernel, cl::NDRange(1024));
+  profiler.enqueue("second", kernel, cl::NDRange(1024));
+  profiler.enqueue("second", kernel, cl::NDRange(1024));
+  rp::cl::PassTimes times = profiler.collect();
+  ASSERT_EQ(times.size(), 2u);
+  EXPECT_GE(times["first"], 0.0);
+  EXPECT_GE(times["second"], 0.0);
+  std::vector<int> host(1024);
+  rp::test::context().queue.enqueueReadBuffer(buf, CL_TRUE, 0, host.size() * sizeof(int), host.data());
+  EXPECT_EQ(host[1023], 7);
+  EXPECT_TRUE(profiler.collect().empty()) << "collect() must clear the recorded events";
+  EXPECT_THROW(profiler.enqueue("bad", kernel, cl::NDRange(1000), cl::NDRange(3000)), rp::cl::Error);
+}
+
+}  // namespace

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Runs a command under oclgrind with data-race and uninitialised-memory checks and fails when
+# oclgrind's log reports anything (oclgrind itself always exits 0) or the command fails.
+# Usage: check_oclgrind.sh LOGFILE COMMAND [ARGS...]
+set -u
+log=$1
+shift
+rm -f "$log"
+# Each test gets its own kernel cache: oclgrind's compiled programs are not PoCL's.
+export POCL_CACHE_DIR="${POCL_CACHE_DIR:-/tmp/rolypoly-oclgrind-pocl}"
+oclgrind --data-races --uninitialized --check-api --log "$log" "$@"
+status=$?
+if [ $status -ne 0 ]; then
+  echo "command failed under oclgrind with exit status $status" >&2
+  [ -s "$log" ] && cat "$log" >&2
+  exit 1
+fi
+if [ -s "$log" ]; then
+  echo "oclgrind reported problems ($log):" >&2
+  head -n 200 "$log" >&2
+  exit 1
+fi
+echo "oclgrind: clean"
