@@ -88,6 +88,22 @@ int run_cli(int argc, char** argv) {
       ->capture_default_str();
   bench->add_option("--json", bench_opts.json, "also write the results as JSON to this file");
 
+  // CLI11 reports an unknown first word only as "A subcommand is required"; name it instead.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string word = argv[1], known;
+    bool found = false;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      found = found || sub->get_name() == word;
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!found) {
+      std::fprintf(stderr, "rolypoly: unknown subcommand '%s' (expected one of: %s)\n"
+                           "Run with --help for more information.\n",
+                   word.c_str(), known.c_str());
+      return 2;
+    }
+  }
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
