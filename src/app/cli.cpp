@@ -28,6 +28,10 @@ void add_common(CLI::App* cmd, CommonOptions& common) {
                   "(case-insensitive); default: first GPU, else first CPU");
   cmd->add_option("--assets", common.asset_dir,
                   "folder with the scene's textures (default: the built-in asset folder)");
+  cmd->add_option("--shadow-size", common.shadow_size,
+                  "shadow map texels per side (default: the renderer's, " +
+                      std::to_string(render::RenderSettings{}.shadow_size) + ")")
+      ->check(CLI::Range(1u, kMaxSize));
 }
 
 void add_size(CLI::App* cmd, SizeArgs& size) {

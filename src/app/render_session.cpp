@@ -12,6 +12,7 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   render::RenderSettings settings;
   settings.width = width;
   settings.height = height;
+  if (options.shadow_size != 0) settings.shadow_size = options.shadow_size;
   renderer_ = std::make_unique<render::Renderer>(context_, programs_, assets_, settings);
 }
 

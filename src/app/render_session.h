@@ -20,6 +20,7 @@ namespace rp::app {
 struct CommonOptions {
   std::string device;      // --device: index or name substring ("" = first GPU, else CPU)
   std::string asset_dir;   // --assets: folder with the scene's textures
+  uint32_t shadow_size = 0;  // --shadow-size: shadow map texels per side (0 = renderer default)
 };
 
 // Not copyable or movable: the program cache and renderer point at the context.
