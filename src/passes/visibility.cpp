@@ -1,0 +1,276 @@
+// Host side of the compute rasterizer (kernels/visibility.cl). Per view (camera, lamp):
+// clear -> setup -> scan -> [read back the list total, grow the list once if needed] -> bin ->
+// raster (-> resolve for the camera). Device memory is sized by the triangle count, sphere
+// count, view size and list total, and only ever grows: a steady frame allocates nothing.
+#include "passes/visibility.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cl/error.h"
+#include "render/gpu_types.h"  // before raster_types.h, which builds on its types
+#include "kernels/shared/raster_types.h"
+
+namespace rp::passes {
+namespace {
+
+static_assert(sizeof(gpu::RasterView) == 160);
+static_assert(sizeof(gpu::RasterTriangle) == 64);
+
+constexpr size_t kTile = RP_RASTER_TILE;
+constexpr size_t kItemGroup = 64;  // RP_ITEM_GROUP in visibility.cl
+constexpr size_t kScanGroup = 128; // RP_SCAN_GROUP in visibility.cl
+constexpr size_t kResolveGroup = 16;
+
+// Pixels per raster work-item: SIMD-wide spans on CPUs (PoCL vectorizes float16 code, not the
+// loop over a tile's triangles), one pixel per work-item on GPUs. ROLYPOLY_RASTER_SPAN
+// (1, 4, 8 or 16) overrides the choice (tests use it to compare the variants).
+int choose_span(const rp::cl::Context& context) {
+  if (const char* env = std::getenv("ROLYPOLY_RASTER_SPAN"); env && *env) {
+    std::string s = env;
+    if (s == "1" || s == "4" || s == "8" || s == "16") return std::stoi(s);
+    throw rp::cl::Error("ROLYPOLY_RASTER_SPAN must be 1, 4, 8 or 16, not '" + s + "'");
+  }
+  return context.info.is_cpu ? 16 : 1;
+}
+
+glm::mat4 to_glm(const gpu::rp_mat4& m) {
+  glm::mat4 out;
+  for (int c = 0; c < 4; ++c) out[c] = glm::vec4(m.c[c].x, m.c[c].y, m.c[c].z, m.c[c].w);
+  return out;
+}
+
+// A buffer of at least `needed` elements of `elem` bytes that only grows (by 1.5x, so a slowly
+// growing count does not reallocate every frame). Returns true when it was (re)allocated.
+bool ensure(const ::cl::Context& context, ::cl::Buffer& buffer, size_t& capacity, size_t needed,
+            size_t elem) {
+  needed = std::max<size_t>(needed, 1);
+  if (capacity >= needed) return false;
+  capacity = std::max(needed, capacity + capacity / 2);
+  buffer = ::cl::Buffer(context, CL_MEM_READ_WRITE, capacity * elem);
+  return true;
+}
+
+}  // namespace
+
+// Kernels and scratch memory of one view. Layouts: tris RasterTriangle[triangle items];
+// bounds int4[all items] (pixel x0, y0, x1, y1); counts/start/cursor uint[2 * tiles]
+// (triangles of tile t at t, spheres at tiles + t); list uint[list_capacity] item indices;
+// keys uint[width * height] winning item per pixel (camera only).
+struct ViewState {
+  std::string pass;
+  bool depth_only = false;
+  ::cl::Kernel clear, setup, scan, bin, raster, resolve;
+  gpu::RasterView params{};
+  ::cl::Buffer params_buffer, tris, bounds, counts, start, cursor, list, total, keys;
+  size_t tris_cap = 0, bounds_cap = 0, tiles_cap = 0, list_cap = 0, keys_cap = 0;
+  uint32_t total_host = 0;
+};
+
+struct VisibilityPass::Impl {
+  const rp::cl::Context* context = nullptr;
+  int span = 1;
+  ViewState camera, shadow;
+  // Draw items uint2 (instance, global triangle index), instance-major so the item index
+  // orders like (instance id, primitive id). Rebuilt only when the instance set changes.
+  ::cl::Buffer draw_items;
+  size_t draw_cap = 0;
+  uint32_t draw_count = 0;
+  std::vector<uint32_t> draw_key;  // (first_triangle, triangle_count) per instance
+  std::vector<uint32_t> draw_host;
+
+  void init_view(ViewState& v, rp::cl::ProgramCache& programs, const std::string& pass,
+                 bool depth_only) {
+    v.pass = pass;
+    v.depth_only = depth_only;
+    std::string options = "-DRP_SPAN=" + std::to_string(span);
+    if (depth_only) options += " -DRP_DEPTH_ONLY=1";
+    v.clear = programs.kernel("visibility.cl", "visibility_clear", options);
+    v.setup = programs.kernel("visibility.cl", "visibility_setup", options);
+    v.scan = programs.kernel("visibility.cl", "visibility_scan", options);
+    v.bin = programs.kernel("visibility.cl", "visibility_bin", options);
+    v.raster = programs.kernel("visibility.cl", "visibility_raster", options);
+    if (!depth_only) v.resolve = programs.kernel("visibility.cl", "visibility_resolve", options);
+    const ::cl::Context& ctx = context->context;
+    v.params_buffer = ::cl::Buffer(ctx, CL_MEM_READ_ONLY, sizeof(gpu::RasterView));
+    v.total = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(uint32_t));
+    if (depth_only) v.keys = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(uint32_t));  // unused
+  }
+
+  void update_draw_items(const render::GpuScene& scene) {
+    std::vector<uint32_t> key;
+    key.reserve(scene.host_instances.size() * 2);
+    for (const gpu::Instance& inst : scene.host_instances) {
+      key.push_back(inst.first_triangle);
+      key.push_back(inst.triangle_count);
+    }
+    if (key == draw_key && draw_count > 0) return;
+    draw_key = std::move(key);
+    draw_host.clear();
+    for (uint32_t i = 0; i < scene.host_instances.size(); ++i) {
+      const gpu::Instance& inst = scene.host_instances[i];
+      if (uint64_t(inst.first_triangle) + inst.triangle_count > scene.triangle_count)
+        throw rp::cl::Error("visibility pass: instance " + std::to_string(i) +
+                            " refers to triangles beyond the scene's triangle buffer");
+      for (uint32_t t = 0; t < inst.triangle_count; ++t) {
+        draw_host.push_back(i);
+        draw_host.push_back(inst.first_triangle + t);
+      }
+    }
+    draw_count = static_cast<uint32_t>(draw_host.size() / 2);
+    ensure(context->context, draw_items, draw_cap, draw_count, 2 * sizeof(uint32_t));
+    if (draw_count > 0)
+      context->queue.enqueueWriteBuffer(draw_items, CL_TRUE, 0,
+                                        draw_host.size() * sizeof(uint32_t), draw_host.data());
+  }
+
+  void run_view(rp::cl::Profiler& profiler, ViewState& v, const render::GpuScene& scene,
+                const glm::mat4& view_proj, const glm::mat4& inv_view_proj, uint32_t width,
+                uint32_t height, const ::cl::Buffer& depth_out) {
+    const ::cl::Context& ctx = context->context;
+    ::cl::CommandQueue& queue = profiler.queue();
+    update_draw_items(scene);
+    const uint32_t tiles_x = static_cast<uint32_t>((width + kTile - 1) / kTile);
+    const uint32_t tiles_y = static_cast<uint32_t>((height + kTile - 1) / kTile);
+    const uint32_t tiles = tiles_x * tiles_y;
+    const uint32_t spheres = scene.sphere_count;
+    const uint32_t items = draw_count + spheres;
+
+    ensure(ctx, v.tris, v.tris_cap, draw_count, sizeof(gpu::RasterTriangle));
+    ensure(ctx, v.bounds, v.bounds_cap, items, 4 * sizeof(int32_t));
+    if (v.tiles_cap < size_t(2) * tiles) {  // only when the view size grows
+      v.tiles_cap = size_t(2) * tiles;
+      v.counts = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, v.tiles_cap * sizeof(uint32_t));
+      v.start = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, v.tiles_cap * sizeof(uint32_t));
+      v.cursor = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, v.tiles_cap * sizeof(uint32_t));
+    }
+    // First guess for the list: every item in about four tiles.
+    ensure(ctx, v.list, v.list_cap, size_t(4) * items + tiles, sizeof(uint32_t));
+    if (!v.depth_only)
+      ensure(ctx, v.keys, v.keys_cap, size_t(width) * height, sizeof(uint32_t));
+
+    gpu::RasterView& p = v.params;
+    p.view_proj = gpu::to_gpu(view_proj);
+    p.inv_view_proj = gpu::to_gpu(inv_view_proj);
+    p.width = width;
+    p.height = height;
+    p.tiles_x = tiles_x;
+    p.tiles_y = tiles_y;
+    p.triangle_items = draw_count;
+    p.sphere_count = spheres;
+    p.list_capacity = static_cast<uint32_t>(v.list_cap);
+    ::cl::Event write_event;
+    // Non-blocking: the blocking read of the total below completes it before `p` changes.
+    queue.enqueueWriteBuffer(v.params_buffer, CL_FALSE, 0, sizeof(p), &p, nullptr, &write_event);
+    profiler.record(v.pass, write_event);
+
+    const uint32_t count_n = 2 * tiles;
+    v.clear.setArg(0, v.counts);
+    v.clear.setArg(1, count_n);
+    profiler.enqueue(v.pass, v.clear, ::cl::NDRange(rp::cl::round_up(count_n, kItemGroup)),
+                     ::cl::NDRange(kItemGroup));
+
+    if (items > 0) {
+      cl_uint a = 0;
+      v.setup.setArg(a++, v.params_buffer);
+      v.setup.setArg(a++, draw_items);
+      v.setup.setArg(a++, scene.instances);
+      v.setup.setArg(a++, scene.triangles);
+      v.setup.setArg(a++, scene.vertices);
+      v.setup.setArg(a++, scene.spheres);
+      v.setup.setArg(a++, v.tris);
+      v.setup.setArg(a++, v.bounds);
+      v.setup.setArg(a++, v.counts);
+      profiler.enqueue(v.pass, v.setup, ::cl::NDRange(rp::cl::round_up(items, kItemGroup)),
+                       ::cl::NDRange(kItemGroup));
+    }
+
+    v.scan.setArg(0, v.counts);
+    v.scan.setArg(1, count_n);
+    v.scan.setArg(2, v.start);
+    v.scan.setArg(3, v.cursor);
+    v.scan.setArg(4, v.total);
+    profiler.enqueue(v.pass, v.scan, ::cl::NDRange(kScanGroup), ::cl::NDRange(kScanGroup));
+
+    // The exact list size is known now: grow once (with headroom) before filling.
+    ::cl::Event read_event;
+    queue.enqueueReadBuffer(v.total, CL_TRUE, 0, sizeof(uint32_t), &v.total_host, nullptr,
+                            &read_event);
+    profiler.record(v.pass, read_event);
+    if (v.total_host > v.list_cap) {
+      size_t want = size_t(v.total_host) + v.total_host / 4;
+      ensure(ctx, v.list, v.list_cap, want, sizeof(uint32_t));
+      p.list_capacity = static_cast<uint32_t>(v.list_cap);
+      ::cl::Event rewrite_event;
+      queue.enqueueWriteBuffer(v.params_buffer, CL_TRUE, 0, sizeof(p), &p, nullptr,
+                               &rewrite_event);
+      profiler.record(v.pass, rewrite_event);
+    }
+
+    if (items > 0) {
+      cl_uint a = 0;
+      v.bin.setArg(a++, v.params_buffer);
+      v.bin.setArg(a++, v.tris);
+      v.bin.setArg(a++, v.bounds);
+      v.bin.setArg(a++, v.cursor);
+      v.bin.setArg(a++, v.list);
+      profiler.enqueue(v.pass, v.bin, ::cl::NDRange(rp::cl::round_up(items, kItemGroup)),
+                       ::cl::NDRange(kItemGroup));
+    }
+
+    cl_uint a = 0;
+    v.raster.setArg(a++, v.params_buffer);
+    v.raster.setArg(a++, v.tris);
+    v.raster.setArg(a++, v.bounds);
+    v.raster.setArg(a++, scene.spheres);
+    v.raster.setArg(a++, v.start);
+    v.raster.setArg(a++, v.cursor);
+    v.raster.setArg(a++, v.list);
+    v.raster.setArg(a++, depth_out);
+    v.raster.setArg(a++, v.keys);
+    const size_t group_w = kTile / static_cast<size_t>(span);
+    profiler.enqueue(v.pass, v.raster, ::cl::NDRange(tiles_x * group_w, tiles_y * kTile),
+                     ::cl::NDRange(group_w, kTile));
+  }
+};
+
+VisibilityPass::VisibilityPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
+    : impl_(std::make_shared<Impl>()) {
+  impl_->context = &context;
+  impl_->span = choose_span(context);
+  impl_->init_view(impl_->camera, programs, "visibility", false);
+  impl_->init_view(impl_->shadow, programs, "shadow_map", true);
+}
+
+void VisibilityPass::render(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                            render::VisibilityBuffer& out) {
+  if (out.width == 0 || out.height == 0) return;
+  ViewState& v = impl_->camera;
+  impl_->run_view(profiler, v, scene, to_glm(scene.constants.view_proj),
+                  to_glm(scene.constants.inv_view_proj), out.width, out.height, out.depth);
+  cl_uint a = 0;
+  v.resolve.setArg(a++, v.params_buffer);
+  v.resolve.setArg(a++, v.tris);
+  v.resolve.setArg(a++, v.keys);
+  v.resolve.setArg(a++, out.ids);
+  v.resolve.setArg(a++, out.bary);
+  profiler.enqueue(v.pass, v.resolve,
+                   ::cl::NDRange(rp::cl::round_up(out.width, kResolveGroup),
+                                 rp::cl::round_up(out.height, kResolveGroup)),
+                   ::cl::NDRange(kResolveGroup, kResolveGroup));
+}
+
+void VisibilityPass::render_shadow(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                                   render::ShadowMap& out) {
+  if (out.size == 0) return;
+  glm::mat4 light = to_glm(scene.constants.light_view_proj);
+  impl_->run_view(profiler, impl_->shadow, scene, light, glm::inverse(light), out.size, out.size,
+                  out.depth);
+}
+
+}  // namespace rp::passes

@@ -1,0 +1,544 @@
+// The compute rasterizer (passes/visibility + kernels/visibility.cl) against the C++ reference
+// (reference_raster.cpp, which mirrors the kernels' float operations) and against analytic
+// ray-sphere intersection in double precision.
+//
+// Tolerances: ids and coverage must match exactly (same float edge functions); depth within
+// 1e-5 relative and barycentrics within 1e-4 (they only differ by rounding of divisions).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <optional>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "passes/reference_raster.h"
+#include "passes/visibility.h"
+#include "render/gpu_scene.h"
+#include "render/gpu_types.h"
+#include "support/cl_fixture.h"
+
+namespace rp::test {
+namespace {
+
+glm::mat4 to_glm(const gpu::rp_mat4& m) {
+  glm::mat4 out;
+  for (int c = 0; c < 4; ++c) out[c] = glm::vec4(m.c[c].x, m.c[c].y, m.c[c].z, m.c[c].w);
+  return out;
+}
+
+struct GpuImage {
+  uint32_t width = 0, height = 0;
+  std::vector<float> depth;
+  std::vector<glm::uvec2> ids;
+  std::vector<glm::vec2> bary;
+  size_t index(uint32_t x, uint32_t y) const { return size_t(y) * width + x; }
+  bool operator==(const GpuImage& o) const {  // bitwise
+    return width == o.width && height == o.height &&
+           std::equal(depth.begin(), depth.end(), o.depth.begin(), o.depth.end(),
+                      [](float a, float b) { return std::memcmp(&a, &b, 4) == 0; }) &&
+           ids == o.ids &&
+           std::equal(bary.begin(), bary.end(), o.bary.begin(), o.bary.end(),
+                      [](glm::vec2 a, glm::vec2 b) { return std::memcmp(&a, &b, 8) == 0; });
+  }
+};
+
+GpuImage read_back(const render::VisibilityBuffer& vb) {
+  GpuImage img;
+  img.width = vb.width;
+  img.height = vb.height;
+  size_t n = size_t(vb.width) * vb.height;
+  img.depth.resize(n);
+  img.ids.resize(n);
+  img.bary.resize(n);
+  ::cl::CommandQueue& q = context().queue;
+  q.enqueueReadBuffer(vb.depth, CL_TRUE, 0, n * sizeof(float), img.depth.data());
+  q.enqueueReadBuffer(vb.ids, CL_TRUE, 0, n * sizeof(glm::uvec2), img.ids.data());
+  q.enqueueReadBuffer(vb.bary, CL_TRUE, 0, n * sizeof(glm::vec2), img.bary.data());
+  return img;
+}
+
+// Renders frames of one scene with one pass object, as the renderer does.
+class Harness {
+ public:
+  explicit Harness(const scene::SceneAssets& assets)
+      : scene_(context().context, context().queue, assets),
+        pass_(context(), programs()),
+        profiler_(context().queue) {}
+
+  // Camera view. `replace`: render with this view_proj / inv_view_proj instead of the camera's.
+  GpuImage render(const scene::FrameScene& frame, uint32_t w, uint32_t h,
+                  const std::optional<RefView>& replace = std::nullopt) {
+    scene_.update(frame, w, h, 64, 0.0f);
+    if (replace) {
+      scene_.constants.view_proj = gpu::to_gpu(replace->view_proj);
+      scene_.constants.inv_view_proj = gpu::to_gpu(replace->inv_view_proj);
+    }
+    if (vb_.width != w || vb_.height != h) vb_.resize(context().context, w, h);
+    pass_.render(profiler_, scene_, vb_);
+    times_ = profiler_.collect();
+    return read_back(vb_);
+  }
+
+  // The view the last render() used, for the reference.
+  RefView view() const {
+    RefView v;
+    v.view_proj = to_glm(scene_.constants.view_proj);
+    v.inv_view_proj = to_glm(scene_.constants.inv_view_proj);
+    v.width = vb_.width;
+    v.height = vb_.height;
+    return v;
+  }
+
+  std::vector<float> render_shadow(const scene::FrameScene& frame, uint32_t size) {
+    scene_.update(frame, 16, 16, size, 0.0f);
+    if (sm_.size != size) sm_.resize(context().context, size);
+    pass_.render_shadow(profiler_, scene_, sm_);
+    times_ = profiler_.collect();
+    std::vector<float> depth(size_t(size) * size);
+    context().queue.enqueueReadBuffer(sm_.depth, CL_TRUE, 0, depth.size() * sizeof(float),
+                                      depth.data());
+    return depth;
+  }
+
+  RefView shadow_view() const {
+    RefView v;
+    v.view_proj = to_glm(scene_.constants.light_view_proj);
+    v.inv_view_proj = glm::inverse(v.view_proj);
+    v.width = v.height = sm_.size;
+    v.depth_only = true;
+    return v;
+  }
+
+  const rp::cl::PassTimes& times() const { return times_; }
+
+ private:
+  render::GpuScene scene_;
+  passes::VisibilityPass pass_;
+  rp::cl::Profiler profiler_;
+  render::VisibilityBuffer vb_;
+  render::ShadowMap sm_;
+  rp::cl::PassTimes times_;
+};
+
+// Same ids everywhere; depth within 1e-5 relative, barycentrics within 1e-4 where ids agree.
+void expect_matches_reference(const GpuImage& g, const RefImage& r) {
+  ASSERT_EQ(g.width, r.width);
+  ASSERT_EQ(g.height, r.height);
+  int id_errors = 0, depth_errors = 0, bary_errors = 0;
+  for (uint32_t y = 0; y < g.height; ++y)
+    for (uint32_t x = 0; x < g.width; ++x) {
+      const size_t i = g.index(x, y);
+      if (g.ids[i] != r.ids[i]) {
+        if (++id_errors <= 5)
+          ADD_FAILURE() << "ids at " << x << "," << y << ": kernel (" << g.ids[i].x << ","
+                        << g.ids[i].y << ") reference (" << r.ids[i].x << "," << r.ids[i].y << ")";
+        continue;
+      }
+      if (!(std::abs(g.depth[i] - r.depth[i]) <= 1e-5f * std::abs(r.depth[i])) &&
+          ++depth_errors <= 5)
+        ADD_FAILURE() << "depth at " << x << "," << y << ": " << g.depth[i] << " vs "
+                      << r.depth[i];
+      glm::vec2 d = glm::abs(g.bary[i] - r.bary[i]);
+      if (!(d.x <= 1e-4f && d.y <= 1e-4f) && ++bary_errors <= 5)
+        ADD_FAILURE() << "bary at " << x << "," << y << ": (" << g.bary[i].x << ","
+                      << g.bary[i].y << ") vs (" << r.bary[i].x << "," << r.bary[i].y << ")";
+    }
+  EXPECT_EQ(id_errors, 0);
+  EXPECT_EQ(depth_errors, 0);
+  EXPECT_EQ(bary_errors, 0);
+}
+
+// Deterministic pseudo-random numbers in [0, 1).
+struct Rng {
+  uint32_t state;
+  float next() {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) * (1.0f / 16777216.0f);
+  }
+  float range(float lo, float hi) { return lo + (hi - lo) * next(); }
+};
+
+scene::Mesh random_triangles(uint32_t seed, int count) {
+  Rng rng{seed};
+  std::vector<glm::vec3> pos;
+  std::vector<glm::uvec3> tris;
+  for (int t = 0; t < count; ++t) {
+    glm::vec3 c(rng.range(-1.2f, 1.2f), rng.range(-0.9f, 0.9f), rng.range(-0.8f, 0.8f));
+    for (int k = 0; k < 3; ++k)
+      pos.push_back(c + glm::vec3(rng.range(-0.6f, 0.6f), rng.range(-0.6f, 0.6f),
+                                  rng.range(-0.4f, 0.4f)));
+    tris.push_back({uint32_t(3 * t), uint32_t(3 * t + 1), uint32_t(3 * t + 2)});
+  }
+  return make_test_mesh(pos, tris);
+}
+
+// Triangles that cross the near plane (camera at z = 2.75, near 0.1) or the eye plane, and one
+// far behind everything that covers the whole view (touching every screen edge).
+scene::Mesh special_triangles() {
+  return make_test_mesh({{-0.3f, -0.2f, 2.9f}, {0.4f, 0.1f, 1.0f}, {-0.2f, 0.5f, 0.5f},
+                         {0.1f, -0.3f, 2.70f}, {0.6f, -0.2f, 1.5f}, {0.2f, 0.4f, 1.2f},
+                         {-20.0f, -20.0f, -0.95f}, {20.0f, -20.0f, -0.95f}, {0.0f, 30.0f, -0.95f},
+                         {-3.0f, -0.4f, 2.70f}, {3.0f, -0.4f, 2.70f}, {0.0f, -0.8f, 0.0f}},
+                        {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}, {9, 10, 11}});
+}
+
+glm::mat4 rotation_z(float angle, glm::vec3 translation) {
+  float c = std::cos(angle), s = std::sin(angle);
+  return glm::mat4(glm::vec4(c, s, 0, 0), glm::vec4(-s, c, 0, 0), glm::vec4(0, 0, 1, 0),
+                   glm::vec4(translation, 1));
+}
+
+struct TestScene {
+  scene::SceneAssets assets;
+  scene::FrameScene frame;
+};
+
+TestScene random_scene() {
+  TestScene s;
+  s.assets = make_test_assets({random_triangles(7u, 12), special_triangles()});
+  scene::MeshInstance a, b, c;
+  a.mesh = 0;
+  b.mesh = 0;
+  b.model = rotation_z(0.7f, glm::vec3(0.2f, -0.1f, -0.3f));
+  c.mesh = 1;
+  s.frame.instances = {a, b, c};
+  return s;
+}
+
+TEST(Visibility, RandomTrianglesMatchReference) {
+  TestScene s = random_scene();
+  Harness h(s.assets);
+  GpuImage g = h.render(s.frame, 64, 48);
+  RefImage r = reference_raster(s.assets, s.frame, h.view());
+  expect_matches_reference(g, r);
+  // The scene exercises what it should: all three instances and the background-free view.
+  std::vector<int> seen(3, 0);
+  for (const glm::uvec2& id : g.ids)
+    if (id.x < 3) ++seen[id.x];
+  EXPECT_GT(seen[0], 0);
+  EXPECT_GT(seen[1], 0);
+  EXPECT_GT(seen[2], 0);
+}
+
+TEST(Visibility, OddSizeMatchesReference) {
+  // Partial tiles on the right and bottom edges.
+  TestScene s = random_scene();
+  Harness h(s.assets);
+  GpuImage g = h.render(s.frame, 37, 21);
+  expect_matches_reference(g, reference_raster(s.assets, s.frame, h.view()));
+}
+
+TEST(Visibility, IcosphereMatchesReference) {
+  scene::SceneAssets assets = make_test_assets({make_icosphere(2, 0.8f)});
+  scene::FrameScene frame;
+  scene::MeshInstance inst;
+  inst.model = rotation_z(0.3f, glm::vec3(0.05f, -0.1f, 0.3f));
+  frame.instances.push_back(inst);
+  Harness h(assets);
+  GpuImage g = h.render(frame, 64, 64);
+  expect_matches_reference(g, reference_raster(assets, frame, h.view()));
+
+  // From inside the sphere every pixel sees it (no backface culling, no cracks).
+  frame.camera.position = glm::vec3(0.1f, 0.0f, 0.3f);
+  frame.camera.target = glm::vec3(0.0f, -0.5f, -1.0f);
+  g = h.render(frame, 48, 48);
+  expect_matches_reference(g, reference_raster(assets, frame, h.view()));
+  for (const glm::uvec2& id : g.ids) ASSERT_EQ(id.x, 0u);
+}
+
+TEST(Visibility, PixelAlignedGridMatchesReference) {
+  // Orthographic view with vertices on pixel centres and power-of-two sizes (all float steps
+  // exact): many edge and vertex ties, all settled by the top-left rule, identically in the
+  // kernel and the reference, each pixel covered at most once.
+  std::vector<glm::vec3> pos;
+  std::vector<glm::uvec3> tris;
+  const int n = 5;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      pos.emplace_back(4.5f + 11.0f * float(i) + float((i * j) % 3),
+                       3.5f + 8.0f * float(j) + float((i + 2 * j) % 3), 0.25f);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+      if ((i + j) % 2) {
+        tris.push_back({a, b, c});
+        tris.push_back({a, c, d});
+      } else {
+        tris.push_back({a, b, d});
+        tris.push_back({d, b, c});  // reversed winding: the fill rule must not care
+      }
+    }
+  scene::SceneAssets assets = make_test_assets({make_test_mesh(pos, tris)});
+  scene::FrameScene frame;
+  frame.instances.push_back({});
+  RefView ortho;
+  ortho.width = 64;
+  ortho.height = 64;
+  ortho.view_proj = glm::mat4(1.0f);
+  ortho.view_proj[0][0] = 2.0f / 64.0f;
+  ortho.view_proj[1][1] = -2.0f / 64.0f;
+  ortho.view_proj[3][0] = -1.0f;
+  ortho.view_proj[3][1] = 1.0f;
+  ortho.inv_view_proj = glm::inverse(ortho.view_proj);
+  Harness h(assets);
+  GpuImage g = h.render(frame, 64, 64, ortho);
+  RefImage r = reference_raster(assets, frame, h.view());
+  expect_matches_reference(g, r);
+  int covered = 0;
+  for (size_t i = 0; i < r.ids.size(); ++i) {
+    EXPECT_LE(r.hits_positive[i] + r.hits_negative[i], 1u);
+    covered += g.ids[i].x == 0u;
+  }
+  EXPECT_GT(covered, 1500);
+}
+
+// Spheres only, against ray-sphere intersection in double precision. Pixels whose ray passes
+// within 0.1 % of the radius of a silhouette are skipped (float rays may fall either side).
+TEST(Visibility, SpheresMatchAnalyticIntersection) {
+  scene::SceneAssets assets = make_test_assets({});
+  scene::FrameScene frame;
+  auto sphere = [](glm::vec3 c, float r) {
+    scene::Sphere s;
+    s.center = c;
+    s.prev_center = c;
+    s.radius = r;
+    return s;
+  };
+  frame.spheres = {sphere({0.2f, 0.1f, 0.3f}, 0.25f), sphere({0.0f, 0.0f, 0.0f}, 0.4f),
+                   sphere({1.8f, 0.6f, 0.2f}, 0.3f),   // partly off the right edge
+                   sphere({0.0f, 0.0f, 3.3f}, 0.2f),   // behind the camera
+                   sphere({-0.5f, -0.3f, 0.6f}, 0.05f), sphere({-0.6f, 0.5f, -0.5f}, 0.0f)};
+  Harness h(assets);
+  GpuImage g = h.render(frame, 64, 48);
+  RefView view = h.view();
+  expect_matches_reference(g, reference_raster(assets, frame, view));
+
+  const glm::dmat4 vp(view.view_proj);
+  const glm::dmat4 inv = glm::inverse(vp);
+  const glm::dvec3 eye(frame.camera.position);
+  int checked = 0, hits = 0;
+  for (uint32_t y = 0; y < 48; ++y)
+    for (uint32_t x = 0; x < 64; ++x) {
+      glm::dvec4 far = inv * glm::dvec4((x + 0.5) / 32.0 - 1.0, 1.0 - (y + 0.5) / 24.0, 1.0, 1.0);
+      glm::dvec3 dir = glm::normalize(glm::dvec3(far) / far.w - eye);
+      double best_t = 1e30, margin = 1e30;
+      uint32_t best = RP_ID_NONE;
+      for (uint32_t s = 0; s < frame.spheres.size(); ++s) {
+        const scene::Sphere& sp = frame.spheres[s];
+        glm::dvec3 oc = eye - glm::dvec3(sp.center);
+        double b = glm::dot(oc, dir);
+        double dist = glm::length(oc - b * dir);
+        margin = std::min(margin, std::abs(dist - sp.radius) / std::max(1e-9, double(sp.radius)));
+        double disc = double(sp.radius) * sp.radius - dist * dist;
+        if (sp.radius <= 0.0f || disc < 0.0) continue;
+        double t = -b - std::sqrt(disc);
+        if (t > 0.0 && t < best_t) {
+          best_t = t;
+          best = RP_ID_SPHERE_BIT | s;
+        }
+      }
+      if (margin < 1e-3) continue;
+      ++checked;
+      const size_t i = g.index(x, y);
+      ASSERT_EQ(g.ids[i].x, best) << "pixel " << x << "," << y;
+      if (best == RP_ID_NONE) {
+        EXPECT_EQ(g.depth[i], 1.0f);
+        continue;
+      }
+      ++hits;
+      EXPECT_EQ(g.ids[i].y, 0u);
+      EXPECT_EQ(g.bary[i], glm::vec2(0.0f));
+      glm::dvec4 clip = vp * glm::dvec4(eye + best_t * dir, 1.0);
+      double depth = clip.z / clip.w * 0.5 + 0.5;
+      EXPECT_NEAR(g.depth[i], depth, 1e-5 * depth) << "pixel " << x << "," << y;
+    }
+  EXPECT_GT(checked, 2800);
+  EXPECT_GT(hits, 150);
+}
+
+TEST(Visibility, SpheresAgainstTriangles) {
+  // A quad at z = 0; sphere 0 in front of it, sphere 1 behind it, sphere 2 cutting through it
+  // (its cap in front of the quad, the rest of its silhouette behind).
+  scene::SceneAssets assets = make_test_assets({make_test_mesh(
+      {{-0.8f, -0.8f, 0.0f}, {0.8f, -0.8f, 0.0f}, {0.8f, 0.8f, 0.0f}, {-0.8f, 0.8f, 0.0f}},
+      {{0, 1, 2}, {0, 2, 3}})});
+  scene::FrameScene frame;
+  frame.instances.push_back({});
+  auto sphere = [](glm::vec3 c, float r) {
+    scene::Sphere s;
+    s.center = c;
+    s.radius = r;
+    return s;
+  };
+  frame.spheres = {sphere({0.3f, 0.35f, 0.3f}, 0.2f), sphere({-0.35f, -0.3f, -0.4f}, 0.3f),
+                   sphere({0.35f, -0.35f, -0.1f}, 0.25f)};
+  Harness h(assets);
+  GpuImage g = h.render(frame, 64, 64);
+  RefView view = h.view();
+  expect_matches_reference(g, reference_raster(assets, frame, view));
+
+  auto pixel_of = [&](glm::vec3 p) {
+    glm::vec4 c = view.view_proj * glm::vec4(p, 1.0f);
+    return g.index(uint32_t((c.x / c.w + 1.0f) * 32.0f), uint32_t((1.0f - c.y / c.w) * 32.0f));
+  };
+  EXPECT_EQ(g.ids[pixel_of({0.3f, 0.35f, 0.3f})].x, RP_ID_SPHERE_BIT | 0u);
+  EXPECT_EQ(g.ids[pixel_of({-0.35f, -0.3f, -0.4f})].x, 0u);  // hidden behind the quad
+  EXPECT_EQ(g.ids[pixel_of({0.35f, -0.35f, 0.0f})].x, RP_ID_SPHERE_BIT | 2u);
+  int sphere1 = 0;
+  for (const glm::uvec2& id : g.ids) sphere1 += id.x == (RP_ID_SPHERE_BIT | 1u);
+  EXPECT_EQ(sphere1, 0);
+
+  // Where sphere 2 cuts the quad, the nearer of plane and sphere (in double) must win; both
+  // must win somewhere. Pixels within 0.1 % of the silhouette or of the cut are skipped.
+  const glm::dmat4 inv = glm::inverse(glm::dmat4(view.view_proj));
+  const glm::dvec3 eye(frame.camera.position), centre(0.35, -0.35, -0.1);
+  int quad_wins = 0, sphere_wins = 0;
+  for (uint32_t y = 0; y < 64; ++y)
+    for (uint32_t x = 0; x < 64; ++x) {
+      glm::dvec4 far = inv * glm::dvec4((x + 0.5) / 32.0 - 1.0, 1.0 - (y + 0.5) / 32.0, 1.0, 1.0);
+      glm::dvec3 dir = glm::normalize(glm::dvec3(far) / far.w - eye);
+      glm::dvec3 oc = eye - centre;
+      double b = glm::dot(oc, dir), dist = glm::length(oc - b * dir);
+      if (dist > 0.25 * 0.999) continue;
+      double t_sphere = -b - std::sqrt(0.0625 - dist * dist);
+      double t_plane = -eye.z / dir.z;
+      if (std::abs(t_sphere - t_plane) < 1e-3) continue;
+      uint32_t expected = t_plane < t_sphere ? 0u : (RP_ID_SPHERE_BIT | 2u);
+      EXPECT_EQ(g.ids[g.index(x, y)].x, expected) << "pixel " << x << "," << y;
+      (expected == 0u ? quad_wins : sphere_wins) += 1;
+    }
+  EXPECT_GT(quad_wins, 5);
+  EXPECT_GT(sphere_wins, 50);
+}
+
+TEST(Visibility, ShadowMapMatchesReference) {
+  scene::SceneAssets assets = make_test_assets(
+      {make_test_mesh({{-1, -1, -1}, {1, -1, -1}, {1, -1, 1}, {-1, -1, 1}}, {{0, 1, 2}, {0, 2, 3}}),
+       make_icosphere(1, 0.3f),
+       make_test_mesh({{0.2f, 0.5f, 0.2f}, {0.7f, 0.5f, 0.2f}, {0.7f, 0.5f, 0.7f}}, {{0, 1, 2}})});
+  scene::FrameScene frame;
+  scene::MeshInstance floor, ball, blocker;
+  floor.mesh = 0;
+  ball.mesh = 1;
+  ball.model = rotation_z(0.0f, glm::vec3(0.0f, -0.5f, 0.0f));
+  blocker.mesh = 2;
+  blocker.casts_shadow = false;  // must not appear in the shadow map
+  frame.instances = {floor, ball, blocker};
+  scene::Sphere marble, fireball;
+  marble.center = marble.prev_center = glm::vec3(-0.5f, -0.7f, 0.3f);
+  marble.radius = 0.15f;
+  fireball.center = fireball.prev_center = glm::vec3(0.4f, -0.6f, -0.4f);
+  fireball.radius = 0.2f;
+  fireball.casts_shadow = false;
+  frame.spheres = {marble, fireball};
+
+  Harness h(assets);
+  std::vector<float> depth = h.render_shadow(frame, 64);
+  RefView view = h.shadow_view();
+  RefImage r = reference_raster(assets, frame, view);
+  // Had the blocker and fireball cast shadows, the map would differ: the test sees them.
+  scene::FrameScene all_cast = frame;
+  all_cast.instances[2].casts_shadow = true;
+  all_cast.spheres[1].casts_shadow = true;
+  RefImage r_all = reference_raster(assets, all_cast, view);
+  int errors = 0, differs = 0, on_ball = 0;
+  for (size_t i = 0; i < depth.size(); ++i) {
+    if (!(std::abs(depth[i] - r.depth[i]) <= 1e-5f * r.depth[i]) && ++errors <= 5)
+      ADD_FAILURE() << "texel " << i << ": " << depth[i] << " vs " << r.depth[i];
+    differs += depth[i] != r_all.depth[i];
+    on_ball += depth[i] < 0.99f;
+  }
+  EXPECT_EQ(errors, 0);
+  EXPECT_GT(differs, 20);
+  EXPECT_GT(on_ball, 25);
+}
+
+TEST(Visibility, EqualDepthsResolveByIds) {
+  // Mesh 0: triangle A, a different triangle B, and A again (identical vertices: equal depths).
+  // Two identical instances of it: instance 0 and primitive 0 must win every tie.
+  std::vector<glm::vec3> pos = {{-0.6f, -0.5f, 0.0f}, {0.6f, -0.5f, 0.0f}, {0.0f, 0.6f, 0.0f},
+                                {-0.2f, -0.7f, 0.0f}, {0.7f, 0.2f, 0.0f}, {-0.4f, 0.4f, 0.0f},
+                                {-0.6f, -0.5f, 0.0f}, {0.6f, -0.5f, 0.0f}, {0.0f, 0.6f, 0.0f}};
+  scene::SceneAssets assets =
+      make_test_assets({make_test_mesh(pos, {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}})});
+  scene::FrameScene frame;
+  frame.instances = {scene::MeshInstance{}, scene::MeshInstance{}};
+  Harness h(assets);
+  GpuImage g = h.render(frame, 64, 64);
+  RefImage r = reference_raster(assets, frame, h.view());
+  expect_matches_reference(g, r);
+  int covered = 0, on_a = 0;
+  for (size_t i = 0; i < g.ids.size(); ++i) {
+    if (g.ids[i].x == RP_ID_NONE) continue;
+    ++covered;
+    EXPECT_EQ(g.ids[i].x, 0u);
+    EXPECT_NE(g.ids[i].y, 2u);  // A's duplicate never beats A
+    on_a += g.ids[i].y == 0u;
+  }
+  EXPECT_GT(covered, 250);
+  EXPECT_GT(on_a, 100);
+}
+
+TEST(Visibility, SameFrameTwiceAndEverySpanAreBitIdentical) {
+  TestScene s = random_scene();
+  scene::Sphere ball;
+  ball.center = glm::vec3(0.1f, 0.2f, 0.5f);
+  ball.radius = 0.3f;
+  s.frame.spheres = {ball};
+  GpuImage first, second, other_span;
+  {
+    Harness h(s.assets);
+    first = h.render(s.frame, 64, 48);
+    second = h.render(s.frame, 64, 48);
+  }
+  EXPECT_TRUE(first == second);
+  // The other work-item layout (1 pixel per work-item vs SIMD-wide spans).
+  const bool gpu_default = context().info.is_gpu;
+  setenv("ROLYPOLY_RASTER_SPAN", gpu_default ? "16" : "1", 1);
+  try {
+    Harness h(s.assets);
+    other_span = h.render(s.frame, 64, 48);
+  } catch (...) {
+    unsetenv("ROLYPOLY_RASTER_SPAN");
+    throw;
+  }
+  unsetenv("ROLYPOLY_RASTER_SPAN");
+  EXPECT_TRUE(first == other_span);
+}
+
+TEST(Visibility, TileListGrowsAndInstanceSetChanges) {
+  // Many large overlapping triangles: the list total exceeds the first guess and must grow.
+  std::vector<glm::vec3> pos;
+  std::vector<glm::uvec3> tris;
+  for (int t = 0; t < 24; ++t) {
+    float z = -0.9f + 0.07f * float(t);
+    float a = 0.4f * float(t);
+    for (int k = 0; k < 3; ++k) {
+      float ang = a + 2.0944f * float(k);
+      pos.emplace_back(3.0f * std::cos(ang), 3.0f * std::sin(ang), z);
+    }
+    tris.push_back({uint32_t(3 * t), uint32_t(3 * t + 1), uint32_t(3 * t + 2)});
+  }
+  scene::SceneAssets assets = make_test_assets({make_test_mesh(pos, tris), random_triangles(3u, 8)});
+  scene::FrameScene frame;
+  scene::MeshInstance big, small;
+  big.mesh = 0;
+  small.mesh = 1;
+  frame.instances = {small};
+  Harness h(assets);
+  GpuImage g = h.render(frame, 64, 48);
+  expect_matches_reference(g, reference_raster(assets, frame, h.view()));
+  frame.instances = {small, big};
+  for (int i = 0; i < 2; ++i) {
+    g = h.render(frame, 64, 48);
+    expect_matches_reference(g, reference_raster(assets, frame, h.view()));
+  }
+  frame.instances = {big};
+  g = h.render(frame, 80, 32);  // and a resize
+  expect_matches_reference(g, reference_raster(assets, frame, h.view()));
+}
+
+}  // namespace
+}  // namespace rp::test
