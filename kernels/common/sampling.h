@@ -16,8 +16,9 @@ inline int rp_wrap_index(int i, int n) {
  * space (each texel decoded first). uv: u right, v up; texel (tx, ty) covers
  * u in [tx, tx+1) / width and (1 - v) in [ty, ty+1) / height (rows top to bottom, types.h),
  * texel centres at +0.5. Returns linear rgb and alpha. */
-inline float4 rp_texture_bilinear(__global const uint* texels, const TextureInfo info, float2 uv) {
-  int w = (int)info.width, h = (int)info.height;
+inline float4 rp_texture_bilinear(__global const uint* texels, __global const TextureInfo* info,
+                                  float2 uv) {
+  int w = (int)info->width, h = (int)info->height;
   float x = uv.x * (float)w - 0.5f;
   float y = (1.0f - uv.y) * (float)h - 0.5f;
   float x0f = floor(x), y0f = floor(y);
@@ -28,7 +29,7 @@ inline float4 rp_texture_bilinear(__global const uint* texels, const TextureInfo
   int x0 = rp_wrap_index((int)x0f, w), y0 = rp_wrap_index((int)y0f, h);
   int x1 = x0 + 1 == w ? 0 : x0 + 1;
   int y1 = y0 + 1 == h ? 0 : y0 + 1;
-  __global const uint* base = texels + info.offset;
+  __global const uint* base = texels + info->offset;
   float4 t00 = rp_unpack_rgba8_srgb(base[y0 * w + x0]);
   float4 t10 = rp_unpack_rgba8_srgb(base[y0 * w + x1]);
   float4 t01 = rp_unpack_rgba8_srgb(base[y1 * w + x0]);
