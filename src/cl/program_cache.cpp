@@ -38,7 +38,10 @@ void expand(const std::string& file, std::set<std::string>& seen, std::string& o
   while (std::getline(in, line)) {
     ++line_no;
     size_t p = line.find_first_not_of(" \t");
-    if (p != std::string::npos && line.compare(p, 8, "#include") == 0) {
+    // `#include <...>` lines are host-only (inside #ifndef __OPENCL_VERSION__ in the shared
+    // headers): left for the OpenCL preprocessor, which skips them in the inactive branch.
+    if (p != std::string::npos && line.compare(p, 8, "#include") == 0 &&
+        line.find('<', p) == std::string::npos) {
       size_t q0 = line.find('"', p);
       size_t q1 = q0 == std::string::npos ? q0 : line.find('"', q0 + 1);
       if (q1 == std::string::npos)
