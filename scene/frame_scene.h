@@ -13,7 +13,7 @@ namespace rp::scene {
 
 // Pinhole camera. Angles in degrees, distances in world units (the box spans [-1,1]^3).
 struct Camera {
-  glm::vec3 position{0.0f, 0.0f, 2.75f};
+  glm::vec3 position{0.0f, 0.0f, 2.7f};  // the open side (z = 1) just fills the 60 degree view
   glm::vec3 target{0.0f, 0.0f, 0.0f};
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float fov_y_deg = 60.0f;

@@ -17,12 +17,12 @@ glm::vec3 to_ndc(const glm::mat4& m, glm::vec3 p) {
 }
 
 TEST(Camera, DefaultViewIsATranslationAlongZ) {
-  const Camera camera;  // at (0, 0, 2.75) looking at the origin, y up
+  const Camera camera;  // at (0, 0, 2.7) looking at the origin, y up
   const glm::mat4 v = camera.view();
   const glm::vec4 p = v * glm::vec4(0.3f, -0.2f, 1.0f, 1.0f);
   EXPECT_NEAR(p.x, 0.3f, 1e-6f);
   EXPECT_NEAR(p.y, -0.2f, 1e-6f);
-  EXPECT_NEAR(p.z, 1.0f - 2.75f, 1e-6f);
+  EXPECT_NEAR(p.z, 1.0f - 2.7f, 1e-6f);
   EXPECT_NEAR(p.w, 1.0f, 1e-6f);
 }
 
