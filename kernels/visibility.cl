@@ -7,8 +7,8 @@
  *                       transform, cull, pixel bounds, count the tiles it may touch
  *   visibility_scan     one work-group: exclusive scan of the counts -> tile list ranges
  *   visibility_bin      the same walk as setup, now writing item indices into the tile lists
- *   visibility_raster   one work-group per RP_RASTER_TILE^2 tile: nearest surface per pixel
- *   visibility_resolve  (camera only) winner -> ids and perspective-correct barycentrics
+ *   visibility_raster   one work-group per RP_RASTER_TILE^2 tile: nearest surface per pixel,
+ *                       written once: depth, and (camera) ids and barycentrics
  *
  * Tile list layout: counts/start/cursor hold 2 * tile_count entries, tile t's triangles at
  * [t], its spheres at [tile_count + t]; the scan makes each range contiguous in one list.
@@ -87,20 +87,25 @@ inline void rp_store_span_f(rp_spanf v, __global float* p, int n) {
 #endif
 }
 
-inline void rp_store_span_u(rp_spanu v, __global uint* p, int n) {
-#if RP_SPAN == 1
-  (void)n;
-  p[0] = v;
-#else
-  if (n >= RP_SPAN) {
-    RP_CAT(vstore, RP_SPAN)(v, 0, p);
-  } else {
-    uint lanes[RP_SPAN];
-    RP_CAT(vstore, RP_SPAN)(v, 0, lanes);
-    for (int i = 0; i < n; ++i) p[i] = lanes[i];
+/* Writes the first n lanes of two spans interleaved: p[2i] = a[i], p[2i + 1] = b[i] (the uint2 /
+ * float2 planes of the visibility buffer). */
+#define RP_DEFINE_STORE_PAIRS(name, scalar, span_type)                                 \
+  inline void name(span_type a, span_type b, __global scalar* p, int n) {               \
+    scalar la[RP_SPAN], lb[RP_SPAN];                                                    \
+    RP_SPAN_TO_ARRAY(a, la);                                                            \
+    RP_SPAN_TO_ARRAY(b, lb);                                                            \
+    for (int i = 0; i < n; ++i) {                                                       \
+      p[2 * i] = la[i];                                                                 \
+      p[2 * i + 1] = lb[i];                                                             \
+    }                                                                                   \
   }
+#if RP_SPAN == 1
+#define RP_SPAN_TO_ARRAY(v, arr) ((arr)[0] = (v))
+#else
+#define RP_SPAN_TO_ARRAY(v, arr) RP_CAT(vstore, RP_SPAN)((v), 0, (arr))
 #endif
-}
+RP_DEFINE_STORE_PAIRS(rp_store_span_pairs_u, uint, rp_spanu)
+RP_DEFINE_STORE_PAIRS(rp_store_span_pairs_f, float, rp_spanf)
 
 /* Pixel bounds (x0, y0, x1, y1 inclusive) from bounds of the covered pixel positions, with a
  * one-pixel margin, clamped to the view; x0 > x1 when nothing is on screen. */
@@ -327,16 +332,17 @@ void visibility_bin(__global const RasterView* view_in, __global const RasterTri
 
 /* One work-group per tile, RP_GROUP_W x RP_TILE work-items, each owning RP_SPAN pixels of a
  * row. Items of the tile's lists are set up cooperatively in local memory, RP_BATCH at a time;
- * then every work-item tests its pixels against the batch, keeping its best (z_ndc, item). */
+ * then every work-item tests its pixels against the batch, keeping its best (z_ndc, item) and,
+ * for the camera, the winner's ids and edge values (barycentrics = e1, e2 over their sum). */
 __kernel __attribute__((reqd_work_group_size(RP_GROUP_W, RP_TILE, 1)))
 void visibility_raster(__global const RasterView* view_in, __global const RasterTriangle* tris,
                        __global const int4* bounds_in, __global const Sphere* spheres,
                        __global const uint* tile_start, __global const uint* tile_end,
                        __global const uint* tile_list, __global float* depth_out,
-                       __global uint* key_out) {
+                       __global uint* ids_out, __global float* bary_out) {
   __local float4 l_e0[RP_BATCH], l_e1[RP_BATCH], l_e2[RP_BATCH], l_z[RP_BATCH];
   __local int4 l_box[RP_BATCH];   /* item bounds in tile pixels (x0, y0, x1, y1) */
-  __local int4 l_flags[RP_BATCH]; /* top-left flags of the 3 edges, item (key) */
+  __local int4 l_flags[RP_BATCH]; /* top-left bits of edges 0..2, item, instance, primitive */
 
   const RasterView view = *view_in;
   uint tile_x = get_group_id(0), tile_y = get_group_id(1);
@@ -351,6 +357,10 @@ void visibility_raster(__global const RasterView* view_in, __global const Raster
 
   rp_spanf best_z = (rp_spanf)(1.0f);
   rp_spanu best_key = (rp_spanu)(RP_ID_NONE);
+#if !RP_DEPTH_ONLY
+  rp_spanu best_instance = (rp_spanu)(RP_ID_NONE), best_primitive = (rp_spanu)(RP_ID_NONE);
+  rp_spanf best_e1 = (rp_spanf)(0.0f), best_e2 = (rp_spanf)(0.0f), best_sum = (rp_spanf)(1.0f);
+#endif
 
   /* Triangles. */
   uint begin = tile_start[tile], end = tile_end[tile];
@@ -365,7 +375,8 @@ void visibility_raster(__global const RasterView* view_in, __global const Raster
       l_e2[k] = r.e[2];
       l_z[k] = r.z;
       l_box[k] = r.top_left.w ? bounds_in[item] - (int4)(ox, oy, ox, oy) : RP_EMPTY_BOUNDS;
-      l_flags[k] = (int4)(r.top_left.xyz, (int)item);
+      l_flags[k] = (int4)((r.top_left.x & 1) | (r.top_left.y & 2) | (r.top_left.z & 4),
+                          (int)item, (int)t.info.x, (int)t.info.y);
     }
     barrier(CLK_LOCAL_MEM_FENCE);
     for (uint k = 0; k < n; ++k) {
@@ -373,17 +384,24 @@ void visibility_raster(__global const RasterView* view_in, __global const Raster
       if (ly < box.y || ly > box.w || lx0 + (RP_SPAN - 1) < box.x || lx0 > box.z) continue;
       float4 e0 = l_e0[k], e1 = l_e1[k], e2 = l_e2[k], zp = l_z[k];
       int4 flags = l_flags[k];
-      uint key = (uint)flags.w;
+      uint key = (uint)flags.y;
+      int tl0 = -(flags.x & 1), tl1 = -((flags.x >> 1) & 1), tl2 = -((flags.x >> 2) & 1);
       rp_spanf f0 = e0.x * dx + (e0.y * dy + e0.z);
       rp_spanf f1 = e1.x * dx + (e1.y * dy + e1.z);
       rp_spanf f2 = e2.x * dx + (e2.y * dy + e2.z);
       rp_spanf z = zp.x * dx + (zp.y * dy + zp.z);
-      rp_spani in = ((f0 > 0.0f) | ((f0 == 0.0f) & flags.x)) &
-                    ((f1 > 0.0f) | ((f1 == 0.0f) & flags.y)) &
-                    ((f2 > 0.0f) | ((f2 == 0.0f) & flags.z)) & (z >= -1.0f) &
+      rp_spani in = ((f0 > 0.0f) | ((f0 == 0.0f) & tl0)) & ((f1 > 0.0f) | ((f1 == 0.0f) & tl1)) &
+                    ((f2 > 0.0f) | ((f2 == 0.0f) & tl2)) & (z >= -1.0f) &
                     ((z < best_z) | ((z == best_z) & (key < best_key)));
       best_z = select(best_z, z, in);
       best_key = select(best_key, (rp_spanu)(key), in);
+#if !RP_DEPTH_ONLY
+      best_instance = select(best_instance, (rp_spanu)((uint)flags.z), in);
+      best_primitive = select(best_primitive, (rp_spanu)((uint)flags.w), in);
+      best_e1 = select(best_e1, f1, in);
+      best_e2 = select(best_e2, f2, in);
+      best_sum = select(best_sum, (f0 + f1) + f2, in);
+#endif
     }
     barrier(CLK_LOCAL_MEM_FENCE);
   }
@@ -399,18 +417,18 @@ void visibility_raster(__global const RasterView* view_in, __global const Raster
 #define RP_UNPROJECT(comp, zn) \
   (((inv.c[0].comp * nx + inv.c[1].comp * ny) + inv.c[2].comp * (zn)) + inv.c[3].comp)
     rp_spanf near_w = RP_UNPROJECT(w, -1.0f), far_w = RP_UNPROJECT(w, 1.0f);
-    rp_spanf ox_ = RP_UNPROJECT(x, -1.0f) / near_w, oy_ = RP_UNPROJECT(y, -1.0f) / near_w,
-             oz_ = RP_UNPROJECT(z, -1.0f) / near_w;
-    rp_spanf rx = RP_UNPROJECT(x, 1.0f) / far_w - ox_, ry = RP_UNPROJECT(y, 1.0f) / far_w - oy_,
-             rz = RP_UNPROJECT(z, 1.0f) / far_w - oz_;
+    rp_spanf ray_ox = RP_UNPROJECT(x, -1.0f) / near_w, ray_oy = RP_UNPROJECT(y, -1.0f) / near_w,
+             ray_oz = RP_UNPROJECT(z, -1.0f) / near_w;
+    rp_spanf rx = RP_UNPROJECT(x, 1.0f) / far_w - ray_ox, ry = RP_UNPROJECT(y, 1.0f) / far_w - ray_oy,
+             rz = RP_UNPROJECT(z, 1.0f) / far_w - ray_oz;
 #undef RP_UNPROJECT
     rp_spanf len = sqrt((rx * rx + ry * ry) + rz * rz);
     rx = rx / len;
     ry = ry / len;
     rz = rz / len;
     /* clip z and w along the ray: linear in the ray parameter t */
-    rp_spanf z_o = ((vp.c[0].z * ox_ + vp.c[1].z * oy_) + vp.c[2].z * oz_) + vp.c[3].z;
-    rp_spanf w_o = ((vp.c[0].w * ox_ + vp.c[1].w * oy_) + vp.c[2].w * oz_) + vp.c[3].w;
+    rp_spanf z_o = ((vp.c[0].z * ray_ox + vp.c[1].z * ray_oy) + vp.c[2].z * ray_oz) + vp.c[3].z;
+    rp_spanf w_o = ((vp.c[0].w * ray_ox + vp.c[1].w * ray_oy) + vp.c[2].w * ray_oz) + vp.c[3].w;
     rp_spanf z_d = (vp.c[0].z * rx + vp.c[1].z * ry) + vp.c[2].z * rz;
     rp_spanf w_d = (vp.c[0].w * rx + vp.c[1].w * ry) + vp.c[2].w * rz;
 
@@ -418,18 +436,20 @@ void visibility_raster(__global const RasterView* view_in, __global const Raster
       uint n = min((uint)RP_BATCH, end - base);
       for (uint k = lid; k < n; k += RP_GROUP_SIZE) {
         uint item = tile_list[base + k];
-        float4 cr = spheres[item - view.triangle_items].center_radius;
+        uint index = item - view.triangle_items;
+        float4 cr = spheres[index].center_radius;
         l_e0[k] = (float4)(cr.xyz, cr.w * cr.w);
         l_box[k] = bounds_in[item] - (int4)(ox, oy, ox, oy);
-        l_flags[k] = (int4)(0, 0, 0, (int)item);
+        l_flags[k] = (int4)(0, (int)item, (int)(RP_ID_SPHERE_BIT | index), 0);
       }
       barrier(CLK_LOCAL_MEM_FENCE);
       for (uint k = 0; k < n; ++k) {
         int4 box = l_box[k];
         if (ly < box.y || ly > box.w || lx0 + (RP_SPAN - 1) < box.x || lx0 > box.z) continue;
         float4 s = l_e0[k];
-        uint key = (uint)l_flags[k].w;
-        rp_spanf cx = ox_ - s.x, cy = oy_ - s.y, cz = oz_ - s.z;
+        int4 flags = l_flags[k];
+        uint key = (uint)flags.y;
+        rp_spanf cx = ray_ox - s.x, cy = ray_oy - s.y, cz = ray_oz - s.z;
         rp_spanf b = (cx * rx + cy * ry) + cz * rz;
         /* r^2 - squared distance of the centre from the ray (accurate for small spheres) */
         rp_spanf px = cx - b * rx, py = cy - b * ry, pz = cz - b * rz;
@@ -442,51 +462,30 @@ void visibility_raster(__global const RasterView* view_in, __global const Raster
                       ((z < best_z) | ((z == best_z) & (key < best_key)));
         best_z = select(best_z, z, in);
         best_key = select(best_key, (rp_spanu)(key), in);
+#if !RP_DEPTH_ONLY
+        best_instance = select(best_instance, (rp_spanu)((uint)flags.z), in);
+        best_primitive = select(best_primitive, (rp_spanu)(0u), in);
+        best_e1 = select(best_e1, (rp_spanf)(0.0f), in);
+        best_e2 = select(best_e2, (rp_spanf)(0.0f), in);
+        best_sum = select(best_sum, (rp_spanf)(1.0f), in);
+#endif
       }
       barrier(CLK_LOCAL_MEM_FENCE);
     }
   }
 
-  /* One write per pixel. */
+  /* One write per pixel and plane. */
   int y = oy + ly, x0 = ox + lx0;
   if (y < (int)view.height && x0 < (int)view.width) {
     int valid = min(RP_SPAN, (int)view.width - x0);
     size_t row = (size_t)y * view.width + (size_t)x0;
     rp_store_span_f(best_z * 0.5f + 0.5f, depth_out + row, valid);
 #if !RP_DEPTH_ONLY
-    rp_store_span_u(best_key, key_out + row, valid);
+    rp_store_span_pairs_u(best_instance, best_primitive, ids_out + 2 * row, valid);
+    rp_store_span_pairs_f(best_e1 / best_sum, best_e2 / best_sum, bary_out + 2 * row, valid);
 #else
-    (void)key_out;
+    (void)ids_out;
+    (void)bary_out;
 #endif
   }
-}
-
-/* Winner item -> (instance, primitive) ids and perspective-correct barycentrics (b1, b2),
- * recomputing the winner's edges in the frame of the pixel's tile. */
-__kernel void visibility_resolve(__global const RasterView* view_in,
-                                 __global const RasterTriangle* tris, __global const uint* keys,
-                                 __global uint2* ids_out, __global float2* bary_out) {
-  const RasterView view = *view_in;
-  int x = (int)get_global_id(0), y = (int)get_global_id(1);
-  if (x >= (int)view.width || y >= (int)view.height) return;
-  size_t i = (size_t)y * view.width + (size_t)x;
-  uint key = keys[i];
-  uint2 ids = (uint2)(RP_ID_NONE, RP_ID_NONE);
-  float2 bary = (float2)(0.0f);
-  if (key < view.triangle_items) {
-    RasterTriangle t = tris[key];
-    int ox = x / RP_TILE * RP_TILE, oy = y / RP_TILE * RP_TILE;
-    RasterEdges r = rp_raster_edges(t.v[0], t.v[1], t.v[2], (float)ox, (float)oy);
-    float dx = (float)(x - ox) + 0.5f, dy = (float)(y - oy) + 0.5f;
-    float e0 = r.e[0].x * dx + (r.e[0].y * dy + r.e[0].z);
-    float e1 = r.e[1].x * dx + (r.e[1].y * dy + r.e[1].z);
-    float e2 = r.e[2].x * dx + (r.e[2].y * dy + r.e[2].z);
-    float sum = (e0 + e1) + e2;
-    bary = (float2)(e1 / sum, e2 / sum);
-    ids = t.info.xy;
-  } else if (key != RP_ID_NONE) {
-    ids = (uint2)(RP_ID_SPHERE_BIT | (key - view.triangle_items), 0u);
-  }
-  ids_out[i] = ids;
-  bary_out[i] = bary;
 }

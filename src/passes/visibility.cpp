@@ -1,6 +1,6 @@
 // Host side of the compute rasterizer (kernels/visibility.cl). Per view (camera, lamp):
 // clear -> setup -> scan -> [read back the list total, grow the list once if needed] -> bin ->
-// raster (-> resolve for the camera). Device memory is sized by the triangle count, sphere
+// raster. Device memory is sized by the triangle count, sphere
 // count, view size and list total, and only ever grows: a steady frame allocates nothing.
 #include "passes/visibility.h"
 
@@ -25,7 +25,6 @@ static_assert(sizeof(gpu::RasterTriangle) == 64);
 constexpr size_t kTile = RP_RASTER_TILE;
 constexpr size_t kItemGroup = 64;  // RP_ITEM_GROUP in visibility.cl
 constexpr size_t kScanGroup = 128; // RP_SCAN_GROUP in visibility.cl
-constexpr size_t kResolveGroup = 16;
 
 // Pixels per raster work-item: SIMD-wide spans on CPUs (PoCL vectorizes float16 code, not the
 // loop over a tile's triangles), one pixel per work-item on GPUs. ROLYPOLY_RASTER_SPAN
@@ -60,15 +59,15 @@ bool ensure(const ::cl::Context& context, ::cl::Buffer& buffer, size_t& capacity
 
 // Kernels and scratch memory of one view. Layouts: tris RasterTriangle[triangle items];
 // bounds int4[all items] (pixel x0, y0, x1, y1); counts/start/cursor uint[2 * tiles]
-// (triangles of tile t at t, spheres at tiles + t); list uint[list_capacity] item indices;
-// keys uint[width * height] winning item per pixel (camera only).
+// (triangles of tile t at t, spheres at tiles + t); list uint[list_capacity] item indices.
 struct ViewState {
   std::string pass;
   bool depth_only = false;
-  ::cl::Kernel clear, setup, scan, bin, raster, resolve;
+  ::cl::Kernel clear, setup, scan, bin, raster;
   gpu::RasterView params{};
-  ::cl::Buffer params_buffer, tris, bounds, counts, start, cursor, list, total, keys;
-  size_t tris_cap = 0, bounds_cap = 0, tiles_cap = 0, list_cap = 0, keys_cap = 0;
+  ::cl::Buffer params_buffer, tris, bounds, counts, start, cursor, list, total;
+  ::cl::Buffer unused;  // stands in for the ids / bary planes the depth-only variant lacks
+  size_t tris_cap = 0, bounds_cap = 0, tiles_cap = 0, list_cap = 0;
   uint32_t total_host = 0;
 };
 
@@ -95,11 +94,10 @@ struct VisibilityPass::Impl {
     v.scan = programs.kernel("visibility.cl", "visibility_scan", options);
     v.bin = programs.kernel("visibility.cl", "visibility_bin", options);
     v.raster = programs.kernel("visibility.cl", "visibility_raster", options);
-    if (!depth_only) v.resolve = programs.kernel("visibility.cl", "visibility_resolve", options);
     const ::cl::Context& ctx = context->context;
     v.params_buffer = ::cl::Buffer(ctx, CL_MEM_READ_ONLY, sizeof(gpu::RasterView));
     v.total = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(uint32_t));
-    if (depth_only) v.keys = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(uint32_t));  // unused
+    v.unused = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, 2 * sizeof(uint32_t));
   }
 
   void update_draw_items(const render::GpuScene& scene) {
@@ -131,7 +129,8 @@ struct VisibilityPass::Impl {
 
   void run_view(rp::cl::Profiler& profiler, ViewState& v, const render::GpuScene& scene,
                 const glm::mat4& view_proj, const glm::mat4& inv_view_proj, uint32_t width,
-                uint32_t height, const ::cl::Buffer& depth_out) {
+                uint32_t height, const ::cl::Buffer& depth_out, const ::cl::Buffer& ids_out,
+                const ::cl::Buffer& bary_out) {
     const ::cl::Context& ctx = context->context;
     ::cl::CommandQueue& queue = profiler.queue();
     update_draw_items(scene);
@@ -151,8 +150,6 @@ struct VisibilityPass::Impl {
     }
     // First guess for the list: every item in about four tiles.
     ensure(ctx, v.list, v.list_cap, size_t(4) * items + tiles, sizeof(uint32_t));
-    if (!v.depth_only)
-      ensure(ctx, v.keys, v.keys_cap, size_t(width) * height, sizeof(uint32_t));
 
     gpu::RasterView& p = v.params;
     p.view_proj = gpu::to_gpu(view_proj);
@@ -232,7 +229,8 @@ struct VisibilityPass::Impl {
     v.raster.setArg(a++, v.cursor);
     v.raster.setArg(a++, v.list);
     v.raster.setArg(a++, depth_out);
-    v.raster.setArg(a++, v.keys);
+    v.raster.setArg(a++, ids_out);
+    v.raster.setArg(a++, bary_out);
     const size_t group_w = kTile / static_cast<size_t>(span);
     profiler.enqueue(v.pass, v.raster, ::cl::NDRange(tiles_x * group_w, tiles_y * kTile),
                      ::cl::NDRange(group_w, kTile));
@@ -250,27 +248,18 @@ VisibilityPass::VisibilityPass(const rp::cl::Context& context, rp::cl::ProgramCa
 void VisibilityPass::render(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                             render::VisibilityBuffer& out) {
   if (out.width == 0 || out.height == 0) return;
-  ViewState& v = impl_->camera;
-  impl_->run_view(profiler, v, scene, to_glm(scene.constants.view_proj),
-                  to_glm(scene.constants.inv_view_proj), out.width, out.height, out.depth);
-  cl_uint a = 0;
-  v.resolve.setArg(a++, v.params_buffer);
-  v.resolve.setArg(a++, v.tris);
-  v.resolve.setArg(a++, v.keys);
-  v.resolve.setArg(a++, out.ids);
-  v.resolve.setArg(a++, out.bary);
-  profiler.enqueue(v.pass, v.resolve,
-                   ::cl::NDRange(rp::cl::round_up(out.width, kResolveGroup),
-                                 rp::cl::round_up(out.height, kResolveGroup)),
-                   ::cl::NDRange(kResolveGroup, kResolveGroup));
+  impl_->run_view(profiler, impl_->camera, scene, to_glm(scene.constants.view_proj),
+                  to_glm(scene.constants.inv_view_proj), out.width, out.height, out.depth, out.ids,
+                  out.bary);
 }
 
 void VisibilityPass::render_shadow(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                                    render::ShadowMap& out) {
   if (out.size == 0) return;
   glm::mat4 light = to_glm(scene.constants.light_view_proj);
-  impl_->run_view(profiler, impl_->shadow, scene, light, glm::inverse(light), out.size, out.size,
-                  out.depth);
+  ViewState& v = impl_->shadow;
+  impl_->run_view(profiler, v, scene, light, glm::inverse(light), out.size, out.size, out.depth,
+                  v.unused, v.unused);
 }
 
 }  // namespace rp::passes

@@ -259,6 +259,18 @@ scene::SceneAssets make_test_assets(std::vector<scene::Mesh> meshes) {
   return assets;
 }
 
+scene::FrameScene make_test_frame() {
+  scene::FrameScene frame;
+  frame.camera.position = glm::vec3(0.0f, 0.0f, 2.75f);
+  frame.camera.target = glm::vec3(0.0f);
+  frame.camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
+  frame.camera.fov_y_deg = 60.0f;
+  frame.camera.near_plane = 0.1f;
+  frame.camera.far_plane = 4.0f;
+  frame.prev_camera = frame.camera;
+  return frame;
+}
+
 RefView camera_view(const scene::FrameScene& frame, uint32_t width, uint32_t height) {
   RefView view;
   view.view_proj = frame.camera.projection(float(width) / float(height)) * frame.camera.view();

@@ -49,7 +49,11 @@ scene::Mesh make_icosphere(int levels, float radius);
 // Assets holding `meshes` and one grey material.
 scene::SceneAssets make_test_assets(std::vector<scene::Mesh> meshes);
 
-// The default camera's view (FrameScene::camera) at width x height.
+// An empty frame with the camera the visibility tests assume (independent of the defaults):
+// at (0, 0, 2.75) looking at the origin, 60 degrees vertical field of view, near 0.1, far 4.
+scene::FrameScene make_test_frame();
+
+// The frame's camera view at width x height (as GpuScene::update computes it).
 RefView camera_view(const scene::FrameScene& frame, uint32_t width, uint32_t height);
 
 }  // namespace rp::test

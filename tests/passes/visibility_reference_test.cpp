@@ -69,7 +69,7 @@ Grid make_grid() {
 TEST(VisibilityReference, GridOnPixelCentresCoversEachInteriorPixelOnce) {
   Grid grid = make_grid();
   scene::SceneAssets assets = make_test_assets({make_test_mesh(grid.nodes, grid.triangles)});
-  scene::FrameScene frame;
+  scene::FrameScene frame = make_test_frame();
   frame.instances.push_back({});
   RefView view = pixel_ortho_view(64, 64);
   RefImage img = reference_raster(assets, frame, view);
@@ -101,7 +101,7 @@ TEST(VisibilityReference, GridTopLeftRuleOnOutline) {
   // Left and top outline edges take the pixel centres on them, right and bottom ones do not.
   Grid grid = make_grid();
   scene::SceneAssets assets = make_test_assets({make_test_mesh(grid.nodes, grid.triangles)});
-  scene::FrameScene frame;
+  scene::FrameScene frame = make_test_frame();
   frame.instances.push_back({});
   RefImage img = reference_raster(assets, frame, pixel_ortho_view(64, 64));
   const glm::vec2 lo = grid.node(0, 0), hi = grid.node(Grid::kN, Grid::kN);
@@ -129,7 +129,7 @@ TEST(VisibilityReference, ClosedIcosphereHasNoCracksOrDoubleHits) {
     r_in = std::min(r_in, std::abs(glm::dot(a, glm::normalize(glm::cross(b - a, c - a)))));
   }
   scene::SceneAssets assets = make_test_assets({sphere});
-  scene::FrameScene frame;
+  scene::FrameScene frame = make_test_frame();
   scene::MeshInstance inst;
   inst.model = glm::mat4(glm::vec4(0.96f, 0.28f, 0.0f, 0.0f), glm::vec4(-0.28f, 0.96f, 0.0f, 0.0f),
                          glm::vec4(0.0f, 0.0f, 1.0f, 0.0f), glm::vec4(0.05f, -0.1f, 0.3f, 1.0f));

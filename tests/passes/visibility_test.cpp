@@ -192,7 +192,7 @@ glm::mat4 rotation_z(float angle, glm::vec3 translation) {
 
 struct TestScene {
   scene::SceneAssets assets;
-  scene::FrameScene frame;
+  scene::FrameScene frame = make_test_frame();
 };
 
 TestScene random_scene() {
@@ -232,7 +232,7 @@ TEST(Visibility, OddSizeMatchesReference) {
 
 TEST(Visibility, IcosphereMatchesReference) {
   scene::SceneAssets assets = make_test_assets({make_icosphere(2, 0.8f)});
-  scene::FrameScene frame;
+  scene::FrameScene frame = make_test_frame();
   scene::MeshInstance inst;
   inst.model = rotation_z(0.3f, glm::vec3(0.05f, -0.1f, 0.3f));
   frame.instances.push_back(inst);
@@ -271,7 +271,7 @@ TEST(Visibility, PixelAlignedGridMatchesReference) {
       }
     }
   scene::SceneAssets assets = make_test_assets({make_test_mesh(pos, tris)});
-  scene::FrameScene frame;
+  scene::FrameScene frame = make_test_frame();
   frame.instances.push_back({});
   RefView ortho;
   ortho.width = 64;
@@ -298,7 +298,7 @@ TEST(Visibility, PixelAlignedGridMatchesReference) {
 // within 0.1 % of the radius of a silhouette are skipped (float rays may fall either side).
 TEST(Visibility, SpheresMatchAnalyticIntersection) {
   scene::SceneAssets assets = make_test_assets({});
-  scene::FrameScene frame;
+  scene::FrameScene frame = make_test_frame();
   auto sphere = [](glm::vec3 c, float r) {
     scene::Sphere s;
     s.center = c;
@@ -364,7 +364,7 @@ TEST(Visibility, SpheresAgainstTriangles) {
   scene::SceneAssets assets = make_test_assets({make_test_mesh(
       {{-0.8f, -0.8f, 0.0f}, {0.8f, -0.8f, 0.0f}, {0.8f, 0.8f, 0.0f}, {-0.8f, 0.8f, 0.0f}},
       {{0, 1, 2}, {0, 2, 3}})});
-  scene::FrameScene frame;
+  scene::FrameScene frame = make_test_frame();
   frame.instances.push_back({});
   auto sphere = [](glm::vec3 c, float r) {
     scene::Sphere s;
@@ -418,7 +418,7 @@ TEST(Visibility, ShadowMapMatchesReference) {
       {make_test_mesh({{-1, -1, -1}, {1, -1, -1}, {1, -1, 1}, {-1, -1, 1}}, {{0, 1, 2}, {0, 2, 3}}),
        make_icosphere(1, 0.3f),
        make_test_mesh({{0.2f, 0.5f, 0.2f}, {0.7f, 0.5f, 0.2f}, {0.7f, 0.5f, 0.7f}}, {{0, 1, 2}})});
-  scene::FrameScene frame;
+  scene::FrameScene frame = make_test_frame();
   scene::MeshInstance floor, ball, blocker;
   floor.mesh = 0;
   ball.mesh = 1;
@@ -463,7 +463,7 @@ TEST(Visibility, EqualDepthsResolveByIds) {
                                 {-0.6f, -0.5f, 0.0f}, {0.6f, -0.5f, 0.0f}, {0.0f, 0.6f, 0.0f}};
   scene::SceneAssets assets =
       make_test_assets({make_test_mesh(pos, {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}})});
-  scene::FrameScene frame;
+  scene::FrameScene frame = make_test_frame();
   frame.instances = {scene::MeshInstance{}, scene::MeshInstance{}};
   Harness h(assets);
   GpuImage g = h.render(frame, 64, 64);
@@ -522,7 +522,7 @@ TEST(Visibility, TileListGrowsAndInstanceSetChanges) {
     tris.push_back({uint32_t(3 * t), uint32_t(3 * t + 1), uint32_t(3 * t + 2)});
   }
   scene::SceneAssets assets = make_test_assets({make_test_mesh(pos, tris), random_triangles(3u, 8)});
-  scene::FrameScene frame;
+  scene::FrameScene frame = make_test_frame();
   scene::MeshInstance big, small;
   big.mesh = 0;
   small.mesh = 1;
