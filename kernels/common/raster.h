@@ -14,7 +14,10 @@
  * triangles sharing an edge compute its coefficients from the same vertex bits with the same
  * operations in swapped order, which gives exactly negated values (no FMA contraction, see
  * the pragma), so a pixel centre is on exactly one side, and the top-left rule breaks exact
- * zeros. */
+ * zeros. Limit: for a pixel centre within rounding distance (~1e-6 px) of a shared vertex the
+ * decisions of the edges meeting there can disagree, so such a pixel may be covered twice or
+ * not at all (odds ~1e-12 per vertex and frame). Exact inputs (pixel-aligned orthographic
+ * views, power-of-two sizes) are exact, and there the top-left rule settles vertices too. */
 #ifndef ROLYPOLY_COMMON_RASTER_H
 #define ROLYPOLY_COMMON_RASTER_H
 

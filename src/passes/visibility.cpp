@@ -35,7 +35,10 @@ int choose_span(const rp::cl::Context& context) {
     if (s == "1" || s == "4" || s == "8" || s == "16") return std::stoi(s);
     throw rp::cl::Error("ROLYPOLY_RASTER_SPAN must be 1, 4, 8 or 16, not '" + s + "'");
   }
-  return context.info.is_cpu ? 16 : 1;
+  if (context.info.is_cpu) return 16;
+  // One pixel per work-item needs 16x16 work-groups and ~24 KiB of local memory.
+  if (context.info.max_work_group_size < 256 || context.info.local_mem_bytes < 32 * 1024) return 4;
+  return 1;
 }
 
 glm::mat4 to_glm(const gpu::rp_mat4& m) {
@@ -101,14 +104,18 @@ struct VisibilityPass::Impl {
   }
 
   void update_draw_items(const render::GpuScene& scene) {
-    std::vector<uint32_t> key;
-    key.reserve(scene.host_instances.size() * 2);
-    for (const gpu::Instance& inst : scene.host_instances) {
-      key.push_back(inst.first_triangle);
-      key.push_back(inst.triangle_count);
+    const std::vector<gpu::Instance>& instances = scene.host_instances;
+    ensure(context->context, draw_items, draw_cap, 1, 2 * sizeof(uint32_t));  // never unset
+    bool same = draw_key.size() == 2 * instances.size();
+    for (size_t i = 0; same && i < instances.size(); ++i)
+      same = draw_key[2 * i] == instances[i].first_triangle &&
+             draw_key[2 * i + 1] == instances[i].triangle_count;
+    if (same) return;
+    draw_key.clear();
+    for (const gpu::Instance& inst : instances) {
+      draw_key.push_back(inst.first_triangle);
+      draw_key.push_back(inst.triangle_count);
     }
-    if (key == draw_key && draw_count > 0) return;
-    draw_key = std::move(key);
     draw_host.clear();
     for (uint32_t i = 0; i < scene.host_instances.size(); ++i) {
       const gpu::Instance& inst = scene.host_instances[i];
@@ -247,6 +254,11 @@ VisibilityPass::VisibilityPass(const rp::cl::Context& context, rp::cl::ProgramCa
 
 void VisibilityPass::render(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                             render::VisibilityBuffer& out) {
+  if (out.width != scene.constants.width || out.height != scene.constants.height)
+    throw rp::cl::Error("visibility pass: the visibility buffer is " + std::to_string(out.width) +
+                        "x" + std::to_string(out.height) + " but the frame was set up for " +
+                        std::to_string(scene.constants.width) + "x" +
+                        std::to_string(scene.constants.height));
   if (out.width == 0 || out.height == 0) return;
   impl_->run_view(profiler, impl_->camera, scene, to_glm(scene.constants.view_proj),
                   to_glm(scene.constants.inv_view_proj), out.width, out.height, out.depth, out.ids,
@@ -255,6 +267,10 @@ void VisibilityPass::render(rp::cl::Profiler& profiler, const render::GpuScene& 
 
 void VisibilityPass::render_shadow(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                                    render::ShadowMap& out) {
+  if (out.size != scene.constants.shadow_size)
+    throw rp::cl::Error("shadow map pass: the shadow map is " + std::to_string(out.size) +
+                        " texels wide but the frame was set up for " +
+                        std::to_string(scene.constants.shadow_size));
   if (out.size == 0) return;
   glm::mat4 light = to_glm(scene.constants.light_view_proj);
   ViewState& v = impl_->shadow;
