@@ -62,7 +62,9 @@ typedef struct {
   rp_uint width, height;        /* output size in pixels */
   rp_uint shadow_size;          /* shadow map is shadow_size x shadow_size */
   rp_uint frame_index;          /* frames since start (drives per-frame noise rotation) */
-  rp_uint instance_count, sphere_count, pad0, pad1;
+  rp_uint instance_count, sphere_count;
+  rp_uint voxel_resolution;     /* voxels per side of level 0 (32, 64 or 128) over [-1,1]^3 */
+  rp_uint voxel_levels;         /* mip levels incl. level 0: log2(voxel_resolution) + 1 */
 } FrameConstants;
 
 /* One vertex of a mesh in object space. 32 bytes. */
