@@ -36,7 +36,11 @@ class Rng {
   // Uniform inside the unit ball (rejection sampling: deterministic for a given sequence).
   glm::vec3 in_unit_ball() {
     for (;;) {
-      glm::vec3 p(uniform(-1.0f, 1.0f), uniform(-1.0f, 1.0f), uniform(-1.0f, 1.0f));
+      // Separate statements: the order of evaluation of function arguments is unspecified.
+      float x = uniform(-1.0f, 1.0f);
+      float y = uniform(-1.0f, 1.0f);
+      float z = uniform(-1.0f, 1.0f);
+      glm::vec3 p(x, y, z);
       if (glm::dot(p, p) <= 1.0f) return p;
     }
   }
