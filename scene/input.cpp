@@ -19,6 +19,7 @@ const char* type_word(InputEventType type) {
     case InputEventType::MouseDown: return "mouse_down";
     case InputEventType::MouseUp: return "mouse_up";
     case InputEventType::MouseMove: return "mouse_move";
+    case InputEventType::Frame: return "frame";
   }
   return "?";
 }
@@ -46,6 +47,7 @@ std::string event_problem(const InputEvent& e) {
     if (!is_valid_key(e.key)) return "invalid key code " + std::to_string(static_cast<int>(e.key));
     return "";
   }
+  if (e.type == InputEventType::Frame) return "";
   if (!std::isfinite(e.cursor.x) || !std::isfinite(e.cursor.y)) return "non-finite cursor";
   if (!std::isfinite(e.viewport.x) || !std::isfinite(e.viewport.y) || !(e.viewport.x > 0.0f) ||
       !(e.viewport.y > 0.0f)) {
@@ -109,6 +111,10 @@ InputEvent parse_event(const LineParser& p, const std::vector<std::string>& word
     p.expect_fields(words, 4, "step N key K");
     return InputEvent::key_press(e.step, p.parse_key(words[3]));
   }
+  if (kind == "frame") {
+    p.expect_fields(words, 3, "step N frame");
+    return InputEvent::frame(e.step);
+  }
   InputEventType type;
   if (kind == "mouse_down") {
     type = InputEventType::MouseDown;
@@ -117,7 +123,7 @@ InputEvent parse_event(const LineParser& p, const std::vector<std::string>& word
   } else if (kind == "mouse_move") {
     type = InputEventType::MouseMove;
   } else {
-    p.fail("unknown event '" + kind + "' (expected key, mouse_down, mouse_up or mouse_move)");
+    p.fail("unknown event '" + kind + "' (expected key, mouse_down, mouse_up, mouse_move or frame)");
   }
   p.expect_fields(words, 7, "step N mouse_xxx X Y WIDTH HEIGHT");
   const float x = p.parse_float(words[3], "cursor x");
@@ -139,6 +145,13 @@ InputEvent InputEvent::key_press(uint64_t step, char key) {
   e.step = step;
   e.type = InputEventType::Key;
   e.key = key;
+  return e;
+}
+
+InputEvent InputEvent::frame(uint64_t step) {
+  InputEvent e;
+  e.step = step;
+  e.type = InputEventType::Frame;
   return e;
 }
 
@@ -170,6 +183,8 @@ void write_input_log(std::ostream& out, const std::vector<InputEvent>& events) {
     out << "step " << e.step << ' ' << type_word(e.type);
     if (e.type == InputEventType::Key) {
       out << ' ' << key_word(e.key);
+    } else if (e.type == InputEventType::Frame) {
+      // no fields
     } else {
       out << ' ' << format_float(e.cursor.x) << ' ' << format_float(e.cursor.y) << ' '
           << format_float(e.viewport.x) << ' ' << format_float(e.viewport.y);

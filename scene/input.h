@@ -8,6 +8,7 @@
 //   step 130 mouse_down 312.5 200 720 720      cursor x y, viewport width height (pixels)
 //   step 131 mouse_move 318.25 204.5 720 720
 //   step 140 mouse_up 320 210 720 720
+//   step 144 frame                             a frame was shown after the world reached step 144
 // Steps never decrease; several events may share a step (they apply in file order). Floats are
 // written in the shortest form that reads back bit-identical (std::to_chars), read with
 // std::from_chars (locale independent).
@@ -38,7 +39,10 @@ inline constexpr char kSingleStep = ' ';  // while paused
 // True for the chars a key event may carry.
 bool is_valid_key(char key);
 
-enum class InputEventType : uint8_t { Key, MouseDown, MouseUp, MouseMove };
+// Frame marks a displayed frame: the interactive loop advanced the world to `step`, then rendered.
+// Wall-clock time decides how many steps a frame takes, so a replay follows these marks to
+// reproduce an interactive session frame for frame.
+enum class InputEventType : uint8_t { Key, MouseDown, MouseUp, MouseMove, Frame };
 
 // One event. Mouse events are the left button (the only one that drags). Cursor positions are
 // continuous window pixels, (0,0) the top-left corner, y down (as picking.h's camera_ray takes
@@ -51,6 +55,7 @@ struct InputEvent {
   glm::vec2 viewport{0.0f};   // mouse events only, both > 0
 
   static InputEvent key_press(uint64_t step, char key);
+  static InputEvent frame(uint64_t step);
   static InputEvent mouse(uint64_t step, InputEventType type, glm::vec2 cursor, glm::vec2 viewport);
 
   // The cursor in another viewport at the same NDC position.

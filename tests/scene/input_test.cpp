@@ -59,6 +59,7 @@ TEST(InputLog, WritesTheDocumentedFormat) {
       InputEvent::mouse(130, InputEventType::MouseDown, {312.5f, 200.0f}, {720.0f, 720.0f}),
       InputEvent::mouse(130, InputEventType::MouseMove, {318.25f, -4.5f}, {720.0f, 720.0f}),
       InputEvent::mouse(140, InputEventType::MouseUp, {320.0f, 210.0f}, {1280.0f, 720.0f}),
+      InputEvent::frame(144),
   };
   EXPECT_EQ(to_text(events),
             "rolypoly-input 1\n"
@@ -66,7 +67,9 @@ TEST(InputLog, WritesTheDocumentedFormat) {
             "step 125 key Space\n"
             "step 130 mouse_down 312.5 200 720 720\n"
             "step 130 mouse_move 318.25 -4.5 720 720\n"
-            "step 140 mouse_up 320 210 1280 720\n");
+            "step 140 mouse_up 320 210 1280 720\n"
+            "step 144 frame\n");
+  EXPECT_EQ(from_text(to_text(events)), events);
 }
 
 TEST(InputLog, RoundTripIsBitExact) {
@@ -140,6 +143,7 @@ TEST(InputLog, EachMalformedLineNamesFileLineAndProblem) {
       {"step 1\n", 2, "missing fields"},
       {"step 1 key\n", 2, "missing fields"},
       {"step 1 key S M\n", 2, "extra fields"},
+      {"step 1 frame 3\n", 2, "extra fields"},
       {"step x key S\n", 2, "step number"},
       {"step -1 key S\n", 2, "step number"},
       {"step 1.5 key S\n", 2, "step number"},
