@@ -1,0 +1,459 @@
+// Voxelize pass on small hand-made scenes: identical fixed-point sums to the C++ reference
+// (tests/passes/voxelize_reference.cpp) for triangles (thinner than a voxel, through voxel
+// corners, on a voxel face, rotated by an instance, partly outside the volume) and spheres;
+// lit values to a tolerance; a thin slanted strip without gaps (6-connected, dense samples
+// covered, nothing far from the strip); sphere coverage and opacity; overflow saturation; an
+// empty scene; the pass name.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <random>
+#include <set>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "cl/error.h"
+#include "passes/voxelize.h"
+#include "passes/voxelize_reference.h"
+#include "render/gpu_scene.h"
+#include "render/voxel_volume.h"
+#include "support/cl_fixture.h"
+
+namespace rp::test {
+namespace {
+
+// Large enough that the slope bias (up to 9 texels at grazing light) stays far below the
+// receivers' depths, so an all-zero map shadows everything.
+constexpr uint32_t kShadowSize = 256;
+
+struct TriSpec {
+  glm::vec3 a, b, c;
+  uint32_t material = 0;
+};
+
+scene::Mesh make_mesh(const std::vector<TriSpec>& tris) {
+  scene::Mesh mesh;
+  mesh.name = "test";
+  for (const TriSpec& t : tris) {
+    const glm::vec3 n = glm::normalize(glm::cross(t.b - t.a, t.c - t.a));
+    const uint32_t base = static_cast<uint32_t>(mesh.vertices.size());
+    mesh.vertices.push_back({t.a, n, {0.1f, 0.2f}});
+    mesh.vertices.push_back({t.b, n, {0.9f, 0.3f}});
+    mesh.vertices.push_back({t.c, n, {0.4f, 0.8f}});
+    mesh.triangles.push_back({base, base + 1, base + 2});
+    mesh.materials.push_back(t.material);
+  }
+  return mesh;
+}
+
+// Materials 0..2 plain (2 has no emission), 3 textured with a 4x4 texture of varied colours.
+scene::SceneAssets base_assets() {
+  scene::SceneAssets assets;
+  assets.materials = {
+      {"m0", {0.8f, 0.6f, 0.4f}, {1.5f, 0.25f, 3.0f}, -1},
+      {"m1", {0.3f, 0.9f, 0.5f}, {0.7f, 2.2f, 0.1f}, -1},
+      {"m2", {0.5f, 0.5f, 0.5f}, {0.0f, 0.0f, 0.0f}, -1},
+      {"m3", {1.0f, 0.9f, 0.8f}, {0.2f, 0.3f, 0.4f}, 0},
+  };
+  scene::Texture tex;
+  tex.name = "checker";
+  tex.width = tex.height = 4;
+  for (int i = 0; i < 16; ++i) {
+    tex.rgba.push_back(static_cast<uint8_t>(40 + 13 * i));
+    tex.rgba.push_back(static_cast<uint8_t>(200 - 9 * i));
+    tex.rgba.push_back(static_cast<uint8_t>((i % 3) * 90 + 20));
+    tex.rgba.push_back(255);
+  }
+  assets.textures.push_back(tex);
+  return assets;
+}
+
+scene::Sphere sphere(glm::vec3 c, float r, glm::vec3 emission, glm::vec3 albedo = glm::vec3(0.6f)) {
+  scene::Sphere s;
+  s.center = s.prev_center = c;
+  s.radius = r;
+  s.albedo = albedo;
+  s.emission = emission;
+  return s;
+}
+
+// One scene: meshes of `assets`, one instance per entry of `models` (mesh i), spheres.
+struct Scene {
+  scene::SceneAssets assets;
+  scene::FrameScene frame;
+  std::unique_ptr<render::GpuScene> gpu;
+
+  void upload() {
+    gpu = std::make_unique<render::GpuScene>(context().context, context().queue, assets);
+    gpu->update(frame, 16, 16, kShadowSize, 0.0f);
+  }
+};
+
+void add_instance(Scene& s, uint32_t mesh, const glm::mat4& model) {
+  scene::MeshInstance inst;
+  inst.mesh = mesh;
+  inst.model = inst.prev_model = model;
+  s.frame.instances.push_back(inst);
+}
+
+std::vector<float> uniform_shadow(float depth) {
+  return std::vector<float>(size_t(kShadowSize) * kShadowSize, depth);
+}
+
+// Counts differing elements, reporting the first few.
+size_t count_mismatches(const std::vector<uint32_t>& got, const std::vector<uint32_t>& want,
+                        const char* what) {
+  EXPECT_EQ(got.size(), want.size()) << what;
+  size_t bad = 0;
+  for (size_t i = 0; i < std::min(got.size(), want.size()); ++i)
+    if (got[i] != want[i] && bad++ < 6)
+      ADD_FAILURE() << what << " element " << i << ": " << got[i] << " vs reference " << want[i];
+  return bad;
+}
+
+// The scene of the exact test: R = 16 (voxel 0.125 wide).
+Scene exact_scene() {
+  Scene s;
+  s.assets = base_assets();
+  std::vector<TriSpec> tris = {
+      // Thinner than a voxel: a long sliver, slanted in all three axes.
+      {{-0.8f, -0.3f, 0.1f}, {0.7f, 0.35f, -0.2f}, {0.7001f, 0.352f, -0.19f}, 0},
+      // Through voxel corners: all vertices on corners (multiples of 0.125) of the plane
+      // x + y + z = 0, edges through further corners (e.g. (0.125, 0.125, -0.25)).
+      {{0.5f, -0.25f, -0.25f}, {-0.25f, 0.5f, -0.25f}, {-0.25f, -0.25f, 0.5f}, 1},
+      // Exactly on a voxel face (y = 0.25 is grid 10): touches both layers.
+      {{-0.6f, 0.25f, -0.6f}, {0.6f, 0.25f, -0.3f}, {0.0f, 0.25f, 0.7f}, 0},
+      // Larger than the volume on one side (clipped), no emission.
+      {{-1.5f, -0.9f, -1.5f}, {1.5f, -0.9f, -1.5f}, {0.0f, -0.95f, 1.5f}, 2},
+      // Entirely outside.
+      {{1.2f, 0.0f, 0.0f}, {1.5f, 0.2f, 0.0f}, {1.3f, 0.1f, 0.4f}, 1},
+      // Textured.
+      {{-0.9f, 0.6f, 0.8f}, {-0.2f, 0.7f, 0.6f}, {-0.5f, 0.2f, 0.9f}, 3},
+  };
+  s.assets.meshes.push_back(make_mesh(tris));
+  // A second mesh drawn through a rotating, translating instance.
+  s.assets.meshes.push_back(make_mesh({{{-0.3f, -0.2f, 0.0f}, {0.3f, -0.1f, 0.05f},
+                                        {0.0f, 0.35f, -0.1f}, 1},
+                                       {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f},
+                                        {0.0f, 0.0f, 0.0f}, 0}}));  // degenerate: skipped
+  add_instance(s, 0, glm::mat4(1.0f));
+  add_instance(s, 1, glm::rotate(glm::translate(glm::mat4(1.0f), {0.31f, -0.42f, 0.27f}), 0.7f,
+                                 glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f))));
+  s.frame.spheres = {
+      sphere({0.25f, 0.25f, 0.25f}, 0.01f, {5.0f, 1.0f, 0.5f}),  // tiny, on a voxel corner
+      sphere({-0.4f, 0.1f, -0.55f}, 0.06f, {0.5f, 3.0f, 1.0f}),  // just under half a voxel
+      sphere({0.3f, -0.5f, 0.45f}, 0.3f, {0.2f, 0.4f, 0.9f}),    // large
+      sphere({-0.6875f, -0.5625f, 0.3125f}, 0.07f, {1.0f, 1.0f, 1.0f}),  // at a voxel centre
+      sphere({0.95f, 0.0f, -0.1f}, 0.2f, {2.0f, 0.0f, 0.0f}),    // partly outside
+  };
+  s.frame.light.intensity = glm::vec3(0.0f);  // emission only: exact radiance
+  s.upload();
+  return s;
+}
+
+TEST(Voxelize, IdenticalSumsToReference) {
+  Scene s = exact_scene();
+  const std::vector<float> shadow = uniform_shadow(1.0f);
+  const VoxelGpuOutput got = run_voxelize(*s.gpu, shadow, 16);
+  const VoxelSums want = reference_voxelize(reference_input(s.assets, s.frame, *s.gpu, shadow), 16);
+  EXPECT_EQ(count_mismatches(got.sums.accum, want.accum, "accum"), 0u);
+  EXPECT_EQ(count_mismatches(got.sums.overflow, want.overflow, "overflow"), 0u);
+  const std::vector<float> level0 = reference_resolve(want);
+  size_t bad = 0;
+  for (size_t i = 0; i < level0.size(); ++i)
+    if (!(std::fabs(got.level0[i] - level0[i]) <= 1e-6f * std::fabs(level0[i])) && bad++ < 6)
+      ADD_FAILURE() << "level 0 element " << i << ": " << got.level0[i] << " vs " << level0[i];
+  EXPECT_EQ(bad, 0u);
+  EXPECT_EQ(got.times.count("voxelize"), 1u);
+
+  // Not vacuous: every primitive left voxels, and the face triangle touches both layers.
+  size_t touched = 0;
+  for (size_t v = 0; v < want.overflow.size(); ++v) touched += want.accum[4 * v + 3] != 0;
+  EXPECT_GT(touched, 300u);
+  auto alpha = [&](int x, int y, int z) { return got.sums.accum[4 * ((z * 16 + y) * 16 + x) + 3]; };
+  // Columns (x, z) = (8, 7) and (7, 6) lie inside the footprint of the triangle on y = 0.25.
+  EXPECT_NE(alpha(8, 9, 7), 0u);
+  EXPECT_NE(alpha(8, 10, 7), 0u);
+  EXPECT_NE(alpha(7, 9, 6), 0u);
+  EXPECT_NE(alpha(7, 10, 6), 0u);
+}
+
+TEST(Voxelize, LitMatchesReferenceAndShadowedIsEmissionOnly) {
+  Scene s = exact_scene();
+  s.frame.light.intensity = glm::vec3(6.0f, 5.0f, 4.0f);
+  s.upload();
+  const VoxelRefInput base = reference_input(s.assets, s.frame, *s.gpu, uniform_shadow(1.0f));
+
+  // Empty shadow map: lit everywhere the surface faces the lamp. Lighting agrees to rounding.
+  const VoxelGpuOutput lit = run_voxelize(*s.gpu, uniform_shadow(1.0f), 16);
+  const VoxelSums lit_ref = reference_voxelize(base, 16);
+  const std::vector<float> lit_level0 = reference_resolve(lit_ref);
+  size_t bad = 0, brighter = 0;
+  for (size_t v = 0; v < lit_ref.overflow.size(); ++v) {
+    if (lit.sums.accum[4 * v + 3] != lit_ref.accum[4 * v + 3] && bad++ < 6)
+      ADD_FAILURE() << "opacity sum differs at voxel " << v;
+    for (int c = 0; c < 3; ++c) {
+      const float g = lit.level0[4 * v + c], r = lit_level0[4 * v + c];
+      if (!(std::fabs(g - r) <= 2e-4f + 2e-4f * std::fabs(r)) && bad++ < 6)
+        ADD_FAILURE() << "voxel " << v << " channel " << c << ": " << g << " vs " << r;
+    }
+  }
+  EXPECT_EQ(bad, 0u);
+
+  // Fully occluded map (depth 0 = at the near plane): exactly the emission-only sums.
+  const std::vector<float> occluded = uniform_shadow(0.0f);
+  const VoxelGpuOutput dark = run_voxelize(*s.gpu, occluded, 16);
+  VoxelRefInput dark_in = base;
+  dark_in.shadow = occluded;
+  EXPECT_EQ(count_mismatches(dark.sums.accum, reference_voxelize(dark_in, 16).accum, "occluded"),
+            0u);
+  Scene unlit = exact_scene();  // intensity 0
+  const VoxelGpuOutput emission_only = run_voxelize(*unlit.gpu, uniform_shadow(1.0f), 16);
+  EXPECT_EQ(count_mismatches(dark.sums.accum, emission_only.sums.accum, "occluded vs unlit"), 0u);
+  for (size_t v = 0; v < lit_ref.overflow.size(); ++v)
+    brighter += lit.sums.accum[4 * v] > dark.sums.accum[4 * v];
+  EXPECT_GT(brighter, 100u);  // the light does reach the voxels
+}
+
+// ---- no gaps ----
+
+glm::dvec3 closest_on_triangle(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+  // Ericson, Real-Time Collision Detection 5.1.5, in double precision.
+  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const glm::dvec3 bp = p - b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const glm::dvec3 cp = p - c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+TEST(Voxelize, ThinSlantedStripHasNoGaps) {
+  const uint32_t R = 32;  // voxel 0.0625; the strip is 0.012 wide
+  Scene s;
+  s.assets = base_assets();
+  std::vector<TriSpec> tris;
+  auto curve = [](float t) {
+    return glm::vec3(-0.8f + 1.6f * t, -0.6f + 1.1f * t + 0.2f * std::sin(3.0f * t),
+                     -0.5f + 0.9f * t * t);
+  };
+  const glm::vec3 width = glm::normalize(glm::vec3(0.3f, -0.2f, 1.0f)) * 0.006f;
+  const int segments = 30;
+  for (int i = 0; i < segments; ++i) {
+    const glm::vec3 p0 = curve(float(i) / segments), p1 = curve(float(i + 1) / segments);
+    tris.push_back({p0 - width, p1 - width, p1 + width, 0});
+    tris.push_back({p0 - width, p1 + width, p0 + width, 0});
+  }
+  s.assets.meshes.push_back(make_mesh(tris));
+  add_instance(s, 0, glm::mat4(1.0f));
+  s.upload();
+  const VoxelGpuOutput got = run_voxelize(*s.gpu, uniform_shadow(1.0f), R);
+
+  auto index = [&](int x, int y, int z) { return (size_t(z) * R + size_t(y)) * R + size_t(x); };
+  std::vector<char> in_set(size_t(R) * R * R, 0);
+  size_t count = 0;
+  for (size_t v = 0; v < in_set.size(); ++v) count += in_set[v] = got.sums.accum[4 * v + 3] != 0;
+  ASSERT_GT(count, 40u);
+
+  // 1. Exactly the voxels the exact test accepts for some triangle (brute force, all voxels).
+  size_t missing = 0, extra = 0;
+  for (int z = 0; z < int(R); ++z)
+    for (int y = 0; y < int(R); ++y)
+      for (int x = 0; x < int(R); ++x) {
+        bool any = false;
+        for (const TriSpec& t : tris) {
+          const std::array<RefF3, 3> obj = {RefF3{t.a.x, t.a.y, t.a.z}, RefF3{t.b.x, t.b.y, t.b.z},
+                                            RefF3{t.c.x, t.c.y, t.c.z}};
+          if (reference_triangle_box(reference_grid_triangle(s.gpu->host_instances[0].model, obj, R),
+                                     x, y, z)) {
+            any = true;
+            break;
+          }
+        }
+        missing += any && !in_set[index(x, y, z)];
+        extra += !any && in_set[index(x, y, z)];
+      }
+  EXPECT_EQ(missing, 0u);
+  EXPECT_EQ(extra, 0u);
+
+  // 2. 6-connected (closed boxes: a connected surface crossing an edge or corner touches every
+  //    voxel sharing it).
+  std::vector<char> seen(in_set.size(), 0);
+  std::deque<glm::ivec3> queue;
+  for (size_t v = 0; v < in_set.size() && queue.empty(); ++v)
+    if (in_set[v]) {
+      queue.push_back(glm::ivec3(int(v % R), int(v / R % R), int(v / (size_t(R) * R))));
+      seen[v] = 1;
+    }
+  size_t reached = 0;
+  const glm::ivec3 steps[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  while (!queue.empty()) {
+    const glm::ivec3 v = queue.front();
+    queue.pop_front();
+    ++reached;
+    for (const glm::ivec3& d : steps) {
+      const glm::ivec3 w = v + d;
+      if (w.x < 0 || w.y < 0 || w.z < 0 || w.x >= int(R) || w.y >= int(R) || w.z >= int(R)) continue;
+      const size_t i = index(w.x, w.y, w.z);
+      if (in_set[i] && !seen[i]) {
+        seen[i] = 1;
+        queue.push_back(w);
+      }
+    }
+  }
+  EXPECT_EQ(reached, count) << "the strip's voxels are not 6-connected";
+
+  // 3. Dense samples on every triangle fall into touched voxels (independent of the SAT code).
+  size_t uncovered = 0;
+  const int n = 48;
+  for (const TriSpec& t : tris)
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; j <= n - i; ++j) {
+        const glm::dvec3 a(t.a), b(t.b), c(t.c);
+        const glm::dvec3 p = a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n);
+        const glm::ivec3 v = glm::ivec3(glm::floor((p + 1.0) * (R * 0.5)));
+        uncovered += !in_set[index(v.x, v.y, v.z)];
+      }
+  EXPECT_EQ(uncovered, 0u);
+
+  // 4. Nothing far away: every touched voxel's centre is within half a diagonal of the strip.
+  const double s_world = 2.0 / R, reach = std::sqrt(3.0) * 0.5 * s_world * (1.0 + 1e-5);
+  size_t far_away = 0;
+  for (int z = 0; z < int(R); ++z)
+    for (int y = 0; y < int(R); ++y)
+      for (int x = 0; x < int(R); ++x) {
+        if (!in_set[index(x, y, z)]) continue;
+        const glm::dvec3 c = (glm::dvec3(x, y, z) + 0.5) * s_world - 1.0;
+        double best = 1e9;
+        for (const TriSpec& t : tris)
+          best = std::min(best, glm::length(c - closest_on_triangle(c, glm::dvec3(t.a),
+                                                                    glm::dvec3(t.b),
+                                                                    glm::dvec3(t.c))));
+        far_away += best > reach;
+      }
+  EXPECT_EQ(far_away, 0u);
+}
+
+// ---- spheres ----
+
+TEST(Voxelize, SpheresCoverTheVoxelsTheyIntersect) {
+  const uint32_t R = 32;
+  const double s_world = 2.0 / R;
+  Scene s;
+  s.assets = base_assets();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> pos(-0.8f, 0.8f);
+  for (float r : {0.004f, 0.02f, 0.04f, 0.1f, 0.3f, 0.012f, 0.05f})
+    s.frame.spheres.push_back(sphere({pos(rng), pos(rng), pos(rng)}, r, {1.0f, 2.0f, 3.0f}));
+  // A tiny sphere centred on a voxel corner: its projected area splits evenly over 8 voxels.
+  const glm::vec3 corner(-1.0f + 10 * 0.0625f, -1.0f + 12 * 0.0625f, -1.0f + 7 * 0.0625f);
+  s.frame.spheres.push_back(sphere(corner, 0.004f, {1.0f, 1.0f, 1.0f}));
+  s.upload();
+  const VoxelGpuOutput got = run_voxelize(*s.gpu, uniform_shadow(1.0f), R);
+
+  size_t mismatched = 0, ambiguous = 0, touched = 0;
+  for (int z = 0; z < int(R); ++z)
+    for (int y = 0; y < int(R); ++y)
+      for (int x = 0; x < int(R); ++x) {
+        bool hit = false, unsure = false;
+        for (const scene::Sphere& sp : s.frame.spheres) {
+          double d2 = 0;
+          const glm::dvec3 c(sp.center);
+          const double lo[3] = {x * s_world - 1.0, y * s_world - 1.0, z * s_world - 1.0};
+          for (int a = 0; a < 3; ++a) {
+            const double d = std::max({lo[a] - c[a], c[a] - (lo[a] + s_world), 0.0});
+            d2 += d * d;
+          }
+          const double r2 = double(sp.radius) * sp.radius;
+          hit |= d2 < r2;
+          unsure |= std::fabs(d2 - r2) < 1e-6 * r2;
+        }
+        const size_t v = (size_t(z) * R + y) * R + x;
+        const bool in = got.sums.accum[4 * v + 3] != 0;
+        touched += in;
+        if (unsure) {
+          ++ambiguous;
+          continue;
+        }
+        mismatched += in != hit;
+      }
+  EXPECT_EQ(mismatched, 0u);
+  EXPECT_LT(ambiguous, 3u);
+  EXPECT_GT(touched, 500u);
+
+  // Opacity: the corner sphere's 8 voxels share pi (r / s)^2; a voxel well inside the large
+  // sphere is opaque.
+  const int cx = 10, cy = 12, cz = 7;
+  double sum = 0;
+  for (int dz = -1; dz <= 0; ++dz)
+    for (int dy = -1; dy <= 0; ++dy)
+      for (int dx = -1; dx <= 0; ++dx)
+        sum += got.level0[4 * ((size_t(cz + dz) * R + (cy + dy)) * R + (cx + dx)) + 3];
+  const double expected = M_PI * std::pow(0.004 / s_world, 2.0);
+  EXPECT_NEAR(sum, expected, 1e-4);
+  const glm::dvec3 big(s.frame.spheres[4].center);
+  const glm::ivec3 inside = glm::ivec3(glm::floor((big + 1.0) / s_world));
+  EXPECT_EQ(got.level0[4 * ((size_t(inside.z) * R + inside.y) * R + inside.x) + 3], 1.0f);
+}
+
+TEST(Voxelize, OverflowSaturatesInsteadOfWrapping) {
+  Scene s;
+  s.assets = base_assets();
+  for (int i = 0; i < 6; ++i)
+    s.frame.spheres.push_back(sphere({0.1f, 0.1f, 0.1f}, 0.2f, {20000.0f, 1.0f, 0.0f}));
+  s.frame.light.intensity = glm::vec3(0.0f);
+  s.upload();
+  const std::vector<float> shadow = uniform_shadow(1.0f);
+  const VoxelGpuOutput got = run_voxelize(*s.gpu, shadow, 16);
+  const VoxelSums want = reference_voxelize(reference_input(s.assets, s.frame, *s.gpu, shadow), 16);
+  EXPECT_EQ(count_mismatches(got.sums.accum, want.accum, "accum"), 0u);
+  EXPECT_EQ(count_mismatches(got.sums.overflow, want.overflow, "overflow"), 0u);
+  // The voxel holding the centre: six opaque contributions of red 20000 (sum 120000 > 65536).
+  const size_t v = (size_t(8) * 16 + 8) * 16 + 8;  // grid (8.8, 8.8, 8.8)
+  EXPECT_EQ(got.sums.overflow[v], 1u);
+  EXPECT_FLOAT_EQ(got.level0[4 * v + 0], render::kVoxelSaturatedSum / 6.0f);
+  EXPECT_FLOAT_EQ(got.level0[4 * v + 1], 1.0f);
+  EXPECT_FLOAT_EQ(got.level0[4 * v + 3], 1.0f);
+}
+
+TEST(Voxelize, EmptySceneGivesEmptyVolume) {
+  Scene s;
+  s.upload();
+  const VoxelGpuOutput got = run_voxelize(*s.gpu, uniform_shadow(1.0f), 8);
+  size_t nonzero = 0;
+  for (float f : got.level0) nonzero += f != 0.0f;
+  for (uint32_t u : got.sums.accum) nonzero += u != 0u;
+  EXPECT_EQ(nonzero, 0u);
+}
+
+TEST(Voxelize, RejectsMismatchedConstants) {
+  Scene s = exact_scene();
+  render::VoxelVolume vol;
+  vol.resize(context().context, 16);
+  render::ShadowMap sm;
+  sm.resize(context().context, kShadowSize);
+  passes::VoxelizePass pass(context(), programs());
+  rp::cl::Profiler profiler(context().queue);
+  s.gpu->constants.voxel_resolution = 32;  // the volume is 16^3
+  s.gpu->constants.voxel_levels = 6;
+  EXPECT_THROW(pass.run(profiler, *s.gpu, sm, vol), rp::cl::Error);
+}
+
+}  // namespace
+}  // namespace rp::test
