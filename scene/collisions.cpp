@@ -9,7 +9,8 @@ namespace {
 
 constexpr glm::vec3 kUp{0.0f, 1.0f, 0.0f};
 
-// Reflect the velocity along n if it points into the obstacle (v.n < 0). Returns dv.
+// Reflect the velocity along n if it points into the obstacle (v.n < 0). Returns dv
+// (|dv| / 2 is the impact speed).
 glm::vec3 reflect_into(glm::vec3& v, const glm::vec3& n) {
   const float vn = glm::dot(v, n);
   if (vn >= 0.0f) return glm::vec3(0.0f);
@@ -33,13 +34,13 @@ bool collide_sphere_walls(SphereBody& sphere, const Arena& arena, std::vector<Co
       moved = true;
       glm::vec3 n(0.0f);
       n[axis] = -side;  // into the box
-      reflect_into(v, n);
+      const glm::vec3 dv = reflect_into(v, n);
       // Rolling on the wall: the contact point c - r n is at rest, w = n x v / r.
       sphere.body.w = glm::cross(n, v) / r;
       if (contacts != nullptr) {
         glm::vec3 point = c;
         point[axis] = side * h;
-        contacts->push_back({point, n});
+        contacts->push_back({point, n, 0.5f * glm::length(dv)});
       }
     }
   }
@@ -72,8 +73,8 @@ bool collide_sphere_lamp(SphereBody& sphere, const Arena& arena, std::vector<Con
     return false;
   }
   c = closest + n * r;
-  reflect_into(sphere.body.v, n);
-  if (contacts != nullptr) contacts->push_back({closest, n});
+  const glm::vec3 dv = reflect_into(sphere.body.v, n);
+  if (contacts != nullptr) contacts->push_back({closest, n, 0.5f * glm::length(dv)});
   return true;
 }
 
@@ -93,6 +94,7 @@ std::optional<SphereTumblerHit> collide_sphere_tumbler(SphereBody& sphere, Rigid
   hit.contact = {c - d * n, n};
   c += (sphere.radius - d) * n;
   const glm::vec3 dv = reflect_into(sphere.body.v, n);
+  hit.contact.impact_speed = 0.5f * glm::length(dv);
   hit.impulse_on_tumbler = -sphere.body.mass * dv;
   if (!kinematic && glm::dot(dv, dv) > 0.0f) {
     physics.apply_impulse(tumbler, hit.impulse_on_tumbler, hit.contact.point);
@@ -116,6 +118,7 @@ std::optional<Contact> collide_spheres(SphereBody& a, SphereBody& b) {
   a.body.p -= n * (depth * mb * inv_sum);
   b.body.p += n * (depth * ma * inv_sum);
   const float approach = glm::dot(a.body.v - b.body.v, n);
+  Contact contact{a.body.p + n * a.radius, n, std::max(approach, 0.0f)};
   if (approach > 0.0f) {
     const float j = 2.0f * approach * ma * mb * inv_sum;  // elastic: e = 1
     a.body.v -= (j / ma) * n;
@@ -123,7 +126,7 @@ std::optional<Contact> collide_spheres(SphereBody& a, SphereBody& b) {
   }
   a.reset_energy();
   b.reset_energy();
-  return Contact{a.body.p + n * a.radius, n};
+  return contact;
 }
 
 bool collide_tumbler_walls(RigidBody& tumbler, const TumblerPhysics& physics, const Arena& arena,

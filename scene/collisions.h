@@ -32,6 +32,9 @@ struct Arena {
 struct Contact {
   glm::vec3 point{0.0f};
   glm::vec3 normal{0.0f};
+  // Speed along the normal with which the body hit (m/s); 0 for a mere push-out of a body that
+  // was already leaving (e.g. squeezed by a moving tumbler). Fireballs spark only on impacts.
+  float impact_speed = 0.0f;
 };
 
 // Sphere vs the six box walls: clamp the centre inside, reflect the velocity component that

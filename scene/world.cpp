@@ -275,7 +275,7 @@ void World::collide_balls() {
     for (size_t i = 0; i < group->size(); ++i) {
       for (size_t j = i + 1; j < group->size(); ++j) {
         const auto hit = collide_spheres((*group)[i].sphere, (*group)[j].sphere);
-        if (hit && group == &fireballs_) {
+        if (hit && hit->impact_speed > 0.0f && group == &fireballs_) {
           particles_.emit_sparks(hit->point, hit->normal, particle_rng_);
         }
       }
@@ -292,14 +292,16 @@ void World::collide_balls() {
         const auto hit = collide_sphere_tumbler(s, tumblers_[i], physics_, is_held(i));
         if (!hit) continue;
         moved = true;
-        if (fiery) particles_.emit_sparks(hit->contact.point, hit->contact.normal, particle_rng_);
+        if (fiery && hit->contact.impact_speed > 0.0f) {
+          particles_.emit_sparks(hit->contact.point, hit->contact.normal, particle_rng_);
+        }
       }
       contacts_.clear();
       moved = collide_sphere_lamp(s, arena_, &contacts_) || moved;
       moved = collide_sphere_walls(s, arena_, &contacts_) || moved;
       if (fiery) {
         for (const Contact& c : contacts_) {
-          particles_.emit_sparks(c.point, c.normal, particle_rng_);
+          if (c.impact_speed > 0.0f) particles_.emit_sparks(c.point, c.normal, particle_rng_);
         }
       }
       if (moved) s.restore_energy();

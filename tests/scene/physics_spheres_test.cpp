@@ -56,6 +56,26 @@ TEST(PhysicsSpheres, BouncingMarbleKeepsItsEnergyFor100kSteps) {
   EXPECT_GT(tumbler_hits, 0) << "the marble should have met the tumblers";
 }
 
+// Thirty marbles bouncing off each other, the tumblers, the lamp and the walls: elastic exchanges
+// move energy between marbles, the sum stays.
+TEST(PhysicsSpheres, ThirtyMarblesKeepTheirTotalEnergy) {
+  World world(rp::scene::WorldConfig{4, 1.0f / 240.0f, true, false});
+  auto total = [&world] {
+    double e = 0.0;
+    for (const auto& m : world.marble_balls()) e += energy(m.sphere);
+    return e;
+  };
+  const double e0 = total();
+  double worst = 0.0;
+  for (int i = 0; i < 24000; ++i) {
+    world.step();
+    if (i % 24 == 0) worst = std::max(worst, std::abs(total() - e0) / e0);
+  }
+  ASSERT_EQ(world.marble_balls().size(), 30u);
+  std::cout << "[ info ] 30 marbles, 24k steps: worst relative total energy error " << worst << "\n";
+  EXPECT_LT(worst, 1e-3);
+}
+
 TEST(PhysicsSpheres, WallsReflectWithoutLossAndSetRolling) {
   const Arena arena;
   SphereBody s = marble(glm::vec3(0.97f, 0.0f, 0.0f), glm::vec3(2.0f, 0.5f, -1.0f), 0.04f, 0.0f);
