@@ -15,15 +15,20 @@
  * box in the two other axes, the range along d where the triangle's plane crosses the column
  * (plus a margin of 1/1024 voxel), clipped to the bounding box: one or two voxels a column.
  * Each candidate is decided by the EXACT separating-axis triangle/box test (Akenine-Moller:
- * 3 box normals, the triangle normal, 9 edge x axis products), so thin and slanted triangles
- * leave no gaps and the touched voxels of a connected mesh are 6-connected. Boxes are closed:
+ * 3 box normals, the triangle normal, 9 edge x axis products; vx_triangle_box), so thin and
+ * slanted triangles leave no gaps and the touched voxels of a connected mesh are 6-connected. Boxes are closed:
  * a triangle lying exactly on a voxel face touches the voxels on both sides. Triangles with a
  * zero normal (degenerate) are skipped.
- *   Radiance per (triangle, voxel): the voxel centre projected onto the triangle's plane, its
- *   barycentrics clamped to the triangle (negative ones set to 0, renormalised): that point is
- *   lit (direct light with ONE shadow-map lookup, common/direct_light.h) with the geometric
- *   normal (oriented like the vertex normals), its interpolated uv samples the texture
- *   (bilinear, per voxel), so L = albedo * texture * I * direct + emission. Opacity 1.
+ *   Radiance: L = albedo * texture(uv) * I * direct(p) + emission at one surface point p,
+ *   direct light with ONE shadow-map lookup (common/direct_light.h), the geometric normal
+ *   oriented like the vertex normals, the texture sampled bilinearly at p's interpolated uv.
+ *   Where p is: a triangle whose bounding box spans at most RP_VOXEL_SMALL_TRIANGLE voxels
+ *   along every axis (tumbler triangles up to R = 128) is shaded once at its centroid for all
+ *   its voxels (the voxel then averages its triangles, which filters the texture better than
+ *   one point per voxel would); a larger one (walls, floor) per voxel at the voxel centre
+ *   projected onto its plane, barycentrics clamped into the triangle (negative ones set to 0,
+ *   renormalised). Shading is what costs (texture and shadow lookups): this keeps it to one
+ *   per small triangle. Opacity 1.
  *
  * Spheres (marbles, fireballs, particles). Voxel boxes overlapping the sphere (squared distance
  * from the centre to the box <= r^2, in grid units). Opacity per voxel, continuous in r:
@@ -70,6 +75,9 @@
 #define RP_VOXEL_SHADOW_NORMAL_OFFSET 1.0f
 #define RP_VOXEL_SHADOW_DEPTH_BIAS 1.0f
 #define RP_VOXEL_SHADOW_REACH 1.0f
+/* Triangles whose bounding box spans at most this many voxels along every axis are shaded once,
+ * at their centroid (most tumbler triangles); larger ones per voxel. */
+#define RP_VOXEL_SMALL_TRIANGLE 2.0f
 /* Margin (grid units) added to a column's plane range when picking candidates. */
 #define RP_VOXEL_CANDIDATE_MARGIN (1.0f / 1024.0f)
 
@@ -85,41 +93,70 @@ inline float3 vx_transform(const rp_mat4 m, float3 p) {
   return ((m.c[0].xyz * p.x + m.c[1].xyz * p.y) + m.c[2].xyz * p.z) + m.c[3].xyz;
 }
 
-/* One separating axis: true when the projections p0..p2 lie outside [-r, r]. */
-inline bool vx_separated(float p0, float p1, float p2, float r) {
-  return fmin(fmin(p0, p1), p2) > r || fmax(fmax(p0, p1), p2) < -r;
+/* The exact triangle / closed box test (Akenine-Moller separating axes), split into a
+ * per-triangle set-up and a cheap per-voxel part. The three box-normal axes are the triangle's
+ * voxel range per axis (vx_axis_range: exact, from floor/ceil of the bounding box), so only
+ * voxels inside it are tested; the other ten axes (the triangle normal and the nine edge x
+ * box-axis products) compare the triangle's projection interval [pmin, pmax] with the box
+ * centre's projection s and the box radius r on the axis: separated when pmin - s > r or
+ * pmax - s < -r. Coordinates are grid units relative to the integer grid point `origin` (the
+ * first voxel of the range), so they stay small and the voxel centres (i - origin + 0.5) are
+ * exact. Axis k = 3 * edge + j is edge x (X, Y, Z)[j]: e x X = (0, e.z, -e.y),
+ * e x Y = (-e.z, 0, e.x), e x Z = (e.y, -e.x, 0). */
+typedef struct {
+  float3 n;          /* triangle normal, vx_cross(B - A, C - B) */
+  float n_dist;      /* vx_dot(n, A): the plane's projection */
+  float n_radius;    /* the box's radius on n: 0.5 (|n.x| + |n.y| + |n.z|) */
+  float3 e[3];       /* edges B - A, C - B, A - C */
+  float pmin[9], pmax[9], radius[9];
+} VxTriangleAxes;
+
+/* Projections of p on e x X, e x Y, e x Z. */
+inline float3 vx_edge_projections(float3 e, float3 p) {
+  return (float3)(e.z * p.y - e.y * p.z, e.x * p.z - e.z * p.x, e.y * p.x - e.x * p.y);
 }
 
-/* 9 axes e x X, e x Y, e x Z for edge e; v0..v2 relative to the box centre, half size 0.5. */
-inline bool vx_edge_separates(float3 e, float3 v0, float3 v1, float3 v2) {
-  const float ax = fabs(e.x), ay = fabs(e.y), az = fabs(e.z);
-  /* e x X = (0, e.z, -e.y) */
-  if (vx_separated(e.z * v0.y - e.y * v0.z, e.z * v1.y - e.y * v1.z, e.z * v2.y - e.y * v2.z,
-                   0.5f * (az + ay)))
-    return true;
-  /* e x Y = (-e.z, 0, e.x) */
-  if (vx_separated(e.x * v0.z - e.z * v0.x, e.x * v1.z - e.z * v1.x, e.x * v2.z - e.z * v2.x,
-                   0.5f * (az + ax)))
-    return true;
-  /* e x Z = (e.y, -e.x, 0) */
-  return vx_separated(e.y * v0.x - e.x * v0.y, e.y * v1.x - e.x * v1.y, e.y * v2.x - e.x * v2.y,
-                      0.5f * (ay + ax));
+/* Set-up for the triangle (A, B, C) given relative to the origin. */
+inline VxTriangleAxes vx_triangle_axes(float3 A, float3 B, float3 C) {
+  VxTriangleAxes t;
+  t.e[0] = B - A;
+  t.e[1] = C - B;
+  t.e[2] = A - C;
+  t.n = vx_cross(t.e[0], t.e[1]);
+  t.n_dist = vx_dot(t.n, A);
+  t.n_radius = 0.5f * ((fabs(t.n.x) + fabs(t.n.y)) + fabs(t.n.z));
+  for (int i = 0; i < 3; ++i) {
+    const float3 e = t.e[i];
+    const float3 pa = vx_edge_projections(e, A), pb = vx_edge_projections(e, B),
+                 pc = vx_edge_projections(e, C);
+    const float3 lo = fmin(fmin(pa, pb), pc), hi = fmax(fmax(pa, pb), pc);
+    const float3 ae = fabs(e);
+    t.pmin[3 * i + 0] = lo.x;
+    t.pmin[3 * i + 1] = lo.y;
+    t.pmin[3 * i + 2] = lo.z;
+    t.pmax[3 * i + 0] = hi.x;
+    t.pmax[3 * i + 1] = hi.y;
+    t.pmax[3 * i + 2] = hi.z;
+    t.radius[3 * i + 0] = 0.5f * (ae.z + ae.y);
+    t.radius[3 * i + 1] = 0.5f * (ae.z + ae.x);
+    t.radius[3 * i + 2] = 0.5f * (ae.y + ae.x);
+  }
+  return t;
 }
 
-/* Exact triangle / closed box test (Akenine-Moller separating axes). a, b, c: triangle in grid
- * units; n = vx_cross(b - a, c - b); voxel v is the box [v, v + 1]. */
-inline bool vx_triangle_box(float3 a, float3 b, float3 c, float3 n, int3 v) {
-  const float3 centre = convert_float3(v) + 0.5f;
-  const float3 v0 = a - centre, v1 = b - centre, v2 = c - centre;
-  /* box normals: the triangle's bounding box against [-0.5, 0.5]^3 */
-  if (vx_separated(v0.x, v1.x, v2.x, 0.5f) || vx_separated(v0.y, v1.y, v2.y, 0.5f) ||
-      vx_separated(v0.z, v1.z, v2.z, 0.5f))
-    return false;
-  /* triangle normal: the box's projection radius on n against the plane's distance */
-  if (fabs(vx_dot(n, v0)) > 0.5f * ((fabs(n.x) + fabs(n.y)) + fabs(n.z))) return false;
-  if (vx_edge_separates(v1 - v0, v0, v1, v2)) return false;
-  if (vx_edge_separates(v2 - v1, v0, v1, v2)) return false;
-  if (vx_edge_separates(v0 - v2, v0, v1, v2)) return false;
+/* True when no axis separates the triangle from the box of centre c (relative to the origin,
+ * half size 0.5). The caller has restricted the voxel to the triangle's voxel range. */
+inline bool vx_triangle_box(const VxTriangleAxes* t, float3 c) {
+  if (fabs(t->n_dist - vx_dot(t->n, c)) > t->n_radius) return false;
+  for (int i = 0; i < 3; ++i) {
+    const float3 s = vx_edge_projections(t->e[i], c);
+    const int k = 3 * i;
+    if (t->pmin[k] - s.x > t->radius[k] || t->pmax[k] - s.x < -t->radius[k]) return false;
+    if (t->pmin[k + 1] - s.y > t->radius[k + 1] || t->pmax[k + 1] - s.y < -t->radius[k + 1])
+      return false;
+    if (t->pmin[k + 2] - s.z > t->radius[k + 2] || t->pmax[k + 2] - s.z < -t->radius[k + 2])
+      return false;
+  }
   return true;
 }
 
@@ -160,6 +197,15 @@ inline float3 vx_direct(__global const FrameConstants* frame, __global const flo
       rp_shadow_lookup(frame, p, n, cos_theta, RP_VOXEL_SHADOW_NORMAL_OFFSET,
                        RP_VOXEL_SHADOW_DEPTH_BIAS, RP_VOXEL_SHADOW_REACH);
   return frame->light_intensity.xyz * (scale * rp_shadow_tap(shadow, &s, (float2)(0.0f)));
+}
+
+/* Outgoing radiance of a triangle's surface point p (unit normal n, texture coordinates uv;
+ * texture 0 = untextured): albedo * texture(uv) * direct light + emission. */
+inline float3 vx_shade(__global const FrameConstants* frame, __global const float* shadow,
+                       __global const uint* texels, __global const TextureInfo* texture,
+                       float3 albedo, float3 emission, float3 p, float3 n, float2 uv) {
+  if (texture) albedo *= rp_texture_bilinear(texels, texture, uv).xyz;
+  return albedo * vx_direct(frame, shadow, p, n) + emission;
 }
 
 __kernel void voxelize_clear(__global uint4* accum, __global uint* overflow, uint voxel_count) {
@@ -203,17 +249,20 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
   const float3 w2 = vx_transform(model, vtx2->position_u.xyz);
   const float half_r = 0.5f * (float)resolution;
   const float3 a = (w0 + 1.0f) * half_r, b = (w1 + 1.0f) * half_r, c = (w2 + 1.0f) * half_r;
-  const float3 n = vx_cross(b - a, c - b);
-  const float3 an = fabs(n);
-  if (an.x == 0.0f && an.y == 0.0f && an.z == 0.0f) return; /* degenerate */
   const int R = (int)resolution;
 
-  /* Candidate ranges: bounding box per axis. */
+  /* The voxel range per axis (the box-normal axes of the exact test). */
   const float3 lo = fmin(fmin(a, b), c), hi = fmax(fmax(a, b), c);
   const int2 rx = vx_axis_range(lo.x, hi.x, R);
   const int2 ry = vx_axis_range(lo.y, hi.y, R);
   const int2 rz = vx_axis_range(lo.z, hi.z, R);
   if (rx.x > rx.y || ry.x > ry.y || rz.x > rz.y) return;
+  const int3 origin = (int3)(rx.x, ry.x, rz.x);
+  const float3 origin_f = convert_float3(origin);
+  const VxTriangleAxes axes = vx_triangle_axes(a - origin_f, b - origin_f, c - origin_f);
+  const float3 n = axes.n;
+  const float3 an = fabs(n);
+  if (an.x == 0.0f && an.y == 0.0f && an.z == 0.0f) return; /* degenerate */
 
   /* Dominant axis d and the two others u, v (as component permutations). */
   const int dom = (an.x >= an.y && an.x >= an.z) ? 0 : (an.y >= an.z ? 1 : 2);
@@ -248,7 +297,18 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
   __global const Material* mat = materials + tri.w;
   const float3 albedo = mat->albedo.xyz;
   const float3 emission = mat->emission.xyz;
-  const uint texture = mat->texture;
+  __global const TextureInfo* texture =
+      mat->texture == RP_TEXTURE_NONE ? (__global const TextureInfo*)0 : textures + mat->texture;
+
+  /* A small triangle is shaded once, at its centroid, for all its voxels. */
+  const float3 extent = hi - lo;
+  const bool small = fmax(fmax(extent.x, extent.y), extent.z) <= RP_VOXEL_SMALL_TRIANGLE;
+  float3 radiance = (float3)(0.0f);
+  if (small) {
+    const float third = 1.0f / 3.0f;
+    radiance = vx_shade(frame, shadow, texels, texture, albedo, emission,
+                        w0 + e01 * third + e02 * third, nw, uv0 * third + uv1 * third + uv2 * third);
+  }
 
   for (int iv = rv.x; iv <= rv.y; ++iv) {
     for (int iu = ru.x; iu <= ru.y; ++iu) {
@@ -259,32 +319,28 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
       for (int id = d_first; id <= d_last; ++id) {
         const int3 vox = dom == 0 ? (int3)(id, iu, iv) : dom == 1 ? (int3)(iv, id, iu)
                                                                   : (int3)(iu, iv, id);
-        if (!vx_triangle_box(a, b, c, n, vox)) continue;
+        if (!vx_triangle_box(&axes, convert_float3(vox - origin) + 0.5f)) continue;
 
-        /* Shading point: the voxel centre on the plane, clamped into the triangle. */
-        const float3 centre = rp_voxel_center_world(vox, resolution);
-        const float3 q = centre - nw * dot(nw, centre - w0);
-        const float3 rel = q - w0;
-        const float d20 = dot(rel, e01), d21 = dot(rel, e02);
-        float b1 = fmax((d11 * d20 - d01 * d21) * inv_denom, 0.0f);
-        float b2 = fmax((d00 * d21 - d01 * d20) * inv_denom, 0.0f);
-        float b0 = fmax(1.0f - b1 - b2, 0.0f);
-        const float b_sum = b0 + b1 + b2;
-        if (b_sum > 0.0f && b_sum < 1.0e30f) { /* else (NaN or inf: a sliver) the centroid */
-          b0 /= b_sum;
-          b1 /= b_sum;
-          b2 /= b_sum;
-        } else {
-          b0 = b1 = b2 = 1.0f / 3.0f;
+        if (!small) {
+          /* Shading point: the voxel centre on the plane, clamped into the triangle. */
+          const float3 centre = rp_voxel_center_world(vox, resolution);
+          const float3 q = centre - nw * dot(nw, centre - w0);
+          const float3 rel = q - w0;
+          const float d20 = dot(rel, e01), d21 = dot(rel, e02);
+          float b1 = fmax((d11 * d20 - d01 * d21) * inv_denom, 0.0f);
+          float b2 = fmax((d00 * d21 - d01 * d20) * inv_denom, 0.0f);
+          float b0 = fmax(1.0f - b1 - b2, 0.0f);
+          const float b_sum = b0 + b1 + b2;
+          if (b_sum > 0.0f && b_sum < 1.0e30f) { /* else (NaN or inf: a sliver) the centroid */
+            b0 /= b_sum;
+            b1 /= b_sum;
+            b2 /= b_sum;
+          } else {
+            b0 = b1 = b2 = 1.0f / 3.0f;
+          }
+          radiance = vx_shade(frame, shadow, texels, texture, albedo, emission,
+                              w0 + e01 * b1 + e02 * b2, nw, uv0 * b0 + uv1 * b1 + uv2 * b2);
         }
-        const float3 p = w0 + e01 * b1 + e02 * b2;
-
-        float3 surface_albedo = albedo;
-        if (texture != RP_TEXTURE_NONE) {
-          const float2 uv = uv0 * b0 + uv1 * b1 + uv2 * b2;
-          surface_albedo *= rp_texture_bilinear(texels, textures + texture, uv).xyz;
-        }
-        const float3 radiance = surface_albedo * vx_direct(frame, shadow, p, nw) + emission;
         vx_accumulate(accum, overflow, rp_voxel_index(vox, resolution), radiance, 1.0f);
       }
     }

@@ -46,34 +46,55 @@ gpu::rp_float4 mul_point4(const gpu::rp_mat4& m, RefF3 p) {
   return {comp(0), comp(1), comp(2), comp(3)};
 }
 
-// ---- exact tests (voxelize.cl vx_separated, vx_edge_separates, vx_triangle_box) ----
-bool separated(float p0, float p1, float p2, float r) {
-  return std::fmin(std::fmin(p0, p1), p2) > r || std::fmax(std::fmax(p0, p1), p2) < -r;
+// ---- exact test (voxelize.cl VxTriangleAxes, vx_triangle_axes, vx_triangle_box) ----
+RefF3 edge_projections(RefF3 e, RefF3 p) {
+  return {e.z * p.y - e.y * p.z, e.x * p.z - e.z * p.x, e.y * p.x - e.x * p.y};
 }
 
-bool edge_separates(RefF3 e, RefF3 v0, RefF3 v1, RefF3 v2) {
-  const float ax = std::fabs(e.x), ay = std::fabs(e.y), az = std::fabs(e.z);
-  if (separated(e.z * v0.y - e.y * v0.z, e.z * v1.y - e.y * v1.z, e.z * v2.y - e.y * v2.z,
-                0.5f * (az + ay)))
-    return true;
-  if (separated(e.x * v0.z - e.z * v0.x, e.x * v1.z - e.z * v1.x, e.x * v2.z - e.z * v2.x,
-                0.5f * (az + ax)))
-    return true;
-  return separated(e.y * v0.x - e.x * v0.y, e.y * v1.x - e.x * v1.y, e.y * v2.x - e.x * v2.y,
-                   0.5f * (ay + ax));
+struct TriangleAxes {
+  RefF3 n;
+  float n_dist = 0.0f, n_radius = 0.0f;
+  RefF3 e[3];
+  float pmin[9], pmax[9], radius[9];
+};
+
+TriangleAxes triangle_axes(RefF3 A, RefF3 B, RefF3 C) {
+  TriangleAxes t;
+  t.e[0] = B - A;
+  t.e[1] = C - B;
+  t.e[2] = A - C;
+  t.n = cross(t.e[0], t.e[1]);
+  t.n_dist = dot(t.n, A);
+  t.n_radius = 0.5f * ((std::fabs(t.n.x) + std::fabs(t.n.y)) + std::fabs(t.n.z));
+  for (int i = 0; i < 3; ++i) {
+    const RefF3 e = t.e[i];
+    const RefF3 pa = edge_projections(e, A), pb = edge_projections(e, B),
+                pc = edge_projections(e, C);
+    const RefF3 lo = fmin3(fmin3(pa, pb), pc), hi = fmax3(fmax3(pa, pb), pc);
+    const float ax = std::fabs(e.x), ay = std::fabs(e.y), az = std::fabs(e.z);
+    t.pmin[3 * i + 0] = lo.x;
+    t.pmin[3 * i + 1] = lo.y;
+    t.pmin[3 * i + 2] = lo.z;
+    t.pmax[3 * i + 0] = hi.x;
+    t.pmax[3 * i + 1] = hi.y;
+    t.pmax[3 * i + 2] = hi.z;
+    t.radius[3 * i + 0] = 0.5f * (az + ay);
+    t.radius[3 * i + 1] = 0.5f * (az + ax);
+    t.radius[3 * i + 2] = 0.5f * (ay + ax);
+  }
+  return t;
 }
 
-bool triangle_box(RefF3 a, RefF3 b, RefF3 c, RefF3 n, int x, int y, int z) {
-  const RefF3 centre = {float(x) + 0.5f, float(y) + 0.5f, float(z) + 0.5f};
-  const RefF3 v0 = a - centre, v1 = b - centre, v2 = c - centre;
-  if (separated(v0.x, v1.x, v2.x, 0.5f) || separated(v0.y, v1.y, v2.y, 0.5f) ||
-      separated(v0.z, v1.z, v2.z, 0.5f))
-    return false;
-  if (std::fabs(dot(n, v0)) > 0.5f * ((std::fabs(n.x) + std::fabs(n.y)) + std::fabs(n.z)))
-    return false;
-  if (edge_separates(v1 - v0, v0, v1, v2)) return false;
-  if (edge_separates(v2 - v1, v0, v1, v2)) return false;
-  if (edge_separates(v0 - v2, v0, v1, v2)) return false;
+bool axes_overlap(const TriangleAxes& t, RefF3 c) {
+  if (std::fabs(t.n_dist - dot(t.n, c)) > t.n_radius) return false;
+  for (int i = 0; i < 3; ++i) {
+    const RefF3 s = edge_projections(t.e[i], c);
+    const float sj[3] = {s.x, s.y, s.z};
+    for (int j = 0; j < 3; ++j) {
+      const int k = 3 * i + j;
+      if (t.pmin[k] - sj[j] > t.radius[k] || t.pmax[k] - sj[j] < -t.radius[k]) return false;
+    }
+  }
   return true;
 }
 
@@ -193,15 +214,16 @@ void voxelize_triangle(const VoxelRefInput& in, const gpu::Instance& inst,
   const float half_r = 0.5f * float(R);
   const RefF3 a = add_scalar(w0, 1.0f) * half_r, b = add_scalar(w1, 1.0f) * half_r,
               c = add_scalar(w2, 1.0f) * half_r;
-  const RefF3 n = cross(b - a, c - b);
-  if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) return;
-
-  // Brute force over the bounding box grown by one voxel (the kernel searches columns).
+  // Every voxel of the triangle's voxel range (the kernel searches columns of it).
   const RefF3 lo = fmin3(fmin3(a, b), c), hi = fmax3(fmax3(a, b), c);
   int x0, x1, y0, y1, z0, z1;
-  axis_range(lo.x - 1.0f, hi.x + 1.0f, int(R), x0, x1);
-  axis_range(lo.y - 1.0f, hi.y + 1.0f, int(R), y0, y1);
-  axis_range(lo.z - 1.0f, hi.z + 1.0f, int(R), z0, z1);
+  axis_range(lo.x, hi.x, int(R), x0, x1);
+  axis_range(lo.y, hi.y, int(R), y0, y1);
+  axis_range(lo.z, hi.z, int(R), z0, z1);
+  if (x0 > x1 || y0 > y1 || z0 > z1) return;
+  const RefF3 origin = {float(x0), float(y0), float(z0)};
+  const TriangleAxes axes = triangle_axes(a - origin, b - origin, c - origin);
+  if (axes.n.x == 0.0f && axes.n.y == 0.0f && axes.n.z == 0.0f) return;
 
   const RefF3 e01 = w1 - w0, e02 = w2 - w0;
   RefF3 nw = normalize(cross(e01, e02));
@@ -213,34 +235,47 @@ void voxelize_triangle(const VoxelRefInput& in, const gpu::Instance& inst,
   const float d00 = dot(e01, e01), d01 = dot(e01, e02), d11 = dot(e02, e02);
   const float inv_denom = 1.0f / (d00 * d11 - d01 * d01);
   const scene::Material& mat = in.assets->materials.at(mesh.materials[t]);
+  // vx_shade at barycentrics (b0, b1, b2).
+  auto shade = [&](float b0, float b1, float b2) {
+    const RefF3 p = (w0 + e01 * b1) + e02 * b2;
+    RefF3 albedo = f3(mat.albedo);
+    if (mat.texture >= 0) {
+      const float u = (v[0]->uv.x * b0 + v[1]->uv.x * b1) + v[2]->uv.x * b2;
+      const float vv = (v[0]->uv.y * b0 + v[1]->uv.y * b1) + v[2]->uv.y * b2;
+      albedo = albedo * texture_bilinear(in.assets->textures.at(size_t(mat.texture)), u, vv);
+    }
+    return albedo * direct(in, p, nw) + f3(mat.emission);
+  };
+  const RefF3 extent = hi - lo;
+  const bool small = std::fmax(std::fmax(extent.x, extent.y), extent.z) <= 2.0f;
+  const float third = 1.0f / 3.0f;
+  const RefF3 small_radiance = small ? shade(third, third, third) : RefF3{};
 
   for (int z = z0; z <= z1; ++z)
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) {
-        if (!triangle_box(a, b, c, n, x, y, z)) continue;
-        const RefF3 centre = voxel_centre_world(x, y, z, R);
-        const RefF3 q = centre - nw * dot(nw, centre - w0);
-        const RefF3 rel = q - w0;
-        const float d20 = dot(rel, e01), d21 = dot(rel, e02);
-        float b1 = std::fmax((d11 * d20 - d01 * d21) * inv_denom, 0.0f);
-        float b2 = std::fmax((d00 * d21 - d01 * d20) * inv_denom, 0.0f);
-        float b0 = std::fmax(1.0f - b1 - b2, 0.0f);
-        const float b_sum = b0 + b1 + b2;
-        if (b_sum > 0.0f && b_sum < 1.0e30f) {
-          b0 /= b_sum;
-          b1 /= b_sum;
-          b2 /= b_sum;
-        } else {
-          b0 = b1 = b2 = 1.0f / 3.0f;
+        if (!axes_overlap(axes, {float(x - x0) + 0.5f, float(y - y0) + 0.5f,
+                                 float(z - z0) + 0.5f}))
+          continue;
+        RefF3 radiance = small_radiance;
+        if (!small) {
+          const RefF3 centre = voxel_centre_world(x, y, z, R);
+          const RefF3 q = centre - nw * dot(nw, centre - w0);
+          const RefF3 rel = q - w0;
+          const float d20 = dot(rel, e01), d21 = dot(rel, e02);
+          float b1 = std::fmax((d11 * d20 - d01 * d21) * inv_denom, 0.0f);
+          float b2 = std::fmax((d00 * d21 - d01 * d20) * inv_denom, 0.0f);
+          float b0 = std::fmax(1.0f - b1 - b2, 0.0f);
+          const float b_sum = b0 + b1 + b2;
+          if (b_sum > 0.0f && b_sum < 1.0e30f) {
+            b0 /= b_sum;
+            b1 /= b_sum;
+            b2 /= b_sum;
+          } else {
+            b0 = b1 = b2 = third;
+          }
+          radiance = shade(b0, b1, b2);
         }
-        const RefF3 p = (w0 + e01 * b1) + e02 * b2;
-        RefF3 albedo = f3(mat.albedo);
-        if (mat.texture >= 0) {
-          const float u = (v[0]->uv.x * b0 + v[1]->uv.x * b1) + v[2]->uv.x * b2;
-          const float vv = (v[0]->uv.y * b0 + v[1]->uv.y * b1) + v[2]->uv.y * b2;
-          albedo = albedo * texture_bilinear(in.assets->textures.at(size_t(mat.texture)), u, vv);
-        }
-        const RefF3 radiance = albedo * direct(in, p, nw) + f3(mat.emission);
         accumulate(sums, (uint32_t(z) * R + uint32_t(y)) * R + uint32_t(x), radiance, 1.0f);
       }
 }
@@ -308,10 +343,18 @@ std::array<RefF3, 3> reference_grid_triangle(const gpu::rp_mat4& model,
   return out;
 }
 
-bool reference_triangle_box(const std::array<RefF3, 3>& t, int x, int y, int z) {
-  const RefF3 n = cross(t[1] - t[0], t[2] - t[1]);
-  if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) return false;
-  return triangle_box(t[0], t[1], t[2], n, x, y, z);
+bool reference_triangle_box(const std::array<RefF3, 3>& t, uint32_t resolution, int x, int y,
+                            int z) {
+  const RefF3 lo = fmin3(fmin3(t[0], t[1]), t[2]), hi = fmax3(fmax3(t[0], t[1]), t[2]);
+  int x0, x1, y0, y1, z0, z1;
+  axis_range(lo.x, hi.x, int(resolution), x0, x1);
+  axis_range(lo.y, hi.y, int(resolution), y0, y1);
+  axis_range(lo.z, hi.z, int(resolution), z0, z1);
+  if (x < x0 || x > x1 || y < y0 || y > y1 || z < z0 || z > z1) return false;
+  const RefF3 origin = {float(x0), float(y0), float(z0)};
+  const TriangleAxes axes = triangle_axes(t[0] - origin, t[1] - origin, t[2] - origin);
+  if (axes.n.x == 0.0f && axes.n.y == 0.0f && axes.n.z == 0.0f) return false;
+  return axes_overlap(axes, {float(x - x0) + 0.5f, float(y - y0) + 0.5f, float(z - z0) + 0.5f});
 }
 
 VoxelSums reference_voxelize(const VoxelRefInput& in, uint32_t resolution) {

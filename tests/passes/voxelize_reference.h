@@ -1,5 +1,5 @@
 // Plain C++ reference of the voxelize pass (kernels/voxelize.cl): every triangle against every
-// voxel of its bounding box (plus one voxel around it; no dominant-axis candidate search),
+// voxel of its voxel range (no dominant-axis candidate search),
 // every sphere against every voxel of its bounding box, the same float operations in the same
 // order (FP contraction is off in the kernel and the host compiler does not contract), the
 // same fixed-point rounding and wrap-around sums, so the integer sums must agree exactly where
@@ -53,8 +53,10 @@ std::array<RefF3, 3> reference_grid_triangle(const gpu::rp_mat4& model,
                                              const std::array<RefF3, 3>& object,
                                              uint32_t resolution);
 
-// The kernel's exact triangle / closed voxel box test on a grid-unit triangle.
-bool reference_triangle_box(const std::array<RefF3, 3>& tri, int x, int y, int z);
+// The kernel's exact triangle / closed voxel box test on a grid-unit triangle in an R^3 volume
+// (the triangle's voxel range clipped to the volume, then the ten other separating axes).
+bool reference_triangle_box(const std::array<RefF3, 3>& tri, uint32_t resolution, int x, int y,
+                            int z);
 
 // ---- Device harness shared by the voxelize tests ----
 

@@ -134,6 +134,8 @@ Scene exact_scene() {
       {{1.2f, 0.0f, 0.0f}, {1.5f, 0.2f, 0.0f}, {1.3f, 0.1f, 0.4f}, 1},
       // Textured.
       {{-0.9f, 0.6f, 0.8f}, {-0.2f, 0.7f, 0.6f}, {-0.5f, 0.2f, 0.9f}, 3},
+      // Small (within 2 voxels: shaded once at its centroid), textured, across a voxel face.
+      {{0.55f, 0.6f, -0.7f}, {0.62f, 0.65f, -0.72f}, {0.58f, 0.7f, -0.66f}, 3},
   };
   s.assets.meshes.push_back(make_mesh(tris));
   // A second mesh drawn through a rotating, translating instance.
@@ -281,7 +283,7 @@ TEST(Voxelize, ThinSlantedStripHasNoGaps) {
           const std::array<RefF3, 3> obj = {RefF3{t.a.x, t.a.y, t.a.z}, RefF3{t.b.x, t.b.y, t.b.z},
                                             RefF3{t.c.x, t.c.y, t.c.z}};
           if (reference_triangle_box(reference_grid_triangle(s.gpu->host_instances[0].model, obj, R),
-                                     x, y, z)) {
+                                     R, x, y, z)) {
             any = true;
             break;
           }
