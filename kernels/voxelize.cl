@@ -16,9 +16,9 @@
  * (plus a margin of 1/1024 voxel), clipped to the bounding box: one or two voxels a column.
  * Each candidate is decided by the EXACT separating-axis triangle/box test (Akenine-Moller:
  * 3 box normals, the triangle normal, 9 edge x axis products; vx_triangle_box), so thin and
- * slanted triangles leave no gaps and the touched voxels of a connected mesh are 6-connected. Boxes are closed:
- * a triangle lying exactly on a voxel face touches the voxels on both sides. Triangles with a
- * zero normal (degenerate) are skipped.
+ * slanted triangles leave no gaps and the touched voxels of a connected mesh are 6-connected.
+ * Boxes are closed: a triangle lying exactly on a voxel face touches the voxels on both sides.
+ * Triangles with a zero normal (degenerate) are skipped.
  *   Radiance: L = albedo * texture(uv) * I * direct(p) + emission at one surface point p,
  *   direct light with ONE shadow-map lookup (common/direct_light.h), the geometric normal
  *   oriented like the vertex normals, the texture sampled bilinearly at p's interpolated uv.
@@ -36,11 +36,12 @@
  *                                              sphere over a voxel face)
  * where f_axis = (overlap of [c - r, c + r] with the voxel's interval) / min(2r, 1). A sphere
  * smaller than a voxel thus spreads its projected area over the voxels its bounding box
- * straddles (the f's sum to 1 per axis); a sphere larger than a voxel gives its interior voxels
- * min(1, pi r^2) = 1 (r >= 0.57). Radiance: r >= 0.5 voxel: per voxel, the sphere point
- * facing the voxel centre (normal = direction from the centre to the voxel centre, +y when
- * they coincide); r < 0.5: the sphere's mean over all directions, 1/4 of the light at the
- * point facing the lamp (the mean of max(cos, 0) over a sphere), plus emission.
+ * straddles (the f's sum to 1 per axis); a sphere at least a voxel wide gives the voxels inside
+ * its bounding box min(1, pi r^2), which is 1 from r = 0.57 voxel on. Radiance, plus emission:
+ * r >= 0.5 voxel: per voxel, lit at the sphere point facing the voxel centre (normal = from
+ * the sphere centre to the voxel centre, +y when they coincide); r < 0.5 voxel: one value for
+ * the whole sphere, its mean over all directions = 1/4 of the light at the point facing the
+ * lamp (the mean of max(cos, 0) over a sphere; shadow looked up at that point).
  *
  * Accumulation (order independent, DESIGN.md): per voxel four uint sums, channel c of
  * (L.rgb * a, a) added as round(min(value, RP_VOXEL_MAX_CONTRIB) * 2^RP_VOXEL_FIXED_BITS) with
