@@ -177,6 +177,10 @@ void ParticleSystem::emit_ash(const glm::vec3& marble_center, float marble_radiu
   }
 }
 
+void ParticleSystem::mark_previous() {
+  for (size_t i = 0; i < count_; ++i) at(i).prev_position = at(i).position;
+}
+
 void ParticleSystem::step(float dt, Rng& rng) {
   // Stable in-place compaction: survivor i moves to position w <= i, so no slot is read after
   // it was overwritten, and the emission order is kept.
@@ -185,7 +189,6 @@ void ParticleSystem::step(float dt, Rng& rng) {
     Particle p = at(i);
     p.age += dt;
     if (p.age >= p.life) continue;
-    p.prev_position = p.position;
     switch (p.kind) {
       case ParticleKind::Fire:  // buoyant: keeps its velocity
         break;

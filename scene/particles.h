@@ -27,7 +27,7 @@ enum class ParticleKind : uint8_t { Fire, Spark, Ash };
 // One particle's full state (what hash() covers).
 struct Particle {
   glm::vec3 position{0.0f};
-  glm::vec3 prev_position{0.0f};  // position before the last step (for the velocity buffer)
+  glm::vec3 prev_position{0.0f};  // position at the last mark_previous() (velocity buffer)
   glm::vec3 velocity{0.0f};       // world units per second
   float age = 0.0f;               // seconds since emission
   float life = 1.0f;              // seconds; the particle dies when age >= life
@@ -103,8 +103,13 @@ class ParticleSystem {
   // keeps each sphere inside [-1,1]^3 (clamp the centre by the radius, bounce or stop).
   void step(float dt, Rng& rng);
 
-  // One emissive sphere per live particle, oldest first: centre, prev_center (position before the
-  // last step), radius and emission from the remaining life, casts_shadow = false.
+  // Remembers every live particle's position as its "previous" one (the velocity buffer's
+  // start point). The world calls it once per rendered frame, before that frame's steps, so
+  // motion over several fixed steps shows; particles emitted later start with prev = position.
+  void mark_previous();
+
+  // One emissive sphere per live particle, oldest first: centre, prev_center (position at the
+  // last mark_previous(), or at emission), radius and emission from the remaining life, casts_shadow = false.
   void append_spheres(std::vector<Sphere>& out) const;
   // The sphere append_spheres() draws for one particle.
   static Sphere sphere_of(const Particle& p);

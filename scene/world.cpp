@@ -174,6 +174,7 @@ void World::snapshot_previous() {
   for (size_t i = 0; i < tumblers_.size(); ++i) prev_tumbler_models_[i] = tumblers_[i].model_matrix();
   for (Ball& b : marbles_) b.prev_center = b.sphere.body.p;
   for (Ball& b : fireballs_) b.prev_center = b.sphere.body.p;
+  particles_.mark_previous();
 }
 
 void World::step() {
