@@ -1,12 +1,24 @@
-/* Light pass (SPEC 6.5, direct part): GBuffer -> HDR radiance (float4 per pixel, rgb linear,
- * a = 1 covered / 0 background).
+/* Light pass (SPEC 6.5): GBuffer + shadow map + voxel radiance chain -> HDR radiance (float4 per
+ * pixel, rgb linear, a = 1 covered / 0 background).
  *
  *   L_out = albedo * I * cos(theta) / d^2 * falloff(l.y) * shadow      (direct, point lamp)
- *         + ambient * albedo                                             (constant until GI)
+ *         + albedo * D(p, n)                                             (indirect, cone traced)
  *         + emission
  *
- * I = FrameConstants.light_intensity.rgb (radiant intensity), ambient = light_intensity.w,
- * l = unit vector from the surface to the lamp centre, d its distance. Background pixels: 0.
+ * I = FrameConstants.light_intensity.rgb (radiant intensity), l = unit vector from the surface to
+ * the lamp centre, d its distance. Background pixels: 0.
+ * D(p, n) = rp_cone_diffuse (common/cone_trace.h): six 60-degree cones through the voxel chain,
+ * weights pi/4 (normal cone) and 3 pi/20 (five cones tilted 60 degrees) normalised by pi, i.e.
+ * the indirect irradiance over pi, so albedo * D is the Lambertian indirect radiance in the same
+ * units as the voxels' radiance. It replaces the constant ambient of "First light".
+ *
+ * Variants (-D):
+ *   RP_LIGHT_SPLIT=1: also writes the direct lamp term (rgb, a = covered) and the indirect term
+ *     (rgb, a = covered) into two extra float4 buffers, for the debug views; emission is in
+ *     neither. The default build writes only hdr.
+ *   RP_LIGHT_CONSTANT_AMBIENT=1: the "First light" indirect term albedo * light_intensity.w
+ *     instead of cone tracing (the voxel arguments are not read). Kept only for the renderer's
+ *     entry point without a voxel chain (LightPass::run without voxels).
  *
  * Directional falloff: the lamp is the part of a sphere (radius 0.35, centre 0.1 above the
  * ceiling) below the ceiling, so points that see it from the side see less of it (000 9.2.2).
@@ -28,6 +40,7 @@
 #include "shared/types.h"
 #include "common/math.h"
 #include "common/random.h"
+#include "common/cone_trace.h"
 
 #ifndef RP_SHADOW_NORMAL_OFFSET
 #define RP_SHADOW_NORMAL_OFFSET 1.0f
@@ -40,6 +53,12 @@
 #endif
 #ifndef RP_SHADOW_PCF5
 #define RP_SHADOW_PCF5 0
+#endif
+#ifndef RP_LIGHT_SPLIT
+#define RP_LIGHT_SPLIT 0
+#endif
+#ifndef RP_LIGHT_CONSTANT_AMBIENT
+#define RP_LIGHT_CONSTANT_AMBIENT 0
 #endif
 /* Largest tan(theta) the slope bias follows (grazing light: ~83 degrees). */
 #define RP_SHADOW_MAX_SLOPE 8.0f
@@ -108,13 +127,22 @@ inline float light_shadow(__global const FrameConstants* frame, __global const f
 #endif
 }
 
-__kernel void light_direct(__global const FrameConstants* frame,
-                           __global const float4* albedo_plane,
-                           __global const float4* normal_depth_plane,
-                           __global const float4* position_plane,
-                           __global const float4* emission_plane,
-                           __global const float* shadow,
-                           __global float4* hdr) {
+/* voxels: the radiance chain (shared/voxel_layout.h) of voxel_resolution^3 at level 0 with
+ * voxel_levels levels. */
+__kernel void light_shade(__global const FrameConstants* frame,
+                          __global const float4* albedo_plane,
+                          __global const float4* normal_depth_plane,
+                          __global const float4* position_plane,
+                          __global const float4* emission_plane,
+                          __global const float* shadow,
+                          __global const float4* voxels,
+                          const uint voxel_resolution,
+                          const uint voxel_levels,
+#if RP_LIGHT_SPLIT
+                          __global float4* direct_out,
+                          __global float4* indirect_out,
+#endif
+                          __global float4* hdr) {
   const uint x = (uint)get_global_id(0), y = (uint)get_global_id(1);
   const uint width = frame->width;
   if (x >= width || y >= frame->height) return;
@@ -123,6 +151,10 @@ __kernel void light_direct(__global const FrameConstants* frame,
   const float4 pos = position_plane[pixel];
   if (pos.w == 0.0f) {
     hdr[pixel] = (float4)(0.0f);
+#if RP_LIGHT_SPLIT
+    direct_out[pixel] = (float4)(0.0f);
+    indirect_out[pixel] = (float4)(0.0f);
+#endif
     return;
   }
   const float3 albedo = albedo_plane[pixel].xyz;
@@ -140,8 +172,18 @@ __kernel void light_direct(__global const FrameConstants* frame,
     direct_scale = cos_theta * (inv_d * inv_d) * light_lamp_falloff(l.y) *
                    light_shadow(frame, shadow, p, n, cos_theta, x, y);
   }
-  const float4 intensity = frame->light_intensity;
-  const float3 radiance = albedo * (intensity.xyz * direct_scale + intensity.w) +
-                          emission_plane[pixel].xyz;
-  hdr[pixel] = (float4)(radiance, 1.0f);
+  const float3 direct = albedo * (frame->light_intensity.xyz * direct_scale);
+#if RP_LIGHT_CONSTANT_AMBIENT
+  (void)voxels;
+  (void)voxel_resolution;
+  (void)voxel_levels;
+  const float3 indirect = albedo * frame->light_intensity.w;
+#else
+  const float3 indirect = albedo * rp_cone_diffuse(voxels, voxel_resolution, voxel_levels, p, n);
+#endif
+  hdr[pixel] = (float4)(direct + indirect + emission_plane[pixel].xyz, 1.0f);
+#if RP_LIGHT_SPLIT
+  direct_out[pixel] = (float4)(direct, 1.0f);
+  indirect_out[pixel] = (float4)(indirect, 1.0f);
+#endif
 }

@@ -1,6 +1,8 @@
 // Light pass against a C++ reference on a hand-written GBuffer (points of a Cornell box with the
 // lamp at (0, 1.1, 0)) and hand-made shadow maps: empty (1.0), fully occluded (0.0), the true
 // depth of the floor (no acne allowed) and the floor with a square occluder above its centre.
+// These direct-light tests give the pass an empty voxel chain (no indirect light); the cone
+// traced indirect term is checked against the cone reference in light_cone_test below.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,10 +10,14 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "cl/error.h"
+#include "cone_reference.h"
+#include "kernels/shared/voxel_layout.h"
 #include "passes/light.h"
 #include "render/gpu_scene.h"
 #include "support/cl_fixture.h"
@@ -42,11 +48,16 @@ double direct_ref(const Point& pt, const glm::vec3& light) {
   return c <= 0.0 ? 0.0 : c / d2 * falloff_ref(l.y);
 }
 
-// Expected radiance for a given shadow visibility.
+// Expected radiance for a given shadow visibility, without indirect light (empty voxel chain).
 glm::dvec3 radiance_ref(const Point& pt, const glm::vec3& light, double visibility) {
-  return glm::dvec3(pt.albedo) *
-             (glm::dvec3(kIntensity) * direct_ref(pt, light) * visibility + double(kAmbient)) +
+  return glm::dvec3(pt.albedo) * glm::dvec3(kIntensity) * direct_ref(pt, light) * visibility +
          glm::dvec3(pt.emission);
+}
+
+// An empty voxel chain: no indirect light.
+const rp::test::cone::Chain& empty_chain() {
+  static const rp::test::cone::Chain chain(16, 5);
+  return chain;
 }
 
 class LightFixture {
@@ -82,9 +93,14 @@ class LightFixture {
   }
 
   // Runs the pass over `points` (one pixel each, in a row-major frame `width` wide; pixels past
-  // the points are background) and returns rgba per pixel.
+  // the points are background) and returns rgba per pixel. `chain`: the voxel chain (default
+  // empty); `mode`: which entry point; `direct` / `indirect` receive the components when given.
+  enum class Mode { kCones, kConesSplit, kConstantAmbient };
   std::vector<float> run(const std::vector<Point>& points, const std::vector<float>& shadow,
-                         ShadowFilter filter, uint32_t frame_index = 0, uint32_t width = 8) {
+                         ShadowFilter filter, uint32_t frame_index = 0, uint32_t width = 8,
+                         const rp::test::cone::Chain& chain = empty_chain(),
+                         Mode mode = Mode::kCones, std::vector<float>* direct = nullptr,
+                         std::vector<float>* indirect = nullptr) {
     auto& ctx = rp::test::context();
     const uint32_t height = uint32_t((points.size() + width) / width);  // >= 1 background pixel
     frame_.frame_index = frame_index;
@@ -111,15 +127,41 @@ class LightFixture {
     rp::render::ShadowMap sm;
     sm.resize(ctx.context, shadow_size_);
     ctx.queue.enqueueWriteBuffer(sm.depth, CL_TRUE, 0, shadow.size() * 4, shadow.data());
+    ::cl::Buffer voxels(ctx.context, CL_MEM_READ_ONLY, chain.voxels.size() * 16);
+    ctx.queue.enqueueWriteBuffer(voxels, CL_TRUE, 0, chain.voxels.size() * 16,
+                                 chain.voxels.data());
     ::cl::Buffer hdr(ctx.context, CL_MEM_READ_WRITE, n * 16);
     rp::cl::Profiler profiler(ctx.queue);
     rp::passes::LightPass pass(ctx, rp::test::programs(), filter);
-    pass.run(profiler, *scene_, gb, sm, hdr);
+    rp::passes::LightComponents components{::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16),
+                                           ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16)};
+    switch (mode) {
+      case Mode::kCones:
+        pass.run(profiler, *scene_, gb, sm, voxels, chain.resolution, chain.levels, hdr);
+        break;
+      case Mode::kConesSplit:
+        pass.run(profiler, *scene_, gb, sm, voxels, chain.resolution, chain.levels, hdr,
+                 &components);
+        break;
+      case Mode::kConstantAmbient:
+        pass.run(profiler, *scene_, gb, sm, hdr);
+        break;
+    }
     EXPECT_EQ(profiler.collect().count("light"), 1u);
     std::vector<float> out(n * 4);
     ctx.queue.enqueueReadBuffer(hdr, CL_TRUE, 0, n * 16, out.data());
+    if (direct) {
+      direct->resize(n * 4);
+      ctx.queue.enqueueReadBuffer(components.direct, CL_TRUE, 0, n * 16, direct->data());
+    }
+    if (indirect) {
+      indirect->resize(n * 4);
+      ctx.queue.enqueueReadBuffer(components.indirect, CL_TRUE, 0, n * 16, indirect->data());
+    }
     return out;
   }
+
+  rp::render::GpuScene& scene() { return *scene_; }
 
   uint32_t shadow_size() const { return shadow_size_; }
 
@@ -249,11 +291,11 @@ TEST(Light, BoxDepthMapHasNoAcne) {
   EXPECT_GT(checked, 6 * 400);  // most points are inside the frustum, so the map is consulted
 }
 
-// Visibility recovered from the output: (hdr - ambient) / direct.
+// Visibility recovered from the output: hdr / unshadowed direct (no indirect light here).
 double visibility_of(const std::vector<float>& hdr, size_t i, const Point& pt,
                      const glm::vec3& light) {
   double direct = double(pt.albedo.x) * kIntensity.x * direct_ref(pt, light);
-  return (hdr[i * 4] - double(pt.albedo.x) * kAmbient) / direct;
+  return hdr[i * 4] / direct;
 }
 
 TEST(Light, SquareOccluderCastsShadow) {
@@ -314,6 +356,126 @@ TEST(Light, DeterministicPerFrameNoise) {
   EXPECT_GT(lit, 0);
   EXPECT_LT(lit, int(band.size()));  // a noisy penumbra, not all lit or all dark
   EXPECT_GT(differs, 0);             // the rotation changes with the frame index
+}
+
+// A random voxel chain (coloured, translucent, sparse) built with the reference's mip rule.
+rp::test::cone::Chain random_chain(uint32_t resolution, uint32_t seed) {
+  uint32_t levels = 1;
+  while ((resolution >> (levels - 1)) > 1) ++levels;
+  rp::test::cone::Chain c(resolution, levels);
+  uint32_t state = seed;
+  auto next = [&state] {  // small LCG: deterministic, platform independent
+    state = state * 1664525u + 1013904223u;
+    return double(state >> 8) / double(1u << 24);
+  };
+  for (glm::vec4& v : c.voxels) {
+    if (&v - c.voxels.data() >= ptrdiff_t(resolution) * resolution * resolution) break;
+    if (next() > 0.3) continue;
+    double a = 0.6 * next();
+    v = glm::vec4(glm::dvec4(3.0 * a * next(), 3.0 * a * next(), 3.0 * a * next(), a));
+  }
+  c.build_mips();
+  return c;
+}
+
+// Direct + albedo * (the six-cone irradiance / pi of the reference) + emission.
+TEST(Light, ConeTracedIndirectMatchesReference) {
+  LightFixture fx(32);
+  auto pts = box_points(fx.light().position);
+  // Points inside the box with oblique normals too.
+  pts.push_back({{0.2f, -0.3f, 0.1f}, glm::normalize(glm::vec3(0.3f, 0.8f, -0.5f)), {0.7f, 0.6f, 0.5f}});
+  pts.push_back({{-0.5f, 0.4f, -0.2f}, glm::normalize(glm::vec3(-0.6f, -0.2f, 0.7f)), {0.3f, 0.9f, 0.4f}});
+  const rp::test::cone::Chain chain = random_chain(16, 77);
+  auto hdr = fx.run(pts, std::vector<float>(32 * 32, 1.0f), ShadowFilter::kPoissonOneTap, 0, 8,
+                    chain);
+  int lit = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const glm::dvec3 indirect =
+        glm::dvec3(pts[i].albedo) * rp::test::cone::diffuse(chain, pts[i].p, pts[i].n);
+    lit += indirect.x > 0.01;
+    const glm::dvec3 want = radiance_ref(pts[i], fx.light().position, 1.0) + indirect;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(hdr[i * 4 + c], want[c], 1e-5 * std::abs(want[c]) + 1e-5)
+          << "point " << i << " channel " << c;
+    EXPECT_EQ(hdr[i * 4 + 3], 1.0f);
+  }
+  EXPECT_GE(lit, 8);  // the chain really lights most points
+}
+
+// The split variant writes direct and indirect separately; hdr is bit-identical to the lean path.
+TEST(Light, SplitVariantWritesTheComponents) {
+  LightFixture fx(32);
+  auto pts = box_points(fx.light().position);
+  const rp::test::cone::Chain chain = random_chain(16, 5);
+  const std::vector<float> map(32 * 32, 1.0f);
+  std::vector<float> direct, indirect;
+  auto lean = fx.run(pts, map, ShadowFilter::kPoissonOneTap, 0, 8, chain);
+  auto split = fx.run(pts, map, ShadowFilter::kPoissonOneTap, 0, 8, chain,
+                      LightFixture::Mode::kConesSplit, &direct, &indirect);
+  EXPECT_EQ(0, std::memcmp(lean.data(), split.data(), lean.size() * sizeof(float)));
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const glm::dvec3 want_direct = radiance_ref(pts[i], fx.light().position, 1.0) -
+                                   glm::dvec3(pts[i].emission);
+    const glm::dvec3 want_indirect =
+        glm::dvec3(pts[i].albedo) * rp::test::cone::diffuse(chain, pts[i].p, pts[i].n);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(direct[i * 4 + c], want_direct[c], 1e-5 * std::abs(want_direct[c]) + 1e-6)
+          << "direct, point " << i;
+      EXPECT_NEAR(indirect[i * 4 + c], want_indirect[c], 1e-5) << "indirect, point " << i;
+    }
+    EXPECT_EQ(direct[i * 4 + 3], 1.0f);
+    EXPECT_EQ(indirect[i * 4 + 3], 1.0f);
+  }
+  for (size_t i = pts.size(); i < lean.size() / 4; ++i)
+    for (int c = 0; c < 4; ++c) {
+      EXPECT_EQ(direct[i * 4 + c], 0.0f) << "background " << i;
+      EXPECT_EQ(indirect[i * 4 + c], 0.0f) << "background " << i;
+    }
+}
+
+// The transitional entry point without a voxel chain: constant ambient albedo * light_intensity.w.
+TEST(Light, ConstantAmbientEntryPointWithoutVoxels) {
+  LightFixture fx(32);
+  auto pts = box_points(fx.light().position);
+  auto hdr = fx.run(pts, std::vector<float>(32 * 32, 1.0f), ShadowFilter::kPcf5x5, 0, 8,
+                    empty_chain(), LightFixture::Mode::kConstantAmbient);
+  for (size_t i = 0; i < pts.size(); ++i)
+    expect_radiance(hdr, i,
+                    radiance_ref(pts[i], fx.light().position, 1.0) +
+                        glm::dvec3(pts[i].albedo) * double(kAmbient),
+                    "ambient");
+}
+
+TEST(Light, RejectsAVoxelChainThatDoesNotFit) {
+  auto& ctx = rp::test::context();
+  LightFixture fx(32);
+  fx.run(box_points(fx.light().position), std::vector<float>(32 * 32, 1.0f),
+         ShadowFilter::kPoissonOneTap);  // sets up the scene for an 8x2 frame
+  rp::render::GBuffer gb;
+  gb.resize(ctx.context, 8, 2);
+  rp::render::ShadowMap sm;
+  sm.resize(ctx.context, 32);
+  ::cl::Buffer hdr(ctx.context, CL_MEM_READ_WRITE, 8 * 2 * 16);
+  const size_t total16 = rp::gpu::rp_voxel_total(16, 5);
+  ::cl::Buffer voxels(ctx.context, CL_MEM_READ_ONLY, total16 * 16);
+  rp::cl::Profiler profiler(ctx.queue);
+  rp::passes::LightPass pass(ctx, rp::test::programs());
+  auto message = [&](uint32_t resolution, uint32_t levels, const ::cl::Buffer& buffer) {
+    try {
+      pass.run(profiler, fx.scene(), gb, sm, buffer, resolution, levels, hdr);
+    } catch (const rp::cl::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message(48, 5, voxels).find("not a power of two"), std::string::npos);
+  EXPECT_NE(message(16, 6, voxels).find("voxel levels"), std::string::npos);
+  EXPECT_NE(message(32, 6, voxels).find("bytes"), std::string::npos);  // buffer too small
+  ::cl::Buffer small(ctx.context, CL_MEM_READ_ONLY, (total16 - 1) * 16);
+  EXPECT_NE(message(16, 5, small).find("bytes"), std::string::npos);
+  EXPECT_EQ(message(16, 5, voxels), "");
+  EXPECT_EQ(message(16, 3, voxels), "");  // fewer levels than the full chain are fine
+  profiler.collect();
 }
 
 }  // namespace

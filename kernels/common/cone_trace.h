@@ -1,0 +1,263 @@
+/* Voxel cone tracing through the anisotropic mip chain (OpenCL C only; SPEC 6.4-6.5).
+ *
+ * The chain is one float4 buffer laid out as kernels/shared/voxel_layout.h says: level 0 one
+ * isotropic R^3 volume, every level l >= 1 six directional volumes (+x,-x,+y,-y,+z,-z) of
+ * n_l = R >> l voxels per side; voxel = (premultiplied radiance rgb, opacity a). The box is
+ * [-1,1]^3, so a level-l voxel is s_l = 2 / n_l wide (v0 = 2 / R at level 0). Volume +x holds
+ * what a cone travelling towards +x sees (common/voxel.h: composited front to back from the
+ * low-x face).
+ *
+ * Sampling (quadrilinear): trilinear inside a level with clamp-to-edge addressing (voxel
+ * centres at -1 + (i + 0.5) s_l; positions beyond the outermost centres take the edge voxel:
+ * cones stop at the box's faces, so samples lie inside the box and read the voxel covering
+ * them), linear between the two levels around the fractional level L:
+ *   L = 0:          the isotropic level 0
+ *   0 < L < 1:      mix(isotropic level 0, directional level 1, L)
+ *   1 <= L < top:   mix(directional floor(L), directional floor(L) + 1, fract(L))
+ *   L >= top:       directional level `top`
+ * "Directional level l" for a cone travelling along unit d is the sum of three volumes, the
+ * ones facing the cone (+x if d.x >= 0 else -x, likewise y and z), weighted by d.x^2, d.y^2,
+ * d.z^2 (the weights sum to 1).
+ *
+ * Rows behind the apex. A directional voxel is composited as if the cone entered it through its
+ * face; a voxel that contains the cone's apex (or lies behind it) was entered behind the apex,
+ * and its composite shows what lies behind the cone: for a cone leaving the floor along +y,
+ * every +y voxel of the floor's row shows the floor in front. Plain quadrilinear sampling
+ * therefore makes surfaces see themselves: measured with the C++ reference on a 64^3 Cornell
+ * box (lit walls, one block) against brute-force hemisphere integration over level 0, a floor
+ * point got 0.46 indirect (0.85 from itself) where the truth is 0.15, the ceiling 0.06 where the
+ * truth is 0.33 (it saw its own dark voxels), mean error 0.28 over nine points. So, per axis,
+ * the taps in the apex's row along that axis or behind it (row index <= the apex's for a cone
+ * going +axis, >= for -axis, at the sampled level) count as empty in that axis's volume, and
+ * cones sample at most level top = levels - 2 (the 1^3 level always contains the apex, so it
+ * would always read as empty). Same test: mean error 0.13, floor 0.23, ceiling 0.18. The price
+ * is that content sharing the apex's row at a coarse level is seen only at finer levels.
+ * Level 0 (isotropic) has no such rule: its taps are clear of the surface's own voxel by the
+ * start offset (at most 7 % of one tap's weight for the tilted cones' first sample).
+ *
+ * One cone (aperture 60 degrees, half-angle 30 degrees, diameter d(t) = 2 t tan 30 at distance t
+ * from its apex):
+ *   first sample at t0 = v0 / (2 tan 30), where the diameter is one level-0 voxel (L = 0);
+ *   each step advances by half the current diameter, t' = t (1 + tan 30), so the diameter and
+ *   the sampled voxel size grow by the constant factor g = 1 + tan 30 = 1.5774 per step and the
+ *   level by the constant log2(g) = 0.65750: L_k = k * 0.65750, stepped by an addition (no
+ *   log2 or pow per sample);
+ *   since a step is half the sampled voxel, each sample's opacity is corrected to half a voxel's
+ *   thickness, a' = 1 - sqrt(1 - a) = a / (1 + sqrt(1 - a)), and its premultiplied radiance by
+ *   the same factor (two half steps through a uniform voxel composite to exactly that voxel);
+ *   front-to-back accumulation c += (1 - A) c_s, A += (1 - A) a_s;
+ *   stop when A >= RP_CONE_OPAQUE, when the sample point leaves [-1,1]^3, or after
+ *   RP_CONE_MAX_STEPS samples (t grows 1.577x per step, so 16 steps reach past the box's
+ *   diagonal for R <= 128).
+ * The result is (c, A): c the radiance arriving along the cone (mean over its cross-section),
+ * A its occlusion.
+ *
+ * Diffuse cone set (rp_cone_diffuse): six 60-degree cones around the unit normal n, one along
+ * n and five tilted 60 degrees from it at azimuths 0, 72, ..., 288 degrees in the per-pixel
+ * orthonormal basis (t, b, n) of Duff et al. 2017 (a function of n only). Weights: each cone's
+ * share of the cosine-weighted hemisphere, pi/4 for the normal cone (exactly the integral of
+ * cos over a 30-degree cap) and (pi - pi/4) / 5 = 3 pi / 20 for each tilted cone, summing to pi
+ * = integral of cos over the hemisphere. rp_cone_diffuse returns sum_i (w_i / pi) L_i with the
+ * normalised weights 1/4 and 3/20 (sum 1): the irradiance over pi, so a Lambertian surface
+ * reflects indirect radiance albedo * rp_cone_diffuse(...), and a uniform surrounding radiance L
+ * gives exactly albedo * L. The cones start at p + n * RP_CONE_NORMAL_OFFSET * v0 (that point
+ * is their apex) so a surface does not see its own voxels at level 0.
+ *
+ * The six local directions are compile-time constants and the six calls are written out
+ * (unrolled): measured 1.8x faster on PoCL than a loop over a direction table.
+ */
+#ifndef ROLYPOLY_COMMON_CONE_TRACE_H
+#define ROLYPOLY_COMMON_CONE_TRACE_H
+
+#include "shared/voxel_layout.h"
+
+/* Cone start offset along the surface normal, in level-0 voxels. */
+#ifndef RP_CONE_NORMAL_OFFSET
+#define RP_CONE_NORMAL_OFFSET 1.0f
+#endif
+/* Accumulated opacity at which a cone stops. */
+#ifndef RP_CONE_OPAQUE
+#define RP_CONE_OPAQUE 0.95f
+#endif
+/* Most samples per cone. */
+#ifndef RP_CONE_MAX_STEPS
+#define RP_CONE_MAX_STEPS 16
+#endif
+
+#define RP_CONE_TAN_HALF 0.577350269f   /* tan 30 degrees */
+#define RP_CONE_T0 0.866025404f         /* first sample distance in level-0 voxels: 1 / (2 tan 30) */
+#define RP_CONE_GROWTH 1.577350269f     /* t (and diameter) factor per step: 1 + tan 30 */
+#define RP_CONE_LEVEL_STEP 0.657503063f /* log2(1 + tan 30): level increase per step */
+
+/* First float4 of level `level` >= 1 (its +x volume): R^3 for level 0, then six volumes of
+ * (R >> k)^3 per level k. With R = 2^m the sum over k = 1 .. l-1 is the geometric series
+ * (R^3 - (R >> (l-1))^3) / 7, exact in integers; equals rp_voxel_offset(R, l, 0). */
+inline uint rp_cone_level_base(uint resolution, uint level) {
+  const uint r3 = resolution * resolution * resolution;
+  const uint m = resolution >> (level - 1u);
+  return r3 + 6u * ((r3 - m * m * m) / 7u);
+}
+
+/* Trilinear footprint of point p in a volume of n^3 voxels over [-1,1]^3: the 8 voxel indices
+ * (relative to the volume's first voxel) and the fractional position between them. */
+typedef struct {
+  uint i000, i100, i010, i110, i001, i101, i011, i111;
+  uint x0, x1, y0, y1, z0, z1; /* the voxel coordinates the taps use */
+  float3 f;
+} ConeFootprint;
+
+inline ConeFootprint rp_cone_footprint(uint n, float3 p) {
+  const float nf = (float)n;
+  const float3 u = clamp((p + 1.0f) * (0.5f * nf) - 0.5f, 0.0f, nf - 1.0f);
+  const float3 fl = floor(u);
+  const uint x0 = (uint)fl.x, y0 = (uint)fl.y, z0 = (uint)fl.z;
+  const uint x1 = min(x0 + 1u, n - 1u), y1 = min(y0 + 1u, n - 1u), z1 = min(z0 + 1u, n - 1u);
+  ConeFootprint fp;
+  fp.f = u - fl;
+  fp.x0 = x0; fp.x1 = x1; fp.y0 = y0; fp.y1 = y1; fp.z0 = z0; fp.z1 = z1;
+  const uint r00 = (z0 * n + y0) * n, r10 = (z0 * n + y1) * n;
+  const uint r01 = (z1 * n + y0) * n, r11 = (z1 * n + y1) * n;
+  fp.i000 = r00 + x0; fp.i100 = r00 + x1;
+  fp.i010 = r10 + x0; fp.i110 = r10 + x1;
+  fp.i001 = r01 + x0; fp.i101 = r01 + x1;
+  fp.i011 = r11 + x0; fp.i111 = r11 + x1;
+  return fp;
+}
+
+inline float4 rp_cone_trilinear_mix(float4 c000, float4 c100, float4 c010, float4 c110,
+                                    float4 c001, float4 c101, float4 c011, float4 c111,
+                                    float3 f) {
+  const float4 c00 = mix(c000, c100, f.x), c10 = mix(c010, c110, f.x);
+  const float4 c01 = mix(c001, c101, f.x), c11 = mix(c011, c111, f.x);
+  return mix(mix(c00, c10, f.y), mix(c01, c11, f.y), f.z);
+}
+
+/* Trilinear sample of one volume (first voxel `vol`, n^3 voxels) at p. */
+inline float4 rp_cone_trilinear(__global const float4* vol, uint n, float3 p) {
+  const ConeFootprint fp = rp_cone_footprint(n, p);
+  return rp_cone_trilinear_mix(vol[fp.i000], vol[fp.i100], vol[fp.i010], vol[fp.i110],
+                               vol[fp.i001], vol[fp.i101], vol[fp.i011], vol[fp.i111], fp.f);
+}
+
+/* Directional sample of level `level` >= 1 for a cone whose three facing volumes are dirs
+ * (RP_DIR_* indices) with weights w (the squared direction components), apex at `apex`: the
+ * weighted sum of the three trilinear samples, evaluated as one trilinear mix of the weighted
+ * voxel sums. Along each axis, voxels in the apex's row or behind it (for the cone's direction
+ * along that axis) count as empty in that axis's volume: see "Rows behind the apex" above. */
+inline float4 rp_cone_directional(__global const float4* voxels, uint resolution, uint level,
+                                  uint3 dirs, float3 w, float3 p, float3 apex) {
+  const uint n = resolution >> level;
+  const uint n3 = n * n * n;
+  const uint base = rp_cone_level_base(resolution, level);
+  __global const float4* vx = voxels + base + dirs.x * n3;
+  __global const float4* vy = voxels + base + dirs.y * n3;
+  __global const float4* vz = voxels + base + dirs.z * n3;
+  const ConeFootprint fp = rp_cone_footprint(n, p);
+  const float nf = (float)n;
+  /* the apex's row along each axis: -1 / n when it lies beyond the box (nothing skipped) */
+  const int3 ar = convert_int3(clamp(floor((apex + 1.0f) * (0.5f * nf)), -1.0f, nf));
+  const int ax = ar.x, ay = ar.y, az = ar.z;
+  const int x0 = (int)fp.x0, x1 = (int)fp.x1, y0 = (int)fp.y0, y1 = (int)fp.y1;
+  const int z0 = (int)fp.z0, z1 = (int)fp.z1;
+  /* weight of each volume for the low (0) and high (1) tap along its own axis */
+  const bool px = dirs.x == RP_DIR_POS_X, py = dirs.y == RP_DIR_POS_Y, pz = dirs.z == RP_DIR_POS_Z;
+  const float wx0 = (px ? x0 > ax : x0 < ax) ? w.x : 0.0f;
+  const float wx1 = (px ? x1 > ax : x1 < ax) ? w.x : 0.0f;
+  const float wy0 = (py ? y0 > ay : y0 < ay) ? w.y : 0.0f;
+  const float wy1 = (py ? y1 > ay : y1 < ay) ? w.y : 0.0f;
+  const float wz0 = (pz ? z0 > az : z0 < az) ? w.z : 0.0f;
+  const float wz1 = (pz ? z1 > az : z1 < az) ? w.z : 0.0f;
+#define RP_CONE_TAP(X, Y, Z) \
+  (vx[fp.i##X##Y##Z] * wx##X + vy[fp.i##X##Y##Z] * wy##Y + vz[fp.i##X##Y##Z] * wz##Z)
+  const float4 s = rp_cone_trilinear_mix(RP_CONE_TAP(0, 0, 0), RP_CONE_TAP(1, 0, 0),
+                                         RP_CONE_TAP(0, 1, 0), RP_CONE_TAP(1, 1, 0),
+                                         RP_CONE_TAP(0, 0, 1), RP_CONE_TAP(1, 0, 1),
+                                         RP_CONE_TAP(0, 1, 1), RP_CONE_TAP(1, 1, 1), fp.f);
+#undef RP_CONE_TAP
+  return s;
+}
+
+/* The three volumes facing direction d: +x (0) if d.x >= 0 else -x (1), and so on. */
+inline uint3 rp_cone_facing_dirs(float3 d) {
+  return (uint3)(d.x >= 0.0f ? RP_DIR_POS_X : RP_DIR_NEG_X, d.y >= 0.0f ? RP_DIR_POS_Y : RP_DIR_NEG_Y,
+                 d.z >= 0.0f ? RP_DIR_POS_Z : RP_DIR_NEG_Z);
+}
+
+/* Quadrilinear sample at p and fractional level `level` >= 0 (see the header for the rule),
+ * levels coarser than `top` clamped to `top`; apex: the cone's apex. */
+inline float4 rp_cone_sample(__global const float4* voxels, uint resolution, uint top,
+                             uint3 dirs, float3 w, float3 p, float level, float3 apex) {
+  if (level < 1.0f || top == 0u) {
+    const float4 iso = rp_cone_trilinear(voxels, resolution, p);
+    if (level <= 0.0f || top == 0u) return iso;
+    return mix(iso, rp_cone_directional(voxels, resolution, 1u, dirs, w, p, apex), level);
+  }
+  const float lf = floor(level);
+  const uint l = (uint)lf;
+  if (l >= top) return rp_cone_directional(voxels, resolution, top, dirs, w, p, apex);
+  const float4 lo = rp_cone_directional(voxels, resolution, l, dirs, w, p, apex);
+  const float4 hi = rp_cone_directional(voxels, resolution, l + 1u, dirs, w, p, apex);
+  return mix(lo, hi, level - lf);
+}
+
+/* Coarsest level a cone samples: levels - 2 (the 1^3 level contains every apex, so with the
+ * rows-behind-the-apex rule it would always read as empty). */
+inline uint rp_cone_top_level(uint levels) { return levels >= 2u ? levels - 2u : 0u; }
+
+/* One cone from `origin` along unit `dir` (apex at origin): (radiance rgb, occlusion a). */
+inline float4 rp_cone_trace(__global const float4* voxels, uint resolution, uint levels,
+                            float3 origin, float3 dir) {
+  const float3 w = dir * dir;
+  const uint3 dirs = rp_cone_facing_dirs(dir);
+  const uint top = rp_cone_top_level(levels);
+  const float v0 = 2.0f / (float)resolution;
+  float t = RP_CONE_T0 * v0;
+  float level = 0.0f;
+  float4 acc = (float4)(0.0f);
+  for (int k = 0; k < RP_CONE_MAX_STEPS; ++k) {
+    const float3 q = origin + dir * t;
+    if (fmax(fmax(fabs(q.x), fabs(q.y)), fabs(q.z)) > 1.0f) break;  /* left the box */
+    float4 s = rp_cone_sample(voxels, resolution, top, dirs, w, q, level, origin);
+    /* half a voxel's thickness: a' = a / (1 + sqrt(1 - a)), radiance scaled alike */
+    s *= 1.0f / (1.0f + sqrt(fmax(1.0f - s.w, 0.0f)));
+    acc.xyz += (1.0f - acc.w) * s.xyz;
+    acc.w += (1.0f - acc.w) * s.w;
+    if (acc.w >= RP_CONE_OPAQUE) break;
+    t *= RP_CONE_GROWTH;
+    level += RP_CONE_LEVEL_STEP;
+  }
+  return acc;
+}
+
+/* Orthonormal basis (t, b) completing unit n to a right-handed frame (Duff et al. 2017,
+ * "Building an orthonormal basis, revisited"; branch-free, continuous except across n.z = 0). */
+inline void rp_cone_basis(float3 n, float3* t, float3* b) {
+  const float sign = copysign(1.0f, n.z);
+  const float a = -1.0f / (sign + n.z);
+  const float c = n.x * n.y * a;
+  *t = (float3)(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  *b = (float3)(c, sign + n.y * n.y * a, -n.y);
+}
+
+/* Weighted mean radiance of the six diffuse cones around unit normal n at surface point p:
+ * irradiance / pi (see the header). */
+inline float3 rp_cone_diffuse(__global const float4* voxels, uint resolution, uint levels,
+                              float3 p, float3 n) {
+  float3 t, b;
+  rp_cone_basis(n, &t, &b);
+  const float3 o = p + n * (RP_CONE_NORMAL_OFFSET * 2.0f / (float)resolution);
+  /* Tilted cones: sin 60 (cos phi t + sin phi b) + cos 60 n, phi = 0, 72, 144, 216, 288. */
+  const float s60 = 0.866025404f, c60 = 0.5f;
+  const float c72 = 0.309016994f, s72 = 0.951056516f, c144 = -0.809016994f, s144 = 0.587785252f;
+  const float3 nc = n * c60;
+  const float3 ts = t * s60, bs = b * s60;
+  float3 side = rp_cone_trace(voxels, resolution, levels, o, ts + nc).xyz;
+  side += rp_cone_trace(voxels, resolution, levels, o, ts * c72 + bs * s72 + nc).xyz;
+  side += rp_cone_trace(voxels, resolution, levels, o, ts * c144 + bs * s144 + nc).xyz;
+  side += rp_cone_trace(voxels, resolution, levels, o, ts * c144 - bs * s144 + nc).xyz;
+  side += rp_cone_trace(voxels, resolution, levels, o, ts * c72 - bs * s72 + nc).xyz;
+  const float3 normal = rp_cone_trace(voxels, resolution, levels, o, n).xyz;
+  return normal * 0.25f + side * 0.15f;
+}
+
+#endif

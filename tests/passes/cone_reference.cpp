@@ -1,0 +1,185 @@
+#include "cone_reference.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kernels/shared/voxel_layout.h"
+
+namespace rp::test::cone {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kOpaque = 0.95;
+constexpr int kMaxSteps = 16;
+
+}  // namespace
+
+Chain::Chain(uint32_t r, uint32_t l)
+    : resolution(r), levels(l), voxels(gpu::rp_voxel_total(r, l), glm::vec4(0.0f)) {}
+
+glm::vec4& Chain::at(uint32_t level, uint32_t dir, uint32_t x, uint32_t y, uint32_t z) {
+  const uint32_t n = size(level);
+  return voxels[gpu::rp_voxel_offset(resolution, level, dir) + (size_t(z) * n + y) * n + x];
+}
+
+const glm::vec4& Chain::at(uint32_t level, uint32_t dir, uint32_t x, uint32_t y,
+                           uint32_t z) const {
+  return const_cast<Chain*>(this)->at(level, dir, x, y, z);
+}
+
+void Chain::build_mips() {
+  for (uint32_t level = 1; level < levels; ++level) {
+    const uint32_t n = size(level);
+    for (uint32_t dir = 0; dir < 6; ++dir) {
+      const int axis = int(dir / 2);
+      const bool negative = dir % 2 == 1;  // -axis: the high child is in front
+      for (uint32_t z = 0; z < n; ++z)
+        for (uint32_t y = 0; y < n; ++y)
+          for (uint32_t x = 0; x < n; ++x) {
+            glm::dvec4 sum(0.0);
+            for (uint32_t a = 0; a < 2; ++a)
+              for (uint32_t b = 0; b < 2; ++b) {
+                glm::dvec4 slab[2];
+                for (uint32_t k = 0; k < 2; ++k) {
+                  glm::uvec3 child(2 * x, 2 * y, 2 * z);
+                  const int across0 = (axis + 1) % 3, across1 = (axis + 2) % 3;
+                  child[axis] += k;
+                  child[across0] += a;
+                  child[across1] += b;
+                  slab[k] = glm::dvec4(at(level - 1, dir, child.x, child.y, child.z));
+                }
+                const glm::dvec4 front = negative ? slab[1] : slab[0];
+                const glm::dvec4 back = negative ? slab[0] : slab[1];
+                sum += front + (1.0 - front.w) * back;
+              }
+            at(level, dir, x, y, z) = glm::vec4(sum * 0.25);
+          }
+    }
+  }
+}
+
+double tan_half_angle() { return std::tan(kPi / 6.0); }
+double first_distance_in_voxels() { return 1.0 / (2.0 * tan_half_angle()); }
+double growth() { return 1.0 + tan_half_angle(); }
+double normal_offset_in_voxels() { return 1.0; }
+int top_level(const Chain& c) { return std::max(int(c.levels) - 2, 0); }
+
+glm::dvec4 trilinear(const Chain& c, uint32_t level, uint32_t dir, const glm::dvec3& p) {
+  const int n = int(c.size(level));
+  const double size = 2.0 / n;  // voxel width
+  glm::dvec4 sum(0.0);
+  // Continuous index of p, clamped to the outermost voxel centres.
+  glm::dvec3 u;
+  for (int i = 0; i < 3; ++i) u[i] = std::clamp((p[i] + 1.0) / size - 0.5, 0.0, double(n - 1));
+  const glm::ivec3 lo(glm::floor(u));
+  const glm::dvec3 f = u - glm::dvec3(lo);
+  for (int dz = 0; dz < 2; ++dz)
+    for (int dy = 0; dy < 2; ++dy)
+      for (int dx = 0; dx < 2; ++dx) {
+        const double w = (dx ? f.x : 1.0 - f.x) * (dy ? f.y : 1.0 - f.y) * (dz ? f.z : 1.0 - f.z);
+        const int x = std::min(lo.x + dx, n - 1), y = std::min(lo.y + dy, n - 1),
+                  z = std::min(lo.z + dz, n - 1);
+        sum += w * glm::dvec4(c.at(level, dir, uint32_t(x), uint32_t(y), uint32_t(z)));
+      }
+  return sum;
+}
+
+glm::dvec4 directional(const Chain& c, uint32_t level, const glm::dvec3& d, const glm::dvec3& p,
+                       const glm::dvec3* apex) {
+  glm::dvec4 sum(0.0);
+  const int n = int(c.size(level));
+  const double size = 2.0 / n;
+  for (uint32_t axis = 0; axis < 3; ++axis) {
+    const bool negative = d[axis] < 0.0;
+    const uint32_t dir = 2 * axis + (negative ? 1u : 0u);
+    if (!apex) {
+      sum += d[axis] * d[axis] * trilinear(c, level, dir, p);
+      continue;
+    }
+    // Rows along `axis` that a cone travelling this way enters at or behind its apex (the
+    // apex's row and those behind it) count as empty; an apex beyond the box has row -1 or n.
+    const int apex_row =
+        int(std::clamp(std::floor(((*apex)[axis] + 1.0) / size), -1.0, double(n)));
+    glm::dvec3 u;
+    for (int i = 0; i < 3; ++i) u[i] = std::clamp((p[i] + 1.0) / size - 0.5, 0.0, double(n - 1));
+    const glm::ivec3 lo(glm::floor(u));
+    const glm::dvec3 f = u - glm::dvec3(lo);
+    for (int dz = 0; dz < 2; ++dz)
+      for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) {
+          const glm::ivec3 v(std::min(lo.x + dx, n - 1), std::min(lo.y + dy, n - 1),
+                             std::min(lo.z + dz, n - 1));
+          if (negative ? v[axis] >= apex_row : v[axis] <= apex_row) continue;
+          const double w =
+              (dx ? f.x : 1.0 - f.x) * (dy ? f.y : 1.0 - f.y) * (dz ? f.z : 1.0 - f.z);
+          sum += d[axis] * d[axis] * w *
+                 glm::dvec4(c.at(level, dir, uint32_t(v.x), uint32_t(v.y), uint32_t(v.z)));
+        }
+  }
+  return sum;
+}
+
+glm::dvec4 quadrilinear(const Chain& c, const glm::dvec3& d, const glm::dvec3& p, double level,
+                        const glm::dvec3* apex, int top) {
+  if (top < 0) top = int(c.levels) - 1;
+  level = std::clamp(level, 0.0, double(top));
+  const uint32_t lo = uint32_t(std::floor(level));
+  const double f = level - lo;
+  auto at_level = [&](uint32_t l) { return l == 0 ? trilinear(c, 0, 0, p) : directional(c, l, d, p, apex); };
+  if (f == 0.0) return at_level(lo);
+  return (1.0 - f) * at_level(lo) + f * at_level(lo + 1);
+}
+
+glm::dvec4 trace(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
+                 bool skip_behind_apex) {
+  const double v0 = 2.0 / c.resolution;
+  double t = first_distance_in_voxels() * v0;
+  glm::dvec3 colour(0.0);
+  double alpha = 0.0;
+  for (int k = 0; k < kMaxSteps; ++k) {
+    const glm::dvec3 q = origin + dir * t;
+    if (std::abs(q.x) > 1.0 || std::abs(q.y) > 1.0 || std::abs(q.z) > 1.0) break;
+    // Sampled voxel = cone diameter 2 t tan 30 = v0 * growth^k: level k * log2(growth).
+    const double level = k * std::log2(growth());
+    const glm::dvec4 s =
+        quadrilinear(c, dir, q, level, skip_behind_apex ? &origin : nullptr, top_level(c));
+    // The step is half the sampled voxel: opacity of half its thickness.
+    const double a = std::clamp(s.w, 0.0, 1.0);
+    const double a_half = 1.0 - std::sqrt(1.0 - a);
+    const double scale = a > 0.0 ? a_half / a : 0.5;
+    colour += (1.0 - alpha) * glm::dvec3(s) * scale;
+    alpha += (1.0 - alpha) * s.w * scale;
+    if (alpha >= kOpaque) break;
+    t += 0.5 * (2.0 * t * tan_half_angle());  // half the diameter
+  }
+  return glm::dvec4(colour, alpha);
+}
+
+void diffuse_cones(const glm::dvec3& n, glm::dvec3 dirs[6], double weights[6]) {
+  // Duff et al. 2017 basis.
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  const double b = n.x * n.y * a;
+  const glm::dvec3 t(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  const glm::dvec3 bt(b, sign + n.y * n.y * a, -n.y);
+  dirs[0] = n;
+  weights[0] = (kPi / 4.0) / kPi;  // cos-weighted solid angle of a 30-degree cap, over pi
+  const double tilt = kPi / 3.0;
+  for (int k = 0; k < 5; ++k) {
+    const double phi = 2.0 * kPi * k / 5.0;
+    dirs[1 + k] = std::sin(tilt) * (std::cos(phi) * t + std::sin(phi) * bt) + std::cos(tilt) * n;
+    weights[1 + k] = ((kPi - kPi / 4.0) / 5.0) / kPi;
+  }
+}
+
+glm::dvec3 diffuse(const Chain& c, const glm::dvec3& p, const glm::dvec3& n, bool skip_behind_apex) {
+  glm::dvec3 dirs[6];
+  double weights[6];
+  diffuse_cones(n, dirs, weights);
+  const glm::dvec3 origin = p + n * (normal_offset_in_voxels() * 2.0 / c.resolution);
+  glm::dvec3 sum(0.0);
+  for (int i = 0; i < 6; ++i) sum += weights[i] * glm::dvec3(trace(c, origin, dirs[i], skip_behind_apex));
+  return sum;
+}
+
+}  // namespace rp::test::cone

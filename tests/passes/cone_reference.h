@@ -1,0 +1,56 @@
+// C++ reference of the voxel cone tracer (kernels/common/cone_trace.h), written from the rules in
+// that header, in double precision: quadrilinear sampling of the anisotropic chain, one cone,
+// the six diffuse cones. Plus helpers that build voxel chains by hand for the tests.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace rp::test::cone {
+
+// A whole voxel chain on the host, in the layout of kernels/shared/voxel_layout.h.
+struct Chain {
+  uint32_t resolution = 0, levels = 0;
+  std::vector<glm::vec4> voxels;  // rgb premultiplied radiance, a opacity
+
+  Chain(uint32_t r, uint32_t l);
+  uint32_t size(uint32_t level) const { return resolution >> level; }
+  // Voxel (x, y, z) of volume `dir` (RP_DIR_*; ignored at level 0) at `level`.
+  glm::vec4& at(uint32_t level, uint32_t dir, uint32_t x, uint32_t y, uint32_t z);
+  const glm::vec4& at(uint32_t level, uint32_t dir, uint32_t x, uint32_t y, uint32_t z) const;
+  // Fills every level >= 1 from level 0: for direction d the two children along d are
+  // composited front to back (the one a ray along d meets first in front), then the four
+  // composited columns across d are averaged.
+  void build_mips();
+};
+
+// The cone's constants from their definitions: aperture 60 degrees.
+double tan_half_angle();              // tan 30
+double first_distance_in_voxels();    // t0 / v0 = 1 / (2 tan 30)
+double growth();                      // 1 + tan 30
+double normal_offset_in_voxels();     // start offset along the normal (1 voxel)
+int top_level(const Chain& c);        // coarsest level a cone samples: levels - 2
+
+// Trilinear sample of one volume at world position p, clamp-to-edge addressing.
+glm::dvec4 trilinear(const Chain& c, uint32_t level, uint32_t dir, const glm::dvec3& p);
+// Three facing volumes of `level` >= 1, weighted by the squared components of unit d. With an
+// apex, voxels in the apex's row along an axis, or behind it, count as empty for that axis.
+glm::dvec4 directional(const Chain& c, uint32_t level, const glm::dvec3& d, const glm::dvec3& p,
+                       const glm::dvec3* apex = nullptr);
+// Quadrilinear sample at fractional level (isotropic level 0 blended into directional level 1),
+// levels above `top` (default: the chain's last) clamped to `top`.
+glm::dvec4 quadrilinear(const Chain& c, const glm::dvec3& d, const glm::dvec3& p, double level,
+                        const glm::dvec3* apex = nullptr, int top = -1);
+// One cone from `origin` (its apex) along unit `dir`: (radiance, occlusion). skip_behind_apex
+// false: plain quadrilinear sampling (for comparisons only; the kernel always skips).
+glm::dvec4 trace(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
+                 bool skip_behind_apex = true);
+// The six diffuse cones at surface point p with unit normal n: irradiance / pi.
+glm::dvec3 diffuse(const Chain& c, const glm::dvec3& p, const glm::dvec3& n,
+                   bool skip_behind_apex = true);
+// The directions and normalised weights of the diffuse cone set for normal n.
+void diffuse_cones(const glm::dvec3& n, glm::dvec3 dirs[6], double weights[6]);
+
+}  // namespace rp::test::cone

@@ -1,0 +1,446 @@
+// The cone tracing functions of kernels/common/cone_trace.h, run through small test kernels and
+// compared with the double-precision C++ reference (cone_reference.h): quadrilinear sampling at
+// fractional positions and levels, the anisotropic lookup, one cone, the diffuse cone set, and
+// cases with known answers (empty volume, opaque wall, uniform surroundings, level blending).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cl/error.h"
+#include "cl/program_cache.h"
+#include "cone_reference.h"
+#include "kernels/shared/voxel_layout.h"
+#include "support/cl_fixture.h"
+
+namespace {
+
+using rp::test::cone::Chain;
+
+// Test kernels around the header (not part of the product: built from the embedded header).
+const char* kTestKernels = R"CLC(
+/* top: coarsest level sampled; queries: xyz position, w level; apexes: the cone's apex */
+__kernel void cone_test_sample(__global const float4* voxels, uint resolution, uint top,
+                               __global const float4* queries, __global const float4* dirs,
+                               __global const float4* apexes, __global float4* out) {
+  const size_t i = get_global_id(0);
+  const float3 d = dirs[i].xyz;
+  out[i] = rp_cone_sample(voxels, resolution, top, rp_cone_facing_dirs(d), d * d,
+                          queries[i].xyz, queries[i].w, apexes[i].xyz);
+}
+__kernel void cone_test_trace(__global const float4* voxels, uint resolution, uint levels,
+                              __global const float4* origins, __global const float4* dirs,
+                              __global float4* out) {
+  const size_t i = get_global_id(0);
+  out[i] = rp_cone_trace(voxels, resolution, levels, origins[i].xyz, dirs[i].xyz);
+}
+__kernel void cone_test_diffuse(__global const float4* voxels, uint resolution, uint levels,
+                                __global const float4* points, __global const float4* normals,
+                                __global float4* out) {
+  const size_t i = get_global_id(0);
+  out[i] = (float4)(rp_cone_diffuse(voxels, resolution, levels, points[i].xyz, normals[i].xyz),
+                    0.0f);
+}
+)CLC";
+
+const ::cl::Program& test_program() {
+  static ::cl::Program program = [] {
+    auto& ctx = rp::test::context();
+    std::string source = rp::cl::kernel_source("common/cone_trace.h") + kTestKernels;
+    ::cl::Program p(ctx.context, source);
+    try {
+      p.build(std::vector<::cl::Device>{ctx.info.device});
+    } catch (const ::cl::Error&) {
+      throw rp::cl::Error("cone test kernels: " +
+                          p.getBuildInfo<CL_PROGRAM_BUILD_LOG>(ctx.info.device));
+    }
+    return p;
+  }();
+  return program;
+}
+
+// Runs test kernel `name` (voxels, resolution, `param`, inputs..., out) over the elements of the
+// input arrays (all the same length); returns one float4 per element.
+std::vector<glm::vec4> run_kernel(const char* name, const Chain& chain, uint32_t param,
+                                  const std::vector<const std::vector<glm::vec4>*>& inputs) {
+  auto& ctx = rp::test::context();
+  const size_t n = inputs[0]->size();
+  ::cl::Buffer voxels(ctx.context, CL_MEM_READ_ONLY, chain.voxels.size() * 16);
+  ctx.queue.enqueueWriteBuffer(voxels, CL_TRUE, 0, chain.voxels.size() * 16, chain.voxels.data());
+  ::cl::Kernel kernel(test_program(), name);
+  cl_uint arg = 0;
+  kernel.setArg(arg++, voxels);
+  kernel.setArg(arg++, cl_uint(chain.resolution));
+  kernel.setArg(arg++, cl_uint(param));
+  std::vector<::cl::Buffer> buffers;
+  for (const std::vector<glm::vec4>* input : inputs) {
+    EXPECT_EQ(input->size(), n);
+    buffers.emplace_back(ctx.context, CL_MEM_READ_ONLY, n * 16);
+    ctx.queue.enqueueWriteBuffer(buffers.back(), CL_TRUE, 0, n * 16, input->data());
+    kernel.setArg(arg++, buffers.back());
+  }
+  ::cl::Buffer out(ctx.context, CL_MEM_WRITE_ONLY, n * 16);
+  kernel.setArg(arg++, out);
+  ctx.queue.enqueueNDRangeKernel(kernel, ::cl::NullRange, ::cl::NDRange(n));
+  std::vector<glm::vec4> result(n);
+  ctx.queue.enqueueReadBuffer(out, CL_TRUE, 0, n * 16, result.data());
+  return result;
+}
+
+// One cone per (origin, direction) pair.
+std::vector<glm::vec4> run_trace(const Chain& chain, const std::vector<glm::vec4>& origins,
+                                 const std::vector<glm::vec4>& dirs) {
+  return run_kernel("cone_test_trace", chain, chain.levels, {&origins, &dirs});
+}
+
+// The diffuse cone set per (point, normal) pair.
+std::vector<glm::vec4> run_diffuse(const Chain& chain, const std::vector<glm::vec4>& points,
+                                   const std::vector<glm::vec4>& normals) {
+  return run_kernel("cone_test_diffuse", chain, chain.levels, {&points, &normals});
+}
+
+// Quadrilinear samples over the whole chain (top = levels - 1).
+std::vector<glm::vec4> run_sample(const Chain& chain, const std::vector<glm::vec4>& queries,
+                                  const std::vector<glm::vec4>& dirs,
+                                  const std::vector<glm::vec4>& apexes) {
+  return run_kernel("cone_test_sample", chain, chain.levels - 1, {&queries, &dirs, &apexes});
+}
+
+glm::vec4 v4(const glm::dvec3& v, double w = 0.0) { return glm::vec4(glm::dvec4(v, w)); }
+
+// An apex behind the box along every axis for a cone along d (row -1 or n on each axis: the
+// volume facing +axis is chosen for d >= 0), so no row is skipped.
+glm::vec4 far_apex(const glm::dvec3& d) {
+  return v4(glm::dvec3(d.x >= 0.0 ? -10.0 : 10.0, d.y >= 0.0 ? -10.0 : 10.0,
+                       d.z >= 0.0 ? -10.0 : 10.0));
+}
+
+// Random level-0 voxels (a fraction `fill` non-empty, opacity up to max_alpha, premultiplied
+// radiance up to 2 * opacity), then the mips.
+Chain random_chain(uint32_t resolution, uint32_t seed, double fill, double max_alpha) {
+  uint32_t levels = 1;
+  while ((resolution >> (levels - 1)) > 1) ++levels;
+  Chain c(resolution, levels);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (uint32_t z = 0; z < resolution; ++z)
+    for (uint32_t y = 0; y < resolution; ++y)
+      for (uint32_t x = 0; x < resolution; ++x) {
+        if (u(rng) >= fill) continue;
+        double a = max_alpha * u(rng);
+        c.at(0, 0, x, y, z) = glm::vec4(glm::dvec4(2.0 * a * u(rng), 2.0 * a * u(rng),
+                                                   2.0 * a * u(rng), a));
+      }
+  c.build_mips();
+  return c;
+}
+
+glm::dvec3 random_unit(std::mt19937& rng) {
+  std::normal_distribution<double> g(0.0, 1.0);
+  return glm::normalize(glm::dvec3(g(rng), g(rng), g(rng)));
+}
+
+void expect_near4(const glm::vec4& got, const glm::dvec4& want, double tol, const std::string& what) {
+  for (int c = 0; c < 4; ++c) EXPECT_NEAR(got[c], want[c], tol) << what << " component " << c;
+}
+
+TEST(ConeTrace, QuadrilinearSampleMatchesReferenceAtFractionalPositions) {
+  // R = 8: levels 0..3; the directional levels differ per direction because the mips composite.
+  Chain chain = random_chain(8, 7, 0.6, 1.0);
+  // Make the six directional volumes of every level differ further (independent random values),
+  // so picking a wrong volume cannot go unnoticed.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (size_t i = size_t(8 * 8 * 8); i < chain.voxels.size(); ++i)
+    chain.voxels[i] = glm::vec4(glm::dvec4(u(rng), u(rng), u(rng), u(rng)));
+  std::vector<glm::vec4> queries, dirs, far_apexes, near_apexes;
+  const double levels[] = {0.0, 0.3, 0.65750, 1.0, 1.25, 1.9, 2.0, 2.5, 3.0, 4.2};
+  for (double level : levels)
+    for (int i = 0; i < 24; ++i) {
+      // Positions over the whole box, including beyond the outermost voxel centres (clamped).
+      glm::dvec3 p(u(rng) * 2.0 - 1.0, u(rng) * 2.0 - 1.0, u(rng) * 2.0 - 1.0);
+      glm::dvec3 d = random_unit(rng);
+      queries.push_back(v4(p, level));
+      dirs.push_back(v4(d));
+      far_apexes.push_back(far_apex(d));
+      near_apexes.push_back(v4(p - (0.05 + 0.5 * u(rng)) * d));
+    }
+  auto plain = run_sample(chain, queries, dirs, far_apexes);
+  auto skipping = run_sample(chain, queries, dirs, near_apexes);
+  int differ = 0;
+  for (size_t i = 0; i < plain.size(); ++i) {
+    const glm::dvec3 p(queries[i]), d(dirs[i]), apex(near_apexes[i]);
+    const std::string what = "sample " + std::to_string(i) + " level " + std::to_string(queries[i].w);
+    expect_near4(plain[i], rp::test::cone::quadrilinear(chain, d, p, queries[i].w), 1e-5, what);
+    expect_near4(skipping[i], rp::test::cone::quadrilinear(chain, d, p, queries[i].w, &apex), 1e-5,
+                 what + " (apex near)");
+    differ += glm::length(plain[i] - skipping[i]) > 1e-3;
+  }
+  EXPECT_GT(differ, 50);  // the near apexes do skip rows
+}
+
+// Every directional voxel of level 1 (4^3 for R = 8, voxels 0.5 wide) is (1, 0, 0, 0.5). A +x
+// sample at x = -0.125 lies between the centres of rows 1 and 2 (tap weights 0.75 and 0.25);
+// with the apex in row 1 only row 2 counts, with it in row 0 both do. For a -x cone the roles
+// swap: with the apex in row 2 only row 1 counts.
+TEST(ConeTrace, RowsAtOrBehindTheApexAreSkipped) {
+  Chain chain(8, 4);
+  for (uint32_t dir = 0; dir < 6; ++dir)
+    for (uint32_t z = 0; z < 4; ++z)
+      for (uint32_t y = 0; y < 4; ++y)
+        for (uint32_t x = 0; x < 4; ++x) chain.at(1, dir, x, y, z) = glm::vec4(1, 0, 0, 0.5f);
+  const glm::dvec3 p(-0.125, 0.1, 0.3);
+  struct Case {
+    glm::dvec3 dir;
+    double apex_x;
+    double want;  // fraction of the voxel value
+  };
+  const Case cases[] = {
+      {{1, 0, 0}, -0.3, 0.25},   // apex in row 1 (x in [-0.5, 0))
+      {{1, 0, 0}, -0.7, 1.0},    // apex in row 0: rows 1 and 2 both ahead
+      {{1, 0, 0}, 0.2, 0.0},     // apex in row 2: both taps behind it
+      {{-1, 0, 0}, 0.2, 0.75},   // -x cone, apex in row 2: only row 1 is ahead
+      {{-1, 0, 0}, 0.7, 1.0},    // apex in row 3
+      {{-1, 0, 0}, -0.3, 0.0},   // apex in row 1
+  };
+  std::vector<glm::vec4> queries, dirs, apexes;
+  for (const Case& c : cases) {
+    queries.push_back(v4(p, 1.0));
+    dirs.push_back(v4(c.dir));
+    apexes.push_back(v4(glm::dvec3(c.apex_x, p.y, p.z)));
+  }
+  auto got = run_sample(chain, queries, dirs, apexes);
+  for (size_t i = 0; i < got.size(); ++i)
+    expect_near4(got[i], glm::dvec4(1, 0, 0, 0.5) * cases[i].want, 1e-6,
+                 "case " + std::to_string(i));
+}
+
+// Every level holds one constant value (all six directions alike): the sample at level L must be
+// the documented blend of the two levels around L, whatever the position and direction.
+TEST(ConeTrace, LevelBlendFollowsTheFractionalLevel) {
+  Chain chain(8, 4);
+  const glm::dvec4 value[4] = {{0.1, 0.0, 0.0, 0.0}, {0.0, 0.2, 0.0, 0.0},
+                               {0.0, 0.0, 0.4, 0.0}, {0.0, 0.0, 0.0, 0.8}};
+  for (uint32_t level = 0; level < 4; ++level)
+    for (uint32_t dir = 0; dir < (level == 0 ? 1u : 6u); ++dir) {
+      const uint32_t n = 8 >> level;
+      for (uint32_t z = 0; z < n; ++z)
+        for (uint32_t y = 0; y < n; ++y)
+          for (uint32_t x = 0; x < n; ++x) chain.at(level, dir, x, y, z) = glm::vec4(value[level]);
+    }
+  struct Case {
+    double level;
+    glm::dvec4 want;
+  };
+  const Case cases[] = {
+      {0.0, value[0]},
+      {0.25, 0.75 * value[0] + 0.25 * value[1]},
+      {1.0, value[1]},
+      {1.5, 0.5 * value[1] + 0.5 * value[2]},
+      {2.75, 0.25 * value[2] + 0.75 * value[3]},
+      {3.0, value[3]},
+      {5.0, value[3]},  // past the top level: the top level
+  };
+  std::vector<glm::vec4> queries, dirs, apexes;
+  const glm::dvec3 d = glm::normalize(glm::dvec3(-1.0, 2.0, 0.5));
+  for (const Case& c : cases) {
+    queries.push_back(v4(glm::dvec3(0.3, -0.7, 0.55), c.level));
+    dirs.push_back(v4(d));
+    apexes.push_back(far_apex(d));
+  }
+  auto got = run_sample(chain, queries, dirs, apexes);
+  for (size_t i = 0; i < got.size(); ++i)
+    expect_near4(got[i], cases[i].want, 1e-6, "level " + std::to_string(cases[i].level));
+}
+
+// Only the +x volumes (every level >= 1) hold anything: a +x cone sees it, a -x cone and cones
+// perpendicular to x do not, a diagonal cone sees it with weight d.x^2. Then the same for -y.
+TEST(ConeTrace, AnisotropicLookupPicksTheVolumesFacingTheCone) {
+  for (uint32_t lit_dir : {RP_DIR_POS_X, RP_DIR_NEG_Y}) {
+    Chain chain(8, 4);
+    const glm::vec4 red(0.5f, 0.0f, 0.0f, 0.5f);
+    for (uint32_t level = 1; level < 4; ++level) {
+      const uint32_t n = 8 >> level;
+      for (uint32_t z = 0; z < n; ++z)
+        for (uint32_t y = 0; y < n; ++y)
+          for (uint32_t x = 0; x < n; ++x) chain.at(level, lit_dir, x, y, z) = red;
+    }
+    const int axis = int(lit_dir / 2);
+    const double sign = lit_dir % 2 == 0 ? 1.0 : -1.0;
+    glm::dvec3 along(0.0), across(0.0);
+    along[axis] = sign;
+    across[(axis + 1) % 3] = 1.0;
+    const glm::dvec3 diagonal = glm::normalize(along + across);
+    std::vector<glm::dvec3> cone_dirs = {along, -along, across, -across, diagonal};
+    std::vector<glm::vec4> queries, dirs, origins, apexes;
+    for (const glm::dvec3& d : cone_dirs) {
+      queries.push_back(v4(glm::dvec3(0.1, 0.2, -0.3), 1.5));
+      dirs.push_back(v4(d));
+      apexes.push_back(far_apex(d));
+      origins.push_back(v4(glm::dvec3(0.0) - 0.6 * d));  // room for several samples
+    }
+    auto samples = run_sample(chain, queries, dirs, apexes);
+    EXPECT_NEAR(samples[0].x, 0.5, 1e-6) << "cone along the lit direction";
+    EXPECT_NEAR(samples[0].w, 0.5, 1e-6);
+    for (int i = 1; i <= 3; ++i) EXPECT_EQ(samples[i], glm::vec4(0.0f)) << "cone " << i;
+    EXPECT_NEAR(samples[4].x, 0.5 * 0.5, 1e-6) << "diagonal cone: weight d^2 = 1/2";
+
+    auto cones = run_trace(chain, origins, dirs);
+    EXPECT_GT(cones[0].x, 0.1) << "a cone along the lit direction sees it";
+    for (int i = 1; i <= 3; ++i) EXPECT_EQ(cones[i], glm::vec4(0.0f)) << "cone " << i;
+    for (size_t i = 0; i < cones.size(); ++i)
+      expect_near4(cones[i], rp::test::cone::trace(chain, glm::dvec3(origins[i]), glm::dvec3(dirs[i])),
+                   1e-5, "cone " + std::to_string(i));
+  }
+}
+
+TEST(ConeTrace, OneConeMatchesReferenceTrace) {
+  // Sparse, mostly translucent volume so cones travel through several levels before stopping.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (uint32_t resolution : {16u, 32u}) {
+    Chain chain = random_chain(resolution, resolution, 0.25, 0.4);
+    std::vector<glm::vec4> origins, dirs;
+    for (int i = 0; i < 64; ++i) {
+      origins.push_back(v4(glm::dvec3(u(rng), u(rng), u(rng)) * 1.6 - 0.8));
+      dirs.push_back(v4(random_unit(rng)));
+    }
+    // Axis-aligned and exactly diagonal cones too (weights 1 / 0 and 1/2 / 0).
+    for (const glm::dvec3& d : {glm::dvec3(1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1),
+                                glm::normalize(glm::dvec3(1, 1, 0)),
+                                glm::normalize(glm::dvec3(-1, 1, -1))}) {
+      origins.push_back(v4(glm::dvec3(0.05, -0.1, 0.15)));
+      dirs.push_back(v4(d));
+    }
+    auto got = run_trace(chain, origins, dirs);
+    int far = 0;
+    for (size_t i = 0; i < got.size(); ++i) {
+      const glm::dvec4 want =
+          rp::test::cone::trace(chain, glm::dvec3(origins[i]), glm::dvec3(dirs[i]));
+      far += want.w < 0.95;  // left the box before becoming opaque
+      expect_near4(got[i], want, 1e-5,
+                   "R " + std::to_string(resolution) + " cone " + std::to_string(i));
+    }
+    EXPECT_GT(far, 5);
+  }
+}
+
+TEST(ConeTrace, EmptyVolumeGivesZero) {
+  Chain chain(16, 5);
+  std::vector<glm::vec4> points, normals;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < 32; ++i) {
+    points.push_back(v4(glm::dvec3(u(rng), u(rng), u(rng))));
+    normals.push_back(v4(random_unit(rng)));
+  }
+  for (const glm::vec4& v : run_trace(chain, points, normals))
+    EXPECT_EQ(v, glm::vec4(0.0f));
+  for (const glm::vec4& v : run_diffuse(chain, points, normals))
+    EXPECT_EQ(v, glm::vec4(0.0f));
+}
+
+// A black opaque wall (x in [0, 0.5]) in front of a red emitter (x in [0.5, 1]), aligned with
+// every mip level: a +x cone from the left sees only the wall; without the wall it sees red.
+// Slightly tilted cones leak at most their small y/z weight (see below).
+TEST(ConeTrace, OpaqueWallHidesWhatIsBehindIt) {
+  for (bool wall : {true, false}) {
+    Chain chain(16, 5);
+    for (uint32_t z = 0; z < 16; ++z)
+      for (uint32_t y = 0; y < 16; ++y)
+        for (uint32_t x = 8; x < 16; ++x) {
+          if (x < 12 && wall) chain.at(0, 0, x, y, z) = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+          if (x >= 12) chain.at(0, 0, x, y, z) = glm::vec4(4.0f, 0.0f, 0.0f, 1.0f);
+        }
+    chain.build_mips();
+    std::vector<glm::vec4> origins, dirs;
+    for (double y : {-0.5, 0.0, 0.3}) {
+      origins.push_back(v4(glm::dvec3(-0.8, y, 0.1)));
+      dirs.push_back(v4(glm::dvec3(1.0, 0.0, 0.0)));
+      origins.push_back(v4(glm::dvec3(-0.6, y, -0.2)));
+      dirs.push_back(v4(glm::normalize(glm::dvec3(1.0, 0.1, 0.05))));
+    }
+    auto got = run_trace(chain, origins, dirs);
+    for (size_t i = 0; i < got.size(); ++i) {
+      if (wall) {
+        // Axis-aligned cones use only the +x volumes, where the wall is in front at every
+        // level: nothing of the red gets through. A tilted cone also reads the +y/+z volumes
+        // (weights d.y^2 + d.z^2 = 1 - d.x^2), which composite along y/z and average across x,
+        // so at coarse levels they mix wall and emitter: the leak is at most that weight times
+        // the emitter's radiance.
+        const double leak = (1.0 - double(dirs[i].x) * dirs[i].x) * 4.0;
+        EXPECT_LE(got[i].x, leak + 1e-6) << "cone " << i << " sees through the wall";
+        if (dirs[i].x == 1.0f) {
+          EXPECT_EQ(got[i].x, 0.0f) << "cone " << i;
+          EXPECT_GE(got[i].w, 0.95f) << "cone " << i;  // stopped at the wall
+        }
+      } else {
+        EXPECT_GT(got[i].x, 1.0) << "cone " << i << " should see the red emitter";
+      }
+      expect_near4(got[i],
+                   rp::test::cone::trace(chain, glm::dvec3(origins[i]), glm::dvec3(dirs[i])),
+                   1e-5, "cone " + std::to_string(i));
+    }
+  }
+}
+
+TEST(ConeTrace, DiffuseConesMatchReference) {
+  Chain chain = random_chain(16, 21, 0.3, 0.5);
+  std::vector<glm::vec4> points, normals;
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-0.9, 0.9);
+  std::vector<glm::dvec3> ns = {{0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (int i = 0; i < 26; ++i) ns.push_back(random_unit(rng));
+  for (const glm::dvec3& n : ns) {
+    points.push_back(v4(glm::dvec3(u(rng), u(rng), u(rng))));
+    normals.push_back(v4(n));
+  }
+  auto got = run_diffuse(chain, points, normals);
+  for (size_t i = 0; i < got.size(); ++i) {
+    const glm::dvec3 want =
+        rp::test::cone::diffuse(chain, glm::dvec3(points[i]), glm::dvec3(normals[i]));
+    expect_near4(got[i], glm::dvec4(want, 0.0), 1e-5, "point " + std::to_string(i));
+  }
+}
+
+// The reference cone set itself: unit directions, the normal cone along n, the tilted ones at 60
+// degrees from n and 72 degrees apart in azimuth, weights summing to 1.
+TEST(ConeTrace, DiffuseConeSetGeometry) {
+  std::mt19937 rng(4);
+  for (int i = 0; i < 20; ++i) {
+    const glm::dvec3 n = i == 0 ? glm::dvec3(0, 0, -1) : random_unit(rng);
+    glm::dvec3 dirs[6];
+    double w[6];
+    rp::test::cone::diffuse_cones(n, dirs, w);
+    double sum = 0.0;
+    for (int k = 0; k < 6; ++k) {
+      sum += w[k];
+      EXPECT_NEAR(glm::length(dirs[k]), 1.0, 1e-12);
+      EXPECT_NEAR(glm::dot(dirs[k], n), k == 0 ? 1.0 : 0.5, 1e-12);
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+    for (int k = 1; k < 6; ++k) {
+      const glm::dvec3 a = dirs[k] - 0.5 * n, b = dirs[k % 5 + 1] - 0.5 * n;
+      EXPECT_NEAR(glm::dot(a, b) / (glm::length(a) * glm::length(b)), std::cos(0.4 * M_PI), 1e-12);
+    }
+  }
+}
+
+// Uniform opaque surroundings of radiance L: every cone sees exactly L (its first sample is
+// opaque), so the normalised weights must give exactly L (albedo * L reflected).
+TEST(ConeTrace, UniformSurroundingsGiveTheirRadiance) {
+  Chain chain(16, 5);
+  const glm::vec4 l(0.7f, 0.2f, 1.5f, 1.0f);
+  for (glm::vec4& v : chain.voxels) v = l;
+  std::vector<glm::vec4> points = {v4({0.0, 0.0, 0.0}), v4({0.4, -0.5, 0.2})};
+  std::vector<glm::vec4> normals = {v4({0.0, 1.0, 0.0}), v4(glm::normalize(glm::dvec3(1, -2, 3)))};
+  for (const glm::vec4& v : run_diffuse(chain, points, normals))
+    expect_near4(v, glm::dvec4(0.7, 0.2, 1.5, 0.0), 1e-6, "uniform");
+}
+
+}  // namespace
