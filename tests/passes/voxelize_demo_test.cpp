@@ -107,6 +107,8 @@ TEST(VoxelizeDemo, MatchesReferenceAndHoldsTheWalls) {
     }
     radiance_diff += differs;
   }
+  std::printf("[ stats    ] demo R = %u: %zu occupied voxels, %zu with radiance beyond rounding\n",
+              R, occupied, radiance_diff);
   EXPECT_EQ(alpha_diff, 0u);
   // Lighting agrees to rounding; a shadow-map lookup right at a depth edge may decide the
   // other way, which can flip a handful of voxels.
