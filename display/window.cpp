@@ -22,10 +22,6 @@ std::string glfw_error(const char* fallback) {
   return fallback;
 }
 
-void on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
-  if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS) glfwSetWindowShouldClose(window, GLFW_TRUE);
-}
-
 }  // namespace
 
 std::string missing_display_reason() {
@@ -51,7 +47,10 @@ Window::Window(int width, int height, const std::string& title) {
   }
   glfwMakeContextCurrent(window_);
   glfwSwapInterval(1);
+  glfwSetWindowUserPointer(window_, this);
   glfwSetKeyCallback(window_, on_key);
+  glfwSetMouseButtonCallback(window_, on_mouse_button);
+  glfwSetCursorPosCallback(window_, on_cursor);
 
   glGenTextures(1, &texture_);
   glBindTexture(GL_TEXTURE_2D, texture_);
@@ -97,11 +96,9 @@ void Window::draw() {
   glClear(GL_COLOR_BUFFER_BIT);
   if (image_width_ <= 0 || image_height_ <= 0 || fb_w <= 0 || fb_h <= 0) return;
 
-  // Largest centred rectangle with the image's aspect ratio (letterbox / pillarbox).
-  double scale = std::min(double(fb_w) / image_width_, double(fb_h) / image_height_);
-  int draw_w = std::max(1, int(std::lround(image_width_ * scale)));
-  int draw_h = std::max(1, int(std::lround(image_height_ * scale)));
-  glViewport((fb_w - draw_w) / 2, (fb_h - draw_h) / 2, draw_w, draw_h);
+  int left = 0, top = 0, draw_w = 0, draw_h = 0;
+  image_rect(left, top, draw_w, draw_h);
+  glViewport(left, fb_h - top - draw_h, draw_w, draw_h);  // GL's origin is the bottom-left
 
   // At 1:1 every pixel centre lands on a texel centre: nearest sampling reproduces the image
   // exactly. Scaled, linear filtering looks better.
@@ -130,7 +127,77 @@ void Window::draw() {
   glDisable(GL_TEXTURE_2D);
 }
 
+void Window::image_rect(int& x, int& y, int& w, int& h) const {
+  int fb_w = 0, fb_h = 0;
+  glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+  if (image_width_ <= 0 || image_height_ <= 0 || fb_w <= 0 || fb_h <= 0) {
+    x = y = 0;
+    w = std::max(fb_w, 1);
+    h = std::max(fb_h, 1);
+    return;
+  }
+  // Largest centred rectangle with the image's aspect ratio (letterbox / pillarbox).
+  double scale = std::min(double(fb_w) / image_width_, double(fb_h) / image_height_);
+  w = std::max(1, int(std::lround(image_width_ * scale)));
+  h = std::max(1, int(std::lround(image_height_ * scale)));
+  x = (fb_w - w) / 2;
+  y = (fb_h - h) - (fb_h - h) / 2;  // same split as the GL viewport, measured from the top
+}
+
+void Window::to_image(double wx, double wy, float& ix, float& iy) const {
+  int win_w = 0, win_h = 0, fb_w = 0, fb_h = 0;
+  glfwGetWindowSize(window_, &win_w, &win_h);
+  glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+  double sx = win_w > 0 ? double(fb_w) / win_w : 1.0;  // HiDPI: framebuffer pixels per point
+  double sy = win_h > 0 ? double(fb_h) / win_h : 1.0;
+  int x = 0, y = 0, w = 1, h = 1;
+  image_rect(x, y, w, h);
+  double iw = image_width_ > 0 ? image_width_ : w, ih = image_height_ > 0 ? image_height_ : h;
+  ix = float((wx * sx - x) * iw / w);
+  iy = float((wy * sy - y) * ih / h);
+}
+
+void Window::on_key(GLFWwindow* window, int key, int /*scancode*/, int action, int /*mods*/) {
+  if (action != GLFW_PRESS) return;
+  if (key == GLFW_KEY_ESCAPE) {
+    glfwSetWindowShouldClose(window, GLFW_TRUE);
+    return;
+  }
+  auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window));
+  // GLFW key codes for letters, digits and space are their ASCII codes.
+  bool printable = key == GLFW_KEY_SPACE || (key >= GLFW_KEY_A && key <= GLFW_KEY_Z) ||
+                   (key >= GLFW_KEY_0 && key <= GLFW_KEY_9);
+  if (self && printable) self->events_.push_back({WindowEvent::Type::Key, char(key), 0.0f, 0.0f});
+}
+
+void Window::on_mouse_button(GLFWwindow* window, int button, int action, int /*mods*/) {
+  auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window));
+  if (!self || button != GLFW_MOUSE_BUTTON_LEFT) return;
+  double cx = 0.0, cy = 0.0;
+  glfwGetCursorPos(window, &cx, &cy);
+  WindowEvent e;
+  e.type = action == GLFW_PRESS ? WindowEvent::Type::MouseDown : WindowEvent::Type::MouseUp;
+  self->to_image(cx, cy, e.x, e.y);
+  self->left_down_ = action == GLFW_PRESS;
+  self->events_.push_back(e);
+}
+
+void Window::on_cursor(GLFWwindow* window, double x, double y) {
+  auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window));
+  if (!self || !self->left_down_) return;
+  WindowEvent e;
+  e.type = WindowEvent::Type::MouseMove;
+  self->to_image(x, y, e.x, e.y);
+  self->events_.push_back(e);
+}
+
 void Window::poll_events() { glfwPollEvents(); }
+
+std::vector<WindowEvent> Window::take_events() {
+  std::vector<WindowEvent> out;
+  out.swap(events_);
+  return out;
+}
 
 bool Window::should_close() const { return glfwWindowShouldClose(window_) == GLFW_TRUE; }
 

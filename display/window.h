@@ -23,6 +23,18 @@ class DisplayError : public std::runtime_error {
 // the DISPLAY / WAYLAND_DISPLAY variables only; opening may still fail later.
 std::string missing_display_reason();
 
+// Input the window collected since the last take_events(). Keys are the printable ones the app
+// uses ('A'-'Z', '0'-'9', ' '), reported on press. Mouse events are the left button; cursor
+// positions are in image pixels (continuous, (0,0) the top-left corner of the image, y down),
+// so letterboxing and HiDPI scaling are already undone. Moves are reported only while the left
+// button is held (that is all a drag needs).
+struct WindowEvent {
+  enum class Type { Key, MouseDown, MouseUp, MouseMove };
+  Type type = Type::Key;
+  char key = 0;
+  float x = 0.0f, y = 0.0f;
+};
+
 class Window {
  public:
   // Opens a visible, resizable window whose framebuffer is width x height pixels on a normal
@@ -35,8 +47,10 @@ class Window {
   // Uploads `rgba` (width * height * 4 bytes, top row first) and shows it: draw, swap buffers.
   void present(const uint8_t* rgba, int width, int height);
 
-  // Processes pending window events (keys, resize, close). Esc requests closing.
+  // Processes pending window events (keys, mouse, resize, close). Esc requests closing.
   void poll_events();
+  // Events gathered by poll_events() since the last call, in order.
+  std::vector<WindowEvent> take_events();
   bool should_close() const;
   void set_title(const std::string& title);
 
@@ -50,10 +64,20 @@ class Window {
 
  private:
   void draw();
+  // Where the image is drawn in the framebuffer (letterboxed): origin from the top-left, size.
+  void image_rect(int& x, int& y, int& w, int& h) const;
+  // Window (screen) coordinates -> image pixels.
+  void to_image(double wx, double wy, float& ix, float& iy) const;
+
+  static void on_key(GLFWwindow* window, int key, int scancode, int action, int mods);
+  static void on_mouse_button(GLFWwindow* window, int button, int action, int mods);
+  static void on_cursor(GLFWwindow* window, double x, double y);
 
   GLFWwindow* window_ = nullptr;
   unsigned int texture_ = 0;  // GL texture name holding the last presented image
   int image_width_ = 0, image_height_ = 0;
+  bool left_down_ = false;
+  std::vector<WindowEvent> events_;
 };
 
 }  // namespace rp::display

@@ -6,10 +6,12 @@
 #include "app/pass_stats.h"
 #include "app/png_output.h"
 #include "app/progress.h"
+#include "app/simulation_source.h"
 
 namespace rp::app {
 
 int bench_command(const CommonOptions& common, const BenchOptions& options) {
+  SimulationFrameSource source(make_simulation_options(options.sim));
   RenderSession session(common, options.size.width, options.size.height);
   const rp::cl::DeviceInfo& info = session.device();
   std::printf("device %s\n", describe_device(info).c_str());
@@ -17,7 +19,6 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
               options.warmup, options.frames);
   std::fflush(stdout);
 
-  DemoFrameSource source(session.assets());
   PassStats stats;
   std::vector<uint8_t> rgba;
   ProgressBar progress("bench", size_t(options.warmup) + options.frames);

@@ -44,6 +44,14 @@ void add_size(CLI::App* cmd, SizeArgs& size) {
       ->check(CLI::Range(1u, kMaxSize));
 }
 
+void add_simulation(CLI::App* cmd, SimulationArgs& sim) {
+  cmd->add_option("--seed", sim.seed, "random seed of the simulation")->capture_default_str();
+  cmd->add_flag("--marbles", sim.marbles, "start with the 30 marbles (key S toggles them)");
+  cmd->add_flag("--fireball", sim.fireball, "start with a fireball (key F toggles it)");
+  cmd->add_option("--replay", sim.replay,
+                  "replay an input log written by `rolypoly run --record FILE`");
+}
+
 int report(const std::string& message) {
   std::fflush(stdout);
   std::fprintf(stderr, "rolypoly: error: %s\n", message.c_str());
@@ -73,6 +81,9 @@ int run_cli(int argc, char** argv) {
       ->check(CLI::Range(1u, 1000000u));
   render->add_option("--out", render_opts.out_dir, "output folder (created if missing)")
       ->capture_default_str();
+  render->add_option("--video", render_opts.video,
+                     "also encode the frames into this video file with ffmpeg (60 fps)");
+  add_simulation(render, render_opts.sim);
 
   CLI::App* run = app.add_subcommand("run", "show the frames in a window (Esc quits)");
   add_common(run, common);
@@ -81,6 +92,10 @@ int run_cli(int argc, char** argv) {
       ->capture_default_str();
   run->add_option("--capture", run_opts.capture,
                   "after the last frame, save what the window shows to this PNG");
+  run->add_option("--record", run_opts.record,
+                  "write every input event and frame to this log on exit (replay it with "
+                  "`rolypoly render --replay FILE`)");
+  add_simulation(run, run_opts.sim);
 
   CLI::App* bench = app.add_subcommand("bench", "time every pass over many frames");
   add_common(bench, common);
@@ -91,6 +106,7 @@ int run_cli(int argc, char** argv) {
   bench->add_option("--warmup", bench_opts.warmup, "frames rendered first, not measured")
       ->capture_default_str();
   bench->add_option("--json", bench_opts.json, "also write the results as JSON to this file");
+  add_simulation(bench, bench_opts.sim);
 
   // CLI11 reports an unknown first word only as "A subcommand is required"; name it instead.
   if (argc > 1 && argv[1][0] != '-') {
@@ -120,6 +136,7 @@ int run_cli(int argc, char** argv) {
     if (devices->parsed()) return devices_command();
     if (render->parsed()) {
       render_opts.size = render_size.resolve();
+      render_opts.frames_given = render->count("--frames") > 0;
       return render_command(common, render_opts);
     }
     if (run->parsed()) {

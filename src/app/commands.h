@@ -14,20 +14,34 @@ struct ImageSize {
   uint32_t width = 720, height = 720;
 };
 
+// What the simulated world starts with (render, run and bench).
+struct SimulationArgs {
+  uint64_t seed = 1;       // --seed: marbles' and particles' random streams
+  bool marbles = false;    // --marbles: start with the 30 marbles (key S)
+  bool fireball = false;   // --fireball: start with a fireball (key F)
+  std::string replay;      // --replay FILE: input log to replay ("" = none)
+};
+
 struct RenderOptions {
   ImageSize size;
   uint32_t frames = 1;
+  bool frames_given = false;  // --frames on the command line (else a replay's frame count)
   std::string out_dir = "out";
+  std::string video;          // --video FILE.mp4: also pipe the frames to ffmpeg
+  SimulationArgs sim;
 };
 
 struct RunOptions {
   ImageSize size;
   uint32_t frames = 0;   // 0 = until the window is closed
   std::string capture;   // PNG of the window's content after the last frame ("" = none)
+  std::string record;    // --record FILE: write the session's input log on exit ("" = none)
+  SimulationArgs sim;
 };
 
 struct BenchOptions {
   ImageSize size;
+  SimulationArgs sim;
   uint32_t frames = 10;  // measured frames
   uint32_t warmup = 3;   // frames rendered first and not measured
   std::string json;      // "" = no JSON file

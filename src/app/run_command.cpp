@@ -1,12 +1,15 @@
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <sstream>
 
 #include "app/bench_report.h"
 #include "app/commands.h"
 #include "app/frame_source.h"
 #include "app/pass_stats.h"
 #include "app/png_output.h"
+#include "app/simulation_source.h"
 #include "display/window.h"
 
 namespace rp::app {
@@ -41,22 +44,49 @@ std::unique_ptr<display::Window> open_window(const ImageSize& size) {
   }
 }
 
+scene::InputEvent to_input(const display::WindowEvent& e, glm::vec2 viewport) {
+  using T = display::WindowEvent::Type;
+  switch (e.type) {
+    case T::Key: return scene::InputEvent::key_press(0, e.key);
+    case T::MouseDown:
+      return scene::InputEvent::mouse(0, scene::InputEventType::MouseDown, {e.x, e.y}, viewport);
+    case T::MouseUp:
+      return scene::InputEvent::mouse(0, scene::InputEventType::MouseUp, {e.x, e.y}, viewport);
+    case T::MouseMove:
+      break;
+  }
+  return scene::InputEvent::mouse(0, scene::InputEventType::MouseMove, {e.x, e.y}, viewport);
+}
+
 }  // namespace
 
 int run_command(const CommonOptions& common, const RunOptions& options) {
+  SimulationFrameSource source(make_simulation_options(options.sim));
+  if (std::filesystem::path dir = std::filesystem::path(options.record).parent_path();
+      !options.record.empty() && !dir.empty())
+    ensure_directory(dir);  // fail now, not after the session, if the log cannot be written
   // The window first: without a display, fail at once rather than after the kernel builds.
   std::unique_ptr<display::Window> window = open_window(options.size);
   RenderSession session(common, options.size.width, options.size.height);
   std::printf("device %s\n", describe_device(session.device()).c_str());
   std::fflush(stdout);
 
-  DemoFrameSource source(session.assets());
   PassStats all, interval;
   std::vector<uint8_t> rgba;
   uint32_t presented = 0;
   auto interval_start = std::chrono::steady_clock::now();
+  const glm::vec2 viewport(float(session.width()), float(session.height()));
+  auto last_frame = std::chrono::steady_clock::now();
   window->poll_events();
   while (!window->should_close() && (options.frames == 0 || presented < options.frames)) {
+    for (const display::WindowEvent& e : window->take_events()) source.input(to_input(e, viewport));
+    auto now = std::chrono::steady_clock::now();
+    // The first frame and scripted runs (--frames) advance by the nominal frame time, so a
+    // short test run does not depend on how long kernel builds took.
+    source.set_elapsed_seconds(presented == 0 || options.frames != 0
+                                   ? 1.0 / 60.0
+                                   : std::chrono::duration<double>(now - last_frame).count());
+    last_frame = now;
     double frame_ms = 0.0;
     rp::cl::PassTimes times = session.render(source.next(), rgba, frame_ms);
     window->present(rgba.data(), int(session.width()), int(session.height()));
@@ -78,6 +108,13 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
     window->read_back(shown, w, h);
     write_png_atomic(options.capture, w, h, shown);
     std::printf("captured the window (%dx%d) to %s\n", w, h, options.capture.c_str());
+  }
+  if (!options.record.empty()) {
+    std::ostringstream log;
+    source.recording().write(log);
+    write_text_atomic(options.record, log.str());
+    std::printf("recorded %zu input events and frames to %s\n",
+                source.recording().events().size(), options.record.c_str());
   }
   if (presented > 0)
     std::printf("%u frames; per-pass median: %s; frame %.2f ms\n", presented,

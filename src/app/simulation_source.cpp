@@ -1,0 +1,142 @@
+#include "app/simulation_source.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "app/commands.h"
+#include "scene/picking.h"
+
+namespace rp::app {
+namespace {
+
+// Interactive frames simulate at most this many steps (1/30 s at 240 Hz): after a stall the
+// simulation slows down instead of spiralling into ever longer frames.
+constexpr int kMaxStepsPerFrame = 8;
+
+}  // namespace
+
+SimulationOptions make_simulation_options(const SimulationArgs& args) {
+  SimulationOptions o;
+  o.seed = args.seed;
+  o.marbles = args.marbles;
+  o.fireball = args.fireball;
+  if (!args.replay.empty()) o.replay = scene::read_input_log_file(args.replay);
+  return o;
+}
+
+SimulationFrameSource::SimulationFrameSource(SimulationOptions options)
+    : options_(std::move(options)),
+      world_(scene::WorldConfig{options_.seed, 1.0f / 240.0f, options_.marbles,
+                                options_.fireball}),
+      replayer_(options_.replay) {
+  replay_frames_ = static_cast<uint32_t>(
+      std::count_if(options_.replay.begin(), options_.replay.end(), [](const auto& e) {
+        return e.type == scene::InputEventType::Frame;
+      }));
+}
+
+void SimulationFrameSource::input(scene::InputEvent event) {
+  event.step = session_step_;
+  recorder_.record(event);
+  apply(event);
+}
+
+void SimulationFrameSource::set_elapsed_seconds(double seconds) {
+  elapsed_seconds_ = std::max(0.0, seconds);
+}
+
+void SimulationFrameSource::apply(const scene::InputEvent& e) {
+  using scene::InputEventType;
+  namespace keys = scene::keys;
+  switch (e.type) {
+    case InputEventType::Key:
+      switch (e.key) {
+        case keys::kMarbles: world_.set_marbles(!world_.marbles()); break;
+        case keys::kFireball: world_.set_fireball(!world_.fireball()); break;
+        case keys::kMotionBlur: toggles_.motion_blur = !toggles_.motion_blur; break;
+        case keys::kPause: paused_ = !paused_; break;
+        case keys::kReset: world_.reset(); break;
+        case keys::kSingleStep: single_step_ = paused_; break;
+        default: break;  // other keys belong to the view (debug views), not the world
+      }
+      break;
+    case InputEventType::MouseDown: {
+      glm::vec2 viewport = e.viewport;
+      glm::mat4 vp = world_.camera().projection(viewport.x / viewport.y) * world_.camera().view();
+      scene::Ray ray = scene::camera_ray(glm::inverse(vp), e.cursor, viewport);
+      dragging_ = world_.begin_drag(ray.origin, ray.direction);
+      last_cursor_ = e.cursor;
+      break;
+    }
+    case InputEventType::MouseMove:
+      if (dragging_) {
+        glm::vec2 viewport = e.viewport;
+        glm::mat4 vp =
+            world_.camera().projection(viewport.x / viewport.y) * world_.camera().view();
+        scene::Ray ray = scene::camera_ray(glm::inverse(vp), e.cursor, viewport);
+        world_.drag(ray.origin, ray.direction, e.cursor - last_cursor_);
+      }
+      last_cursor_ = e.cursor;
+      break;
+    case InputEventType::MouseUp:
+      if (dragging_) world_.end_drag();
+      dragging_ = false;
+      break;
+    case InputEventType::Frame:
+      break;
+  }
+}
+
+int SimulationFrameSource::steps_for_this_frame() {
+  const double dt = world_.config().dt;
+  if (paused_) {
+    int n = single_step_ ? 1 : 0;
+    single_step_ = false;
+    return n;
+  }
+  double seconds = elapsed_seconds_ >= 0.0 ? elapsed_seconds_ : options_.frame_seconds;
+  time_debt_ += seconds;
+  int n = static_cast<int>(std::floor(time_debt_ / dt + 1e-9));
+  if (n > kMaxStepsPerFrame) {
+    n = kMaxStepsPerFrame;
+    time_debt_ = 0.0;  // drop what cannot be caught up
+  } else {
+    time_debt_ -= n * dt;
+  }
+  return n;
+}
+
+void SimulationFrameSource::advance(int steps) {
+  world_.advance(steps);
+  session_step_ += static_cast<uint64_t>(steps);
+}
+
+scene::FrameScene SimulationFrameSource::next() {
+  // Replayed events due now (stamped at or before the current session step) come first, as
+  // live input does in the interactive loop.
+  for (const scene::InputEvent& e : replayer_.due(session_step_))
+    if (e.type != scene::InputEventType::Frame) apply(e);
+
+  if (frames_ < replay_frames_) {
+    // Follow the recorded frame schedule: advance to the step the next Frame mark shows.
+    const std::vector<scene::InputEvent>& events = replayer_.events();
+    uint32_t seen = 0;
+    uint64_t target = session_step_;
+    for (const scene::InputEvent& e : events)
+      if (e.type == scene::InputEventType::Frame && seen++ == frames_) {
+        target = e.step;
+        break;
+      }
+    advance(static_cast<int>(target - std::min(target, session_step_)));
+  } else {
+    advance(steps_for_this_frame());
+  }
+  recorder_.record(scene::InputEvent::frame(session_step_));
+
+  scene::FrameScene frame;
+  world_.fill_frame(frame);
+  frame.frame_index = frames_++;
+  return frame;
+}
+
+}  // namespace rp::app

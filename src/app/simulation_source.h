@@ -1,0 +1,83 @@
+// Frames from the simulated world (scene::World), driven by input events that come live from
+// the window (recorded) or from a replayed input log, so a headless render reproduces an
+// interactive session frame for frame.
+//
+// Step accounting: the "session step" counts fixed world steps actually taken since start; it
+// never goes back (R resets the world, not the counter) and does not move while paused. Every
+// event is stamped with the session step at which it was applied, and every displayed frame
+// with a Frame event at the step it shows. Interactive frames take as many fixed steps as the
+// wall clock says (capped); headless frames take 1/60 s worth of steps, or, when the replayed
+// log has Frame marks, exactly the recorded number.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "app/frame_source.h"
+#include "scene/input.h"
+#include "scene/world.h"
+
+namespace rp::app {
+
+struct SimulationArgs;
+
+struct SimulationOptions {
+  uint64_t seed = 1;
+  bool marbles = false;
+  bool fireball = false;
+  double frame_seconds = 1.0 / 60.0;  // headless frame interval (without Frame marks)
+  std::vector<scene::InputEvent> replay;  // events to replay (may hold Frame marks)
+};
+
+// From the command line's options; reads the --replay log (throws scene::InputLogError naming
+// the file and line of a malformed log).
+SimulationOptions make_simulation_options(const SimulationArgs& args);
+
+// Render-side toggles that input can change (the world knows nothing of rendering).
+struct ViewToggles {
+  bool motion_blur = true;  // key M
+};
+
+class SimulationFrameSource final : public FrameSource {
+ public:
+  explicit SimulationFrameSource(SimulationOptions options);
+
+  // Interactive input: applied now (before the next frame's steps), stamped and recorded.
+  void input(scene::InputEvent event);
+  // Interactive frames: seconds of wall clock since the previous frame. Without a call, a frame
+  // takes options.frame_seconds (headless).
+  void set_elapsed_seconds(double seconds);
+
+  scene::FrameScene next() override;
+  uint32_t frames_produced() const override { return frames_; }
+
+  // Frames the replay log asks for (its Frame marks; 0 when it has none).
+  uint32_t replay_frames() const { return replay_frames_; }
+  const scene::InputRecorder& recording() const { return recorder_; }
+  const scene::World& world() const { return world_; }
+  const ViewToggles& toggles() const { return toggles_; }
+  bool paused() const { return paused_; }
+  uint64_t session_step() const { return session_step_; }
+
+ private:
+  void apply(const scene::InputEvent& event);
+  int steps_for_this_frame();
+  void advance(int steps);
+
+  SimulationOptions options_;
+  scene::World world_;
+  scene::InputReplayer replayer_;
+  scene::InputRecorder recorder_;
+  ViewToggles toggles_;
+  uint32_t replay_frames_ = 0;
+  uint32_t frames_ = 0;
+  uint64_t session_step_ = 0;
+  bool paused_ = false;
+  bool single_step_ = false;
+  bool dragging_ = false;
+  glm::vec2 last_cursor_{0.0f};
+  double elapsed_seconds_ = -1.0;  // < 0: headless frame interval
+  double time_debt_ = 0.0;         // wall-clock seconds not yet simulated
+};
+
+}  // namespace rp::app
