@@ -83,7 +83,7 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
 }
 
 void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t height,
-                      uint32_t shadow_size, float ambient) {
+                      uint32_t shadow_size, float ambient, uint32_t voxel_resolution) {
   float aspect = float(width) / float(height);
   // Jitter (TAA) is zero until the TAA pass lands; the field layout is already in place.
   glm::mat4 view = f.camera.view();
@@ -106,6 +106,9 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
   c.height = height;
   c.shadow_size = shadow_size;
   c.frame_index = f.frame_index;
+  c.voxel_resolution = voxel_resolution;
+  c.voxel_levels = 1;
+  while ((voxel_resolution >> c.voxel_levels) > 0) ++c.voxel_levels;  // log2(R) + 1
 
   host_instances.clear();
   instance_triangle_count = 0;

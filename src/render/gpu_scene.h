@@ -27,8 +27,9 @@ class GpuScene {
   // Fills FrameConstants, Instance and Sphere arrays from `frame` and writes them (non-blocking
   // writes on `queue`; the host copies stay alive until the next update, so the queue must
   // have finished the previous frame before update() is called again).
+  // voxel_resolution: level-0 voxels per side of the GI volume (FrameConstants.voxel_*).
   void update(const scene::FrameScene& frame, uint32_t width, uint32_t height,
-              uint32_t shadow_size, float ambient);
+              uint32_t shadow_size, float ambient, uint32_t voxel_resolution = 64);
 
   // Static data.
   ::cl::Buffer vertices;   // gpu::Vertex[vertex_count]

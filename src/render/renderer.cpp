@@ -5,6 +5,8 @@
 #include "passes/light.h"
 #include "passes/tone_map.h"
 #include "passes/visibility.h"
+#include "passes/voxel_mips.h"
+#include "passes/voxelize.h"
 
 namespace rp::render {
 
@@ -16,9 +18,12 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   scene_ = std::make_unique<GpuScene>(context.context, context.queue, assets);
   visibility_ = std::make_unique<passes::VisibilityPass>(context, programs);
   gbuffer_pass_ = std::make_unique<passes::GBufferPass>(context, programs);
+  voxelize_ = std::make_unique<passes::VoxelizePass>(context, programs);
+  voxel_mips_ = std::make_unique<passes::VoxelMipsPass>(context, programs);
   light_ = std::make_unique<passes::LightPass>(context, programs);
   tone_map_ = std::make_unique<passes::ToneMapPass>(context, programs);
   shadow_.resize(context.context, settings_.shadow_size);
+  voxels_.resize(context.context, settings_.voxel_resolution);
   resize(settings_.width, settings_.height);
 }
 
@@ -37,12 +42,15 @@ void Renderer::resize(uint32_t width, uint32_t height) {
 
 rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
   try {
-    scene_->update(frame, settings_.width, settings_.height, settings_.shadow_size,
-                   settings_.ambient);
+    scene_->update(frame, settings_.width, settings_.height, settings_.shadow_size, 0.0f,
+                   voxels_.resolution);
     visibility_->render(profiler_, *scene_, vis_);
     visibility_->render_shadow(profiler_, *scene_, shadow_);
     gbuffer_pass_->run(profiler_, *scene_, vis_, gbuffer_);
-    light_->run(profiler_, *scene_, gbuffer_, shadow_, hdr_);
+    voxelize_->run(profiler_, *scene_, shadow_, voxels_);
+    voxel_mips_->run(profiler_, voxels_);
+    light_->run(profiler_, *scene_, gbuffer_, shadow_, voxels_.chain, voxels_.resolution,
+                voxels_.levels, hdr_);
     tone_map_->run(profiler_, *scene_, hdr_, rgba8_);
     return profiler_.collect();
   } catch (const ::cl::Error& e) {

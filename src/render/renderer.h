@@ -10,6 +10,7 @@
 #include "cl/program_cache.h"
 #include "render/frame_buffers.h"
 #include "render/gpu_scene.h"
+#include "render/voxel_volume.h"
 #include "scene/frame_scene.h"
 
 namespace rp::passes {
@@ -17,6 +18,8 @@ class VisibilityPass;
 class GBufferPass;
 class LightPass;
 class ToneMapPass;
+class VoxelizePass;
+class VoxelMipsPass;
 }  // namespace rp::passes
 
 namespace rp::render {
@@ -24,7 +27,7 @@ namespace rp::render {
 struct RenderSettings {
   uint32_t width = 720, height = 720;
   uint32_t shadow_size = 1024;  // shadow map texels per side
-  float ambient = 0.06f;        // constant ambient radiance factor (until cone tracing lands)
+  uint32_t voxel_resolution = 64;  // GI volume: voxels per side over the box (32, 64 or 128)
 };
 
 class Renderer {
@@ -51,6 +54,7 @@ class Renderer {
   const ShadowMap& shadow_map() const { return shadow_; }
   const GBuffer& gbuffer() const { return gbuffer_; }
   const ::cl::Buffer& hdr() const { return hdr_; }
+  const VoxelVolume& voxels() const { return voxels_; }
 
  private:
   const rp::cl::Context& context_;
@@ -59,11 +63,14 @@ class Renderer {
   std::unique_ptr<GpuScene> scene_;
   std::unique_ptr<passes::VisibilityPass> visibility_;
   std::unique_ptr<passes::GBufferPass> gbuffer_pass_;
+  std::unique_ptr<passes::VoxelizePass> voxelize_;
+  std::unique_ptr<passes::VoxelMipsPass> voxel_mips_;
   std::unique_ptr<passes::LightPass> light_;
   std::unique_ptr<passes::ToneMapPass> tone_map_;
   VisibilityBuffer vis_;
   ShadowMap shadow_;
   GBuffer gbuffer_;
+  VoxelVolume voxels_;
   ::cl::Buffer hdr_;    // float4 per pixel
   ::cl::Buffer rgba8_;  // uint per pixel
 };
