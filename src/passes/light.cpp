@@ -83,13 +83,6 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     throw rp::cl::Error("light pass: the voxel buffer holds " + std::to_string(have) +
                         " bytes but " + std::to_string(voxel_resolution) + "^3 with " +
                         std::to_string(voxel_levels) + " levels needs " + std::to_string(needed));
-  const uint32_t constant_resolution = scene.constants.voxel_resolution;
-  if (constant_resolution != 0 && (constant_resolution != voxel_resolution ||
-                                   scene.constants.voxel_levels != voxel_levels))
-    throw rp::cl::Error("light pass: voxel chain " + std::to_string(voxel_resolution) + "^3 / " +
-                        std::to_string(voxel_levels) + " levels does not match the frame "
-                        "constants (" + std::to_string(constant_resolution) + "^3 / " +
-                        std::to_string(scene.constants.voxel_levels) + " levels)");
   const uint32_t w = scene.constants.width, h = scene.constants.height;
   if (w == 0 || h == 0) return;
 

@@ -35,6 +35,7 @@ class LightPass {
   // gbuffer.height. voxels: the radiance chain of kernels/shared/voxel_layout.h,
   // voxel_resolution^3 voxels at level 0 (a power of two, 2..1024) and voxel_levels levels
   // (1..log2(voxel_resolution) + 1; the buffer must hold rp_voxel_total of them).
+  // The kernel reads the chain's size from these arguments, not from FrameConstants.voxel_*.
   // components: when given, the direct and indirect terms are also written there (a separate
   // kernel variant; the default path writes hdr only).
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,

@@ -1,0 +1,163 @@
+#include "passes/debug_view.h"
+
+#include <array>
+#include <string>
+
+#include "cl/error.h"
+#include "kernels/shared/voxel_layout.h"
+
+namespace rp::passes {
+namespace {
+
+constexpr size_t kGroup = 16;  // 16x16 work-groups, like the other per-pixel passes
+
+constexpr std::array<const char*, 9> kViewNames = {
+    "final", "albedo", "normal", "depth", "velocity", "shadow-map", "direct", "indirect", "voxels"};
+constexpr std::array<const char*, 6> kDirNames = {"+x", "-x", "+y", "-y", "+z", "-z"};
+
+std::string frame_size(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+void require(bool ok, const std::string& message) {
+  if (!ok) throw rp::cl::Error("debug view: " + message);
+}
+
+// True when `buffer` is set and holds at least `bytes`.
+bool holds(const ::cl::Buffer& buffer, size_t bytes) {
+  return buffer() != nullptr && buffer.getInfo<CL_MEM_SIZE>() >= bytes;
+}
+
+}  // namespace
+
+const char* debug_view_name(DebugView view) { return kViewNames[size_t(view)]; }
+
+std::optional<DebugView> parse_debug_view(std::string_view name) {
+  for (size_t i = 0; i < kViewNames.size(); ++i)
+    if (name == kViewNames[i]) return DebugView(i);
+  return std::nullopt;
+}
+
+const std::vector<std::string>& debug_view_names() {
+  static const std::vector<std::string> names(kViewNames.begin(), kViewNames.end());
+  return names;
+}
+
+const char* voxel_dir_name(uint32_t dir) { return dir < kDirNames.size() ? kDirNames[dir] : "?"; }
+
+std::optional<uint32_t> parse_voxel_dir(std::string_view name) {
+  for (uint32_t i = 0; i < kDirNames.size(); ++i)
+    if (name == kDirNames[i]) return i;
+  return std::nullopt;
+}
+
+std::optional<DebugView> debug_view_for_key(char key) {
+  if (key < '1' || key > '9') return std::nullopt;
+  return DebugView(key - '1');
+}
+
+DebugViewPass::DebugViewPass(const rp::cl::Context& /*context*/, rp::cl::ProgramCache& programs)
+    : programs_(&programs) {}
+
+::cl::Kernel& DebugViewPass::kernel(const std::string& name) {
+  auto it = kernels_.find(name);
+  if (it == kernels_.end())
+    it = kernels_.emplace(name, programs_->kernel("debug_view.cl", "debug_view_" + name)).first;
+  return it->second;
+}
+
+void DebugViewPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                        const DebugViewSettings& settings, const DebugViewInputs& in,
+                        ::cl::Buffer& rgba8) {
+  const uint32_t w = scene.constants.width, h = scene.constants.height;
+  const size_t pixels = size_t(w) * h;
+  const std::string view = debug_view_name(settings.view);
+  require(settings.view != DebugView::kFinal, "'final' is the normal image, not a debug view");
+  require(holds(rgba8, pixels * 4), "the output buffer is smaller than " + frame_size(w, h) +
+                                        " RGBA8 pixels");
+  if (pixels == 0) return;
+
+  auto gbuffer = [&]() -> const render::GBuffer& {
+    require(in.gbuffer != nullptr, "view '" + view + "' needs the GBuffer");
+    require(in.gbuffer->width == w && in.gbuffer->height == h,
+            "the GBuffer is " + frame_size(in.gbuffer->width, in.gbuffer->height) +
+                " but the frame is " + frame_size(w, h));
+    return *in.gbuffer;
+  };
+
+  ::cl::Kernel* k = nullptr;
+  cl_uint arg = 0;
+  switch (settings.view) {
+    case DebugView::kFinal:
+      break;
+    case DebugView::kAlbedo:
+      k = &kernel("albedo");
+      k->setArg(arg++, scene.frame);
+      k->setArg(arg++, gbuffer().albedo);
+      break;
+    case DebugView::kNormal:
+      k = &kernel("normal");
+      k->setArg(arg++, scene.frame);
+      k->setArg(arg++, gbuffer().normal_depth);
+      k->setArg(arg++, gbuffer().position);
+      break;
+    case DebugView::kDepth:
+      k = &kernel("depth");
+      k->setArg(arg++, scene.frame);
+      k->setArg(arg++, gbuffer().normal_depth);
+      break;
+    case DebugView::kVelocity:
+      k = &kernel("velocity");
+      k->setArg(arg++, scene.frame);
+      k->setArg(arg++, gbuffer().velocity);
+      break;
+    case DebugView::kShadowMap:
+      require(in.shadow != nullptr, "view 'shadow-map' needs the shadow map");
+      require(in.shadow->size == scene.constants.shadow_size && in.shadow->size > 0,
+              "the shadow map is " + std::to_string(in.shadow->size) +
+                  " texels wide but the frame constants say " +
+                  std::to_string(scene.constants.shadow_size));
+      k = &kernel("shadow_map");
+      k->setArg(arg++, scene.frame);
+      k->setArg(arg++, in.shadow->depth);
+      break;
+    case DebugView::kDirect:
+    case DebugView::kIndirect: {
+      require(in.light != nullptr, "view '" + view + "' needs the light pass's components");
+      const ::cl::Buffer& buffer =
+          settings.view == DebugView::kDirect ? in.light->direct : in.light->indirect;
+      require(holds(buffer, pixels * 16),
+              "the " + view + " buffer is smaller than " + frame_size(w, h) + " float4 pixels");
+      k = &kernel("radiance");
+      k->setArg(arg++, scene.frame);
+      k->setArg(arg++, buffer);
+      break;
+    }
+    case DebugView::kVoxels: {
+      const uint32_t r = in.voxel_resolution, levels = in.voxel_levels;
+      require(in.voxels != nullptr && r > 0 && levels > 0, "view 'voxels' needs the voxel chain");
+      require(settings.level < levels,
+              "voxel level " + std::to_string(settings.level) + " does not exist (the chain has " +
+                  std::to_string(levels) + " levels, 0.." + std::to_string(levels - 1) + ")");
+      require(settings.dir < 6, "voxel direction " + std::to_string(settings.dir) +
+                                    " is not one of +x, -x, +y, -y, +z, -z");
+      require(levels <= 31 && (r >> (levels - 1)) >= 1, "voxel resolution " + std::to_string(r) +
+                                            " has fewer than " + std::to_string(levels) +
+                                            " levels");
+      require(holds(*in.voxels, size_t(gpu::rp_voxel_total(r, levels)) * 16),
+              "the voxel buffer is smaller than a " + std::to_string(r) + "^3 chain of " +
+                  std::to_string(levels) + " levels");
+      k = &kernel("voxels");
+      k->setArg(arg++, scene.frame);
+      k->setArg(arg++, *in.voxels);
+      k->setArg(arg++, cl_uint(r));
+      k->setArg(arg++, cl_uint(settings.level));
+      k->setArg(arg++, cl_uint(settings.level == 0 ? 0 : settings.dir));
+      break;
+    }
+  }
+  k->setArg(arg, rgba8);
+  profiler.enqueue("debug_view", *k,
+                   ::cl::NDRange(rp::cl::round_up(w, kGroup), rp::cl::round_up(h, kGroup)),
+                   ::cl::NDRange(kGroup, kGroup));
+}
+
+}  // namespace rp::passes

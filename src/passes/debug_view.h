@@ -1,0 +1,77 @@
+// Debug views (pass "debug_view", kernels/debug_view.cl): one buffer of the frame written as the
+// RGBA8 image (uint per pixel, R in the low byte, A = 255, the tone map's output format) in place
+// of the normal chain. The views and their colour mappings are documented in the kernel file.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cl/profiler.h"
+#include "cl/program_cache.h"
+#include "passes/light.h"
+#include "render/frame_buffers.h"
+#include "render/gpu_scene.h"
+
+namespace rp::passes {
+
+enum class DebugView { kFinal, kAlbedo, kNormal, kDepth, kVelocity, kShadowMap, kDirect, kIndirect,
+                       kVoxels };
+
+// What to show. level / dir: the voxel volume of the voxels view (dir = RP_DIR_*, ignored at
+// level 0).
+struct DebugViewSettings {
+  DebugView view = DebugView::kFinal;
+  uint32_t level = 0;
+  uint32_t dir = 0;  // RP_DIR_POS_X
+};
+
+// Command-line names: "final", "albedo", "normal", "depth", "velocity", "shadow-map", "direct",
+// "indirect", "voxels" (in DebugView order).
+const char* debug_view_name(DebugView view);
+std::optional<DebugView> parse_debug_view(std::string_view name);
+const std::vector<std::string>& debug_view_names();
+// Voxel directions "+x", "-x", "+y", "-y", "+z", "-z" <-> RP_DIR_* (0..5).
+const char* voxel_dir_name(uint32_t dir);
+std::optional<uint32_t> parse_voxel_dir(std::string_view name);
+// Window keys: '1' final, '2' albedo, '3' normal, '4' depth, '5' velocity, '6' shadow-map,
+// '7' direct, '8' indirect, '9' voxels; anything else: nullopt.
+std::optional<DebugView> debug_view_for_key(char key);
+// The direct and indirect views need the light pass's components (LightPass::run with a
+// LightComponents target).
+inline bool needs_light_components(DebugView v) {
+  return v == DebugView::kDirect || v == DebugView::kIndirect;
+}
+
+// The buffers a view reads; only those of the selected view must be set.
+struct DebugViewInputs {
+  const render::GBuffer* gbuffer = nullptr;      // albedo, normal, depth, velocity
+  const render::ShadowMap* shadow = nullptr;     // shadow-map
+  const LightComponents* light = nullptr;        // direct, indirect
+  const ::cl::Buffer* voxels = nullptr;          // voxels: the chain (shared/voxel_layout.h)
+  uint32_t voxel_resolution = 0, voxel_levels = 0;
+};
+
+class DebugViewPass {
+ public:
+  // Kernels are built on first use of each view (a debug view costs no start-up time).
+  DebugViewPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+
+  // Writes `settings.view` into rgba8 (scene.constants.width x height uints). Throws
+  // rp::cl::Error for kFinal (the renderer runs tone_map instead), a missing or mis-sized
+  // input, or a voxel level / direction out of range.
+  void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+           const DebugViewSettings& settings, const DebugViewInputs& inputs,
+           ::cl::Buffer& rgba8);
+
+ private:
+  ::cl::Kernel& kernel(const std::string& name);
+
+  rp::cl::ProgramCache* programs_;
+  std::map<std::string, ::cl::Kernel> kernels_;
+};
+
+}  // namespace rp::passes
