@@ -3,12 +3,14 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
 #include "cl/context.h"
 #include "cl/error.h"
+#include "passes/debug_view.h"
 
 namespace rp::app {
 namespace {
@@ -52,6 +54,45 @@ void add_simulation(CLI::App* cmd, SimulationArgs& sim) {
                   "replay an input log written by `rolypoly run --record FILE`");
 }
 
+// --view / --level / --dir (render and run): a debug view instead of the final image.
+struct ViewArgs {
+  std::string view = "final";
+  uint32_t level = 0;
+  std::string dir = "+x";
+  CLI::Option* level_option = nullptr;
+  CLI::Option* dir_option = nullptr;
+
+  // The settings, or a usage message when --level / --dir come without --view voxels.
+  std::string resolve(passes::DebugViewSettings& out) const {
+    out.view = *passes::parse_debug_view(view);
+    out.level = level;
+    out.dir = *passes::parse_voxel_dir(dir);
+    const bool voxel_args = level_option->count() > 0 || dir_option->count() > 0;
+    if (voxel_args && out.view != passes::DebugView::kVoxels)
+      return "--level and --dir choose the volume of --view voxels";
+    return "";
+  }
+};
+
+void add_view(CLI::App* cmd, ViewArgs& args) {
+  cmd->add_option("--view", args.view,
+                  "what to show: final (the image), or a debug view: albedo, normal, depth, "
+                  "velocity, shadow-map, direct, indirect, voxels")
+      ->capture_default_str()
+      ->check(CLI::IsMember(passes::debug_view_names()));
+  args.level_option =
+      cmd->add_option("--level", args.level,
+                      "--view voxels: mip level (0 = the isotropic level 0, up to log2 of the "
+                      "voxel resolution)")
+          ->capture_default_str();
+  args.dir_option = cmd->add_option("--dir", args.dir,
+                                    "--view voxels: which directional volume of levels >= 1 "
+                                    "(+x, -x, +y, -y, +z, -z: what a cone travelling that way "
+                                    "sees)")
+                        ->capture_default_str()
+                        ->check(CLI::IsMember({"+x", "-x", "+y", "-y", "+z", "-z"}));
+}
+
 int report(const std::string& message) {
   std::fflush(stdout);
   std::fprintf(stderr, "rolypoly: error: %s\n", message.c_str());
@@ -67,6 +108,7 @@ int run_cli(int argc, char** argv) {
 
   CommonOptions common;
   SizeArgs render_size, run_size, bench_size;
+  ViewArgs render_view, run_view;
   RenderOptions render_opts;
   RunOptions run_opts;
   BenchOptions bench_opts;
@@ -84,6 +126,7 @@ int run_cli(int argc, char** argv) {
   render->add_option("--video", render_opts.video,
                      "also encode the frames into this video file with ffmpeg (60 fps)");
   add_simulation(render, render_opts.sim);
+  add_view(render, render_view);
 
   CLI::App* run = app.add_subcommand("run", "show the frames in a window (Esc quits)");
   add_common(run, common);
@@ -96,6 +139,7 @@ int run_cli(int argc, char** argv) {
                   "write every input event and frame to this log on exit (replay it with "
                   "`rolypoly render --replay FILE`)");
   add_simulation(run, run_opts.sim);
+  add_view(run, run_view);
 
   CLI::App* bench = app.add_subcommand("bench", "time every pass over many frames");
   add_common(bench, common);
@@ -129,6 +173,14 @@ int run_cli(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);  // prints help (code 0) or CLI11's error message
     return code == 0 ? 0 : 2;
+  }
+  for (const auto& [cmd, args] : {std::pair{render, &render_view}, std::pair{run, &run_view}}) {
+    if (!cmd->parsed()) continue;
+    if (std::string why = args->resolve(common.view); !why.empty()) {
+      std::fprintf(stderr, "rolypoly %s: %s\nRun with --help for more information.\n",
+                   cmd->get_name().c_str(), why.c_str());
+      return 2;
+    }
   }
 
   try {

@@ -12,6 +12,7 @@
 #include "cl/context.h"
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
+#include "passes/debug_view.h"
 #include "render/renderer.h"
 #include "scene/frame_scene.h"
 
@@ -21,6 +22,7 @@ struct CommonOptions {
   std::string device;      // --device: index or name substring ("" = first GPU, else CPU)
   std::string asset_dir;   // --assets: folder with the scene's textures
   uint32_t shadow_size = 0;  // --shadow-size: shadow map texels per side (0 = renderer default)
+  passes::DebugViewSettings view;  // --view / --level / --dir (render, run): what is shown
 };
 
 // Not copyable or movable: the program cache and renderer point at the context.
@@ -36,6 +38,11 @@ class RenderSession {
   rp::cl::PassTimes render(const scene::FrameScene& frame, std::vector<uint8_t>& rgba,
                            double& frame_ms);
 
+  // Switches what render() produces: the final image or a debug view (passes/debug_view.h).
+  // Throws rp::cl::Error for a voxel level or direction the renderer's chain does not have.
+  void set_view(const passes::DebugViewSettings& view);
+  const passes::DebugViewSettings& view() const { return view_; }
+
   const rp::cl::DeviceInfo& device() const { return context_.info; }
   const scene::SceneAssets& assets() const { return assets_; }
   uint32_t width() const { return renderer_->settings().width; }
@@ -46,6 +53,7 @@ class RenderSession {
   rp::cl::Context context_;
   rp::cl::ProgramCache programs_;
   std::unique_ptr<render::Renderer> renderer_;
+  passes::DebugViewSettings view_;
 };
 
 // "[0] pthread-... (CPU, Portable Computing Language)"

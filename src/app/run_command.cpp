@@ -1,7 +1,9 @@
 #include <chrono>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "app/bench_report.h"
@@ -17,12 +19,27 @@ namespace {
 
 constexpr double kTitleIntervalMs = 500.0;  // window title refresh: about twice per second
 
-// "rolypoly | 4.1 fps | visibility 3.20 ms, gbuffer 1.10 ms, ..." (means over the interval).
-std::string title_text(const PassStats& interval, double elapsed_ms) {
+// "rolypoly | 4.1 fps | visibility 3.20 ms, gbuffer 1.10 ms, ..." (means over the interval);
+// a debug view is named after the fps: "rolypoly | 4.1 fps | view voxels 2 +x | ...".
+std::string title_text(const PassStats& interval, double elapsed_ms,
+                       const passes::DebugViewSettings& view) {
   char head[64];
   std::snprintf(head, sizeof head, "rolypoly | %.1f fps |",
                 elapsed_ms > 0.0 ? 1000.0 * double(interval.frames()) / elapsed_ms : 0.0);
   std::string title = head;
+  if (view.view != passes::DebugView::kFinal) {
+    title += " view ";
+    title += passes::debug_view_name(view.view);
+    if (view.view == passes::DebugView::kVoxels) {
+      title += ' ';  // appends, not operator+ chains: GCC 12 -Wrestrict false positive
+      title += std::to_string(view.level);
+      if (view.level > 0) {
+        title += ' ';
+        title += passes::voxel_dir_name(view.dir);
+      }
+    }
+    title += " |";
+  }
   std::map<std::string, double> means = interval.pass_means();
   const char* sep = " ";
   for (const std::string& name : interval.pass_names()) {
@@ -79,7 +96,23 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
   auto last_frame = std::chrono::steady_clock::now();
   window->poll_events();
   while (!window->should_close() && (options.frames == 0 || presented < options.frames)) {
-    for (const display::WindowEvent& e : window->take_events()) source.input(to_input(e, viewport));
+    for (const display::WindowEvent& e : window->take_events()) {
+      // Number keys switch the view (not simulation input, so not recorded).
+      if (auto view = e.type == display::WindowEvent::Type::Key
+                          ? passes::debug_view_for_key(e.key)
+                          : std::nullopt) {
+        passes::DebugViewSettings settings = session.view();
+        settings.view = *view;
+        try {
+          session.set_view(settings);
+        } catch (const std::exception& error) {  // keep showing the current view
+          std::fprintf(stderr, "rolypoly: view %s: %s\n", passes::debug_view_name(*view),
+                       error.what());
+        }
+        continue;
+      }
+      source.input(to_input(e, viewport));
+    }
     auto now = std::chrono::steady_clock::now();
     // The first frame and scripted runs (--frames) advance by the nominal frame time, so a
     // short test run does not depend on how long kernel builds took.
@@ -95,7 +128,7 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
     interval.add(times, frame_ms);
     window->poll_events();
     if (double elapsed = ms_since(interval_start); elapsed >= kTitleIntervalMs) {
-      window->set_title(title_text(interval, elapsed));
+      window->set_title(title_text(interval, elapsed, session.view()));
       interval.clear();
       interval_start = std::chrono::steady_clock::now();
     }
