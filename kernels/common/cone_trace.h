@@ -17,7 +17,8 @@
  *   L >= top:       directional level `top`
  * "Directional level l" for a cone travelling along unit d is the sum of three volumes, the
  * ones facing the cone (+x if d.x >= 0 else -x, likewise y and z), weighted by d.x^2, d.y^2,
- * d.z^2 (the weights sum to 1).
+ * d.z^2 (the weights sum to 1): rp_voxel_cone_dirs (common/voxel.h, the convention's one
+ * definition).
  *
  * Rows behind the apex. A directional voxel is composited as if the cone entered it through its
  * face; a voxel that contains the cone's apex (or lies behind it) was entered behind the apex,
@@ -70,6 +71,7 @@
 #define ROLYPOLY_COMMON_CONE_TRACE_H
 
 #include "shared/voxel_layout.h"
+#include "common/voxel.h"
 
 /* Cone start offset along the surface normal, in level-0 voxels. */
 #ifndef RP_CONE_NORMAL_OFFSET
@@ -177,12 +179,6 @@ inline float4 rp_cone_directional(__global const float4* voxels, uint resolution
   return s;
 }
 
-/* The three volumes facing direction d: +x (0) if d.x >= 0 else -x (1), and so on. */
-inline uint3 rp_cone_facing_dirs(float3 d) {
-  return (uint3)(d.x >= 0.0f ? RP_DIR_POS_X : RP_DIR_NEG_X, d.y >= 0.0f ? RP_DIR_POS_Y : RP_DIR_NEG_Y,
-                 d.z >= 0.0f ? RP_DIR_POS_Z : RP_DIR_NEG_Z);
-}
-
 /* Quadrilinear sample at p and fractional level `level` >= 0 (see the header for the rule),
  * levels coarser than `top` clamped to `top`; apex: the cone's apex. */
 inline float4 rp_cone_sample(__global const float4* voxels, uint resolution, uint top,
@@ -208,7 +204,7 @@ inline uint rp_cone_top_level(uint levels) { return levels >= 2u ? levels - 2u :
 inline float4 rp_cone_trace(__global const float4* voxels, uint resolution, uint levels,
                             float3 origin, float3 dir) {
   const float3 w = dir * dir;
-  const uint3 dirs = rp_cone_facing_dirs(dir);
+  const uint3 dirs = rp_voxel_cone_dirs(dir);
   const uint top = rp_cone_top_level(levels);
   const float v0 = 2.0f / (float)resolution;
   float t = RP_CONE_T0 * v0;

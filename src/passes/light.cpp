@@ -44,12 +44,11 @@ void enqueue(rp::cl::Profiler& profiler, const ::cl::Kernel& kernel, uint32_t w,
 
 }  // namespace
 
-LightPass::LightPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+LightPass::LightPass(const rp::cl::Context& /*context*/, rp::cl::ProgramCache& programs,
                      ShadowFilter filter)
     : programs_(&programs),
       filter_options_(filter == ShadowFilter::kPcf5x5 ? "-DRP_SHADOW_PCF5=1" : ""),
-      kernel_(programs.kernel("light.cl", "light_shade", filter_options_)),
-      dummy_voxels_(context.context, CL_MEM_READ_ONLY, 16) {}
+      kernel_(programs.kernel("light.cl", "light_shade", filter_options_)) {}
 
 void LightPass::check_sizes(const render::GpuScene& scene, const render::GBuffer& gbuffer,
                             const render::ShadowMap& shadow) const {
@@ -106,21 +105,6 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   cl_uint arg = bind_common(k, scene, gbuffer, shadow, voxels, voxel_resolution, voxel_levels);
   k.setArg(arg++, components->direct);
   k.setArg(arg++, components->indirect);
-  k.setArg(arg, hdr);
-  enqueue(profiler, k, w, h);
-}
-
-void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
-                    const render::GBuffer& gbuffer, const render::ShadowMap& shadow,
-                    ::cl::Buffer& hdr) {
-  check_sizes(scene, gbuffer, shadow);
-  const uint32_t w = scene.constants.width, h = scene.constants.height;
-  if (w == 0 || h == 0) return;
-  if (!ambient_kernel_)
-    ambient_kernel_ = programs_->kernel("light.cl", "light_shade",
-                                        filter_options_ + " -DRP_LIGHT_CONSTANT_AMBIENT=1");
-  ::cl::Kernel& k = *ambient_kernel_;
-  cl_uint arg = bind_common(k, scene, gbuffer, shadow, dummy_voxels_, 0, 0);
   k.setArg(arg, hdr);
   enqueue(profiler, k, w, h);
 }

@@ -27,7 +27,7 @@ struct LightComponents {
 
 class LightPass {
  public:
-  // Builds the default (cone traced, hdr only) kernel; the variants build on first use.
+  // Builds the default (hdr only) kernel; the split variant builds on first use.
   LightPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
             ShadowFilter filter = ShadowFilter::kPoissonOneTap);
 
@@ -43,11 +43,6 @@ class LightPass {
            const ::cl::Buffer& voxels, uint32_t voxel_resolution, uint32_t voxel_levels,
            ::cl::Buffer& hdr, LightComponents* components = nullptr);
 
-  // "First light" without a voxel chain: constant ambient albedo * light_intensity.w instead of
-  // cone tracing. Transitional, for the renderer until it passes the voxel chain; remove then.
-  void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
-           const render::GBuffer& gbuffer, const render::ShadowMap& shadow, ::cl::Buffer& hdr);
-
  private:
   void check_sizes(const render::GpuScene& scene, const render::GBuffer& gbuffer,
                    const render::ShadowMap& shadow) const;
@@ -55,9 +50,7 @@ class LightPass {
   rp::cl::ProgramCache* programs_;
   std::string filter_options_;
   ::cl::Kernel kernel_;                        // cone traced, hdr only
-  std::optional<::cl::Kernel> split_kernel_;   // cone traced, + direct / indirect
-  std::optional<::cl::Kernel> ambient_kernel_; // constant ambient (transitional)
-  ::cl::Buffer dummy_voxels_;                  // bound where the ambient variant reads nothing
+  std::optional<::cl::Kernel> split_kernel_;  // cone traced, + direct / indirect
 };
 
 }  // namespace rp::passes

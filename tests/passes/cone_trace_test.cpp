@@ -30,7 +30,7 @@ __kernel void cone_test_sample(__global const float4* voxels, uint resolution, u
                                __global const float4* apexes, __global float4* out) {
   const size_t i = get_global_id(0);
   const float3 d = dirs[i].xyz;
-  out[i] = rp_cone_sample(voxels, resolution, top, rp_cone_facing_dirs(d), d * d,
+  out[i] = rp_cone_sample(voxels, resolution, top, rp_voxel_cone_dirs(d), d * d,
                           queries[i].xyz, queries[i].w, apexes[i].xyz);
 }
 __kernel void cone_test_trace(__global const float4* voxels, uint resolution, uint levels,

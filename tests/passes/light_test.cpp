@@ -30,6 +30,8 @@ struct Point {
   glm::vec3 p, n, albedo, emission{0.0f};
 };
 
+// FrameConstants.light_intensity.w, the old constant ambient: the pass no longer reads it
+// (non-zero so that a stray read would show in every test).
 constexpr float kAmbient = 0.06f;
 const glm::vec3 kIntensity(6.0f, 5.0f, 4.0f);
 
@@ -94,8 +96,8 @@ class LightFixture {
 
   // Runs the pass over `points` (one pixel each, in a row-major frame `width` wide; pixels past
   // the points are background) and returns rgba per pixel. `chain`: the voxel chain (default
-  // empty); `mode`: which entry point; `direct` / `indirect` receive the components when given.
-  enum class Mode { kCones, kConesSplit, kConstantAmbient };
+  // empty); `mode`: hdr only or with the components, which `direct` / `indirect` receive.
+  enum class Mode { kCones, kConesSplit };
   std::vector<float> run(const std::vector<Point>& points, const std::vector<float>& shadow,
                          ShadowFilter filter, uint32_t frame_index = 0, uint32_t width = 8,
                          const rp::test::cone::Chain& chain = empty_chain(),
@@ -142,9 +144,6 @@ class LightFixture {
       case Mode::kConesSplit:
         pass.run(profiler, *scene_, gb, sm, voxels, chain.resolution, chain.levels, hdr,
                  &components);
-        break;
-      case Mode::kConstantAmbient:
-        pass.run(profiler, *scene_, gb, sm, hdr);
         break;
     }
     EXPECT_EQ(profiler.collect().count("light"), 1u);
@@ -431,19 +430,6 @@ TEST(Light, SplitVariantWritesTheComponents) {
       EXPECT_EQ(direct[i * 4 + c], 0.0f) << "background " << i;
       EXPECT_EQ(indirect[i * 4 + c], 0.0f) << "background " << i;
     }
-}
-
-// The transitional entry point without a voxel chain: constant ambient albedo * light_intensity.w.
-TEST(Light, ConstantAmbientEntryPointWithoutVoxels) {
-  LightFixture fx(32);
-  auto pts = box_points(fx.light().position);
-  auto hdr = fx.run(pts, std::vector<float>(32 * 32, 1.0f), ShadowFilter::kPcf5x5, 0, 8,
-                    empty_chain(), LightFixture::Mode::kConstantAmbient);
-  for (size_t i = 0; i < pts.size(); ++i)
-    expect_radiance(hdr, i,
-                    radiance_ref(pts[i], fx.light().position, 1.0) +
-                        glm::dvec3(pts[i].albedo) * double(kAmbient),
-                    "ambient");
 }
 
 TEST(Light, RejectsAVoxelChainThatDoesNotFit) {
