@@ -238,6 +238,7 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
   }
   if (inst_index >= instance_count) return;
   __global const Instance* inst = instances + inst_index;
+  if (inst->voxelize == 0u) return;
   const Triangle tri = triangles[inst->first_triangle + t];
   __global const Vertex* vtx0 = vertices + tri.x;
   __global const Vertex* vtx1 = vertices + tri.y;

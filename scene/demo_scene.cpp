@@ -79,6 +79,18 @@ SceneAssets make_demo_assets(const std::string& asset_dir) {
   return assets;
 }
 
+void add_room_instances(FrameScene& frame) {
+  MeshInstance box;
+  box.mesh = demo::kBoxMesh;
+  box.casts_shadow = false;
+  frame.instances.push_back(box);
+  MeshInstance lamp;
+  lamp.mesh = demo::kLampMesh;
+  lamp.casts_shadow = false;
+  lamp.voxelize = false;  // lit by the analytic point light; voxelized it would count twice
+  frame.instances.push_back(lamp);
+}
+
 FrameScene make_demo_frame(const SceneAssets& assets, uint32_t frame_index) {
   if (assets.meshes.size() <= demo::kTumblerMesh ||
       assets.meshes[demo::kTumblerMesh].name != "tumbler") {
@@ -88,14 +100,7 @@ FrameScene make_demo_frame(const SceneAssets& assets, uint32_t frame_index) {
   frame.frame_index = frame_index;
   frame.prev_camera = frame.camera;
 
-  MeshInstance box;
-  box.mesh = demo::kBoxMesh;
-  box.casts_shadow = false;
-  frame.instances.push_back(box);
-  MeshInstance lamp;
-  lamp.mesh = demo::kLampMesh;
-  lamp.casts_shadow = false;
-  frame.instances.push_back(lamp);
+  add_room_instances(frame);
 
   const TumblerShape shape;
   for (const TumblerPlacement& placement : demo_tumbler_placements()) {

@@ -51,4 +51,8 @@ SceneAssets make_demo_assets(const std::string& asset_dir);
 // equal the current ones (no motion).
 FrameScene make_demo_frame(const SceneAssets& assets, uint32_t frame_index = 0);
 
+// Appends the room's static instances (identity model): the box (no shadow) and the lamp cap
+// (no shadow, not voxelized). Shared by the demo frame and the simulated world.
+void add_room_instances(FrameScene& frame);
+
 }  // namespace rp::scene

@@ -76,6 +76,10 @@ struct MeshInstance {
   glm::mat4 model{1.0f};
   glm::mat4 prev_model{1.0f};
   bool casts_shadow = true;
+  // Part of the GI voxel volume. False for the lamp cap: the direct pass already lights the
+  // scene with the analytic point light at its centre; voxelizing its emission too would count
+  // the lamp's light twice.
+  bool voxelize = true;
 };
 
 struct Sphere {

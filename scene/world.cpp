@@ -380,14 +380,7 @@ void World::fill_frame(FrameScene& out) const {
   out.instances.clear();
   out.spheres.clear();
 
-  MeshInstance box;
-  box.mesh = demo::kBoxMesh;
-  box.casts_shadow = false;
-  out.instances.push_back(box);
-  MeshInstance lamp;
-  lamp.mesh = demo::kLampMesh;
-  lamp.casts_shadow = false;
-  out.instances.push_back(lamp);
+  add_room_instances(out);
   for (size_t i = 0; i < tumblers_.size(); ++i) {
     MeshInstance t;
     t.mesh = demo::kTumblerMesh;

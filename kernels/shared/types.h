@@ -84,7 +84,8 @@ typedef struct {
   rp_uint first_triangle; /* the mesh's first triangle in the shared triangle buffer */
   rp_uint triangle_count;
   rp_uint casts_shadow;  /* 1: drawn into the shadow map */
-  rp_uint pad;
+  rp_uint voxelize;      /* 1: part of the GI voxel volume (0 for the lamp cap: its light
+                            already comes from the analytic point light) */
 } Instance;
 
 /* An analytic sphere (marble, fireball, particle). 64 bytes. */

@@ -123,6 +123,7 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
     g.first_triangle = meshes[inst.mesh].first_triangle;
     g.triangle_count = meshes[inst.mesh].triangle_count;
     g.casts_shadow = inst.casts_shadow ? 1u : 0u;
+    g.voxelize = inst.voxelize ? 1u : 0u;
     host_instances.push_back(g);
     instance_triangle_count += g.triangle_count;
   }

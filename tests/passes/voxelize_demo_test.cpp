@@ -133,6 +133,26 @@ TEST(VoxelizeDemo, MatchesReferenceAndHoldsTheWalls) {
   EXPECT_GT(right_blue, cells * 9 / 10);
 }
 
+TEST(VoxelizeDemo, LampCapIsNotVoxelized) {
+  // The lamp's light enters through the analytic point light; its emissive cap in the volume
+  // would count it twice. The sums with the lamp instance equal those without it.
+  const uint32_t R = 32;
+  Demo d(0, 256);
+  ASSERT_FALSE(d.frame.instances.at(1).voxelize);
+  const VoxelGpuOutput with_lamp = run_voxelize(*d.gpu, d.shadow_depth, R);
+  scene::FrameScene no_lamp = d.frame;
+  no_lamp.instances.erase(no_lamp.instances.begin() + 1);
+  d.gpu->update(no_lamp, 256, 256, d.shadow.size, 0.0f);
+  const VoxelGpuOutput without = run_voxelize(*d.gpu, d.shadow_depth, R);
+  EXPECT_TRUE(with_lamp.sums.accum == without.sums.accum);
+  // And marking the lamp voxelized does add its emission (the flag is what keeps it out).
+  scene::FrameScene lamp_in = d.frame;
+  lamp_in.instances[1].voxelize = true;
+  d.gpu->update(lamp_in, 256, 256, d.shadow.size, 0.0f);
+  const VoxelGpuOutput lit = run_voxelize(*d.gpu, d.shadow_depth, R);
+  EXPECT_FALSE(lit.sums.accum == with_lamp.sums.accum);
+}
+
 TEST(VoxelizeDemo, BitIdenticalRepeats) {
   const uint32_t R = 32;
   Demo d(2100, 256);

@@ -366,6 +366,7 @@ VoxelSums reference_voxelize(const VoxelRefInput& in, uint32_t resolution) {
   sums.accum.assign(voxels * 4, 0u);
   sums.overflow.assign(voxels, 0u);
   for (size_t i = 0; i < in.instances.size(); ++i) {
+    if (!in.frame->instances[i].voxelize) continue;  // the lamp cap: lit analytically
     const scene::Mesh& mesh = in.assets->meshes.at(in.frame->instances[i].mesh);
     for (size_t t = 0; t < mesh.triangles.size(); ++t)
       voxelize_triangle(in, in.instances[i], mesh, t, sums);
