@@ -56,8 +56,7 @@ typedef struct {
   rp_float4 camera_pos;         /* xyz world position, w unused */
   rp_float4 jitter;             /* xy: this frame's jitter in pixels, zw: previous frame's */
   rp_float4 light_pos;          /* xyz lamp centre (the point light), w lamp radius */
-  rp_float4 light_intensity;    /* rgb radiant intensity of the point light, w ambient (constant
-                                   ambient until cone tracing lands) */
+  rp_float4 light_intensity;    /* rgb radiant intensity of the point light, w unused */
   rp_float4 clip;               /* x camera near, y camera far, z light near, w light far */
   rp_uint width, height;        /* output size in pixels */
   rp_uint shadow_size;          /* shadow map is shadow_size x shadow_size */

@@ -34,6 +34,10 @@ void add_common(CLI::App* cmd, CommonOptions& common) {
                   "shadow map texels per side (default: the renderer's, " +
                       std::to_string(render::RenderSettings{}.shadow_size) + ")")
       ->check(CLI::Range(1u, kMaxSize));
+  cmd->add_option("--voxels", common.voxels,
+                  "GI voxel volume resolution per side: 32, 64 or 128 (default " +
+                      std::to_string(render::RenderSettings{}.voxel_resolution) + ")")
+      ->check(CLI::IsMember({32u, 64u, 128u}));
 }
 
 void add_size(CLI::App* cmd, SizeArgs& size) {

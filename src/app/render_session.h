@@ -22,6 +22,7 @@ struct CommonOptions {
   std::string device;      // --device: index or name substring ("" = first GPU, else CPU)
   std::string asset_dir;   // --assets: folder with the scene's textures
   uint32_t shadow_size = 0;  // --shadow-size: shadow map texels per side (0 = renderer default)
+  uint32_t voxels = 0;       // --voxels: GI volume voxels per side (0 = renderer default, 64)
   passes::DebugViewSettings view;  // --view / --level / --dir (render, run): what is shown
 };
 

@@ -83,7 +83,7 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
 }
 
 void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t height,
-                      uint32_t shadow_size, float ambient, uint32_t voxel_resolution) {
+                      uint32_t shadow_size, uint32_t voxel_resolution) {
   float aspect = float(width) / float(height);
   // Jitter (TAA) is zero until the TAA pass lands; the field layout is already in place.
   glm::mat4 view = f.camera.view();
@@ -100,7 +100,7 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
   c.camera_pos = gpu::to_gpu(f.camera.position, 1.0f);
   c.jitter = {0.0f, 0.0f, 0.0f, 0.0f};
   c.light_pos = gpu::to_gpu(f.light.position, f.light.lamp_radius);
-  c.light_intensity = gpu::to_gpu(f.light.intensity, ambient);
+  c.light_intensity = gpu::to_gpu(f.light.intensity, 0.0f);
   c.clip = {f.camera.near_plane, f.camera.far_plane, f.light.shadow_near, f.light.shadow_far};
   c.width = width;
   c.height = height;

@@ -29,7 +29,7 @@ class GpuScene {
   // have finished the previous frame before update() is called again).
   // voxel_resolution: level-0 voxels per side of the GI volume (FrameConstants.voxel_*).
   void update(const scene::FrameScene& frame, uint32_t width, uint32_t height,
-              uint32_t shadow_size, float ambient, uint32_t voxel_resolution = 64);
+              uint32_t shadow_size, uint32_t voxel_resolution = 64);
 
   // Static data.
   ::cl::Buffer vertices;   // gpu::Vertex[vertex_count]

@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include "cl/error.h"
+#include "passes/debug_view.h"
 #include "passes/gbuffer.h"
 #include "passes/light.h"
 #include "passes/tone_map.h"
@@ -22,6 +23,7 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   voxel_mips_ = std::make_unique<passes::VoxelMipsPass>(context, programs);
   light_ = std::make_unique<passes::LightPass>(context, programs);
   tone_map_ = std::make_unique<passes::ToneMapPass>(context, programs);
+  debug_view_pass_ = std::make_unique<passes::DebugViewPass>(context, programs);  // builds lazily
   shadow_.resize(context.context, settings_.shadow_size);
   voxels_.resize(context.context, settings_.voxel_resolution);
   resize(settings_.width, settings_.height);
@@ -38,20 +40,48 @@ void Renderer::resize(uint32_t width, uint32_t height) {
   gbuffer_.resize(context_.context, width, height);
   hdr_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
   rgba8_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 4);
+  if (light_components_.direct() != nullptr) set_debug_view(view_);  // reallocate at the new size
+}
+
+void Renderer::set_debug_view(const passes::DebugViewSettings& view) {
+  if (view.view == passes::DebugView::kVoxels && (view.level >= voxels_.levels || view.dir >= 6))
+    throw rp::cl::Error("voxel view: level " + std::to_string(view.level) + " direction " +
+                        std::to_string(view.dir) + " does not exist (levels 0.." +
+                        std::to_string(voxels_.levels - 1) + ", directions 0..5)");
+  view_ = view;
+  if (passes::needs_light_components(view.view)) {
+    const size_t bytes = size_t(settings_.width) * settings_.height * 16;
+    light_components_.direct = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, bytes);
+    light_components_.indirect = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, bytes);
+  } else {
+    light_components_ = {};
+  }
 }
 
 rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
   try {
-    scene_->update(frame, settings_.width, settings_.height, settings_.shadow_size, 0.0f,
+    scene_->update(frame, settings_.width, settings_.height, settings_.shadow_size,
                    voxels_.resolution);
     visibility_->render(profiler_, *scene_, vis_);
     visibility_->render_shadow(profiler_, *scene_, shadow_);
     gbuffer_pass_->run(profiler_, *scene_, vis_, gbuffer_);
     voxelize_->run(profiler_, *scene_, shadow_, voxels_);
     voxel_mips_->run(profiler_, voxels_);
+    const bool split = passes::needs_light_components(view_.view);
     light_->run(profiler_, *scene_, gbuffer_, shadow_, voxels_.chain, voxels_.resolution,
-                voxels_.levels, hdr_);
-    tone_map_->run(profiler_, *scene_, hdr_, rgba8_);
+                voxels_.levels, hdr_, split ? &light_components_ : nullptr);
+    if (view_.view == passes::DebugView::kFinal) {
+      tone_map_->run(profiler_, *scene_, hdr_, rgba8_);
+    } else {
+      passes::DebugViewInputs in;
+      in.gbuffer = &gbuffer_;
+      in.shadow = &shadow_;
+      in.light = split ? &light_components_ : nullptr;
+      in.voxels = &voxels_.chain;
+      in.voxel_resolution = voxels_.resolution;
+      in.voxel_levels = voxels_.levels;
+      debug_view_pass_->run(profiler_, *scene_, view_, in, rgba8_);
+    }
     return profiler_.collect();
   } catch (const ::cl::Error& e) {
     throw rp::cl::Error(std::string("OpenCL call failed while rendering: ") + e.what() + " (" +

@@ -8,6 +8,8 @@
 #include "cl/context.h"
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
+#include "passes/debug_view.h"
+#include "passes/light.h"
 #include "render/frame_buffers.h"
 #include "render/gpu_scene.h"
 #include "render/voxel_volume.h"
@@ -18,6 +20,7 @@ class VisibilityPass;
 class GBufferPass;
 class LightPass;
 class ToneMapPass;
+class DebugViewPass;
 class VoxelizePass;
 class VoxelMipsPass;
 }  // namespace rp::passes
@@ -45,6 +48,16 @@ class Renderer {
   // Enqueues all passes for `frame`, waits, and returns the device time per pass in ms.
   rp::cl::PassTimes render(const scene::FrameScene& frame);
 
+  // What render() produces: the final image (DebugView::kFinal, the default) or one debug view
+  // (passes/debug_view.h), written as RGBA8 in place of the tone map. Throws rp::cl::Error for
+  // a voxel level or direction the chain does not have. The direct / indirect views make the
+  // light pass also write its two components (two float4 buffers, allocated only then).
+  void set_debug_view(const passes::DebugViewSettings& view);
+  const passes::DebugViewSettings& debug_view() const { return view_; }
+  // The light pass's direct and indirect terms (float4 per pixel), written only while the
+  // direct or indirect debug view is on (empty buffers otherwise).
+  const passes::LightComponents& light_components() const { return light_components_; }
+
   // The finished image: width * height * 4 bytes RGBA8, top row first. Blocking.
   void read_rgba8(std::vector<uint8_t>& out);
 
@@ -67,6 +80,9 @@ class Renderer {
   std::unique_ptr<passes::VoxelMipsPass> voxel_mips_;
   std::unique_ptr<passes::LightPass> light_;
   std::unique_ptr<passes::ToneMapPass> tone_map_;
+  std::unique_ptr<passes::DebugViewPass> debug_view_pass_;
+  passes::DebugViewSettings view_;
+  passes::LightComponents light_components_;  // set only while a direct/indirect view is on
   VisibilityBuffer vis_;
   ShadowMap shadow_;
   GBuffer gbuffer_;

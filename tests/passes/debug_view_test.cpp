@@ -47,7 +47,7 @@ class DebugFixture {
                                                     rp::scene::SceneAssets{});
     frame_.camera.position = {1.5f, 1.1f, 2.0f};  // outside the box, looking at it obliquely
     frame_.camera.target = {0.1f, -0.2f, 0.0f};
-    scene_->update(frame_, kW, kH, kShadow, 0.0f);
+    scene_->update(frame_, kW, kH, kShadow);
     gbuffer_.resize(ctx.context, kW, kH);
     shadow_.resize(ctx.context, kShadow);
     rgba_ = ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, kW * kH * 4);

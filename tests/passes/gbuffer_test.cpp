@@ -168,7 +168,7 @@ TEST(GBuffer, ResolvesMeshSphereAndBackground) {
   auto& ctx = rp::test::context();
   TestScene ts;
   rp::render::GpuScene scene(ctx.context, ctx.queue, ts.assets);
-  scene.update(ts.frame, kW, kH, 64, 0.06f);
+  scene.update(ts.frame, kW, kH, 64);
 
   // Hand-written visibility buffer from the ray caster.
   const size_t n = size_t(kW) * kH;
@@ -305,7 +305,7 @@ TEST(GBuffer, VelocityOfKnownMotion) {
   ts.frame.prev_camera.position.x -= 0.1f;  // camera moved +x by 0.1 this frame...
   ts.frame.prev_camera.target.x -= 0.1f;    // ...as a pure pan (same orientation)
   rp::render::GpuScene scene(ctx.context, ctx.queue, ts.assets);
-  scene.update(ts.frame, kW, kH, 64, 0.06f);
+  scene.update(ts.frame, kW, kH, 64);
 
   // The quad centre (object origin, on the diagonal shared by both triangles: b1 = 0, b2 = 0.5
   // of triangle 0 = (v0, v1, v2) gives the midpoint of vertices 0 and 2, the origin).

@@ -30,9 +30,6 @@ struct Point {
   glm::vec3 p, n, albedo, emission{0.0f};
 };
 
-// FrameConstants.light_intensity.w, the old constant ambient: the pass no longer reads it
-// (non-zero so that a stray read would show in every test).
-constexpr float kAmbient = 0.06f;
 const glm::vec3 kIntensity(6.0f, 5.0f, 4.0f);
 
 // The documented falloff: visible projected area of the lamp cap, s = l.y.
@@ -106,7 +103,7 @@ class LightFixture {
     auto& ctx = rp::test::context();
     const uint32_t height = uint32_t((points.size() + width) / width);  // >= 1 background pixel
     frame_.frame_index = frame_index;
-    scene_->update(frame_, width, height, shadow_size_, kAmbient);
+    scene_->update(frame_, width, height, shadow_size_);
     const size_t n = size_t(width) * height;
     std::vector<float> albedo(n * 4, 0.0f), normal_depth(n * 4, 0.0f), position(n * 4, 0.0f),
         emission(n * 4, 0.0f);

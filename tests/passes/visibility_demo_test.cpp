@@ -34,7 +34,7 @@ struct Demo {
 TEST(VisibilityDemo, MatchesReference) {
   Demo d;
   const uint32_t w = 72, h = 72, shadow = 64;
-  d.gpu.update(d.frame, w, h, shadow, 0.0f);
+  d.gpu.update(d.frame, w, h, shadow);
   render::VisibilityBuffer vb;
   vb.resize(context().context, w, h);
   render::ShadowMap sm;
@@ -87,7 +87,7 @@ TEST(VisibilityDemo, MatchesReference) {
 TEST(VisibilityDemo, DeviceTimes) {
   Demo d;
   for (uint32_t size : {256u, 720u}) {
-    d.gpu.update(d.frame, size, size, 1024, 0.0f);
+    d.gpu.update(d.frame, size, size, 1024);
     render::VisibilityBuffer vb;
     vb.resize(context().context, size, size);
     render::ShadowMap sm;

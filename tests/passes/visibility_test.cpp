@@ -70,7 +70,7 @@ class Harness {
   // Camera view. `replace`: render with this view_proj / inv_view_proj instead of the camera's.
   GpuImage render(const scene::FrameScene& frame, uint32_t w, uint32_t h,
                   const std::optional<RefView>& replace = std::nullopt) {
-    scene_.update(frame, w, h, 64, 0.0f);
+    scene_.update(frame, w, h, 64);
     if (replace) {
       scene_.constants.view_proj = gpu::to_gpu(replace->view_proj);
       scene_.constants.inv_view_proj = gpu::to_gpu(replace->inv_view_proj);
@@ -92,7 +92,7 @@ class Harness {
   }
 
   std::vector<float> render_shadow(const scene::FrameScene& frame, uint32_t size) {
-    scene_.update(frame, 16, 16, size, 0.0f);
+    scene_.update(frame, 16, 16, size);
     if (sm_.size != size) sm_.resize(context().context, size);
     pass_.render_shadow(profiler_, scene_, sm_);
     times_ = profiler_.collect();

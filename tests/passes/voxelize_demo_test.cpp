@@ -78,7 +78,7 @@ struct Demo {
   Demo(int particles, uint32_t shadow_size) {
     add_spheres(frame, particles);
     gpu = std::make_unique<render::GpuScene>(context().context, context().queue, assets);
-    gpu->update(frame, 256, 256, shadow_size, 0.0f);
+    gpu->update(frame, 256, 256, shadow_size);
     shadow.resize(context().context, shadow_size);
     visibility.render_shadow(profiler, *gpu, shadow);
     profiler.collect();
@@ -142,13 +142,13 @@ TEST(VoxelizeDemo, LampCapIsNotVoxelized) {
   const VoxelGpuOutput with_lamp = run_voxelize(*d.gpu, d.shadow_depth, R);
   scene::FrameScene no_lamp = d.frame;
   no_lamp.instances.erase(no_lamp.instances.begin() + 1);
-  d.gpu->update(no_lamp, 256, 256, d.shadow.size, 0.0f);
+  d.gpu->update(no_lamp, 256, 256, d.shadow.size);
   const VoxelGpuOutput without = run_voxelize(*d.gpu, d.shadow_depth, R);
   EXPECT_TRUE(with_lamp.sums.accum == without.sums.accum);
   // And marking the lamp voxelized does add its emission (the flag is what keeps it out).
   scene::FrameScene lamp_in = d.frame;
   lamp_in.instances[1].voxelize = true;
-  d.gpu->update(lamp_in, 256, 256, d.shadow.size, 0.0f);
+  d.gpu->update(lamp_in, 256, 256, d.shadow.size);
   const VoxelGpuOutput lit = run_voxelize(*d.gpu, d.shadow_depth, R);
   EXPECT_FALSE(lit.sums.accum == with_lamp.sums.accum);
 }

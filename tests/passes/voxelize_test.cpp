@@ -90,7 +90,7 @@ struct Scene {
 
   void upload() {
     gpu = std::make_unique<render::GpuScene>(context().context, context().queue, assets);
-    gpu->update(frame, 16, 16, kShadowSize, 0.0f);
+    gpu->update(frame, 16, 16, kShadowSize);
   }
 };
 
