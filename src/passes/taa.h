@@ -1,0 +1,56 @@
+// Temporal anti-aliasing (SPEC 6.7): resolves the jittered HDR frame against the reprojected,
+// neighbourhood-clipped history (kernels/taa.cl). Pass name "taa".
+//
+// Use: enable the 16-frame Halton jitter in GpuScene::update (jitter_frames = 16) while TAA is
+// on, run() after the light pass every frame, and reset_history() on camera cuts. The pass
+// owns its history (two tone-mapped float4 planes, ping-pong), allocated on first use and on
+// resize; a resize also resets it. The first frame after a reset outputs the current frame.
+#pragma once
+
+#include <cstdint>
+
+#include "cl/profiler.h"
+#include "cl/program_cache.h"
+#include "render/frame_buffers.h"
+#include "render/gpu_scene.h"
+
+namespace rp::passes {
+
+struct TaaSettings {
+  float history_weight = 0.9f;  // f in out = hist * f + current * (1 - f), in [0, 1)
+  float gamma = 1.0f;           // clip box = mean +- gamma * stddev (YCoCg, 5-tap cross)
+  // false: the current colour is the jittered sample at the pixel (the accumulation then
+  // integrates the pixel footprint: sharpest). true: hdr_in is resampled bilinearly at the
+  // unjittered pixel centre (steadier, softer). See kernels/taa.cl.
+  bool unjitter_current = false;
+};
+
+class TaaPass {
+ public:
+  TaaPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+          TaaSettings settings = {});
+
+  // hdr_in: float4 linear HDR of this (jittered) frame, width x height of scene.constants.
+  // gbuffer: velocity (float2 px, current - previous) and normal_depth.w (linear depth), same
+  // size. hdr_out: float4, the resolved frame in linear HDR (must not alias hdr_in).
+  // The jitter comes from scene.constants.jitter.xy (used only with unjitter_current).
+  void run(rp::cl::Profiler& profiler, const render::GpuScene& scene, const ::cl::Buffer& hdr_in,
+           const render::GBuffer& gbuffer, ::cl::Buffer& hdr_out);
+
+  // Forget the history: the next run() outputs its current frame (camera cuts).
+  void reset_history() { history_valid_ = false; }
+
+  const TaaSettings& settings() const { return settings_; }
+  void set_settings(const TaaSettings& settings);
+
+ private:
+  ::cl::Context context_;
+  ::cl::Kernel kernel_;
+  TaaSettings settings_;
+  uint32_t width_ = 0, height_ = 0;
+  ::cl::Buffer history_[2];  // float4 tone-mapped rgb, w = 1; history_[current_] is the latest
+  int current_ = 0;
+  bool history_valid_ = false;
+};
+
+}  // namespace rp::passes
