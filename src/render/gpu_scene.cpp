@@ -27,6 +27,33 @@ uint32_t pack_rgba8(const uint8_t* p) {
 
 }  // namespace
 
+float halton(uint32_t index, uint32_t base) {
+  // Exact in double for the indices used (< 2^20), one rounding to float at the end.
+  double result = 0.0, scale = 1.0;
+  while (index > 0) {
+    scale /= double(base);
+    result += scale * double(index % base);
+    index /= base;
+  }
+  return float(result);
+}
+
+glm::vec2 taa_jitter_px(uint32_t frame_index, uint32_t jitter_frames) {
+  if (jitter_frames == 0) return glm::vec2(0.0f);
+  const uint32_t i = frame_index % jitter_frames + 1;
+  return {halton(i, 2) - 0.5f, halton(i, 3) - 0.5f};
+}
+
+glm::mat4 jittered_view_proj(const glm::mat4& view_proj, glm::vec2 jitter_px, uint32_t width,
+                             uint32_t height) {
+  // screen x = (x_ndc + 1) / 2 * width, screen y = (1 - y_ndc) / 2 * height: a shift of
+  // (jx, jy) pixels is (2 jx / width, -2 jy / height) in NDC, i.e. that times w in clip space.
+  glm::mat4 shift(1.0f);
+  shift[3][0] = 2.0f * jitter_px.x / float(width);
+  shift[3][1] = -2.0f * jitter_px.y / float(height);
+  return shift * view_proj;
+}
+
 GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue,
                    const scene::SceneAssets& assets)
     : context_(context), queue_(queue) {
@@ -83,22 +110,27 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
 }
 
 void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t height,
-                      uint32_t shadow_size, uint32_t voxel_resolution) {
+                      uint32_t shadow_size, uint32_t voxel_resolution, uint32_t jitter_frames) {
   float aspect = float(width) / float(height);
-  // Jitter (TAA) is zero until the TAA pass lands; the field layout is already in place.
   glm::mat4 view = f.camera.view();
   glm::mat4 view_proj = f.camera.projection(aspect) * view;
   glm::mat4 prev_view_proj = f.prev_camera.projection(aspect) * f.prev_camera.view();
+  // TAA: only the matrices the rasterizer and the sphere rays use are jittered; velocity is
+  // computed with the unjittered pair so it carries motion only.
+  const glm::vec2 jitter = taa_jitter_px(f.frame_index, jitter_frames);
+  const glm::mat4 view_proj_jittered =
+      jitter_frames == 0 ? view_proj : jittered_view_proj(view_proj, jitter, width, height);
 
   gpu::FrameConstants& c = constants;
-  c.view_proj = gpu::to_gpu(view_proj);
-  c.inv_view_proj = gpu::to_gpu(glm::inverse(view_proj));
+  c.view_proj = gpu::to_gpu(view_proj_jittered);
+  c.inv_view_proj = gpu::to_gpu(glm::inverse(view_proj_jittered));
   c.view_proj_unjittered = gpu::to_gpu(view_proj);
   c.prev_view_proj_unjittered = gpu::to_gpu(prev_view_proj);
   c.view = gpu::to_gpu(view);
   c.light_view_proj = gpu::to_gpu(f.light.view_proj());
   c.camera_pos = gpu::to_gpu(f.camera.position, 1.0f);
-  c.jitter = {0.0f, 0.0f, 0.0f, 0.0f};
+  c.jitter = {jitter.x, jitter.y, last_jitter_px_.x, last_jitter_px_.y};
+  last_jitter_px_ = jitter;
   c.light_pos = gpu::to_gpu(f.light.position, f.light.lamp_radius);
   c.light_intensity = gpu::to_gpu(f.light.intensity, 0.0f);
   c.clip = {f.camera.near_plane, f.camera.far_plane, f.light.shadow_near, f.light.shadow_far};

@@ -6,11 +6,27 @@
 #include <vector>
 
 #include <CL/opencl.hpp>
+#include <glm/glm.hpp>
 
 #include "render/gpu_types.h"
 #include "scene/frame_scene.h"
 
 namespace rp::render {
+
+// Radical inverse of `index` in `base` (the Halton sequence): index 1, 2, 3, ... in base 2 gives
+// 1/2, 1/4, 3/4, 1/8, ...; in base 3: 1/3, 2/3, 1/9, ... Index 0 gives 0.
+float halton(uint32_t index, uint32_t base);
+
+// TAA sub-pixel jitter of a frame, in pixels (+x right, +y down, types.h): the Halton(2,3)
+// point number (frame_index % jitter_frames) + 1 minus 0.5, so each offset lies in (-0.5, 0.5).
+// jitter_frames = 0 turns jitter off (returns 0). The jittered view_proj moves every projected
+// point by exactly this many pixels.
+glm::vec2 taa_jitter_px(uint32_t frame_index, uint32_t jitter_frames);
+
+// `view_proj` followed by a clip-space translation that moves projected points by `jitter_px`
+// pixels on a width x height screen (pixel y grows downwards, NDC y upwards).
+glm::mat4 jittered_view_proj(const glm::mat4& view_proj, glm::vec2 jitter_px, uint32_t width,
+                             uint32_t height);
 
 struct MeshRange {
   uint32_t first_triangle = 0;
@@ -28,8 +44,12 @@ class GpuScene {
   // writes on `queue`; the host copies stay alive until the next update, so the queue must
   // have finished the previous frame before update() is called again).
   // voxel_resolution: level-0 voxels per side of the GI volume (FrameConstants.voxel_*).
+  // jitter_frames: length of the TAA jitter cycle (16 with TAA on, SPEC 6.7); 0 = no jitter.
+  // With jitter, view_proj and inv_view_proj carry taa_jitter_px(frame.frame_index,
+  // jitter_frames); view_proj_unjittered / prev_view_proj_unjittered never do.
+  // FrameConstants.jitter = (this update's jitter, the previous update's jitter) in pixels.
   void update(const scene::FrameScene& frame, uint32_t width, uint32_t height,
-              uint32_t shadow_size, uint32_t voxel_resolution = 64);
+              uint32_t shadow_size, uint32_t voxel_resolution = 64, uint32_t jitter_frames = 0);
 
   // Static data.
   ::cl::Buffer vertices;   // gpu::Vertex[vertex_count]
@@ -54,6 +74,7 @@ class GpuScene {
   ::cl::Context context_;
   ::cl::CommandQueue queue_;
   size_t instance_capacity_ = 0, sphere_capacity_ = 0;
+  glm::vec2 last_jitter_px_{0.0f};  // the jitter the previous update() used (0 before the first)
 };
 
 }  // namespace rp::render
