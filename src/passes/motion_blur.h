@@ -1,0 +1,54 @@
+// Motion blur pass (SPEC 6.8): 20x20 velocity tiles (max by a work-group reduction), their 3x3
+// neighbourhood max, a depth/speed half2 plane, and McGuire et al. 2012's reconstruction filter
+// along the neighbourhood max velocity in both directions (kernels/motion_blur.cl). Tiles whose
+// neighbourhood max blur radius is at most half a pixel are copied unchanged. Pass name
+// "motion_blur".
+//
+// Shutter: the blur vector is velocity * shutter (velocity in pixels per frame, shutter = the
+// fraction of the frame interval the shutter is open, centred on the frame time), so an object
+// smears velocity * shutter / 2 to each side. That half vector is clamped to 20 px (the tile
+// size: a streak is at most 40 px), which keeps every blur inside the 3x3 tile neighbourhood.
+#pragma once
+
+#include <cstdint>
+
+#include "cl/profiler.h"
+#include "cl/program_cache.h"
+#include "render/frame_buffers.h"
+
+namespace rp::passes {
+
+class MotionBlurPass {
+ public:
+  static constexpr uint32_t kTileSize = 20;        // pixels per tile side
+  static constexpr float kMaxBlurRadius = 20.0f;   // pixels, clamp of |velocity * shutter / 2|
+  static constexpr int kSamples = 15;              // reconstruction taps per pixel (odd)
+  static constexpr float kSoftDepth = 0.02f;       // scene units of the soft depth comparison
+
+  MotionBlurPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+
+  // hdr_in, hdr_out: float4 per pixel (linear HDR), width x height, distinct buffers.
+  // gbuffer: velocity (float2, pixels per frame, current - previous) and normal_depth.w (linear
+  // depth) are read; gbuffer.width/height must equal width/height. shutter in [0, 1]
+  // (0 copies the input). Enqueues only; the intermediate buffers are (re)allocated on a
+  // size change. Throws rp::cl::Error on a size mismatch or a bad shutter.
+  void run(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in, const render::GBuffer& gbuffer,
+           uint32_t width, uint32_t height, float shutter, ::cl::Buffer& hdr_out);
+
+  // Intermediates of the last run (tests, debug views). tile_max and neighbour_max: float2 per
+  // tile (the clamped half blur vector in pixels), tiles_x() x tiles_y() row-major;
+  // depth_speed: 2 halves per pixel (linear depth, clamped blur radius in pixels).
+  uint32_t tiles_x() const { return tiles_x_; }
+  uint32_t tiles_y() const { return tiles_y_; }
+  const ::cl::Buffer& tile_max() const { return tile_max_; }
+  const ::cl::Buffer& neighbour_max() const { return neighbour_max_; }
+  const ::cl::Buffer& depth_speed() const { return depth_speed_; }
+
+ private:
+  const rp::cl::Context* context_;
+  ::cl::Kernel tile_kernel_, neighbour_kernel_, reconstruct_kernel_;
+  uint32_t width_ = 0, height_ = 0, tiles_x_ = 0, tiles_y_ = 0;
+  ::cl::Buffer tile_max_, neighbour_max_, depth_speed_;
+};
+
+}  // namespace rp::passes
