@@ -304,3 +304,27 @@ TEST(TaaPass, RejectsBadSettings) {
 }
 
 }  // namespace
+
+namespace {
+
+// Not a check: prints the pass time at 720x720 (run with --gtest_also_run_disabled_tests).
+TEST(TaaPass, DISABLED_Time720) {
+  const uint32_t n = 720;
+  Harness gpu;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> vel(-3.0f, 3.0f);
+  Frame f = rp::test::taa::still_frame(n, n, random_hdr(n, n, 4.0f, 8));
+  for (glm::vec2& v : f.velocity) v = {vel(rng), vel(rng)};
+  double best = 1e30, sum = 0.0;
+  const int runs = 10;
+  for (int k = 0; k < runs + 2; ++k) {
+    f.jitter = rp::render::taa_jitter_px(uint32_t(k), 16);
+    gpu.run(f);
+    if (k < 2) continue;  // first run builds nothing but fills the history; warm up
+    best = std::min(best, gpu.last_ms());
+    sum += gpu.last_ms();
+  }
+  std::printf("taa 720x720: best %.2f ms, mean %.2f ms over %d runs\n", best, sum / runs, runs);
+}
+
+}  // namespace
