@@ -12,12 +12,14 @@
  * Steps (all deterministic: no atomics; every reduction uses a strict total order):
  *   1. motion_blur_tile_max: one 10x10 work-group per 20x20 tile, each item covering 2x2 pixels.
  *      Writes the tile's max-magnitude V (float2 per tile; ties: lower pixel index y * width + x
- *      wins; the magnitude compared is that of the unclamped V, the stored V is clamped) and,
- *      as the prepass, the depth/speed plane: one half2 per pixel (linear depth, |V| clamped, in
- *      pixels), written with vstore_half2 (round to nearest even).
+ *      wins; the magnitude compared is that of the unclamped V, the stored V is clamped).
  *   2. motion_blur_neighbour_max: one item per tile, max |V| over the 3x3 tiles around it
- *      (clamped at the border; ties: first in row-major order of the neighbourhood wins).
- *   3. motion_blur_reconstruct: one item per pixel. If the neighbourhood max is at most half a
+ *      (clamped at the border; ties: first in row-major order of the neighbourhood wins), and a
+ *      flag per tile: does the reconstruction read this tile's depth/speed plane.
+ *   3. motion_blur_depth_speed (prepass): the depth/speed plane, one half2 per pixel (linear
+ *      depth, |V| clamped, in pixels) written with vstore_half2 (round to nearest even), only in
+ *      flagged tiles, so a still frame costs almost nothing.
+ *   4. motion_blur_reconstruct: one item per pixel. If the neighbourhood max is at most half a
  *      pixel the input is copied unchanged. Else RP_MB_SAMPLES samples along +-V_max (jittered per
  *      pixel) are weighted by a soft depth comparison and the speed cones: a foreground sample
  *      whose own blur reaches the pixel, a background sample seen through the pixel's own blur,
@@ -25,7 +27,8 @@
  *
  * Buffers: hdr float4 per pixel (rgb linear radiance, a passed through the same filter);
  * velocity float2 per pixel; normal_depth float4 per pixel (w linear depth); depth_speed
- * 2 halves per pixel; tile buffers float2 per tile, tiles_x = ceil(width / 20) per row.
+ * 2 halves per pixel; tile buffers float2 (plane_needed uint) per tile, tiles_x = ceil(width / 20)
+ * per row.
  */
 #include "common/random.h"
 
@@ -65,9 +68,8 @@ inline float2 rp_mb_clamp(float2 v) {
 /* Grid: (tiles_x * 10, tiles_y * 10), local (10, 10). */
 __kernel __attribute__((reqd_work_group_size(RP_MB_GROUP, RP_MB_GROUP, 1)))
 void motion_blur_tile_max(__global const float2* restrict velocity,
-                          __global const float4* restrict normal_depth,
-                          __global half* restrict depth_speed, __global float2* restrict tile_max,
-                          uint width, uint height, float shutter) {
+                          __global float2* restrict tile_max, uint width, uint height,
+                          float shutter) {
   __local float2 best_v[RP_MB_GROUP_ITEMS];
   __local float best_len2[RP_MB_GROUP_ITEMS];
   __local uint best_index[RP_MB_GROUP_ITEMS];
@@ -90,8 +92,6 @@ void motion_blur_tile_max(__global const float2* restrict velocity,
       my_len2 = len2;
       my_index = i;
     }
-    const float depth = clamp(normal_depth[i].w, 0.0f, RP_MB_MAX_DEPTH);
-    vstore_half2((float2)(depth, sqrt(rp_mb_len2(rp_mb_clamp(v)))), i, depth_speed);
   }
   best_v[item] = my_v;
   best_len2[item] = my_len2;
@@ -119,10 +119,19 @@ void motion_blur_tile_max(__global const float2* restrict velocity,
 
 /* Grid: (tiles_x, tiles_y), any local size. */
 __kernel void motion_blur_neighbour_max(__global const float2* restrict tile_max,
-                                        __global float2* restrict neighbour_max, uint tiles_x,
+                                        __global float2* restrict neighbour_max,
+                                        __global uint* restrict plane_needed, uint tiles_x,
                                         uint tiles_y) {
   const int tx = (int)get_global_id(0), ty = (int)get_global_id(1);
   if (tx >= (int)tiles_x || ty >= (int)tiles_y) return;
+  /* The reconstruction reads the depth/speed plane at its pixel and at samples up to 20 px
+   * (one tile) away, and runs where a tile within one tile moves: so the plane is needed where
+   * any tile within two tiles (5x5) has a blur radius above half a pixel. */
+  uint needed = 0u;
+  for (int y = max(ty - 2, 0); y <= min(ty + 2, (int)tiles_y - 1); ++y)
+    for (int x = max(tx - 2, 0); x <= min(tx + 2, (int)tiles_x - 1); ++x)
+      needed |= rp_mb_len2(tile_max[y * (int)tiles_x + x]) > 0.25f ? 1u : 0u;
+  plane_needed[ty * (int)tiles_x + tx] = needed;
   float2 best = (float2)(0.0f, 0.0f);
   float best_len2 = -1.0f;
   for (int dy = -1; dy <= 1; ++dy) {
@@ -140,6 +149,24 @@ __kernel void motion_blur_neighbour_max(__global const float2* restrict tile_max
     }
   }
   neighbour_max[ty * (int)tiles_x + tx] = best;
+}
+
+/* The prepass: depth/speed plane, one half2 per pixel (linear depth clamped to [0, 60000],
+ * clamped blur radius |V| in pixels), only in tiles flagged by motion_blur_neighbour_max (the
+ * rest is never read). Straight-line per-pixel code: PoCL vectorizes it across work-items.
+ * Grid: (width, height), any local size. */
+__kernel void motion_blur_depth_speed(__global const float2* restrict velocity,
+                                      __global const float4* restrict normal_depth,
+                                      __global const uint* restrict plane_needed,
+                                      __global half* restrict depth_speed, uint width,
+                                      uint height, uint tiles_x, float shutter) {
+  const uint x = (uint)get_global_id(0), y = (uint)get_global_id(1);
+  if (x >= width || y >= height) return;
+  if (plane_needed[(y / RP_MB_TILE) * tiles_x + x / RP_MB_TILE] == 0u) return;
+  const uint i = y * width + x;
+  const float2 v = rp_mb_clamp(rp_mb_half_vector(velocity[i], shutter));
+  const float depth = clamp(normal_depth[i].w, 0.0f, RP_MB_MAX_DEPTH);
+  vstore_half2((float2)(depth, sqrt(rp_mb_len2(v))), i, depth_speed);
 }
 
 /* 1 when za (sample) is in front of zb (pixel), fading to 0 over RP_MB_SOFT_Z behind it. */

@@ -2,7 +2,7 @@
 // neighbourhood max, a depth/speed half2 plane, and McGuire et al. 2012's reconstruction filter
 // along the neighbourhood max velocity in both directions (kernels/motion_blur.cl). Tiles whose
 // neighbourhood max blur radius is at most half a pixel are copied unchanged. Pass name
-// "motion_blur".
+// "motion_blur" (four launches: tile max, neighbourhood max, depth/speed prepass, reconstruct).
 //
 // Shutter: the blur vector is velocity * shutter (velocity in pixels per frame, shutter = the
 // fraction of the frame interval the shutter is open, centred on the frame time), so an object
@@ -37,7 +37,8 @@ class MotionBlurPass {
 
   // Intermediates of the last run (tests, debug views). tile_max and neighbour_max: float2 per
   // tile (the clamped half blur vector in pixels), tiles_x() x tiles_y() row-major;
-  // depth_speed: 2 halves per pixel (linear depth, clamped blur radius in pixels).
+  // depth_speed: 2 halves per pixel (linear depth, clamped blur radius in pixels), written only
+  // in tiles within two tiles of one whose blur radius exceeds half a pixel (elsewhere stale).
   uint32_t tiles_x() const { return tiles_x_; }
   uint32_t tiles_y() const { return tiles_y_; }
   const ::cl::Buffer& tile_max() const { return tile_max_; }
@@ -46,9 +47,9 @@ class MotionBlurPass {
 
  private:
   const rp::cl::Context* context_;
-  ::cl::Kernel tile_kernel_, neighbour_kernel_, reconstruct_kernel_;
+  ::cl::Kernel tile_kernel_, neighbour_kernel_, depth_speed_kernel_, reconstruct_kernel_;
   uint32_t width_ = 0, height_ = 0, tiles_x_ = 0, tiles_y_ = 0;
-  ::cl::Buffer tile_max_, neighbour_max_, depth_speed_;
+  ::cl::Buffer tile_max_, neighbour_max_, plane_needed_, depth_speed_;
 };
 
 }  // namespace rp::passes

@@ -28,6 +28,13 @@ struct V4 {
   float x = 0, y = 0, z = 0, w = 0;
 };
 
+struct Inputs {
+  uint32_t w = 0, h = 0;
+  std::vector<V2> velocity;
+  std::vector<float> depth;
+  std::vector<V4> hdr;
+};
+
 // --- reference -------------------------------------------------------------------------------
 
 float len2(V2 v) {
@@ -149,7 +156,11 @@ float cylinder(float dist, float speed) {
   return 1.0f - t * t * (3.0f - 2.0f * t);
 }
 
-// The reconstruction filter, from the device's own intermediates (so this isolates the step).
+// The depth/speed plane (2 halves per pixel) of the whole image.
+std::vector<uint16_t> ref_depth_speed(const Inputs& in, float shutter);
+
+// The reconstruction filter over the neighbourhood max `nmax` (the device's, checked exactly by
+// the tests above) and the reference depth/speed plane `zs`.
 std::vector<V4> ref_reconstruct(const std::vector<V4>& hdr, const std::vector<uint16_t>& zs,
                                 const std::vector<V2>& nmax, uint32_t w, uint32_t h) {
   const uint32_t tx = (w + kTile - 1) / kTile;
@@ -190,14 +201,16 @@ std::vector<V4> ref_reconstruct(const std::vector<V4>& hdr, const std::vector<ui
   return out;
 }
 
-// --- device ----------------------------------------------------------------------------------
+std::vector<uint16_t> ref_depth_speed(const Inputs& in, float shutter) {
+  std::vector<uint16_t> zs(2 * in.depth.size());
+  for (size_t i = 0; i < in.depth.size(); ++i) {
+    zs[2 * i] = float_to_half(std::min(std::max(in.depth[i], 0.0f), 60000.0f));
+    zs[2 * i + 1] = float_to_half(std::sqrt(len2(clamp_radius(half_vector(in.velocity[i], shutter)))));
+  }
+  return zs;
+}
 
-struct Inputs {
-  uint32_t w = 0, h = 0;
-  std::vector<V2> velocity;
-  std::vector<float> depth;
-  std::vector<V4> hdr;
-};
+// --- device ----------------------------------------------------------------------------------
 
 struct Outputs {
   std::vector<V2> tile_max, neighbour_max;
@@ -205,19 +218,28 @@ struct Outputs {
   std::vector<V4> hdr;
 };
 
-Outputs run_device(const Inputs& in, float shutter) {
+// Runs the pass on `in`. With `prime` (same size), runs it on `prime` first with the same pass
+// object, so its intermediate buffers hold another frame's values (stale data must not leak).
+Outputs run_device(const Inputs& in, float shutter, const Inputs* prime = nullptr) {
   auto& ctx = rp::test::context();
   const size_t n = size_t(in.w) * in.h;
   rp::render::GBuffer g;
   g.resize(ctx.context, in.w, in.h);
-  std::vector<V4> nd(n);
-  for (size_t i = 0; i < n; ++i) nd[i] = {0.0f, 0.0f, 1.0f, in.depth[i]};
-  ctx.queue.enqueueWriteBuffer(g.velocity, CL_TRUE, 0, n * 8, in.velocity.data());
-  ctx.queue.enqueueWriteBuffer(g.normal_depth, CL_TRUE, 0, n * 16, nd.data());
   ::cl::Buffer hdr_in(ctx.context, CL_MEM_READ_WRITE, n * 16), hdr_out(ctx.context, CL_MEM_READ_WRITE, n * 16);
-  ctx.queue.enqueueWriteBuffer(hdr_in, CL_TRUE, 0, n * 16, in.hdr.data());
+  auto upload = [&](const Inputs& frame) {
+    std::vector<V4> nd(n);
+    for (size_t i = 0; i < n; ++i) nd[i] = {0.0f, 0.0f, 1.0f, frame.depth[i]};
+    ctx.queue.enqueueWriteBuffer(g.velocity, CL_TRUE, 0, n * 8, frame.velocity.data());
+    ctx.queue.enqueueWriteBuffer(g.normal_depth, CL_TRUE, 0, n * 16, nd.data());
+    ctx.queue.enqueueWriteBuffer(hdr_in, CL_TRUE, 0, n * 16, frame.hdr.data());
+  };
   rp::cl::Profiler profiler(ctx.queue);
   MotionBlurPass pass(ctx, rp::test::programs());
+  if (prime) {
+    upload(*prime);
+    pass.run(profiler, hdr_in, g, in.w, in.h, shutter, hdr_out);
+  }
+  upload(in);
   pass.run(profiler, hdr_in, g, in.w, in.h, shutter, hdr_out);
   EXPECT_EQ(profiler.collect().count("motion_blur"), 1u);
   Outputs out;
@@ -315,10 +337,11 @@ TEST(MotionBlurKernels, DepthSpeedPlaneRoundTrip) {
   in.depth[0] = 1e9f;  // beyond half range: stored as the clamp depth, not infinity
   const float shutter = 0.37f;
   const Outputs out = run_device(in, shutter);
+  const auto ref = ref_depth_speed(in, shutter);
   for (size_t i = 0; i < in.depth.size(); ++i) {
     const float depth = std::min(in.depth[i], 60000.0f);
     const float speed = std::sqrt(len2(clamp_radius(half_vector(in.velocity[i], shutter))));
-    EXPECT_EQ(out.depth_speed[2 * i], float_to_half(depth)) << "pixel " << i;
+    EXPECT_EQ(out.depth_speed[2 * i], ref[2 * i]) << "pixel " << i;
     EXPECT_NEAR(half_to_float(out.depth_speed[2 * i]), depth, depth * (1.0f / 2048.0f));
     EXPECT_NEAR(half_to_float(out.depth_speed[2 * i + 1]), speed, speed * (1.0f / 2048.0f) + 1e-6f)
         << "pixel " << i;
@@ -353,8 +376,13 @@ TEST(MotionBlurKernels, ReconstructionMatchesReference) {
         in.velocity[y * w + x] = b.v;
         in.depth[y * w + x] = b.depth;
       }
-  const Outputs out = run_device(in, 0.8f);
-  const auto ref = ref_reconstruct(in.hdr, out.depth_speed, out.neighbour_max, w, h);
+  // Primed with a frame of other depths and motion everywhere: the pass must rewrite every part
+  // of its depth/speed plane that this frame's reconstruction reads.
+  // Its pixels are nearer and fast, so a stale sample would count as a blurred foreground.
+  Inputs other = make_inputs(w, h, 30, 6u);
+  for (float& d : other.depth) d = 0.5f;
+  const Outputs out = run_device(in, 0.8f, &other);
+  const auto ref = ref_reconstruct(in.hdr, ref_depth_speed(in, 0.8f), out.neighbour_max, w, h);
   int changed = 0, copied = 0;
   for (size_t i = 0; i < ref.size(); ++i) {
     const float* got = &out.hdr[i].x;
