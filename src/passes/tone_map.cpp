@@ -10,8 +10,9 @@ constexpr size_t kGroup = 256;
 
 }  // namespace
 
-ToneMapPass::ToneMapPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
-    : kernel_(programs.kernel("tone_map.cl", "tone_map_output")) {
+ToneMapPass::ToneMapPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+                         bool dither)
+    : kernel_(programs.kernel("tone_map.cl", "tone_map_output")), dither_(dither) {
   // The kernel writes bytes and relies on R being the low byte of each packed uint.
   if (!context.info.device.getInfo<CL_DEVICE_ENDIAN_LITTLE>())
     throw rp::cl::Error("tone map: device '" + context.info.name +
@@ -25,6 +26,8 @@ void ToneMapPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   kernel_.setArg(0, hdr);
   kernel_.setArg(1, rgba8);
   kernel_.setArg(2, bytes);
+  kernel_.setArg(3, cl_uint(dither_ ? 1u : 0u));
+  kernel_.setArg(4, cl_uint(scene.constants.frame_index));
   profiler.enqueue("tone_map", kernel_, ::cl::NDRange(rp::cl::round_up(bytes, kGroup)),
                    ::cl::NDRange(kGroup));
 }

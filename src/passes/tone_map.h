@@ -1,5 +1,5 @@
-// Tone map + sRGB encode + 8-bit quantise: HDR float4 -> RGBA8 (uint per pixel, R in the low
-// byte, A = 255). Pass name "tone_map".
+// Tone map + sRGB encode + dithered 8-bit quantise: HDR float4 -> RGBA8 (uint per pixel, R in
+// the low byte, A = 255). Pass name "tone_map".
 #pragma once
 
 #include "cl/profiler.h"
@@ -10,12 +10,15 @@ namespace rp::passes {
 
 class ToneMapPass {
  public:
-  ToneMapPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+  // dither: add per-pixel, per-frame noise of one code before quantising (no banding); false
+  // rounds to nearest (exact comparisons in tests).
+  ToneMapPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs, bool dither = true);
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene, const ::cl::Buffer& hdr,
            ::cl::Buffer& rgba8);
 
  private:
   ::cl::Kernel kernel_;
+  bool dither_;
 };
 
 }  // namespace rp::passes

@@ -26,17 +26,19 @@ double tone_map_ref(double x) { return std::max(x, 0.0) / (1.0 + std::max(x, 0.0
 uint32_t quantize_ref(double v) { return static_cast<uint32_t>(std::floor(v * 255.0 + 0.5)); }
 
 // Runs the tone map pass over `hdr` (one row of pixels) and returns the packed RGBA8 words.
-std::vector<uint32_t> run_tone_map(const std::vector<float>& hdr_rgba) {
+std::vector<uint32_t> run_tone_map(const std::vector<float>& hdr_rgba, bool dither = false,
+                                   uint32_t frame = 0) {
   auto& ctx = rp::test::context();
   const uint32_t n = static_cast<uint32_t>(hdr_rgba.size() / 4);
   rp::render::GpuScene scene(ctx.context, ctx.queue, rp::scene::SceneAssets{});
   scene.constants.width = n;
   scene.constants.height = 1;
+  scene.constants.frame_index = frame;
   ::cl::Buffer hdr(ctx.context, CL_MEM_READ_WRITE, hdr_rgba.size() * sizeof(float));
   ::cl::Buffer out(ctx.context, CL_MEM_READ_WRITE, n * sizeof(uint32_t));
   ctx.queue.enqueueWriteBuffer(hdr, CL_TRUE, 0, hdr_rgba.size() * sizeof(float), hdr_rgba.data());
   rp::cl::Profiler profiler(ctx.queue);
-  rp::passes::ToneMapPass pass(ctx, rp::test::programs());
+  rp::passes::ToneMapPass pass(ctx, rp::test::programs(), dither);
   pass.run(profiler, scene, hdr, out);
   auto times = profiler.collect();
   EXPECT_EQ(times.count("tone_map"), 1u);
@@ -73,6 +75,45 @@ TEST(ToneMap, MatchesReferenceWithinOneStep) {
   }
   // The polynomial sRGB curve is accurate to 0.002 of a step: off-by-one only at rounding ties.
   EXPECT_GE(exact, total - total / 200) << exact << " of " << total << " exact";
+}
+
+TEST(ToneMap, DitheringRemovesBandingOnASlowGradient) {
+  // 4096 pixels whose encoded value rises by 1.5 codes in total: rounding gives 2-3 flat bands,
+  // dithering gives codes whose local average follows the gradient.
+  const size_t n = 4096;
+  std::vector<double> exact(n);
+  std::vector<float> hdr;
+  for (size_t i = 0; i < n; ++i) {
+    double code = 100.2 + 1.5 * double(i) / double(n - 1);
+    double srgb = code / 255.0;
+    double lin = srgb_decode_ref(srgb);
+    double x = lin / (1.0 - lin);  // inverse of T
+    exact[i] = code;
+    hdr.insert(hdr.end(), {float(x), float(x), float(x), 1.0f});
+  }
+  for (uint32_t frame : {0u, 1u}) {
+    std::vector<uint32_t> rounded = run_tone_map(hdr, false, frame);
+    std::vector<uint32_t> dithered = run_tone_map(hdr, true, frame);
+    double worst_rounded = 0.0, worst_dithered = 0.0;
+    const size_t block = 256;
+    for (size_t b = 0; b < n; b += block) {
+      double sum_r = 0.0, sum_d = 0.0, sum_e = 0.0;
+      for (size_t i = b; i < b + block; ++i) {
+        sum_r += double(rounded[i] & 0xFF);
+        sum_d += double(dithered[i] & 0xFF);
+        sum_e += exact[i];
+        // Each dithered code is one of the two codes around the exact value.
+        EXPECT_LE(std::fabs(double(dithered[i] & 0xFF) - exact[i]), 1.0) << i;
+      }
+      worst_rounded = std::max(worst_rounded, std::fabs(sum_r - sum_e) / block);
+      worst_dithered = std::max(worst_dithered, std::fabs(sum_d - sum_e) / block);
+    }
+    EXPECT_GT(worst_rounded, 0.2) << "the test gradient should band when rounded";
+    EXPECT_LT(worst_dithered, 0.1) << "block means of dithered codes follow the gradient";
+  }
+  // The noise differs from frame to frame, and is the same for the same frame.
+  EXPECT_NE(run_tone_map(hdr, true, 0), run_tone_map(hdr, true, 1));
+  EXPECT_EQ(run_tone_map(hdr, true, 3), run_tone_map(hdr, true, 3));
 }
 
 TEST(ToneMap, MonotonicPerChannel) {
