@@ -34,6 +34,8 @@ inline constexpr char kFireball = 'F';
 inline constexpr char kPause = 'P';
 inline constexpr char kReset = 'R';
 inline constexpr char kSingleStep = ' ';  // while paused
+inline constexpr char kTaa = 'T';         // render toggles: carried in the log like the rest
+inline constexpr char kBloom = 'B';
 }  // namespace keys
 
 // True for the chars a key event may carry.

@@ -11,7 +11,7 @@
 namespace rp::app {
 
 int bench_command(const CommonOptions& common, const BenchOptions& options) {
-  SimulationFrameSource source(make_simulation_options(options.sim));
+  SimulationFrameSource source(make_simulation_options(options.sim, common.effects));
   RenderSession session(common, options.size.width, options.size.height);
   const rp::cl::DeviceInfo& info = session.device();
   std::printf("device %s\n", describe_device(info).c_str());
@@ -25,7 +25,7 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
   progress.update(0);
   for (uint32_t i = 0; i < options.warmup + options.frames; ++i) {
     double frame_ms = 0.0;
-    rp::cl::PassTimes times = session.render(source.next(), rgba, frame_ms);
+    rp::cl::PassTimes times = render_next_frame(session, source, common.effects, rgba, frame_ms);
     if (i >= options.warmup) stats.add(times, frame_ms);
     progress.update(i + 1);
   }

@@ -38,6 +38,16 @@ void add_common(CLI::App* cmd, CommonOptions& common) {
                   "GI voxel volume resolution per side: 32, 64 or 128 (default " +
                       std::to_string(render::RenderSettings{}.voxel_resolution) + ")")
       ->check(CLI::IsMember({32u, 64u, 128u}));
+  auto off = [&](const char* name, bool& flag, const char* what) {
+    cmd->add_flag_callback(name, [&flag] { flag = false; }, what);
+  };
+  off("--no-taa", common.effects.taa, "temporal anti-aliasing off (key T toggles it)");
+  off("--no-bloom", common.effects.bloom, "bloom off (key B toggles it)");
+  off("--no-motion-blur", common.effects.motion_blur, "motion blur off (key M toggles it)");
+  cmd->add_option("--bloom-strength", common.effects.bloom_strength,
+                  "bloom mix factor f: colour * (1 - f) + bloom * f")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0f, 1.0f));
 }
 
 void add_size(CLI::App* cmd, SizeArgs& size) {

@@ -17,7 +17,7 @@ int render_command(const CommonOptions& common, const RenderOptions& options) {
   std::filesystem::path out_dir(options.out_dir);
   ensure_directory(out_dir);  // fail before the (slow) kernel builds if the folder is unusable
   // Cheap checks first: a malformed replay log or a missing ffmpeg fail before kernel builds.
-  SimulationFrameSource source(make_simulation_options(options.sim));
+  SimulationFrameSource source(make_simulation_options(options.sim, common.effects));
   uint32_t frames = options.frames;
   if (!options.frames_given && source.replay_frames() > 0) frames = source.replay_frames();
   std::unique_ptr<VideoPipe> video;
@@ -35,7 +35,7 @@ int render_command(const CommonOptions& common, const RenderOptions& options) {
   progress.update(0);
   for (uint32_t i = 0; i < frames; ++i) {
     double frame_ms = 0.0;
-    rp::cl::PassTimes times = session.render(source.next(), rgba, frame_ms);
+    rp::cl::PassTimes times = render_next_frame(session, source, common.effects, rgba, frame_ms);
     stats.add(times, frame_ms);
     write_png_atomic(out_dir / frame_file_name(i), int(session.width()), int(session.height()),
                      rgba);

@@ -23,6 +23,7 @@ struct CommonOptions {
   std::string asset_dir;   // --assets: folder with the scene's textures
   uint32_t shadow_size = 0;  // --shadow-size: shadow map texels per side (0 = renderer default)
   uint32_t voxels = 0;       // --voxels: GI volume voxels per side (0 = renderer default, 64)
+  render::Effects effects;   // --no-taa, --no-bloom, --no-motion-blur, --bloom-strength
   passes::DebugViewSettings view;  // --view / --level / --dir (render, run): what is shown
 };
 
@@ -43,6 +44,10 @@ class RenderSession {
   // Throws rp::cl::Error for a voxel level or direction the renderer's chain does not have.
   void set_view(const passes::DebugViewSettings& view);
   const passes::DebugViewSettings& view() const { return view_; }
+
+  // Post-processing switches for the next frames (keys T, B, M in the window).
+  void set_effects(const render::Effects& effects) { renderer_->set_effects(effects); }
+  void reset_history() { renderer_->reset_history(); }
 
   const rp::cl::DeviceInfo& device() const { return context_.info; }
   const scene::SceneAssets& assets() const { return assets_; }

@@ -78,7 +78,7 @@ scene::InputEvent to_input(const display::WindowEvent& e, glm::vec2 viewport) {
 }  // namespace
 
 int run_command(const CommonOptions& common, const RunOptions& options) {
-  SimulationFrameSource source(make_simulation_options(options.sim));
+  SimulationFrameSource source(make_simulation_options(options.sim, common.effects));
   if (std::filesystem::path dir = std::filesystem::path(options.record).parent_path();
       !options.record.empty() && !dir.empty())
     ensure_directory(dir);  // fail now, not after the session, if the log cannot be written
@@ -121,7 +121,7 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
                                    : std::chrono::duration<double>(now - last_frame).count());
     last_frame = now;
     double frame_ms = 0.0;
-    rp::cl::PassTimes times = session.render(source.next(), rgba, frame_ms);
+    rp::cl::PassTimes times = render_next_frame(session, source, common.effects, rgba, frame_ms);
     window->present(rgba.data(), int(session.width()), int(session.height()));
     ++presented;
     all.add(times, frame_ms);

@@ -15,20 +15,31 @@ constexpr int kMaxStepsPerFrame = 8;
 
 }  // namespace
 
-SimulationOptions make_simulation_options(const SimulationArgs& args) {
+SimulationOptions make_simulation_options(const SimulationArgs& args,
+                                          const render::Effects& effects) {
   SimulationOptions o;
   o.seed = args.seed;
   o.marbles = args.marbles;
   o.fireball = args.fireball;
+  o.toggles = {effects.taa, effects.bloom, effects.motion_blur};
   if (!args.replay.empty()) o.replay = scene::read_input_log_file(args.replay);
   return o;
+}
+
+render::Effects effects_with(const render::Effects& base, const ViewToggles& toggles) {
+  render::Effects e = base;
+  e.taa = toggles.taa;
+  e.bloom = toggles.bloom;
+  e.motion_blur = toggles.motion_blur;
+  return e;
 }
 
 SimulationFrameSource::SimulationFrameSource(SimulationOptions options)
     : options_(std::move(options)),
       world_(scene::WorldConfig{options_.seed, 1.0f / 240.0f, options_.marbles,
                                 options_.fireball}),
-      replayer_(options_.replay) {
+      replayer_(options_.replay),
+      toggles_(options_.toggles) {
   replay_frames_ = static_cast<uint32_t>(
       std::count_if(options_.replay.begin(), options_.replay.end(), [](const auto& e) {
         return e.type == scene::InputEventType::Frame;
@@ -54,8 +65,13 @@ void SimulationFrameSource::apply(const scene::InputEvent& e) {
         case keys::kMarbles: world_.set_marbles(!world_.marbles()); break;
         case keys::kFireball: world_.set_fireball(!world_.fireball()); break;
         case keys::kMotionBlur: toggles_.motion_blur = !toggles_.motion_blur; break;
+        case keys::kTaa: toggles_.taa = !toggles_.taa; break;
+        case keys::kBloom: toggles_.bloom = !toggles_.bloom; break;
         case keys::kPause: paused_ = !paused_; break;
-        case keys::kReset: world_.reset(); break;
+        case keys::kReset:
+          world_.reset();
+          was_reset_ = true;
+          break;
         case keys::kSingleStep: single_step_ = paused_; break;
         default: break;  // other keys belong to the view (debug views), not the world
       }
@@ -137,6 +153,15 @@ scene::FrameScene SimulationFrameSource::next() {
   world_.fill_frame(frame);
   frame.frame_index = frames_++;
   return frame;
+}
+
+rp::cl::PassTimes render_next_frame(RenderSession& session, SimulationFrameSource& source,
+                                    const render::Effects& base, std::vector<uint8_t>& rgba,
+                                    double& frame_ms) {
+  scene::FrameScene frame = source.next();
+  session.set_effects(effects_with(base, source.toggles()));
+  if (source.take_reset()) session.reset_history();
+  return session.render(frame, rgba, frame_ms);
 }
 
 }  // namespace rp::app

@@ -11,13 +11,24 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "app/frame_source.h"
 #include "scene/input.h"
+#include "app/render_session.h"
+#include "render/renderer.h"
 #include "scene/world.h"
 
 namespace rp::app {
+
+// Render-side toggles that input can change (the world knows nothing of rendering); they start
+// from the command line's choice and flip on key presses.
+struct ViewToggles {
+  bool taa = true;          // key T
+  bool bloom = true;        // key B
+  bool motion_blur = true;  // key M
+};
 
 struct SimulationArgs;
 
@@ -27,16 +38,18 @@ struct SimulationOptions {
   bool fireball = false;
   double frame_seconds = 1.0 / 60.0;  // headless frame interval (without Frame marks)
   std::vector<scene::InputEvent> replay;  // events to replay (may hold Frame marks)
+  ViewToggles toggles;                    // render toggles at the start
 };
 
 // From the command line's options; reads the --replay log (throws scene::InputLogError naming
 // the file and line of a malformed log).
-SimulationOptions make_simulation_options(const SimulationArgs& args);
+// `effects`: the command line's post-processing choice (the toggles start from it).
+SimulationOptions make_simulation_options(const SimulationArgs& args,
+                                          const render::Effects& effects);
 
-// Render-side toggles that input can change (the world knows nothing of rendering).
-struct ViewToggles {
-  bool motion_blur = true;  // key M
-};
+// The command line's effects with the keys' toggles applied.
+render::Effects effects_with(const render::Effects& base, const ViewToggles& toggles);
+
 
 class SimulationFrameSource final : public FrameSource {
  public:
@@ -56,6 +69,8 @@ class SimulationFrameSource final : public FrameSource {
   const scene::InputRecorder& recording() const { return recorder_; }
   const scene::World& world() const { return world_; }
   const ViewToggles& toggles() const { return toggles_; }
+  // True once after the world was reset (key R): the renderer should drop its TAA history.
+  bool take_reset() { return std::exchange(was_reset_, false); }
   bool paused() const { return paused_; }
   uint64_t session_step() const { return session_step_; }
 
@@ -75,9 +90,17 @@ class SimulationFrameSource final : public FrameSource {
   bool paused_ = false;
   bool single_step_ = false;
   bool dragging_ = false;
+  bool was_reset_ = false;
   glm::vec2 last_cursor_{0.0f};
   double elapsed_seconds_ = -1.0;  // < 0: headless frame interval
   double time_debt_ = 0.0;         // wall-clock seconds not yet simulated
 };
+
+// One frame of the app loop: the source's next scene (input applied, world advanced), the
+// toggles it ended with handed to the renderer (and its TAA history dropped after a reset),
+// then rendered into `rgba`. Returns the per-pass times; frame_ms as RenderSession::render.
+rp::cl::PassTimes render_next_frame(RenderSession& session, SimulationFrameSource& source,
+                                    const render::Effects& base, std::vector<uint8_t>& rgba,
+                                    double& frame_ms);
 
 }  // namespace rp::app

@@ -3,7 +3,10 @@
 #include "cl/error.h"
 #include "passes/debug_view.h"
 #include "passes/gbuffer.h"
+#include "passes/bloom.h"
 #include "passes/light.h"
+#include "passes/motion_blur.h"
+#include "passes/taa.h"
 #include "passes/tone_map.h"
 #include "passes/visibility.h"
 #include "passes/voxel_mips.h"
@@ -23,6 +26,9 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   voxel_mips_ = std::make_unique<passes::VoxelMipsPass>(context, programs);
   light_ = std::make_unique<passes::LightPass>(context, programs);
   tone_map_ = std::make_unique<passes::ToneMapPass>(context, programs);
+  taa_ = std::make_unique<passes::TaaPass>(context, programs);
+  bloom_ = std::make_unique<passes::BloomPass>(context, programs);
+  motion_blur_ = std::make_unique<passes::MotionBlurPass>(context, programs);
   debug_view_pass_ = std::make_unique<passes::DebugViewPass>(context, programs);  // builds lazily
   shadow_.resize(context.context, settings_.shadow_size);
   voxels_.resize(context.context, settings_.voxel_resolution);
@@ -39,6 +45,7 @@ void Renderer::resize(uint32_t width, uint32_t height) {
   vis_.resize(context_.context, width, height);
   gbuffer_.resize(context_.context, width, height);
   hdr_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
+  for (::cl::Buffer& b : post_) b = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
   rgba8_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 4);
   if (light_components_.direct() != nullptr) set_debug_view(view_);  // reallocate at the new size
 }
@@ -60,8 +67,15 @@ void Renderer::set_debug_view(const passes::DebugViewSettings& view) {
 
 rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
   try {
+    const Effects& fx = settings_.effects;
+    // A camera cut (this frame's previous camera is not what the last frame showed) makes the
+    // TAA history meaningless.
+    const glm::mat4 prev_view = frame.prev_camera.view();
+    if (last_view_ && *last_view_ != prev_view) taa_->reset_history();
+    last_view_ = frame.camera.view();
     scene_->update(frame, settings_.width, settings_.height, settings_.shadow_size,
-                   voxels_.resolution);
+                   voxels_.resolution,
+                   fx.taa && view_.view == passes::DebugView::kFinal ? 16u : 0u);
     visibility_->render(profiler_, *scene_, vis_);
     visibility_->render_shadow(profiler_, *scene_, shadow_);
     gbuffer_pass_->run(profiler_, *scene_, vis_, gbuffer_);
@@ -71,7 +85,24 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     light_->run(profiler_, *scene_, gbuffer_, shadow_, voxels_.chain, voxels_.resolution,
                 voxels_.levels, hdr_, split ? &light_components_ : nullptr);
     if (view_.view == passes::DebugView::kFinal) {
-      tone_map_->run(profiler_, *scene_, hdr_, rgba8_);
+      const uint32_t w = settings_.width, h = settings_.height;
+      const ::cl::Buffer* colour = &hdr_;
+      int next = 0;
+      if (fx.taa) {
+        taa_->run(profiler_, *scene_, *colour, gbuffer_, post_[next]);
+        colour = &post_[next];
+        next ^= 1;
+      }
+      if (fx.bloom && fx.bloom_strength > 0.0f) {
+        bloom_->run(profiler_, *colour, w, h, fx.bloom_strength, post_[next]);
+        colour = &post_[next];
+        next ^= 1;
+      }
+      if (fx.motion_blur && fx.shutter > 0.0f) {
+        motion_blur_->run(profiler_, *colour, gbuffer_, w, h, fx.shutter, post_[next]);
+        colour = &post_[next];
+      }
+      tone_map_->run(profiler_, *scene_, *colour, rgba8_);
     } else {
       passes::DebugViewInputs in;
       in.gbuffer = &gbuffer_;
@@ -88,6 +119,13 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
                         rp::cl::error_name(e.err()) + ")");
   }
 }
+
+void Renderer::set_effects(const Effects& effects) {
+  if (effects.taa && !settings_.effects.taa) taa_->reset_history();
+  settings_.effects = effects;
+}
+
+void Renderer::reset_history() { taa_->reset_history(); }
 
 void Renderer::read_rgba8(std::vector<uint8_t>& out) {
   out.resize(size_t(settings_.width) * settings_.height * 4);

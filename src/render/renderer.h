@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "cl/context.h"
@@ -23,14 +24,32 @@ class ToneMapPass;
 class DebugViewPass;
 class VoxelizePass;
 class VoxelMipsPass;
+class TaaPass;
+class BloomPass;
+class MotionBlurPass;
 }  // namespace rp::passes
 
 namespace rp::render {
+
+// Post-processing after the light pass, in this order (SPEC 6.6-6.9): TAA on tone-mapped values
+// (its output is inverse tone mapped back to HDR), bloom mixed into that HDR, motion blur, then
+// tone map + sRGB + dither. Each can be switched off; the others keep their place.
+struct Effects {
+  bool taa = true;            // 16-sample Halton jitter + history (key T, --no-taa)
+  bool bloom = true;          // (key B, --no-bloom)
+  bool motion_blur = true;    // (key M, --no-motion-blur)
+  float bloom_strength = 0.1f;  // f in colour * (1 - f) + bloom * f
+  // Fraction of the frame interval the virtual shutter is open (a 180 degree shutter): the blur
+  // streak is velocity * shutter, where velocity is the screen motion since the previous frame.
+  float shutter = 0.5f;
+  bool operator==(const Effects&) const = default;
+};
 
 struct RenderSettings {
   uint32_t width = 720, height = 720;
   uint32_t shadow_size = 1024;  // shadow map texels per side
   uint32_t voxel_resolution = 64;  // GI volume: voxels per side over the box (32, 64 or 128)
+  Effects effects;
 };
 
 class Renderer {
@@ -58,6 +77,12 @@ class Renderer {
   // direct or indirect debug view is on (empty buffers otherwise).
   const passes::LightComponents& light_components() const { return light_components_; }
 
+  // Switches post-processing effects between frames (turning TAA on starts a fresh history).
+  void set_effects(const Effects& effects);
+  // Forgets the TAA history (the app calls it when the world is reset; camera cuts, i.e. a
+  // frame whose previous camera is not the camera of the frame before, reset it automatically).
+  void reset_history();
+
   // The finished image: width * height * 4 bytes RGBA8, top row first. Blocking.
   void read_rgba8(std::vector<uint8_t>& out);
 
@@ -80,6 +105,9 @@ class Renderer {
   std::unique_ptr<passes::VoxelMipsPass> voxel_mips_;
   std::unique_ptr<passes::LightPass> light_;
   std::unique_ptr<passes::ToneMapPass> tone_map_;
+  std::unique_ptr<passes::TaaPass> taa_;
+  std::unique_ptr<passes::BloomPass> bloom_;
+  std::unique_ptr<passes::MotionBlurPass> motion_blur_;
   std::unique_ptr<passes::DebugViewPass> debug_view_pass_;
   passes::DebugViewSettings view_;
   passes::LightComponents light_components_;  // set only while a direct/indirect view is on
@@ -87,7 +115,9 @@ class Renderer {
   ShadowMap shadow_;
   GBuffer gbuffer_;
   VoxelVolume voxels_;
-  ::cl::Buffer hdr_;    // float4 per pixel
+  ::cl::Buffer hdr_;    // float4 per pixel: the light pass's output
+  ::cl::Buffer post_[2];  // float4 per pixel: post-processing ping-pong
+  std::optional<glm::mat4> last_view_;  // camera of the previous frame (camera-cut detection)
   ::cl::Buffer rgba8_;  // uint per pixel
 };
 

@@ -111,4 +111,23 @@ TEST(SimulationCli, RecordedWindowSessionReplaysFrameForFrame) {
   EXPECT_EQ(shown.rgba, last.rgba);
 }
 
+TEST(SimulationCli, EffectSwitchesAreAcceptedAndCheckedForRange) {
+  TempDir dir;
+  auto ok = run_rolypoly("render --size 32 --frames 2 --no-taa --no-bloom --no-motion-blur "
+                         "--out " + shell_quote((dir / "a").string()));
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  auto strength = run_rolypoly("render --size 32 --frames 1 --bloom-strength 0.3 --out " +
+                               shell_quote((dir / "b").string()));
+  EXPECT_EQ(strength.exit_code, 0) << strength.err;
+  auto bad = run_rolypoly("render --size 32 --frames 1 --bloom-strength 2 --out " +
+                          shell_quote((dir / "c").string()));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("bloom-strength"), std::string::npos) << bad.err;
+  // Bloom changes the picture (the lamp glows).
+  auto off = run_rolypoly("render --size 32 --frames 1 --no-bloom --out " +
+                          shell_quote((dir / "d").string()));
+  ASSERT_EQ(off.exit_code, 0) << off.err;
+  EXPECT_NE(read_file(dir / "b" / "frame_0000.png"), read_file(dir / "d" / "frame_0000.png"));
+}
+
 }  // namespace
