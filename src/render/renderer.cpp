@@ -2,6 +2,7 @@
 
 #include "cl/error.h"
 #include "passes/debug_view.h"
+#include "passes/embree_visibility.h"
 #include "passes/gbuffer.h"
 #include "passes/bloom.h"
 #include "passes/light.h"
@@ -21,6 +22,8 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
     throw rp::cl::Error("render size must be at least 1x1 pixels");
   scene_ = std::make_unique<GpuScene>(context.context, context.queue, assets);
   visibility_ = std::make_unique<passes::VisibilityPass>(context, programs);
+  if (settings_.visibility == VisibilityBackend::kEmbree)
+    embree_ = std::make_unique<passes::EmbreeVisibilityPass>(context, assets);
   gbuffer_pass_ = std::make_unique<passes::GBufferPass>(context, programs);
   voxelize_ = std::make_unique<passes::VoxelizePass>(context, programs);
   voxel_mips_ = std::make_unique<passes::VoxelMipsPass>(context, programs);
@@ -76,7 +79,11 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     scene_->update(frame, settings_.width, settings_.height, settings_.shadow_size,
                    voxels_.resolution,
                    fx.taa && view_.view == passes::DebugView::kFinal ? 16u : 0u);
-    visibility_->render(profiler_, *scene_, vis_);
+    double host_visibility_ms = 0.0;
+    if (embree_)
+      host_visibility_ms = embree_->render(profiler_, *scene_, vis_);
+    else
+      visibility_->render(profiler_, *scene_, vis_);
     visibility_->render_shadow(profiler_, *scene_, shadow_);
     gbuffer_pass_->run(profiler_, *scene_, vis_, gbuffer_);
     voxelize_->run(profiler_, *scene_, shadow_, voxels_);
@@ -113,7 +120,9 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
       in.voxel_levels = voxels_.levels;
       debug_view_pass_->run(profiler_, *scene_, view_, in, rgba8_);
     }
-    return profiler_.collect();
+    rp::cl::PassTimes times = profiler_.collect();
+    if (embree_) times["visibility_host"] = host_visibility_ms;
+    return times;
   } catch (const ::cl::Error& e) {
     throw rp::cl::Error(std::string("OpenCL call failed while rendering: ") + e.what() + " (" +
                         rp::cl::error_name(e.err()) + ")");

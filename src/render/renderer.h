@@ -18,6 +18,7 @@
 
 namespace rp::passes {
 class VisibilityPass;
+class EmbreeVisibilityPass;
 class GBufferPass;
 class LightPass;
 class ToneMapPass;
@@ -45,11 +46,17 @@ struct Effects {
   bool operator==(const Effects&) const = default;
 };
 
+// Where the visibility buffer comes from: the compute rasterizer on the OpenCL device, or Embree
+// primary rays traced on the host and uploaded (passes/embree_visibility.h). Same buffer format;
+// the shadow map is rasterized with either.
+enum class VisibilityBackend { kRaster, kEmbree };
+
 struct RenderSettings {
   uint32_t width = 720, height = 720;
   uint32_t shadow_size = 1024;  // shadow map texels per side
   uint32_t voxel_resolution = 64;  // GI volume: voxels per side over the box (32, 64 or 128)
   Effects effects;
+  VisibilityBackend visibility = VisibilityBackend::kRaster;  // --visibility raster|embree
 };
 
 class Renderer {
@@ -65,6 +72,8 @@ class Renderer {
   void resize(uint32_t width, uint32_t height);
 
   // Enqueues all passes for `frame`, waits, and returns the device time per pass in ms.
+  // With VisibilityBackend::kEmbree, "visibility" is the device time of the upload and
+  // "visibility_host" the host wall-clock ms of the Embree scene update and ray tracing.
   rp::cl::PassTimes render(const scene::FrameScene& frame);
 
   // What render() produces: the final image (DebugView::kFinal, the default) or one debug view
@@ -99,7 +108,8 @@ class Renderer {
   RenderSettings settings_;
   rp::cl::Profiler profiler_;
   std::unique_ptr<GpuScene> scene_;
-  std::unique_ptr<passes::VisibilityPass> visibility_;
+  std::unique_ptr<passes::VisibilityPass> visibility_;         // also draws the shadow map
+  std::unique_ptr<passes::EmbreeVisibilityPass> embree_;      // set with VisibilityBackend::kEmbree
   std::unique_ptr<passes::GBufferPass> gbuffer_pass_;
   std::unique_ptr<passes::VoxelizePass> voxelize_;
   std::unique_ptr<passes::VoxelMipsPass> voxel_mips_;
