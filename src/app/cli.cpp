@@ -38,6 +38,15 @@ void add_common(CLI::App* cmd, CommonOptions& common) {
                   "GI voxel volume resolution per side: 32, 64 or 128 (default " +
                       std::to_string(render::RenderSettings{}.voxel_resolution) + ")")
       ->check(CLI::IsMember({32u, 64u, 128u}));
+  cmd->add_option_function<std::string>(
+         "--visibility",
+         [&common](const std::string& name) {
+           common.visibility = name == "embree" ? render::VisibilityBackend::kEmbree
+                                                : render::VisibilityBackend::kRaster;
+         },
+         "where the visibility buffer comes from: raster (compute rasterizer on the OpenCL "
+         "device, default) or embree (Embree primary rays on the host's cores, uploaded)")
+      ->check(CLI::IsMember({"raster", "embree"}));
   auto off = [&](const char* name, bool& flag, const char* what) {
     cmd->add_flag_callback(name, [&flag] { flag = false; }, what);
   };

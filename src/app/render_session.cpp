@@ -14,6 +14,7 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   if (options.shadow_size != 0) settings.shadow_size = options.shadow_size;
   if (options.voxels != 0) settings.voxel_resolution = options.voxels;
   settings.effects = options.effects;
+  settings.visibility = options.visibility;
   renderer_ = std::make_unique<render::Renderer>(context_, programs_, assets_, settings);
   set_view(options.view);
 }

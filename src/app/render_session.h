@@ -25,6 +25,7 @@ struct CommonOptions {
   uint32_t voxels = 0;       // --voxels: GI volume voxels per side (0 = renderer default, 64)
   render::Effects effects;   // --no-taa, --no-bloom, --no-motion-blur, --bloom-strength
   passes::DebugViewSettings view;  // --view / --level / --dir (render, run): what is shown
+  render::VisibilityBackend visibility = render::VisibilityBackend::kRaster;  // --visibility
 };
 
 // Not copyable or movable: the program cache and renderer point at the context.
