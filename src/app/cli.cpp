@@ -173,6 +173,9 @@ int run_cli(int argc, char** argv) {
   bench->add_option("--warmup", bench_opts.warmup, "frames rendered first, not measured")
       ->capture_default_str();
   bench->add_option("--json", bench_opts.json, "also write the results as JSON to this file");
+  bench->add_flag("--compare-visibility", bench_opts.compare_visibility,
+                  "render the same frames with the compute rasterizer and with Embree and "
+                  "compare the visibility cost side by side");
   add_simulation(bench, bench_opts.sim);
 
   // CLI11 reports an unknown first word only as "A subcommand is required"; name it instead.

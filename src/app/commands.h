@@ -45,6 +45,7 @@ struct BenchOptions {
   uint32_t frames = 10;  // measured frames
   uint32_t warmup = 3;   // frames rendered first and not measured
   std::string json;      // "" = no JSON file
+  bool compare_visibility = false;  // --compare-visibility: raster and Embree on the same frames
 };
 
 // Prints every OpenCL platform/device.

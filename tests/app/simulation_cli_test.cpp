@@ -130,4 +130,12 @@ TEST(SimulationCli, EffectSwitchesAreAcceptedAndCheckedForRange) {
   EXPECT_NE(read_file(dir / "b" / "frame_0000.png"), read_file(dir / "d" / "frame_0000.png"));
 }
 
+TEST(SimulationCli, BenchComparesBothVisibilityBackends) {
+  auto r = run_rolypoly("bench --size 32 --frames 2 --warmup 1 --marbles --compare-visibility");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("raster (device)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("embree (host+upload)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("embree / raster"), std::string::npos) << r.out;
+}
+
 }  // namespace
