@@ -1,0 +1,282 @@
+// Bytes and flops per frame of the hot passes, from the kernels' structure. Conventions in
+// pass_work.h; every constant below names the kernel lines it stands for. Symbols:
+//   N = width * height pixels, S = shadow_size^2 texels, R = voxel_resolution,
+//   T = instance_triangles (drawn), P = spheres, items = T + P (rasterizer draw items).
+#include "app/pass_work.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace rp::app {
+namespace {
+
+constexpr double kFloat = 4, kFloat2 = 8, kFloat4 = 16;
+
+// ---- visibility / shadow_map (kernels/visibility.cl, one rasterizer for both views) --------
+constexpr double kTile = 16;  // RP_RASTER_TILE
+// Tiles a draw item is binned into: assumed 1 for the many small tumbler triangles and
+// spheres, plus kCoverLayers screen-covering layers of large triangles (the box walls around
+// the camera) in every tile. A typical case, not a bound: tile lists are data dependent.
+constexpr double kCoverLayers = 2;
+// setup and bin (one work-item per item, each walks the same transform): Triangle (16 B),
+// three Vertex (3 x 32 B), the Instance record (208 B); setup writes a RasterTriangle (64 B)
+// and bounds (16 B); both do an atomic per touched tile (8 B); bin writes a 4 B list entry.
+constexpr double kItemReadBytes = 16 + 3 * 32 + 208;
+constexpr double kSetupWriteBytes = 64 + 16;
+// Transform: model then view_proj per vertex (2 x 28 flops x 3), edge/bounds setup ~30.
+constexpr double kItemFlops = 3 * 2 * 28 + 30;
+// raster: per (tile, item) pair the group loads the list entry, RasterTriangle and bounds once
+// (4 + 64 + 16 B); every pixel of the tile then evaluates 3 edges + depth (4 mads) + compare.
+constexpr double kPairBytes = 4 + 64 + 16;
+constexpr double kPixelTestFlops = 4 * 2 + 2;
+
+PassWork raster_view(double pixels, double tiles, double items, double out_bytes_per_pixel,
+                     double resolve_flops_per_pixel) {
+  const double pairs = items + kCoverLayers * tiles;
+  PassWork w;
+  w.bytes = tiles * 2 * kFloat                                           // clear counts
+            + items * (kItemReadBytes + kSetupWriteBytes + 8)            // setup
+            + items * (kItemReadBytes + 4 + 8)                           // bin
+            + pairs * kPairBytes + pixels * out_bytes_per_pixel;         // raster
+  w.flops = 2 * items * kItemFlops + pairs * kTile * kTile * kPixelTestFlops +
+            pixels * resolve_flops_per_pixel;
+  return w;
+}
+
+PassWork visibility(const WorkParams& p) {
+  const double tiles = std::ceil(p.width / kTile) * std::ceil(p.height / kTile);
+  // Writes depth (4 B), ids (uint2) and barycentrics (float2); resolving the winner's
+  // barycentrics ~10 flops.
+  return raster_view(double(p.width) * p.height, tiles, double(p.instance_triangles) + p.spheres,
+                     kFloat + 2 * kFloat2, 10);
+}
+
+PassWork shadow_map(const WorkParams& p) {
+  const double tiles = std::pow(std::ceil(p.shadow_size / kTile), 2);
+  // RP_DEPTH_ONLY: writes depth only.
+  return raster_view(double(p.shadow_size) * p.shadow_size, tiles,
+                     double(p.instance_triangles) + p.spheres, kFloat, 0);
+}
+
+// ---- gbuffer (kernels/gbuffer.cl): upper bound, every pixel covered by a textured triangle --
+// Reads ids (8) + bary (8) + Instance (208) + Triangle (16) + 3 Vertex (96) + Material (48) +
+// TextureInfo (16) + 4 bilinear texels (16); writes albedo, normal_depth, position, emission
+// (4 x 16) and velocity (8).
+constexpr double kGBufferBytes = 8 + 8 + 208 + 16 + 96 + 48 + 16 + 16 + 4 * 16 + 8;
+// Interpolation of position/normal/uv (3 vertices x 8 floats, mads ~50), model transforms of
+// position and normal (~60), current and previous screen positions (2 x 28 + divides ~60),
+// normalise (~10), bilinear texture with sRGB table decode (~40).
+constexpr double kGBufferFlops = 220;
+
+PassWork gbuffer(const WorkParams& p) {
+  const double n = double(p.width) * p.height;
+  return {n * kGBufferBytes, n * kGBufferFlops};
+}
+
+// ---- voxelize (kernels/voxelize.cl) ---------------------------------------------------------
+// clear: per voxel 4 uint sums + 1 overflow word written (20 B); resolve: those read (20 B), the
+// float4 written (16 B), ~8 flops (scale, divide, clamp).
+constexpr double kVoxelClearResolveBytes = 20 + 20 + 16;
+constexpr double kVoxelResolveFlops = 8;
+// Per triangle (one work-item each): Triangle 16 + 3 Vertex 96 + Instance 208 + Material 48 +
+// TextureInfo 16 + 4 texels 16 + 1 shadow tap 4 (shaded once at the centroid: small triangles).
+constexpr double kVoxelTriangleBytes = 16 + 96 + 208 + 48 + 16 + 16 + 4;
+// Vertex transforms to world and grid (3 x 28 + 18), normal (9), shading: texture, direct
+// light, shadow projection (~150).
+constexpr double kVoxelTriangleFlops = 3 * 28 + 18 + 9 + 150;
+// Candidate voxels of a small triangle (bounding box <= RP_VOXEL_SMALL_TRIANGLE = 2 voxels per
+// axis): at most 3 x 3 columns x 2 voxels = 18 (upper bound); each gets the exact SAT test
+// (13 axes, ~10 flops each) and, touched, 4 atomic adds (4 x 8 B).
+constexpr double kVoxelCandidates = 18;
+constexpr double kSatFlops = 130;
+constexpr double kVoxelAtomicBytes = 4 * 8;
+// Large triangles (the box's walls, floor and ceiling: 5 faces) touch about R^2 voxels each and
+// are shaded per voxel: texels 16 + shadow 4 B + atomics, SAT + shading flops.
+constexpr double kWallFaces = 5;
+// Spheres: Sphere record 64 B + shadow tap 4 B, ~100 flops; up to 3^3 voxels each (particles
+// and marbles are at most a few voxels wide at R <= 128: upper bound for those), per voxel
+// ~40 flops (overlap, opacity, shading) and 4 atomics.
+constexpr double kSphereVoxels = 27;
+
+PassWork voxelize(const WorkParams& p) {
+  const double r = p.voxel_resolution;
+  const double v = r * r * r, t = p.instance_triangles, s = p.spheres;
+  const double walls = kWallFaces * r * r;
+  PassWork w;
+  w.bytes = v * kVoxelClearResolveBytes +
+            t * (kVoxelTriangleBytes + kVoxelCandidates * kVoxelAtomicBytes) +
+            walls * (16 + 4 + kVoxelAtomicBytes) +
+            s * (64 + 4 + kSphereVoxels * kVoxelAtomicBytes);
+  w.flops = v * kVoxelResolveFlops + t * (kVoxelTriangleFlops + kVoxelCandidates * kSatFlops) +
+            walls * (kSatFlops + 150) + s * (100 + kSphereVoxels * 40);
+  return w;
+}
+
+// ---- voxel_mips (kernels/voxel_mips.cl): exact, no data dependence ----------------------------
+// Level 1 voxel: 8 children read once from level 0 (128 B), 6 directions written (96 B).
+// Level l >= 2 voxel: per direction 8 children (128 B) read and 1 written (16 B).
+// Flops per direction: 4 columns x (1 sub + float4 mad 8) + 3 float4 adds + 1 float4 mul = 52.
+PassWork voxel_mips(const WorkParams& p) {
+  PassWork w;
+  const uint32_t r = p.voxel_resolution;
+  for (uint32_t level = 1; (r >> level) > 0; ++level) {
+    const double n = r >> level, voxels = n * n * n;
+    w.bytes += voxels * (level == 1 ? 8 * kFloat4 + 6 * kFloat4 : 6 * (8 * kFloat4 + kFloat4));
+    w.flops += voxels * 6 * 52;
+  }
+  return w;
+}
+
+// ---- light (kernels/light.cl, common/cone_trace.h): upper bound -------------------------------
+// Every pixel covered (the camera sits inside the box: true for the default views), every cone
+// takes all RP_CONE_MAX_STEPS samples (real cones stop at opacity 0.95 or the box's faces).
+// Per pixel: albedo, normal_depth, position, emission (4 x 16 B), one shadow tap (4 B), hdr
+// written (16 B); ~120 flops for the direct term, shadow projection and the cone basis.
+// Per cone step k the fractional level is L = 0.6575 k (RP_CONE_LEVEL_STEP), top = levels - 2:
+//   L = 0:        isotropic trilinear, 8 taps, ~104 flops (footprint 20 + 7 float4 mixes 84)
+//   0 < L < 1:    isotropic + directional level 1 (3 volumes x 8 taps) + mix = 32 taps
+//   floor(L) >= top: one directional level, 24 taps
+//   else:         two directional levels + mix, 48 taps
+// A directional sample: footprint and apex rows ~35 flops + 8 taps x 3 volumes weighted
+// (20 flops per tap) + trilinear mix 84 = ~280. Each tap is a float4 (16 B) gather.
+// Per step: position, box test, half-voxel opacity correction (sqrt, divide), front-to-back
+// accumulation: ~30 flops. 6 cones per pixel.
+constexpr int kConeSteps = 16;  // RP_CONE_MAX_STEPS
+constexpr double kConeLevelStep = 0.657503063;
+constexpr double kIsoFlops = 104, kDirFlops = 280, kMixFlops = 12, kStepFlops = 30;
+
+PassWork cone_upper_bound(uint32_t resolution) {
+  uint32_t levels = 0;
+  while ((resolution >> levels) > 0) ++levels;  // log2(R) + 1
+  const uint32_t top = levels >= 2 ? levels - 2 : 0;
+  PassWork cone;
+  for (int k = 0; k < kConeSteps; ++k) {
+    const double level = k * kConeLevelStep;
+    double taps = 0, flops = kStepFlops;
+    if (level <= 0.0 || top == 0) {
+      taps = 8, flops += kIsoFlops;
+    } else if (level < 1.0) {
+      taps = 8 + 24, flops += kIsoFlops + kDirFlops + kMixFlops;
+    } else if (uint32_t(level) >= top) {
+      taps = 24, flops += kDirFlops;
+    } else {
+      taps = 48, flops += 2 * kDirFlops + kMixFlops;
+    }
+    cone.bytes += taps * kFloat4;
+    cone.flops += flops;
+  }
+  return cone;
+}
+
+PassWork light(const WorkParams& p) {
+  const double n = double(p.width) * p.height;
+  const PassWork cone = cone_upper_bound(p.voxel_resolution);
+  return {n * (4 * kFloat4 + kFloat + kFloat4 + 6 * cone.bytes), n * (120 + 6 * cone.flops)};
+}
+
+// ---- taa (kernels/taa.cl): exact per pixel -----------------------------------------------------
+// Reads hdr_in 5-tap cross (5 x 16), depth of the cross (normal_depth .w, 5 x 4), the chosen
+// velocity (8), bilinear history (4 x 16); writes history_out and hdr_out (2 x 16).
+// Flops: tone map + YCoCg of 5 taps (70), mean / variance / sqrt (55), bilinear (32), clip and
+// back to RGB (45), blend and inverse tone map (15).
+PassWork taa(const WorkParams& p) {
+  if (!p.taa) return {};
+  const double n = double(p.width) * p.height;
+  return {n * (5 * kFloat4 + 5 * kFloat + kFloat2 + 4 * kFloat4 + 2 * kFloat4), n * 217};
+}
+
+// ---- bloom (kernels/bloom.cl, src/passes/bloom.cpp): exact -------------------------------------
+// Levels: halve (rounding up) up to 6 times while the smaller side stays >= 8 (BloomPass).
+// Karis downsample to level 1, per texel: 13 taps x 4 float4 (832 B) read, 16 B written;
+//   13 boxes x 4 channels x 4 + 5 Karis weights (~7) + weighted sum and divide ~ 290 flops.
+// Downsample to level k >= 2, per float: 52 floats read + 1 written (212 B), 78 flops.
+// Upsample-add into level k < N, per float: 9 coarse + 1 level read, 1 written (44 B), 21 flops.
+// Mix at full size, per float: input + 9 coarse read, 1 written (44 B), 23 flops.
+PassWork bloom(const WorkParams& p) {
+  if (!p.bloom) return {};
+  std::vector<double> texels;  // per level 1..N
+  uint32_t w = p.width, h = p.height;
+  for (int k = 1; k <= 6; ++k) {
+    w = (w + 1) / 2;
+    h = (h + 1) / 2;
+    if (k > 1 && std::min(w, h) < 8) break;
+    texels.push_back(double(w) * h);
+  }
+  PassWork out;
+  for (size_t k = 0; k < texels.size(); ++k) {
+    if (k == 0) {
+      out.bytes += texels[k] * (52 * kFloat4 + kFloat4);
+      out.flops += texels[k] * 290;
+    } else {
+      out.bytes += texels[k] * 4 * (52 * kFloat + kFloat);
+      out.flops += texels[k] * 4 * 78;
+    }
+    if (k + 1 < texels.size()) {  // U(k) = D(k) + up(U(k+1)) for every level but the last
+      out.bytes += texels[k] * 4 * 11 * kFloat;
+      out.flops += texels[k] * 4 * 21;
+    }
+  }
+  const double floats = 4.0 * p.width * p.height;
+  out.bytes += floats * 11 * kFloat;
+  out.flops += floats * 23;
+  return out;
+}
+
+// ---- motion_blur (kernels/motion_blur.cl): upper bound, every tile moving ----------------------
+// tile_max: velocity read per pixel (8 B, ~4 flops), one float2 per 20x20 tile written;
+// neighbour_max: per tile 25 flags + 9 maxima read, max + flag written (~300 B).
+// depth_speed (only in flagged tiles; bound: all): flag 4 + depth 4 + velocity 8 read, half2 4
+//   written, ~8 flops.
+// reconstruct: neighbour max 8 + depth_speed 4 + hdr 16, RP_MB_SAMPLES - 1 = 14 samples of
+//   depth_speed (4) + hdr (16), hdr_out 16 written; ~50 flops per sample + ~25 per pixel.
+//   (A still tile only copies: 32 B, 0 flops.)
+PassWork motion_blur(const WorkParams& p) {
+  if (!p.motion_blur) return {};
+  const double n = double(p.width) * p.height;
+  const double tiles = std::ceil(p.width / 20.0) * std::ceil(p.height / 20.0);
+  PassWork w;
+  w.bytes = n * kFloat2 + tiles * (kFloat2 + 300) + n * (4 + 4 + 8 + 4) +
+            n * (8 + 4 + 16 + 14 * (4 + 16) + 16);
+  w.flops = n * 4 + n * 8 + n * (25 + 14 * 50);
+  return w;
+}
+
+// ---- tone_map (kernels/tone_map.cl): exact --------------------------------------------------
+// One work-item per output byte: reads one float (4 B), writes one byte; a pixel = 16 B read +
+// 4 B written. Per item: exposure mul 1, x / (1 + x) 2, sRGB encode 2 sqrt + 5 mad = 12,
+// v * 255 + d 2: 17 flops (the alpha item computes and discards it too): 68 per pixel.
+PassWork tone_map(const WorkParams& p) {
+  const double n = double(p.width) * p.height;
+  return {n * (4 * kFloat + 4), n * 4 * 17};
+}
+
+using Model = std::function<PassWork(const WorkParams&)>;
+
+const std::vector<std::pair<std::string, Model>>& models() {
+  static const std::vector<std::pair<std::string, Model>> all = {
+      {"visibility", visibility}, {"shadow_map", shadow_map}, {"gbuffer", gbuffer},
+      {"voxelize", voxelize},     {"voxel_mips", voxel_mips}, {"light", light},
+      {"taa", taa},               {"bloom", bloom},           {"motion_blur", motion_blur},
+      {"tone_map", tone_map}};
+  return all;
+}
+
+}  // namespace
+
+PassWork pass_work(const std::string& pass, const WorkParams& p) {
+  for (const auto& [name, model] : models())
+    if (name == pass) return model(p);
+  return {};
+}
+
+const std::vector<std::string>& modelled_passes() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const auto& entry : models()) out.push_back(entry.first);
+    return out;
+  }();
+  return names;
+}
+
+}  // namespace rp::app
