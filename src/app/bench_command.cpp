@@ -1,5 +1,8 @@
 #include <cstdio>
+#include <memory>
 
+#include "app/bench_chart.h"
+#include "app/bench_matrix.h"
 #include "app/bench_report.h"
 #include "app/commands.h"
 #include "app/frame_source.h"
@@ -7,6 +10,18 @@
 #include "app/png_output.h"
 #include "app/progress.h"
 #include "app/simulation_source.h"
+#include "scene/particles.h"
+#include "scene/world.h"
+
+// The efficiency columns (issue 7 item 3) need the work counts and the peak probe; built without
+// them the bench reports times only.
+#if __has_include("app/pass_work.h") && __has_include("app/peak_probe.h")
+#include "app/pass_work.h"
+#include "app/peak_probe.h"
+#define RP_BENCH_EFFICIENCY 1
+#else
+#define RP_BENCH_EFFICIENCY 0
+#endif
 
 namespace rp::app {
 
@@ -42,39 +57,235 @@ PassStats measure(const CommonOptions& common, const BenchOptions& options,
   return stats;
 }
 
-}  // namespace
-
-int bench_command(const CommonOptions& common, const BenchOptions& options) {
+int compare_visibility(const CommonOptions& common, const BenchOptions& options) {
+  // Both backends render the same frames one after the other; everything but the visibility
+  // buffer's source is shared.
   std::printf("%ux%u, %u warm-up + %u measured frames\n", options.size.width,
               options.size.height, options.warmup, options.frames);
   rp::cl::DeviceInfo info;
-  if (options.compare_visibility) {
-    // Both backends render the same frames one after the other; everything but the visibility
-    // buffer's source is shared.
-    CommonOptions raster = common, embree = common;
-    raster.visibility = render::VisibilityBackend::kRaster;
-    embree.visibility = render::VisibilityBackend::kEmbree;
-    PassStats r = measure(raster, options, info);
-    std::printf("device %s\n", describe_device(info).c_str());
-    PassStats e = measure(embree, options, info);
-    std::printf("visibility backend     median ms (frame median ms)\n");
-    std::printf("raster (device)      %9.3f   (%.3f)\n", visibility_ms(r), r.frame().median_ms);
-    std::printf("embree (host+upload) %9.3f   (%.3f)\n", visibility_ms(e), e.frame().median_ms);
-    std::printf("embree / raster      %9.2fx\n", visibility_ms(e) / visibility_ms(r));
-    return 0;
-  }
-  PassStats stats = measure(common, options, info);
+  CommonOptions raster = common, embree = common;
+  raster.visibility = render::VisibilityBackend::kRaster;
+  embree.visibility = render::VisibilityBackend::kEmbree;
+  PassStats r = measure(raster, options, info);
   std::printf("device %s\n", describe_device(info).c_str());
-  std::fflush(stdout);
+  PassStats e = measure(embree, options, info);
+  std::printf("visibility backend     median ms (frame median ms)\n");
+  std::printf("raster (device)      %9.3f   (%.3f)\n", visibility_ms(r), r.frame().median_ms);
+  std::printf("embree (host+upload) %9.3f   (%.3f)\n", visibility_ms(e), e.frame().median_ms);
+  std::printf("embree / raster      %9.2fx\n", visibility_ms(e) / visibility_ms(r));
+  return 0;
+}
 
-  std::printf("%s", timing_table(stats).c_str());
+// --scene busy: 30 marbles and a fireball (World with both on, seed --seed), settled for
+// kSettleSteps fixed steps before the first frame; every frame then advances 1/60 s (4 steps)
+// and tops the particle system up to its full budget (ParticleSystem::kMaxParticles = 2048)
+// with ash clouds (ParticleSystem::emit_ash, 64 flakes each) at the marbles' centres in turn,
+// drawing from the world's own particle stream. No input, no wall clock: every device gets the
+// same frames, bit for bit.
+class BusyFrameSource final : public FrameSource {
+ public:
+  static constexpr int kSettleSteps = 120;  // 0.5 s: marbles falling, fire trail formed
+  static constexpr int kStepsPerFrame = 4;  // 1/60 s at 240 Hz
+
+  explicit BusyFrameSource(uint64_t seed)
+      : world_(scene::WorldConfig{seed, 1.0f / 240.0f, true, true}) {
+    world_.advance(kSettleSteps);
+    top_up();
+  }
+
+  scene::FrameScene next() override {
+    world_.advance(kStepsPerFrame);
+    top_up();
+    scene::FrameScene frame;
+    world_.fill_frame(frame);
+    frame.frame_index = frames_++;
+    return frame;
+  }
+  uint32_t frames_produced() const override { return frames_; }
+
+ private:
+  void top_up() {
+    const auto& marbles = world_.marble_balls();
+    const auto& fireballs = world_.fireball_balls();
+    scene::ParticleSystem& particles = world_.particles();
+    while (particles.live_count() < scene::ParticleSystem::kMaxParticles) {
+      const scene::Ball* b = nullptr;
+      if (!marbles.empty())
+        b = &marbles[next_marble_++ % marbles.size()];
+      else if (!fireballs.empty())
+        b = &fireballs.front();
+      glm::vec3 centre = b ? b->sphere.body.p : glm::vec3(0.0f);
+      glm::vec3 velocity = b ? b->sphere.body.v : glm::vec3(0.0f);
+      particles.emit_ash(centre, scene::world_constants::kMarbleRadius, velocity, world_.particle_rng());
+    }
+  }
+
+  scene::World world_;
+  size_t next_marble_ = 0;
+  uint32_t frames_ = 0;
+};
+
+uint32_t voxels_or_default(uint32_t voxels) {
+  return voxels ? voxels : render::RenderSettings{}.voxel_resolution;
+}
+
+// One cell of the matrix on one device.
+RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
+                      const rp::cl::DeviceInfo& device, uint32_t width, uint32_t height,
+                      uint32_t voxels) {
+  CommonOptions c = common;
+  c.device = std::to_string(device.index);
+  c.voxels = voxels;
+  RenderSession session(c, width, height);
+  std::unique_ptr<SimulationFrameSource> sim;
+  std::unique_ptr<BusyFrameSource> busy;
+  if (options.scene == "busy")
+    busy = std::make_unique<BusyFrameSource>(options.sim.seed);
+  else
+    sim = std::make_unique<SimulationFrameSource>(
+        make_simulation_options(options.sim, common.effects));
+
+  PassStats stats;
+  std::vector<uint8_t> rgba;
+  scene::FrameScene last;
+  char label[96];
+  std::snprintf(label, sizeof label, "[%d] %ux%u %u^3", device.index, width, height,
+                voxels_or_default(voxels));
+  ProgressBar progress(label, size_t(options.warmup) + options.frames);
+  progress.update(0);
+  for (uint32_t i = 0; i < options.warmup + options.frames; ++i) {
+    double frame_ms = 0.0;
+    rp::cl::PassTimes times;
+    if (busy) {
+      last = busy->next();
+      session.set_effects(common.effects);
+      times = session.render(last, rgba, frame_ms);
+    } else {
+      times = render_next_frame(session, *sim, common.effects, rgba, frame_ms);
+    }
+    if (i >= options.warmup) stats.add(times, frame_ms);
+    progress.update(i + 1);
+  }
+  progress.finish();
+
+  RunResult run = make_run_result(width, height, voxels_or_default(voxels), stats);
+  if (sim) sim->world().fill_frame(last);  // what the last frame showed (same world state)
+  run.spheres = static_cast<uint32_t>(last.spheres.size());
+  run.instances = static_cast<uint32_t>(last.instances.size());
+  for (const scene::MeshInstance& inst : last.instances)
+    if (inst.mesh < session.assets().meshes.size())
+      run.instance_triangles +=
+          static_cast<uint32_t>(session.assets().meshes[inst.mesh].triangles.size());
+  return run;
+}
+
+#if RP_BENCH_EFFICIENCY
+// Measures the device's peak and fills every pass's work and share of that peak.
+void add_efficiency(const CommonOptions& common, const rp::cl::DeviceInfo& info,
+                    DeviceResult& result) {
+  rp::cl::Context context = rp::cl::Context::create(info);
+  rp::cl::ProgramCache programs(context);
+  DevicePeak peak = measure_peak(context, programs);
+  result.peak_bandwidth_gbps = peak.bandwidth_gbps;
+  result.peak_gflops = peak.gflops;
+  const scene::SceneAssets assets = scene::make_demo_assets(
+      common.asset_dir.empty() ? scene::default_asset_dir() : common.asset_dir);
+  uint32_t triangles = 0;
+  for (const scene::Mesh& m : assets.meshes) triangles += static_cast<uint32_t>(m.triangles.size());
+  for (RunResult& run : result.runs) {
+    WorkParams p{};
+    p.width = run.width;
+    p.height = run.height;
+    p.voxel_resolution = run.voxels;
+    p.shadow_size = common.shadow_size ? common.shadow_size : render::RenderSettings{}.shadow_size;
+    p.triangles = triangles;
+    p.instance_triangles = run.instance_triangles;
+    p.spheres = run.spheres;
+    p.taa = common.effects.taa;
+    p.bloom = common.effects.bloom;
+    p.motion_blur = common.effects.motion_blur;
+    for (PassResult& pass : run.passes) {
+      PassWork work = pass_work(pass.name, p);
+      PassEfficiency& e = pass.efficiency;
+      e.bytes = work.bytes;
+      e.flops = work.flops;
+      double seconds = pass.ms.median_ms * 1e-3;
+      if (seconds <= 0.0) continue;
+      e.gbytes_per_s = work.bytes / seconds * 1e-9;
+      e.gflops_per_s = work.flops / seconds * 1e-9;
+      if (peak.bandwidth_gbps > 0.0) e.bandwidth_fraction = e.gbytes_per_s / peak.bandwidth_gbps;
+      if (peak.gflops > 0.0) e.compute_fraction = e.gflops_per_s / peak.gflops;
+    }
+  }
+}
+#endif
+
+void write_outputs(const BenchOptions& options, const BenchMatrix& matrix) {
+  if (!options.json.empty()) {
+    write_text_atomic(options.json, matrix_json(matrix));
+    std::printf("wrote %s\n", options.json.c_str());
+  }
+  if (!options.markdown.empty()) {
+    write_text_atomic(options.markdown, matrix_markdown(matrix));
+    std::printf("wrote %s\n", options.markdown.c_str());
+  }
+  if (!options.chart.empty()) {
+    write_text_atomic(options.chart, matrix_svg(matrix));
+    std::printf("wrote %s\n", options.chart.c_str());
+  }
+}
+
+}  // namespace
+
+int bench_command(const CommonOptions& common, const BenchOptions& options) {
+  if (options.compare_visibility) {
+    CommonOptions c = common;
+    if (!options.voxels.empty()) c.voxels = options.voxels.front();
+    return compare_visibility(c, options);
+  }
+
+  MatrixPlan plan;
+  if (!options.devices.empty())
+    plan.devices = select_devices(options.devices, rp::cl::list_devices());
+  else
+    plan.devices = {rp::cl::choose_device(common.device)};
+  if (options.sizes.empty())
+    plan.sizes = {{options.size.width, options.size.height}};
+  else
+    for (uint32_t s : options.sizes) plan.sizes.push_back({s, s});
+  plan.voxels = options.voxels.empty() ? std::vector<uint32_t>{0u} : options.voxels;
+
+  BenchMatrix matrix;
+  matrix.command = options.command_line;
+  matrix.scene = options.scene;
+  matrix.seed = options.sim.seed;
+  matrix.frames = options.frames;
+  matrix.warmup = options.warmup;
+  matrix.sizes = plan.sizes;
+  for (uint32_t v : plan.voxels) matrix.voxels.push_back(voxels_or_default(v));
+
+  std::printf("bench: %zu device(s) x %zu size(s) x %zu voxel resolution(s), scene %s, "
+              "%u warm-up + %u measured frames each\n",
+              plan.devices.size(), plan.sizes.size(), plan.voxels.size(), options.scene.c_str(),
+              options.warmup, options.frames);
+  std::fflush(stdout);
+  MeasureRun measure_cell = [&](const rp::cl::DeviceInfo& d, uint32_t w, uint32_t h,
+                                uint32_t v) { return measure_run(common, options, d, w, h, v); };
+  FinishDevice finish;
+#if RP_BENCH_EFFICIENCY
+  finish = [&](const rp::cl::DeviceInfo& d, DeviceResult& r) { add_efficiency(common, d, r); };
+#endif
+  run_matrix(plan, measure_cell, finish, matrix, stderr);
+
+  std::printf("%s", matrix_table(matrix).c_str());
   std::printf("(passes: device time from OpenCL profiling events; frame: wall clock of one "
               "Renderer::render call)\n");
-  if (!options.json.empty()) {
-    BenchDevice device{info.name, info.type, info.platform_name, info.compute_units};
-    write_text_atomic(options.json,
-                      bench_json(device, options.size.width, options.size.height, stats));
-    std::printf("wrote %s\n", options.json.c_str());
+  write_outputs(options, matrix);
+  if (matrix.devices_ok() == 0) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "rolypoly: error: no device completed the bench (every device was "
+                         "skipped; see the messages above)\n");
+    return 1;
   }
   return 0;
 }

@@ -1,6 +1,9 @@
 #include "app/bench_report.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <set>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
@@ -22,7 +25,283 @@ std::string row(const std::string& name, const TimeSummary& s) {
   return line;
 }
 
+using Json = nlohmann::ordered_json;
+
+Json fit_json(const PowerFit& f) {
+  return {{"k", f.k}, {"a_ms", f.a}, {"r2", f.r2}, {"points", f.points}};
+}
+
+PowerFit parse_fit(const Json& j) {
+  PowerFit f;
+  f.k = j.at("k");
+  f.a = j.at("a_ms");
+  f.r2 = j.at("r2");
+  f.points = j.at("points");
+  return f;
+}
+
+TimeSummary parse_summary(const Json& j) {
+  return {j.at("median_ms").get<double>(), j.at("min_ms").get<double>(),
+          j.at("max_ms").get<double>()};
+}
+
+Json run_json(const RunResult& r) {
+  Json j;
+  j["size"] = {r.width, r.height};
+  j["voxels"] = r.voxels;
+  j["frames"] = r.frames;
+  j["scene"] = {{"spheres", r.spheres},
+                {"instances", r.instances},
+                {"instance_triangles", r.instance_triangles}};
+  Json passes = Json::object();
+  for (const PassResult& p : r.passes) {
+    Json e = summary_json(p.ms);
+    e["bytes"] = p.efficiency.bytes;
+    e["flops"] = p.efficiency.flops;
+    e["gbytes_per_s"] = p.efficiency.gbytes_per_s;
+    e["gflops_per_s"] = p.efficiency.gflops_per_s;
+    e["bandwidth_fraction"] = p.efficiency.bandwidth_fraction;
+    e["compute_fraction"] = p.efficiency.compute_fraction;
+    passes[p.name] = e;
+  }
+  j["passes"] = passes;
+  Json frame = summary_json(r.frame);
+  frame["fps"] = r.fps();
+  j["frame"] = frame;
+  return j;
+}
+
+RunResult parse_run(const Json& j) {
+  RunResult r;
+  r.width = j.at("size").at(0);
+  r.height = j.at("size").at(1);
+  r.voxels = j.at("voxels");
+  r.frames = j.at("frames");
+  r.spheres = j.at("scene").at("spheres");
+  r.instances = j.at("scene").at("instances");
+  r.instance_triangles = j.at("scene").at("instance_triangles");
+  for (const auto& [name, e] : j.at("passes").items()) {
+    PassResult p{name, parse_summary(e), {}};
+    p.efficiency.bytes = e.at("bytes");
+    p.efficiency.flops = e.at("flops");
+    p.efficiency.gbytes_per_s = e.at("gbytes_per_s");
+    p.efficiency.gflops_per_s = e.at("gflops_per_s");
+    p.efficiency.bandwidth_fraction = e.at("bandwidth_fraction");
+    p.efficiency.compute_fraction = e.at("compute_fraction");
+    r.passes.push_back(p);
+  }
+  r.frame = parse_summary(j.at("frame"));
+  return r;
+}
+
+std::string format(const char* fmt, double a) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, a);
+  return buf;
+}
+
+std::string size_text(uint32_t w, uint32_t h) {
+  return str_cat(std::to_string(w), "x", std::to_string(h));
+}
+
+// Pass names over every run of every device, in pipeline order.
+std::vector<std::string> all_pass_names(const BenchMatrix& m) {
+  std::set<std::string> seen;
+  std::vector<std::string> names;
+  for (const DeviceResult& d : m.devices)
+    for (const RunResult& r : d.runs)
+      for (const PassResult& p : r.passes)
+        if (seen.insert(p.name).second) names.push_back(p.name);
+  std::stable_sort(names.begin(), names.end(), [](const std::string& a, const std::string& b) {
+    return pipeline_rank(a) < pipeline_rank(b);
+  });
+  return names;
+}
+
+std::string scaling_text(const DeviceResult& d) {
+  std::string out;
+  for (const PixelScaling& s : d.pixel_scaling)
+    out += str_cat("  frame ~ pixels^", format("%.2f", s.fit.k), " at ", std::to_string(s.voxels),
+                   "^3 voxels (r2 ", format("%.3f", s.fit.r2), ", ", std::to_string(s.fit.points),
+                   " sizes)\n");
+  for (const VoxelScaling& s : d.voxel_scaling)
+    out += str_cat("  frame ~ voxels^", format("%.2f", s.fit.k), " at ",
+                   size_text(s.width, s.height), " (voxel count = resolution^3; r2 ",
+                   format("%.3f", s.fit.r2), ", ", std::to_string(s.fit.points),
+                   " resolutions)\n");
+  return out;
+}
+
 }  // namespace
+
+std::string matrix_json(const BenchMatrix& m) {
+  Json j;
+  j["schema"] = kBenchMatrixSchema;
+  j["command"] = m.command;
+  j["scene"] = m.scene;
+  j["seed"] = m.seed;
+  j["frames"] = m.frames;
+  j["warmup"] = m.warmup;
+  Json sizes = Json::array();
+  for (const auto& [w, h] : m.sizes) sizes.push_back({w, h});
+  j["sizes"] = sizes;
+  j["voxels"] = m.voxels;
+  Json devices = Json::array();
+  for (const DeviceResult& d : m.devices) {
+    Json dj;
+    dj["index"] = d.index;
+    dj["name"] = d.name;
+    dj["type"] = d.type;
+    dj["platform"] = d.platform;
+    dj["compute_units"] = d.compute_units;
+    dj["skipped"] = d.ok() ? Json(nullptr) : Json(d.skipped);
+    dj["peak"] = {{"bandwidth_gbps", d.peak_bandwidth_gbps}, {"gflops", d.peak_gflops}};
+    Json runs = Json::array();
+    for (const RunResult& r : d.runs) runs.push_back(run_json(r));
+    dj["runs"] = runs;
+    Json pixels = Json::array(), voxels = Json::array();
+    for (const PixelScaling& s : d.pixel_scaling) {
+      Json e = fit_json(s.fit);
+      e["voxels"] = s.voxels;
+      pixels.push_back(e);
+    }
+    for (const VoxelScaling& s : d.voxel_scaling) {
+      Json e = fit_json(s.fit);
+      e["size"] = {s.width, s.height};
+      voxels.push_back(e);
+    }
+    dj["scaling"] = {{"pixels", pixels}, {"voxels", voxels}};
+    devices.push_back(dj);
+  }
+  j["devices"] = devices;
+  return j.dump(2) + "\n";
+}
+
+BenchMatrix parse_matrix_json(const std::string& text) {
+  Json j = Json::parse(text);
+  if (j.at("schema") != kBenchMatrixSchema)
+    throw std::runtime_error(str_cat("not a ", kBenchMatrixSchema, " document (schema ",
+                                     j.at("schema").dump(), ")"));
+  BenchMatrix m;
+  m.command = j.at("command");
+  m.scene = j.at("scene");
+  m.seed = j.at("seed");
+  m.frames = j.at("frames");
+  m.warmup = j.at("warmup");
+  for (const Json& s : j.at("sizes")) m.sizes.push_back({s.at(0), s.at(1)});
+  m.voxels = j.at("voxels").get<std::vector<uint32_t>>();
+  for (const Json& dj : j.at("devices")) {
+    DeviceResult d;
+    d.index = dj.at("index");
+    d.name = dj.at("name");
+    d.type = dj.at("type");
+    d.platform = dj.at("platform");
+    d.compute_units = dj.at("compute_units");
+    if (!dj.at("skipped").is_null()) d.skipped = dj.at("skipped");
+    d.peak_bandwidth_gbps = dj.at("peak").at("bandwidth_gbps");
+    d.peak_gflops = dj.at("peak").at("gflops");
+    for (const Json& r : dj.at("runs")) d.runs.push_back(parse_run(r));
+    for (const Json& e : dj.at("scaling").at("pixels"))
+      d.pixel_scaling.push_back({e.at("voxels").get<uint32_t>(), parse_fit(e)});
+    for (const Json& e : dj.at("scaling").at("voxels"))
+      d.voxel_scaling.push_back(
+          {e.at("size").at(0).get<uint32_t>(), e.at("size").at(1).get<uint32_t>(), parse_fit(e)});
+    m.devices.push_back(std::move(d));
+  }
+  return m;
+}
+
+std::string matrix_table(const BenchMatrix& m) {
+  std::string out;
+  for (const DeviceResult& d : m.devices) {
+    out += str_cat("device ", d.label(), " (", d.platform, ")");
+    if (!d.ok()) {
+      out += ": skipped (error above)\n";
+      continue;
+    }
+    out += "\n";
+    if (d.peak_bandwidth_gbps > 0.0 || d.peak_gflops > 0.0)
+      out += str_cat("  measured peak: ", format("%.1f", d.peak_bandwidth_gbps), " GB/s, ",
+                     format("%.1f", d.peak_gflops), " GFLOP/s\n");
+    for (const RunResult& r : d.runs) {
+      char line[200];
+      std::snprintf(line, sizeof line,
+                    "  %s, %u^3 voxels, %u frames: frame %.2f ms median (min %.2f, max %.2f), "
+                    "%.2f fps\n",
+                    size_text(r.width, r.height).c_str(), r.voxels, r.frames, r.frame.median_ms,
+                    r.frame.min_ms, r.frame.max_ms, r.fps());
+      out += line;
+      bool eff = false;
+      for (const PassResult& p : r.passes)
+        eff = eff || p.efficiency.bytes > 0.0 || p.efficiency.flops > 0.0;
+      std::snprintf(line, sizeof line, "    %-16s %10s %10s %10s", "pass", "median ms", "min ms",
+                    "max ms");
+      out += line;
+      if (eff) {
+        std::snprintf(line, sizeof line, " %9s %6s %9s %6s", "GB/s", "%bw", "GFLOP/s", "%flop");
+        out += line;
+      }
+      out += "\n";
+      for (const PassResult& p : r.passes) {
+        std::snprintf(line, sizeof line, "    %-16s %10.3f %10.3f %10.3f", p.name.c_str(),
+                      p.ms.median_ms, p.ms.min_ms, p.ms.max_ms);
+        out += line;
+        const PassEfficiency& e = p.efficiency;
+        if (eff && (e.bytes > 0.0 || e.flops > 0.0)) {
+          std::snprintf(line, sizeof line, " %9.2f %5.1f%% %9.2f %5.1f%%", e.gbytes_per_s,
+                        100.0 * e.bandwidth_fraction, e.gflops_per_s, 100.0 * e.compute_fraction);
+          out += line;
+        }
+        out += "\n";
+      }
+    }
+    out += scaling_text(d);
+  }
+  return out;
+}
+
+std::string matrix_markdown(const BenchMatrix& m) {
+  std::vector<std::string> names = all_pass_names(m);
+  std::string out = "| device | size | voxels |";
+  std::string rule = "|---|---|---|";
+  for (const std::string& n : names) {
+    out += str_cat(" ", n, " |");
+    rule += "---:|";
+  }
+  out += " frame median | frame min | frame max | fps |\n";
+  rule += "---:|---:|---:|---:|\n";
+  out += rule;
+  for (const DeviceResult& d : m.devices) {
+    if (!d.ok()) {
+      out += str_cat("| ", d.label(), " | skipped | |", std::string(names.size() + 4, '|'), "\n");
+      continue;
+    }
+    for (const RunResult& r : d.runs) {
+      out += str_cat("| ", d.label(), " | ", size_text(r.width, r.height), " | ",
+                     std::to_string(r.voxels), "^3 |");
+      for (const std::string& n : names) {
+        const PassResult* p = r.pass(n);
+        out += p ? str_cat(" ", format("%.2f", p->ms.median_ms), " |") : std::string(" |");
+      }
+      out += str_cat(" ", format("%.1f", r.frame.median_ms), " | ", format("%.1f", r.frame.min_ms),
+                     " | ", format("%.1f", r.frame.max_ms), " | ", format("%.2f", r.fps()),
+                     " |\n");
+    }
+  }
+  out += "\nMilliseconds (medians per pass: OpenCL device time; frame: wall clock).\n\n";
+  out += "| device | scaling | at | exponent k | r2 | points |\n|---|---|---|---:|---:|---:|\n";
+  for (const DeviceResult& d : m.devices) {
+    for (const PixelScaling& s : d.pixel_scaling)
+      out += str_cat("| ", d.label(), " | frame ~ pixels^k | ", std::to_string(s.voxels),
+                     "^3 voxels | ", format("%.2f", s.fit.k), " | ", format("%.3f", s.fit.r2),
+                     " | ", std::to_string(s.fit.points), " |\n");
+    for (const VoxelScaling& s : d.voxel_scaling)
+      out += str_cat("| ", d.label(), " | frame ~ voxels^k | ", size_text(s.width, s.height),
+                     " | ", format("%.2f", s.fit.k), " | ", format("%.3f", s.fit.r2), " | ",
+                     std::to_string(s.fit.points), " |\n");
+  }
+  return out;
+}
 
 std::string bench_json(const BenchDevice& device, uint32_t width, uint32_t height,
                        const PassStats& stats) {

@@ -24,7 +24,8 @@ struct SizeArgs {
   ImageSize resolve() const { return {width ? width : size, height ? height : size}; }
 };
 
-void add_common(CLI::App* cmd, CommonOptions& common) {
+// `voxel_option`: false for bench, which takes a list of resolutions instead.
+void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option = true) {
   cmd->add_option("--device", common.device,
                   "OpenCL device: index from `rolypoly devices` or part of its name "
                   "(case-insensitive); default: first GPU, else first CPU");
@@ -34,10 +35,11 @@ void add_common(CLI::App* cmd, CommonOptions& common) {
                   "shadow map texels per side (default: the renderer's, " +
                       std::to_string(render::RenderSettings{}.shadow_size) + ")")
       ->check(CLI::Range(1u, kMaxSize));
-  cmd->add_option("--voxels", common.voxels,
-                  "GI voxel volume resolution per side: 32, 64 or 128 (default " +
-                      std::to_string(render::RenderSettings{}.voxel_resolution) + ")")
-      ->check(CLI::IsMember({32u, 64u, 128u}));
+  if (voxel_option)
+    cmd->add_option("--voxels", common.voxels,
+                    "GI voxel volume resolution per side: 32, 64 or 128 (default " +
+                        std::to_string(render::RenderSettings{}.voxel_resolution) + ")")
+        ->check(CLI::IsMember({32u, 64u, 128u}));
   cmd->add_option_function<std::string>(
          "--visibility",
          [&common](const std::string& name) {
@@ -164,8 +166,10 @@ int run_cli(int argc, char** argv) {
   add_simulation(run, run_opts.sim);
   add_view(run, run_view);
 
-  CLI::App* bench = app.add_subcommand("bench", "time every pass over many frames");
-  add_common(bench, common);
+  CLI::App* bench = app.add_subcommand(
+      "bench", "time every pass over many frames, on one or many devices, sizes and voxel "
+               "resolutions");
+  add_common(bench, common, false);
   add_size(bench, bench_size);
   bench->add_option("--frames", bench_opts.frames, "measured frames")
       ->capture_default_str()
@@ -177,6 +181,30 @@ int run_cli(int argc, char** argv) {
                   "render the same frames with the compute rasterizer and with Embree and "
                   "compare the visibility cost side by side");
   add_simulation(bench, bench_opts.sim);
+  CLI::Option* devices_opt = bench->add_option(
+      "--devices", bench_opts.devices,
+      "devices to bench one after the other: all, or a comma-separated list of indices from "
+      "`rolypoly devices` and/or parts of device names (instead of --device)");
+  CLI::Option* sizes_opt =
+      bench->add_option("--sizes", bench_opts.sizes,
+                        "comma-separated square image sizes, e.g. 256,512,720 (instead of --size)")
+          ->delimiter(',')
+          ->check(CLI::Range(1u, kMaxSize));
+  bench->add_option("--voxels", bench_opts.voxels,
+                    "comma-separated GI voxel resolutions per side, each 32, 64 or 128 (default " +
+                        std::to_string(render::RenderSettings{}.voxel_resolution) + ")")
+      ->delimiter(',')
+      ->check(CLI::IsMember({32u, 64u, 128u}));
+  bench->add_option("--scene", bench_opts.scene,
+                    "default (the simulation options as given) or busy (30 marbles, a fireball "
+                    "and the particle budget kept full)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"default", "busy"}));
+  bench->add_option("--chart", bench_opts.chart,
+                    "also write an SVG chart: per-pass time per device, frame time against "
+                    "resolution and voxel count");
+  bench->add_option("--markdown", bench_opts.markdown,
+                    "also write the summary table as Markdown to this file");
 
   // CLI11 reports an unknown first word only as "A subcommand is required"; name it instead.
   if (argc > 1 && argv[1][0] != '-') {
@@ -208,6 +236,21 @@ int run_cli(int argc, char** argv) {
       return 2;
     }
   }
+  if (bench->parsed()) {
+    const char* why = nullptr;
+    if (devices_opt->count() && bench->count("--device"))
+      why = "--devices and --device both choose devices; use one";
+    else if (sizes_opt->count() && (bench->count("--size") || bench->count("--width") ||
+                                    bench->count("--height")))
+      why = "--sizes and --size/--width/--height both choose sizes; use one";
+    else if (bench_opts.compare_visibility &&
+             (devices_opt->count() || sizes_opt->count() || bench_opts.voxels.size() > 1))
+      why = "--compare-visibility runs one device, size and voxel resolution";
+    if (why) {
+      std::fprintf(stderr, "rolypoly bench: %s\nRun with --help for more information.\n", why);
+      return 2;
+    }
+  }
 
   try {
     rp::cl::ensure_pocl_cache_dir();  // before the first OpenCL call
@@ -223,6 +266,11 @@ int run_cli(int argc, char** argv) {
     }
     if (bench->parsed()) {
       bench_opts.size = bench_size.resolve();
+      bench_opts.command_line = "rolypoly";
+      for (int i = 1; i < argc; ++i) {
+        bench_opts.command_line += ' ';
+        bench_opts.command_line += argv[i];
+      }
       return bench_command(common, bench_opts);
     }
     return report("no subcommand given (try --help)");

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "app/render_session.h"
 
@@ -40,12 +41,20 @@ struct RunOptions {
 };
 
 struct BenchOptions {
-  ImageSize size;
+  ImageSize size;        // --size / --width / --height: the one size when --sizes is not given
   SimulationArgs sim;
   uint32_t frames = 10;  // measured frames
   uint32_t warmup = 3;   // frames rendered first and not measured
   std::string json;      // "" = no JSON file
   bool compare_visibility = false;  // --compare-visibility: raster and Embree on the same frames
+  // The matrix (issue 7): every device x size x voxel resolution.
+  std::string devices;           // --devices all|LIST ("" = the one --device, or the default)
+  std::vector<uint32_t> sizes;   // --sizes: square sizes (empty = `size`)
+  std::vector<uint32_t> voxels;  // --voxels: resolutions (empty = the renderer's default)
+  std::string scene = "default";  // --scene default|busy (busy: see bench_command.cpp)
+  std::string chart;     // --chart FILE.svg ("" = none)
+  std::string markdown;  // --markdown FILE.md: the summary table ("" = none)
+  std::string command_line;  // how the bench was invoked (recorded in the JSON)
 };
 
 // Prints every OpenCL platform/device.
@@ -54,7 +63,8 @@ int devices_command();
 int render_command(const CommonOptions& common, const RenderOptions& options);
 // Window (GLFW); throws rp::display::DisplayError when no window can be opened.
 int run_command(const CommonOptions& common, const RunOptions& options);
-// Timing table and optional JSON.
+// Timing tables per device and run, optional JSON, chart and Markdown. Exit code 0 when at
+// least one device completed, 1 when every device was skipped.
 int bench_command(const CommonOptions& common, const BenchOptions& options);
 
 }  // namespace rp::app

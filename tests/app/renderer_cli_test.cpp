@@ -55,6 +55,7 @@ TEST(RendererCli, WidthAndHeightOverrideSize) {
 }
 
 TEST(RendererCli, BenchWritesJsonWithTheSchemaFields) {
+  // A single-device, single-size bench writes the matrix schema with one device and one run.
   TempDir dir;
   std::filesystem::path json_path = dir / "bench.json";
   CommandResult r = run_rolypoly("bench --size 32 --frames 3 --warmup 1 --json " +
@@ -64,26 +65,33 @@ TEST(RendererCli, BenchWritesJsonWithTheSchemaFields) {
   std::ifstream in(json_path);
   ASSERT_TRUE(in.good()) << "no JSON file written";
   nlohmann::json j = nlohmann::json::parse(in);  // throws (fails the test) on invalid JSON
-  EXPECT_EQ(j.at("schema"), "rolypoly-bench/1");
-  for (const char* key : {"name", "type", "platform"})
-    EXPECT_TRUE(j.at("device").at(key).is_string()) << key;
-  EXPECT_GE(j.at("device").at("compute_units").get<int>(), 1);
-  EXPECT_EQ(j.at("size"), nlohmann::json::array({32, 32}));
+  EXPECT_EQ(j.at("schema"), "rolypoly-bench/2");
   EXPECT_EQ(j.at("frames"), 3);
-  ASSERT_TRUE(j.at("passes").is_object());
-  EXPECT_GE(j.at("passes").size(), 1u);
-  EXPECT_TRUE(j.at("passes").contains("tone_map")) << j.at("passes").dump();
-  for (const auto& [pass, t] : j.at("passes").items()) {
+  EXPECT_EQ(j.at("warmup"), 1);
+  ASSERT_EQ(j.at("devices").size(), 1u);
+  const nlohmann::json& device = j.at("devices").at(0);
+  for (const char* key : {"name", "type", "platform"})
+    EXPECT_TRUE(device.at(key).is_string()) << key;
+  EXPECT_GE(device.at("compute_units").get<int>(), 1);
+  EXPECT_TRUE(device.at("skipped").is_null());
+  ASSERT_EQ(device.at("runs").size(), 1u);
+  const nlohmann::json& run = device.at("runs").at(0);
+  EXPECT_EQ(run.at("size"), nlohmann::json::array({32, 32}));
+  EXPECT_EQ(run.at("frames"), 3);
+  ASSERT_TRUE(run.at("passes").is_object());
+  EXPECT_TRUE(run.at("passes").contains("tone_map")) << run.at("passes").dump();
+  for (const auto& [pass, t] : run.at("passes").items()) {
     double lo = t.at("min_ms"), mid = t.at("median_ms"), hi = t.at("max_ms");
     EXPECT_LE(0.0, lo) << pass;
     EXPECT_LE(lo, mid) << pass;
     EXPECT_LE(mid, hi) << pass;
   }
-  double lo = j.at("frame").at("min_ms"), mid = j.at("frame").at("median_ms"),
-         hi = j.at("frame").at("max_ms");
+  double lo = run.at("frame").at("min_ms"), mid = run.at("frame").at("median_ms"),
+         hi = run.at("frame").at("max_ms");
   EXPECT_LT(0.0, lo);
   EXPECT_LE(lo, mid);
   EXPECT_LE(mid, hi);
+  EXPECT_DOUBLE_EQ(run.at("frame").at("fps").get<double>(), 1000.0 / mid);
 }
 
 TEST(RendererCli, CorruptTextureNamesTheFile) {

@@ -1,0 +1,145 @@
+// The cross-device bench matrix: every chosen device x every image size x every voxel
+// resolution, the same simulated frames on each, plus the power-law fits of how the frame time
+// grows with the work. Results only (no OpenCL here): the measuring itself is a callback, so the
+// loop, the per-device skip on errors and the fits are testable without a device.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "app/pass_stats.h"
+#include "cl/context.h"
+
+namespace rp::app {
+
+// Concatenation by appends: `"literal" + std::string(...)` trips GCC 12's -Wrestrict false
+// positive under -O2 -Werror.
+template <class... Parts>
+std::string str_cat(const Parts&... parts) {
+  std::string out;
+  (out.append(std::string_view(parts)), ...);
+  return out;
+}
+
+// Work done and the share of the device's measured peak it reached (issue 7 item 3). All zero
+// when the work of that pass is not counted or the device's peak was not measured.
+struct PassEfficiency {
+  double bytes = 0.0;            // bytes moved per frame (pass_work's formulas)
+  double flops = 0.0;            // arithmetic operations per frame
+  double gbytes_per_s = 0.0;     // bytes / median time, 1e9 bytes per second
+  double gflops_per_s = 0.0;     // flops / median time
+  double bandwidth_fraction = 0.0;  // gbytes_per_s / device peak bandwidth (0..~1)
+  double compute_fraction = 0.0;    // gflops_per_s / device peak compute
+};
+
+struct PassResult {
+  std::string name;
+  TimeSummary ms;
+  PassEfficiency efficiency;
+};
+
+// One (size, voxel resolution) cell on one device.
+struct RunResult {
+  uint32_t width = 0, height = 0;
+  uint32_t voxels = 0;           // voxel volume resolution per side
+  uint32_t frames = 0;           // measured frames
+  std::vector<PassResult> passes;  // pipeline order (pipeline_rank)
+  TimeSummary frame;             // wall clock of Renderer::render per frame
+  // What the measured frames drew (the last one; every device draws the same frames).
+  uint32_t spheres = 0, instances = 0, instance_triangles = 0;
+
+  double fps() const { return frame.median_ms > 0.0 ? 1000.0 / frame.median_ms : 0.0; }
+  double pixels() const { return double(width) * double(height); }
+  // The pass's entry, nullptr when this run has no timings for it.
+  const PassResult* pass(const std::string& name) const;
+};
+
+// From the frames' statistics (needs at least one frame).
+RunResult make_run_result(uint32_t width, uint32_t height, uint32_t voxels,
+                          const PassStats& stats);
+
+// time ~ a * x^k, fitted by least squares on (log x, log time).
+struct PowerFit {
+  double a = 0.0;     // ms at x = 1
+  double k = 0.0;     // exponent: doubling x multiplies the time by 2^k
+  double r2 = 0.0;    // coefficient of determination on the log-log data (1 = exact)
+  uint32_t points = 0;
+};
+
+// Needs >= 2 points with distinct x, every x and y > 0; otherwise std::invalid_argument.
+PowerFit fit_power_law(const std::vector<double>& x, const std::vector<double>& y);
+
+// Frame time against pixel count (w*h) at one voxel resolution.
+struct PixelScaling {
+  uint32_t voxels = 0;
+  PowerFit fit;
+};
+// Frame time against voxel count (resolution^3) at one image size.
+struct VoxelScaling {
+  uint32_t width = 0, height = 0;
+  PowerFit fit;
+};
+
+struct DeviceResult {
+  int index = 0;             // in rp::cl::list_devices()
+  std::string name, type, platform;
+  uint32_t compute_units = 0;
+  std::string skipped;       // "" = ran; else the error that stopped this device
+  double peak_bandwidth_gbps = 0.0;  // measured peak (0 = not measured)
+  double peak_gflops = 0.0;
+  std::vector<RunResult> runs;       // voxels outer, sizes inner, as planned
+  std::vector<PixelScaling> pixel_scaling;  // one per voxel resolution with >= 2 sizes
+  std::vector<VoxelScaling> voxel_scaling;  // one per size with >= 2 voxel resolutions
+
+  bool ok() const { return skipped.empty(); }
+  std::string label() const;  // "[0] pthread-... (CPU)"
+};
+
+struct BenchMatrix {
+  std::string command;     // the command line that produced it (informational)
+  std::string scene;       // "default" or "busy"
+  uint64_t seed = 1;
+  uint32_t frames = 0, warmup = 0;
+  std::vector<std::pair<uint32_t, uint32_t>> sizes;  // (width, height)
+  std::vector<uint32_t> voxels;
+  std::vector<DeviceResult> devices;
+
+  size_t devices_ok() const;
+};
+
+// Fills pixel_scaling and voxel_scaling of `device` from its runs (frame median ms).
+void fit_scaling(DeviceResult& device);
+
+// Devices named by `spec`: "all" = every device; otherwise a comma-separated list of indices
+// (as `rolypoly devices` prints them) and/or case-insensitive substrings of the device or
+// platform name (a substring picks every device it matches). Order of the list, duplicates
+// dropped. Throws rp::cl::Error naming the token and listing the devices when one matches none.
+std::vector<rp::cl::DeviceInfo> select_devices(const std::string& spec,
+                                               const std::vector<rp::cl::DeviceInfo>& all);
+
+struct MatrixPlan {
+  std::vector<rp::cl::DeviceInfo> devices;
+  std::vector<std::pair<uint32_t, uint32_t>> sizes;
+  std::vector<uint32_t> voxels;
+};
+
+// Measures one cell; throws rp::cl::Error (or ::cl::Error) when the device cannot build or run
+// a kernel.
+using MeasureRun = std::function<RunResult(const rp::cl::DeviceInfo& device, uint32_t width,
+                                           uint32_t height, uint32_t voxels)>;
+// Optional per-device step after its runs (efficiency: peak probe); may throw like MeasureRun.
+using FinishDevice = std::function<void(const rp::cl::DeviceInfo& device, DeviceResult& result)>;
+
+// Runs every device in turn (voxels outer, sizes inner). A device whose MeasureRun or
+// FinishDevice throws rp::cl::Error or ::cl::Error is recorded as skipped with the message (its
+// finished runs dropped) and the next device runs; "device <label> skipped: <message>" goes to
+// `log` (nullptr = silent). Other exceptions propagate. Fits the scaling of every device that ran.
+// `matrix` must hold the metadata (command, scene, ...); its devices are replaced.
+void run_matrix(const MatrixPlan& plan, const MeasureRun& measure, const FinishDevice& finish,
+                BenchMatrix& matrix, std::FILE* log);
+
+}  // namespace rp::app
