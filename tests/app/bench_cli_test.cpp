@@ -1,0 +1,126 @@
+// `rolypoly bench` end to end on the machine's OpenCL device(s) at tiny sizes: the matrix, the
+// busy scene, the chart, and a device whose kernels fail to build (reported and skipped).
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+
+namespace rp::test {
+namespace {
+
+::testing::AssertionResult Contains(const std::string& text, const std::string& needle) {
+  if (text.find(needle) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "'" << needle << "' not found in:\n" << text;
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+TEST(BenchCli, MatrixOfTwoSizesWritesJsonChartAndMarkdown) {
+  TempDir dir;
+  auto json = dir / "m.json", svg = dir / "m.svg", md = dir / "m.md";
+  CommandResult r = run_rolypoly(
+      "bench --devices 0 --sizes 16,32 --voxels 32 --frames 1 --warmup 0 --json " +
+      shell_quote(json.string()) + " --chart " + shell_quote(svg.string()) + " --markdown " +
+      shell_quote(md.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_TRUE(Contains(r.out, "16x16, 32^3 voxels"));
+  EXPECT_TRUE(Contains(r.out, "32x32, 32^3 voxels"));
+  EXPECT_TRUE(Contains(r.out, "frame ~ pixels^"));
+  EXPECT_TRUE(Contains(r.out, "fps"));
+
+  nlohmann::json j = nlohmann::json::parse(read_text(json));
+  EXPECT_EQ(j.at("schema"), "rolypoly-bench/2");
+  EXPECT_EQ(j.at("scene"), "default");
+  EXPECT_EQ(j.at("sizes"), nlohmann::json::parse("[[16,16],[32,32]]"));
+  EXPECT_EQ(j.at("voxels"), nlohmann::json::parse("[32]"));
+  ASSERT_EQ(j.at("devices").size(), 1u);
+  const nlohmann::json& d = j.at("devices").at(0);
+  EXPECT_EQ(d.at("index"), 0);
+  EXPECT_TRUE(d.at("skipped").is_null());
+  ASSERT_EQ(d.at("runs").size(), 2u);
+  EXPECT_EQ(d.at("runs").at(0).at("size"), nlohmann::json::parse("[16,16]"));
+  EXPECT_EQ(d.at("runs").at(1).at("size"), nlohmann::json::parse("[32,32]"));
+  for (const auto& run : d.at("runs")) {
+    EXPECT_EQ(run.at("voxels"), 32);
+    EXPECT_EQ(run.at("frames"), 1);
+    EXPECT_TRUE(run.at("passes").contains("light"));
+    EXPECT_TRUE(run.at("passes").contains("voxelize"));
+  }
+  ASSERT_EQ(d.at("scaling").at("pixels").size(), 1u);
+  EXPECT_EQ(d.at("scaling").at("pixels").at(0).at("points"), 2);
+  EXPECT_TRUE(d.at("scaling").at("voxels").empty()) << "one voxel resolution: no voxel fit";
+  EXPECT_TRUE(Contains(j.at("command").get<std::string>(), "--sizes 16,32"));
+
+  std::string chart = read_text(svg);
+  EXPECT_EQ(chart.rfind("<?xml", 0), 0u);
+  EXPECT_TRUE(Contains(chart, "</svg>"));
+  std::string name = d.at("name");
+  EXPECT_TRUE(Contains(chart, name.substr(0, 12))) << "the device is named (maybe shortened)";
+  EXPECT_TRUE(Contains(read_text(md), "| 16x16 | 32^3 |"));
+}
+
+TEST(BenchCli, BusySceneKeepsTheParticleBudgetFull) {
+  TempDir dir;
+  auto json = dir / "busy.json";
+  CommandResult r = run_rolypoly("bench --scene busy --size 16 --voxels 32 --frames 1 "
+                                 "--warmup 1 --json " + shell_quote(json.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  nlohmann::json j = nlohmann::json::parse(read_text(json));
+  EXPECT_EQ(j.at("scene"), "busy");
+  const nlohmann::json& run = j.at("devices").at(0).at("runs").at(0);
+  // 2048 particles + up to 30 marbles + the fireball, all drawn as spheres.
+  EXPECT_GE(run.at("scene").at("spheres").get<int>(), 2048 + 1);
+  EXPECT_LE(run.at("scene").at("spheres").get<int>(), 2048 + 31);
+}
+
+TEST(BenchCli, DeviceWithABrokenKernelIsSkippedWithTheMessage) {
+  TempDir dir;
+  std::filesystem::path kernels = dir / "kernels";
+  std::filesystem::copy(
+      std::filesystem::path(ROLYPOLY_TEST_DATA_DIR).parent_path().parent_path() / "kernels",
+      kernels, std::filesystem::copy_options::recursive);
+  std::filesystem::path broken = kernels / "visibility.cl";
+  ASSERT_TRUE(std::filesystem::exists(broken));
+  std::string source = read_text(broken);
+  std::ofstream(broken, std::ios::trunc) << "this is not OpenCL C (\n" << source;
+  auto json = dir / "skip.json";
+  CommandResult r = run_rolypoly("bench --devices all --size 16 --voxels 32 --frames 1 "
+                                 "--warmup 0 --json " + shell_quote(json.string()),
+                                 "ROLYPOLY_KERNEL_DIR=" + shell_quote(kernels.string()));
+  // Every device fails here, so the exit code is 1; each failure is reported, not fatal.
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_TRUE(Contains(r.err, "device [0] "));
+  EXPECT_TRUE(Contains(r.err, "skipped: "));
+  EXPECT_TRUE(Contains(r.err, "visibility.cl"));
+  EXPECT_TRUE(Contains(r.err, "no device completed the bench"));
+  EXPECT_TRUE(Contains(r.out, ": skipped"));
+  nlohmann::json j = nlohmann::json::parse(read_text(json));  // written even then
+  for (const auto& d : j.at("devices")) {
+    ASSERT_TRUE(d.at("skipped").is_string());
+    EXPECT_TRUE(Contains(d.at("skipped").get<std::string>(), "visibility.cl"));
+    EXPECT_TRUE(d.at("runs").empty());
+  }
+}
+
+TEST(BenchCli, ConflictingDeviceAndSizeOptionsAreUsageErrors) {
+  CommandResult both = run_rolypoly("bench --devices all --device 0 --frames 1");
+  EXPECT_EQ(both.exit_code, 2) << both.out << both.err;
+  EXPECT_TRUE(Contains(both.err, "--devices and --device"));
+  CommandResult sizes = run_rolypoly("bench --sizes 16 --size 32 --frames 1");
+  EXPECT_EQ(sizes.exit_code, 2) << sizes.out << sizes.err;
+  CommandResult voxels = run_rolypoly("bench --voxels 32,48 --frames 1");
+  EXPECT_EQ(voxels.exit_code, 2) << voxels.out << voxels.err;
+  CommandResult unknown = run_rolypoly("bench --devices no-such-device --size 16 --frames 1");
+  EXPECT_EQ(unknown.exit_code, 1) << unknown.out << unknown.err;
+  EXPECT_TRUE(Contains(unknown.err, "no-such-device"));
+}
+
+}  // namespace
+}  // namespace rp::test
