@@ -21,10 +21,10 @@ std::string num(double v) {
   return buf;
 }
 
-// Short tick label: 3 significant digits, no trailing zeros.
+// Short tick label: up to 5 significant digits, no trailing zeros (1500, not 1.5e+03).
 std::string tick_label(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
+  std::snprintf(buf, sizeof buf, "%.5g", v);
   return buf;
 }
 
@@ -95,7 +95,7 @@ double line_chart(SvgWriter& svg, double x0, double y0, double w, double h,
     svg.text(px(x), y0 + h + 18, x_label_of(x), 11, "middle");
   }
   svg.text(x0 + w / 2, y0 + h + 36, x_title, 12, "middle");
-  svg.text(x0 - 44, y0 - 4, "frame ms (log)", 11, "start");
+  svg.text(x0, y0 - 30, "frame ms (log)", 11, "start", "#555");
   for (const Series& s : series) {
     std::vector<std::pair<double, double>> pts;
     for (const auto& [x, y] : s.points) pts.push_back({px(x), py(y)});
