@@ -1,4 +1,5 @@
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "app/bench_chart.h"
@@ -220,7 +221,18 @@ void add_efficiency(const CommonOptions& common, const rp::cl::DeviceInfo& info,
 }
 #endif
 
-void write_outputs(const BenchOptions& options, const BenchMatrix& matrix) {
+void write_outputs(const BenchOptions& given, const BenchMatrix& matrix) {
+  // A device sweep (--devices) always leaves its JSON and chart behind: out/bench.json and
+  // out/bench.svg unless --json / --chart name other files.
+  BenchOptions options = given;
+  if (!options.devices.empty()) {
+    if (options.json.empty()) options.json = "out/bench.json";
+    if (options.chart.empty()) options.chart = "out/bench.svg";
+  }
+  for (const std::string* file : {&options.json, &options.markdown, &options.chart})
+    if (std::filesystem::path dir = std::filesystem::path(*file).parent_path();
+        !file->empty() && !dir.empty())
+      ensure_directory(dir);
   if (!options.json.empty()) {
     write_text_atomic(options.json, matrix_json(matrix));
     std::printf("wrote %s\n", options.json.c_str());
