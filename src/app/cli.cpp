@@ -17,6 +17,34 @@ namespace {
 
 constexpr uint32_t kMaxSize = 16384;  // pixels per side; far above any sensible render
 
+// Checks a pixel count before CLI11 converts it, so that 0, negative and non-numeric values get
+// a message that says what is allowed (CLI11's own would be "Value -5 not in range 1 to 16384").
+// Whether the size fits the device's memory is checked later, once the device is known
+// (render_session.cpp).
+CLI::Validator pixel_count() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        long long value = 0;
+        size_t used = 0;
+        try {
+          value = std::stoll(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        const std::string range = "give 1 to " + std::to_string(kMaxSize) + " pixels";
+        if (used == 0 || used != text.size())
+          return "'" + text + "' is not a whole number of pixels; " + range;
+        if (value < 1)
+          return text + " pixels is not a size: an image needs at least 1 pixel per side; " +
+                 range;
+        if (value > kMaxSize)
+          return text + " pixels is above the limit of " + std::to_string(kMaxSize) +
+                 " per side; " + range;
+        return "";
+      },
+      "PIXELS in 1.." + std::to_string(kMaxSize));
+}
+
 // --size sets both sides; --width / --height override one of them.
 struct SizeArgs {
   uint32_t size = 720;
@@ -64,11 +92,11 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option = true) 
 void add_size(CLI::App* cmd, SizeArgs& size) {
   cmd->add_option("--size", size.size, "square image size in pixels")
       ->capture_default_str()
-      ->check(CLI::Range(1u, kMaxSize));
+      ->check(pixel_count());
   cmd->add_option("--width", size.width, "image width in pixels (overrides --size)")
-      ->check(CLI::Range(1u, kMaxSize));
+      ->check(pixel_count());
   cmd->add_option("--height", size.height, "image height in pixels (overrides --size)")
-      ->check(CLI::Range(1u, kMaxSize));
+      ->check(pixel_count());
 }
 
 void add_simulation(CLI::App* cmd, SimulationArgs& sim) {
@@ -189,7 +217,7 @@ int run_cli(int argc, char** argv) {
       bench->add_option("--sizes", bench_opts.sizes,
                         "comma-separated square image sizes, e.g. 256,512,720 (instead of --size)")
           ->delimiter(',')
-          ->check(CLI::Range(1u, kMaxSize));
+          ->check(pixel_count());
   bench->add_option("--voxels", bench_opts.voxels,
                     "comma-separated GI voxel resolutions per side, each 32, 64 or 128 (default " +
                         std::to_string(render::RenderSettings{}.voxel_resolution) + ")")
@@ -225,8 +253,10 @@ int run_cli(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);  // prints help (code 0) or CLI11's error message
-    return code == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help: prints the help, exit code 0
+    std::fprintf(stderr, "rolypoly: error: %s\nRun with --help for more information.\n",
+                 e.what());
+    return 2;
   }
   for (const auto& [cmd, args] : {std::pair{render, &render_view}, std::pair{run, &run_view}}) {
     if (!cmd->parsed()) continue;

@@ -1,10 +1,13 @@
 #include "app/png_output.h"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <stb/stb_image_write.h>
@@ -78,6 +81,17 @@ void ensure_directory(const std::filesystem::path& dir) {
   if (ec || !std::filesystem::is_directory(dir))
     throw std::runtime_error("cannot create output folder " + dir.string() +
                              (ec ? ": " + ec.message() : ": a file of that name exists"));
+  // An existing folder may still refuse new files (read-only mount, /proc, no permission):
+  // find out now by creating and removing an empty probe file, not after the first frame.
+  std::filesystem::path probe = temporary_for(dir / ".rolypoly-write-test");
+  int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0) {
+    const int err = errno;
+    throw std::runtime_error("cannot write into output folder " + dir.string() + ": " +
+                             std::strerror(err));
+  }
+  ::close(fd);
+  std::filesystem::remove(probe, ec);
 }
 
 }  // namespace rp::app

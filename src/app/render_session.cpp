@@ -1,8 +1,93 @@
 #include "app/render_session.h"
 
+#include <cstdio>
+
+#include "cl/error.h"
+#include "passes/motion_blur.h"
+#include "render/gpu_types.h"  // before raster_types.h, which builds on its types
+#include "kernels/shared/raster_types.h"
+#include "render/voxel_volume.h"
 #include "scene/demo_scene.h"
 
 namespace rp::app {
+namespace {
+
+// Meshes, textures, draw and sphere lists, frame constants: a few MiB for the demo scene.
+constexpr uint64_t kSceneReserveBytes = uint64_t(64) << 20;
+
+std::string gib(uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f GiB", double(bytes) / double(uint64_t(1) << 30));
+  return text;
+}
+
+bool fits(const DeviceMemoryNeed& need, uint64_t global_bytes, uint64_t max_alloc_bytes) {
+  return need.total_bytes <= global_bytes && need.largest_buffer_bytes <= max_alloc_bytes;
+}
+
+}  // namespace
+
+DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_t shadow_size,
+                                        uint32_t voxel_resolution, bool light_components) {
+  const uint64_t n = uint64_t(width) * height;
+  uint64_t per_pixel_x3 = 3 * (20 + 72 + 16 + 32 + 4 + 32 + 4) + 32;  // bloom's 32/3 exactly
+  if (light_components) per_pixel_x3 += 3 * 32;
+  const auto tiles = [&](uint64_t side) {
+    return ((width + side - 1) / side) * ((height + side - 1) / side);
+  };
+  const uint64_t blur_tiles = tiles(passes::MotionBlurPass::kTileSize);
+  const uint64_t raster_tiles = tiles(RP_RASTER_TILE);
+  const uint64_t r = voxel_resolution;
+  const uint64_t voxel_bytes =
+      uint64_t(gpu::rp_voxel_total(voxel_resolution,
+                                   render::VoxelVolume::levels_for(voxel_resolution))) * 16 +
+      r * r * r * (16 + 4);
+  DeviceMemoryNeed need;
+  need.total_bytes = (n * per_pixel_x3 + 2) / 3 + blur_tiles * 20 + raster_tiles * 2 * 12 +
+                     uint64_t(shadow_size) * shadow_size * 4 + voxel_bytes + kSceneReserveBytes;
+  need.largest_buffer_bytes = n * 16;
+  return need;
+}
+
+uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_bytes,
+                                  uint32_t shadow_size, uint32_t voxel_resolution,
+                                  bool light_components) {
+  uint32_t lo = 0, hi = 1u << 17;  // invariant: lo fits (0 trivially), hi does not
+  while (hi - lo > 1) {
+    const uint32_t mid = lo + (hi - lo) / 2;
+    if (fits(estimate_device_memory(mid, mid, shadow_size, voxel_resolution, light_components),
+             global_bytes, max_alloc_bytes))
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint32_t height,
+                         uint32_t shadow_size, uint32_t voxel_resolution, bool light_components) {
+  const DeviceMemoryNeed need =
+      estimate_device_memory(width, height, shadow_size, voxel_resolution, light_components);
+  if (device.global_mem_bytes == 0 || fits(need, device.global_mem_bytes, device.max_alloc_bytes))
+    return;  // 0: the driver did not say; buffer creation failures are still reported
+  std::string size = std::to_string(width) + "x" + std::to_string(height);
+  std::string message;
+  if (need.total_bytes > device.global_mem_bytes)
+    message = size + " needs " + gib(need.total_bytes) + " of device memory, the device has " +
+              gib(device.global_mem_bytes);
+  else
+    message = size + " needs one buffer of " + gib(need.largest_buffer_bytes) +
+              " (a float4 per pixel), the device allows at most " +
+              gib(device.max_alloc_bytes) + " per buffer";
+  const uint32_t side = largest_square_that_fits(device.global_mem_bytes, device.max_alloc_bytes,
+                                                 shadow_size, voxel_resolution, light_components);
+  if (side == 0)
+    message += "; not even a 1x1 image fits (a smaller --voxels or --shadow-size may help)";
+  else
+    message += "; the largest square size that fits is about " + std::to_string(side) +
+               " (--size " + std::to_string(side) + ")";
+  throw rp::cl::Error(message);
+}
 RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint32_t height)
     : assets_(scene::make_demo_assets(options.asset_dir.empty() ? scene::default_asset_dir()
                                                                 : options.asset_dir)),
@@ -15,6 +100,10 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   if (options.voxels != 0) settings.voxel_resolution = options.voxels;
   settings.effects = options.effects;
   settings.visibility = options.visibility;
+  // Before any allocation or kernel build: a size the device cannot hold fails at once, with
+  // what would fit.
+  check_device_memory(context_.info, width, height, settings.shadow_size,
+                      settings.voxel_resolution, passes::needs_light_components(options.view.view));
   renderer_ = std::make_unique<render::Renderer>(context_, programs_, assets_, settings);
   set_view(options.view);
 }

@@ -63,6 +63,32 @@ class RenderSession {
   passes::DebugViewSettings view_;
 };
 
+// Device memory the renderer allocates for one width x height image, counted buffer by buffer
+// from render/frame_buffers.h, renderer.h and the passes (bytes, an estimate that errs high):
+// per pixel: visibility 20 (depth, ids, bary), GBuffer 72 (4 float4 + velocity float2), HDR 16,
+// post ping-pong 32, RGBA8 4, TAA history 32, bloom chain <= 32/3 (half-size levels, down + up),
+// motion blur 4 (+ 20 per 20x20 tile), direct/indirect components 32 (only for those views),
+// raster tile lists 24 per tile; fixed: shadow map 4 * size^2, voxel chain + accum + overflow,
+// and kSceneReserveBytes for meshes, textures and draw lists.
+struct DeviceMemoryNeed {
+  uint64_t total_bytes = 0;
+  uint64_t largest_buffer_bytes = 0;  // one float4 per pixel: the biggest single allocation
+};
+DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_t shadow_size,
+                                        uint32_t voxel_resolution, bool light_components);
+
+// Throws rp::cl::Error before anything is allocated when the estimate exceeds the device's
+// global memory or one buffer exceeds its largest allocation, e.g. "16384x16384 needs 51.2 GiB
+// of device memory, the device has 5.6 GiB; the largest square size that fits is about 5400".
+void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint32_t height,
+                         uint32_t shadow_size, uint32_t voxel_resolution, bool light_components);
+
+// The largest square side s (0 if none) whose estimate fits `global_bytes` with every buffer
+// within `max_alloc_bytes`.
+uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_bytes,
+                                  uint32_t shadow_size, uint32_t voxel_resolution,
+                                  bool light_components);
+
 // "[0] pthread-... (CPU, Portable Computing Language)"
 std::string describe_device(const rp::cl::DeviceInfo& info);
 

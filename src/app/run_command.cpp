@@ -79,9 +79,10 @@ scene::InputEvent to_input(const display::WindowEvent& e, glm::vec2 viewport) {
 
 int run_command(const CommonOptions& common, const RunOptions& options) {
   SimulationFrameSource source(make_simulation_options(options.sim, common.effects));
-  if (std::filesystem::path dir = std::filesystem::path(options.record).parent_path();
-      !options.record.empty() && !dir.empty())
-    ensure_directory(dir);  // fail now, not after the session, if the log cannot be written
+  for (const std::string& file : {options.record, options.capture})
+    if (std::filesystem::path dir = std::filesystem::path(file).parent_path();
+        !file.empty() && !dir.empty())
+      ensure_directory(dir);  // fail now, not after the session, if the file cannot be written
   // The window first: without a display, fail at once rather than after the kernel builds.
   std::unique_ptr<display::Window> window = open_window(options.size);
   RenderSession session(common, options.size.width, options.size.height);
@@ -134,6 +135,19 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
     }
   }
 
+  // Closing the window (its close button or Esc) is the normal end of `run --frames 0` and an
+  // early end otherwise: not an error, and --capture / --record below still happen.
+  const bool closed_early =
+      window->should_close() && (options.frames == 0 || presented < options.frames);
+  if (closed_early) std::printf("window closed after %u frames\n", presented);
+  // The log first: it is wanted even when --capture fails below (no frame shown).
+  if (!options.record.empty()) {
+    std::ostringstream log;
+    source.recording().write(log);
+    write_text_atomic(options.record, log.str());
+    std::printf("recorded %zu input events and frames to %s\n",
+                source.recording().events().size(), options.record.c_str());
+  }
   if (!options.capture.empty()) {
     if (presented == 0) throw std::runtime_error("--capture: the window closed before any frame");
     std::vector<uint8_t> shown;
@@ -141,13 +155,6 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
     window->read_back(shown, w, h);
     write_png_atomic(options.capture, w, h, shown);
     std::printf("captured the window (%dx%d) to %s\n", w, h, options.capture.c_str());
-  }
-  if (!options.record.empty()) {
-    std::ostringstream log;
-    source.recording().write(log);
-    write_text_atomic(options.record, log.str());
-    std::printf("recorded %zu input events and frames to %s\n",
-                source.recording().events().size(), options.record.c_str());
   }
   if (presented > 0)
     std::printf("%u frames; per-pass median: %s; frame %.2f ms\n", presented,

@@ -14,6 +14,25 @@
 #include "passes/voxelize.h"
 
 namespace rp::render {
+namespace {
+
+// Errors a driver gives when a buffer does not fit (CL_INVALID_BUFFER_SIZE: above
+// CL_DEVICE_MAX_MEM_ALLOC_SIZE).
+bool out_of_device_memory(cl_int err) {
+  return err == CL_MEM_OBJECT_ALLOCATION_FAILURE || err == CL_OUT_OF_RESOURCES ||
+         err == CL_OUT_OF_HOST_MEMORY || err == CL_INVALID_BUFFER_SIZE;
+}
+
+// The app checks an estimate first (app/render_session.h); this catches what it missed.
+[[noreturn]] void throw_out_of_memory(const ::cl::Error& e, uint32_t width, uint32_t height) {
+  throw rp::cl::Error("the device ran out of memory for a " + std::to_string(width) + "x" +
+                      std::to_string(height) + " image (" + e.what() + ": " +
+                      rp::cl::error_name(e.err()) +
+                      "); choose a smaller --size (or --width / --height); `rolypoly devices` "
+                      "shows each device's memory");
+}
+
+}  // namespace
 
 Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
                    const scene::SceneAssets& assets, RenderSettings settings)
@@ -45,11 +64,16 @@ void Renderer::resize(uint32_t width, uint32_t height) {
   settings_.width = width;
   settings_.height = height;
   size_t n = size_t(width) * height;
-  vis_.resize(context_.context, width, height);
-  gbuffer_.resize(context_.context, width, height);
-  hdr_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
-  for (::cl::Buffer& b : post_) b = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
-  rgba8_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 4);
+  try {
+    vis_.resize(context_.context, width, height);
+    gbuffer_.resize(context_.context, width, height);
+    hdr_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
+    for (::cl::Buffer& b : post_) b = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
+    rgba8_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 4);
+  } catch (const ::cl::Error& e) {
+    if (out_of_device_memory(e.err())) throw_out_of_memory(e, width, height);
+    throw;
+  }
   if (light_components_.direct() != nullptr) set_debug_view(view_);  // reallocate at the new size
 }
 
@@ -61,8 +85,14 @@ void Renderer::set_debug_view(const passes::DebugViewSettings& view) {
   view_ = view;
   if (passes::needs_light_components(view.view)) {
     const size_t bytes = size_t(settings_.width) * settings_.height * 16;
-    light_components_.direct = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, bytes);
-    light_components_.indirect = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, bytes);
+    try {
+      light_components_.direct = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, bytes);
+      light_components_.indirect = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, bytes);
+    } catch (const ::cl::Error& e) {
+      light_components_ = {};
+      if (out_of_device_memory(e.err())) throw_out_of_memory(e, settings_.width, settings_.height);
+      throw;
+    }
   } else {
     light_components_ = {};
   }
@@ -124,6 +154,9 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     if (embree_) times["visibility_host"] = host_visibility_ms;
     return times;
   } catch (const ::cl::Error& e) {
+    // The passes allocate their own per-size buffers (TAA history, bloom chain, motion blur
+    // tiles) on the first frame.
+    if (out_of_device_memory(e.err())) throw_out_of_memory(e, settings_.width, settings_.height);
     throw rp::cl::Error(std::string("OpenCL call failed while rendering: ") + e.what() + " (" +
                         rp::cl::error_name(e.err()) + ")");
   }

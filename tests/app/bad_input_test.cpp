@@ -1,0 +1,233 @@
+// Bad input (issue 8, item 4): each case gives one "rolypoly: error: ..." message, a non-zero
+// exit code and leaves no half-written file. Cases already covered elsewhere (unknown option,
+// unknown device, corrupt texture, kernel build failure, malformed replay, no ffmpeg) live in
+// cli_errors_test.cpp, renderer_cli_test.cpp and simulation_cli_test.cpp.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <thread>
+
+#include <stb/stb_image.h>
+
+#include "app/render_session.h"
+#include "cli_runner.h"
+#include "scene/demo_scene.h"
+
+namespace rp::test {
+namespace {
+
+::testing::AssertionResult Contains(const std::string& text, const std::string& needle) {
+  if (text.find(needle) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "'" << needle << "' not found in:\n" << text;
+}
+
+// Every entry of `dir` (files and folders, hidden ones included).
+std::vector<std::string> all_entries(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  if (!std::filesystem::exists(dir)) return names;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    names.push_back(e.path().filename().string());
+  return names;
+}
+
+TEST(BadInput, NoOpenClPlatformSaysWhatToInstall) {
+  TempDir dir;
+  std::filesystem::create_directories(dir / "vendors");  // ocl-icd finds no driver here
+  CommandResult r = run_rolypoly("render --size 8 --out " + shell_quote((dir / "out").string()),
+                                 "OCL_ICD_VENDORS=" + shell_quote((dir / "vendors").string()));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_TRUE(Contains(r.err, "rolypoly: error: no OpenCL platform found"));
+  EXPECT_TRUE(Contains(r.err, "apt-get install pocl-opencl-icd"));
+  EXPECT_TRUE(files_with_suffix(dir / "out", ".png").empty());
+}
+
+TEST(BadInput, ZeroNegativeAndNonNumericSizesSayWhatIsAllowed) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"--size 0", "at least 1 pixel"},
+      {"--size -5", "at least 1 pixel"},
+      {"--width 0", "at least 1 pixel"},
+      {"--height -1", "at least 1 pixel"},
+      {"--size 12x", "not a whole number"},
+      {"--size 99999", "above the limit of 16384"},
+  };
+  for (const auto& [args, why] : cases) {
+    CommandResult r = run_rolypoly(std::string("render ") + args + " --out /nonexistent/x");
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_TRUE(Contains(r.err, "rolypoly: error: "));
+    EXPECT_TRUE(Contains(r.err, std::string(args).substr(0, std::string(args).find(' '))));
+    EXPECT_TRUE(Contains(r.err, why)) << args;
+    EXPECT_TRUE(Contains(r.err, "give 1 to 16384 pixels")) << args;
+  }
+}
+
+// The estimate counts the buffers; checked here against sums written out by hand.
+TEST(BadInput, DeviceMemoryEstimateCountsEveryBuffer) {
+  // 160x160: 25600 pixels; 10 raster tiles (16 px) per side = 100; 8 blur tiles (20 px) = 64.
+  app::DeviceMemoryNeed need = app::estimate_device_memory(160, 160, 64, 32, false);
+  const uint64_t pixels = 25600;
+  const uint64_t per_pixel = 20 + 72 + 16 + 32 + 4 + 32 + 4;  // + bloom's 32/3
+  const uint64_t voxels = 32 * 32 * 32;
+  // Chain: level 0 (32^3) plus six volumes of 16^3, 8^3, 4^3, 2^3, 1: float4 each.
+  const uint64_t chain = voxels + 6 * (4096 + 512 + 64 + 8 + 1);
+  const uint64_t expected = pixels * per_pixel + (pixels * 32 + 2) / 3 + 64 * 20 + 100 * 24 +
+                            64 * 64 * 4 + chain * 16 + voxels * 20 + (uint64_t(64) << 20);
+  EXPECT_EQ(need.total_bytes, expected);
+  EXPECT_EQ(need.largest_buffer_bytes, pixels * 16);
+  // The direct / indirect views add two float4 per pixel.
+  EXPECT_EQ(app::estimate_device_memory(160, 160, 64, 32, true).total_bytes,
+            expected + pixels * 32);
+}
+
+TEST(BadInput, LargestSquareThatFitsIsTheBoundary) {
+  const uint64_t global = uint64_t(6) << 30, max_alloc = uint64_t(1) << 30;
+  uint32_t s = app::largest_square_that_fits(global, max_alloc, 1024, 64, false);
+  ASSERT_GT(s, 1000u);
+  auto fits = [&](uint32_t side) {
+    app::DeviceMemoryNeed n = app::estimate_device_memory(side, side, 1024, 64, false);
+    return n.total_bytes <= global && n.largest_buffer_bytes <= max_alloc;
+  };
+  EXPECT_TRUE(fits(s));
+  EXPECT_FALSE(fits(s + 1));
+  // 1 GiB per buffer of 16 bytes per pixel limits the side to 8192.
+  EXPECT_EQ(app::largest_square_that_fits(uint64_t(1) << 40, max_alloc, 1024, 64, false), 8192u);
+}
+
+TEST(BadInput, CheckDeviceMemoryNamesTheNeedAndWhatFits) {
+  cl::DeviceInfo device;
+  device.name = "small";
+  device.global_mem_bytes = uint64_t(2) << 30;
+  device.max_alloc_bytes = uint64_t(1) << 30;
+  EXPECT_NO_THROW(app::check_device_memory(device, 720, 720, 1024, 64, false));
+  try {
+    app::check_device_memory(device, 16384, 16384, 1024, 64, false);
+    FAIL() << "16384x16384 cannot fit 2 GiB";
+  } catch (const cl::Error& e) {
+    std::string m = e.what();
+    EXPECT_TRUE(Contains(m, "16384x16384 needs "));
+    EXPECT_TRUE(Contains(m, "GiB of device memory, the device has 2.0 GiB"));
+    uint32_t s = app::largest_square_that_fits(device.global_mem_bytes, device.max_alloc_bytes,
+                                               1024, 64, false);
+    EXPECT_TRUE(Contains(m, "largest square size that fits is about " + std::to_string(s)));
+  }
+  device.global_mem_bytes = uint64_t(64) << 30;  // enough in total, but not in one buffer
+  try {
+    app::check_device_memory(device, 10000, 10000, 1024, 64, false);
+    FAIL() << "a 1.5 GiB buffer is above the 1 GiB limit";
+  } catch (const cl::Error& e) {
+    EXPECT_TRUE(Contains(e.what(), "the device allows at most 1.0 GiB per buffer"));
+    EXPECT_TRUE(Contains(e.what(), "about 8192"));
+  }
+}
+
+// The binary: a size too large for this device fails before kernel builds or allocations.
+TEST(BadInput, SizeTooLargeForTheDeviceSaysWhatFits) {
+  CommandResult devices = run_rolypoly("devices");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(devices.out, m, std::regex("global memory ([0-9]+) MiB")))
+      << devices.out;
+  if (std::stoull(m[1].str()) > 40000)  // 16384^2 needs about 48 GiB: it might really fit
+    GTEST_SKIP() << "device 0 has " << m[1].str() << " MiB: 16384x16384 might fit";
+  TempDir dir;
+  auto start = std::chrono::steady_clock::now();
+  CommandResult r = run_rolypoly("render --size 16384 --out " + shell_quote((dir / "out").string()));
+  double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_TRUE(Contains(r.err, "rolypoly: error: 16384x16384 needs "));
+  EXPECT_TRUE(Contains(r.err, "largest square size that fits is about "));
+  EXPECT_LT(seconds, 10.0) << "the check comes before the kernel builds";
+  EXPECT_TRUE(files_with_suffix(dir / "out", ".png").empty());
+}
+
+TEST(BadInput, OutputFolderThatCannotBeWrittenFailsBeforeRendering) {
+  TempDir dir;
+  std::ofstream(dir / "a_file") << "not a folder";
+  const std::pair<std::string, std::string> cases[] = {
+      {(dir / "a_file" / "out").string(), "cannot create output folder"},
+      {"/proc/rolypoly-out", "cannot create output folder"},
+      {"/proc/self", "cannot write into output folder"},  // exists, but takes no new files
+  };
+  for (const auto& [out, why] : cases) {
+    auto start = std::chrono::steady_clock::now();
+    CommandResult r = run_rolypoly("render --size 8 --out " + shell_quote(out));
+    double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(r.exit_code, 1) << out << "\n" << r.out << r.err;
+    EXPECT_TRUE(Contains(r.err, "rolypoly: error: " + why + " " + out)) << out;
+    EXPECT_TRUE(r.out.find("device") == std::string::npos) << "failed before the device";
+    EXPECT_LT(seconds, 5.0) << out;
+  }
+}
+
+TEST(BadInput, MissingTextureNamesTheFile) {
+  TempDir dir;
+  std::filesystem::path assets = dir / "assets";
+  std::filesystem::copy(scene::default_asset_dir(), assets,
+                        std::filesystem::copy_options::recursive);
+  ASSERT_TRUE(std::filesystem::remove(assets / "wood.png")) << "the demo's floor texture";
+  CommandResult r = run_rolypoly("render --size 8 --assets " + shell_quote(assets.string()) +
+                                 " --out " + shell_quote((dir / "out").string()));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_TRUE(Contains(r.err, "rolypoly: error:"));
+  EXPECT_TRUE(Contains(r.err, (assets / "wood.png").string()));
+  EXPECT_TRUE(files_with_suffix(dir / "out", ".png").empty());
+}
+
+// Ctrl-C during a headless render: the frames written so far are whole PNGs, no temporary file
+// remains, exit code 130 and "interrupted after N frames".
+TEST(BadInput, InterruptDuringRenderKeepsCompleteFramesOnly) {
+  TempDir dir;
+  const std::filesystem::path out = dir / "out", err_file = dir / "err.txt";
+  pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    if (!std::freopen(err_file.c_str(), "w", stderr) || !std::freopen("/dev/null", "w", stdout))
+      _exit(99);
+    execl(ROLYPOLY_BINARY, ROLYPOLY_BINARY, "render", "--frames", "1000", "--size", "32",
+          "--out", out.c_str(), static_cast<char*>(nullptr));
+    _exit(98);
+  }
+  // Wait (up to a minute: kernel builds come first) until a few frames exist.
+  auto start = std::chrono::steady_clock::now();
+  while (files_with_suffix(out, ".png").size() < 3 &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_GE(files_with_suffix(out, ".png").size(), 3u);
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by a signal, not by the handler";
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+
+  std::ifstream err_in(err_file);
+  std::string err((std::istreambuf_iterator<char>(err_in)), std::istreambuf_iterator<char>());
+  std::vector<std::string> pngs = files_with_suffix(out, ".png");
+  EXPECT_LT(pngs.size(), 1000u);
+  EXPECT_TRUE(Contains(err, "rolypoly: error: interrupted after " + std::to_string(pngs.size()) +
+                                " frames"));
+  for (const std::string& entry : all_entries(out))  // only frame_NNNN.png, nothing else
+    EXPECT_TRUE(std::regex_match(entry, std::regex("frame_[0-9]{4}\\.png"))) << entry;
+  for (size_t i = 0; i < pngs.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04zu.png", i);
+    EXPECT_TRUE(std::filesystem::exists(out / name)) << "frames are numbered without gaps";
+    int w = 0, h = 0, channels = 0;
+    unsigned char* pixels = stbi_load((out / name).c_str(), &w, &h, &channels, 4);
+    EXPECT_NE(pixels, nullptr) << name << " does not decode";
+    EXPECT_EQ(w, 32);
+    EXPECT_EQ(h, 32);
+    stbi_image_free(pixels);
+  }
+}
+
+}  // namespace
+}  // namespace rp::test
