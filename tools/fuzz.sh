@@ -39,7 +39,7 @@ for t in "${targets[@]}"; do
     grep -E '^stat::(number_of_executed_units|average_exec_per_sec|new_units_added|peak_rss_mb)' "$log"
   else
     echo "fuzz_$t: FOUND A PROBLEM (log: $log, reproducer in $build/artifacts/$t/)" >&2
-    grep -E 'ERROR|fuzz_|SUMMARY|Test unit written' "$log" | head -n 20 >&2
+    grep -E '^(fuzz_[a-z_]+: |==[0-9]+== ?ERROR|SUMMARY|artifact_prefix)' "$log" | head -n 20 >&2
     failed+=("$t")
   fi
 done
