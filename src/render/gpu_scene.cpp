@@ -183,12 +183,15 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
   ensure(instances, instance_capacity_, host_instances.size(), sizeof(gpu::Instance));
   ensure(spheres, sphere_capacity_, std::max<size_t>(host_spheres.size(), 64), sizeof(gpu::Sphere));
 
-  queue_.enqueueWriteBuffer(frame, CL_FALSE, 0, sizeof(c), &c);
+  // Blocking writes: the sources are members that the next update() rewrites and that die with
+  // this object, and OpenCL reads a non-blocking write's host memory whenever the command runs
+  // (AddressSanitizer caught PoCL reading `constants` after the GpuScene was destroyed).
+  queue_.enqueueWriteBuffer(frame, CL_TRUE, 0, sizeof(c), &c);
   if (!host_instances.empty())
-    queue_.enqueueWriteBuffer(instances, CL_FALSE, 0,
+    queue_.enqueueWriteBuffer(instances, CL_TRUE, 0,
                               host_instances.size() * sizeof(gpu::Instance), host_instances.data());
   if (!host_spheres.empty())
-    queue_.enqueueWriteBuffer(spheres, CL_FALSE, 0, host_spheres.size() * sizeof(gpu::Sphere),
+    queue_.enqueueWriteBuffer(spheres, CL_TRUE, 0, host_spheres.size() * sizeof(gpu::Sphere),
                               host_spheres.data());
 }
 
