@@ -22,6 +22,7 @@ PACKAGES=(
   libglm-dev libglfw3-dev libgl-dev libstb-dev libembree-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev
   xvfb xauth libgl1-mesa-dri
+  clang libclang-rt-14-dev
 )
 
 mode=build
