@@ -60,30 +60,6 @@ TEST(PngOutput, EnsureDirectoryCreatesParentsAndRejectsFiles) {
   EXPECT_THROW(ensure_directory(dir / "file"), std::runtime_error);
 }
 
-TEST(BenchReport, JsonFollowsSchemaOne) {
-  PassStats stats;
-  stats.add({{"visibility", 2.0}, {"light", 8.0}}, 11.0);
-  stats.add({{"visibility", 4.0}, {"light", 6.0}}, 12.0);
-  stats.add({{"visibility", 3.0}, {"light", 10.0}}, 14.0);
-  BenchDevice device{"pthread-test", "CPU", "Portable Computing Language", 2};
-  nlohmann::json j = nlohmann::json::parse(bench_json(device, 64, 32, stats));
-
-  EXPECT_EQ(j.at("schema"), "rolypoly-bench/1");
-  EXPECT_EQ(j.at("device").at("name"), "pthread-test");
-  EXPECT_EQ(j.at("device").at("type"), "CPU");
-  EXPECT_EQ(j.at("device").at("platform"), "Portable Computing Language");
-  EXPECT_EQ(j.at("device").at("compute_units"), 2);
-  EXPECT_EQ(j.at("size"), nlohmann::json::array({64, 32}));
-  EXPECT_EQ(j.at("frames"), 3);
-  EXPECT_DOUBLE_EQ(j.at("passes").at("visibility").at("median_ms").get<double>(), 3.0);
-  EXPECT_DOUBLE_EQ(j.at("passes").at("visibility").at("min_ms").get<double>(), 2.0);
-  EXPECT_DOUBLE_EQ(j.at("passes").at("light").at("max_ms").get<double>(), 10.0);
-  EXPECT_DOUBLE_EQ(j.at("frame").at("median_ms").get<double>(), 12.0);
-  EXPECT_DOUBLE_EQ(j.at("frame").at("min_ms").get<double>(), 11.0);
-  EXPECT_DOUBLE_EQ(j.at("frame").at("max_ms").get<double>(), 14.0);
-  EXPECT_EQ(j.at("passes").size(), 2u);
-}
-
 TEST(BenchReport, WriteTextAtomicReplacesWholeFile) {
   rp::test::TempDir dir;
   write_text_atomic(dir / "r.json", "first version, longer\n");

@@ -53,14 +53,9 @@ TEST(PassStats, PassNamesFollowThePipelineThenAlphabet) {
   EXPECT_EQ(stats.pass_names(), expected);
 }
 
-TEST(BenchReport, TableListsEveryPassAndTheFrame) {
+TEST(BenchReport, MedianLineListsPassesInPipelineOrder) {
   PassStats stats;
   stats.add({{"visibility", 1.5}, {"light", 7.25}}, 9.0);
-  std::string table = timing_table(stats);
-  EXPECT_NE(table.find("visibility"), std::string::npos);
-  EXPECT_NE(table.find("7.250"), std::string::npos);
-  EXPECT_NE(table.find("frame"), std::string::npos);
-  EXPECT_LT(table.find("visibility"), table.find("light"));
   EXPECT_EQ(median_line(stats), "visibility 1.50 ms, light 7.25 ms");
 }
 
