@@ -77,6 +77,16 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option = true) 
          "where the visibility buffer comes from: raster (compute rasterizer on the OpenCL "
          "device, default) or embree (Embree primary rays on the host's cores, uploaded)")
       ->check(CLI::IsMember({"raster", "embree"}));
+  cmd->add_option_function<std::string>(
+         "--quality",
+         [&common](const std::string& name) {
+           common.quality =
+               name == "reference" ? render::Quality::kReference : render::Quality::kFast;
+         },
+         "indirect light: fast (real-time default: reduced resolution, interleaved cones, "
+         "temporal accumulation) or reference (per-pixel 16 cones at full resolution, twice "
+         "the steps, no temporal reuse)")
+      ->check(CLI::IsMember({"fast", "reference"}));
   auto off = [&](const char* name, bool& flag, const char* what) {
     cmd->add_flag_callback(name, [&flag] { flag = false; }, what);
   };

@@ -26,6 +26,7 @@ struct CommonOptions {
   render::Effects effects;   // --no-taa, --no-bloom, --no-motion-blur, --bloom-strength
   passes::DebugViewSettings view;  // --view / --level / --dir (render, run): what is shown
   render::VisibilityBackend visibility = render::VisibilityBackend::kRaster;  // --visibility
+  render::Quality quality = render::Quality::kFast;                          // --quality
 };
 
 // Not copyable or movable: the program cache and renderer point at the context.

@@ -51,12 +51,22 @@ struct Effects {
 // the shadow map is rasterized with either.
 enum class VisibilityBackend { kRaster, kEmbree };
 
+// How indirect (cone traced) light is computed (issue 9):
+//   kFast:      the real-time default: cones traced at reduced resolution with interleaved
+//               directions, filtered spatially and accumulated over frames, upsampled with
+//               depth- and normal-aware weights.
+//   kReference: per-pixel cones at full resolution, 16 cones and twice the steps, no temporal
+//               reuse of indirect light (--quality reference): the yardstick the fast mode is
+//               measured against.
+enum class Quality { kFast, kReference };
+
 struct RenderSettings {
   uint32_t width = 720, height = 720;
   uint32_t shadow_size = 1024;  // shadow map texels per side
   uint32_t voxel_resolution = 64;  // GI volume: voxels per side over the box (32, 64 or 128)
   Effects effects;
   VisibilityBackend visibility = VisibilityBackend::kRaster;  // --visibility raster|embree
+  Quality quality = Quality::kFast;  // --quality fast|reference
 };
 
 class Renderer {
