@@ -1,160 +1,18 @@
+// run_cli (app/cli.h): prints what parse_cli decided or runs the subcommand, and turns every
+// exception into one "rolypoly: error: <message>" line and exit code 1.
 #include "app/cli.h"
 
 #include <cstdio>
 #include <exception>
 #include <string>
-#include <utility>
-
-#include <CLI/CLI.hpp>
+#include <variant>
 
 #include "app/commands.h"
 #include "cl/context.h"
 #include "cl/error.h"
-#include "passes/debug_view.h"
 
 namespace rp::app {
 namespace {
-
-constexpr uint32_t kMaxSize = 16384;  // pixels per side; far above any sensible render
-
-// Checks a pixel count before CLI11 converts it, so that 0, negative and non-numeric values get
-// a message that says what is allowed (CLI11's own would be "Value -5 not in range 1 to 16384").
-// Whether the size fits the device's memory is checked later, once the device is known
-// (render_session.cpp).
-CLI::Validator pixel_count() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        long long value = 0;
-        size_t used = 0;
-        try {
-          value = std::stoll(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        const std::string range = "give 1 to " + std::to_string(kMaxSize) + " pixels";
-        if (used == 0 || used != text.size())
-          return "'" + text + "' is not a whole number of pixels; " + range;
-        if (value < 1)
-          return text + " pixels is not a size: an image needs at least 1 pixel per side; " +
-                 range;
-        if (value > kMaxSize)
-          return text + " pixels is above the limit of " + std::to_string(kMaxSize) +
-                 " per side; " + range;
-        return "";
-      },
-      "PIXELS in 1.." + std::to_string(kMaxSize));
-}
-
-// --size sets both sides; --width / --height override one of them.
-struct SizeArgs {
-  uint32_t size = 720;
-  uint32_t width = 0, height = 0;  // 0 = take --size
-  ImageSize resolve() const { return {width ? width : size, height ? height : size}; }
-};
-
-// `voxel_option`: false for bench, which takes a list of resolutions instead.
-void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option = true) {
-  cmd->add_option("--device", common.device,
-                  "OpenCL device: index from `rolypoly devices` or part of its name "
-                  "(case-insensitive); default: first GPU, else first CPU");
-  cmd->add_option("--assets", common.asset_dir,
-                  "folder with the scene's textures (default: the built-in asset folder)");
-  cmd->add_option("--shadow-size", common.shadow_size,
-                  "shadow map texels per side (default: the renderer's, " +
-                      std::to_string(render::RenderSettings{}.shadow_size) + ")")
-      ->check(CLI::Range(1u, kMaxSize));
-  if (voxel_option)
-    cmd->add_option("--voxels", common.voxels,
-                    "GI voxel volume resolution per side: 32, 64 or 128 (default " +
-                        std::to_string(render::RenderSettings{}.voxel_resolution) + ")")
-        ->check(CLI::IsMember({32u, 64u, 128u}));
-  cmd->add_option_function<std::string>(
-         "--visibility",
-         [&common](const std::string& name) {
-           common.visibility = name == "embree" ? render::VisibilityBackend::kEmbree
-                                                : render::VisibilityBackend::kRaster;
-         },
-         "where the visibility buffer comes from: raster (compute rasterizer on the OpenCL "
-         "device, default) or embree (Embree primary rays on the host's cores, uploaded)")
-      ->check(CLI::IsMember({"raster", "embree"}));
-  cmd->add_option_function<std::string>(
-         "--quality",
-         [&common](const std::string& name) {
-           common.quality =
-               name == "reference" ? render::Quality::kReference : render::Quality::kFast;
-         },
-         "indirect light: fast (real-time default: reduced resolution, interleaved cones, "
-         "temporal accumulation) or reference (per-pixel 16 cones at full resolution, twice "
-         "the steps, no temporal reuse)")
-      ->check(CLI::IsMember({"fast", "reference"}));
-  auto off = [&](const char* name, bool& flag, const char* what) {
-    cmd->add_flag_callback(name, [&flag] { flag = false; }, what);
-  };
-  off("--no-taa", common.effects.taa, "temporal anti-aliasing off (key T toggles it)");
-  off("--no-bloom", common.effects.bloom, "bloom off (key B toggles it)");
-  off("--no-motion-blur", common.effects.motion_blur, "motion blur off (key M toggles it)");
-  cmd->add_option("--bloom-strength", common.effects.bloom_strength,
-                  "bloom mix factor f: colour * (1 - f) + bloom * f")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0f, 1.0f));
-}
-
-void add_size(CLI::App* cmd, SizeArgs& size) {
-  cmd->add_option("--size", size.size, "square image size in pixels")
-      ->capture_default_str()
-      ->check(pixel_count());
-  cmd->add_option("--width", size.width, "image width in pixels (overrides --size)")
-      ->check(pixel_count());
-  cmd->add_option("--height", size.height, "image height in pixels (overrides --size)")
-      ->check(pixel_count());
-}
-
-void add_simulation(CLI::App* cmd, SimulationArgs& sim) {
-  cmd->add_option("--seed", sim.seed, "random seed of the simulation")->capture_default_str();
-  cmd->add_flag("--marbles", sim.marbles, "start with the 30 marbles (key S toggles them)");
-  cmd->add_flag("--fireball", sim.fireball, "start with a fireball (key F toggles it)");
-  cmd->add_option("--replay", sim.replay,
-                  "replay an input log written by `rolypoly run --record FILE`");
-}
-
-// --view / --level / --dir (render and run): a debug view instead of the final image.
-struct ViewArgs {
-  std::string view = "final";
-  uint32_t level = 0;
-  std::string dir = "+x";
-  CLI::Option* level_option = nullptr;
-  CLI::Option* dir_option = nullptr;
-
-  // The settings, or a usage message when --level / --dir come without --view voxels.
-  std::string resolve(passes::DebugViewSettings& out) const {
-    out.view = *passes::parse_debug_view(view);
-    out.level = level;
-    out.dir = *passes::parse_voxel_dir(dir);
-    const bool voxel_args = level_option->count() > 0 || dir_option->count() > 0;
-    if (voxel_args && out.view != passes::DebugView::kVoxels)
-      return "--level and --dir choose the volume of --view voxels";
-    return "";
-  }
-};
-
-void add_view(CLI::App* cmd, ViewArgs& args) {
-  cmd->add_option("--view", args.view,
-                  "what to show: final (the image), or a debug view: albedo, normal, depth, "
-                  "velocity, shadow-map, direct, indirect, voxels")
-      ->capture_default_str()
-      ->check(CLI::IsMember(passes::debug_view_names()));
-  args.level_option =
-      cmd->add_option("--level", args.level,
-                      "--view voxels: mip level (0 = the isotropic level 0, up to log2 of the "
-                      "voxel resolution)")
-          ->capture_default_str();
-  args.dir_option = cmd->add_option("--dir", args.dir,
-                                    "--view voxels: which directional volume of levels >= 1 "
-                                    "(+x, -x, +y, -y, +z, -z: what a cone travelling that way "
-                                    "sees)")
-                        ->capture_default_str()
-                        ->check(CLI::IsMember({"+x", "-x", "+y", "-y", "+z", "-z"}));
-}
 
 int report(const std::string& message) {
   std::fflush(stdout);
@@ -162,158 +20,29 @@ int report(const std::string& message) {
   return 1;
 }
 
+int execute(const ParsedCommand& command) {
+  switch (command.kind) {
+    case ParsedCommand::Kind::kDevices: return devices_command();
+    case ParsedCommand::Kind::kRender: return render_command(command.common, command.render);
+    case ParsedCommand::Kind::kRun: return run_command(command.common, command.run);
+    case ParsedCommand::Kind::kBench: return bench_command(command.common, command.bench);
+  }
+  return report("unknown subcommand kind");
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
-  CLI::App app{"rolypoly: a Cornell box of roly-poly toys, rendered entirely by OpenCL kernels",
-               "rolypoly"};
-  app.require_subcommand(1);
-
-  CommonOptions common;
-  SizeArgs render_size, run_size, bench_size;
-  ViewArgs render_view, run_view;
-  RenderOptions render_opts;
-  RunOptions run_opts;
-  BenchOptions bench_opts;
-
-  CLI::App* devices = app.add_subcommand("devices", "list every OpenCL platform and device");
-
-  CLI::App* render = app.add_subcommand("render", "render frames headless into numbered PNGs");
-  add_common(render, common);
-  add_size(render, render_size);
-  render->add_option("--frames", render_opts.frames, "number of frames")
-      ->capture_default_str()
-      ->check(CLI::Range(1u, 1000000u));
-  render->add_option("--out", render_opts.out_dir, "output folder (created if missing)")
-      ->capture_default_str();
-  render->add_option("--video", render_opts.video,
-                     "also encode the frames into this video file with ffmpeg (60 fps)");
-  add_simulation(render, render_opts.sim);
-  add_view(render, render_view);
-
-  CLI::App* run = app.add_subcommand("run", "show the frames in a window (Esc quits)");
-  add_common(run, common);
-  add_size(run, run_size);
-  run->add_option("--frames", run_opts.frames, "frames to show, 0 = until the window is closed")
-      ->capture_default_str();
-  run->add_option("--capture", run_opts.capture,
-                  "after the last frame, save what the window shows to this PNG");
-  run->add_option("--record", run_opts.record,
-                  "write every input event and frame to this log on exit (replay it with "
-                  "`rolypoly render --replay FILE`)");
-  add_simulation(run, run_opts.sim);
-  add_view(run, run_view);
-
-  CLI::App* bench = app.add_subcommand(
-      "bench", "time every pass over many frames, on one or many devices, sizes and voxel "
-               "resolutions");
-  add_common(bench, common, false);
-  add_size(bench, bench_size);
-  bench->add_option("--frames", bench_opts.frames, "measured frames")
-      ->capture_default_str()
-      ->check(CLI::Range(1u, 1000000u));
-  bench->add_option("--warmup", bench_opts.warmup, "frames rendered first, not measured")
-      ->capture_default_str();
-  bench->add_option("--json", bench_opts.json, "also write the results as JSON to this file");
-  bench->add_flag("--compare-visibility", bench_opts.compare_visibility,
-                  "render the same frames with the compute rasterizer and with Embree and "
-                  "compare the visibility cost side by side");
-  add_simulation(bench, bench_opts.sim);
-  CLI::Option* devices_opt = bench->add_option(
-      "--devices", bench_opts.devices,
-      "devices to bench one after the other: all, or a comma-separated list of indices from "
-      "`rolypoly devices` and/or parts of device names (instead of --device)");
-  CLI::Option* sizes_opt =
-      bench->add_option("--sizes", bench_opts.sizes,
-                        "comma-separated square image sizes, e.g. 256,512,720 (instead of --size)")
-          ->delimiter(',')
-          ->check(pixel_count());
-  bench->add_option("--voxels", bench_opts.voxels,
-                    "comma-separated GI voxel resolutions per side, each 32, 64 or 128 (default " +
-                        std::to_string(render::RenderSettings{}.voxel_resolution) + ")")
-      ->delimiter(',')
-      ->check(CLI::IsMember({32u, 64u, 128u}));
-  bench->add_option("--scene", bench_opts.scene,
-                    "default (the simulation options as given) or busy (30 marbles, a fireball "
-                    "and the particle budget kept full)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"default", "busy"}));
-  bench->add_option("--chart", bench_opts.chart,
-                    "also write an SVG chart: per-pass time per device, frame time against "
-                    "resolution and voxel count");
-  bench->add_option("--markdown", bench_opts.markdown,
-                    "also write the summary table as Markdown to this file");
-
-  // CLI11 reports an unknown first word only as "A subcommand is required"; name it instead.
-  if (argc > 1 && argv[1][0] != '-') {
-    std::string word = argv[1], known;
-    bool found = false;
-    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-      found = found || sub->get_name() == word;
-      known += (known.empty() ? "" : ", ") + sub->get_name();
-    }
-    if (!found) {
-      std::fprintf(stderr, "rolypoly: unknown subcommand '%s' (expected one of: %s)\n"
-                           "Run with --help for more information.\n",
-                   word.c_str(), known.c_str());
-      return 2;
-    }
+  const CliParse parsed = parse_cli(argc, argv);
+  if (const CliExit* done = std::get_if<CliExit>(&parsed)) {
+    std::FILE* stream = done->exit_code == 0 ? stdout : stderr;
+    std::fputs(done->message.c_str(), stream);
+    std::fflush(stream);
+    return done->exit_code;
   }
-
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help: prints the help, exit code 0
-    std::fprintf(stderr, "rolypoly: error: %s\nRun with --help for more information.\n",
-                 e.what());
-    return 2;
-  }
-  for (const auto& [cmd, args] : {std::pair{render, &render_view}, std::pair{run, &run_view}}) {
-    if (!cmd->parsed()) continue;
-    if (std::string why = args->resolve(common.view); !why.empty()) {
-      std::fprintf(stderr, "rolypoly %s: %s\nRun with --help for more information.\n",
-                   cmd->get_name().c_str(), why.c_str());
-      return 2;
-    }
-  }
-  if (bench->parsed()) {
-    const char* why = nullptr;
-    if (devices_opt->count() && bench->count("--device"))
-      why = "--devices and --device both choose devices; use one";
-    else if (sizes_opt->count() && (bench->count("--size") || bench->count("--width") ||
-                                    bench->count("--height")))
-      why = "--sizes and --size/--width/--height both choose sizes; use one";
-    else if (bench_opts.compare_visibility &&
-             (devices_opt->count() || sizes_opt->count() || bench_opts.voxels.size() > 1))
-      why = "--compare-visibility runs one device, size and voxel resolution";
-    if (why) {
-      std::fprintf(stderr, "rolypoly bench: %s\nRun with --help for more information.\n", why);
-      return 2;
-    }
-  }
-
   try {
     rp::cl::ensure_pocl_cache_dir();  // before the first OpenCL call
-    if (devices->parsed()) return devices_command();
-    if (render->parsed()) {
-      render_opts.size = render_size.resolve();
-      render_opts.frames_given = render->count("--frames") > 0;
-      return render_command(common, render_opts);
-    }
-    if (run->parsed()) {
-      run_opts.size = run_size.resolve();
-      return run_command(common, run_opts);
-    }
-    if (bench->parsed()) {
-      bench_opts.size = bench_size.resolve();
-      bench_opts.command_line = "rolypoly";
-      for (int i = 1; i < argc; ++i) {
-        bench_opts.command_line += ' ';
-        bench_opts.command_line += argv[i];
-      }
-      return bench_command(common, bench_opts);
-    }
-    return report("no subcommand given (try --help)");
+    return execute(std::get<ParsedCommand>(parsed));
   } catch (const ::cl::Error& e) {
     // An OpenCL call that the code did not wrap in an rp::cl::Error.
     return report(std::string("OpenCL call ") + e.what() + " failed with " +

@@ -1,5 +1,8 @@
-// Command line of `rolypoly` (CLI11): parses, dispatches to the subcommands, and turns every
-// error into one message on stderr.
+// Command line of `rolypoly` (CLI11), in two steps: parse_cli (src/app/cli_parse.cpp) builds the
+// options, parses and runs every usage check without touching OpenCL, files or the terminal;
+// run_cli (src/app/cli.cpp) prints what parse_cli says or dispatches to the subcommand, and
+// turns every error into one message on stderr. The split lets fuzz/ fuzz the whole command
+// line without opening devices or rendering.
 //
 // Exit codes: 0 success; 1 runtime error ("rolypoly: error: <message>": no OpenCL platform,
 // unknown device, kernel build failure with its build log, missing/corrupt texture, no display,
@@ -8,8 +11,42 @@
 // SIGINT / SIGTERM (checked between frames; every written frame is complete).
 #pragma once
 
+#include <string>
+#include <variant>
+
+#include "app/commands.h"
+
 namespace rp::app {
 
+// A command line that parsed: the subcommand and every option's value, checked and resolved
+// (--size/--width/--height into `size`, --view/--level/--dir into common.view). Only the
+// options struct of `kind` is meaningful; the others keep their defaults.
+struct ParsedCommand {
+  enum class Kind { kDevices, kRender, kRun, kBench };
+  Kind kind = Kind::kDevices;
+  CommonOptions common;
+  RenderOptions render;  // frames_given set from the command line
+  RunOptions run;
+  BenchOptions bench;    // command_line: "rolypoly" and the arguments joined by spaces
+};
+
+// A command line that ends before running anything: --help (exit code 0, the help text for
+// stdout) or a usage error (exit code 2, "rolypoly...: <why>\nRun with --help for more
+// information.\n" for stderr).
+struct CliExit {
+  int exit_code = 2;
+  std::string message;  // ends with '\n'
+};
+
+using CliParse = std::variant<ParsedCommand, CliExit>;
+
+// Builds the options, parses argv (argv[0] is the program name) and runs every usage check:
+// unknown subcommand, CLI11's errors and validators, --level/--dir without --view voxels, bench
+// option conflicts. No OpenCL, no file, no output, no global state: the same argv always gives
+// the same result. Never throws for any argv (only std::bad_alloc can escape).
+CliParse parse_cli(int argc, const char* const* argv);
+
+// parse_cli, then the PoCL cache folder and the subcommand; returns the process exit code.
 int run_cli(int argc, char** argv);
 
 }  // namespace rp::app
