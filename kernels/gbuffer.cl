@@ -1,6 +1,6 @@
 /* GBuffer resolve (SPEC 6.1): visibility buffer -> per-pixel surface attributes.
+ * Host side: src/passes/gbuffer.cpp.
  *
- * One work-item per pixel on a 2D range rounded up to the work-group size (bounds-checked).
  * Inputs and outputs are planar, row-major, top row first (src/render/frame_buffers.h):
  *   ids      uint2  (instance, primitive); RP_ID_NONE background, RP_ID_SPHERE_BIT spheres
  *   bary     float2 (b1, b2) perspective-correct, b0 = 1 - b1 - b2
@@ -9,112 +9,302 @@
  *   position float4 world position, w = 1 covered / 0 background
  *   emission float4 rgb emitted radiance
  *   velocity float2 pixels, this frame minus previous, unjittered, +y down; 0 for background
+ *
+ * gbuffer_resolve: one work-item per span of RP_SPAN pixels of a row (common/span.h: 16 on
+ * CPUs, 1 on GPUs), a 1D range over the spans in row-major order. Neighbouring pixels mostly show the same primitive (a Cornell box wall is
+ * two triangles), so a span is resolved per distinct (instance, primitive) in it: the
+ * primitive's data (instance matrices, vertices, material; or the sphere) is loaded once as
+ * scalars and evaluated for all lanes with vector arithmetic, the lanes showing it keep the
+ * result. A span showing one primitive costs one evaluation for RP_SPAN pixels. Velocity and
+ * depth are computed once per span from the selected positions. Textures are sampled per lane
+ * from linear float4 texels (gbuffer_decode_texels; the same values as the RGBA8 sRGB table
+ * decode, so filtering is unchanged).
+ *
+ * Maths per pixel (unchanged from the per-pixel version): mesh: object-space position, normal
+ * and uv interpolated with (b0, b1, b2), position through model and prev_model, normal through
+ * normal_matrix and normalised, albedo = material albedo * bilinear texture (wrap), emission =
+ * material emission. Sphere: the camera ray through the pixel centre (unprojected with the
+ * jittered inv_view_proj the rasterizer used) hits the sphere, the discriminant clamped at 0 so
+ * a rasterized silhouette pixel whose exact ray just misses takes the closest point; the
+ * previous position moves with the centre. Velocity = screen(view_proj_unjittered * p) -
+ * screen(prev_view_proj_unjittered * prev_p); depth = -(view * p).z.
  */
 #include "shared/types.h"
-#include "common/math.h"
-#include "common/sampling.h"
+#include "common/colour.h"
+#include "common/span.h"
 
-/* Pixel position of world point p under clip matrix m (w > 0 assumed: visible points). */
-inline float2 gbuffer_screen(const rp_mat4 m, float3 p, float2 size) {
-  return rp_clip_to_screen(rp_mat4_mul_point(m, p), size);
+/* Linear float4 copy of the RGBA8 sRGB texel buffer (one work-item per texel): rgb through the
+ * exact sRGB table, alpha linear (code / 255), as common/colour.h's rp_unpack_rgba8_srgb. */
+__kernel void gbuffer_decode_texels(__global const uint* texels, __global float4* linear_out,
+                                    uint count) {
+  const uint i = (uint)get_global_id(0);
+  if (i >= count) return;
+  linear_out[i] = rp_unpack_rgba8_srgb(texels[i]);
+}
+
+/* M * (x, y, z, 1), one row: ((c0 x + c1 y) + c2 z) + c3. */
+#define GB_ROW_POINT(m, row, x, y, z) \
+  (m.c[0].row * (x) + m.c[1].row * (y) + m.c[2].row * (z) + m.c[3].row)
+#define GB_ROW_DIR(m, row, x, y, z) (m.c[0].row * (x) + m.c[1].row * (y) + m.c[2].row * (z))
+
+/* Clip coordinates -> pixel coordinates (rp_clip_to_screen), per lane. */
+#define GB_SCREEN_X(cx, inv_w, size_x) (((cx) * (inv_w) * 0.5f + 0.5f) * (size_x))
+#define GB_SCREEN_Y(cy, inv_w, size_y) ((0.5f - (cy) * (inv_w) * 0.5f) * (size_y))
+
+/* Texture sampling of the lanes with `textured` set (bilinear, wrap; sampling.h's
+ * rp_texture_bilinear on linear texels): (w, h) the lane's texture size in texels, offset its
+ * first texel. Multiplies (r, g, b) of those lanes in place. */
+inline void gb_apply_texture(__global const float4* linear_texels, rp_spani textured, rp_spanf w,
+                             rp_spanf h, rp_spanu offset, rp_spanf u, rp_spanf v, int n,
+                             rp_spanf* r, rp_spanf* g, rp_spanf* b) {
+  /* Untextured lanes sample (0, 0) of a 1x1 texture (ignored below): no NaN reaches the int
+   * conversions. */
+  u = select((rp_spanf)(0.0f), u, textured);
+  v = select((rp_spanf)(0.0f), v, textured);
+  const rp_spanf x = u * w - 0.5f;
+  const rp_spanf y = (1.0f - v) * h - 0.5f;
+  rp_spanf x0f = floor(x), y0f = floor(y);
+  const rp_spanf fx = x - x0f, fy = y - y0f;
+  /* Wrap into [0, size) in float (exact for integers below 2^24), so huge uv (tiling) cannot
+   * overflow the int conversion; the int result may still be size after rounding or -1 for a
+   * tiny negative quotient: fold those back (the old rp_wrap_index). */
+  x0f -= floor(x0f / w) * w;
+  y0f -= floor(y0f / h) * h;
+  const rp_spani wi = rp_span_convert_int(w), hi = rp_span_convert_int(h);
+  rp_spani x0 = rp_span_convert_int(x0f), y0 = rp_span_convert_int(y0f);
+  x0 = select(x0, x0 - wi, x0 >= wi);
+  y0 = select(y0, y0 - hi, y0 >= hi);
+  x0 = select(x0, x0 + wi, x0 < 0);
+  y0 = select(y0, y0 + hi, y0 < 0);
+  const rp_spani x1 = select(x0 + 1, (rp_spani)(0), x0 + 1 == wi);
+  const rp_spani y1 = select(y0 + 1, (rp_spani)(0), y0 + 1 == hi);
+  /* Texel indices of the four taps (offset + row * width + column). */
+  const rp_spanu row0 = offset + rp_span_convert_uint(y0 * wi);
+  const rp_spanu row1 = offset + rp_span_convert_uint(y1 * wi);
+  uint i00[RP_SPAN], i10[RP_SPAN], i01[RP_SPAN], i11[RP_SPAN];
+  int on[RP_SPAN];
+  RP_SPAN_TO_ARRAY(row0 + rp_span_convert_uint(x0), i00);
+  RP_SPAN_TO_ARRAY(row0 + rp_span_convert_uint(x1), i10);
+  RP_SPAN_TO_ARRAY(row1 + rp_span_convert_uint(x0), i01);
+  RP_SPAN_TO_ARRAY(row1 + rp_span_convert_uint(x1), i11);
+  RP_SPAN_TO_ARRAY(textured, on);
+  /* The four taps per lane (untextured lanes keep 0). */
+  float4 q00[RP_SPAN], q10[RP_SPAN], q01[RP_SPAN], q11[RP_SPAN];
+  for (int i = 0; i < RP_SPAN; ++i) {
+    float4 t00 = (float4)(0.0f), t10 = t00, t01 = t00, t11 = t00;
+    if (i < n && on[i]) {
+      t00 = linear_texels[i00[i]];
+      t10 = linear_texels[i10[i]];
+      t01 = linear_texels[i01[i]];
+      t11 = linear_texels[i11[i]];
+    }
+    q00[i] = t00;
+    q10[i] = t10;
+    q01[i] = t01;
+    q11[i] = t11;
+  }
+  rp_spanf r00, g00, b00, r10, g10, b10, r01, g01, b01, r11, g11, b11;
+  rp_span_from_float4s(q00, &r00, &g00, &b00);
+  rp_span_from_float4s(q10, &r10, &g10, &b10);
+  rp_span_from_float4s(q01, &r01, &g01, &b01);
+  rp_span_from_float4s(q11, &r11, &g11, &b11);
+  rp_spanf c[3];
+  c[0] = mix(mix(r00, r10, fx), mix(r01, r11, fx), fy);
+  c[1] = mix(mix(g00, g10, fx), mix(g01, g11, fx), fy);
+  c[2] = mix(mix(b00, b10, fx), mix(b01, b11, fx), fy);
+  *r = select(*r, *r * c[0], textured);
+  *g = select(*g, *g * c[1], textured);
+  *b = select(*b, *b * c[2], textured);
 }
 
 __kernel void gbuffer_resolve(__global const FrameConstants* frame,
-                              __global const uint2* ids,
-                              __global const float2* bary,
+                              __global const uint* ids,
+                              __global const float* bary,
                               __global const Instance* instances,
                               __global const Sphere* spheres,
                               __global const Vertex* vertices,
                               __global const Triangle* triangles,
                               __global const Material* materials,
                               __global const TextureInfo* textures,
-                              __global const uint* texels,
-                              __global float4* out_albedo,
-                              __global float4* out_normal_depth,
-                              __global float4* out_position,
-                              __global float4* out_emission,
-                              __global float2* out_velocity) {
-  const uint x = (uint)get_global_id(0), y = (uint)get_global_id(1);
+                              __global const float4* linear_texels,
+                              __global float* out_albedo,
+                              __global float* out_normal_depth,
+                              __global float* out_position,
+                              __global float* out_emission,
+                              __global float* out_velocity) {
   const uint width = frame->width, height = frame->height;
-  if (x >= width || y >= height) return;
-  const uint pixel = y * width + x;
-  const float2 size = (float2)((float)width, (float)height);
+  /* 1D range over the spans in row-major order, so consecutive work-items read and write
+   * consecutive memory. */
+  const uint spans_per_row = (width + RP_SPAN - 1) / RP_SPAN;
+  const uint gid = (uint)get_global_id(0);
+  const uint y = gid / spans_per_row, x0 = (gid - y * spans_per_row) * RP_SPAN;
+  if (y >= height) return;
+  const int n = (int)min((uint)RP_SPAN, width - x0);
+  const uint pixel = y * width + x0;
+  const uint instance_count = frame->instance_count, sphere_count = frame->sphere_count;
 
-  const uint2 id = ids[pixel];
-  const uint sphere_index = id.x & ~RP_ID_SPHERE_BIT;
-  const bool is_sphere = id.x != RP_ID_NONE && (id.x & RP_ID_SPHERE_BIT) != 0u &&
-                         sphere_index < frame->sphere_count;
-  const bool is_mesh = id.x < frame->instance_count && id.y < instances[id.x].triangle_count;
+  rp_spanu id_x, id_y;
+  rp_load_span_pairs_u(ids + 2 * pixel, n, &id_x, &id_y);
+  rp_spanf b1, b2;
+  rp_load_span_pairs_f(bary + 2 * pixel, n, &b1, &b2);
+  const rp_spanf b0 = 1.0f - b1 - b2;
 
-  /* float4 with defined w lanes, not float3: a float3's padding lane is undefined and
-   * oclgrind's uninitialised-value check follows it into the stores. w = 1 covered / 0 not. */
-  float4 p = (float4)(0.0f), n = (float4)(0.0f), prev_p = (float4)(0.0f);
-  float4 albedo = (float4)(0.0f), emission = (float4)(0.0f);
+  /* Per-lane surface (background until a primitive claims the lane). */
+  rp_spanf px = 0.0f, py = 0.0f, pz = 0.0f;    /* world position */
+  rp_spanf qx = 0.0f, qy = 0.0f, qz = 0.0f;    /* previous world position */
+  rp_spanf nx = 0.0f, ny = 0.0f, nz = 0.0f;    /* world normal */
+  rp_spanf ar = 0.0f, ag = 0.0f, ab = 0.0f;    /* albedo before texture */
+  rp_spanf er = 0.0f, eg = 0.0f, eb = 0.0f;    /* emission */
+  rp_spanf tu = 0.0f, tv = 0.0f;               /* texture coordinates */
+  rp_spani textured = (rp_spani)(0);          /* lanes with a texture: its size and offset */
+  rp_spanf tex_w = 1.0f, tex_h = 1.0f;
+  rp_spanu tex_offset = (rp_spanu)(0u);
+  bool any_texture = false;
+  rp_spani covered = (rp_spani)(0);
 
-  /* Structs are read through pointers, field by field, rather than copied whole into private
-   * memory (only the fields used are loaded). */
-  if (is_mesh) {
-    __global const Instance* inst = instances + id.x;
-    const Triangle tri = triangles[inst->first_triangle + id.y];
-    __global const Vertex* v0 = vertices + tri.x;
-    __global const Vertex* v1 = vertices + tri.y;
-    __global const Vertex* v2 = vertices + tri.z;
-    const float2 b = bary[pixel];
-    const float b0 = 1.0f - b.x - b.y;
-    const float4 pu = v0->position_u * b0 + v1->position_u * b.x + v2->position_u * b.y;
-    const float4 nv = v0->normal_v * b0 + v1->normal_v * b.x + v2->normal_v * b.y;
-    const float3 p_obj = pu.xyz;
-    p = (float4)(rp_mat4_mul_point(inst->model, p_obj).xyz, 1.0f);
-    prev_p = (float4)(rp_mat4_mul_point(inst->prev_model, p_obj).xyz, 1.0f);
-    n = (float4)(normalize(rp_mat4_mul_dir(inst->normal_matrix, nv.xyz)), 0.0f);
+  /* Camera rays through the lane centres, set up when the span has a sphere. */
+  bool have_ray = false;
+  rp_spanf ox = 0.0f, oy = 0.0f, oz = 0.0f, dx = 0.0f, dy = 0.0f, dz = 0.0f;
 
-    __global const Material* mat = materials + tri.w;
-    albedo = (float4)(mat->albedo.xyz, 1.0f);
-    if (mat->texture != RP_TEXTURE_NONE) {
-      const float4 t = rp_texture_bilinear(texels, textures + mat->texture, (float2)(pu.w, nv.w));
-      albedo.xyz *= t.xyz;
+  uint lane_x[RP_SPAN], lane_y[RP_SPAN];
+  RP_SPAN_TO_ARRAY(id_x, lane_x);
+  RP_SPAN_TO_ARRAY(id_y, lane_y);
+  /* Lanes resolved so far (vector and array copy: the array is read per lane). */
+  rp_spani done = (rp_spani)(0);
+  int lane_done[RP_SPAN];
+  RP_SPAN_TO_ARRAY(done, lane_done);
+
+  for (int lane = 0; lane < n; ++lane) {
+    if (lane_done[lane]) continue;
+    const uint a = lane_x[lane], p = lane_y[lane];
+    const rp_spani group = (id_x == a) & (id_y == p);
+    done |= group;
+    RP_SPAN_TO_ARRAY(done, lane_done);
+    if (a < instance_count && p < instances[a].triangle_count) {
+      __global const Instance* inst = instances + a;
+      const Triangle tri = triangles[inst->first_triangle + p];
+      const float4 p0 = vertices[tri.x].position_u, n0 = vertices[tri.x].normal_v;
+      const float4 p1 = vertices[tri.y].position_u, n1 = vertices[tri.y].normal_v;
+      const float4 p2 = vertices[tri.z].position_u, n2 = vertices[tri.z].normal_v;
+      const rp_spanf obx = p0.x * b0 + p1.x * b1 + p2.x * b2;
+      const rp_spanf oby = p0.y * b0 + p1.y * b1 + p2.y * b2;
+      const rp_spanf obz = p0.z * b0 + p1.z * b1 + p2.z * b2;
+      const rp_spanf onx = n0.x * b0 + n1.x * b1 + n2.x * b2;
+      const rp_spanf ony = n0.y * b0 + n1.y * b1 + n2.y * b2;
+      const rp_spanf onz = n0.z * b0 + n1.z * b1 + n2.z * b2;
+      const rp_mat4 m = inst->model, pm = inst->prev_model, nm = inst->normal_matrix;
+      px = select(px, GB_ROW_POINT(m, x, obx, oby, obz), group);
+      py = select(py, GB_ROW_POINT(m, y, obx, oby, obz), group);
+      pz = select(pz, GB_ROW_POINT(m, z, obx, oby, obz), group);
+      qx = select(qx, GB_ROW_POINT(pm, x, obx, oby, obz), group);
+      qy = select(qy, GB_ROW_POINT(pm, y, obx, oby, obz), group);
+      qz = select(qz, GB_ROW_POINT(pm, z, obx, oby, obz), group);
+      const rp_spanf wnx = GB_ROW_DIR(nm, x, onx, ony, onz);
+      const rp_spanf wny = GB_ROW_DIR(nm, y, onx, ony, onz);
+      const rp_spanf wnz = GB_ROW_DIR(nm, z, onx, ony, onz);
+      const rp_spanf inv_len = rsqrt(wnx * wnx + wny * wny + wnz * wnz);
+      nx = select(nx, wnx * inv_len, group);
+      ny = select(ny, wny * inv_len, group);
+      nz = select(nz, wnz * inv_len, group);
+      __global const Material* mat = materials + tri.w;
+      const float4 alb = mat->albedo, emi = mat->emission;
+      ar = select(ar, (rp_spanf)(alb.x), group);
+      ag = select(ag, (rp_spanf)(alb.y), group);
+      ab = select(ab, (rp_spanf)(alb.z), group);
+      er = select(er, (rp_spanf)(emi.x), group);
+      eg = select(eg, (rp_spanf)(emi.y), group);
+      eb = select(eb, (rp_spanf)(emi.z), group);
+      const uint texture = mat->texture;
+      if (texture != RP_TEXTURE_NONE) {
+        __global const TextureInfo* info = textures + texture;
+        tu = select(tu, p0.w * b0 + p1.w * b1 + p2.w * b2, group);
+        tv = select(tv, n0.w * b0 + n1.w * b1 + n2.w * b2, group);
+        tex_w = select(tex_w, (rp_spanf)((float)info->width), group);
+        tex_h = select(tex_h, (rp_spanf)((float)info->height), group);
+        tex_offset = select(tex_offset, (rp_spanu)(info->offset), group);
+        textured |= group;
+        any_texture = true;
+      }
+      covered |= group;
+    } else if (a != RP_ID_NONE && (a & RP_ID_SPHERE_BIT) != 0u &&
+               (a & ~RP_ID_SPHERE_BIT) < sphere_count) {
+      if (!have_ray) {
+        /* Camera ray through each lane's pixel centre, unprojected with the jittered matrix
+         * the rasterizer used, from the near to the far plane. */
+        const rp_mat4 inv = frame->inv_view_proj;
+        const rp_spanf ndc_x = ((float)x0 + 0.5f + RP_LANES) / (float)width * 2.0f - 1.0f;
+        const float ndc_y = 1.0f - ((float)y + 0.5f) / (float)height * 2.0f;
+#define GB_UNPROJECT(row, zn) (inv.c[0].row * ndc_x + inv.c[1].row * ndc_y + inv.c[2].row * (zn) + inv.c[3].row)
+        const rp_spanf near_w = GB_UNPROJECT(w, -1.0f), far_w = GB_UNPROJECT(w, 1.0f);
+        ox = GB_UNPROJECT(x, -1.0f) / near_w;
+        oy = GB_UNPROJECT(y, -1.0f) / near_w;
+        oz = GB_UNPROJECT(z, -1.0f) / near_w;
+        dx = GB_UNPROJECT(x, 1.0f) / far_w - ox;
+        dy = GB_UNPROJECT(y, 1.0f) / far_w - oy;
+        dz = GB_UNPROJECT(z, 1.0f) / far_w - oz;
+#undef GB_UNPROJECT
+        const rp_spanf inv_len = rsqrt(dx * dx + dy * dy + dz * dz);
+        dx *= inv_len;
+        dy *= inv_len;
+        dz *= inv_len;
+        have_ray = true;
+      }
+      __global const Sphere* s = spheres + (a & ~RP_ID_SPHERE_BIT);
+      const float4 cr = s->center_radius, prev = s->prev_center;
+      const rp_spanf cx = ox - cr.x, cy = oy - cr.y, cz = oz - cr.z;
+      const rp_spanf bq = cx * dx + cy * dy + cz * dz;
+      /* r^2 - squared distance of the centre from the ray: unlike b^2 - (|oc|^2 - r^2) it does
+       * not cancel for small spheres far away (particles). */
+      const rp_spanf ex = cx - bq * dx, ey = cy - bq * dy, ez = cz - bq * dz;
+      const rp_spanf disc = fmax(cr.w * cr.w - (ex * ex + ey * ey + ez * ez), 0.0f);
+      const rp_spanf root = sqrt(disc);
+      const rp_spanf t_near = -bq - root;
+      const rp_spanf t = select(-bq + root, t_near, t_near > 0.0f); /* near plane inside */
+      const rp_spanf hx = ox + dx * t, hy = oy + dy * t, hz = oz + dz * t;
+      const rp_spanf rx = hx - cr.x, ry = hy - cr.y, rz = hz - cr.z;
+      const rp_spanf inv_len = rsqrt(rx * rx + ry * ry + rz * rz);
+      px = select(px, hx, group);
+      py = select(py, hy, group);
+      pz = select(pz, hz, group);
+      qx = select(qx, rx + prev.x, group);
+      qy = select(qy, ry + prev.y, group);
+      qz = select(qz, rz + prev.z, group);
+      nx = select(nx, rx * inv_len, group);
+      ny = select(ny, ry * inv_len, group);
+      nz = select(nz, rz * inv_len, group);
+      const float4 alb = s->albedo, emi = s->emission;
+      ar = select(ar, (rp_spanf)(alb.x), group);
+      ag = select(ag, (rp_spanf)(alb.y), group);
+      ab = select(ab, (rp_spanf)(alb.z), group);
+      er = select(er, (rp_spanf)(emi.x), group);
+      eg = select(eg, (rp_spanf)(emi.y), group);
+      eb = select(eb, (rp_spanf)(emi.z), group);
+      covered |= group;
     }
-    emission = (float4)(mat->emission.xyz, 0.0f);
-  } else if (is_sphere) {
-    __global const Sphere* s = spheres + sphere_index;
-    /* Camera ray through the pixel centre, unprojected with the jittered matrix the rasterizer
-     * used, from the near to the far plane. */
-    const float2 ndc = rp_screen_to_ndc((float2)((float)x + 0.5f, (float)y + 0.5f), size);
-    const float4 near_h = rp_mat4_mul(frame->inv_view_proj, (float4)(ndc, -1.0f, 1.0f));
-    const float4 far_h = rp_mat4_mul(frame->inv_view_proj, (float4)(ndc, 1.0f, 1.0f));
-    const float3 origin = near_h.xyz / near_h.w;
-    const float3 dir = normalize(far_h.xyz / far_h.w - origin);
-    const float3 c = s->center_radius.xyz;
-    const float r = s->center_radius.w;
-    const float3 oc = origin - c;
-    const float bq = dot(oc, dir);
-    /* The rasterized silhouette can cover a pixel whose exact ray just misses: clamp the
-     * discriminant so such pixels take the closest point along the ray (normal renormalised). */
-    const float disc = max(bq * bq - (dot(oc, oc) - r * r), 0.0f);
-    const float root = sqrt(disc);
-    const float t_near = -bq - root;
-    const float t = t_near > 0.0f ? t_near : -bq + root; /* near plane inside the sphere */
-    const float3 hit = origin + dir * t;
-    p = (float4)(hit, 1.0f);
-    n = (float4)(normalize(hit - c), 0.0f);
-    prev_p = (float4)(hit - c + s->prev_center.xyz, 1.0f);
-    albedo = (float4)(s->albedo.xyz, 1.0f);
-    emission = (float4)(s->emission.xyz, 0.0f);
   }
 
-  const bool covered = is_mesh || is_sphere;
-  float2 velocity = (float2)(0.0f);
-  float depth = frame->clip.y; /* far plane for background */
-  if (covered) {
-    velocity = gbuffer_screen(frame->view_proj_unjittered, p.xyz, size) -
-               gbuffer_screen(frame->prev_view_proj_unjittered, prev_p.xyz, size);
-    depth = -rp_mat4_mul_point(frame->view, p.xyz).z;
-  }
+  if (any_texture)
+    gb_apply_texture(linear_texels, textured, tex_w, tex_h, tex_offset, tu, tv, n, &ar, &ag, &ab);
 
-  out_albedo[pixel] = albedo;
-  n.w = depth;
-  out_normal_depth[pixel] = n;
-  out_position[pixel] = p;
-  out_emission[pixel] = emission;
-  out_velocity[pixel] = velocity;
+  /* Velocity and linear depth of the covered lanes. */
+  const float fw = (float)width, fh = (float)height;
+  const rp_mat4 vp = frame->view_proj_unjittered, pvp = frame->prev_view_proj_unjittered;
+  const rp_mat4 view = frame->view;
+  const rp_spanf inv_w = 1.0f / GB_ROW_POINT(vp, w, px, py, pz);
+  const rp_spanf prev_inv_w = 1.0f / GB_ROW_POINT(pvp, w, qx, qy, qz);
+  rp_spanf vx = GB_SCREEN_X(GB_ROW_POINT(vp, x, px, py, pz), inv_w, fw) -
+                GB_SCREEN_X(GB_ROW_POINT(pvp, x, qx, qy, qz), prev_inv_w, fw);
+  rp_spanf vy = GB_SCREEN_Y(GB_ROW_POINT(vp, y, px, py, pz), inv_w, fh) -
+                GB_SCREEN_Y(GB_ROW_POINT(pvp, y, qx, qy, qz), prev_inv_w, fh);
+  vx = select((rp_spanf)(0.0f), vx, covered);
+  vy = select((rp_spanf)(0.0f), vy, covered);
+  const rp_spanf depth =
+      select((rp_spanf)(frame->clip.y), -GB_ROW_POINT(view, z, px, py, pz), covered);
+  const rp_spanf one = select((rp_spanf)(0.0f), (rp_spanf)(1.0f), covered);
+
+  rp_store_span_quads_f(ar, ag, ab, one, out_albedo + 4 * pixel, n);
+  rp_store_span_quads_f(nx, ny, nz, depth, out_normal_depth + 4 * pixel, n);
+  rp_store_span_quads_f(px, py, pz, one, out_position + 4 * pixel, n);
+  rp_store_span_quads_f(er, eg, eb, (rp_spanf)(0.0f), out_emission + 4 * pixel, n);
+  rp_store_span_pairs_f(vx, vy, out_velocity + 2 * pixel, n);
 }

@@ -1,5 +1,6 @@
 #include "passes/gbuffer.h"
 
+#include <cstdlib>
 #include <string>
 
 #include "cl/error.h"
@@ -7,14 +8,42 @@
 namespace rp::passes {
 namespace {
 
-// 16x16 work-groups: dimension 0 spans 16 pixels of a row, the vector width PoCL's work-item
-// loops use on AVX-512 (and a common warp multiple on GPUs).
-constexpr size_t kGroup = 16;
+constexpr size_t kGroup = 64;  // work-items per work-group (1D) for both kernels
+
+// Pixels per work-item: 16 on CPUs (float16 spans map onto PoCL's SIMD code), 1 on GPUs.
+// ROLYPOLY_GBUFFER_SPAN (1, 4, 8 or 16) overrides the choice (tests compare the variants).
+int choose_span(const rp::cl::Context& context) {
+  if (const char* env = std::getenv("ROLYPOLY_GBUFFER_SPAN"); env && *env) {
+    const std::string s = env;
+    if (s == "1" || s == "4" || s == "8" || s == "16") return std::stoi(s);
+    throw rp::cl::Error("ROLYPOLY_GBUFFER_SPAN must be 1, 4, 8 or 16, not '" + s + "'");
+  }
+  return context.info.is_cpu ? 16 : 1;
+}
 
 }  // namespace
 
-GBufferPass::GBufferPass(const rp::cl::Context& /*context*/, rp::cl::ProgramCache& programs)
-    : kernel_(programs.kernel("gbuffer.cl", "gbuffer_resolve")) {}
+GBufferPass::GBufferPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
+    : context_(&context), span_(choose_span(context)) {
+  const std::string options = "-DRP_SPAN=" + std::to_string(span_);
+  resolve_ = programs.kernel("gbuffer.cl", "gbuffer_resolve", options);
+  decode_ = programs.kernel("gbuffer.cl", "gbuffer_decode_texels", options);
+}
+
+void GBufferPass::update_linear_texels(rp::cl::Profiler& profiler,
+                                       const render::GpuScene& scene) {
+  if (decoded_from_() != nullptr && decoded_from_() == scene.texels()) return;
+  const size_t texels = scene.texels() ? scene.texels.getInfo<CL_MEM_SIZE>() / sizeof(cl_uint) : 0;
+  linear_texels_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
+                                (texels > 0 ? texels : 1) * 4 * sizeof(float));
+  decoded_from_ = scene.texels;
+  if (texels == 0) return;
+  decode_.setArg(0, scene.texels);
+  decode_.setArg(1, linear_texels_);
+  decode_.setArg(2, cl_uint(texels));
+  profiler.enqueue("gbuffer", decode_, ::cl::NDRange(rp::cl::round_up(texels, kGroup)),
+                   ::cl::NDRange(kGroup));
+}
 
 void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                       const render::VisibilityBuffer& vis, render::GBuffer& out) {
@@ -25,25 +54,28 @@ void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                         "x" + std::to_string(vis.height) + ") or the GBuffer (" +
                         std::to_string(out.width) + "x" + std::to_string(out.height) + ")");
   if (w == 0 || h == 0) return;
+  update_linear_texels(profiler, scene);
   cl_uint arg = 0;
-  kernel_.setArg(arg++, scene.frame);
-  kernel_.setArg(arg++, vis.ids);
-  kernel_.setArg(arg++, vis.bary);
-  kernel_.setArg(arg++, scene.instances);
-  kernel_.setArg(arg++, scene.spheres);
-  kernel_.setArg(arg++, scene.vertices);
-  kernel_.setArg(arg++, scene.triangles);
-  kernel_.setArg(arg++, scene.materials);
-  kernel_.setArg(arg++, scene.textures);
-  kernel_.setArg(arg++, scene.texels);
-  kernel_.setArg(arg++, out.albedo);
-  kernel_.setArg(arg++, out.normal_depth);
-  kernel_.setArg(arg++, out.position);
-  kernel_.setArg(arg++, out.emission);
-  kernel_.setArg(arg++, out.velocity);
-  profiler.enqueue("gbuffer", kernel_,
-                   ::cl::NDRange(rp::cl::round_up(w, kGroup), rp::cl::round_up(h, kGroup)),
-                   ::cl::NDRange(kGroup, kGroup));
+  resolve_.setArg(arg++, scene.frame);
+  resolve_.setArg(arg++, vis.ids);
+  resolve_.setArg(arg++, vis.bary);
+  resolve_.setArg(arg++, scene.instances);
+  resolve_.setArg(arg++, scene.spheres);
+  resolve_.setArg(arg++, scene.vertices);
+  resolve_.setArg(arg++, scene.triangles);
+  resolve_.setArg(arg++, scene.materials);
+  resolve_.setArg(arg++, scene.textures);
+  resolve_.setArg(arg++, linear_texels_);
+  resolve_.setArg(arg++, out.albedo);
+  resolve_.setArg(arg++, out.normal_depth);
+  resolve_.setArg(arg++, out.position);
+  resolve_.setArg(arg++, out.emission);
+  resolve_.setArg(arg++, out.velocity);
+  // One work-item per span of span_ pixels of a row, a 1D range in row-major order.
+  const size_t span = static_cast<size_t>(span_);
+  const size_t spans = (w + span - 1) / span * h;
+  profiler.enqueue("gbuffer", resolve_, ::cl::NDRange(rp::cl::round_up(spans, kGroup)),
+                   ::cl::NDRange(kGroup));
 }
 
 }  // namespace rp::passes

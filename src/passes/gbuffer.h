@@ -16,7 +16,15 @@ class GBufferPass {
            const render::VisibilityBuffer& vis, render::GBuffer& out);
 
  private:
-  ::cl::Kernel kernel_;
+  // Decodes scene.texels into linear_texels_ when the scene's texel buffer is not the one
+  // decoded last (held in decoded_from_, so its handle cannot be reused by another buffer).
+  void update_linear_texels(rp::cl::Profiler& profiler, const render::GpuScene& scene);
+
+  const rp::cl::Context* context_;
+  int span_ = 1;  // pixels per work-item along x (kernels/common/span.h)
+  ::cl::Kernel resolve_, decode_;
+  ::cl::Buffer linear_texels_;  // float4 per texel: linear rgba of scene.texels
+  ::cl::Buffer decoded_from_;   // the texel buffer linear_texels_ was decoded from
 };
 
 }  // namespace rp::passes

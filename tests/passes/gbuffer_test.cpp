@@ -19,7 +19,9 @@
 
 namespace {
 
-constexpr uint32_t kW = 16, kH = 12;  // height not a multiple of the 16x16 work-group
+// Default frame size: height not a multiple of 16 (the GPU layout's work-group side). The
+// resolve test also runs at widths that leave partial pixel spans (kernels/common/span.h).
+constexpr uint32_t kW = 16, kH = 12;
 const glm::vec3 kOffset(0.03f, -0.02f, 0.01f);  // instance world motion this frame
 
 double srgb_decode(int code) {
@@ -62,11 +64,12 @@ struct Hit {
 };
 
 struct TestScene {
+  uint32_t width = kW, height = kH;
   rp::scene::SceneAssets assets;
   rp::scene::FrameScene frame;
   glm::mat4 rotation;  // rotation part of the instance's model matrix
 
-  TestScene() {
+  explicit TestScene(uint32_t w = kW, uint32_t h = kH) : width(w), height(h) {
     assets.textures.push_back(make_texture());
     rp::scene::Material textured{"textured", {0.5f, 0.9f, 0.7f}, {0.1f, 0.2f, 0.3f}, 0};
     rp::scene::Material plain{"plain", {0.3f, 0.6f, 0.9f}, {0.0f, 0.0f, 0.0f}, -1};
@@ -104,13 +107,13 @@ struct TestScene {
   }
 
   glm::dmat4 view_proj(const rp::scene::Camera& c) const {
-    return glm::dmat4(c.projection(float(kW) / float(kH))) * glm::dmat4(c.view());
+    return glm::dmat4(c.projection(float(width) / float(height))) * glm::dmat4(c.view());
   }
 
   // Camera ray through the centre of pixel (x, y): origin on the near plane, unit direction.
   void ray(uint32_t x, uint32_t y, glm::dvec3& origin, glm::dvec3& dir) const {
     glm::dmat4 inv = glm::inverse(view_proj(frame.camera));
-    double nx = (x + 0.5) / kW * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / kH * 2.0;
+    double nx = (x + 0.5) / width * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / height * 2.0;
     glm::dvec4 a = inv * glm::dvec4(nx, ny, -1.0, 1.0), b = inv * glm::dvec4(nx, ny, 1.0, 1.0);
     origin = glm::dvec3(a) / a.w;
     dir = glm::normalize(glm::dvec3(b) / b.w - origin);
@@ -146,9 +149,9 @@ struct TestScene {
   }
 };
 
-glm::dvec2 screen(const glm::dmat4& vp, const glm::dvec3& p) {
+glm::dvec2 screen(const glm::dmat4& vp, const glm::dvec3& p, uint32_t w, uint32_t h) {
   glm::dvec4 c = vp * glm::dvec4(p, 1.0);
-  return {(c.x / c.w * 0.5 + 0.5) * kW, (0.5 - c.y / c.w * 0.5) * kH};
+  return {(c.x / c.w * 0.5 + 0.5) * w, (0.5 - c.y / c.w * 0.5) * h};
 }
 
 template <typename T>
@@ -164,21 +167,23 @@ void expect_near3(const float* got, const glm::dvec3& want, double tol, const ch
     EXPECT_NEAR(got[c], want[c], tol) << what << "[" << c << "] at pixel " << x << "," << y;
 }
 
-TEST(GBuffer, ResolvesMeshSphereAndBackground) {
+// Resolves a hand-written visibility buffer of a W x H frame and checks every pixel against
+// the double-precision reference.
+void check_resolve(uint32_t W, uint32_t H) {
   auto& ctx = rp::test::context();
-  TestScene ts;
+  TestScene ts(W, H);
   rp::render::GpuScene scene(ctx.context, ctx.queue, ts.assets);
-  scene.update(ts.frame, kW, kH, 64);
+  scene.update(ts.frame, W, H, 64);
 
   // Hand-written visibility buffer from the ray caster.
-  const size_t n = size_t(kW) * kH;
+  const size_t n = size_t(W) * H;
   std::vector<uint32_t> ids(n * 2, RP_ID_NONE);
   std::vector<float> bary(n * 2, 0.0f), depth(n, 1.0f);
   std::vector<std::optional<Hit>> hits(n);
   int mesh_pixels[2] = {0, 0}, sphere_pixels = 0, background_pixels = 0;
-  for (uint32_t y = 0; y < kH; ++y) {
-    for (uint32_t x = 0; x < kW; ++x) {
-      size_t i = size_t(y) * kW + x;
+  for (uint32_t y = 0; y < H; ++y) {
+    for (uint32_t x = 0; x < W; ++x) {
+      size_t i = size_t(y) * W + x;
       glm::dvec3 o, d;
       ts.ray(x, y, o, d);
       hits[i] = ts.cast(o, d);
@@ -208,12 +213,12 @@ TEST(GBuffer, ResolvesMeshSphereAndBackground) {
   ids[3] = 999;
 
   rp::render::VisibilityBuffer vis;
-  vis.resize(ctx.context, kW, kH);
+  vis.resize(ctx.context, W, H);
   ctx.queue.enqueueWriteBuffer(vis.ids, CL_TRUE, 0, n * 8, ids.data());
   ctx.queue.enqueueWriteBuffer(vis.bary, CL_TRUE, 0, n * 8, bary.data());
   ctx.queue.enqueueWriteBuffer(vis.depth, CL_TRUE, 0, n * 4, depth.data());
   rp::render::GBuffer gb;
-  gb.resize(ctx.context, kW, kH);
+  gb.resize(ctx.context, W, H);
   rp::cl::Profiler profiler(ctx.queue);
   rp::passes::GBufferPass pass(ctx, rp::test::programs());
   pass.run(profiler, scene, vis, gb);
@@ -228,9 +233,9 @@ TEST(GBuffer, ResolvesMeshSphereAndBackground) {
   const glm::dvec3 quad_normal = glm::dvec3(ts.rotation * glm::vec4(0, 0, 1, 0));
   const auto& sphere = ts.frame.spheres[0];
   const auto& mesh = ts.assets.meshes[0];
-  for (uint32_t y = 0; y < kH; ++y) {
-    for (uint32_t x = 0; x < kW; ++x) {
-      const size_t i = size_t(y) * kW + x;
+  for (uint32_t y = 0; y < H; ++y) {
+    for (uint32_t x = 0; x < W; ++x) {
+      const size_t i = size_t(y) * W + x;
       const float* a = &albedo[i * 4];
       const float* nd = &normal_depth[i * 4];
       const float* p = &position[i * 4];
@@ -285,12 +290,31 @@ TEST(GBuffer, ResolvesMeshSphereAndBackground) {
       expect_near3(a, want_albedo, 2e-6, "albedo", x, y);
       EXPECT_EQ(a[3], 1.0f);
       expect_near3(e, want_emission, 1e-7, "emission", x, y);
-      glm::dvec2 want_v = screen(vp, want_p) - screen(prev_vp, prev_p);
+      glm::dvec2 want_v = screen(vp, want_p, W, H) - screen(prev_vp, prev_p, W, H);
       EXPECT_NEAR(v[0], want_v.x, 2e-3) << "velocity x at " << x << "," << y;
       EXPECT_NEAR(v[1], want_v.y, 2e-3) << "velocity y at " << x << "," << y;
     }
   }
 }
+
+TEST(GBuffer, ResolvesMeshSphereAndBackground) { check_resolve(kW, kH); }
+
+// Every pixel-span layout (16 pixels a work-item on CPUs, 1 on GPUs; 4 and 8 too) at a width
+// that leaves a partial span at the end of each row: same reference, same tolerances.
+class GBufferSpans : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(GBufferSpans, ResolveMatchesReferenceWithPartialSpans) {
+  setenv("ROLYPOLY_GBUFFER_SPAN", GetParam(), 1);
+  try {
+    check_resolve(21, 13);
+  } catch (...) {
+    unsetenv("ROLYPOLY_GBUFFER_SPAN");
+    throw;
+  }
+  unsetenv("ROLYPOLY_GBUFFER_SPAN");
+}
+
+INSTANTIATE_TEST_SUITE_P(Spans, GBufferSpans, ::testing::Values("1", "4", "8", "16"));
 
 // A point that does not move while the camera pans right: it moves left on screen by the hand-
 // computed amount; the instance's own motion adds on top with the +y-down convention.
