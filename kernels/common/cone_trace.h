@@ -36,36 +36,48 @@
  * Level 0 (isotropic) has no such rule: its taps are clear of the surface's own voxel by the
  * start offset (at most 7 % of one tap's weight for the tilted cones' first sample).
  *
- * One cone (aperture 60 degrees, half-angle 30 degrees, diameter d(t) = 2 t tan 30 at distance t
+ * One cone (half-angle atan 0.4 = 21.80 degrees, diameter d(t) = 2 t tan_h = 0.8 t at distance t
  * from its apex):
- *   first sample at t0 = v0 / (2 tan 30), where the diameter is one level-0 voxel (L = 0);
- *   each step advances by half the current diameter, t' = t (1 + tan 30), so the diameter and
- *   the sampled voxel size grow by the constant factor g = 1 + tan 30 = 1.5774 per step and the
- *   level by the constant log2(g) = 0.65750: L_k = k * 0.65750, stepped by an addition (no
- *   log2 or pow per sample);
- *   since a step is half the sampled voxel, each sample's opacity is corrected to half a voxel's
- *   thickness, a' = 1 - sqrt(1 - a) = a / (1 + sqrt(1 - a)), and its premultiplied radiance by
- *   the same factor (two half steps through a uniform voxel composite to exactly that voxel);
+ *   first sample at t0 = v0 / (2 tan_h) = 1.25 v0, where the diameter is one level-0 voxel (L = 0);
+ *   each step advances by a fraction s of the current diameter (s = 1/2 by default, 1/4 for
+ *   the reference mode's "twice the steps"), t' = t (1 + 2 s tan_h), so the diameter and the
+ *   sampled voxel size grow by the constant factor g = 1 + 2 s tan_h per step (1.4 for s = 1/2,
+ *   1.2 for s = 1/4) and the level by the constant log2(g) (0.48543 / 0.26303): L_k = k log2 g,
+ *   stepped by an addition (no log2 or pow per sample);
+ *   since a step is a fraction s of the sampled voxel, each sample's opacity is corrected to
+ *   that thickness, a' = 1 - (1 - a)^s, and its premultiplied radiance by the same factor a'/a
+ *   (1/s steps through a uniform voxel composite to exactly that voxel): with r = 1 - a,
+ *   a'/a = 1 / (1 + sqrt r) for s = 1/2 and 1 / ((1 + q)(1 + q^2)), q = r^(1/4), for s = 1/4;
  *   front-to-back accumulation c += (1 - A) c_s, A += (1 - A) a_s;
- *   stop when A >= RP_CONE_OPAQUE, when the sample point leaves [-1,1]^3, or after
- *   RP_CONE_MAX_STEPS samples (t grows 1.577x per step, so 16 steps reach past the box's
- *   diagonal for R <= 128).
+ *   stop when A >= RP_CONE_OPAQUE, when the sample point leaves [-1,1]^3, or after the step
+ *   limit (RP_CONE_MAX_STEPS = 16 for s = 1/2: 1.4^16 t0 = 272 v0 lies past the box's diagonal
+ *   for R <= 128; 32 for s = 1/4: 1.2^32 t0 = 428 v0).
  * The result is (c, A): c the radiance arriving along the cone (mean over its cross-section),
  * A its occlusion.
  *
- * Diffuse cone set (rp_cone_diffuse): six 60-degree cones around the unit normal n, one along
- * n and five tilted 60 degrees from it at azimuths 0, 72, ..., 288 degrees in the per-pixel
- * orthonormal basis (t, b, n) of Duff et al. 2017 (a function of n only). Weights: each cone's
- * share of the cosine-weighted hemisphere, pi/4 for the normal cone (exactly the integral of
- * cos over a 30-degree cap) and (pi - pi/4) / 5 = 3 pi / 20 for each tilted cone, summing to pi
- * = integral of cos over the hemisphere. rp_cone_diffuse returns sum_i (w_i / pi) L_i with the
- * normalised weights 1/4 and 3/20 (sum 1): the irradiance over pi, so a Lambertian surface
- * reflects indirect radiance albedo * rp_cone_diffuse(...), and a uniform surrounding radiance L
- * gives exactly albedo * L. The cones start at p + n * RP_CONE_NORMAL_OFFSET * v0 (that point
- * is their apex) so a surface does not see its own voxels at level 0.
+ * Level jitter (the fast mode's cheaper cone, rp_cone_trace_jittered): instead of the
+ * quadrilinear blend of the two levels around L (two directional lookups, 48 float4 loads),
+ * each sample reads ONE level, floor(L + u) for a jitter u in [0, 1) chosen per cone and frame
+ * (clamped to the top level): its expectation over u is the linear blend, so temporal
+ * accumulation integrates the quadrilinear sample at half the loads.
  *
- * The six local directions are compile-time constants and the six calls are written out
- * (unrolled): measured 1.8x faster on PoCL than a loop over a direction table.
+ * Diffuse cone set (16 cones, rp_cone_set16_dir): the cosine-weighted hemisphere mapped to the
+ * unit disk (r = sin theta: cosine-weighted measure is uniform in disk area, i.e. in r^2) cut
+ * into 16 cells of equal area, one cone through each cell's centre (r^2 midway in its ring):
+ *   cone 0:       along n (the disk r^2 < 1/16)
+ *   cones 1..5:   sin^2 theta = 3.5/16 (theta = 27.89 deg), azimuths 0, 72, .., 288 deg
+ *                 (ring 1/16 < r^2 < 6/16)
+ *   cones 6..15:  sin^2 theta = 11/16 (theta = 56.01 deg), azimuths 18 + 36 k deg
+ *                 (ring 6/16 < r^2 < 1, interleaved with ring 1)
+ * in the per-pixel orthonormal basis (t, b, n) of Duff et al. 2017 (a function of n only). Each
+ * cone carries 1/16 of the cosine-weighted hemisphere (integral of cos = pi), so the plain mean
+ * of the 16 cone radiances is the irradiance over pi: a Lambertian surface reflects indirect
+ * radiance albedo * mean, and a uniform surrounding radiance L gives exactly albedo * L. The
+ * 21.8-degree cones (0.449 sr each, 7.2 sr together) cover the hemisphere with a little
+ * overlap. The cones start at p + n * RP_CONE_NORMAL_OFFSET * v0 (that point is their apex) so
+ * a surface does not see its own voxels at level 0.
+ * rp_cone_diffuse16 traces all 16 with quarter-diameter steps (the reference mode, per pixel);
+ * the fast mode (kernels/indirect.cl) traces one cone of the set per low-resolution pixel.
  */
 #ifndef ROLYPOLY_COMMON_CONE_TRACE_H
 #define ROLYPOLY_COMMON_CONE_TRACE_H
@@ -81,15 +93,18 @@
 #ifndef RP_CONE_OPAQUE
 #define RP_CONE_OPAQUE 0.95f
 #endif
-/* Most samples per cone. */
+/* Most samples per cone with half-diameter steps (twice that with quarter-diameter steps). */
 #ifndef RP_CONE_MAX_STEPS
 #define RP_CONE_MAX_STEPS 16
 #endif
 
-#define RP_CONE_TAN_HALF 0.577350269f   /* tan 30 degrees */
-#define RP_CONE_T0 0.866025404f         /* first sample distance in level-0 voxels: 1 / (2 tan 30) */
-#define RP_CONE_GROWTH 1.577350269f     /* t (and diameter) factor per step: 1 + tan 30 */
-#define RP_CONE_LEVEL_STEP 0.657503063f /* log2(1 + tan 30): level increase per step */
+#define RP_CONE_TAN_HALF 0.4f            /* tan of the half-angle, 21.80 degrees */
+#define RP_CONE_T0 1.25f                 /* first sample distance in level-0 voxels: 1 / (2 tan_h) */
+#define RP_CONE_GROWTH 1.4f              /* t factor per half-diameter step: 1 + tan_h */
+#define RP_CONE_LEVEL_STEP 0.485426827f  /* log2(1.4) */
+#define RP_CONE_GROWTH_FINE 1.2f         /* t factor per quarter-diameter step: 1 + tan_h / 2 */
+#define RP_CONE_LEVEL_STEP_FINE 0.263034406f /* log2(1.2) */
+#define RP_CONE_SET_SIZE 16
 
 /* First float4 of level `level` >= 1 (its +x volume): R^3 for level 0, then six volumes of
  * (R >> k)^3 per level k. With R = 2^m the sum over k = 1 .. l-1 is the geometric series
@@ -196,33 +211,73 @@ inline float4 rp_cone_sample(__global const float4* voxels, uint resolution, uin
   return mix(lo, hi, level - lf);
 }
 
+/* Single-level sample at integer level `level` (0: isotropic), clamped to `top`. */
+inline float4 rp_cone_sample_level(__global const float4* voxels, uint resolution, uint top,
+                                   uint3 dirs, float3 w, float3 p, uint level, float3 apex) {
+  if (level == 0u || top == 0u) return rp_cone_trilinear(voxels, resolution, p);
+  return rp_cone_directional(voxels, resolution, min(level, top), dirs, w, p, apex);
+}
+
 /* Coarsest level a cone samples: levels - 2 (the 1^3 level contains every apex, so with the
  * rows-behind-the-apex rule it would always read as empty). */
 inline uint rp_cone_top_level(uint levels) { return levels >= 2u ? levels - 2u : 0u; }
 
-/* One cone from `origin` along unit `dir` (apex at origin): (radiance rgb, occlusion a). */
-inline float4 rp_cone_trace(__global const float4* voxels, uint resolution, uint levels,
-                            float3 origin, float3 dir) {
+/* One cone from `origin` along unit `dir` (apex at origin): (radiance rgb, occlusion a).
+ * fine = 0: half-diameter steps, 1: quarter-diameter steps (compile-time constants at every call
+ * site, so the branches fold). jitter < 0: quadrilinear samples; jitter in [0, 1): single-level
+ * samples at floor(L + jitter) (see "Level jitter" above). */
+inline float4 rp_cone_march(__global const float4* voxels, uint resolution, uint levels,
+                            float3 origin, float3 dir, const int fine, float jitter) {
   const float3 w = dir * dir;
   const uint3 dirs = rp_voxel_cone_dirs(dir);
   const uint top = rp_cone_top_level(levels);
   const float v0 = 2.0f / (float)resolution;
+  const float growth = fine ? RP_CONE_GROWTH_FINE : RP_CONE_GROWTH;
+  const float level_step = fine ? RP_CONE_LEVEL_STEP_FINE : RP_CONE_LEVEL_STEP;
+  const int max_steps = fine ? 2 * RP_CONE_MAX_STEPS : RP_CONE_MAX_STEPS;
   float t = RP_CONE_T0 * v0;
-  float level = 0.0f;
+  float level = jitter < 0.0f ? 0.0f : jitter;
   float4 acc = (float4)(0.0f);
-  for (int k = 0; k < RP_CONE_MAX_STEPS; ++k) {
+  for (int k = 0; k < max_steps; ++k) {
     const float3 q = origin + dir * t;
     if (fmax(fmax(fabs(q.x), fabs(q.y)), fabs(q.z)) > 1.0f) break;  /* left the box */
-    float4 s = rp_cone_sample(voxels, resolution, top, dirs, w, q, level, origin);
-    /* half a voxel's thickness: a' = a / (1 + sqrt(1 - a)), radiance scaled alike */
-    s *= 1.0f / (1.0f + sqrt(fmax(1.0f - s.w, 0.0f)));
+    float4 s = jitter < 0.0f
+                   ? rp_cone_sample(voxels, resolution, top, dirs, w, q, level, origin)
+                   : rp_cone_sample_level(voxels, resolution, top, dirs, w, q, (uint)level, origin);
+    /* thickness of a step: a' / a = 1 / (1 + sqrt r) (half) or 1 / ((1 + q)(1 + q^2)),
+     * q = r^(1/4) (quarter), r = 1 - a; radiance scaled alike */
+    const float r = sqrt(fmax(1.0f - s.w, 0.0f));
+    if (fine) {
+      const float q4 = sqrt(r);
+      s *= 1.0f / ((1.0f + q4) * (1.0f + r));
+    } else {
+      s *= 1.0f / (1.0f + r);
+    }
     acc.xyz += (1.0f - acc.w) * s.xyz;
     acc.w += (1.0f - acc.w) * s.w;
     if (acc.w >= RP_CONE_OPAQUE) break;
-    t *= RP_CONE_GROWTH;
-    level += RP_CONE_LEVEL_STEP;
+    t *= growth;
+    level += level_step;
   }
   return acc;
+}
+
+/* One cone, half-diameter steps, quadrilinear samples. */
+inline float4 rp_cone_trace(__global const float4* voxels, uint resolution, uint levels,
+                            float3 origin, float3 dir) {
+  return rp_cone_march(voxels, resolution, levels, origin, dir, 0, -1.0f);
+}
+
+/* One cone, quarter-diameter steps (twice the steps), quadrilinear samples. */
+inline float4 rp_cone_trace_fine(__global const float4* voxels, uint resolution, uint levels,
+                                 float3 origin, float3 dir) {
+  return rp_cone_march(voxels, resolution, levels, origin, dir, 1, -1.0f);
+}
+
+/* One cone, half-diameter steps, single-level samples at floor(L + jitter), jitter in [0, 1). */
+inline float4 rp_cone_trace_jittered(__global const float4* voxels, uint resolution, uint levels,
+                                     float3 origin, float3 dir, float jitter) {
+  return rp_cone_march(voxels, resolution, levels, origin, dir, 0, jitter);
 }
 
 /* Orthonormal basis (t, b) completing unit n to a right-handed frame (Duff et al. 2017,
@@ -235,25 +290,49 @@ inline void rp_cone_basis(float3 n, float3* t, float3* b) {
   *b = (float3)(c, sign + n.y * n.y * a, -n.y);
 }
 
-/* Weighted mean radiance of the six diffuse cones around unit normal n at surface point p:
- * irradiance / pi (see the header). */
-inline float3 rp_cone_diffuse(__global const float4* voxels, uint resolution, uint levels,
-                              float3 p, float3 n) {
+/* The 16 cone directions of the diffuse set in the local frame (t, b, n) (see the header):
+ * x along t, y along b, z along n. */
+__constant float4 RP_CONE_SET16[RP_CONE_SET_SIZE] = {
+    (float4)(0.000000000f, 0.000000000f, 1.000000000f, 0.0f),
+    (float4)(0.467707173f, 0.000000000f, 0.883883476f, 0.0f),
+    (float4)(0.144529465f, 0.444815955f, 0.883883476f, 0.0f),
+    (float4)(-0.378383052f, 0.274911379f, 0.883883476f, 0.0f),
+    (float4)(-0.378383052f, -0.274911379f, 0.883883476f, 0.0f),
+    (float4)(0.144529465f, -0.444815955f, 0.883883476f, 0.0f),
+    (float4)(0.788574405f, 0.256223356f, 0.559016994f, 0.0f),
+    (float4)(0.487365785f, 0.670801455f, 0.559016994f, 0.0f),
+    (float4)(0.000000000f, 0.829156198f, 0.559016994f, 0.0f),
+    (float4)(-0.487365785f, 0.670801455f, 0.559016994f, 0.0f),
+    (float4)(-0.788574405f, 0.256223356f, 0.559016994f, 0.0f),
+    (float4)(-0.788574405f, -0.256223356f, 0.559016994f, 0.0f),
+    (float4)(-0.487365785f, -0.670801455f, 0.559016994f, 0.0f),
+    (float4)(0.000000000f, -0.829156198f, 0.559016994f, 0.0f),
+    (float4)(0.487365785f, -0.670801455f, 0.559016994f, 0.0f),
+    (float4)(0.788574405f, -0.256223356f, 0.559016994f, 0.0f)};
+
+/* World direction of cone k (0..15) of the set around unit n with basis (t, b). */
+inline float3 rp_cone_set16_dir(float3 n, float3 t, float3 b, uint k) {
+  const float4 l = RP_CONE_SET16[k & 15u];
+  return t * l.x + b * l.y + n * l.z;
+}
+
+/* Apex of the diffuse cones of surface point p with unit normal n. */
+inline float3 rp_cone_apex(float3 p, float3 n, uint resolution) {
+  return p + n * (RP_CONE_NORMAL_OFFSET * 2.0f / (float)resolution);
+}
+
+/* Mean radiance of the 16 diffuse cones (quarter-diameter steps) around unit normal n at
+ * surface point p: irradiance / pi (see the header). The reference mode's per-pixel estimate. */
+inline float3 rp_cone_diffuse16(__global const float4* voxels, uint resolution, uint levels,
+                                float3 p, float3 n) {
   float3 t, b;
   rp_cone_basis(n, &t, &b);
-  const float3 o = p + n * (RP_CONE_NORMAL_OFFSET * 2.0f / (float)resolution);
-  /* Tilted cones: sin 60 (cos phi t + sin phi b) + cos 60 n, phi = 0, 72, 144, 216, 288. */
-  const float s60 = 0.866025404f, c60 = 0.5f;
-  const float c72 = 0.309016994f, s72 = 0.951056516f, c144 = -0.809016994f, s144 = 0.587785252f;
-  const float3 nc = n * c60;
-  const float3 ts = t * s60, bs = b * s60;
-  float3 side = rp_cone_trace(voxels, resolution, levels, o, ts + nc).xyz;
-  side += rp_cone_trace(voxels, resolution, levels, o, ts * c72 + bs * s72 + nc).xyz;
-  side += rp_cone_trace(voxels, resolution, levels, o, ts * c144 + bs * s144 + nc).xyz;
-  side += rp_cone_trace(voxels, resolution, levels, o, ts * c144 - bs * s144 + nc).xyz;
-  side += rp_cone_trace(voxels, resolution, levels, o, ts * c72 - bs * s72 + nc).xyz;
-  const float3 normal = rp_cone_trace(voxels, resolution, levels, o, n).xyz;
-  return normal * 0.25f + side * 0.15f;
+  const float3 o = rp_cone_apex(p, n, resolution);
+  float3 sum = (float3)(0.0f);
+#pragma unroll
+  for (uint k = 0; k < RP_CONE_SET_SIZE; ++k)
+    sum += rp_cone_trace_fine(voxels, resolution, levels, o, rp_cone_set16_dir(n, t, b, k)).xyz;
+  return sum * (1.0f / (float)RP_CONE_SET_SIZE);
 }
 
 #endif

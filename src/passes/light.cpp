@@ -8,7 +8,8 @@
 namespace rp::passes {
 namespace {
 
-constexpr size_t kGroup = 16;  // 16x16 work-groups (see gbuffer.cpp)
+constexpr size_t kGroup = 16;        // 16x16 work-groups (see gbuffer.cpp)
+constexpr size_t kComposeGroup = 8;  // light_compose: 8x8 work-groups of 8-pixel chunks
 
 bool is_power_of_two(uint32_t v) { return v != 0 && (v & (v - 1)) == 0; }
 
@@ -18,11 +19,9 @@ uint32_t log2_exact(uint32_t v) {
   return l;
 }
 
-// Binds the arguments shared by every variant up to and including the voxel chain; returns the
-// next argument index.
+// Binds the GBuffer and shadow arguments every variant starts with; returns the next index.
 cl_uint bind_common(::cl::Kernel& kernel, const render::GpuScene& scene,
-                    const render::GBuffer& gbuffer, const render::ShadowMap& shadow,
-                    const ::cl::Buffer& voxels, uint32_t resolution, uint32_t levels) {
+                    const render::GBuffer& gbuffer, const render::ShadowMap& shadow) {
   cl_uint arg = 0;
   kernel.setArg(arg++, scene.frame);
   kernel.setArg(arg++, gbuffer.albedo);
@@ -30,9 +29,6 @@ cl_uint bind_common(::cl::Kernel& kernel, const render::GpuScene& scene,
   kernel.setArg(arg++, gbuffer.position);
   kernel.setArg(arg++, gbuffer.emission);
   kernel.setArg(arg++, shadow.depth);
-  kernel.setArg(arg++, voxels);
-  kernel.setArg(arg++, cl_uint(resolution));
-  kernel.setArg(arg++, cl_uint(levels));
   return arg;
 }
 
@@ -44,11 +40,39 @@ void enqueue(rp::cl::Profiler& profiler, const ::cl::Kernel& kernel, uint32_t w,
 
 }  // namespace
 
+void check_voxel_chain(const char* pass, const ::cl::Buffer& voxels, uint32_t voxel_resolution,
+                       uint32_t voxel_levels) {
+  const std::string name(pass);
+  if (!is_power_of_two(voxel_resolution) || voxel_resolution < 2 || voxel_resolution > 1024)
+    throw rp::cl::Error(name + ": voxel resolution " + std::to_string(voxel_resolution) +
+                        " is not a power of two between 2 and 1024");
+  const uint32_t max_levels = log2_exact(voxel_resolution) + 1;
+  if (voxel_levels < 1 || voxel_levels > max_levels)
+    throw rp::cl::Error(name + ": " + std::to_string(voxel_levels) +
+                        " voxel levels for resolution " + std::to_string(voxel_resolution) +
+                        " (expected 1.." + std::to_string(max_levels) + ")");
+  const size_t needed = size_t(gpu::rp_voxel_total(voxel_resolution, voxel_levels)) * 16;
+  const size_t have = voxels.getInfo<CL_MEM_SIZE>();
+  if (have < needed)
+    throw rp::cl::Error(name + ": the voxel buffer holds " + std::to_string(have) +
+                        " bytes but " + std::to_string(voxel_resolution) + "^3 with " +
+                        std::to_string(voxel_levels) + " levels needs " + std::to_string(needed));
+}
+
 LightPass::LightPass(const rp::cl::Context& /*context*/, rp::cl::ProgramCache& programs,
                      ShadowFilter filter)
     : programs_(&programs),
-      filter_options_(filter == ShadowFilter::kPcf5x5 ? "-DRP_SHADOW_PCF5=1" : ""),
-      kernel_(programs.kernel("light.cl", "light_shade", filter_options_)) {}
+      filter_options_(filter == ShadowFilter::kPcf5x5 ? "-DRP_SHADOW_PCF5=1" : "") {}
+
+::cl::Kernel& LightPass::variant(bool upsample, bool split) {
+  std::optional<::cl::Kernel>& k = kernels_[upsample][split];
+  if (!k) {
+    std::string options = filter_options_;
+    if (split) options += " -DRP_LIGHT_SPLIT=1";
+    k = programs_->kernel("light.cl", upsample ? "light_compose" : "light_shade", options);
+  }
+  return *k;
+}
 
 void LightPass::check_sizes(const render::GpuScene& scene, const render::GBuffer& gbuffer,
                             const render::ShadowMap& shadow) const {
@@ -66,46 +90,57 @@ void LightPass::check_sizes(const render::GpuScene& scene, const render::GBuffer
 void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                     const render::GBuffer& gbuffer, const render::ShadowMap& shadow,
                     const ::cl::Buffer& voxels, uint32_t voxel_resolution,
-                    uint32_t voxel_levels, ::cl::Buffer& hdr, LightComponents* components) {
+                    uint32_t voxel_levels, ::cl::Buffer& hdr, LightComponents* components,
+                    const LowResIndirect* indirect) {
   check_sizes(scene, gbuffer, shadow);
-  if (!is_power_of_two(voxel_resolution) || voxel_resolution < 2 || voxel_resolution > 1024)
-    throw rp::cl::Error("light pass: voxel resolution " + std::to_string(voxel_resolution) +
-                        " is not a power of two between 2 and 1024");
-  const uint32_t max_levels = log2_exact(voxel_resolution) + 1;
-  if (voxel_levels < 1 || voxel_levels > max_levels)
-    throw rp::cl::Error("light pass: " + std::to_string(voxel_levels) +
-                        " voxel levels for resolution " + std::to_string(voxel_resolution) +
-                        " (expected 1.." + std::to_string(max_levels) + ")");
-  const size_t needed = size_t(gpu::rp_voxel_total(voxel_resolution, voxel_levels)) * 16;
-  const size_t have = voxels.getInfo<CL_MEM_SIZE>();
-  if (have < needed)
-    throw rp::cl::Error("light pass: the voxel buffer holds " + std::to_string(have) +
-                        " bytes but " + std::to_string(voxel_resolution) + "^3 with " +
-                        std::to_string(voxel_levels) + " levels needs " + std::to_string(needed));
+  check_voxel_chain("light pass", voxels, voxel_resolution, voxel_levels);
   const uint32_t w = scene.constants.width, h = scene.constants.height;
   if (w == 0 || h == 0) return;
-
-  if (components == nullptr) {
-    cl_uint arg = bind_common(kernel_, scene, gbuffer, shadow, voxels, voxel_resolution,
-                              voxel_levels);
-    kernel_.setArg(arg, hdr);
-    enqueue(profiler, kernel_, w, h);
+  if (indirect != nullptr &&
+      (indirect->irradiance == nullptr || indirect->geometry == nullptr ||
+       indirect->width != IndirectPass::low_res(w) || indirect->height != IndirectPass::low_res(h) ||
+       indirect->stride != IndirectPass::plane_stride(indirect->width) ||
+       indirect->plane != IndirectPass::plane_size(indirect->width, indirect->height)))
+    throw rp::cl::Error("light pass: the low-resolution indirect light (" +
+                        std::to_string(indirect->width) + "x" + std::to_string(indirect->height) +
+                        ") does not belong to a " + std::to_string(w) + "x" + std::to_string(h) +
+                        " frame");
+  if (components != nullptr) {
+    const size_t plane = size_t(w) * h * 16;
+    if (components->direct.getInfo<CL_MEM_SIZE>() < plane ||
+        components->indirect.getInfo<CL_MEM_SIZE>() < plane)
+      throw rp::cl::Error("light pass: the direct/indirect buffers must hold " +
+                          std::to_string(plane) + " bytes (" + std::to_string(w) + "x" +
+                          std::to_string(h) + " float4)");
+  }
+  ::cl::Kernel& k = variant(indirect != nullptr, components != nullptr);
+  cl_uint arg = bind_common(k, scene, gbuffer, shadow);
+  if (indirect != nullptr) {
+    k.setArg(arg++, *indirect->irradiance);
+    k.setArg(arg++, *indirect->geometry);
+    k.setArg(arg++, cl_uint(indirect->width));
+    k.setArg(arg++, cl_uint(indirect->height));
+    k.setArg(arg++, cl_uint(indirect->stride));
+    k.setArg(arg++, cl_uint(indirect->plane));
+    k.setArg(arg++, indirect->pixel_scale);
+  } else {
+    k.setArg(arg++, voxels);
+    k.setArg(arg++, cl_uint(voxel_resolution));
+    k.setArg(arg++, cl_uint(voxel_levels));
+  }
+  if (components != nullptr) {
+    k.setArg(arg++, components->direct);
+    k.setArg(arg++, components->indirect);
+  }
+  k.setArg(arg, hdr);
+  if (indirect != nullptr) {
+    // light_compose: 8 pixels of a row per work-item.
+    profiler.enqueue("light", k,
+                     ::cl::NDRange(rp::cl::round_up((w + 7) / 8, kComposeGroup),
+                                   rp::cl::round_up(h, kComposeGroup)),
+                     ::cl::NDRange(kComposeGroup, kComposeGroup));
     return;
   }
-  const size_t plane = size_t(w) * h * 16;
-  if (components->direct.getInfo<CL_MEM_SIZE>() < plane ||
-      components->indirect.getInfo<CL_MEM_SIZE>() < plane)
-    throw rp::cl::Error("light pass: the direct/indirect buffers must hold " +
-                        std::to_string(plane) + " bytes (" + std::to_string(w) + "x" +
-                        std::to_string(h) + " float4)");
-  if (!split_kernel_)
-    split_kernel_ = programs_->kernel("light.cl", "light_shade",
-                                      filter_options_ + " -DRP_LIGHT_SPLIT=1");
-  ::cl::Kernel& k = *split_kernel_;
-  cl_uint arg = bind_common(k, scene, gbuffer, shadow, voxels, voxel_resolution, voxel_levels);
-  k.setArg(arg++, components->direct);
-  k.setArg(arg++, components->indirect);
-  k.setArg(arg, hdr);
   enqueue(profiler, k, w, h);
 }
 

@@ -1,6 +1,9 @@
 // Light pass: direct light from the lamp (Lambert, directional falloff, Poisson-disk shadow
-// lookup rotated per pixel) + indirect diffuse light cone traced through the voxel radiance chain
-// (kernels/common/cone_trace.h) + emission -> HDR float4 per pixel. Pass name "light".
+// lookup rotated per pixel) + indirect diffuse light + emission -> HDR float4 per pixel. The
+// indirect light is either the 16-cone set traced per pixel through the voxel radiance chain
+// (kernels/common/cone_trace.h; the reference quality mode) or the indirect pass's accumulated
+// low-resolution result upsampled with depth- and normal-aware weights (passes/indirect.h; the
+// fast mode). Pass name "light".
 #pragma once
 
 #include <cstdint>
@@ -9,6 +12,7 @@
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
 #include "render/frame_buffers.h"
+#include "passes/indirect.h"
 #include "render/gpu_scene.h"
 
 namespace rp::passes {
@@ -18,7 +22,7 @@ namespace rp::passes {
 enum class ShadowFilter { kPoissonOneTap, kPcf5x5 };
 
 // Extra outputs for the direct / indirect debug views, width x height float4 each (16 bytes per
-// pixel): direct = albedo * lamp light (shadowed), indirect = albedo * cone-traced irradiance/pi;
+// pixel): direct = albedo * lamp light (shadowed), indirect = albedo * irradiance/pi;
 // rgb linear radiance, a = 1 covered / 0 background; emission is in neither.
 struct LightComponents {
   ::cl::Buffer direct;
@@ -27,7 +31,7 @@ struct LightComponents {
 
 class LightPass {
  public:
-  // Builds the default (hdr only) kernel; the split variant builds on first use.
+  // Kernel variants (hdr only or split; per-pixel cones or upsampling) build on first use.
   LightPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
             ShadowFilter filter = ShadowFilter::kPoissonOneTap);
 
@@ -38,19 +42,32 @@ class LightPass {
   // The kernel reads the chain's size from these arguments, not from FrameConstants.voxel_*.
   // components: when given, the direct and indirect terms are also written there (a separate
   // kernel variant; the default path writes hdr only).
+  // indirect: when given, the indirect light is upsampled from it (the fast mode; the voxel
+  // chain is then only checked, not read); else the 16 cones are traced per pixel.
+  // Builds the hdr-only kernel of one variant now (the renderer builds its kernels up front).
+  void prepare(bool upsample) { variant(upsample, false); }
+
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
            const render::GBuffer& gbuffer, const render::ShadowMap& shadow,
            const ::cl::Buffer& voxels, uint32_t voxel_resolution, uint32_t voxel_levels,
-           ::cl::Buffer& hdr, LightComponents* components = nullptr);
+           ::cl::Buffer& hdr, LightComponents* components = nullptr,
+           const LowResIndirect* indirect = nullptr);
 
  private:
   void check_sizes(const render::GpuScene& scene, const render::GBuffer& gbuffer,
                    const render::ShadowMap& shadow) const;
 
+  // Kernel variant [upsample][split], built on first use.
+  ::cl::Kernel& variant(bool upsample, bool split);
+
   rp::cl::ProgramCache* programs_;
   std::string filter_options_;
-  ::cl::Kernel kernel_;                        // cone traced, hdr only
-  std::optional<::cl::Kernel> split_kernel_;  // cone traced, + direct / indirect
+  std::optional<::cl::Kernel> kernels_[2][2];
 };
+
+// Throws rp::cl::Error (naming `pass`) unless `voxels` holds a chain of voxel_resolution^3 at
+// level 0 (a power of two, 2..1024) with voxel_levels levels (1..log2(resolution) + 1).
+void check_voxel_chain(const char* pass, const ::cl::Buffer& voxels, uint32_t voxel_resolution,
+                       uint32_t voxel_levels);
 
 }  // namespace rp::passes

@@ -5,6 +5,7 @@
 #include "passes/embree_visibility.h"
 #include "passes/gbuffer.h"
 #include "passes/bloom.h"
+#include "passes/indirect.h"
 #include "passes/light.h"
 #include "passes/motion_blur.h"
 #include "passes/taa.h"
@@ -46,7 +47,10 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   gbuffer_pass_ = std::make_unique<passes::GBufferPass>(context, programs);
   voxelize_ = std::make_unique<passes::VoxelizePass>(context, programs);
   voxel_mips_ = std::make_unique<passes::VoxelMipsPass>(context, programs);
+  if (settings_.quality == Quality::kFast)
+    indirect_ = std::make_unique<passes::IndirectPass>(context, programs);
   light_ = std::make_unique<passes::LightPass>(context, programs);
+  light_->prepare(indirect_ != nullptr);
   tone_map_ = std::make_unique<passes::ToneMapPass>(context, programs);
   taa_ = std::make_unique<passes::TaaPass>(context, programs);
   bloom_ = std::make_unique<passes::BloomPass>(context, programs);
@@ -104,7 +108,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     // A camera cut (this frame's previous camera is not what the last frame showed) makes the
     // TAA history meaningless.
     const glm::mat4 prev_view = frame.prev_camera.view();
-    if (last_view_ && *last_view_ != prev_view) taa_->reset_history();
+    if (last_view_ && *last_view_ != prev_view) reset_history();
     last_view_ = frame.camera.view();
     scene_->update(frame, settings_.width, settings_.height, settings_.shadow_size,
                    voxels_.resolution,
@@ -119,8 +123,13 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     voxelize_->run(profiler_, *scene_, shadow_, voxels_);
     voxel_mips_->run(profiler_, voxels_);
     const bool split = passes::needs_light_components(view_.view);
+    passes::LowResIndirect low_res;
+    if (indirect_)
+      low_res = indirect_->run(profiler_, *scene_, gbuffer_, voxels_.chain, voxels_.resolution,
+                               voxels_.levels);
     light_->run(profiler_, *scene_, gbuffer_, shadow_, voxels_.chain, voxels_.resolution,
-                voxels_.levels, hdr_, split ? &light_components_ : nullptr);
+                voxels_.levels, hdr_, split ? &light_components_ : nullptr,
+                indirect_ ? &low_res : nullptr);
     if (view_.view == passes::DebugView::kFinal) {
       const uint32_t w = settings_.width, h = settings_.height;
       const ::cl::Buffer* colour = &hdr_;
@@ -167,7 +176,10 @@ void Renderer::set_effects(const Effects& effects) {
   settings_.effects = effects;
 }
 
-void Renderer::reset_history() { taa_->reset_history(); }
+void Renderer::reset_history() {
+  taa_->reset_history();
+  if (indirect_) indirect_->reset_history();
+}
 
 void Renderer::read_rgba8(std::vector<uint8_t>& out) {
   out.resize(size_t(settings_.width) * settings_.height * 4);

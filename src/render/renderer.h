@@ -21,6 +21,7 @@ class VisibilityPass;
 class EmbreeVisibilityPass;
 class GBufferPass;
 class LightPass;
+class IndirectPass;
 class ToneMapPass;
 class DebugViewPass;
 class VoxelizePass;
@@ -98,8 +99,9 @@ class Renderer {
 
   // Switches post-processing effects between frames (turning TAA on starts a fresh history).
   void set_effects(const Effects& effects);
-  // Forgets the TAA history (the app calls it when the world is reset; camera cuts, i.e. a
-  // frame whose previous camera is not the camera of the frame before, reset it automatically).
+  // Forgets the TAA history and the fast mode's accumulated indirect light (the app calls it
+  // when the world is reset; camera cuts, i.e. a frame whose previous camera is not the camera
+  // of the frame before, and resizes reset both automatically).
   void reset_history();
 
   // The finished image: width * height * 4 bytes RGBA8, top row first. Blocking.
@@ -123,6 +125,7 @@ class Renderer {
   std::unique_ptr<passes::GBufferPass> gbuffer_pass_;
   std::unique_ptr<passes::VoxelizePass> voxelize_;
   std::unique_ptr<passes::VoxelMipsPass> voxel_mips_;
+  std::unique_ptr<passes::IndirectPass> indirect_;  // set with Quality::kFast
   std::unique_ptr<passes::LightPass> light_;
   std::unique_ptr<passes::ToneMapPass> tone_map_;
   std::unique_ptr<passes::TaaPass> taa_;

@@ -10,7 +10,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kOpaque = 0.95;
-constexpr int kMaxSteps = 16;
+constexpr int kMaxSteps = 16;  // half-diameter steps; twice as many quarter-diameter steps
 
 }  // namespace
 
@@ -58,9 +58,9 @@ void Chain::build_mips() {
   }
 }
 
-double tan_half_angle() { return std::tan(kPi / 6.0); }
+double tan_half_angle() { return 0.4; }
 double first_distance_in_voxels() { return 1.0 / (2.0 * tan_half_angle()); }
-double growth() { return 1.0 + tan_half_angle(); }
+double growth(bool fine) { return 1.0 + 2.0 * (fine ? 0.25 : 0.5) * tan_half_angle(); }
 double normal_offset_in_voxels() { return 1.0; }
 int top_level(const Chain& c) { return std::max(int(c.levels) - 2, 0); }
 
@@ -131,55 +131,61 @@ glm::dvec4 quadrilinear(const Chain& c, const glm::dvec3& d, const glm::dvec3& p
 }
 
 glm::dvec4 trace(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
-                 bool skip_behind_apex) {
+                 const March& march) {
   const double v0 = 2.0 / c.resolution;
+  const double step = march.fine ? 0.25 : 0.5;  // of the diameter
+  const int max_steps = march.fine ? 2 * kMaxSteps : kMaxSteps;
   double t = first_distance_in_voxels() * v0;
   glm::dvec3 colour(0.0);
   double alpha = 0.0;
-  for (int k = 0; k < kMaxSteps; ++k) {
+  const glm::dvec3* apex = march.skip_behind_apex ? &origin : nullptr;
+  for (int k = 0; k < max_steps; ++k) {
     const glm::dvec3 q = origin + dir * t;
     if (std::abs(q.x) > 1.0 || std::abs(q.y) > 1.0 || std::abs(q.z) > 1.0) break;
-    // Sampled voxel = cone diameter 2 t tan 30 = v0 * growth^k: level k * log2(growth).
-    const double level = k * std::log2(growth());
-    const glm::dvec4 s =
-        quadrilinear(c, dir, q, level, skip_behind_apex ? &origin : nullptr, top_level(c));
-    // The step is half the sampled voxel: opacity of half its thickness.
+    // Sampled voxel = cone diameter 2 t tan_h = v0 * growth^k: level k * log2(growth).
+    double level = k * std::log2(growth(march.fine));
+    if (march.jitter >= 0.0) level = std::floor(level + march.jitter);
+    const glm::dvec4 s = quadrilinear(c, dir, q, level, apex, top_level(c));
+    // The step is a fraction `step` of the sampled voxel: opacity of that thickness.
     const double a = std::clamp(s.w, 0.0, 1.0);
-    const double a_half = 1.0 - std::sqrt(1.0 - a);
-    const double scale = a > 0.0 ? a_half / a : 0.5;
+    const double a_step = 1.0 - std::pow(1.0 - a, step);
+    const double scale = a > 0.0 ? a_step / a : step;
     colour += (1.0 - alpha) * glm::dvec3(s) * scale;
     alpha += (1.0 - alpha) * s.w * scale;
     if (alpha >= kOpaque) break;
-    t += 0.5 * (2.0 * t * tan_half_angle());  // half the diameter
+    t += step * (2.0 * t * tan_half_angle());
   }
   return glm::dvec4(colour, alpha);
 }
 
-void diffuse_cones(const glm::dvec3& n, glm::dvec3 dirs[6], double weights[6]) {
+void diffuse_cones(const glm::dvec3& n, glm::dvec3 dirs[16]) {
   // Duff et al. 2017 basis.
   const double sign = std::copysign(1.0, n.z);
   const double a = -1.0 / (sign + n.z);
   const double b = n.x * n.y * a;
   const glm::dvec3 t(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
   const glm::dvec3 bt(b, sign + n.y * n.y * a, -n.y);
+  // Equal-area cells of the cosine-weighted hemisphere (uniform in sin^2 theta): the centre
+  // disk and rings of 5 and 10 cells, each cone through its cell's middle (in sin^2 theta).
+  auto cone = [&](double sin2, double azimuth_deg) {
+    const double s = std::sqrt(sin2), phi = azimuth_deg * kPi / 180.0;
+    return s * (std::cos(phi) * t + std::sin(phi) * bt) + std::sqrt(1.0 - sin2) * n;
+  };
   dirs[0] = n;
-  weights[0] = (kPi / 4.0) / kPi;  // cos-weighted solid angle of a 30-degree cap, over pi
-  const double tilt = kPi / 3.0;
-  for (int k = 0; k < 5; ++k) {
-    const double phi = 2.0 * kPi * k / 5.0;
-    dirs[1 + k] = std::sin(tilt) * (std::cos(phi) * t + std::sin(phi) * bt) + std::cos(tilt) * n;
-    weights[1 + k] = ((kPi - kPi / 4.0) / 5.0) / kPi;
-  }
+  for (int k = 0; k < 5; ++k) dirs[1 + k] = cone(3.5 / 16.0, 72.0 * k);
+  for (int k = 0; k < 10; ++k) dirs[6 + k] = cone(11.0 / 16.0, 18.0 + 36.0 * k);
 }
 
 glm::dvec3 diffuse(const Chain& c, const glm::dvec3& p, const glm::dvec3& n, bool skip_behind_apex) {
-  glm::dvec3 dirs[6];
-  double weights[6];
-  diffuse_cones(n, dirs, weights);
+  glm::dvec3 dirs[16];
+  diffuse_cones(n, dirs);
   const glm::dvec3 origin = p + n * (normal_offset_in_voxels() * 2.0 / c.resolution);
+  March march;
+  march.fine = true;
+  march.skip_behind_apex = skip_behind_apex;
   glm::dvec3 sum(0.0);
-  for (int i = 0; i < 6; ++i) sum += weights[i] * glm::dvec3(trace(c, origin, dirs[i], skip_behind_apex));
-  return sum;
+  for (const glm::dvec3& d : dirs) sum += glm::dvec3(trace(c, origin, d, march));
+  return sum / 16.0;
 }
 
 }  // namespace rp::test::cone

@@ -1,6 +1,7 @@
 // C++ reference of the voxel cone tracer (kernels/common/cone_trace.h), written from the rules in
-// that header, in double precision: quadrilinear sampling of the anisotropic chain, one cone,
-// the six diffuse cones. Plus helpers that build voxel chains by hand for the tests.
+// that header, in double precision: quadrilinear sampling of the anisotropic chain, one cone
+// (half- or quarter-diameter steps, quadrilinear or level-jittered samples), the 16-cone diffuse
+// set. Plus helpers that build voxel chains by hand for the tests.
 #pragma once
 
 #include <cstdint>
@@ -26,10 +27,10 @@ struct Chain {
   void build_mips();
 };
 
-// The cone's constants from their definitions: aperture 60 degrees.
-double tan_half_angle();              // tan 30
-double first_distance_in_voxels();    // t0 / v0 = 1 / (2 tan 30)
-double growth();                      // 1 + tan 30
+// The cone's constants from their definitions: half-angle atan 0.4 (21.8 degrees).
+double tan_half_angle();              // 0.4
+double first_distance_in_voxels();    // t0 / v0 = 1 / (2 tan_h)
+double growth(bool fine = false);     // 1 + 2 s tan_h: s = 1/2 (default) or 1/4 (fine)
 double normal_offset_in_voxels();     // start offset along the normal (1 voxel)
 int top_level(const Chain& c);        // coarsest level a cone samples: levels - 2
 
@@ -43,14 +44,21 @@ glm::dvec4 directional(const Chain& c, uint32_t level, const glm::dvec3& d, cons
 // levels above `top` (default: the chain's last) clamped to `top`.
 glm::dvec4 quadrilinear(const Chain& c, const glm::dvec3& d, const glm::dvec3& p, double level,
                         const glm::dvec3* apex = nullptr, int top = -1);
-// One cone from `origin` (its apex) along unit `dir`: (radiance, occlusion). skip_behind_apex
-// false: plain quadrilinear sampling (for comparisons only; the kernel always skips).
+// How a cone steps and samples (kernels/common/cone_trace.h, rp_cone_march).
+struct March {
+  bool fine = false;      // quarter-diameter steps (twice the steps) instead of half
+  double jitter = -1.0;   // < 0: quadrilinear samples; in [0, 1): one level, floor(L + jitter)
+  bool skip_behind_apex = true;  // false: plain sampling (comparisons only; the kernel skips)
+};
+// One cone from `origin` (its apex) along unit `dir`: (radiance, occlusion).
 glm::dvec4 trace(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
-                 bool skip_behind_apex = true);
-// The six diffuse cones at surface point p with unit normal n: irradiance / pi.
+                 const March& march = {});
+// The 16 diffuse cones (quarter-diameter steps, quadrilinear) at surface point p with unit
+// normal n: their mean radiance = irradiance / pi.
 glm::dvec3 diffuse(const Chain& c, const glm::dvec3& p, const glm::dvec3& n,
                    bool skip_behind_apex = true);
-// The directions and normalised weights of the diffuse cone set for normal n.
-void diffuse_cones(const glm::dvec3& n, glm::dvec3 dirs[6], double weights[6]);
+// The 16 directions of the diffuse cone set for normal n (equal weights 1/16), in the order of
+// the kernel's table.
+void diffuse_cones(const glm::dvec3& n, glm::dvec3 dirs[16]);
 
 }  // namespace rp::test::cone

@@ -1,0 +1,210 @@
+/* Indirect light at reduced resolution (the fast quality mode, issue 9): one cone per 4x4 pixel
+ * block per frame, a geometry-aware spatial filter over the 16 interleaved cone directions, and
+ * temporal accumulation. The light pass upsamples the result (light.cl, light_compose).
+ * Grid, sample pixel, cone and jitter choice, geometry weight, padded planar layout:
+ * common/indirect.h.
+ *
+ * Low-resolution planes (padded, `plane` floats apart, row stride `stride`):
+ *   radiance  3 planes: r, g, b radiance of this frame's one cone (rp_cone_trace_jittered)
+ *   position  4 planes: the sample's world position x, y, z and its view depth (0 background)
+ *   geom      4 planes: the sample's unit normal x, y, z and its plane offset dot(n, p);
+ *             all 0 on background and padding (every geometry weight is then 0)
+ *   history   4 planes: accumulated irradiance / pi r, g, b and its age in frames (0: none)
+ * geom and history are double-buffered by the host: this frame's and the previous frame's.
+ *
+ * indirect_trace (one work-item per sample): GBuffer at the sample pixel, one cone (a loop with
+ * early exit: scalar code).
+ * indirect_filter (8 samples of a row per work-item, float8 code, common/indirect_simd.h):
+ *   spatial: weighted mean of the cone radiances over the 5x5 samples around it, tap weights
+ *     (0.5, 1, 1, 1, 0.5) per axis (symmetric, and every residue mod 4 - every cone of the set -
+ *     gets the same total weight 1) times the tap's geometry weight for the centre sample (0 off
+ *     the grid): the 16-cone estimate S of irradiance / pi;
+ *   temporal: the sample's world position reprojected with prev_view_proj_unjittered into the
+ *     previous frame's pixel grid, whose samples sat at 4 i + O(f - 1) + 0.5; the 2x2 previous
+ *     samples around it, bilinear weights times their geometry weights for this sample, give the
+ *     history H and its age a (weighted means). Total weight < RP_INDIRECT_MIN_HISTORY (moved,
+ *     disoccluded, off screen) or history_valid = 0 (reset, camera cut, resize): no history,
+ *     a = 0. out = H + alpha (S - H), alpha = max(1 / (a + 1), alpha_min), age min(a + 1, 255):
+ *     a plain running mean for the first frames after a reset, then an exponential one.
+ * No atomics, no local memory: bit-identical runs.
+ */
+#include "shared/types.h"
+#include "common/math.h"
+#include "common/random.h"
+#include "common/cone_trace.h"
+#include "common/indirect.h"
+#include "common/indirect_simd.h"
+
+/* Smallest total reprojection weight that counts as history. */
+#ifndef RP_INDIRECT_MIN_HISTORY
+#define RP_INDIRECT_MIN_HISTORY 0.05f
+#endif
+
+__kernel void indirect_trace(__global const FrameConstants* frame,
+                             __global const float4* normal_depth_plane,
+                             __global const float4* position_plane,
+                             __global const float4* voxels,
+                             const uint voxel_resolution,
+                             const uint voxel_levels,
+                             const uint lr_width,
+                             const uint lr_height,
+                             const uint stride,
+                             const uint plane,
+                             __global float* radiance,
+                             __global float* position,
+                             __global float* geom) {
+  const uint i = (uint)get_global_id(0), j = (uint)get_global_id(1);
+  if (i >= lr_width || j >= lr_height) return;
+  const uint s = (uint)rp_indirect_index((int)i, (int)j, (int)stride);
+  const uint f = frame->frame_index;
+  const uint cell = rp_indirect_sample_cell(f);
+  const uint x = min(i * RP_INDIRECT_SCALE + (cell & 3u), frame->width - 1u);
+  const uint y = min(j * RP_INDIRECT_SCALE + (cell >> 2), frame->height - 1u);
+  const uint pixel = y * frame->width + x;
+  const float4 pos = position_plane[pixel];
+  float3 c = (float3)(0.0f), n = (float3)(0.0f), p = (float3)(0.0f);
+  float d = 0.0f, depth = 0.0f;
+  if (pos.w != 0.0f) {
+    p = pos.xyz;
+    const float4 nd = normal_depth_plane[pixel];
+    n = nd.xyz;
+    depth = nd.w;
+    float3 t, b;
+    rp_cone_basis(n, &t, &b);
+    const float3 dir = rp_cone_set16_dir(n, t, b, rp_indirect_cone_index(i, j, f));
+    c = rp_cone_trace_jittered(voxels, voxel_resolution, voxel_levels,
+                               rp_cone_apex(p, n, voxel_resolution), dir,
+                               rp_indirect_level_jitter(i, j, f)).xyz;
+    d = dot(n, p);
+  }
+  radiance[s] = c.x;
+  radiance[plane + s] = c.y;
+  radiance[2u * plane + s] = c.z;
+  position[s] = p.x;
+  position[plane + s] = p.y;
+  position[2u * plane + s] = p.z;
+  position[3u * plane + s] = depth;
+  geom[s] = n.x;
+  geom[plane + s] = n.y;
+  geom[2u * plane + s] = n.z;
+  geom[3u * plane + s] = d;
+}
+
+/* Lane-wise gather: v[idx.sk] for every lane k. */
+inline float8 indirect_gather8(__global const float* v, int8 idx) {
+  return (float8)(v[idx.s0], v[idx.s1], v[idx.s2], v[idx.s3], v[idx.s4], v[idx.s5], v[idx.s6],
+                  v[idx.s7]);
+}
+
+/* Stores lanes 0 .. n-1 of v at p[0 .. n-1]. */
+inline void indirect_store8(__global float* p, uint n, float8 v) {
+  if (n == 8u) {
+    vstore8(v, 0, p);
+    return;
+  }
+  for (uint k = 0; k < n; ++k) p[k] = rp_lane8(v, k);
+}
+
+/* pixel_scale: world size of one full-resolution pixel per unit of view depth. Global size:
+ * (ceil(lr_width / 8), lr_height) rounded up to the work-group. */
+__kernel void indirect_filter(__global const FrameConstants* restrict frame,
+                              __global const float* restrict radiance,
+                              __global const float* restrict position,
+                              __global const float* restrict geom,
+                              __global const float* restrict prev_geom,
+                              __global const float* restrict prev_history,
+                              __global float* restrict history,
+                              const uint lr_width,
+                              const uint lr_height,
+                              const uint stride,
+                              const uint plane,
+                              const float pixel_scale,
+                              const uint history_valid,
+                              const float alpha_min) {
+  const uint i0 = 8u * (uint)get_global_id(0), j = (uint)get_global_id(1);
+  if (i0 >= lr_width || j >= lr_height) return;
+  const uint lanes = min(8u, lr_width - i0);
+  const int st = (int)stride, pl = (int)plane;
+  const int c = rp_indirect_index((int)i0, (int)j, st);
+
+  const float8 px = vload8(0, position + c), py = vload8(0, position + pl + c);
+  const float8 pz = vload8(0, position + 2 * pl + c), depth = vload8(0, position + 3 * pl + c);
+  const float8 nx = vload8(0, geom + c), ny = vload8(0, geom + pl + c);
+  const float8 nz = vload8(0, geom + 2 * pl + c);
+  const int8 valid = nx * nx + ny * ny + nz * nz > 0.5f;
+  const float8 inv_sigma = rp_indirect_inv_sigma8(depth, pixel_scale);
+
+  /* Spatial: 5x5 taps, per-axis weights (0.5, 1, 1, 1, 0.5); padding weighs 0. */
+  float8 sr = 0.0f, sg = 0.0f, sb = 0.0f, wsum = 0.0f;
+  for (int dy = -2; dy <= 2; ++dy) {
+    const float wy = (dy == -2 || dy == 2) ? 0.5f : 1.0f;
+    for (int dx = -2; dx <= 2; ++dx) {
+      const float wxy = wy * ((dx == -2 || dx == 2) ? 0.5f : 1.0f);
+      const int t = c + dy * st + dx;
+      const float8 w =
+          wxy * rp_indirect_geometry_weight8(nx, ny, nz, px, py, pz, vload8(0, geom + t),
+                                             vload8(0, geom + pl + t),
+                                             vload8(0, geom + 2 * pl + t),
+                                             vload8(0, geom + 3 * pl + t), inv_sigma);
+      sr += w * vload8(0, radiance + t);
+      sg += w * vload8(0, radiance + pl + t);
+      sb += w * vload8(0, radiance + 2 * pl + t);
+      wsum += w;
+    }
+  }
+  const float8 inv_w = 1.0f / fmax(wsum, 1.0e-6f);
+  sr *= inv_w;
+  sg *= inv_w;
+  sb *= inv_w;
+
+  /* Temporal: the previous frame's samples around the reprojected positions. */
+  const rp_mat4 m = frame->prev_view_proj_unjittered;
+  const float8 cx = m.c[0].x * px + m.c[1].x * py + m.c[2].x * pz + m.c[3].x;
+  const float8 cy = m.c[0].y * px + m.c[1].y * py + m.c[2].y * pz + m.c[3].y;
+  const float8 cw = m.c[0].w * px + m.c[1].w * py + m.c[2].w * pz + m.c[3].w;
+  const int8 in_front = cw > 0.0f;
+  const float8 iw = 1.0f / select((float8)(1.0f), cw, in_front);
+  const float w_px = (float)frame->width, h_px = (float)frame->height;
+  const float8 sx = (cx * iw * 0.5f + 0.5f) * w_px; /* previous pixel coordinates */
+  const float8 sy = (0.5f - cy * iw * 0.5f) * h_px;
+  const uint pcell = rp_indirect_sample_cell(frame->frame_index - 1u);
+  const float8 ux = (sx - (float)(pcell & 3u) - 0.5f) * (1.0f / RP_INDIRECT_SCALE);
+  const float8 uy = (sy - (float)(pcell >> 2) - 0.5f) * (1.0f / RP_INDIRECT_SCALE);
+  /* Clamped into the padding (weight 0) before the int conversion: far-off positions find no
+   * history. */
+  const float8 ux0 = floor(clamp(ux, -2.0f, (float)lr_width));
+  const float8 uy0 = floor(clamp(uy, -2.0f, (float)lr_height));
+  const float8 fx = clamp(ux - ux0, 0.0f, 1.0f), fy = clamp(uy - uy0, 0.0f, 1.0f);
+  const int8 t00 = (convert_int8(uy0) + RP_INDIRECT_PAD) * st + convert_int8(ux0) + RP_INDIRECT_PAD;
+  float8 hr = 0.0f, hg = 0.0f, hb = 0.0f, ha = 0.0f, hw = 0.0f;
+  for (int b = 0; b < 2; ++b) {
+    for (int a = 0; a < 2; ++a) {
+      const int8 t = t00 + (b * st + a);
+      const float8 w = (a ? fx : 1.0f - fx) * (b ? fy : 1.0f - fy) *
+                       rp_indirect_geometry_weight8(
+                           nx, ny, nz, px, py, pz, indirect_gather8(prev_geom, t),
+                           indirect_gather8(prev_geom + pl, t),
+                           indirect_gather8(prev_geom + 2 * pl, t),
+                           indirect_gather8(prev_geom + 3 * pl, t), inv_sigma);
+      hr += w * indirect_gather8(prev_history, t);
+      hg += w * indirect_gather8(prev_history + pl, t);
+      hb += w * indirect_gather8(prev_history + 2 * pl, t);
+      ha += w * indirect_gather8(prev_history + 3 * pl, t);
+      hw += w;
+    }
+  }
+  const int8 has = (history_valid != 0u ? (int8)(-1) : (int8)(0)) & in_front &
+                   (hw >= RP_INDIRECT_MIN_HISTORY);
+  /* selects, not products with 0: rejected history may hold anything */
+  const float8 inv_h = select((float8)(0.0f), 1.0f / fmax(hw, 1.0e-6f), has);
+  const float8 h0 = select((float8)(0.0f), hr * inv_h, has);
+  const float8 h1 = select((float8)(0.0f), hg * inv_h, has);
+  const float8 h2 = select((float8)(0.0f), hb * inv_h, has);
+  const float8 age = select((float8)(0.0f), ha * inv_h, has);
+  const float8 alpha = fmax(1.0f / (age + 1.0f), alpha_min);
+  const float8 zero = 0.0f;
+  indirect_store8(history + c, lanes, select(zero, h0 + alpha * (sr - h0), valid));
+  indirect_store8(history + pl + c, lanes, select(zero, h1 + alpha * (sg - h1), valid));
+  indirect_store8(history + 2 * pl + c, lanes, select(zero, h2 + alpha * (sb - h2), valid));
+  indirect_store8(history + 3 * pl + c, lanes, select(zero, fmin(age + 1.0f, 255.0f), valid));
+}

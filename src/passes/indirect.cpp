@@ -1,0 +1,126 @@
+#include "passes/indirect.h"
+
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "cl/error.h"
+#include "passes/light.h"
+
+namespace rp::passes {
+namespace {
+
+constexpr size_t kGroup = 8;  // 8x8 work-groups over the low-resolution grid
+
+glm::mat4 to_glm(const gpu::rp_mat4& m) {
+  glm::mat4 out;
+  for (int c = 0; c < 4; ++c) out[c] = glm::vec4(m.c[c].x, m.c[c].y, m.c[c].z, m.c[c].w);
+  return out;  // both column-major
+}
+
+}  // namespace
+
+float pixel_scale(const render::GpuScene& scene) {
+  const glm::mat4 projection =
+      to_glm(scene.constants.view_proj_unjittered) * glm::inverse(to_glm(scene.constants.view));
+  const float p11 = projection[1][1];
+  const uint32_t height = scene.constants.height;
+  if (height == 0 || !(p11 > 0.0f)) return 0.0f;
+  return 2.0f / (float(height) * p11);
+}
+
+IndirectPass::IndirectPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
+    : context_(&context),
+      trace_(programs.kernel("indirect.cl", "indirect_trace")),
+      filter_(programs.kernel("indirect.cl", "indirect_filter")) {}
+
+void IndirectPass::resize(uint32_t width, uint32_t height) {
+  const size_t plane = size_t(plane_size(low_res(width), low_res(height))) * sizeof(float);
+  radiance_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
+  const size_t bytes = 4 * plane;
+  position_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
+  for (int k = 0; k < 2; ++k) {
+    geometry_[k] = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
+    history_[k] = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
+  }
+  // Defined contents from the start (the filter ignores the previous frame's planes until
+  // history_valid_, but they are read).
+  // The padding must stay zero (kernels/common/indirect.h); the kernels write only samples.
+  for (::cl::Buffer* b :
+       {&radiance_, &position_, &geometry_[0], &geometry_[1], &history_[0], &history_[1]})
+    context_->queue.enqueueFillBuffer(*b, 0.0f, 0, b->getInfo<CL_MEM_SIZE>());
+  width_ = width;
+  height_ = height;
+  history_valid_ = false;
+}
+
+LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                                 const render::GBuffer& gbuffer, const ::cl::Buffer& voxels,
+                                 uint32_t voxel_resolution, uint32_t voxel_levels) {
+  const uint32_t w = scene.constants.width, h = scene.constants.height;
+  if (gbuffer.width != w || gbuffer.height != h)
+    throw rp::cl::Error("indirect pass: frame size " + std::to_string(w) + "x" +
+                        std::to_string(h) + " does not match the GBuffer (" +
+                        std::to_string(gbuffer.width) + "x" + std::to_string(gbuffer.height) +
+                        ")");
+  check_voxel_chain("indirect pass", voxels, voxel_resolution, voxel_levels);
+  if (w == 0 || h == 0) return {};
+  if (w != width_ || h != height_) resize(w, h);
+  const uint32_t lw = low_res(w), lh = low_res(h);
+  const uint32_t stride = plane_stride(lw), plane = plane_size(lw, lh);
+  const float scale = pixel_scale(scene);
+  const int cur = current_, prev = current_ ^ 1;
+  const ::cl::NDRange local(kGroup, kGroup);
+
+  cl_uint arg = 0;
+  trace_.setArg(arg++, scene.frame);
+  trace_.setArg(arg++, gbuffer.normal_depth);
+  trace_.setArg(arg++, gbuffer.position);
+  trace_.setArg(arg++, voxels);
+  trace_.setArg(arg++, cl_uint(voxel_resolution));
+  trace_.setArg(arg++, cl_uint(voxel_levels));
+  trace_.setArg(arg++, cl_uint(lw));
+  trace_.setArg(arg++, cl_uint(lh));
+  trace_.setArg(arg++, cl_uint(stride));
+  trace_.setArg(arg++, cl_uint(plane));
+  trace_.setArg(arg++, radiance_);
+  trace_.setArg(arg++, position_);
+  trace_.setArg(arg++, geometry_[cur]);
+  profiler.enqueue("indirect_trace", trace_,
+                   ::cl::NDRange(rp::cl::round_up(lw, kGroup), rp::cl::round_up(lh, kGroup)),
+                   local);
+
+  // 8 samples of a row per work-item (kernels/common/indirect_simd.h).
+  arg = 0;
+  filter_.setArg(arg++, scene.frame);
+  filter_.setArg(arg++, radiance_);
+  filter_.setArg(arg++, position_);
+  filter_.setArg(arg++, geometry_[cur]);
+  filter_.setArg(arg++, geometry_[prev]);
+  filter_.setArg(arg++, history_[prev]);
+  filter_.setArg(arg++, history_[cur]);
+  filter_.setArg(arg++, cl_uint(lw));
+  filter_.setArg(arg++, cl_uint(lh));
+  filter_.setArg(arg++, cl_uint(stride));
+  filter_.setArg(arg++, cl_uint(plane));
+  filter_.setArg(arg++, scale);
+  filter_.setArg(arg++, cl_uint(history_valid_ ? 1 : 0));
+  filter_.setArg(arg++, kAlphaMin);
+  profiler.enqueue("indirect_filter", filter_,
+                   ::cl::NDRange(rp::cl::round_up((lw + 7) / 8, kGroup), rp::cl::round_up(lh, kGroup)),
+                   local);
+
+  history_valid_ = true;
+  current_ = prev;  // this frame's planes become the previous ones
+  LowResIndirect out;
+  out.width = lw;
+  out.height = lh;
+  out.stride = stride;
+  out.plane = plane;
+  out.irradiance = &history_[cur];
+  out.geometry = &geometry_[cur];
+  out.pixel_scale = scale;
+  return out;
+}
+
+}  // namespace rp::passes

@@ -1,0 +1,78 @@
+// Indirect light at reduced resolution (the fast quality mode, issue 9; kernels/indirect.cl):
+// one cone of the 16-cone set per 4x4 pixel block per frame (directions interleaved over the
+// blocks, rotated per frame), a geometry-aware spatial filter, and temporal accumulation. The
+// light pass upsamples the result (LightPass::run with a LowResIndirect). Pass names
+// "indirect_trace" and "indirect_filter".
+#pragma once
+
+#include <cstdint>
+
+#include "cl/profiler.h"
+#include "cl/program_cache.h"
+#include "render/frame_buffers.h"
+#include "render/gpu_scene.h"
+
+namespace rp::passes {
+
+// What the light pass upsamples: the accumulated irradiance / pi per low-resolution sample and
+// the samples' geometry, planar float planes of width x height samples, padded (row stride
+// `stride`, planes `plane` floats apart; kernels/common/indirect.h), and the world size of one
+// full-resolution pixel per unit of view depth.
+struct LowResIndirect {
+  uint32_t width = 0, height = 0;
+  uint32_t stride = 0, plane = 0;
+  const ::cl::Buffer* irradiance = nullptr;  // 4 planes: irradiance / pi r, g, b; age in frames
+  const ::cl::Buffer* geometry = nullptr;    // 4 planes: unit normal x, y, z; dot(normal, position)
+  float pixel_scale = 0.0f;
+};
+
+class IndirectPass {
+ public:
+  static constexpr uint32_t kScale = 4;  // full-resolution pixels per sample, per side
+  // Weight of this frame's spatial estimate once a sample has history (after the first
+  // 1 / kAlphaMin frames, which are averaged evenly).
+  static constexpr float kAlphaMin = 0.15f;
+
+  IndirectPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+
+  // Traces, filters and accumulates this frame's indirect light; the result stays valid until
+  // the next run. voxels: the radiance chain (kernels/shared/voxel_layout.h), checked by the
+  // light pass's rules. Reallocates its planes (and drops the history) when the frame size
+  // changes.
+  LowResIndirect run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                     const render::GBuffer& gbuffer, const ::cl::Buffer& voxels,
+                     uint32_t voxel_resolution, uint32_t voxel_levels);
+
+  // The next run starts a fresh history (world reset, camera cut).
+  void reset_history() { history_valid_ = false; }
+
+  // Samples per side for a frame of `pixels` pixels: ceil(pixels / kScale).
+  static uint32_t low_res(uint32_t pixels) { return (pixels + kScale - 1) / kScale; }
+  // Padded plane layout (kernels/common/indirect.h): two rows and columns of zeros around the
+  // samples, rows round_up(width, 8) + 8 floats apart.
+  static uint32_t plane_stride(uint32_t lr_width) { return (lr_width + 7) / 8 * 8 + 8; }
+  static uint32_t plane_size(uint32_t lr_width, uint32_t lr_height) {
+    return plane_stride(lr_width) * (lr_height + 4);
+  }
+
+ private:
+  void resize(uint32_t width, uint32_t height);
+
+  const rp::cl::Context* context_;
+  ::cl::Kernel trace_;
+  ::cl::Kernel filter_;
+  uint32_t width_ = 0, height_ = 0;  // full-resolution size the planes were made for
+  ::cl::Buffer radiance_;            // 3 planes: this frame's cone radiance r, g, b
+  ::cl::Buffer position_;            // 4 planes: this frame's sample positions and view depths
+  ::cl::Buffer geometry_[2];         // 4 planes each; [current_]: this frame's, the other: the
+                                     // previous frame's
+  ::cl::Buffer history_[2];          // 4 planes each, likewise
+  int current_ = 0;
+  bool history_valid_ = false;
+};
+
+// World size of one pixel per unit of view depth for a frame `height` pixels tall: 2 / (height *
+// P[1][1]), P = the projection part of view_proj (view_proj * inverse(view)).
+float pixel_scale(const render::GpuScene& scene);
+
+}  // namespace rp::passes
