@@ -1,8 +1,43 @@
 #include "cl/profiler.h"
 
+#include <stdexcept>
+
 #include "cl/error.h"
 
 namespace rp::cl {
+
+PassTimes::iterator PassTimes::find(std::string_view pass) {
+  iterator it = std::lower_bound(begin(), end(), pass,
+                                 [](const value_type& e, std::string_view p) { return e.first < p; });
+  return it != end() && it->first == pass ? it : end();
+}
+
+PassTimes::const_iterator PassTimes::find(std::string_view pass) const {
+  return const_cast<PassTimes*>(this)->find(pass);
+}
+
+double& PassTimes::operator[](std::string_view pass) {
+  iterator it = std::lower_bound(begin(), end(), pass,
+                                 [](const value_type& e, std::string_view p) { return e.first < p; });
+  if (it != end() && it->first == pass) return it->second;
+  if (size_ == kCapacity)
+    throw std::length_error("PassTimes: more than " + std::to_string(kCapacity) +
+                            " passes in one frame (adding '" + std::string(pass) + "')");
+  // Shift the tail one slot up (moves: the slot past the end is reused, its string storage too).
+  std::move_backward(it, end(), end() + 1);
+  ++size_;
+  it->first.assign(pass.data(), pass.size());
+  it->second = 0.0;
+  return it->second;
+}
+
+double& PassTimes::at(std::string_view pass) {
+  iterator it = find(pass);
+  if (it == end()) throw std::out_of_range("PassTimes: no pass '" + std::string(pass) + "'");
+  return it->second;
+}
+
+double PassTimes::at(std::string_view pass) const { return const_cast<PassTimes*>(this)->at(pass); }
 
 void Profiler::enqueue(const std::string& pass, const ::cl::Kernel& kernel,
                        const ::cl::NDRange& global, const ::cl::NDRange& local) {

@@ -2,8 +2,12 @@
 // so the app, the tests and the bench all read the same per-pass times.
 #pragma once
 
-#include <map>
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <initializer_list>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -14,8 +18,51 @@ namespace rp::cl {
 // Smallest multiple of `local` that is >= n (OpenCL 1.2 needs uniform work-groups).
 inline size_t round_up(size_t n, size_t local) { return (n + local - 1) / local * local; }
 
-// Milliseconds per pass name for one frame (sum over the pass's launches).
-using PassTimes = std::map<std::string, double>;
+// Milliseconds per pass name for one frame (sum over the pass's launches), in name order.
+// The part of std::map<std::string, double>'s interface the app and tests use, stored inline:
+// a frame's times cost no heap allocation (issue 8.6), as long as pass names stay within
+// std::string's short-string buffer (15 characters in libstdc++). At most kCapacity passes;
+// one more throws std::length_error.
+class PassTimes {
+ public:
+  using value_type = std::pair<std::string, double>;
+  using iterator = value_type*;
+  using const_iterator = const value_type*;
+  static constexpr size_t kCapacity = 32;
+
+  PassTimes() = default;
+  // Like std::map's: {{"light", 3.0}, {"taa", 1.0}}; a repeated name keeps its first value.
+  PassTimes(std::initializer_list<value_type> entries) {
+    for (const value_type& e : entries)
+      if (count(e.first) == 0) (*this)[e.first] = e.second;
+  }
+
+  // The pass's time, inserted as 0 when it is not there yet.
+  double& operator[](std::string_view pass);
+  // Throws std::out_of_range for a pass that is not there.
+  double& at(std::string_view pass);
+  double at(std::string_view pass) const;
+  size_t count(std::string_view pass) const { return find(pass) != end() ? 1 : 0; }
+  iterator find(std::string_view pass);
+  const_iterator find(std::string_view pass) const;
+
+  size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  // Forgets the passes; their name strings keep their storage for the next frame.
+  void clear() { size_ = 0; }
+  iterator begin() { return entries_.data(); }
+  iterator end() { return entries_.data() + size_; }
+  const_iterator begin() const { return entries_.data(); }
+  const_iterator end() const { return entries_.data() + size_; }
+
+  friend bool operator==(const PassTimes& a, const PassTimes& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end());
+  }
+
+ private:
+  std::array<value_type, kCapacity> entries_;
+  size_t size_ = 0;
+};
 
 class Profiler {
  public:
@@ -30,7 +77,8 @@ class Profiler {
   void record(const std::string& pass, const ::cl::Event& event);
 
   // Waits for everything recorded since the last call and returns the per-pass times (device
-  // execution time, CL_PROFILING_COMMAND_START..END). Clears the recorded events.
+  // execution time, CL_PROFILING_COMMAND_START..END). Clears the recorded events; the event
+  // list keeps its capacity, so steady-state frames allocate nothing here.
   PassTimes collect();
 
   ::cl::CommandQueue& queue() { return queue_; }
