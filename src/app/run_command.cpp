@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #include "app/bench_report.h"
 #include "app/commands.h"
@@ -78,7 +79,9 @@ scene::InputEvent to_input(const display::WindowEvent& e, glm::vec2 viewport) {
 }  // namespace
 
 int run_command(const CommonOptions& common, const RunOptions& options) {
-  SimulationFrameSource source(make_simulation_options(options.sim, common.effects));
+  SimulationOptions sim = make_simulation_options(options.sim, common.effects);
+  sim.record = !options.record.empty();
+  SimulationFrameSource source(std::move(sim));
   for (const std::string& file : {options.record, options.capture})
     if (std::filesystem::path dir = std::filesystem::path(file).parent_path();
         !file.empty() && !dir.empty())

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "app/commands.h"
+#include "scene/particles.h"
 #include "scene/picking.h"
 
 namespace rp::app {
@@ -40,6 +41,9 @@ SimulationFrameSource::SimulationFrameSource(SimulationOptions options)
                                 options_.fireball}),
       replayer_(options_.replay),
       toggles_(options_.toggles) {
+  // Room (box, lamp) + 5 tumblers; spheres: marbles, a fireball or a few, the particle budget.
+  frame_.instances.reserve(16);
+  frame_.spheres.reserve(scene::ParticleSystem::kMaxParticles + 64);
   replay_frames_ = static_cast<uint32_t>(
       std::count_if(options_.replay.begin(), options_.replay.end(), [](const auto& e) {
         return e.type == scene::InputEventType::Frame;
@@ -48,7 +52,7 @@ SimulationFrameSource::SimulationFrameSource(SimulationOptions options)
 
 void SimulationFrameSource::input(scene::InputEvent event) {
   event.step = session_step_;
-  recorder_.record(event);
+  if (options_.record) recorder_.record(event);
   apply(event);
 }
 
@@ -127,7 +131,7 @@ void SimulationFrameSource::advance(int steps) {
   session_step_ += static_cast<uint64_t>(steps);
 }
 
-scene::FrameScene SimulationFrameSource::next() {
+const scene::FrameScene& SimulationFrameSource::next_frame() {
   // Replayed events due now (stamped at or before the current session step) come first, as
   // live input does in the interactive loop.
   for (const scene::InputEvent& e : replayer_.due(session_step_))
@@ -147,18 +151,17 @@ scene::FrameScene SimulationFrameSource::next() {
   } else {
     advance(steps_for_this_frame());
   }
-  recorder_.record(scene::InputEvent::frame(session_step_));
+  if (options_.record) recorder_.record(scene::InputEvent::frame(session_step_));
 
-  scene::FrameScene frame;
-  world_.fill_frame(frame);
-  frame.frame_index = frames_++;
-  return frame;
+  world_.fill_frame(frame_);  // clears and refills; the vectors keep their capacity
+  frame_.frame_index = frames_++;
+  return frame_;
 }
 
 rp::cl::PassTimes render_next_frame(RenderSession& session, SimulationFrameSource& source,
                                     const render::Effects& base, std::vector<uint8_t>& rgba,
                                     double& frame_ms) {
-  scene::FrameScene frame = source.next();
+  const scene::FrameScene& frame = source.next_frame();
   session.set_effects(effects_with(base, source.toggles()));
   if (source.take_reset()) session.reset_history();
   return session.render(frame, rgba, frame_ms);

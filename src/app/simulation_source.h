@@ -39,6 +39,9 @@ struct SimulationOptions {
   double frame_seconds = 1.0 / 60.0;  // headless frame interval (without Frame marks)
   std::vector<scene::InputEvent> replay;  // events to replay (may hold Frame marks)
   ViewToggles toggles;                    // render toggles at the start
+  // Keep every input event and frame mark in recording() (`run --record`). Off, a headless
+  // render or bench keeps no per-frame log that grows with the frame count.
+  bool record = false;
 };
 
 // From the command line's options; reads the --replay log (throws scene::InputLogError naming
@@ -61,11 +64,18 @@ class SimulationFrameSource final : public FrameSource {
   // takes options.frame_seconds (headless).
   void set_elapsed_seconds(double seconds);
 
-  scene::FrameScene next() override;
+  // The next frame's scene, filled into a member whose vectors keep their capacity: after the
+  // first frames no frame allocates (the capacity is reserved for the particle budget, the
+  // marbles and a few fireballs). Valid until the next call.
+  const scene::FrameScene& next_frame();
+  // FrameSource: a copy of next_frame().
+  scene::FrameScene next() override { return next_frame(); }
   uint32_t frames_produced() const override { return frames_; }
 
   // Frames the replay log asks for (its Frame marks; 0 when it has none).
   uint32_t replay_frames() const { return replay_frames_; }
+  // Every input event and frame mark so far, stamped with its session step (empty unless
+  // options.record).
   const scene::InputRecorder& recording() const { return recorder_; }
   const scene::World& world() const { return world_; }
   const ViewToggles& toggles() const { return toggles_; }
@@ -83,6 +93,7 @@ class SimulationFrameSource final : public FrameSource {
   scene::World world_;
   scene::InputReplayer replayer_;
   scene::InputRecorder recorder_;
+  scene::FrameScene frame_;  // next_frame()'s result, reused
   ViewToggles toggles_;
   uint32_t replay_frames_ = 0;
   uint32_t frames_ = 0;
