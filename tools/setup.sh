@@ -15,13 +15,14 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 # Build tools, OpenCL (PoCL CPU driver, headers, ICD loader, oclgrind for the kernel checks),
-# libraries, and a virtual X server with software OpenGL for the window test.
+# libraries, a virtual X server with software OpenGL for the window tests, and xdotool to close
+# a window from outside (the window-closed-mid-run test).
 PACKAGES=(
   cmake make g++ pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers clinfo oclgrind
   libglm-dev libglfw3-dev libgl-dev libstb-dev libembree-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev
-  xvfb xauth libgl1-mesa-dri
+  xvfb xauth libgl1-mesa-dri xdotool
   clang libclang-rt-14-dev
 )
 
@@ -88,11 +89,11 @@ case "$mode" in
     # oclgrind is skipped (a simulator under ASan is slow and adds nothing: the kernels are
     # checked by the oclgrind label), so is the long soak. Leaks inside the OpenCL ICD loader
     # and PoCL (third-party, freed at exit or never) are suppressed by tests/lsan.supp.
-    # The two window tests under Xvfb run without leak checking: the GL driver that GLFW
+    # The window tests under Xvfb run without leak checking: the GL driver that GLFW
     # dlopen()s leaks 240 bytes that LSan can only attribute to "<unknown module>".
     export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
     export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-    window_tests='WindowUnderXvfb|RecordedWindowSession'
+    window_tests='WindowUnderXvfb|RecordedWindowSession|WindowClose'
     ASAN_OPTIONS="detect_leaks=1" \
       ctest --test-dir build-asan --output-on-failure -j2 -LE 'oclgrind|soak' -E "$window_tests"
     ASAN_OPTIONS="detect_leaks=0" \
