@@ -1,7 +1,10 @@
 // parse_cli (app/cli.h): the options of every subcommand, CLI11's parse and the usage checks.
 // Nothing here opens a device, a file or the terminal, so fuzz/cli_fuzzer.cpp compiles this file
 // alone (with passes/debug_view.cpp for the view names) and fuzzes the real command line.
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <limits>
 #include <string>
@@ -85,6 +88,28 @@ CLI::Validator whole_number(uint64_t lo, uint64_t hi) {
       "INT in " + range);
 }
 
+// A decimal number in [lo, hi] ("0.25", "1", "5e-1"). CLI11's float conversion also takes "nan",
+// "inf" and hex floats, and its Range check lets NaN through (every comparison with NaN is
+// false), so --bloom-strength nan used to be accepted.
+CLI::Validator decimal_in(double lo, double hi) {
+  char range[64];
+  std::snprintf(range, sizeof range, "%g to %g", lo, hi);
+  return CLI::Validator(
+      [lo, hi, text_range = std::string(range)](std::string& text) -> std::string {
+        bool ok = !text.empty() && text.size() < 64 &&
+                  text.find_first_not_of("0123456789+-.eE") == std::string::npos;
+        double value = 0.0;
+        if (ok) {
+          char* end = nullptr;
+          value = std::strtod(text.c_str(), &end);
+          ok = end == text.c_str() + text.size() && std::isfinite(value) && value >= lo &&
+               value <= hi;
+        }
+        return ok ? "" : "'" + text + "' is not a number from " + text_range;
+      },
+      "NUMBER in " + std::string(range));
+}
+
 // --size sets both sides; --width / --height override one of them.
 struct SizeArgs {
   uint32_t size = 720;
@@ -136,7 +161,7 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option = true) 
   cmd->add_option("--bloom-strength", common.effects.bloom_strength,
                   "bloom mix factor f: colour * (1 - f) + bloom * f")
       ->capture_default_str()
-      ->check(CLI::Range(0.0f, 1.0f));
+      ->check(decimal_in(0.0, 1.0));
 }
 
 void add_size(CLI::App* cmd, SizeArgs& size) {

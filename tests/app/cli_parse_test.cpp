@@ -1,0 +1,128 @@
+// app::parse_cli in process: what a command line resolves to, and which lines are usage errors
+// (exit code 2) or help (exit code 0), without running anything. The built binary's messages
+// are checked end to end in cli_errors_test.cpp and bad_input_test.cpp.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "app/cli.h"
+
+namespace rp::app {
+namespace {
+
+CliParse parse(std::vector<std::string> words) {
+  std::vector<const char*> argv = {"rolypoly"};
+  for (const std::string& w : words) argv.push_back(w.c_str());
+  argv.push_back(nullptr);
+  return parse_cli(int(argv.size() - 1), argv.data());
+}
+
+ParsedCommand command(const std::vector<std::string>& words) {
+  CliParse r = parse(words);
+  if (const CliExit* e = std::get_if<CliExit>(&r)) {
+    ADD_FAILURE() << "expected a command, got exit " << e->exit_code << ": " << e->message;
+    return {};
+  }
+  return std::get<ParsedCommand>(r);
+}
+
+CliExit exit_of(const std::vector<std::string>& words) {
+  CliParse r = parse(words);
+  if (!std::holds_alternative<CliExit>(r)) {
+    ADD_FAILURE() << "expected a usage error or help, got a command";
+    return {};
+  }
+  return std::get<CliExit>(r);
+}
+
+TEST(ParseCli, RenderOptionsResolve) {
+  ParsedCommand p = command({"render", "--size", "256", "--height", "100", "--frames", "20",
+                             "--marbles", "--seed", "9", "--no-taa", "--voxels", "32", "--view",
+                             "voxels", "--level", "2", "--dir", "-y", "--out", "d"});
+  EXPECT_EQ(p.kind, ParsedCommand::Kind::kRender);
+  EXPECT_EQ(p.render.size.width, 256u);
+  EXPECT_EQ(p.render.size.height, 100u);
+  EXPECT_EQ(p.render.frames, 20u);
+  EXPECT_TRUE(p.render.frames_given);
+  EXPECT_TRUE(p.render.sim.marbles);
+  EXPECT_EQ(p.render.sim.seed, 9u);
+  EXPECT_EQ(p.render.out_dir, "d");
+  EXPECT_FALSE(p.common.effects.taa);
+  EXPECT_TRUE(p.common.effects.bloom);
+  EXPECT_EQ(p.common.voxels, 32u);
+  EXPECT_EQ(p.common.view.view, passes::DebugView::kVoxels);
+  EXPECT_EQ(p.common.view.level, 2u);
+  EXPECT_EQ(p.common.view.dir, 3u);  // -y
+  EXPECT_FALSE(command({"render"}).render.frames_given);
+}
+
+TEST(ParseCli, IntegersAreDecimalOnly) {
+  // CLI11 converts integers with base 0: "0720" would be octal 464, "0x10" sixteen.
+  EXPECT_EQ(command({"render", "--size", "0720"}).render.size.width, 720u);
+  EXPECT_EQ(command({"run", "--frames", "010"}).run.frames, 10u);
+  EXPECT_EQ(exit_of({"render", "--frames", "0x3"}).exit_code, 2);
+  EXPECT_EQ(exit_of({"render", "--seed", "-1"}).exit_code, 2);
+  EXPECT_EQ(command({"render", "--seed", "18446744073709551615"}).render.sim.seed,
+            18446744073709551615u);
+  EXPECT_EQ(exit_of({"render", "--seed", "18446744073709551616"}).exit_code, 2);
+  const CliExit size = exit_of({"render", "--size", "0"});
+  EXPECT_EQ(size.exit_code, 2);
+  EXPECT_NE(size.message.find("give 1 to 16384 pixels"), std::string::npos) << size.message;
+  EXPECT_EQ(exit_of({"bench", "--sizes", "16,0x20"}).exit_code, 2);
+  EXPECT_EQ(command({"bench", "--sizes", "16,032"}).bench.sizes, (std::vector<uint32_t>{16, 32}));
+}
+
+TEST(ParseCli, BloomStrengthIsAFiniteFraction) {
+  EXPECT_FLOAT_EQ(command({"render", "--bloom-strength", "0.25"}).common.effects.bloom_strength,
+                  0.25f);
+  EXPECT_FLOAT_EQ(command({"render", "--bloom-strength", "1"}).common.effects.bloom_strength,
+                  1.0f);
+  for (const char* bad : {"nan", "NaN", "inf", "-0.5", "1.5", "0x1p-1", "0.5x", ""}) {
+    const CliExit e = exit_of({"render", "--bloom-strength", bad});
+    EXPECT_EQ(e.exit_code, 2) << bad;
+    EXPECT_NE(e.message.find("--bloom-strength"), std::string::npos) << e.message;
+  }
+}
+
+TEST(ParseCli, UsageErrorsAndHelp) {
+  const CliExit unknown = exit_of({"paint"});
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_EQ(unknown.message.rfind("rolypoly: unknown subcommand 'paint'", 0), 0u)
+      << unknown.message;
+  const CliExit level = exit_of({"run", "--view", "albedo", "--level", "1"});
+  EXPECT_EQ(level.exit_code, 2);
+  EXPECT_NE(level.message.find("--level and --dir choose the volume of --view voxels"),
+            std::string::npos);
+  EXPECT_EQ(exit_of({"render", "--view", "colour"}).exit_code, 2);
+  EXPECT_EQ(exit_of({}).exit_code, 2);
+  EXPECT_EQ(exit_of({"bench", "--devices", "all", "--device", "0"}).exit_code, 2);
+  EXPECT_EQ(exit_of({"bench", "--sizes", "16", "--size", "32"}).exit_code, 2);
+  EXPECT_EQ(exit_of({"bench", "--compare-visibility", "--voxels", "32,64"}).exit_code, 2);
+  for (const CliExit& e : {unknown, level})
+    EXPECT_NE(e.message.find("Run with --help for more information.\n"), std::string::npos);
+
+  const CliExit help = exit_of({"render", "--help"});
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.message.find("rolypoly render"), std::string::npos) << help.message;
+  EXPECT_NE(help.message.find("--bloom-strength"), std::string::npos);
+}
+
+TEST(ParseCli, BenchKeepsItsCommandLineAndTheSameArgvParsesTheSameTwice) {
+  const std::vector<std::string> words = {"bench", "--devices", "all", "--sizes", "256,512",
+                                          "--voxels", "32,64", "--scene", "busy"};
+  ParsedCommand a = command(words), b = command(words);
+  EXPECT_EQ(a.kind, ParsedCommand::Kind::kBench);
+  EXPECT_EQ(a.bench.command_line, "rolypoly bench --devices all --sizes 256,512 --voxels 32,64 "
+                                  "--scene busy");
+  EXPECT_EQ(a.bench.sizes, (std::vector<uint32_t>{256, 512}));
+  EXPECT_EQ(a.bench.voxels, (std::vector<uint32_t>{32, 64}));
+  EXPECT_EQ(a.bench.scene, "busy");
+  EXPECT_EQ(a.bench.command_line, b.bench.command_line);
+  EXPECT_EQ(a.bench.sizes, b.bench.sizes);
+  EXPECT_EQ(command({"devices"}).kind, ParsedCommand::Kind::kDevices);
+}
+
+}  // namespace
+}  // namespace rp::app
