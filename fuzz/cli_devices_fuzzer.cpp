@@ -1,7 +1,6 @@
-// libFuzzer target: the command line's `bench --devices LIST` value (app::select_devices), the
-// one CLI parsing step that is reachable without opening OpenCL devices or rendering. The rest
-// of the command line (CLI11 option building + parse + checks in app::run_cli) has no seam that
-// parses without executing; fuzz/README.md describes the refactor that would give it one.
+// libFuzzer target: the command line's `bench --devices LIST` value (app::select_devices), which
+// parse_cli only stores: the list is matched against the OpenCL devices when the bench runs.
+// The rest of the command line is fuzzed by fuzz_cli (cli_fuzzer.cpp).
 //
 // The input is the LIST word (argv cannot hold NUL, so inputs with NUL are skipped). Findings:
 // crashes, sanitizer reports, an exception other than rp::cl::Error, an error message that does
