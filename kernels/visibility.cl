@@ -21,17 +21,15 @@
 #include "shared/types.h"
 #include "shared/raster_types.h"
 #include "common/raster.h"
+#include "common/span.h"
 
 #ifndef RP_DEPTH_ONLY
 #define RP_DEPTH_ONLY 0
 #endif
 
-/* Pixels per work-item along x in the raster kernel: 1 for GPUs; 8 or 16 on CPUs, where the
- * float8/float16 code maps onto SIMD registers. Results are bit-identical for every span. */
-#ifndef RP_SPAN
-#define RP_SPAN 1
-#endif
-
+/* Pixels per work-item along x in the raster kernel (RP_SPAN, common/span.h): 1 for GPUs; 8 or
+ * 16 on CPUs, where the float8/float16 code maps onto SIMD registers. Results are bit-identical
+ * for every span. */
 #define RP_TILE RP_RASTER_TILE
 #define RP_GROUP_W (RP_TILE / RP_SPAN)
 #define RP_GROUP_SIZE (RP_GROUP_W * RP_TILE)
@@ -42,70 +40,6 @@
 #define RP_BIN_HALF_EXTENT (0.5f * RP_TILE + 1.0f)
 #define RP_SCAN_GROUP 128
 #define RP_ITEM_GROUP 64
-
-#define RP_CAT_(a, b) a##b
-#define RP_CAT(a, b) RP_CAT_(a, b)
-#if RP_SPAN == 1
-typedef float rp_spanf;
-typedef int rp_spani;
-typedef uint rp_spanu;
-#define RP_LANES 0.0f
-#elif RP_SPAN == 4
-typedef float4 rp_spanf;
-typedef int4 rp_spani;
-typedef uint4 rp_spanu;
-#define RP_LANES ((float4)(0.0f, 1.0f, 2.0f, 3.0f))
-#elif RP_SPAN == 8
-typedef float8 rp_spanf;
-typedef int8 rp_spani;
-typedef uint8 rp_spanu;
-#define RP_LANES ((float8)(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f))
-#elif RP_SPAN == 16
-typedef float16 rp_spanf;
-typedef int16 rp_spani;
-typedef uint16 rp_spanu;
-#define RP_LANES \
-  ((float16)(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f, 8.0f, 9.0f, 10.0f, 11.0f, 12.0f, \
-             13.0f, 14.0f, 15.0f))
-#else
-#error "RP_SPAN must be 1, 4, 8 or 16"
-#endif
-
-/* Writes the first n (<= RP_SPAN) lanes of a span. */
-inline void rp_store_span_f(rp_spanf v, __global float* p, int n) {
-#if RP_SPAN == 1
-  (void)n;
-  p[0] = v;
-#else
-  if (n >= RP_SPAN) {
-    RP_CAT(vstore, RP_SPAN)(v, 0, p);
-  } else {
-    float lanes[RP_SPAN];
-    RP_CAT(vstore, RP_SPAN)(v, 0, lanes);
-    for (int i = 0; i < n; ++i) p[i] = lanes[i];
-  }
-#endif
-}
-
-/* Writes the first n lanes of two spans interleaved: p[2i] = a[i], p[2i + 1] = b[i] (the uint2 /
- * float2 planes of the visibility buffer). */
-#define RP_DEFINE_STORE_PAIRS(name, scalar, span_type)                                 \
-  inline void name(span_type a, span_type b, __global scalar* p, int n) {               \
-    scalar la[RP_SPAN], lb[RP_SPAN];                                                    \
-    RP_SPAN_TO_ARRAY(a, la);                                                            \
-    RP_SPAN_TO_ARRAY(b, lb);                                                            \
-    for (int i = 0; i < n; ++i) {                                                       \
-      p[2 * i] = la[i];                                                                 \
-      p[2 * i + 1] = lb[i];                                                             \
-    }                                                                                   \
-  }
-#if RP_SPAN == 1
-#define RP_SPAN_TO_ARRAY(v, arr) ((arr)[0] = (v))
-#else
-#define RP_SPAN_TO_ARRAY(v, arr) RP_CAT(vstore, RP_SPAN)((v), 0, (arr))
-#endif
-RP_DEFINE_STORE_PAIRS(rp_store_span_pairs_u, uint, rp_spanu)
-RP_DEFINE_STORE_PAIRS(rp_store_span_pairs_f, float, rp_spanf)
 
 /* Pixel bounds (x0, y0, x1, y1 inclusive) from bounds of the covered pixel positions, with a
  * one-pixel margin, clamped to the view; x0 > x1 when nothing is on screen. */

@@ -3,11 +3,19 @@
  * coordinates and contents common/voxel.h). Host side: src/passes/voxelize.cpp.
  *
  * Per frame, in order:
- *   voxelize_clear      zero the fixed-point sums and overflow bits (one work-item per voxel)
- *   voxelize_triangles  one work-item per instance triangle: every voxel it overlaps
+ *   voxelize_clear      zero the fixed-point sums, overflow bits and the large-triangle count
+ *                       (one work-item per voxel)
+ *   voxelize_triangles  one work-item per RP_SPAN consecutive instance triangles, one lane
+ *                       each (common/span.h: 16 on CPUs, 1 on GPUs): set-up, the small
+ *                       triangles' shading and voxels as vector arithmetic across the lanes;
+ *                       large triangles are appended to a list instead
+ *   voxelize_large      one work-item per listed large triangle, lanes = RP_SPAN neighbouring
+ *                       voxel columns of one row of its candidate rectangle
  *   voxelize_spheres    one work-item per sphere: every voxel it overlaps
  *   voxelize_resolve    sums -> level-0 float4 (one work-item per voxel)
- * The resolution R is a kernel argument (the host checks it against FrameConstants).
+ *   (voxelize_decode_texels runs once per texel buffer: RGBA8 sRGB -> linear float4 texels)
+ * The resolution R is a kernel argument (the host checks it against FrameConstants). Which
+ * lane or work-item handles which triangle or voxel changes nothing: the sums are integers.
  *
  * Triangles. The vertices are transformed to world space and then to grid units (voxel (i,j,k)
  * is the closed box [i,i+1]x[j,j+1]x[k,k+1]). Candidates come from the dominant axis
@@ -62,9 +70,11 @@
 #include "shared/types.h"
 #include "shared/voxel_layout.h"
 #include "common/math.h"
-#include "common/sampling.h"
+#include "common/colour.h"
 #include "common/direct_light.h"
 #include "common/voxel.h"
+#include "common/span.h"
+#include "common/span_texture.h"
 
 #if !defined(RP_VOXEL_FIXED_BITS) || !defined(RP_VOXEL_MAX_CONTRIB) || !defined(RP_VOXEL_SATURATED)
 #error "voxelize.cl needs -DRP_VOXEL_FIXED_BITS, -DRP_VOXEL_MAX_CONTRIB, -DRP_VOXEL_SATURATED"
@@ -82,84 +92,7 @@
 /* Margin (grid units) added to a column's plane range when picking candidates. */
 #define RP_VOXEL_CANDIDATE_MARGIN (1.0f / 1024.0f)
 
-/* ---- exact arithmetic helpers (fixed operation order, mirrored by the C++ reference) ---- */
-
-inline float3 vx_cross(float3 a, float3 b) {
-  return (float3)(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
-inline float vx_dot(float3 a, float3 b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
-
-/* ((c0 x + c1 y) + c2 z) + c3: object point -> world, xyz only. */
-inline float3 vx_transform(const rp_mat4 m, float3 p) {
-  return ((m.c[0].xyz * p.x + m.c[1].xyz * p.y) + m.c[2].xyz * p.z) + m.c[3].xyz;
-}
-
-/* The exact triangle / closed box test (Akenine-Moller separating axes), split into a
- * per-triangle set-up and a cheap per-voxel part. The three box-normal axes are the triangle's
- * voxel range per axis (vx_axis_range: exact, from floor/ceil of the bounding box), so only
- * voxels inside it are tested; the other ten axes (the triangle normal and the nine edge x
- * box-axis products) compare the triangle's projection interval [pmin, pmax] with the box
- * centre's projection s and the box radius r on the axis: separated when pmin - s > r or
- * pmax - s < -r. Coordinates are grid units relative to the integer grid point `origin` (the
- * first voxel of the range), so they stay small and the voxel centres (i - origin + 0.5) are
- * exact. Axis k = 3 * edge + j is edge x (X, Y, Z)[j]: e x X = (0, e.z, -e.y),
- * e x Y = (-e.z, 0, e.x), e x Z = (e.y, -e.x, 0). */
-typedef struct {
-  float3 n;          /* triangle normal, vx_cross(B - A, C - B) */
-  float n_dist;      /* vx_dot(n, A): the plane's projection */
-  float n_radius;    /* the box's radius on n: 0.5 (|n.x| + |n.y| + |n.z|) */
-  float3 e[3];       /* edges B - A, C - B, A - C */
-  float pmin[9], pmax[9], radius[9];
-} VxTriangleAxes;
-
-/* Projections of p on e x X, e x Y, e x Z. */
-inline float3 vx_edge_projections(float3 e, float3 p) {
-  return (float3)(e.z * p.y - e.y * p.z, e.x * p.z - e.z * p.x, e.y * p.x - e.x * p.y);
-}
-
-/* Set-up for the triangle (A, B, C) given relative to the origin. */
-inline VxTriangleAxes vx_triangle_axes(float3 A, float3 B, float3 C) {
-  VxTriangleAxes t;
-  t.e[0] = B - A;
-  t.e[1] = C - B;
-  t.e[2] = A - C;
-  t.n = vx_cross(t.e[0], t.e[1]);
-  t.n_dist = vx_dot(t.n, A);
-  t.n_radius = 0.5f * ((fabs(t.n.x) + fabs(t.n.y)) + fabs(t.n.z));
-  for (int i = 0; i < 3; ++i) {
-    const float3 e = t.e[i];
-    const float3 pa = vx_edge_projections(e, A), pb = vx_edge_projections(e, B),
-                 pc = vx_edge_projections(e, C);
-    const float3 lo = fmin(fmin(pa, pb), pc), hi = fmax(fmax(pa, pb), pc);
-    const float3 ae = fabs(e);
-    t.pmin[3 * i + 0] = lo.x;
-    t.pmin[3 * i + 1] = lo.y;
-    t.pmin[3 * i + 2] = lo.z;
-    t.pmax[3 * i + 0] = hi.x;
-    t.pmax[3 * i + 1] = hi.y;
-    t.pmax[3 * i + 2] = hi.z;
-    t.radius[3 * i + 0] = 0.5f * (ae.z + ae.y);
-    t.radius[3 * i + 1] = 0.5f * (ae.z + ae.x);
-    t.radius[3 * i + 2] = 0.5f * (ae.y + ae.x);
-  }
-  return t;
-}
-
-/* True when no axis separates the triangle from the box of centre c (relative to the origin,
- * half size 0.5). The caller has restricted the voxel to the triangle's voxel range. */
-inline bool vx_triangle_box(const VxTriangleAxes* t, float3 c) {
-  if (fabs(t->n_dist - vx_dot(t->n, c)) > t->n_radius) return false;
-  for (int i = 0; i < 3; ++i) {
-    const float3 s = vx_edge_projections(t->e[i], c);
-    const int k = 3 * i;
-    if (t->pmin[k] - s.x > t->radius[k] || t->pmax[k] - s.x < -t->radius[k]) return false;
-    if (t->pmin[k + 1] - s.y > t->radius[k + 1] || t->pmax[k + 1] - s.y < -t->radius[k + 1])
-      return false;
-    if (t->pmin[k + 2] - s.z > t->radius[k + 2] || t->pmax[k + 2] - s.z < -t->radius[k + 2])
-      return false;
-  }
-  return true;
-}
+/* ---- scalar helpers (spheres) ---- */
 
 /* Voxel index range [first, last] along one axis touched by the closed interval [lo, hi]
  * (grid units), clipped to [0, R - 1]; empty when first > last. */
@@ -170,22 +103,27 @@ inline int2 vx_axis_range(float lo, float hi, int resolution) {
   return (int2)(max((int)ceil(lo) - 1, 0), min((int)floor(hi), resolution - 1));
 }
 
-/* ---- accumulation ---- */
-
 inline uint vx_fixed(float value) {
   return (uint)(fmin(fmax(value, 0.0f), RP_VOXEL_MAX_CONTRIB) * RP_VOXEL_FIXED_SCALE + 0.5f);
 }
 
-/* Adds (rgb * a, a) to voxel `voxel` (see the header). */
+/* Adds fixed-point contributions q (r*a, g*a, b*a, a) to voxel `voxel` (see the header). */
+inline void vx_add_fixed(volatile __global uint* accum, volatile __global uint* overflow,
+                         uint voxel, uint4 q) {
+  const uint qs[4] = {q.x, q.y, q.z, q.w};
+  for (uint c = 0; c < 4u; ++c) {
+    if (qs[c] == 0u) continue;
+    const uint old = atomic_add(accum + 4u * voxel + c, qs[c]);
+    if (old > 0xFFFFFFFFu - qs[c]) atomic_or(overflow + voxel, 1u << c);
+  }
+}
+
+/* Adds (rgb * a, a) to voxel `voxel`. */
 inline void vx_accumulate(volatile __global uint* accum, volatile __global uint* overflow,
                           uint voxel, float3 radiance, float a) {
   const float3 premul = radiance * a;
-  const uint q[4] = {vx_fixed(premul.x), vx_fixed(premul.y), vx_fixed(premul.z), vx_fixed(a)};
-  for (uint c = 0; c < 4u; ++c) {
-    if (q[c] == 0u) continue;
-    const uint old = atomic_add(accum + 4u * voxel + c, q[c]);
-    if (old > 0xFFFFFFFFu - q[c]) atomic_or(overflow + voxel, 1u << c);
-  }
+  vx_add_fixed(accum, overflow, voxel,
+               (uint4)(vx_fixed(premul.x), vx_fixed(premul.y), vx_fixed(premul.z), vx_fixed(a)));
 }
 
 /* Direct light at p (normal n) with one shadow tap; rgb radiance before albedo. */
@@ -200,17 +138,479 @@ inline float3 vx_direct(__global const FrameConstants* frame, __global const flo
   return frame->light_intensity.xyz * (scale * rp_shadow_tap(shadow, &s, (float2)(0.0f)));
 }
 
-/* Outgoing radiance of a triangle's surface point p (unit normal n, texture coordinates uv;
- * texture 0 = untextured): albedo * texture(uv) * direct light + emission. */
-inline float3 vx_shade(__global const FrameConstants* frame, __global const float* shadow,
-                       __global const uint* texels, __global const TextureInfo* texture,
-                       float3 albedo, float3 emission, float3 p, float3 n, float2 uv) {
-  if (texture) albedo *= rp_texture_bilinear(texels, texture, uv).xyz;
-  return albedo * vx_direct(frame, shadow, p, n) + emission;
+/* ---- span arithmetic: one lane per triangle (voxelize_triangles) or per voxel column
+ * (voxelize_large); the same IEEE operations in the same order as the scalar formulas ---- */
+
+typedef struct {
+  rp_spanf x, y, z;
+} VxVec;
+
+inline VxVec vxv(rp_spanf x, rp_spanf y, rp_spanf z) {
+  VxVec r;
+  r.x = x;
+  r.y = y;
+  r.z = z;
+  return r;
+}
+inline VxVec vxv_add(VxVec a, VxVec b) { return vxv(a.x + b.x, a.y + b.y, a.z + b.z); }
+inline VxVec vxv_sub(VxVec a, VxVec b) { return vxv(a.x - b.x, a.y - b.y, a.z - b.z); }
+inline VxVec vxv_scale(VxVec a, rp_spanf s) { return vxv(a.x * s, a.y * s, a.z * s); }
+inline VxVec vxv_mul(VxVec a, VxVec b) { return vxv(a.x * b.x, a.y * b.y, a.z * b.z); }
+inline VxVec vxv_fmin(VxVec a, VxVec b) { return vxv(fmin(a.x, b.x), fmin(a.y, b.y), fmin(a.z, b.z)); }
+inline VxVec vxv_fmax(VxVec a, VxVec b) { return vxv(fmax(a.x, b.x), fmax(a.y, b.y), fmax(a.z, b.z)); }
+inline VxVec vxv_fabs(VxVec a) { return vxv(fabs(a.x), fabs(a.y), fabs(a.z)); }
+inline VxVec vxv_select(VxVec a, VxVec b, rp_spani m) {
+  return vxv(select(a.x, b.x, m), select(a.y, b.y, m), select(a.z, b.z, m));
+}
+/* vx_dot / vx_cross of the scalar code */
+inline rp_spanf vxv_dot(VxVec a, VxVec b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
+inline VxVec vxv_cross(VxVec a, VxVec b) {
+  return vxv(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+/* Projections of p on e x X, e x Y, e x Z. */
+inline VxVec vxv_edge_projections(VxVec e, VxVec p) {
+  return vxv(e.z * p.y - e.y * p.z, e.x * p.z - e.z * p.x, e.y * p.x - e.x * p.y);
 }
 
-__kernel void voxelize_clear(__global uint4* accum, __global uint* overflow, uint voxel_count) {
+/* Voxel index range per lane along one axis (vx_axis_range). */
+inline void vx_axis_range_span(rp_spanf lo, rp_spanf hi, int resolution, rp_spani* first,
+                               rp_spani* last) {
+  const float lim = (float)resolution + 1.0f;
+  lo = clamp(lo, -1.0f, lim);
+  hi = clamp(hi, -1.0f, lim);
+  *first = max(rp_span_convert_int(ceil(lo)) - 1, (rp_spani)(0));
+  *last = min(rp_span_convert_int(floor(hi)), (rp_spani)(resolution - 1));
+}
+
+/* Largest value of v over lanes with m set (lanes < n); `none` when there is no such lane. */
+inline int vx_lane_max(rp_spani v, rp_spani m, int n, int none) {
+  int lv[RP_SPAN], lm[RP_SPAN];
+  RP_SPAN_TO_ARRAY(v, lv);
+  RP_SPAN_TO_ARRAY(m, lm);
+  int r = none;
+  for (int i = 0; i < n; ++i)
+    if (lm[i]) r = max(r, lv[i]);
+  return r;
+}
+
+/* True when some lane < n has m set. */
+inline bool vx_lane_any(rp_spani m, int n) {
+  int lm[RP_SPAN];
+  RP_SPAN_TO_ARRAY(m, lm);
+  bool any = false;
+  for (int i = 0; i < n; ++i) any |= lm[i] != 0;
+  return any;
+}
+
+/* ---- the exact triangle / closed box test (Akenine-Moller separating axes), per lane ----
+ * Split into a per-triangle set-up and a cheap per-voxel part. The three box-normal axes are
+ * the triangle's voxel range per axis (vx_axis_range_span: exact, from floor/ceil of the
+ * bounding box), so only voxels inside it are tested; the other ten axes (the triangle normal
+ * and the nine edge x box-axis products) compare the triangle's projection interval
+ * [pmin, pmax] with the box centre's projection s and the box radius r on the axis: separated
+ * when pmin - s > r or pmax - s < -r. Coordinates are grid units relative to the integer grid
+ * point `origin` (the first voxel of the range), so they stay small and the voxel centres
+ * (i - origin + 0.5) are exact. Axis k = 3 * edge + j is edge x (X, Y, Z)[j]. */
+typedef struct {
+  VxVec n;           /* triangle normal, cross(B - A, C - B) */
+  rp_spanf n_dist;   /* dot(n, A): the plane's projection */
+  rp_spanf n_radius; /* the box's radius on n: 0.5 (|n.x| + |n.y| + |n.z|) */
+  VxVec e[3];        /* edges B - A, C - B, A - C */
+  rp_spanf pmin[9], pmax[9], radius[9];
+} VxAxes;
+
+inline void vx_triangle_axes_span(VxVec A, VxVec B, VxVec C, VxAxes* t) {
+  t->e[0] = vxv_sub(B, A);
+  t->e[1] = vxv_sub(C, B);
+  t->e[2] = vxv_sub(A, C);
+  t->n = vxv_cross(t->e[0], t->e[1]);
+  t->n_dist = vxv_dot(t->n, A);
+  t->n_radius = 0.5f * ((fabs(t->n.x) + fabs(t->n.y)) + fabs(t->n.z));
+  for (int i = 0; i < 3; ++i) {
+    const VxVec e = t->e[i];
+    const VxVec pa = vxv_edge_projections(e, A), pb = vxv_edge_projections(e, B),
+                pc = vxv_edge_projections(e, C);
+    const VxVec lo = vxv_fmin(vxv_fmin(pa, pb), pc), hi = vxv_fmax(vxv_fmax(pa, pb), pc);
+    const VxVec ae = vxv_fabs(e);
+    t->pmin[3 * i + 0] = lo.x;
+    t->pmin[3 * i + 1] = lo.y;
+    t->pmin[3 * i + 2] = lo.z;
+    t->pmax[3 * i + 0] = hi.x;
+    t->pmax[3 * i + 1] = hi.y;
+    t->pmax[3 * i + 2] = hi.z;
+    t->radius[3 * i + 0] = 0.5f * (ae.z + ae.y);
+    t->radius[3 * i + 1] = 0.5f * (ae.z + ae.x);
+    t->radius[3 * i + 2] = 0.5f * (ae.y + ae.x);
+  }
+}
+
+/* Lanes where no axis separates the triangle from the box of centre c (relative to the
+ * origin, half size 0.5). The caller has restricted the voxel to the triangle's range. */
+inline rp_spani vx_triangle_box_span(const VxAxes* t, VxVec c) {
+  rp_spani separated = fabs(t->n_dist - vxv_dot(t->n, c)) > t->n_radius;
+  for (int i = 0; i < 3; ++i) {
+    const VxVec s = vxv_edge_projections(t->e[i], c);
+    const int k = 3 * i;
+    separated |= (t->pmin[k] - s.x > t->radius[k]) | (t->pmax[k] - s.x < -t->radius[k]);
+    separated |= (t->pmin[k + 1] - s.y > t->radius[k + 1]) |
+                 (t->pmax[k + 1] - s.y < -t->radius[k + 1]);
+    separated |= (t->pmin[k + 2] - s.z > t->radius[k + 2]) |
+                 (t->pmax[k + 2] - s.z < -t->radius[k + 2]);
+  }
+  return !separated;
+}
+
+/* ---- lighting per lane (vx_direct's formulas, common/direct_light.h) ---- */
+
+/* The frame's lamp and shadow-map constants. */
+typedef struct {
+  float3 light_pos, intensity;
+  rp_mat4 lvp;      /* light_view_proj */
+  float size_f;     /* shadow map texels per side */
+  int size;
+  float near, far;  /* light clip planes */
+  float texel_den;  /* size * |row 0 of lvp|: a texel is 2 |w| / texel_den world units */
+} VxLight;
+
+inline VxLight vx_light(__global const FrameConstants* frame) {
+  VxLight L;
+  L.light_pos = frame->light_pos.xyz;
+  L.intensity = frame->light_intensity.xyz;
+  L.lvp = frame->light_view_proj;
+  L.size = (int)frame->shadow_size;
+  L.size_f = (float)L.size;
+  L.near = frame->clip.z;
+  L.far = frame->clip.w;
+  L.texel_den = (float)L.size * length(rp_mat4_row(L.lvp, 0).xyz);
+  return L;
+}
+
+/* Row r of M * (p, 1): ((c0 x + c1 y) + c2 z) + c3, as rp_mat4_mul_point. */
+#define VX_ROW_POINT(m, row, p) ((((m).c[0].row * (p).x + (m).c[1].row * (p).y) + (m).c[2].row * (p).z) + (m).c[3].row)
+
+/* Direct light (rgb, before albedo) at p with unit normal n for lanes in `active` (< n_lanes),
+ * 0 elsewhere: rp_direct_unshadowed, rp_shadow_lookup and one rp_shadow_tap. */
+inline VxVec vx_direct_span(const VxLight* L, __global const float* shadow, VxVec p, VxVec n,
+                            rp_spani active, int n_lanes) {
+  const VxVec to_light = vxv(L->light_pos.x - p.x, L->light_pos.y - p.y, L->light_pos.z - p.z);
+  const rp_spanf d2 = vxv_dot(to_light, to_light);
+  const rp_spanf inv_d = rsqrt(d2);
+  const VxVec l = vxv_scale(to_light, inv_d);
+  const rp_spanf c = vxv_dot(n, l);
+  const rp_spanf s = clamp(l.y, 0.0f, 1.0f);
+  const rp_spanf falloff = mad(s, mad(s, (rp_spanf)(0.204f), (rp_spanf)(0.446f)), (rp_spanf)(0.35f));
+  const rp_spanf scale = select((rp_spanf)(0.0f), c * (inv_d * inv_d) * falloff, c > 0.0f);
+  const rp_spani lit = active & (scale > 0.0f);
+
+  /* Shadow: receiver pushed one texel along n, compared in linear light depth. */
+  const rp_spanf w0 = VX_ROW_POINT(L->lvp, w, p);
+  const rp_spanf texel = 2.0f * fabs(w0) / L->texel_den;
+  const rp_spanf cc = fmax(c, 1.0e-4f);
+  const rp_spanf tan_theta = fmin(sqrt(fmax(1.0f - cc * cc, 0.0f)) / cc, RP_DIRECT_MAX_SLOPE);
+  const VxVec q = vxv_add(p, vxv_scale(n, texel * RP_VOXEL_SHADOW_NORMAL_OFFSET));
+  const rp_spanf cx = VX_ROW_POINT(L->lvp, x, q), cy = VX_ROW_POINT(L->lvp, y, q);
+  const rp_spanf cz = VX_ROW_POINT(L->lvp, z, q), cw = VX_ROW_POINT(L->lvp, w, q);
+  const rp_spanf ndc_x = cx / cw, ndc_y = cy / cw, ndc_z = cz / cw;
+  const rp_spani inside =
+      !((cw <= 0.0f) | (fabs(ndc_x) > 1.0f) | (fabs(ndc_y) > 1.0f) | (ndc_z > 1.0f));
+  const rp_spanf receiver = cw - texel * (RP_VOXEL_SHADOW_DEPTH_BIAS +
+                                          RP_VOXEL_SHADOW_REACH * tan_theta);
+  const rp_spanf sx = (ndc_x * 0.5f + 0.5f) * L->size_f;
+  const rp_spanf sy = (0.5f - ndc_y * 0.5f) * L->size_f;
+  /* Clamped before the int conversion (lanes outside the map may hold any value). */
+  const rp_spani tx = clamp(rp_span_convert_int(floor(clamp(sx, -1.0f, L->size_f))), 0, L->size - 1);
+  const rp_spani ty = clamp(rp_span_convert_int(floor(clamp(sy, -1.0f, L->size_f))), 0, L->size - 1);
+  int index[RP_SPAN], tap[RP_SPAN];
+  float depth[RP_SPAN];
+  RP_SPAN_TO_ARRAY(ty * L->size + tx, index);
+  RP_SPAN_TO_ARRAY(lit & inside, tap);
+  for (int i = 0; i < RP_SPAN; ++i) depth[i] = (i < n_lanes && tap[i]) ? shadow[index[i]] : 1.0f;
+  const rp_spanf d = RP_SPAN_FROM_ARRAY(depth);
+  const rp_spanf z_ndc = d * 2.0f - 1.0f;
+  const rp_spanf lin = select(2.0f * L->near * L->far / ((L->far + L->near) - z_ndc * (L->far - L->near)),
+                              (rp_spanf)(3.0e38f), d >= 1.0f);
+  const rp_spanf unshadowed = select((rp_spanf)(1.0f),
+                                     select((rp_spanf)(0.0f), (rp_spanf)(1.0f), receiver <= lin),
+                                     inside);
+  const rp_spanf k = select((rp_spanf)(0.0f), scale * unshadowed, lit);
+  return vxv(L->intensity.x * k, L->intensity.y * k, L->intensity.z * k);
+}
+
+/* ---- per-triangle data and set-up ---- */
+
+/* A triangle's inputs as the lanes see them (world space). */
+typedef struct {
+  float3 w0, w1, w2;       /* world vertices */
+  float3 nsum;             /* normal_matrix * (n0 + n1 + n2): orients the geometric normal */
+  float2 uv0, uv1, uv2;
+  float3 albedo, emission;
+  float tex_w, tex_h;      /* texture size (texels), 0 without a texture */
+  uint tex_offset;
+  int valid;               /* an existing triangle of an instance that is voxelized */
+} VxTriangle;
+
+/* Triangle number `flat` in the instance-major order of all instance triangles. `hint`: an
+ * instance at or before the triangle's (the walk starts there); receives the triangle's. */
+inline VxTriangle vx_fetch_triangle(__global const Instance* instances, uint instance_count,
+                                    __global const Vertex* vertices,
+                                    __global const Triangle* triangles,
+                                    __global const Material* materials,
+                                    __global const TextureInfo* textures, uint flat,
+                                    uint* hint_index, uint* hint_start) {
+  VxTriangle r;
+  r.valid = 0;
+  /* Instances are few (a box, a lamp, the tumblers): a linear walk is cheap. */
+  uint inst_index = *hint_index, start = *hint_start;
+  while (inst_index < instance_count && flat - start >= instances[inst_index].triangle_count) {
+    start += instances[inst_index].triangle_count;
+    ++inst_index;
+  }
+  *hint_index = inst_index;
+  *hint_start = start;
+  if (inst_index >= instance_count) return r;
+  __global const Instance* inst = instances + inst_index;
+  if (inst->voxelize == 0u) return r;
+  const Triangle tri = triangles[inst->first_triangle + (flat - start)];
+  __global const Vertex* vtx0 = vertices + tri.x;
+  __global const Vertex* vtx1 = vertices + tri.y;
+  __global const Vertex* vtx2 = vertices + tri.z;
+  /* vx_transform: ((c0 x + c1 y) + c2 z) + c3 */
+  const rp_mat4 model = inst->model;
+#define VX_TRANSFORM(p) \
+  ((((model.c[0].xyz * (p).x + model.c[1].xyz * (p).y) + model.c[2].xyz * (p).z) + model.c[3].xyz))
+  const float3 p0 = vtx0->position_u.xyz, p1 = vtx1->position_u.xyz, p2 = vtx2->position_u.xyz;
+  r.w0 = VX_TRANSFORM(p0);
+  r.w1 = VX_TRANSFORM(p1);
+  r.w2 = VX_TRANSFORM(p2);
+#undef VX_TRANSFORM
+  r.nsum = rp_mat4_mul_dir(inst->normal_matrix,
+                           vtx0->normal_v.xyz + vtx1->normal_v.xyz + vtx2->normal_v.xyz);
+  r.uv0 = (float2)(vtx0->position_u.w, vtx0->normal_v.w);
+  r.uv1 = (float2)(vtx1->position_u.w, vtx1->normal_v.w);
+  r.uv2 = (float2)(vtx2->position_u.w, vtx2->normal_v.w);
+  __global const Material* mat = materials + tri.w;
+  r.albedo = mat->albedo.xyz;
+  r.emission = mat->emission.xyz;
+  r.tex_w = r.tex_h = 0.0f;
+  r.tex_offset = 0u;
+  if (mat->texture != RP_TEXTURE_NONE) {
+    __global const TextureInfo* info = textures + mat->texture;
+    r.tex_w = (float)info->width;
+    r.tex_h = (float)info->height;
+    r.tex_offset = info->offset;
+  }
+  r.valid = -1;
+  return r;
+}
+
+/* Everything the voxel loops need, per lane. */
+typedef struct {
+  rp_spani valid;           /* a non-degenerate triangle with a non-empty voxel range */
+  rp_spani small;           /* shaded once at the centroid (else per voxel) */
+  VxVec w0, e01, e02;       /* world vertex 0 and edges */
+  VxVec nw;                 /* unit geometric normal, oriented like the vertex normals */
+  rp_spanf d00, d01, d11, inv_denom; /* barycentric projection (large triangles) */
+  VxVec uv_u, uv_v;         /* (uv0, uv1, uv2) u and v components */
+  VxVec albedo, emission;
+  rp_spani textured;
+  rp_spanf tex_w, tex_h;
+  rp_spanu tex_offset;
+  rp_spani origin[3];       /* first voxel of the range per axis */
+  VxAxes axes;              /* relative to origin */
+  rp_spani dom;             /* dominant axis 0, 1, 2 */
+  rp_spani ru0, ru1, rv0, rv1, rd0, rd1; /* voxel ranges along u, v, d (d = dominant) */
+  rp_spanf n_u, n_v, a_u, a_v, a_d, inv_nd, half_spread;
+} VxSetup;
+
+/* Lane arrays of VxTriangle fields -> spans. */
+typedef struct {
+  float w[9][RP_SPAN];   /* w0.xyz, w1.xyz, w2.xyz */
+  float nsum[3][RP_SPAN];
+  float uv[6][RP_SPAN];  /* u0, u1, u2, v0, v1, v2 */
+  float albedo[3][RP_SPAN], emission[3][RP_SPAN];
+  float tex_w[RP_SPAN], tex_h[RP_SPAN];
+  uint tex_offset[RP_SPAN];
+  int valid[RP_SPAN];
+} VxLanes;
+
+inline void vx_put_lane(VxLanes* L, int i, const VxTriangle* t) {
+  L->w[0][i] = t->w0.x; L->w[1][i] = t->w0.y; L->w[2][i] = t->w0.z;
+  L->w[3][i] = t->w1.x; L->w[4][i] = t->w1.y; L->w[5][i] = t->w1.z;
+  L->w[6][i] = t->w2.x; L->w[7][i] = t->w2.y; L->w[8][i] = t->w2.z;
+  L->nsum[0][i] = t->nsum.x; L->nsum[1][i] = t->nsum.y; L->nsum[2][i] = t->nsum.z;
+  L->uv[0][i] = t->uv0.x; L->uv[1][i] = t->uv1.x; L->uv[2][i] = t->uv2.x;
+  L->uv[3][i] = t->uv0.y; L->uv[4][i] = t->uv1.y; L->uv[5][i] = t->uv2.y;
+  L->albedo[0][i] = t->albedo.x; L->albedo[1][i] = t->albedo.y; L->albedo[2][i] = t->albedo.z;
+  L->emission[0][i] = t->emission.x; L->emission[1][i] = t->emission.y;
+  L->emission[2][i] = t->emission.z;
+  L->tex_w[i] = t->tex_w;
+  L->tex_h[i] = t->tex_h;
+  L->tex_offset[i] = t->tex_offset;
+  L->valid[i] = t->valid;
+}
+
+/* An empty lane (no triangle): finite values, invalid. */
+inline void vx_put_empty_lane(VxLanes* L, int i) {
+  VxTriangle t;
+  t.w0 = t.w1 = t.w2 = t.nsum = t.albedo = t.emission = (float3)(0.0f);
+  t.uv0 = t.uv1 = t.uv2 = (float2)(0.0f);
+  t.tex_w = t.tex_h = 0.0f;
+  t.tex_offset = 0u;
+  t.valid = 0;
+  vx_put_lane(L, i, &t);
+}
+
+#define VX_SPAN(arr) RP_SPAN_FROM_ARRAY(arr)
+
+inline void vx_setup(const VxLanes* L, uint resolution, VxSetup* s) {
+  const VxVec w0 = vxv(VX_SPAN(L->w[0]), VX_SPAN(L->w[1]), VX_SPAN(L->w[2]));
+  const VxVec w1 = vxv(VX_SPAN(L->w[3]), VX_SPAN(L->w[4]), VX_SPAN(L->w[5]));
+  const VxVec w2 = vxv(VX_SPAN(L->w[6]), VX_SPAN(L->w[7]), VX_SPAN(L->w[8]));
+  rp_spani valid = VX_SPAN(L->valid) != 0;
+
+  /* Grid positions and the voxel range per axis (the box-normal axes of the exact test). */
+  const float half_r = 0.5f * (float)resolution;
+  const int R = (int)resolution;
+  const VxVec a = vxv((w0.x + 1.0f) * half_r, (w0.y + 1.0f) * half_r, (w0.z + 1.0f) * half_r);
+  const VxVec b = vxv((w1.x + 1.0f) * half_r, (w1.y + 1.0f) * half_r, (w1.z + 1.0f) * half_r);
+  const VxVec c = vxv((w2.x + 1.0f) * half_r, (w2.y + 1.0f) * half_r, (w2.z + 1.0f) * half_r);
+  const VxVec lo = vxv_fmin(vxv_fmin(a, b), c), hi = vxv_fmax(vxv_fmax(a, b), c);
+  rp_spani rx0, rx1, ry0, ry1, rz0, rz1;
+  vx_axis_range_span(lo.x, hi.x, R, &rx0, &rx1);
+  vx_axis_range_span(lo.y, hi.y, R, &ry0, &ry1);
+  vx_axis_range_span(lo.z, hi.z, R, &rz0, &rz1);
+  valid &= (rx0 <= rx1) & (ry0 <= ry1) & (rz0 <= rz1);
+  s->origin[0] = rx0;
+  s->origin[1] = ry0;
+  s->origin[2] = rz0;
+  const VxVec origin_f =
+      vxv(rp_span_convert_float(rx0), rp_span_convert_float(ry0), rp_span_convert_float(rz0));
+  vx_triangle_axes_span(vxv_sub(a, origin_f), vxv_sub(b, origin_f), vxv_sub(c, origin_f),
+                        &s->axes);
+  const VxVec n = s->axes.n;
+  const VxVec an = vxv_fabs(n);
+  valid &= !((an.x == 0.0f) & (an.y == 0.0f) & (an.z == 0.0f)); /* degenerate */
+
+  /* Dominant axis d = argmax |n| (ties: x, then y, then z) and the two others u, v. */
+  const rp_spani dom0 = (an.x >= an.y) & (an.x >= an.z);
+  const rp_spani dom1 = !dom0 & (an.y >= an.z);
+  s->dom = select(select((rp_spani)(2), (rp_spani)(1), dom1), (rp_spani)(0), dom0);
+#define VX_UVD(x_, y_, z_, u, v, d) \
+  u = select(select(x_, z_, dom1), y_, dom0); \
+  v = select(select(y_, x_, dom1), z_, dom0); \
+  d = select(select(z_, y_, dom1), x_, dom0)
+  rp_spanf n_d, a_u, a_v, a_d;
+  VX_UVD(n.x, n.y, n.z, s->n_u, s->n_v, n_d);
+  VX_UVD(a.x, a.y, a.z, a_u, a_v, a_d);
+  VX_UVD(rx0, ry0, rz0, s->ru0, s->rv0, s->rd0);
+  VX_UVD(rx1, ry1, rz1, s->ru1, s->rv1, s->rd1);
+#undef VX_UVD
+  s->a_u = a_u;
+  s->a_v = a_v;
+  s->a_d = a_d;
+  /* Plane: depth(u, v) = a_d - (n_u (u - a_u) + n_v (v - a_v)) / n_d; over a column square of
+   * side 1 it varies by +-half_spread around its value at the square's centre. */
+  s->inv_nd = 1.0f / n_d;
+  s->half_spread =
+      0.5f * (fabs(s->n_u) + fabs(s->n_v)) * fabs(s->inv_nd) + RP_VOXEL_CANDIDATE_MARGIN;
+
+  /* Shading set-up (world space). */
+  s->w0 = w0;
+  s->e01 = vxv_sub(w1, w0);
+  s->e02 = vxv_sub(w2, w0);
+  VxVec nw = vxv_cross(s->e01, s->e02);
+  nw = vxv_scale(nw, rsqrt(vxv_dot(nw, nw)));
+  const VxVec nsum = vxv(VX_SPAN(L->nsum[0]), VX_SPAN(L->nsum[1]), VX_SPAN(L->nsum[2]));
+  s->nw = vxv_select(nw, vxv(-nw.x, -nw.y, -nw.z), vxv_dot(nw, nsum) < 0.0f);
+  s->d00 = vxv_dot(s->e01, s->e01);
+  s->d01 = vxv_dot(s->e01, s->e02);
+  s->d11 = vxv_dot(s->e02, s->e02);
+  s->inv_denom = 1.0f / (s->d00 * s->d11 - s->d01 * s->d01);
+  s->uv_u = vxv(VX_SPAN(L->uv[0]), VX_SPAN(L->uv[1]), VX_SPAN(L->uv[2]));
+  s->uv_v = vxv(VX_SPAN(L->uv[3]), VX_SPAN(L->uv[4]), VX_SPAN(L->uv[5]));
+  s->albedo = vxv(VX_SPAN(L->albedo[0]), VX_SPAN(L->albedo[1]), VX_SPAN(L->albedo[2]));
+  s->emission = vxv(VX_SPAN(L->emission[0]), VX_SPAN(L->emission[1]), VX_SPAN(L->emission[2]));
+  s->tex_w = VX_SPAN(L->tex_w);
+  s->tex_h = VX_SPAN(L->tex_h);
+  s->tex_offset = VX_SPAN(L->tex_offset);
+  s->textured = s->tex_w > 0.0f;
+
+  const VxVec extent = vxv_sub(hi, lo);
+  s->small = fmax(fmax(extent.x, extent.y), extent.z) <= RP_VOXEL_SMALL_TRIANGLE;
+  s->valid = valid;
+}
+
+/* Outgoing radiance of surface points p (unit normal nw, barycentrics b1, b2 for the texture
+ * coordinates) of the lanes in `active`: albedo * texture(uv) * direct light + emission. */
+inline VxVec vx_shade_span(const VxSetup* s, const VxLight* L, __global const float* shadow,
+                           __global const float4* linear_texels, VxVec p, rp_spanf b0,
+                           rp_spanf b1, rp_spanf b2, rp_spani active, int n_lanes) {
+  rp_spanf r = s->albedo.x, g = s->albedo.y, b = s->albedo.z;
+  const rp_spani textured = s->textured & active;
+  if (vx_lane_any(textured, n_lanes)) {
+    const rp_spanf u = (s->uv_u.x * b0 + s->uv_u.y * b1) + s->uv_u.z * b2;
+    const rp_spanf v = (s->uv_v.x * b0 + s->uv_v.y * b1) + s->uv_v.z * b2;
+    rp_span_texture_linear(linear_texels, textured, s->tex_w, s->tex_h, s->tex_offset, u, v,
+                           n_lanes, &r, &g, &b);
+  }
+  const VxVec light = vx_direct_span(L, shadow, p, s->nw, active, n_lanes);
+  return vxv(r * light.x + s->emission.x, g * light.y + s->emission.y,
+             b * light.z + s->emission.z);
+}
+
+/* Adds (radiance, opacity 1) to voxel `voxel` of every lane in `hit`. */
+inline void vx_accumulate_span(volatile __global uint* accum, volatile __global uint* overflow,
+                               rp_spanu voxel, VxVec radiance, rp_spani hit, int n_lanes) {
+  int lh[RP_SPAN];
+  RP_SPAN_TO_ARRAY(hit, lh);
+  uint lv[RP_SPAN], lr[RP_SPAN], lg[RP_SPAN], lb[RP_SPAN];
+  /* vx_fixed per channel (radiance * 1.0 = radiance) */
+#define VX_FIXED_SPAN(v) \
+  rp_span_convert_uint(fmin(fmax((v), 0.0f), RP_VOXEL_MAX_CONTRIB) * RP_VOXEL_FIXED_SCALE + 0.5f)
+  RP_SPAN_TO_ARRAY(VX_FIXED_SPAN(radiance.x), lr);
+  RP_SPAN_TO_ARRAY(VX_FIXED_SPAN(radiance.y), lg);
+  RP_SPAN_TO_ARRAY(VX_FIXED_SPAN(radiance.z), lb);
+#undef VX_FIXED_SPAN
+  RP_SPAN_TO_ARRAY(voxel, lv);
+  const uint one = vx_fixed(1.0f);
+  for (int i = 0; i < n_lanes; ++i)
+    if (lh[i]) vx_add_fixed(accum, overflow, lv[i], (uint4)(lr[i], lg[i], lb[i], one));
+}
+
+/* The voxel (x, y, z) of lanes at (iu, iv, id) in their (u, v, d) frame. */
+inline void vx_uvd_to_xyz(rp_spani dom, rp_spani iu, rp_spani iv, rp_spani id, rp_spani* x,
+                          rp_spani* y, rp_spani* z) {
+  const rp_spani d0 = dom == 0, d1 = dom == 1;
+  *x = select(select(iu, iv, d1), id, d0);
+  *y = select(select(iv, id, d1), iu, d0);
+  *z = select(select(id, iu, d1), iv, d0);
+}
+
+/* The candidates of column (iu, iv) of the lanes in `col`: [first, last] along d. */
+inline void vx_column(const VxSetup* s, rp_spani iu, rp_spani iv, int R, rp_spani* first,
+                      rp_spani* last) {
+  const rp_spanf depth = s->a_d - (s->n_u * ((rp_span_convert_float(iu) + 0.5f) - s->a_u) +
+                                   s->n_v * ((rp_span_convert_float(iv) + 0.5f) - s->a_v)) *
+                                      s->inv_nd;
+  rp_spani c0, c1;
+  vx_axis_range_span(depth - s->half_spread, depth + s->half_spread, R, &c0, &c1);
+  *first = max(c0, s->rd0);
+  *last = min(c1, s->rd1);
+}
+
+/* ---- kernels ---- */
+
+__kernel void voxelize_decode_texels(__global const uint* texels, __global float4* linear_out,
+                                     uint count) {
   const uint i = (uint)get_global_id(0);
+  if (i >= count) return;
+  linear_out[i] = rp_unpack_rgba8_srgb(texels[i]);
+}
+
+__kernel void voxelize_clear(__global uint4* accum, __global uint* overflow, uint voxel_count,
+                             __global uint* large_count) {
+  const uint i = (uint)get_global_id(0);
+  if (i == 0u) large_count[0] = 0u;
   if (i >= voxel_count) return;
   accum[i] = (uint4)(0u);
   overflow[i] = 0u;
@@ -223,130 +623,183 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
                                  __global const Triangle* triangles,
                                  __global const Material* materials,
                                  __global const TextureInfo* textures,
-                                 __global const uint* texels,
+                                 __global const float4* linear_texels,
                                  __global const float* shadow,
                                  uint resolution,
                                  volatile __global uint* accum,
-                                 volatile __global uint* overflow) {
-  const uint gid = (uint)get_global_id(0);
-  if (gid >= triangle_total) return;
-  /* Which instance: instances are few (a box, a lamp, the tumblers), a linear walk is cheap. */
-  uint t = gid, inst_index = 0;
-  while (inst_index < instance_count && t >= instances[inst_index].triangle_count) {
-    t -= instances[inst_index].triangle_count;
-    ++inst_index;
-  }
-  if (inst_index >= instance_count) return;
-  __global const Instance* inst = instances + inst_index;
-  if (inst->voxelize == 0u) return;
-  const Triangle tri = triangles[inst->first_triangle + t];
-  __global const Vertex* vtx0 = vertices + tri.x;
-  __global const Vertex* vtx1 = vertices + tri.y;
-  __global const Vertex* vtx2 = vertices + tri.z;
-
-  /* World and grid positions. */
-  const rp_mat4 model = inst->model;
-  const float3 w0 = vx_transform(model, vtx0->position_u.xyz);
-  const float3 w1 = vx_transform(model, vtx1->position_u.xyz);
-  const float3 w2 = vx_transform(model, vtx2->position_u.xyz);
-  const float half_r = 0.5f * (float)resolution;
-  const float3 a = (w0 + 1.0f) * half_r, b = (w1 + 1.0f) * half_r, c = (w2 + 1.0f) * half_r;
+                                 volatile __global uint* overflow,
+                                 volatile __global uint* large_count,
+                                 __global uint* large_list) {
+  const uint first = (uint)get_global_id(0) * RP_SPAN;
+  if (first >= triangle_total) return;
+  const int n = (int)min((uint)RP_SPAN, triangle_total - first);
   const int R = (int)resolution;
 
-  /* The voxel range per axis (the box-normal axes of the exact test). */
-  const float3 lo = fmin(fmin(a, b), c), hi = fmax(fmax(a, b), c);
-  const int2 rx = vx_axis_range(lo.x, hi.x, R);
-  const int2 ry = vx_axis_range(lo.y, hi.y, R);
-  const int2 rz = vx_axis_range(lo.z, hi.z, R);
-  if (rx.x > rx.y || ry.x > ry.y || rz.x > rz.y) return;
-  const int3 origin = (int3)(rx.x, ry.x, rz.x);
-  const float3 origin_f = convert_float3(origin);
-  const VxTriangleAxes axes = vx_triangle_axes(a - origin_f, b - origin_f, c - origin_f);
-  const float3 n = axes.n;
-  const float3 an = fabs(n);
-  if (an.x == 0.0f && an.y == 0.0f && an.z == 0.0f) return; /* degenerate */
-
-  /* Dominant axis d and the two others u, v (as component permutations). */
-  const int dom = (an.x >= an.y && an.x >= an.z) ? 0 : (an.y >= an.z ? 1 : 2);
-  /* In (u, v, d) order: */
-  float3 n_uvd, a_uvd;
-  int2 ru, rv, rd;
-  if (dom == 0) {
-    n_uvd = n.yzx; a_uvd = a.yzx; ru = ry; rv = rz; rd = rx;
-  } else if (dom == 1) {
-    n_uvd = n.zxy; a_uvd = a.zxy; ru = rz; rv = rx; rd = ry;
-  } else {
-    n_uvd = n; a_uvd = a; ru = rx; rv = ry; rd = rz;
+  VxLanes lanes;
+  uint hint_index = 0, hint_start = 0;
+  for (int i = 0; i < RP_SPAN; ++i) {
+    if (i < n) {
+      const VxTriangle t = vx_fetch_triangle(instances, instance_count, vertices, triangles,
+                                             materials, textures, first + (uint)i, &hint_index,
+                                             &hint_start);
+      vx_put_lane(&lanes, i, &t);
+    } else {
+      vx_put_empty_lane(&lanes, i);
+    }
   }
-  /* Plane: depth(u, v) = a_d - (n_u (u - a_u) + n_v (v - a_v)) / n_d; over a column square of
-   * side 1 it varies by +-half_spread around its value at the square's centre. */
-  const float inv_nd = 1.0f / n_uvd.z;
-  const float half_spread =
-      0.5f * (fabs(n_uvd.x) + fabs(n_uvd.y)) * fabs(inv_nd) + RP_VOXEL_CANDIDATE_MARGIN;
+  VxSetup s;
+  vx_setup(&lanes, resolution, &s);
 
-  /* Shading set-up (world space). */
-  const float3 e01 = w1 - w0, e02 = w2 - w0;
-  float3 nw = normalize(cross(e01, e02));
-  const float3 nsum = rp_mat4_mul_dir(inst->normal_matrix, vtx0->normal_v.xyz +
-                                                               vtx1->normal_v.xyz +
-                                                               vtx2->normal_v.xyz);
-  if (dot(nw, nsum) < 0.0f) nw = -nw;
-  const float d00 = dot(e01, e01), d01 = dot(e01, e02), d11 = dot(e02, e02);
-  const float inv_denom = 1.0f / (d00 * d11 - d01 * d01);
-  const float2 uv0 = (float2)(vtx0->position_u.w, vtx0->normal_v.w);
-  const float2 uv1 = (float2)(vtx1->position_u.w, vtx1->normal_v.w);
-  const float2 uv2 = (float2)(vtx2->position_u.w, vtx2->normal_v.w);
-  __global const Material* mat = materials + tri.w;
-  const float3 albedo = mat->albedo.xyz;
-  const float3 emission = mat->emission.xyz;
-  __global const TextureInfo* texture =
-      mat->texture == RP_TEXTURE_NONE ? (__global const TextureInfo*)0 : textures + mat->texture;
+  /* Large triangles go to voxelize_large (per voxel shading, lanes over columns). */
+  {
+    int lv[RP_SPAN], ls[RP_SPAN];
+    RP_SPAN_TO_ARRAY(s.valid, lv);
+    RP_SPAN_TO_ARRAY(s.small, ls);
+    for (int i = 0; i < n; ++i)
+      if (lv[i] && !ls[i]) large_list[atomic_inc(large_count)] = first + (uint)i;
+  }
+  const rp_spani active = s.valid & s.small;
+  if (!vx_lane_any(active, n)) return;
 
   /* A small triangle is shaded once, at its centroid, for all its voxels. */
-  const float3 extent = hi - lo;
-  const bool small = fmax(fmax(extent.x, extent.y), extent.z) <= RP_VOXEL_SMALL_TRIANGLE;
-  float3 radiance = (float3)(0.0f);
-  if (small) {
-    const float third = 1.0f / 3.0f;
-    radiance = vx_shade(frame, shadow, texels, texture, albedo, emission,
-                        w0 + e01 * third + e02 * third, nw, uv0 * third + uv1 * third + uv2 * third);
-  }
+  const VxLight light = vx_light(frame);
+  const float third = 1.0f / 3.0f;
+  const VxVec centroid = vxv_add(vxv_add(s.w0, vxv_scale(s.e01, third)), vxv_scale(s.e02, third));
+  const VxVec radiance = vx_shade_span(&s, &light, shadow, linear_texels, centroid, third, third,
+                                       third, active, n);
 
-  for (int iv = rv.x; iv <= rv.y; ++iv) {
-    for (int iu = ru.x; iu <= ru.y; ++iu) {
-      const float depth = a_uvd.z - (n_uvd.x * (((float)iu + 0.5f) - a_uvd.x) +
-                                     n_uvd.y * (((float)iv + 0.5f) - a_uvd.y)) * inv_nd;
-      const int2 col = vx_axis_range(depth - half_spread, depth + half_spread, R);
-      const int d_first = max(col.x, rd.x), d_last = min(col.y, rd.y);
-      for (int id = d_first; id <= d_last; ++id) {
-        const int3 vox = dom == 0 ? (int3)(id, iu, iv) : dom == 1 ? (int3)(iv, id, iu)
-                                                                  : (int3)(iu, iv, id);
-        if (!vx_triangle_box(&axes, convert_float3(vox - origin) + 0.5f)) continue;
-
-        if (!small) {
-          /* Shading point: the voxel centre on the plane, clamped into the triangle. */
-          const float3 centre = rp_voxel_center_world(vox, resolution);
-          const float3 q = centre - nw * dot(nw, centre - w0);
-          const float3 rel = q - w0;
-          const float d20 = dot(rel, e01), d21 = dot(rel, e02);
-          float b1 = fmax((d11 * d20 - d01 * d21) * inv_denom, 0.0f);
-          float b2 = fmax((d00 * d21 - d01 * d20) * inv_denom, 0.0f);
-          float b0 = fmax(1.0f - b1 - b2, 0.0f);
-          const float b_sum = b0 + b1 + b2;
-          if (b_sum > 0.0f && b_sum < 1.0e30f) { /* else (NaN or inf: a sliver) the centroid */
-            b0 /= b_sum;
-            b1 /= b_sum;
-            b2 /= b_sum;
-          } else {
-            b0 = b1 = b2 = 1.0f / 3.0f;
-          }
-          radiance = vx_shade(frame, shadow, texels, texture, albedo, emission,
-                              w0 + e01 * b1 + e02 * b2, nw, uv0 * b0 + uv1 * b1 + uv2 * b2);
-        }
-        vx_accumulate(accum, overflow, rp_voxel_index(vox, resolution), radiance, 1.0f);
+  /* Every column (iu, iv) of the lanes' candidate rectangles, one or two voxels along d each. */
+  const int max_du = vx_lane_max(s.ru1 - s.ru0, active, n, 0);
+  const int max_dv = vx_lane_max(s.rv1 - s.rv0, active, n, 0);
+  for (int kv = 0; kv <= max_dv; ++kv) {
+    for (int ku = 0; ku <= max_du; ++ku) {
+      const rp_spani iu = s.ru0 + ku, iv = s.rv0 + kv;
+      const rp_spani col = active & (iu <= s.ru1) & (iv <= s.rv1);
+      rp_spani d_first, d_last;
+      vx_column(&s, iu, iv, R, &d_first, &d_last);
+      const int max_dd = vx_lane_max(d_last - d_first, col & (d_first <= d_last), n, -1);
+      for (int kd = 0; kd <= max_dd; ++kd) {
+        const rp_spani id = d_first + kd;
+        rp_spani x, y, z;
+        vx_uvd_to_xyz(s.dom, iu, iv, id, &x, &y, &z);
+        const VxVec centre = vxv(rp_span_convert_float(x - s.origin[0]) + 0.5f,
+                                 rp_span_convert_float(y - s.origin[1]) + 0.5f,
+                                 rp_span_convert_float(z - s.origin[2]) + 0.5f);
+        const rp_spani hit = col & (id <= d_last) & vx_triangle_box_span(&s.axes, centre);
+        const rp_spanu voxel = rp_span_convert_uint((z * R + y) * R + x);
+        vx_accumulate_span(accum, overflow, voxel, radiance, hit, n);
       }
     }
   }
+}
+
+/* One large triangle (flat instance-triangle index `flat`): its set-up is computed for every
+ * lane (all lanes the same triangle), the lanes then take RP_SPAN neighbouring columns of a
+ * row at a time. Each voxel is shaded at its centre projected onto the plane, barycentrics
+ * clamped into the triangle. */
+inline void vx_large_triangle(__global const FrameConstants* frame,
+                              __global const Instance* instances, uint instance_count,
+                              __global const Vertex* vertices,
+                              __global const Triangle* triangles,
+                              __global const Material* materials,
+                              __global const TextureInfo* textures,
+                              __global const float4* linear_texels,
+                              __global const float* shadow, uint resolution,
+                              volatile __global uint* accum, volatile __global uint* overflow,
+                              uint flat) {
+  const int R = (int)resolution;
+  uint hint_index = 0, hint_start = 0;
+  const VxTriangle t = vx_fetch_triangle(instances, instance_count, vertices, triangles,
+                                         materials, textures, flat, &hint_index, &hint_start);
+  VxLanes lanes;
+  for (int i = 0; i < RP_SPAN; ++i) vx_put_lane(&lanes, i, &t);
+  VxSetup s;
+  vx_setup(&lanes, resolution, &s);
+  /* All lanes hold the same triangle: its ranges as scalars. */
+  int ru0[RP_SPAN], ru1[RP_SPAN], rv0[RP_SPAN], rv1[RP_SPAN], valid[RP_SPAN];
+  RP_SPAN_TO_ARRAY(s.ru0, ru0);
+  RP_SPAN_TO_ARRAY(s.ru1, ru1);
+  RP_SPAN_TO_ARRAY(s.rv0, rv0);
+  RP_SPAN_TO_ARRAY(s.rv1, rv1);
+  RP_SPAN_TO_ARRAY(s.valid, valid);
+  if (!valid[0]) return;
+  const VxLight light = vx_light(frame);
+  const rp_spani lane = rp_span_convert_int(RP_LANES);
+
+  /* The columns of the candidate rectangle numbered row by row (k = (iv - rv0) * width +
+   * iu - ru0), RP_SPAN consecutive numbers at a time, so narrow rectangles fill the lanes. */
+  const int width = ru1[0] - ru0[0] + 1, columns = width * (rv1[0] - rv0[0] + 1);
+  for (int k0 = 0; k0 < columns; k0 += RP_SPAN) {
+    {  /* (one block: the loop body of the row-by-row layout) */
+      const rp_spani k = k0 + lane;
+      /* k / width without a per-lane integer division (exact: k, width < 2^12) */
+      const rp_spani row =
+          rp_span_convert_int((rp_span_convert_float(k) + 0.5f) * (1.0f / (float)width));
+      const rp_spani iu = ru0[0] + (k - row * width), iv = rv0[0] + row;
+      const rp_spani col = k < columns;
+      rp_spani d_first, d_last;
+      vx_column(&s, iu, iv, R, &d_first, &d_last);
+      const int max_dd = vx_lane_max(d_last - d_first, col & (d_first <= d_last), RP_SPAN, -1);
+      for (int kd = 0; kd <= max_dd; ++kd) {
+        const rp_spani id = d_first + kd;
+        rp_spani x, y, z;
+        vx_uvd_to_xyz(s.dom, iu, iv, id, &x, &y, &z);
+        const VxVec box = vxv(rp_span_convert_float(x - s.origin[0]) + 0.5f,
+                              rp_span_convert_float(y - s.origin[1]) + 0.5f,
+                              rp_span_convert_float(z - s.origin[2]) + 0.5f);
+        const rp_spani hit = col & (id <= d_last) & vx_triangle_box_span(&s.axes, box);
+        if (!vx_lane_any(hit, RP_SPAN)) continue;
+
+        /* Shading point: the voxel centre on the plane, clamped into the triangle. */
+        const float to_world = 2.0f / (float)resolution;
+        const VxVec centre = vxv((rp_span_convert_float(x) + 0.5f) * to_world - 1.0f,
+                                 (rp_span_convert_float(y) + 0.5f) * to_world - 1.0f,
+                                 (rp_span_convert_float(z) + 0.5f) * to_world - 1.0f);
+        const VxVec q = vxv_sub(centre, vxv_scale(s.nw, vxv_dot(s.nw, vxv_sub(centre, s.w0))));
+        const VxVec rel = vxv_sub(q, s.w0);
+        const rp_spanf d20 = vxv_dot(rel, s.e01), d21 = vxv_dot(rel, s.e02);
+        rp_spanf b1 = fmax((s.d11 * d20 - s.d01 * d21) * s.inv_denom, 0.0f);
+        rp_spanf b2 = fmax((s.d00 * d21 - s.d01 * d20) * s.inv_denom, 0.0f);
+        rp_spanf b0 = fmax(1.0f - b1 - b2, 0.0f);
+        const rp_spanf b_sum = b0 + b1 + b2;
+        /* NaN or inf (a sliver): the centroid */
+        const rp_spani usable = (b_sum > 0.0f) & (b_sum < 1.0e30f);
+        const float third = 1.0f / 3.0f;
+        b0 = select((rp_spanf)(third), b0 / b_sum, usable);
+        b1 = select((rp_spanf)(third), b1 / b_sum, usable);
+        b2 = select((rp_spanf)(third), b2 / b_sum, usable);
+        const VxVec p = vxv_add(vxv_add(s.w0, vxv_scale(s.e01, b1)), vxv_scale(s.e02, b2));
+        const VxVec radiance =
+            vx_shade_span(&s, &light, shadow, linear_texels, p, b0, b1, b2, hit, RP_SPAN);
+        const rp_spanu voxel = rp_span_convert_uint((z * R + y) * R + x);
+        vx_accumulate_span(accum, overflow, voxel, radiance, hit, RP_SPAN);
+      }
+    }
+  }
+}
+
+
+/* The frame's large triangles (listed by voxelize_triangles), by a fixed number of
+ * work-items. */
+__kernel void voxelize_large(__global const FrameConstants* frame,
+                             __global const Instance* instances, uint instance_count,
+                             __global const Vertex* vertices,
+                             __global const Triangle* triangles,
+                             __global const Material* materials,
+                             __global const TextureInfo* textures,
+                             __global const float4* linear_texels,
+                             __global const float* shadow,
+                             uint resolution,
+                             volatile __global uint* accum,
+                             volatile __global uint* overflow,
+                             __global const uint* large_count,
+                             __global const uint* large_list) {
+  /* A fixed number of work-items strides over the frame's list (its length is only known on
+   * the device). */
+  const uint count = large_count[0];
+  for (uint entry = (uint)get_global_id(0); entry < count; entry += (uint)get_global_size(0))
+    vx_large_triangle(frame, instances, instance_count, vertices, triangles, materials, textures,
+                      linear_texels, shadow, resolution, accum, overflow, large_list[entry]);
 }
 
 __kernel void voxelize_spheres(__global const FrameConstants* frame,

@@ -1,5 +1,7 @@
 #include "passes/voxelize.h"
 
+#include <algorithm>
+#include <cstdlib>
 #include <string>
 
 #include "cl/error.h"
@@ -7,7 +9,8 @@
 namespace rp::passes {
 namespace {
 
-constexpr size_t kGroup = 64;  // 1D work-groups for every voxelize kernel
+constexpr size_t kGroup = 64;       // 1D work-groups for the per-voxel and per-sphere kernels
+constexpr size_t kSpanGroup = 16;   // work-groups of the span kernels (16 x 16 triangles on CPUs)
 
 // The fixed-point format of render/voxel_volume.h, handed to the kernels (one definition).
 std::string fixed_point_options() {
@@ -16,14 +19,45 @@ std::string fixed_point_options() {
          " -DRP_VOXEL_SATURATED=" + std::to_string(render::kVoxelSaturatedSum) + "f";
 }
 
+// Lanes per work-item of voxelize_triangles / voxelize_large: 16 on CPUs (float16 spans map
+// onto PoCL's SIMD code), 1 on GPUs. ROLYPOLY_VOXELIZE_SPAN (1, 4, 8 or 16) overrides it
+// (tests compare the variants).
+int choose_span(const rp::cl::Context& context) {
+  if (const char* env = std::getenv("ROLYPOLY_VOXELIZE_SPAN"); env && *env) {
+    const std::string s = env;
+    if (s == "1" || s == "4" || s == "8" || s == "16") return std::stoi(s);
+    throw rp::cl::Error("ROLYPOLY_VOXELIZE_SPAN must be 1, 4, 8 or 16, not '" + s + "'");
+  }
+  return context.info.is_cpu ? 16 : 1;
+}
+
 }  // namespace
 
-VoxelizePass::VoxelizePass(const rp::cl::Context& /*context*/, rp::cl::ProgramCache& programs) {
-  const std::string options = fixed_point_options();
+VoxelizePass::VoxelizePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
+    : context_(&context), span_(choose_span(context)) {
+  const std::string options = fixed_point_options() + " -DRP_SPAN=" + std::to_string(span_);
+  decode_ = programs.kernel("voxelize.cl", "voxelize_decode_texels", options);
   clear_ = programs.kernel("voxelize.cl", "voxelize_clear", options);
   triangles_ = programs.kernel("voxelize.cl", "voxelize_triangles", options);
+  large_ = programs.kernel("voxelize.cl", "voxelize_large", options);
   spheres_ = programs.kernel("voxelize.cl", "voxelize_spheres", options);
   resolve_ = programs.kernel("voxelize.cl", "voxelize_resolve", options);
+  large_count_ = ::cl::Buffer(context.context, CL_MEM_READ_WRITE, sizeof(cl_uint));
+}
+
+void VoxelizePass::update_linear_texels(rp::cl::Profiler& profiler,
+                                        const render::GpuScene& scene) {
+  if (decoded_from_() != nullptr && decoded_from_() == scene.texels()) return;
+  const size_t texels = scene.texels() ? scene.texels.getInfo<CL_MEM_SIZE>() / sizeof(cl_uint) : 0;
+  linear_texels_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
+                                (texels > 0 ? texels : 1) * 4 * sizeof(float));
+  decoded_from_ = scene.texels;
+  if (texels == 0) return;
+  decode_.setArg(0, scene.texels);
+  decode_.setArg(1, linear_texels_);
+  decode_.setArg(2, cl_uint(texels));
+  profiler.enqueue("voxelize", decode_, ::cl::NDRange(rp::cl::round_up(texels, kGroup)),
+                   ::cl::NDRange(kGroup));
 }
 
 void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
@@ -41,31 +75,64 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
                         " texels wide but the frame constants say " +
                         std::to_string(scene.constants.shadow_size));
   const cl_uint voxels = r * r * r;
+  const cl_uint triangles = scene.instance_triangle_count;
+  if (large_capacity_ < std::max<size_t>(triangles, 1)) {
+    large_capacity_ = std::max<size_t>(triangles, 1);
+    large_list_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
+                               large_capacity_ * sizeof(cl_uint));
+  }
+  update_linear_texels(profiler, scene);
 
   clear_.setArg(0, volume.accum);
   clear_.setArg(1, volume.overflow);
   clear_.setArg(2, voxels);
+  clear_.setArg(3, large_count_);
   profiler.enqueue("voxelize", clear_, ::cl::NDRange(rp::cl::round_up(voxels, kGroup)),
                    ::cl::NDRange(kGroup));
 
-  if (scene.instance_triangle_count > 0) {
+  if (triangles > 0) {
     cl_uint arg = 0;
     triangles_.setArg(arg++, scene.frame);
     triangles_.setArg(arg++, scene.instances);
     triangles_.setArg(arg++, cl_uint(scene.instance_count));
-    triangles_.setArg(arg++, cl_uint(scene.instance_triangle_count));
+    triangles_.setArg(arg++, triangles);
     triangles_.setArg(arg++, scene.vertices);
     triangles_.setArg(arg++, scene.triangles);
     triangles_.setArg(arg++, scene.materials);
     triangles_.setArg(arg++, scene.textures);
-    triangles_.setArg(arg++, scene.texels);
+    triangles_.setArg(arg++, linear_texels_);
     triangles_.setArg(arg++, shadow.depth);
     triangles_.setArg(arg++, r);
     triangles_.setArg(arg++, volume.accum);
     triangles_.setArg(arg++, volume.overflow);
+    triangles_.setArg(arg++, large_count_);
+    triangles_.setArg(arg++, large_list_);
+    const size_t span = static_cast<size_t>(span_);
     profiler.enqueue("voxelize", triangles_,
-                     ::cl::NDRange(rp::cl::round_up(scene.instance_triangle_count, kGroup)),
-                     ::cl::NDRange(kGroup));
+                     ::cl::NDRange(rp::cl::round_up((triangles + span - 1) / span, kSpanGroup)),
+                     ::cl::NDRange(kSpanGroup));
+
+    // The list's length is only known on the device (reading it back would stall the
+    // queue): a fixed number of work-items strides over it. Few on CPUs, where every
+    // work-group costs a few microseconds even when it has nothing to do.
+    arg = 0;
+    large_.setArg(arg++, scene.frame);
+    large_.setArg(arg++, scene.instances);
+    large_.setArg(arg++, cl_uint(scene.instance_count));
+    large_.setArg(arg++, scene.vertices);
+    large_.setArg(arg++, scene.triangles);
+    large_.setArg(arg++, scene.materials);
+    large_.setArg(arg++, scene.textures);
+    large_.setArg(arg++, linear_texels_);
+    large_.setArg(arg++, shadow.depth);
+    large_.setArg(arg++, r);
+    large_.setArg(arg++, volume.accum);
+    large_.setArg(arg++, volume.overflow);
+    large_.setArg(arg++, large_count_);
+    large_.setArg(arg++, large_list_);
+    const size_t large_items =
+        std::min(rp::cl::round_up(triangles, kSpanGroup), context_->info.is_cpu ? size_t(128) : size_t(8192));
+    profiler.enqueue("voxelize", large_, ::cl::NDRange(large_items), ::cl::NDRange(kSpanGroup));
   }
 
   if (scene.sphere_count > 0) {

@@ -26,7 +26,20 @@ class VoxelizePass {
            const render::ShadowMap& shadow, render::VoxelVolume& volume);
 
  private:
-  ::cl::Kernel clear_, triangles_, spheres_, resolve_;
+  // Decodes scene.texels into linear_texels_ when the scene's texel buffer is not the one
+  // decoded last (held in decoded_from_, so its handle cannot be reused by another buffer).
+  void update_linear_texels(rp::cl::Profiler& profiler, const render::GpuScene& scene);
+
+  const rp::cl::Context* context_;
+  int span_ = 1;  // triangles (voxelize_triangles) or voxel columns (voxelize_large) a work-item
+  ::cl::Kernel decode_, clear_, triangles_, large_, spheres_, resolve_;
+  ::cl::Buffer linear_texels_;  // float4 per texel: linear rgba of scene.texels
+  ::cl::Buffer decoded_from_;   // the texel buffer linear_texels_ was decoded from
+  // Large triangles of the frame (flat instance-triangle indices, in no particular order) and
+  // their count, written by voxelize_triangles, read by voxelize_large. Grows with the
+  // scene's instance triangle count, never per frame otherwise.
+  ::cl::Buffer large_count_, large_list_;
+  size_t large_capacity_ = 0;
 };
 
 }  // namespace rp::passes
