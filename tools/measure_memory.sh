@@ -5,9 +5,10 @@
 # written so far. DIR is a fresh folder on tmpfs (/dev/shm when it exists); every frame but the
 # newest is deleted as the run goes, so 2000 frames cost no disk. Reports the RSS at the first
 # sample at or after frame WARMUP (after warm-up: kernels built, buffers allocated), at the last
-# sample, the peak, and the growth between the two (kB and kB per 1000 frames). A flat run shows
-# a growth of a few hundred kB at most (glibc's heap and page cache noise); per-frame allocations
-# that are never freed show as a steady climb.
+# sample taken while frames were still being rendered (not during the teardown after the last
+# frame, when RSS drops), the peak, and the growth between the two (kB and kB per 1000 frames).
+# A flat run shows a growth of a few hundred kB at most (glibc's heap and page cache noise);
+# per-frame allocations that are never freed show as a steady climb.
 #
 # Usage: tools/measure_memory.sh [ROLYPOLY_BINARY] [-- EXTRA RENDER ARGS]
 #   env: FRAMES (2000), WARMUP (100), INTERVAL (1, seconds), SAMPLES (file for the
@@ -72,12 +73,15 @@ awk -v warmup="$warmup" -v frames="$frames" '
   /^#/ { next }
   { t = $1; f = $2; r = $3; if (r > peak) peak = r; n++
     if (!have_warm && f >= warmup) { have_warm = 1; warm_f = f; warm_r = r; warm_t = t }
-    last_f = f; last_r = r; last_t = t }
+    # The end: the last sample while frames were still being rendered. Once the last frame is
+    # written the process tears down (buffers, kernels freed) and its RSS drops.
+    if (f < frames - 1 || n == 1) { last_f = f; last_r = r; last_t = t }
+    all_t = t }
   END {
     if (!have_warm) { print "measure_memory: no sample at or after frame " warmup " (run too short?)"; exit 3 }
     growth = last_r - warm_r
     per_k = (last_f > warm_f) ? growth * 1000.0 / (last_f - warm_f) : 0
-    printf "frames rendered: %d (%d samples, %.1f s)\n", frames, n, last_t
+    printf "frames rendered: %d (%d samples, %.1f s)\n", frames, n, all_t
     printf "RSS after warm-up (frame %d, %.1f s): %d kB\n", warm_f, warm_t, warm_r
     printf "RSS at the end   (frame %d, %.1f s): %d kB\n", last_f, last_t, last_r
     printf "RSS peak: %d kB\n", peak
