@@ -2,8 +2,10 @@
 // that implements the filters LITERALLY: 13 bilinear taps (clamp-to-edge) grouped into the inner
 // box (0.5) and four outer boxes (0.125 each), Karis weights 1 / (1 + luma) per group on the
 // first step, and the upsample as nine bilinear taps at +-1 destination texel with (1 2 1)^2 / 16
-// (the kernel uses the equivalent collapsed 3x3 texel stencil). Plus behaviour: symmetry, energy
-// conservation, the Karis average bounding a firefly, strength 0, determinism, timing.
+// (the kernel uses the equivalent collapsed 3x3 texel stencil). The chain's levels are planar rgb
+// (alpha is not filtered; the mix keeps the input's alpha, which nothing downstream displays).
+// Plus behaviour: symmetry, energy conservation, the Karis average bounding a firefly,
+// strength 0, determinism, the composite description, timing.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -116,7 +118,7 @@ std::vector<std::pair<int, int>> ref_level_sizes(int w, int h) {
   return sizes;
 }
 
-// Whole pass: in * (1 - f) + up(U1) / N * f.
+// Whole pass: rgb = in * (1 - f) + up(U1) / N * f, alpha = in's.
 Image ref_bloom(const Image& in, double f, bool karis) {
   const size_t n = ref_level_sizes(in.w, in.h).size();
   std::vector<Image> down{in};
@@ -125,7 +127,7 @@ Image ref_bloom(const Image& in, double f, bool karis) {
   for (size_t k = n - 1; k >= 1; --k) u = add(down[k], ref_upsample(u, down[k].w, down[k].h));
   Image bloom = ref_upsample(u, in.w, in.h);
   for (size_t i = 0; i < bloom.px.size(); ++i)
-    bloom.px[i] = in.px[i] * (1 - f) + bloom.px[i] / double(n) * f;
+    bloom.px[i] = i % 4 == 3 ? in.px[i] : in.px[i] * (1 - f) + bloom.px[i] / double(n) * f;
   return bloom;
 }
 
@@ -152,6 +154,16 @@ Image read_image(const ::cl::Buffer& buffer, int w, int h) {
   return im;
 }
 
+// A planar rgb level of the chain (3 planes of w x h floats) as an Image (alpha 0).
+Image read_level(const ::cl::Buffer& buffer, int w, int h) {
+  Image im(w, h);
+  const size_t plane = size_t(w) * size_t(h);
+  std::vector<float> f = read_floats(buffer, 3 * plane);
+  for (size_t i = 0; i < plane; ++i)
+    for (size_t c = 0; c < 3; ++c) im.px[4 * i + c] = f[c * plane + i];
+  return im;
+}
+
 // Runs the pass on `in` and returns the output image.
 Image run_pass(rp::passes::BloomPass& pass, const Image& in, float strength) {
   auto& ctx = rp::test::context();
@@ -172,12 +184,16 @@ Image random_image(int w, int h, uint32_t seed) {
   return im;
 }
 
-// Largest |got - want| / max(|want|, floor) over all elements.
-double max_rel_error(const Image& got, const Image& want, double floor = 1e-3) {
+// Largest |got - want| / max(|want|, floor) over all elements (rgb only with `rgb_only`: the
+// chain's levels carry no alpha).
+double max_rel_error(const Image& got, const Image& want, double floor = 1e-3,
+                     bool rgb_only = false) {
   EXPECT_EQ(got.px.size(), want.px.size());
   double worst = 0;
   for (size_t i = 0; i < got.px.size(); ++i)
-    worst = std::max(worst, std::abs(got.px[i] - want.px[i]) / std::max(std::abs(want.px[i]), floor));
+    if (!rgb_only || i % 4 != 3)
+      worst = std::max(worst,
+                       std::abs(got.px[i] - want.px[i]) / std::max(std::abs(want.px[i]), floor));
   return worst;
 }
 
@@ -225,16 +241,18 @@ TEST_P(BloomSteps, EachStepMatchesReference) {
     ASSERT_GE(n, 2);
     std::vector<Image> down{in}, up(size_t(n) + 1);
     for (int k = 1; k <= n; ++k) {
-      down.push_back(read_image(pass.down(k), int(pass.level_width(k)), int(pass.level_height(k))));
+      down.push_back(read_level(pass.down(k), int(pass.level_width(k)), int(pass.level_height(k))));
       const Image want = ref_downsample(down[size_t(k - 1)], karis && k == 1);
-      EXPECT_LT(max_rel_error(down[size_t(k)], want), kStepTolerance) << "downsample level " << k;
+      EXPECT_LT(max_rel_error(down[size_t(k)], want, 1e-3, true), kStepTolerance)
+          << "downsample level " << k;
     }
     up[size_t(n)] = down[size_t(n)];
     for (int k = n - 1; k >= 1; --k) {
-      up[size_t(k)] = read_image(pass.up(k), down[size_t(k)].w, down[size_t(k)].h);
+      up[size_t(k)] = read_level(pass.up(k), down[size_t(k)].w, down[size_t(k)].h);
       const Image want = add(down[size_t(k)], ref_upsample(up[size_t(k + 1)], down[size_t(k)].w,
                                                            down[size_t(k)].h));
-      EXPECT_LT(max_rel_error(up[size_t(k)], want), kStepTolerance) << "upsample level " << k;
+      EXPECT_LT(max_rel_error(up[size_t(k)], want, 1e-3, true), kStepTolerance)
+          << "upsample level " << k;
     }
   }
 }
@@ -251,8 +269,11 @@ TEST_P(BloomSteps, WholeChainMatchesReference) {
     }
 }
 
+// 37x29: odd sizes, partial work-items everywhere; 64x64: powers of two; 150x90: wide enough
+// for the kernels' unclamped vector paths on levels 0 .. 2 (their clamped edge paths run too).
 INSTANTIATE_TEST_SUITE_P(Sizes, BloomSteps,
-                         ::testing::Values(std::make_pair(37, 29), std::make_pair(64, 64)),
+                         ::testing::Values(std::make_pair(37, 29), std::make_pair(64, 64),
+                                           std::make_pair(150, 90)),
                          [](const auto& param_info) {
                            return std::to_string(param_info.param.first) + "x" +
                                   std::to_string(param_info.param.second);
@@ -387,6 +408,31 @@ TEST(BloomBehaviour, DeterministicAndInPlace) {
   rp::cl::Profiler profiler(ctx.queue);
   pass.run(profiler, buffer, 64, 64, 0.1f, buffer);
   EXPECT_EQ(read_image(buffer, 64, 64).px, first.px);
+}
+
+// run_chain + composite() describe the mix run() does: keep = 1 - f, scale = f / N, level 1 = U1.
+TEST(BloomBehaviour, CompositeDescribesTheMix) {
+  auto& ctx = rp::test::context();
+  rp::passes::BloomPass pass(ctx, rp::test::programs());
+  EXPECT_THROW(pass.composite(0.1f), rp::cl::Error);  // no chain yet
+  const Image in = random_image(64, 48, 3u);
+  ::cl::Buffer src = upload(in);
+  rp::cl::Profiler profiler(ctx.queue);
+  pass.run_chain(profiler, src, 64, 48);
+  profiler.collect();
+  ASSERT_EQ(pass.levels(), 2);  // 32x24, 16x12 (8x6 would be below the minimum side)
+  const rp::passes::BloomPass::Composite c = pass.composite(0.25f);
+  EXPECT_EQ(c.level1, &pass.up(1));
+  EXPECT_EQ(c.level1_width, 32u);
+  EXPECT_EQ(c.level1_height, 24u);
+  EXPECT_EQ(c.keep, 0.75f);
+  EXPECT_EQ(c.scale, 0.25f / 2.0f);
+  for (float f : {-0.1f, 1.5f, std::numeric_limits<float>::quiet_NaN()})
+    EXPECT_THROW(pass.composite(f), rp::cl::Error) << f;
+  // The chain alone leaves the same levels as a whole run.
+  const Image u1 = read_level(pass.up(1), 32, 24);
+  run_pass(pass, in, 0.25f);
+  EXPECT_EQ(read_level(pass.up(1), 32, 24).px, u1.px);
 }
 
 TEST(BloomBehaviour, RejectsBadArguments) {
