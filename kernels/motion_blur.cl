@@ -10,26 +10,35 @@
  * objects inside its 3x3 tile neighbourhood, which is what the neighbourhood max covers.
  *
  * Steps (all deterministic: no atomics; every reduction uses a strict total order):
- *   1. motion_blur_tile_max: one 10x10 work-group per 20x20 tile, each item covering 2x2 pixels.
+ *   1. motion_blur_tile_max: one 1x20 work-group per 20x20 tile, each item one pixel row of it
+ *      (20 pixels in vector arithmetic), then a reduction over the rows in local memory.
  *      Writes the tile's max-magnitude V (float2 per tile; ties: lower pixel index y * width + x
  *      wins; the magnitude compared is that of the unclamped V, the stored V is clamped).
  *   2. motion_blur_neighbour_max: one item per tile, max |V| over the 3x3 tiles around it
  *      (clamped at the border; ties: first in row-major order of the neighbourhood wins), and a
  *      flag per tile: does the reconstruction read this tile's depth/speed plane.
  *   3. motion_blur_depth_speed (prepass): the depth/speed plane, one half2 per pixel (linear
- *      depth, |V| clamped, in pixels) written with vstore_half2 (round to nearest even), only in
- *      flagged tiles, so a still frame costs almost nothing.
- *   4. motion_blur_reconstruct: one item per pixel. If the neighbourhood max is at most half a
- *      pixel the input is copied unchanged. Else RP_MB_SAMPLES samples along +-V_max (jittered per
- *      pixel) are weighted by a soft depth comparison and the speed cones: a foreground sample
- *      whose own blur reaches the pixel, a background sample seen through the pixel's own blur,
- *      and both blurry (cylinders). The static background therefore does not smear.
+ *      depth, |V| clamped, in pixels) rounded to nearest even as vstore_half2 does, only in
+ *      flagged tiles, so a still frame costs almost nothing; one item per tile row of 20 pixels.
+ *   4. motion_blur_composite: the whole image, 16 pixels of two rows per item: the output is
+ *      the input, with the bloom composited when the bloom is fused in (common/
+ *      bloom_composite.h; without it the host copies the buffer instead).
+ *   5. motion_blur_reconstruct: one item per 4x4 pixel block, over every tile; blocks in tiles
+ *      whose neighbourhood max is at most half a pixel return at once (step 4 wrote them).
+ *      Else S samples along +-V_max (jittered per pixel; S = 2 ceil(|V_max|) + 1, at most
+ *      RP_MB_SAMPLES: about one sample per pixel of the streak) are weighted by a soft depth
+ *      comparison and the speed cones: a foreground sample whose own blur reaches the pixel, a
+ *      background sample seen through the pixel's own blur, and both blurry (cylinders). The
+ *      static background therefore does not smear. The block's 16 pixels are the 16 lanes of
+ *      float16 vectors (PoCL does not vectorize this loop across work-items, DESIGN.md); the
+ *      samples are gathered per lane. The bloom, when fused, is composited onto the result.
  *
  * Buffers: hdr float4 per pixel (rgb linear radiance, a passed through the same filter);
  * velocity float2 per pixel; normal_depth float4 per pixel (w linear depth); depth_speed
  * 2 halves per pixel; tile buffers float2 (plane_needed uint) per tile, tiles_x = ceil(width / 20)
  * per row.
  */
+#include "common/bloom_composite.h" /* before the pragma: same contraction as bloom.cl */
 #include "common/random.h"
 
 /* Keep a * b + c as two rounded operations so the C++ reference reproduces the sample
@@ -37,8 +46,6 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 #define RP_MB_TILE 20u
-#define RP_MB_GROUP 10u /* work-group side of the tile kernel: 2x2 pixels per item */
-#define RP_MB_GROUP_ITEMS (RP_MB_GROUP * RP_MB_GROUP)
 #define RP_MB_MAX_RADIUS 20.0f
 #ifndef RP_MB_SAMPLES
 #define RP_MB_SAMPLES 15 /* odd: the middle sample (the pixel itself) is skipped */
@@ -50,12 +57,6 @@
 /* Depths above this go to the half plane as this (half max is 65504; inf - inf would be NaN). */
 #define RP_MB_MAX_DEPTH 60000.0f
 
-/* Half blur vector of one pixel before the clamp; non-finite velocities count as still. */
-inline float2 rp_mb_half_vector(float2 velocity, float shutter) {
-  float2 v = velocity * (shutter * 0.5f);
-  return isfinite(v.x) && isfinite(v.y) ? v : (float2)(0.0f, 0.0f);
-}
-
 inline float rp_mb_len2(float2 v) { return v.x * v.x + v.y * v.y; }
 
 /* Clamps |v| to RP_MB_MAX_RADIUS (direction kept). */
@@ -65,56 +66,102 @@ inline float2 rp_mb_clamp(float2 v) {
   return v;
 }
 
-/* Grid: (tiles_x * 10, tiles_y * 10), local (10, 10). */
-__kernel __attribute__((reqd_work_group_size(RP_MB_GROUP, RP_MB_GROUP, 1)))
+/* The half vectors of 20 consecutive pixels of a row (pixels x0 .. x0+19 of the float2 velocity
+ * row `row`; lanes at or beyond `width` - x0 are zero) as 16 + 4 lanes, and their squared
+ * magnitudes (-1 for lanes outside the image, so they never win a max). */
+inline void rp_mb_row20(__global const float* row, int x0, int width, float shutter,
+                        float16* hx, float16* hy, float4* hx4, float4* hy4, float16* len2,
+                        float4* len2_4) {
+  float16 a, b;
+  float8 c;
+  if (x0 + 19 < width) {
+    a = vload16(0, row + 2 * x0);
+    b = vload16(1, row + 2 * x0);
+    c = vload8(4, row + 2 * x0);
+  } else {
+    float t[40];
+    for (int i = 0; i < 20; ++i) {
+      const bool inside = x0 + i < width;
+      t[2 * i] = inside ? row[2 * (x0 + i)] : 0.0f;
+      t[2 * i + 1] = inside ? row[2 * (x0 + i) + 1] : 0.0f;
+    }
+    a = vload16(0, t);
+    b = vload16(1, t);
+    c = vload8(4, t);
+  }
+  const float k = shutter * 0.5f;
+  float16 vx = (float16)(a.even, b.even) * k, vy = (float16)(a.odd, b.odd) * k;
+  float4 vx4 = c.even * k, vy4 = c.odd * k;
+  /* Half blur vectors V = velocity * shutter / 2; non-finite velocities count as still. */
+  const int16 finite = isfinite(vx) & isfinite(vy);
+  const int4 finite4 = isfinite(vx4) & isfinite(vy4);
+  vx = select((float16)0.0f, vx, finite);
+  vy = select((float16)0.0f, vy, finite);
+  vx4 = select((float4)0.0f, vx4, finite4);
+  vy4 = select((float4)0.0f, vy4, finite4);
+  const int16 lane = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const float16 l2 = vx * vx + vy * vy;
+  const float4 l2_4 = vx4 * vx4 + vy4 * vy4;
+  *len2 = select(l2, (float16)-1.0f, x0 + lane >= width);
+  *len2_4 = select(l2_4, (float4)-1.0f, x0 + 16 + lane.s0123 >= width);
+  *hx = vx;
+  *hy = vy;
+  *hx4 = vx4;
+  *hy4 = vy4;
+}
+
+/* Step 1. Grid: (tiles_x, 20 * tiles_y), local (1, 20): one work-group per tile, one work-item
+ * per pixel row of it. Each item finds its row's largest |V| (ties: the leftmost) with vector
+ * arithmetic; the group then reduces the 20 rows in local memory, top to bottom with a strict
+ * ">", so the lowest pixel index wins a tie. */
+__kernel __attribute__((reqd_work_group_size(1, RP_MB_TILE, 1)))
 void motion_blur_tile_max(__global const float2* restrict velocity,
                           __global float2* restrict tile_max, uint width, uint height,
                           float shutter) {
-  __local float2 best_v[RP_MB_GROUP_ITEMS];
-  __local float best_len2[RP_MB_GROUP_ITEMS];
-  __local uint best_index[RP_MB_GROUP_ITEMS];
+  __local float2 best_v[RP_MB_TILE];
+  __local float best_len2[RP_MB_TILE];
 
-  const uint lx = (uint)get_local_id(0), ly = (uint)get_local_id(1);
-  const uint item = ly * RP_MB_GROUP + lx;
+  const int row = (int)get_local_id(1);
+  const int x0 = (int)get_group_id(0) * (int)RP_MB_TILE;
+  const int y = (int)get_group_id(1) * (int)RP_MB_TILE + row;
   float2 my_v = (float2)(0.0f, 0.0f);
-  float my_len2 = -1.0f; /* below any real magnitude: an empty (outside) item never wins */
-  uint my_index = 0xFFFFFFFFu;
-  for (uint k = 0; k < 4u; ++k) {
-    const uint x = (uint)get_group_id(0) * RP_MB_TILE + lx * 2u + (k & 1u);
-    const uint y = (uint)get_group_id(1) * RP_MB_TILE + ly * 2u + (k >> 1);
-    if (x >= width || y >= height) continue;
-    const uint i = y * width + x;
-    const float2 v = rp_mb_half_vector(velocity[i], shutter);
-    const float len2 = rp_mb_len2(v);
-    /* Pixels are visited in increasing index within an item, so ">" keeps the lower index. */
-    if (len2 > my_len2) {
-      my_v = v;
-      my_len2 = len2;
-      my_index = i;
-    }
+  float my_len2 = -1.0f; /* below any real magnitude: a row outside the image never wins */
+  if (y < (int)height) {
+    float16 hx, hy, len2;
+    float4 hx4, hy4, len2_4;
+    rp_mb_row20((__global const float*)(velocity + y * (int)width), x0, (int)width, shutter, &hx,
+                &hy, &hx4, &hy4, &len2, &len2_4);
+    const float8 m8 = fmax(len2.lo, len2.hi);
+    const float4 m4 = fmax(fmax(m8.lo, m8.hi), len2_4);
+    const float m = fmax(fmax(m4.x, m4.y), fmax(m4.z, m4.w));
+    /* The leftmost lane holding the max. */
+    const int16 lane = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    const int16 first16 = select((int16)99, lane, len2 == m);
+    const int4 first4 = select((int4)99, lane.s0123 + 16, len2_4 == m);
+    const int8 f8 = min(first16.lo, first16.hi);
+    const int4 f4 = min(min(f8.lo, f8.hi), first4);
+    const int first = min(min(f4.x, f4.y), min(f4.z, f4.w));
+    float vxs[20], vys[20];
+    vstore16(hx, 0, vxs);
+    vstore4(hx4, 0, vxs + 16);
+    vstore16(hy, 0, vys);
+    vstore4(hy4, 0, vys + 16);
+    my_v = (float2)(vxs[first], vys[first]);
+    my_len2 = m;
   }
-  best_v[item] = my_v;
-  best_len2[item] = my_len2;
-  best_index[item] = my_index;
+  best_v[row] = my_v;
+  best_len2[row] = my_len2;
   barrier(CLK_LOCAL_MEM_FENCE);
-
-  /* Tree reduction over 100 items (strides 64, 32, ..., 1; the first folds items 64..99). The
-   * order (larger len2, then lower index) is total, so the winner does not depend on the tree. */
-  for (uint stride = 64u; stride > 0u; stride >>= 1) {
-    const uint other = item + stride;
-    if (item < stride && other < RP_MB_GROUP_ITEMS) {
-      const float l = best_len2[other];
-      const uint idx = best_index[other];
-      if (l > best_len2[item] || (l == best_len2[item] && idx < best_index[item])) {
-        best_v[item] = best_v[other];
-        best_len2[item] = l;
-        best_index[item] = idx;
+  if (row == 0) {
+    float2 v = best_v[0];
+    float l = best_len2[0];
+    for (int r = 1; r < (int)RP_MB_TILE; ++r)
+      if (best_len2[r] > l) {
+        l = best_len2[r];
+        v = best_v[r];
       }
-    }
-    barrier(CLK_LOCAL_MEM_FENCE);
+    tile_max[get_group_id(1) * get_num_groups(0) + get_group_id(0)] = rp_mb_clamp(v);
   }
-  if (item == 0u)
-    tile_max[get_group_id(1) * get_num_groups(0) + get_group_id(0)] = rp_mb_clamp(best_v[0]);
 }
 
 /* Grid: (tiles_x, tiles_y), any local size. */
@@ -151,79 +198,222 @@ __kernel void motion_blur_neighbour_max(__global const float2* restrict tile_max
   neighbour_max[ty * (int)tiles_x + tx] = best;
 }
 
-/* The prepass: depth/speed plane, one half2 per pixel (linear depth clamped to [0, 60000],
- * clamped blur radius |V| in pixels), only in tiles flagged by motion_blur_neighbour_max (the
- * rest is never read). Straight-line per-pixel code: PoCL vectorizes it across work-items.
- * Grid: (width, height), any local size. */
+/* Float to IEEE binary16 bits, round to nearest even (what vstore_half does by default), for
+ * finite values in [0, 65504] on 16 + 4 lanes (the plane's depths and speeds are such values;
+ * done in vector arithmetic because a per-lane vstore_half2 costs more than the rest of the
+ * prepass on PoCL). */
+inline uint16 rp_mb_float_to_half16(float16 x) {
+  const uint16 bits = as_uint16(x);
+  /* Normal halves (x >= 2^-14): drop 13 mantissa bits with round-half-even, rebias by 112. */
+  const uint16 normal = (bits + 0x0FFFu + ((bits >> 13) & 1u) - 0x38000000u) >> 13;
+  /* Subnormal halves: x / 2^-24 rounded to the nearest even integer. */
+  const uint16 tiny = convert_uint16(rint(x * 16777216.0f));
+  return select(normal, tiny, bits < 0x38800000u);
+}
+inline uint4 rp_mb_float_to_half4(float4 x) {
+  const uint4 bits = as_uint4(x);
+  const uint4 normal = (bits + 0x0FFFu + ((bits >> 13) & 1u) - 0x38000000u) >> 13;
+  const uint4 tiny = convert_uint4(rint(x * 16777216.0f));
+  return select(normal, tiny, bits < 0x38800000u);
+}
+
+/* Step 3, the prepass: the depth/speed plane, one half2 per pixel (linear depth clamped to
+ * [0, 60000], clamped blur radius |V| in pixels; stored as one uint per pixel, depth in the low
+ * half as vstore_half2 would on the little-endian devices OpenCL runs on), only in tiles flagged
+ * by motion_blur_neighbour_max (the rest is never read). Grid: (tiles_x, 20 * tiles_y), any
+ * local size: one work-item per pixel row of a tile, 20 pixels in vector arithmetic. */
 __kernel void motion_blur_depth_speed(__global const float2* restrict velocity,
                                       __global const float4* restrict normal_depth,
                                       __global const uint* restrict plane_needed,
                                       __global half* restrict depth_speed, uint width,
                                       uint height, uint tiles_x, float shutter) {
-  const uint x = (uint)get_global_id(0), y = (uint)get_global_id(1);
-  if (x >= width || y >= height) return;
-  if (plane_needed[(y / RP_MB_TILE) * tiles_x + x / RP_MB_TILE] == 0u) return;
-  const uint i = y * width + x;
-  const float2 v = rp_mb_clamp(rp_mb_half_vector(velocity[i], shutter));
-  const float depth = clamp(normal_depth[i].w, 0.0f, RP_MB_MAX_DEPTH);
-  vstore_half2((float2)(depth, sqrt(rp_mb_len2(v))), i, depth_speed);
+  const int tx = (int)get_global_id(0), y = (int)get_global_id(1);
+  if (tx >= (int)tiles_x || y >= (int)height) return;
+  if (plane_needed[(y / (int)RP_MB_TILE) * (int)tiles_x + tx] == 0u) return;
+  const int x0 = tx * (int)RP_MB_TILE, row = y * (int)width;
+  float16 hx, hy, len2;
+  float4 hx4, hy4, len2_4;
+  rp_mb_row20((__global const float*)(velocity + row), x0, (int)width, shutter, &hx, &hy, &hx4,
+              &hy4, &len2, &len2_4);
+  /* |V| clamped to RP_MB_MAX_RADIUS as rp_mb_clamp does: v * (R / sqrt(len2)) when longer. */
+  const int16 longer = len2 > RP_MB_MAX_RADIUS * RP_MB_MAX_RADIUS;
+  const int4 longer4 = len2_4 > RP_MB_MAX_RADIUS * RP_MB_MAX_RADIUS;
+  const float16 k = RP_MB_MAX_RADIUS / sqrt(len2);
+  const float4 k4 = RP_MB_MAX_RADIUS / sqrt(len2_4);
+  hx = select(hx, hx * k, longer);
+  hy = select(hy, hy * k, longer);
+  hx4 = select(hx4, hx4 * k4, longer4);
+  hy4 = select(hy4, hy4 * k4, longer4);
+  const float16 speed = sqrt(hx * hx + hy * hy);
+  const float4 speed4 = sqrt(hx4 * hx4 + hy4 * hy4);
+  float d[20];
+  for (int i = 0; i < 20; ++i) d[i] = normal_depth[row + min(x0 + i, (int)width - 1)].w;
+  const float16 depth = clamp(vload16(0, d), 0.0f, RP_MB_MAX_DEPTH);
+  const float4 depth4 = clamp(vload4(0, d + 16), 0.0f, RP_MB_MAX_DEPTH);
+  const uint16 packed = rp_mb_float_to_half16(depth) | (rp_mb_float_to_half16(speed) << 16);
+  const uint4 packed4 = rp_mb_float_to_half4(depth4) | (rp_mb_float_to_half4(speed4) << 16);
+  __global uint* out = (__global uint*)depth_speed + row + x0;
+  if (x0 + 19 < (int)width) {
+    vstore16(packed, 0, out);
+    vstore4(packed4, 0, out + 16);
+    return;
+  }
+  uint t[20];
+  vstore16(packed, 0, t);
+  vstore4(packed4, 0, t + 16);
+  for (int i = 0; x0 + i < (int)width; ++i) out[i] = t[i];
 }
 
-/* 1 when za (sample) is in front of zb (pixel), fading to 0 over RP_MB_SOFT_Z behind it. */
-inline float rp_mb_soft_depth_compare(float za, float zb) {
+/* Weights on 16 lanes. Soft depth comparison: 1 when za (sample) is in front of zb (pixel),
+ * fading to 0 over RP_MB_SOFT_Z behind it. */
+inline float16 rp_mb_soft_depth_compare16(float16 za, float16 zb) {
   return clamp(1.0f - (za - zb) * (1.0f / RP_MB_SOFT_Z), 0.0f, 1.0f);
 }
 
-/* Blur of speed `speed` (pixels, >= 0.5) covers a point `dist` pixels away: a cone 1 -> 0. */
-inline float rp_mb_cone(float dist, float speed) {
-  return clamp(1.0f - dist / speed, 0.0f, 1.0f);
-}
-
-/* ~1 inside the blur radius, ~0 outside, a smooth step over +-5 % of it. */
-inline float rp_mb_cylinder(float dist, float speed) {
-  const float e0 = 0.95f * speed, e1 = 1.05f * speed;
-  const float t = clamp((dist - e0) / (e1 - e0), 0.0f, 1.0f);
+/* Both speed terms of a sample from q = dist / speed (dist: pixels from the pixel to the sample,
+ * speed: a blur radius in pixels, >= 0.5): the cone (does a blur of that radius cover a point
+ * dist away: 1 -> 0) and the cylinder (~1 inside the radius, ~0 outside, a smooth step over
+ * +-5 % of it: t = (dist - 0.95 speed) / (0.1 speed) = (q - 0.95) * 10). */
+inline float16 rp_mb_cone16(float16 q) { return clamp(1.0f - q, 0.0f, 1.0f); }
+inline float16 rp_mb_cylinder16(float16 q) {
+  const float16 t = clamp((q - 0.95f) * 10.0f, 0.0f, 1.0f);
   return 1.0f - t * t * (3.0f - 2.0f * t);
 }
 
-/* Grid: (width, height), any local size. */
+/* Step 4. Grid: (ceil(width / 16), ceil(height / 2)), any local size. */
+__kernel void motion_blur_composite(__global const float4* restrict hdr_in,
+                                    __global const float* restrict bloom_level1, int level1_w,
+                                    int level1_h, float keep, float scale,
+                                    __global float4* restrict hdr_out, int width, int height) {
+  const int gx = (int)get_global_id(0), n = (int)get_global_id(1);
+  if (16 * gx >= width || 2 * n >= height) return;
+  rp_bloom_composite_rows(hdr_in, bloom_level1, level1_w, level1_h, hdr_out, width, height, gx,
+                          n, keep, scale);
+}
+
+/* Samples for a neighbourhood max radius of sqrt(len2) pixels (len2 > 0.25): odd, 3 .. 15. */
+inline int rp_mb_sample_count(float len2) {
+  return min(2 * (int)ceil(sqrt(len2)) + 1, RP_MB_SAMPLES);
+}
+
+/* rp_hash_u32 (common/random.h) on 16 lanes. */
+inline uint16 rp_mb_hash16(uint16 v) {
+  const uint16 state = v * 747796405u + 2891336453u;
+  const uint16 word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+/* IEEE binary16 bits (low 16 bits of h) to float on 16 lanes, exact for every value (what
+ * vload_half does; done here in vector arithmetic because the gathers load the half2 pairs as
+ * uints, and a per-lane vload_half2 costs more than the filter's arithmetic on PoCL). */
+inline float16 rp_mb_half_to_float16(uint16 h) {
+  const uint16 sign = (h & 0x8000u) << 16, exponent = (h >> 10) & 0x1Fu, mantissa = h & 0x3FFu;
+  /* Normal: rebias the exponent (127 - 15 = 112); infinity / NaN: all-ones exponent. */
+  const uint16 normal = ((exponent + 112u) << 23) | (mantissa << 13);
+  const uint16 special = 0x7F800000u | (mantissa << 13);
+  /* Subnormal and zero: mantissa * 2^-24, exact in float. */
+  const uint16 tiny = as_uint16(convert_float16(mantissa) * 5.9604644775390625e-8f);
+  const uint16 bits = exponent == 0u ? tiny : (exponent == 31u ? special : normal);
+  return as_float16(bits | sign);
+}
+
+/* Lane l of a 16-vector by a constant index, for the per-lane gathers. */
+#define RP_MB_LANES(M) M(0) M(1) M(2) M(3) M(4) M(5) M(6) M(7) M(8) M(9) M(a) M(b) M(c) M(d) M(e) M(f)
+
+/* Step 5. Grid: (5 * tiles_x, 5 * tiles_y), any local size: item (bx, by) is the block at
+ * pixel (4bx, 4by) (five blocks per tile side). bloom_level1 is read only when fuse_bloom != 0
+ * (it may be any buffer otherwise). */
 __kernel void motion_blur_reconstruct(__global const float4* restrict hdr_in,
                                       __global const half* restrict depth_speed,
                                       __global const float2* restrict neighbour_max,
-                                      __global float4* restrict hdr_out, uint width,
-                                      uint height, uint tiles_x) {
-  const uint x = (uint)get_global_id(0), y = (uint)get_global_id(1);
-  if (x >= width || y >= height) return;
-  const uint i = y * width + x;
-  const float2 vn = neighbour_max[(y / RP_MB_TILE) * tiles_x + x / RP_MB_TILE];
-  if (rp_mb_len2(vn) <= 0.25f) { /* max radius <= half a pixel: nothing visibly moves here */
-    hdr_out[i] = hdr_in[i];
-    return;
-  }
-  const float2 zs_x = vload_half2(i, depth_speed);
-  const float speed_x = fmax(zs_x.y, 0.5f);
-  const float4 c_x = hdr_in[i];
-  float weight = 1.0f / speed_x;
-  float4 sum = c_x * weight;
+                                      __global const float* restrict bloom_level1, int level1_w,
+                                      int level1_h, float keep, float scale, int fuse_bloom,
+                                      __global float4* restrict hdr_out, int width, int height,
+                                      int tiles_x) {
+  const int bx = (int)get_global_id(0), by = (int)get_global_id(1);
+  const int x0 = 4 * bx, y0 = 4 * by;
+  if (x0 >= width || y0 >= height) return;
+  const float2 vn = neighbour_max[(y0 / (int)RP_MB_TILE) * tiles_x + x0 / (int)RP_MB_TILE];
+  const float vn_len2 = rp_mb_len2(vn);
+  if (vn_len2 <= 0.25f) return; /* max radius <= half a pixel: step 4 wrote these pixels */
+  const int samples = rp_mb_sample_count(vn_len2);
+
+  /* The block's pixels (lane l = 4j + i is pixel (x0 + i, y0 + j)), clamped into the image for
+   * reading; only pixels inside it are written. */
+  const int16 lane = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  /* (Integer min / clamp take vector bounds: oclgrind 21.10 broadcasts a scalar bound to the
+   * first lane only.) */
+  const int16 xs = min(x0 + (lane & 3), (int16)(width - 1));
+  const int16 ys = min(y0 + (lane >> 2), (int16)(height - 1));
+  const int16 centre = ys * width + xs;
+  float4 c_x[16];
+  /* The depth/speed plane as one uint per pixel: depth in the low half, speed in the high. */
+  __global const uint* zs_plane = (__global const uint*)depth_speed;
+  uint16 zs_x;
+#define RP_MB_CENTRE(L)                       \
+  zs_x.s##L = zs_plane[centre.s##L];          \
+  c_x[0x##L] = hdr_in[centre.s##L];
+  RP_MB_LANES(RP_MB_CENTRE)
+#undef RP_MB_CENTRE
+  const float16 z_x = rp_mb_half_to_float16(zs_x);
+  const float16 speed_x = fmax(rp_mb_half_to_float16(zs_x >> 16), 0.5f);
+  float16 weight = 1.0f / speed_x;
+  float4 sum[16];
+#define RP_MB_INIT(L) sum[0x##L] = c_x[0x##L] * weight.s##L;
+  RP_MB_LANES(RP_MB_INIT)
+#undef RP_MB_INIT
   /* Jitter in [-0.5, 0.5): fixed per pixel (no frame index), so a still frame is stable. */
-  const float j = rp_hash_to_unit(rp_hash_pixel(x, y, 0u)) - 0.5f;
-  const float px = (float)x + 0.5f, py = (float)y + 0.5f;
-  for (int s = 0; s < RP_MB_SAMPLES; ++s) {
-    if (s == (RP_MB_SAMPLES - 1) / 2) continue;
-    const float t = -1.0f + 2.0f * (((float)s + j + 1.0f) / (float)(RP_MB_SAMPLES + 1));
-    const int sx = clamp((int)floor(px + vn.x * t), 0, (int)width - 1);
-    const int sy = clamp((int)floor(py + vn.y * t), 0, (int)height - 1);
-    const uint k = (uint)sy * width + (uint)sx;
-    const float2 zs_y = vload_half2(k, depth_speed);
-    const float speed_y = fmax(zs_y.y, 0.5f);
-    const float ddx = (float)sx - (float)x, ddy = (float)sy - (float)y;
-    const float dist = sqrt(ddx * ddx + ddy * ddy);
-    const float f = rp_mb_soft_depth_compare(zs_y.x, zs_x.x); /* sample in front of pixel */
-    const float b = rp_mb_soft_depth_compare(zs_x.x, zs_y.x); /* sample behind the pixel */
-    const float alpha = f * rp_mb_cone(dist, speed_y) + b * rp_mb_cone(dist, speed_x) +
-                        rp_mb_cylinder(dist, speed_y) * rp_mb_cylinder(dist, speed_x) * 2.0f;
+  const uint16 hash = rp_mb_hash16(convert_uint16(xs) ^
+                                   rp_mb_hash16(convert_uint16(ys) ^ rp_hash_u32(0u)));
+  const float16 j = convert_float16(hash >> 8) * (1.0f / 16777216.0f) - 0.5f;
+  const float16 px = convert_float16(xs) + 0.5f, py = convert_float16(ys) + 0.5f;
+  /* Sample s sits at t = (s + 1 + j) * 2 / (samples + 1) - 1 in (-1, 1) along +-V_max. */
+  const float step = 2.0f / (float)(samples + 1);
+  for (int s = 0; s < samples; ++s) {
+    if (s == (samples - 1) / 2) continue;
+    const float16 t = ((float)s + 1.0f + j) * step - 1.0f;
+    const int16 sx =
+        clamp(convert_int16(floor(px + vn.x * t)), (int16)0, (int16)(width - 1));
+    const int16 sy =
+        clamp(convert_int16(floor(py + vn.y * t)), (int16)0, (int16)(height - 1));
+    const int16 k = sy * width + sx;
+    uint16 zs_y;
+#define RP_MB_GATHER(L) zs_y.s##L = zs_plane[k.s##L];
+    RP_MB_LANES(RP_MB_GATHER)
+#undef RP_MB_GATHER
+    const float16 z_y = rp_mb_half_to_float16(zs_y);
+    const float16 speed_y = fmax(rp_mb_half_to_float16(zs_y >> 16), 0.5f);
+    const float16 ddx = convert_float16(sx - xs), ddy = convert_float16(sy - ys);
+    const float16 dist = sqrt(ddx * ddx + ddy * ddy);
+    const float16 f = rp_mb_soft_depth_compare16(z_y, z_x); /* sample in front of pixel */
+    const float16 b = rp_mb_soft_depth_compare16(z_x, z_y); /* sample behind the pixel */
+    const float16 q_y = dist / speed_y, q_x = dist / speed_x;
+    const float16 alpha = f * rp_mb_cone16(q_y) + b * rp_mb_cone16(q_x) +
+                          rp_mb_cylinder16(q_y) * rp_mb_cylinder16(q_x) * 2.0f;
     weight += alpha;
-    sum += hdr_in[k] * alpha;
+#define RP_MB_ACCUMULATE(L) sum[0x##L] += hdr_in[k.s##L] * alpha.s##L;
+    RP_MB_LANES(RP_MB_ACCUMULATE)
+#undef RP_MB_ACCUMULATE
   }
-  hdr_out[i] = sum / weight;
+  float4 bloom_r[4], bloom_g[4], bloom_b[4];
+  if (fuse_bloom) {
+    const int plane = level1_w * level1_h;
+    rp_bloom_tent_block(bloom_level1, level1_w, level1_h, bx, by, bloom_r);
+    rp_bloom_tent_block(bloom_level1 + plane, level1_w, level1_h, bx, by, bloom_g);
+    rp_bloom_tent_block(bloom_level1 + 2 * plane, level1_w, level1_h, bx, by, bloom_b);
+  }
+  for (int jj = 0; jj < 4; ++jj) {
+    const int y = y0 + jj;
+    if (y >= height) break;
+    for (int ii = 0; ii < 4 && x0 + ii < width; ++ii) {
+      const int l = 4 * jj + ii;
+      float4 out = sum[l] / ((float*)&weight)[l];
+      if (fuse_bloom) {
+        const float4 br = bloom_r[jj], bg = bloom_g[jj], bb = bloom_b[jj];
+        out = rp_bloom_mix_pixel(out, ((float*)&br)[ii], ((float*)&bg)[ii], ((float*)&bb)[ii],
+                                 keep, scale);
+      }
+      hdr_out[y * width + x0 + ii] = out;
+    }
+  }
 }

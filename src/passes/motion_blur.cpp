@@ -10,7 +10,9 @@ namespace {
 
 constexpr const char* kPass = "motion_blur";
 constexpr const char* kFile = "motion_blur.cl";
-constexpr uint32_t kGroupSide = 10;  // tile kernel: 10x10 items, 2x2 pixels each
+constexpr uint32_t kBlocksPerTile = 5;  // reconstruction: 4x4 pixel blocks, five per tile side
+
+size_t div_up(size_t a, size_t b) { return (a + b - 1) / b; }
 
 }  // namespace
 
@@ -19,11 +21,30 @@ MotionBlurPass::MotionBlurPass(const rp::cl::Context& context, rp::cl::ProgramCa
       tile_kernel_(programs.kernel(kFile, "motion_blur_tile_max")),
       neighbour_kernel_(programs.kernel(kFile, "motion_blur_neighbour_max")),
       depth_speed_kernel_(programs.kernel(kFile, "motion_blur_depth_speed")),
+      composite_kernel_(programs.kernel(kFile, "motion_blur_composite")),
       reconstruct_kernel_(programs.kernel(kFile, "motion_blur_reconstruct")) {}
 
 void MotionBlurPass::run(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in,
                          const render::GBuffer& gbuffer, uint32_t width, uint32_t height,
                          float shutter, ::cl::Buffer& hdr_out) {
+  enqueue(profiler, hdr_in, gbuffer, width, height, shutter, nullptr, hdr_out);
+}
+
+void MotionBlurPass::run(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in,
+                         const render::GBuffer& gbuffer, uint32_t width, uint32_t height,
+                         float shutter, const BloomPass::Composite& bloom,
+                         ::cl::Buffer& hdr_out) {
+  if (bloom.level1 == nullptr || bloom.level1_width != (width + 1) / 2 ||
+      bloom.level1_height != (height + 1) / 2)
+    throw rp::cl::Error("motion blur: the bloom composite is not that of a " +
+                        std::to_string(width) + "x" + std::to_string(height) + " image");
+  enqueue(profiler, hdr_in, gbuffer, width, height, shutter, &bloom, hdr_out);
+}
+
+void MotionBlurPass::enqueue(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in,
+                             const render::GBuffer& gbuffer, uint32_t width, uint32_t height,
+                             float shutter, const BloomPass::Composite* bloom,
+                             ::cl::Buffer& hdr_out) {
   if (gbuffer.width != width || gbuffer.height != height)
     throw rp::cl::Error("motion blur: GBuffer is " + std::to_string(gbuffer.width) + "x" +
                         std::to_string(gbuffer.height) + " but the image is " +
@@ -50,8 +71,8 @@ void MotionBlurPass::run(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in,
   tile_kernel_.setArg(2, cl_uint(width));
   tile_kernel_.setArg(3, cl_uint(height));
   tile_kernel_.setArg(4, shutter);
-  profiler.enqueue(kPass, tile_kernel_, ::cl::NDRange(tiles_x_ * kGroupSide, tiles_y_ * kGroupSide),
-                   ::cl::NDRange(kGroupSide, kGroupSide));
+  profiler.enqueue(kPass, tile_kernel_, ::cl::NDRange(tiles_x_, tiles_y_ * kTileSize),
+                   ::cl::NDRange(1, kTileSize));
 
   neighbour_kernel_.setArg(0, tile_max_);
   neighbour_kernel_.setArg(1, neighbour_max_);
@@ -68,16 +89,47 @@ void MotionBlurPass::run(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in,
   depth_speed_kernel_.setArg(5, cl_uint(height));
   depth_speed_kernel_.setArg(6, cl_uint(tiles_x_));
   depth_speed_kernel_.setArg(7, shutter);
-  profiler.enqueue(kPass, depth_speed_kernel_, ::cl::NDRange(width, height));
+  profiler.enqueue(kPass, depth_speed_kernel_, ::cl::NDRange(tiles_x_, height),
+                   ::cl::NDRange(tiles_x_, 1));
 
+  // The whole image: copied, or with the bloom composited.
+  if (bloom) {
+    composite_kernel_.setArg(0, hdr_in);
+    composite_kernel_.setArg(1, *bloom->level1);
+    composite_kernel_.setArg(2, cl_int(bloom->level1_width));
+    composite_kernel_.setArg(3, cl_int(bloom->level1_height));
+    composite_kernel_.setArg(4, bloom->keep);
+    composite_kernel_.setArg(5, bloom->scale);
+    composite_kernel_.setArg(6, hdr_out);
+    composite_kernel_.setArg(7, cl_int(width));
+    composite_kernel_.setArg(8, cl_int(height));
+    profiler.enqueue(kPass, composite_kernel_,
+                     ::cl::NDRange(rp::cl::round_up(div_up(width, 16), 16), div_up(height, 2)),
+                     ::cl::NDRange(16, 1));
+  } else {
+    ::cl::Event copied;
+    profiler.queue().enqueueCopyBuffer(hdr_in, hdr_out, 0, 0, size_t(width) * height * 16,
+                                       nullptr, &copied);
+    profiler.record(kPass, copied);
+  }
+
+  // The moving tiles, over the copy: 4x4 pixel blocks, one tile's 5x5 blocks per work-group.
   reconstruct_kernel_.setArg(0, hdr_in);
   reconstruct_kernel_.setArg(1, depth_speed_);
   reconstruct_kernel_.setArg(2, neighbour_max_);
-  reconstruct_kernel_.setArg(3, hdr_out);
-  reconstruct_kernel_.setArg(4, cl_uint(width));
-  reconstruct_kernel_.setArg(5, cl_uint(height));
-  reconstruct_kernel_.setArg(6, cl_uint(tiles_x_));
-  profiler.enqueue(kPass, reconstruct_kernel_, ::cl::NDRange(width, height));
+  reconstruct_kernel_.setArg(3, bloom ? *bloom->level1 : neighbour_max_);
+  reconstruct_kernel_.setArg(4, cl_int(bloom ? bloom->level1_width : 0));
+  reconstruct_kernel_.setArg(5, cl_int(bloom ? bloom->level1_height : 0));
+  reconstruct_kernel_.setArg(6, bloom ? bloom->keep : 1.0f);
+  reconstruct_kernel_.setArg(7, bloom ? bloom->scale : 0.0f);
+  reconstruct_kernel_.setArg(8, cl_int(bloom ? 1 : 0));
+  reconstruct_kernel_.setArg(9, hdr_out);
+  reconstruct_kernel_.setArg(10, cl_int(width));
+  reconstruct_kernel_.setArg(11, cl_int(height));
+  reconstruct_kernel_.setArg(12, cl_int(tiles_x_));
+  profiler.enqueue(kPass, reconstruct_kernel_,
+                   ::cl::NDRange(tiles_x_ * kBlocksPerTile, tiles_y_ * kBlocksPerTile),
+                   ::cl::NDRange(kBlocksPerTile, kBlocksPerTile));
 }
 
 }  // namespace rp::passes

@@ -14,6 +14,7 @@
 
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
+#include "passes/bloom.h"
 #include "render/frame_buffers.h"
 
 namespace rp::passes {
@@ -22,7 +23,9 @@ class MotionBlurPass {
  public:
   static constexpr uint32_t kTileSize = 20;        // pixels per tile side
   static constexpr float kMaxBlurRadius = 20.0f;   // pixels, clamp of |velocity * shutter / 2|
-  static constexpr int kSamples = 15;              // reconstruction taps per pixel (odd)
+  // Reconstruction samples per pixel (odd, the middle one is the pixel itself): for a tile
+  // neighbourhood whose max blur radius is r pixels, min(2 * ceil(r) + 1, kSamples).
+  static constexpr int kSamples = 15;
   static constexpr float kSoftDepth = 0.02f;       // scene units of the soft depth comparison
 
   MotionBlurPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
@@ -34,6 +37,14 @@ class MotionBlurPass {
   // size change. Throws rp::cl::Error on a size mismatch or a bad shutter.
   void run(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in, const render::GBuffer& gbuffer,
            uint32_t width, uint32_t height, float shutter, ::cl::Buffer& hdr_out);
+
+  // The same with the bloom composited onto the output (bloom: from BloomPass::run_chain on
+  // hdr_in and BloomPass::composite; its level 1 must be that of a width x height image):
+  // hdr_out.rgb = blur(hdr_in).rgb * bloom.keep + up(U1) * bloom.scale, alpha blurred. With
+  // shutter 0 it is BloomPass::run's mix exactly.
+  void run(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in, const render::GBuffer& gbuffer,
+           uint32_t width, uint32_t height, float shutter, const BloomPass::Composite& bloom,
+           ::cl::Buffer& hdr_out);
 
   // Intermediates of the last run (tests, debug views). tile_max and neighbour_max: float2 per
   // tile (the clamped half blur vector in pixels), tiles_x() x tiles_y() row-major;
@@ -47,7 +58,12 @@ class MotionBlurPass {
 
  private:
   const rp::cl::Context* context_;
-  ::cl::Kernel tile_kernel_, neighbour_kernel_, depth_speed_kernel_, reconstruct_kernel_;
+  void enqueue(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in,
+               const render::GBuffer& gbuffer, uint32_t width, uint32_t height, float shutter,
+               const BloomPass::Composite* bloom, ::cl::Buffer& hdr_out);
+
+  ::cl::Kernel tile_kernel_, neighbour_kernel_, depth_speed_kernel_, composite_kernel_,
+      reconstruct_kernel_;
   uint32_t width_ = 0, height_ = 0, tiles_x_ = 0, tiles_y_ = 0;
   ::cl::Buffer tile_max_, neighbour_max_, plane_needed_, depth_speed_;
 };

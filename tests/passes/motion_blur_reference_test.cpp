@@ -1,7 +1,8 @@
 // Motion blur kernels (kernels/motion_blur.cl) against a straightforward single-precision C++
 // reference of the same steps: tile max (exact, ties included), 3x3 neighbourhood max (exact),
 // the depth/speed half2 plane (exact against a round-to-nearest-even conversion, and within half
-// precision of the float values), and the reconstruction filter (1e-5 relative).
+// precision of the float values), and the reconstruction filter (1e-5 relative) with its sample
+// count from the neighbourhood max (min(2 ceil(|V_max|) + 1, 15)).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -149,11 +150,17 @@ float clamp01(float v) { return std::min(std::max(v, 0.0f), 1.0f); }
 float soft_depth(float za, float zb) {
   return clamp01(1.0f - (za - zb) * (1.0f / MotionBlurPass::kSoftDepth));
 }
-float cone(float dist, float speed) { return clamp01(1.0f - dist / speed); }
-float cylinder(float dist, float speed) {
-  const float e0 = 0.95f * speed, e1 = 1.05f * speed;
-  const float t = clamp01((dist - e0) / (e1 - e0));
+// Speed terms from q = dist / speed: the cone 1 - q and the cylinder, a smooth step from 1 to 0
+// over q in [0.95, 1.05].
+float cone(float q) { return clamp01(1.0f - q); }
+float cylinder(float q) {
+  const float t = clamp01((q - 0.95f) * 10.0f);
   return 1.0f - t * t * (3.0f - 2.0f * t);
+}
+
+// Samples for a neighbourhood max |V| of sqrt(l2) pixels: about one per pixel of the streak.
+int sample_count(float l2) {
+  return std::min(2 * int(std::ceil(std::sqrt(l2))) + 1, MotionBlurPass::kSamples);
 }
 
 // The depth/speed plane (2 halves per pixel) of the whole image.
@@ -164,7 +171,6 @@ std::vector<uint16_t> ref_depth_speed(const Inputs& in, float shutter);
 std::vector<V4> ref_reconstruct(const std::vector<V4>& hdr, const std::vector<uint16_t>& zs,
                                 const std::vector<V2>& nmax, uint32_t w, uint32_t h) {
   const uint32_t tx = (w + kTile - 1) / kTile;
-  const int n = MotionBlurPass::kSamples;
   std::vector<V4> out(hdr.size());
   for (uint32_t y = 0; y < h; ++y)
     for (uint32_t x = 0; x < w; ++x) {
@@ -179,9 +185,11 @@ std::vector<V4> ref_reconstruct(const std::vector<V4>& hdr, const std::vector<ui
       V4 sum{hdr[i].x * weight, hdr[i].y * weight, hdr[i].z * weight, hdr[i].w * weight};
       const float j = jitter(x, y);
       const float px = float(x) + 0.5f, py = float(y) + 0.5f;
+      const int n = sample_count(len2(vn));
+      const float step = 2.0f / float(n + 1);
       for (int s = 0; s < n; ++s) {
         if (s == (n - 1) / 2) continue;
-        const float t = -1.0f + 2.0f * ((float(s) + j + 1.0f) / float(n + 1));
+        const float t = (float(s) + 1.0f + j) * step - 1.0f;
         const float ox = vn.x * t, oy = vn.y * t;
         const int sx = std::clamp(int(std::floor(px + ox)), 0, int(w) - 1);
         const int sy = std::clamp(int(std::floor(py + oy)), 0, int(h) - 1);
@@ -189,9 +197,9 @@ std::vector<V4> ref_reconstruct(const std::vector<V4>& hdr, const std::vector<ui
         const float zy = half_to_float(zs[2 * k]), speed_y = std::max(half_to_float(zs[2 * k + 1]), 0.5f);
         const float ddx = float(sx) - float(x), ddy = float(sy) - float(y);
         const float dist = std::sqrt(ddx * ddx + ddy * ddy);
-        const float alpha = soft_depth(zy, zx) * cone(dist, speed_y) +
-                            soft_depth(zx, zy) * cone(dist, speed_x) +
-                            cylinder(dist, speed_y) * cylinder(dist, speed_x) * 2.0f;
+        const float q_y = dist / speed_y, q_x = dist / speed_x;
+        const float alpha = soft_depth(zy, zx) * cone(q_y) + soft_depth(zx, zy) * cone(q_x) +
+                            cylinder(q_y) * cylinder(q_x) * 2.0f;
         weight += alpha;
         sum = {sum.x + hdr[k].x * alpha, sum.y + hdr[k].y * alpha, sum.z + hdr[k].z * alpha,
                sum.w + hdr[k].w * alpha};
@@ -358,9 +366,19 @@ TEST(MotionBlurKernels, HalfConversionReferenceIsRoundToNearestEven) {
   EXPECT_EQ(half_to_float(0x3555u), 0.333251953125f);
 }
 
+TEST(MotionBlurKernels, SampleCountFollowsTheStreakLength) {
+  EXPECT_EQ(sample_count(0.2601f), 3);   // 0.51 px
+  EXPECT_EQ(sample_count(1.0f), 3);      // 1 px
+  EXPECT_EQ(sample_count(1.0201f), 5);   // 1.01 px
+  EXPECT_EQ(sample_count(12.25f), 9);    // 3.5 px
+  EXPECT_EQ(sample_count(49.0f), 15);    // 7 px
+  EXPECT_EQ(sample_count(400.0f), 15);   // the clamp
+}
+
 TEST(MotionBlurKernels, ReconstructionMatchesReference) {
-  // Random colours and depths, still background, three moving blocks at different depths.
-  const uint32_t w = 83, h = 61;
+  // Random colours and depths, still background, moving blocks at different depths and speeds
+  // (sample counts 3 .. 15), one partly outside the image.
+  const uint32_t w = 143, h = 101;
   Inputs in = make_inputs(w, h, 0, 5u);
   struct Block {
     uint32_t x0, y0, x1, y1;
@@ -369,7 +387,10 @@ TEST(MotionBlurKernels, ReconstructionMatchesReference) {
   };
   const Block blocks[] = {{10, 10, 25, 22, {14, 3}, 1.5f},
                           {40, 30, 52, 50, {-5, 20}, 2.5f},
-                          {60, 5, 70, 15, {90, -40}, 1.0f}};  // clamped to 20 px
+                          {60, 5, 70, 15, {90, -40}, 1.0f},  // clamped to 20 px
+                          {95, 10, 105, 18, {2, 1}, 2.0f},   // 0.9 px: 3 samples
+                          {90, 60, 112, 75, {-4, 3}, 1.2f},  // 2 px: 5 samples
+                          {125, 80, 143, 101, {7, 7}, 3.0f}};  // at the corner
   for (const Block& b : blocks)
     for (uint32_t y = b.y0; y < b.y1; ++y)
       for (uint32_t x = b.x0; x < b.x1; ++x) {
