@@ -18,11 +18,24 @@
  * So an opaque front child hides its back child for d but not for -d.
  *
  * FP contraction is off: tests/passes/voxel_mips_test.cpp repeats this operation for operation.
+ *
+ * Built with -DRP_SPAN=16 (CPUs, levels with at least 16 voxels per side) a work-item computes
+ * 16 neighbouring parents along x at once: each row of 32 children is loaded as float16s and
+ * split into planar channels of the even and odd children, and the same compositing runs on
+ * float16 lanes (the same operations per lane, so the same results). RP_SPAN = 1: one parent
+ * per work-item.
  */
 #pragma OPENCL FP_CONTRACT OFF
 
 #include "shared/voxel_layout.h"
 #include "common/voxel.h"
+
+#ifndef RP_SPAN
+#define RP_SPAN 1
+#endif
+#if RP_SPAN != 1 && RP_SPAN != 16
+#error "voxel_mips.cl: RP_SPAN must be 1 or 16"
+#endif
 
 /* The 8 children of parent voxel p in the volume at `base` (child_n per side), child index
  * i = x + 2y + 4z. */
@@ -52,6 +65,127 @@ inline float4 mips_composite(const float4 c[8], uint dir) {
   return ((col[0] + col[1]) + (col[2] + col[3])) * 0.25f;
 }
 
+#if RP_SPAN == 16
+
+/* Planar channels of 16 voxels. */
+typedef struct {
+  float16 r, g, b, a;
+} MipsLanes;
+
+/* 4 interleaved float4 voxels per float16 (E[m]: voxels 4m..4m+3) -> planar channels. */
+inline MipsLanes mips_planar(const float16 E[4]) {
+  const uint16 rg = (uint16)(0, 4, 8, 12, 16, 20, 24, 28, 1, 5, 9, 13, 17, 21, 25, 29);
+  const uint16 ba = (uint16)(2, 6, 10, 14, 18, 22, 26, 30, 3, 7, 11, 15, 19, 23, 27, 31);
+  const uint16 lo = (uint16)(0, 1, 2, 3, 4, 5, 6, 7, 16, 17, 18, 19, 20, 21, 22, 23);
+  const uint16 hi = (uint16)(8, 9, 10, 11, 12, 13, 14, 15, 24, 25, 26, 27, 28, 29, 30, 31);
+  const float16 rg_a = shuffle2(E[0], E[1], rg), ba_a = shuffle2(E[0], E[1], ba);
+  const float16 rg_b = shuffle2(E[2], E[3], rg), ba_b = shuffle2(E[2], E[3], ba);
+  MipsLanes out;
+  out.r = shuffle2(rg_a, rg_b, lo);
+  out.g = shuffle2(rg_a, rg_b, hi);
+  out.b = shuffle2(ba_a, ba_b, lo);
+  out.a = shuffle2(ba_a, ba_b, hi);
+  return out;
+}
+
+/* The 32 children starting at `first` (one row along x) -> channels of the even-x children
+ * (the parents' low-x children) and of the odd-x ones. */
+inline void mips_load_row(__global const float4* chain, uint first, MipsLanes* even,
+                          MipsLanes* odd) {
+  const uint16 ev = (uint16)(0, 1, 2, 3, 8, 9, 10, 11, 16, 17, 18, 19, 24, 25, 26, 27);
+  const uint16 od = (uint16)(4, 5, 6, 7, 12, 13, 14, 15, 20, 21, 22, 23, 28, 29, 30, 31);
+  __global const float* f = (__global const float*)(chain + first);
+  float16 E[4], O[4];
+  for (int m = 0; m < 4; ++m) {
+    const float16 a = vload16(2 * m, f), b = vload16(2 * m + 1, f);
+    E[m] = shuffle2(a, b, ev);
+    O[m] = shuffle2(a, b, od);
+  }
+  *even = mips_planar(E);
+  *odd = mips_planar(O);
+}
+
+/* The 8 children (index x + 2y + 4z) of parents (p.x .. p.x + 15, p.y, p.z) in the volume at
+ * `base` (child_n per side). */
+inline void mips_load_children16(__global const float4* chain, uint base, uint child_n, int3 p,
+                                 MipsLanes c[8]) {
+  for (uint yz = 0; yz < 4u; ++yz) {
+    const uint y = 2u * (uint)p.y + (yz & 1u), z = 2u * (uint)p.z + (yz >> 1);
+    mips_load_row(chain, base + (z * child_n + y) * child_n + 2u * (uint)p.x, &c[2u * yz],
+                  &c[2u * yz + 1u]);
+  }
+}
+
+/* f + (1 - f.a) b per channel. */
+inline MipsLanes mips_over16(MipsLanes f, MipsLanes b) {
+  const float16 t = 1.0f - f.a;
+  MipsLanes r;
+  r.r = f.r + t * b.r;
+  r.g = f.g + t * b.g;
+  r.b = f.b + t * b.b;
+  r.a = f.a + t * b.a;
+  return r;
+}
+
+/* mips_composite on 16 lanes. */
+inline MipsLanes mips_composite16(const MipsLanes c[8], uint dir) {
+  const uint step = 1u << (dir >> 1);
+  const bool positive = (dir & 1u) == 0u;
+  MipsLanes col[4];
+  uint k = 0;
+  for (uint i = 0; i < 8u; ++i) {
+    if ((i & step) != 0u) continue;
+    col[k++] = positive ? mips_over16(c[i], c[i + step]) : mips_over16(c[i + step], c[i]);
+  }
+  MipsLanes r;
+  r.r = ((col[0].r + col[1].r) + (col[2].r + col[3].r)) * 0.25f;
+  r.g = ((col[0].g + col[1].g) + (col[2].g + col[3].g)) * 0.25f;
+  r.b = ((col[0].b + col[1].b) + (col[2].b + col[3].b)) * 0.25f;
+  r.a = ((col[0].a + col[1].a) + (col[2].a + col[3].a)) * 0.25f;
+  return r;
+}
+
+inline void mips_store16(__global float4* chain, uint at, MipsLanes v) {
+  const uint16 zip_lo = (uint16)(0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
+  const uint16 zip_hi = (uint16)(8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31);
+  const uint16 zip2_lo = (uint16)(0, 1, 16, 17, 2, 3, 18, 19, 4, 5, 20, 21, 6, 7, 22, 23);
+  const uint16 zip2_hi = (uint16)(8, 9, 24, 25, 10, 11, 26, 27, 12, 13, 28, 29, 14, 15, 30, 31);
+  const float16 rg_lo = shuffle2(v.r, v.g, zip_lo), rg_hi = shuffle2(v.r, v.g, zip_hi);
+  const float16 ba_lo = shuffle2(v.b, v.a, zip_lo), ba_hi = shuffle2(v.b, v.a, zip_hi);
+  __global float* f = (__global float*)(chain + at);
+  vstore16(shuffle2(rg_lo, ba_lo, zip2_lo), 0, f);
+  vstore16(shuffle2(rg_lo, ba_lo, zip2_hi), 1, f);
+  vstore16(shuffle2(rg_hi, ba_hi, zip2_lo), 2, f);
+  vstore16(shuffle2(rg_hi, ba_hi, zip2_hi), 3, f);
+}
+
+/* One work-item per 16 parents along x (the host launches this build only for levels with a
+ * multiple of 16 voxels per side). */
+__kernel void voxel_mips_build(__global float4* chain, uint resolution, uint level) {
+  const uint n = rp_voxel_level_size(resolution, level);
+  const uint spans = n / 16u;
+  const uint gid = (uint)get_global_id(0);
+  if (level == 0u || spans == 0u || gid >= spans * n * n) return;
+  const uint row = gid / spans;
+  const int3 p = (int3)((int)((gid - row * spans) * 16u), (int)(row % n), (int)(row / n));
+  const uint child_n = 2u * n;
+  const uint dst = rp_voxel_index(p, n);
+  MipsLanes c[8];
+  if (level == 1u) { /* all directions from the isotropic level 0: load once */
+    mips_load_children16(chain, rp_voxel_offset(resolution, 0u, 0u), child_n, p, c);
+    for (uint dir = 0; dir < 6u; ++dir)
+      mips_store16(chain, rp_voxel_offset(resolution, 1u, dir) + dst, mips_composite16(c, dir));
+  } else {
+    for (uint dir = 0; dir < 6u; ++dir) {
+      mips_load_children16(chain, rp_voxel_offset(resolution, level - 1u, dir), child_n, p, c);
+      mips_store16(chain, rp_voxel_offset(resolution, level, dir) + dst,
+                   mips_composite16(c, dir));
+    }
+  }
+}
+
+#else
+
 __kernel void voxel_mips_build(__global float4* chain, uint resolution, uint level) {
   const uint n = rp_voxel_level_size(resolution, level);
   const uint gid = (uint)get_global_id(0);
@@ -72,3 +206,5 @@ __kernel void voxel_mips_build(__global float4* chain, uint resolution, uint lev
     }
   }
 }
+
+#endif

@@ -19,7 +19,9 @@ class VoxelMipsPass {
   void run(rp::cl::Profiler& profiler, render::VoxelVolume& volume);
 
  private:
-  ::cl::Kernel kernel_;
+  ::cl::Kernel kernel_;   // one parent voxel per work-item
+  ::cl::Kernel span16_;   // 16 parents along x per work-item (CPUs, levels >= 16 per side)
+  bool use_span16_ = false;
 };
 
 }  // namespace rp::passes

@@ -112,8 +112,9 @@ TEST(VoxelMips, LayoutAndLevels) {
   EXPECT_THROW(pass.run(profiler, vol), rp::cl::Error);  // never allocated
 }
 
-TEST(VoxelMips, MatchesReferenceOnRandomVolume) {
-  const uint32_t r = 16;
+// A random level 0 of r^3 voxels through the pass, against the reference chain; voxel 0 of
+// `check_level` (+x) must be neither empty nor opaque (the values are not trivial).
+void check_random_volume(uint32_t r, uint32_t check_level) {
   std::mt19937 rng(1234);
   std::uniform_real_distribution<float> u01(0.0f, 1.0f);
   std::vector<V4> level0(size_t(r) * r * r);
@@ -137,11 +138,29 @@ TEST(VoxelMips, MatchesReferenceOnRandomVolume) {
     }
   EXPECT_EQ(bad, 0u);
   EXPECT_EQ(times.count("voxel_mips"), 1u);
-  // The top level is not trivially empty or saturated.
-  const V4 top = got[at(r, 4, 0, 0, 0, 0)];
+  const V4 top = got[at(r, check_level, 0, 0, 0, 0)];
   EXPECT_GT(top[3], 0.1f);
   EXPECT_LT(top[3], 1.0f);
 }
+
+TEST(VoxelMips, MatchesReferenceOnRandomVolume) { check_random_volume(16, 4); }  // top level
+
+// 64^3: levels 1 and 2 have 32 and 16 voxels per side, where CPUs compute 16 parents per
+// work-item; both layouts (ROLYPOLY_VOXEL_MIPS_SPAN: 1 = GPU, 16) match the reference.
+class VoxelMipsSpans : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(VoxelMipsSpans, MatchesReferenceOnRandomVolume) {
+  setenv("ROLYPOLY_VOXEL_MIPS_SPAN", GetParam(), 1);
+  try {
+    check_random_volume(64, 2);
+  } catch (...) {
+    unsetenv("ROLYPOLY_VOXEL_MIPS_SPAN");
+    throw;
+  }
+  unsetenv("ROLYPOLY_VOXEL_MIPS_SPAN");
+}
+
+INSTANTIATE_TEST_SUITE_P(Spans, VoxelMipsSpans, ::testing::Values("1", "16"));
 
 TEST(VoxelMips, OpaqueVoxelHidesWhatIsBehindInOneDirectionOnly) {
   // R = 2: black opaque voxel at x = 0, green opaque voxel behind it at x = 1 (same y, z).
