@@ -20,9 +20,9 @@
  *   3. motion_blur_depth_speed (prepass): the depth/speed plane, one half2 per pixel (linear
  *      depth, |V| clamped, in pixels) rounded to nearest even as vstore_half2 does, only in
  *      flagged tiles, so a still frame costs almost nothing; one item per tile row of 20 pixels.
- *   4. motion_blur_composite: the whole image, 16 pixels of two rows per item: the output is
- *      the input, with the bloom composited when the bloom is fused in (common/
- *      bloom_composite.h; without it the host copies the buffer instead).
+ *   4. motion_blur_composite: the image outside the moving tiles, 16 pixels of two rows per
+ *      item: the output is the input, with the bloom composited when the bloom is fused in
+ *      (common/bloom_composite.h; without it the host copies the whole buffer instead).
  *   5. motion_blur_reconstruct: one item per 4x4 pixel block, over every tile; blocks in tiles
  *      whose neighbourhood max is at most half a pixel return at once (step 4 wrote them).
  *      Else S samples along +-V_max (jittered per pixel; S = 2 ceil(|V_max|) + 1, at most
@@ -54,6 +54,12 @@
 #ifndef RP_MB_SOFT_Z
 #define RP_MB_SOFT_Z 0.02f
 #endif
+/* A 4x4 block of a moving tile is "quiet" when every blur radius within reach of it (its pixels'
+ * samples lie at most ceil(|V_max|) + 1 px away) is at most this: then every sample at a
+ * distance >= 1 px gets weight 0 exactly (the cone needs radius > distance; the cylinder's smooth
+ * step ends at distance / radius = 1.05 < 1 / 0.95) and the samples on the pixel itself give its
+ * own colour, so the filter returns the pixel (up to rounding) and the block is copied. */
+#define RP_MB_QUIET_SPEED 0.95f
 /* Depths above this go to the half plane as this (half max is 65504; inf - inf would be NaN). */
 #define RP_MB_MAX_DEPTH 60000.0f
 
@@ -280,13 +286,23 @@ inline float16 rp_mb_cylinder16(float16 q) {
   return 1.0f - t * t * (3.0f - 2.0f * t);
 }
 
-/* Step 4. Grid: (ceil(width / 16), ceil(height / 2)), any local size. */
+/* Step 4. Grid: (ceil(width / 16), ceil(height / 2)), any local size. Items whose pixels all
+ * lie in moving tiles (neighbourhood max above half a pixel) are left to step 5; the others are
+ * written whole (step 5 overwrites their moving part). */
 __kernel void motion_blur_composite(__global const float4* restrict hdr_in,
                                     __global const float* restrict bloom_level1, int level1_w,
                                     int level1_h, float keep, float scale,
+                                    __global const float2* restrict neighbour_max, int tiles_x,
                                     __global float4* restrict hdr_out, int width, int height) {
   const int gx = (int)get_global_id(0), n = (int)get_global_id(1);
-  if (16 * gx >= width || 2 * n >= height) return;
+  const int x0 = 16 * gx;
+  if (x0 >= width || 2 * n >= height) return;
+  /* Rows 2n and 2n+1 share a tile row (the tile side is even); columns x0 .. x0+15 span at
+   * most two tiles. */
+  __global const float2* tiles = neighbour_max + (2 * n / (int)RP_MB_TILE) * tiles_x;
+  if (rp_mb_len2(tiles[x0 / (int)RP_MB_TILE]) > 0.25f &&
+      rp_mb_len2(tiles[min(x0 + 15, width - 1) / (int)RP_MB_TILE]) > 0.25f)
+    return;
   rp_bloom_composite_rows(hdr_in, bloom_level1, level1_w, level1_h, hdr_out, width, height, gx,
                           n, keep, scale);
 }
@@ -320,46 +336,23 @@ inline float16 rp_mb_half_to_float16(uint16 h) {
 /* Lane l of a 16-vector by a constant index, for the per-lane gathers. */
 #define RP_MB_LANES(M) M(0) M(1) M(2) M(3) M(4) M(5) M(6) M(7) M(8) M(9) M(a) M(b) M(c) M(d) M(e) M(f)
 
-/* Step 5. Grid: (5 * tiles_x, 5 * tiles_y), any local size: item (bx, by) is the block at
- * pixel (4bx, 4by) (five blocks per tile side). bloom_level1 is read only when fuse_bloom != 0
- * (it may be any buffer otherwise). */
-__kernel void motion_blur_reconstruct(__global const float4* restrict hdr_in,
-                                      __global const half* restrict depth_speed,
-                                      __global const float2* restrict neighbour_max,
-                                      __global const float* restrict bloom_level1, int level1_w,
-                                      int level1_h, float keep, float scale, int fuse_bloom,
-                                      __global float4* restrict hdr_out, int width, int height,
-                                      int tiles_x) {
-  const int bx = (int)get_global_id(0), by = (int)get_global_id(1);
-  const int x0 = 4 * bx, y0 = 4 * by;
-  if (x0 >= width || y0 >= height) return;
-  const float2 vn = neighbour_max[(y0 / (int)RP_MB_TILE) * tiles_x + x0 / (int)RP_MB_TILE];
-  const float vn_len2 = rp_mb_len2(vn);
-  if (vn_len2 <= 0.25f) return; /* max radius <= half a pixel: step 4 wrote these pixels */
-  const int samples = rp_mb_sample_count(vn_len2);
-
-  /* The block's pixels (lane l = 4j + i is pixel (x0 + i, y0 + j)), clamped into the image for
-   * reading; only pixels inside it are written. */
-  const int16 lane = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  /* (Integer min / clamp take vector bounds: oclgrind 21.10 broadcasts a scalar bound to the
-   * first lane only.) */
-  const int16 xs = min(x0 + (lane & 3), (int16)(width - 1));
-  const int16 ys = min(y0 + (lane >> 2), (int16)(height - 1));
-  const int16 centre = ys * width + xs;
-  float4 c_x[16];
+/* McGuire's filter for the 16 pixels of a block (xs, ys: their coordinates, clamped into the
+ * image; result: their colours on entry, the filtered colours on return). */
+inline void rp_mb_filter_block(__global const float4* restrict hdr_in,
+                               __global const half* restrict depth_speed, float2 vn, int samples,
+                               int16 xs, int16 ys, int width, int height, float4 result[16]) {
   /* The depth/speed plane as one uint per pixel: depth in the low half, speed in the high. */
   __global const uint* zs_plane = (__global const uint*)depth_speed;
+  const int16 centre = ys * width + xs;
   uint16 zs_x;
-#define RP_MB_CENTRE(L)                       \
-  zs_x.s##L = zs_plane[centre.s##L];          \
-  c_x[0x##L] = hdr_in[centre.s##L];
+#define RP_MB_CENTRE(L) zs_x.s##L = zs_plane[centre.s##L];
   RP_MB_LANES(RP_MB_CENTRE)
 #undef RP_MB_CENTRE
   const float16 z_x = rp_mb_half_to_float16(zs_x);
   const float16 speed_x = fmax(rp_mb_half_to_float16(zs_x >> 16), 0.5f);
   float16 weight = 1.0f / speed_x;
   float4 sum[16];
-#define RP_MB_INIT(L) sum[0x##L] = c_x[0x##L] * weight.s##L;
+#define RP_MB_INIT(L) sum[0x##L] = result[0x##L] * weight.s##L;
   RP_MB_LANES(RP_MB_INIT)
 #undef RP_MB_INIT
   /* Jitter in [-0.5, 0.5): fixed per pixel (no frame index), so a still frame is stable. */
@@ -395,6 +388,82 @@ __kernel void motion_blur_reconstruct(__global const float4* restrict hdr_in,
     RP_MB_LANES(RP_MB_ACCUMULATE)
 #undef RP_MB_ACCUMULATE
   }
+#define RP_MB_RESULT(L) result[0x##L] = sum[0x##L] / weight.s##L;
+  RP_MB_LANES(RP_MB_RESULT)
+#undef RP_MB_RESULT
+}
+
+/* Step 3b. The largest blur radius (pixels, from the half plane) of every 4x4 pixel block of the
+ * flagged tiles: float per block, blocks_x = 5 * tiles_x per row. Grid: (5 * tiles_x,
+ * 5 * tiles_y), any local size. */
+__kernel void motion_blur_block_max(__global const half* restrict depth_speed,
+                                    __global const uint* restrict plane_needed,
+                                    __global float* restrict block_speed, int width, int height,
+                                    int tiles_x) {
+  const int bx = (int)get_global_id(0), by = (int)get_global_id(1);
+  const int x0 = 4 * bx, y0 = 4 * by;
+  if (x0 >= width || y0 >= height) return;
+  if (plane_needed[(y0 / (int)RP_MB_TILE) * tiles_x + x0 / (int)RP_MB_TILE] == 0u) return;
+  const int16 lane = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  const int16 xs = min(x0 + (lane & 3), (int16)(width - 1));
+  const int16 ys = min(y0 + (lane >> 2), (int16)(height - 1));
+  const int16 index = ys * width + xs;
+  __global const uint* zs_plane = (__global const uint*)depth_speed;
+  uint16 zs;
+#define RP_MB_LOAD(L) zs.s##L = zs_plane[index.s##L];
+  RP_MB_LANES(RP_MB_LOAD)
+#undef RP_MB_LOAD
+  const float16 speed = rp_mb_half_to_float16(zs >> 16);
+  const float8 m8 = fmax(speed.lo, speed.hi);
+  const float4 m4 = fmax(m8.lo, m8.hi);
+  block_speed[by * 5 * tiles_x + bx] = fmax(fmax(m4.x, m4.y), fmax(m4.z, m4.w));
+}
+
+/* Step 5. Grid: (5 * tiles_x, 5 * tiles_y), any local size: item (bx, by) is the block at
+ * pixel (4bx, 4by) (five blocks per tile side). bloom_level1 is read only when fuse_bloom != 0
+ * (it may be any buffer otherwise). */
+__kernel void motion_blur_reconstruct(__global const float4* restrict hdr_in,
+                                      __global const half* restrict depth_speed,
+                                      __global const float2* restrict neighbour_max,
+                                      __global const float* restrict block_speed,
+                                      __global const float* restrict bloom_level1, int level1_w,
+                                      int level1_h, float keep, float scale, int fuse_bloom,
+                                      __global float4* restrict hdr_out, int width, int height,
+                                      int tiles_x) {
+  const int bx = (int)get_global_id(0), by = (int)get_global_id(1);
+  const int x0 = 4 * bx, y0 = 4 * by;
+  if (x0 >= width || y0 >= height) return;
+  const int tx = x0 / (int)RP_MB_TILE, ty = y0 / (int)RP_MB_TILE;
+  const float2 vn = neighbour_max[ty * tiles_x + tx];
+  const float vn_len2 = rp_mb_len2(vn);
+  if (vn_len2 <= 0.25f) return; /* max radius <= half a pixel: step 4 wrote these pixels */
+  const int samples = rp_mb_sample_count(vn_len2);
+  /* Quiet block? The blocks within reach, inside the tile's 3x3 neighbourhood (where every
+   * sample lies) and the image. */
+  const int reach = (int)ceil(sqrt(vn_len2)) + 1;
+  const int blocks_x = 5 * tiles_x;
+  const int bx_lo = max(max(x0 - reach, 0) / 4, 5 * (tx - 1));
+  const int bx_hi = min(min(x0 + 3 + reach, width - 1) / 4, 5 * (tx + 2) - 1);
+  const int by_lo = max(max(y0 - reach, 0) / 4, 5 * (ty - 1));
+  const int by_hi = min(min(y0 + 3 + reach, height - 1) / 4, 5 * (ty + 2) - 1);
+  float reach_speed = 0.0f;
+  for (int j = by_lo; j <= by_hi; ++j)
+    for (int i = bx_lo; i <= bx_hi; ++i) reach_speed = fmax(reach_speed, block_speed[j * blocks_x + i]);
+
+  /* The block's pixels (lane l = 4j + i is pixel (x0 + i, y0 + j)), clamped into the image for
+   * reading; only pixels inside it are written. */
+  const int16 lane = (int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+  /* (Integer min / clamp take vector bounds: oclgrind 21.10 broadcasts a scalar bound to the
+   * first lane only.) */
+  const int16 xs = min(x0 + (lane & 3), (int16)(width - 1));
+  const int16 ys = min(y0 + (lane >> 2), (int16)(height - 1));
+  const int16 centre = ys * width + xs;
+  float4 result[16];
+#define RP_MB_CENTRE(L) result[0x##L] = hdr_in[centre.s##L];
+  RP_MB_LANES(RP_MB_CENTRE)
+#undef RP_MB_CENTRE
+  if (reach_speed > RP_MB_QUIET_SPEED)
+    rp_mb_filter_block(hdr_in, depth_speed, vn, samples, xs, ys, width, height, result);
   float4 bloom_r[4], bloom_g[4], bloom_b[4];
   if (fuse_bloom) {
     const int plane = level1_w * level1_h;
@@ -406,8 +475,7 @@ __kernel void motion_blur_reconstruct(__global const float4* restrict hdr_in,
     const int y = y0 + jj;
     if (y >= height) break;
     for (int ii = 0; ii < 4 && x0 + ii < width; ++ii) {
-      const int l = 4 * jj + ii;
-      float4 out = sum[l] / ((float*)&weight)[l];
+      float4 out = result[4 * jj + ii];
       if (fuse_bloom) {
         const float4 br = bloom_r[jj], bg = bloom_g[jj], bb = bloom_b[jj];
         out = rp_bloom_mix_pixel(out, ((float*)&br)[ii], ((float*)&bg)[ii], ((float*)&bb)[ii],

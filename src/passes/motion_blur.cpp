@@ -21,6 +21,7 @@ MotionBlurPass::MotionBlurPass(const rp::cl::Context& context, rp::cl::ProgramCa
       tile_kernel_(programs.kernel(kFile, "motion_blur_tile_max")),
       neighbour_kernel_(programs.kernel(kFile, "motion_blur_neighbour_max")),
       depth_speed_kernel_(programs.kernel(kFile, "motion_blur_depth_speed")),
+      block_max_kernel_(programs.kernel(kFile, "motion_blur_block_max")),
       composite_kernel_(programs.kernel(kFile, "motion_blur_composite")),
       reconstruct_kernel_(programs.kernel(kFile, "motion_blur_reconstruct")) {}
 
@@ -64,6 +65,8 @@ void MotionBlurPass::enqueue(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr
     plane_needed_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, tiles * sizeof(cl_uint));
     depth_speed_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
                                 size_t(width) * height * 2 * sizeof(uint16_t));
+    block_speed_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
+                                tiles * kBlocksPerTile * kBlocksPerTile * sizeof(float));
   }
 
   tile_kernel_.setArg(0, gbuffer.velocity);
@@ -92,7 +95,18 @@ void MotionBlurPass::enqueue(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr
   profiler.enqueue(kPass, depth_speed_kernel_, ::cl::NDRange(tiles_x_, height),
                    ::cl::NDRange(tiles_x_, 1));
 
-  // The whole image: copied, or with the bloom composited.
+  // The largest blur radius of every 4x4 block of the flagged tiles.
+  block_max_kernel_.setArg(0, depth_speed_);
+  block_max_kernel_.setArg(1, plane_needed_);
+  block_max_kernel_.setArg(2, block_speed_);
+  block_max_kernel_.setArg(3, cl_int(width));
+  block_max_kernel_.setArg(4, cl_int(height));
+  block_max_kernel_.setArg(5, cl_int(tiles_x_));
+  profiler.enqueue(kPass, block_max_kernel_,
+                   ::cl::NDRange(tiles_x_ * kBlocksPerTile, tiles_y_ * kBlocksPerTile),
+                   ::cl::NDRange(kBlocksPerTile, kBlocksPerTile));
+
+  // The image outside the moving tiles: the whole buffer copied, or the bloom composited.
   if (bloom) {
     composite_kernel_.setArg(0, hdr_in);
     composite_kernel_.setArg(1, *bloom->level1);
@@ -100,9 +114,11 @@ void MotionBlurPass::enqueue(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr
     composite_kernel_.setArg(3, cl_int(bloom->level1_height));
     composite_kernel_.setArg(4, bloom->keep);
     composite_kernel_.setArg(5, bloom->scale);
-    composite_kernel_.setArg(6, hdr_out);
-    composite_kernel_.setArg(7, cl_int(width));
-    composite_kernel_.setArg(8, cl_int(height));
+    composite_kernel_.setArg(6, neighbour_max_);
+    composite_kernel_.setArg(7, cl_int(tiles_x_));
+    composite_kernel_.setArg(8, hdr_out);
+    composite_kernel_.setArg(9, cl_int(width));
+    composite_kernel_.setArg(10, cl_int(height));
     profiler.enqueue(kPass, composite_kernel_,
                      ::cl::NDRange(rp::cl::round_up(div_up(width, 16), 16), div_up(height, 2)),
                      ::cl::NDRange(16, 1));
@@ -117,16 +133,17 @@ void MotionBlurPass::enqueue(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr
   reconstruct_kernel_.setArg(0, hdr_in);
   reconstruct_kernel_.setArg(1, depth_speed_);
   reconstruct_kernel_.setArg(2, neighbour_max_);
-  reconstruct_kernel_.setArg(3, bloom ? *bloom->level1 : neighbour_max_);
-  reconstruct_kernel_.setArg(4, cl_int(bloom ? bloom->level1_width : 0));
-  reconstruct_kernel_.setArg(5, cl_int(bloom ? bloom->level1_height : 0));
-  reconstruct_kernel_.setArg(6, bloom ? bloom->keep : 1.0f);
-  reconstruct_kernel_.setArg(7, bloom ? bloom->scale : 0.0f);
-  reconstruct_kernel_.setArg(8, cl_int(bloom ? 1 : 0));
-  reconstruct_kernel_.setArg(9, hdr_out);
-  reconstruct_kernel_.setArg(10, cl_int(width));
-  reconstruct_kernel_.setArg(11, cl_int(height));
-  reconstruct_kernel_.setArg(12, cl_int(tiles_x_));
+  reconstruct_kernel_.setArg(3, block_speed_);
+  reconstruct_kernel_.setArg(4, bloom ? *bloom->level1 : neighbour_max_);
+  reconstruct_kernel_.setArg(5, cl_int(bloom ? bloom->level1_width : 0));
+  reconstruct_kernel_.setArg(6, cl_int(bloom ? bloom->level1_height : 0));
+  reconstruct_kernel_.setArg(7, bloom ? bloom->keep : 1.0f);
+  reconstruct_kernel_.setArg(8, bloom ? bloom->scale : 0.0f);
+  reconstruct_kernel_.setArg(9, cl_int(bloom ? 1 : 0));
+  reconstruct_kernel_.setArg(10, hdr_out);
+  reconstruct_kernel_.setArg(11, cl_int(width));
+  reconstruct_kernel_.setArg(12, cl_int(height));
+  reconstruct_kernel_.setArg(13, cl_int(tiles_x_));
   profiler.enqueue(kPass, reconstruct_kernel_,
                    ::cl::NDRange(tiles_x_ * kBlocksPerTile, tiles_y_ * kBlocksPerTile),
                    ::cl::NDRange(kBlocksPerTile, kBlocksPerTile));

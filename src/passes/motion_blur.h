@@ -62,10 +62,11 @@ class MotionBlurPass {
                const render::GBuffer& gbuffer, uint32_t width, uint32_t height, float shutter,
                const BloomPass::Composite* bloom, ::cl::Buffer& hdr_out);
 
-  ::cl::Kernel tile_kernel_, neighbour_kernel_, depth_speed_kernel_, composite_kernel_,
-      reconstruct_kernel_;
+  ::cl::Kernel tile_kernel_, neighbour_kernel_, depth_speed_kernel_, block_max_kernel_,
+      composite_kernel_, reconstruct_kernel_;
   uint32_t width_ = 0, height_ = 0, tiles_x_ = 0, tiles_y_ = 0;
   ::cl::Buffer tile_max_, neighbour_max_, plane_needed_, depth_speed_;
+  ::cl::Buffer block_speed_;  // float per 4x4 pixel block: its largest blur radius (flagged tiles)
 };
 
 }  // namespace rp::passes

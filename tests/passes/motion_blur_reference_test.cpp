@@ -2,7 +2,7 @@
 // reference of the same steps: tile max (exact, ties included), 3x3 neighbourhood max (exact),
 // the depth/speed half2 plane (exact against a round-to-nearest-even conversion, and within half
 // precision of the float values), and the reconstruction filter (1e-5 relative) with its sample
-// count from the neighbourhood max (min(2 ceil(|V_max|) + 1, 15)).
+// count from the neighbourhood max (min(2 ceil(|V_max|) + 1, 15)) and its quiet blocks (copied).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -166,6 +166,33 @@ int sample_count(float l2) {
 // The depth/speed plane (2 halves per pixel) of the whole image.
 std::vector<uint16_t> ref_depth_speed(const Inputs& in, float shutter);
 
+// Quiet blocks: a 4x4 pixel block whose blocks within reach (ceil(|V_max|) + 1 px, inside the
+// tile's 3x3 neighbourhood) all have blur radii <= 0.95 px is copied (the filter would return
+// the pixels themselves up to rounding: every sample 1 px or more away gets weight 0).
+bool quiet_block(const std::vector<uint16_t>& zs, V2 vn, uint32_t w, uint32_t h, uint32_t x,
+                 uint32_t y) {
+  auto block_speed = [&](int bx, int by) {
+    float m = 0.0f;
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) {
+        const int px = std::min(4 * bx + i, int(w) - 1), py = std::min(4 * by + j, int(h) - 1);
+        m = std::max(m, half_to_float(zs[2 * (size_t(py) * w + size_t(px)) + 1]));
+      }
+    return m;
+  };
+  const int x0 = int(x / 4 * 4), y0 = int(y / 4 * 4);
+  const int tx = x0 / int(kTile), ty = y0 / int(kTile);
+  const int reach = int(std::ceil(std::sqrt(len2(vn)))) + 1;
+  const int bx_lo = std::max(std::max(x0 - reach, 0) / 4, 5 * (tx - 1));
+  const int bx_hi = std::min(std::min(x0 + 3 + reach, int(w) - 1) / 4, 5 * (tx + 2) - 1);
+  const int by_lo = std::max(std::max(y0 - reach, 0) / 4, 5 * (ty - 1));
+  const int by_hi = std::min(std::min(y0 + 3 + reach, int(h) - 1) / 4, 5 * (ty + 2) - 1);
+  float m = 0.0f;
+  for (int by = by_lo; by <= by_hi; ++by)
+    for (int bx = bx_lo; bx <= bx_hi; ++bx) m = std::max(m, block_speed(bx, by));
+  return m <= 0.95f;
+}
+
 // The reconstruction filter over the neighbourhood max `nmax` (the device's, checked exactly by
 // the tests above) and the reference depth/speed plane `zs`.
 std::vector<V4> ref_reconstruct(const std::vector<V4>& hdr, const std::vector<uint16_t>& zs,
@@ -176,7 +203,7 @@ std::vector<V4> ref_reconstruct(const std::vector<V4>& hdr, const std::vector<ui
     for (uint32_t x = 0; x < w; ++x) {
       const uint32_t i = y * w + x;
       const V2 vn = nmax[(y / kTile) * tx + x / kTile];
-      if (len2(vn) <= 0.25f) {
+      if (len2(vn) <= 0.25f || quiet_block(zs, vn, w, h, x, y)) {
         out[i] = hdr[i];
         continue;
       }
@@ -417,6 +444,19 @@ TEST(MotionBlurKernels, ReconstructionMatchesReference) {
   }
   EXPECT_GT(changed, 500);  // the filter did run ...
   EXPECT_GT(copied, 500);   // ... and skipped the still tiles
+  // Quiet blocks inside moving tiles are copied bit for bit too.
+  const uint32_t tx = (w + kTile - 1) / kTile;
+  const std::vector<uint16_t> zs = ref_depth_speed(in, 0.8f);
+  int quiet = 0;
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      const V2 vn = out.neighbour_max[(y / kTile) * tx + x / kTile];
+      if (len2(vn) > 0.25f && quiet_block(zs, vn, w, h, x, y)) {
+        ++quiet;
+        ASSERT_EQ(std::memcmp(&out.hdr[y * w + x], &in.hdr[y * w + x], 16), 0) << x << "," << y;
+      }
+    }
+  EXPECT_GT(quiet, 500);
 }
 
 }  // namespace
