@@ -11,7 +11,13 @@
  *                       written once: depth, and (camera) ids and barycentrics
  *
  * Tile list layout: counts/start/cursor hold 2 * tile_count entries, tile t's triangles at
- * [t], its spheres at [tile_count + t]; the scan makes each range contiguous in one list.
+ * [t], its spheres at [tile_count + t]; the scan makes each range contiguous in one list. The
+ * list has RasterView.list_capacity entries, sized by the host from earlier frames' totals (the
+ * scan's total is read back asynchronously, so no view waits for it): entries past the capacity
+ * are dropped by visibility_bin, and a tile whose range was cut rasterizes every item instead
+ * (same result, slower; the host grows the list for the next frame).
+ *
+ * RasterView is passed by value (a kernel argument): nothing is written to the device per view.
  *
  * Determinism: a pixel keeps the smallest (z_ndc, item) pair. Items are ordered by (instance,
  * primitive) with spheres after all triangles, matching the id order (RP_ID_SPHERE_BIT is the
@@ -155,12 +161,11 @@ __kernel void visibility_clear(__global uint* counts, uint n) {
 }
 
 __kernel __attribute__((reqd_work_group_size(RP_ITEM_GROUP, 1, 1)))
-void visibility_setup(__global const RasterView* view_in, __global const uint2* draw_items,
+void visibility_setup(const RasterView view, __global const uint2* draw_items,
                       __global const Instance* instances, __global const Triangle* triangles,
                       __global const Vertex* vertices, __global const Sphere* spheres,
                       __global RasterTriangle* tris_out, __global int4* bounds_out,
                       __global uint* tile_counts) {
-  const RasterView view = *view_in;
   uint item = get_global_id(0);
   uint triangle_items = view.triangle_items;
   if (item >= triangle_items + view.sphere_count) return;
@@ -242,10 +247,9 @@ void visibility_scan(__global const uint* counts, uint n, __global uint* start,
 }
 
 __kernel __attribute__((reqd_work_group_size(RP_ITEM_GROUP, 1, 1)))
-void visibility_bin(__global const RasterView* view_in, __global const RasterTriangle* tris,
+void visibility_bin(const RasterView view, __global const RasterTriangle* tris,
                     __global const int4* bounds_in, __global uint* tile_cursor,
                     __global uint* tile_list) {
-  const RasterView view = *view_in;
   uint item = get_global_id(0);
   uint triangle_items = view.triangle_items;
   if (item >= triangle_items + view.sphere_count) return;
@@ -269,16 +273,16 @@ void visibility_bin(__global const RasterView* view_in, __global const RasterTri
  * then every work-item tests its pixels against the batch, keeping its best (z_ndc, item) and,
  * for the camera, the winner's ids and edge values (barycentrics = e1, e2 over their sum). */
 __kernel __attribute__((reqd_work_group_size(RP_GROUP_W, RP_TILE, 1)))
-void visibility_raster(__global const RasterView* view_in, __global const RasterTriangle* tris,
+void visibility_raster(const RasterView view, __global const RasterTriangle* tris,
                        __global const int4* bounds_in, __global const Sphere* spheres,
                        __global const uint* tile_start, __global const uint* tile_end,
                        __global const uint* tile_list, __global float* depth_out,
                        __global uint* ids_out, __global float* bary_out) {
-  __local float4 l_e0[RP_BATCH], l_e1[RP_BATCH], l_e2[RP_BATCH], l_z[RP_BATCH];
+  __local float4 l_e0[RP_BATCH], l_e1[RP_BATCH], l_e2[RP_BATCH];
+  __local float4 l_z[RP_BATCH], l_w[RP_BATCH]; /* vertices' clip z and w (RP_RASTER_DEPTH) */
   __local int4 l_box[RP_BATCH];   /* item bounds in tile pixels (x0, y0, x1, y1) */
   __local int4 l_flags[RP_BATCH]; /* top-left bits of edges 0..2, item, instance, primitive */
 
-  const RasterView view = *view_in;
   uint tile_x = get_group_id(0), tile_y = get_group_id(1);
   uint tile = tile_y * view.tiles_x + tile_x;
   uint tile_count = view.tiles_x * view.tiles_y;
@@ -296,18 +300,26 @@ void visibility_raster(__global const RasterView* view_in, __global const Raster
   rp_spanf best_e1 = (rp_spanf)(0.0f), best_e2 = (rp_spanf)(0.0f), best_sum = (rp_spanf)(1.0f);
 #endif
 
-  /* Triangles. */
+  /* Triangles: the tile's list, or when the list overflowed (its end is past the capacity the
+   * binning could fill) every triangle item; the per-row bounds test then skips the ones that
+   * miss the tile, so the result is the same, only slower. */
   uint begin = tile_start[tile], end = tile_end[tile];
+  bool every_item = end > view.list_capacity;
+  if (every_item) {
+    begin = 0u;
+    end = view.triangle_items;
+  }
   for (uint base = begin; base < end; base += RP_BATCH) {
     uint n = min((uint)RP_BATCH, end - base);
     for (uint k = lid; k < n; k += RP_GROUP_SIZE) {
-      uint item = tile_list[base + k];
+      uint item = every_item ? base + k : tile_list[base + k];
       RasterTriangle t = tris[item];
       RasterEdges r = rp_raster_edges(t.v[0], t.v[1], t.v[2], fox, foy);
       l_e0[k] = r.e[0];
       l_e1[k] = r.e[1];
       l_e2[k] = r.e[2];
-      l_z[k] = r.z;
+      l_z[k] = (float4)(t.v[0].z, t.v[1].z, t.v[2].z, 0.0f);
+      l_w[k] = (float4)(t.v[0].w, t.v[1].w, t.v[2].w, 0.0f);
       l_box[k] = r.top_left.w ? bounds_in[item] - (int4)(ox, oy, ox, oy) : RP_EMPTY_BOUNDS;
       l_flags[k] = (int4)((r.top_left.x & 1) | (r.top_left.y & 2) | (r.top_left.z & 4),
                           (int)item, (int)t.info.x, (int)t.info.y);
@@ -316,14 +328,14 @@ void visibility_raster(__global const RasterView* view_in, __global const Raster
     for (uint k = 0; k < n; ++k) {
       int4 box = l_box[k];
       if (ly < box.y || ly > box.w || lx0 + (RP_SPAN - 1) < box.x || lx0 > box.z) continue;
-      float4 e0 = l_e0[k], e1 = l_e1[k], e2 = l_e2[k], zp = l_z[k];
+      float4 e0 = l_e0[k], e1 = l_e1[k], e2 = l_e2[k], zv = l_z[k], wv = l_w[k];
       int4 flags = l_flags[k];
       uint key = (uint)flags.y;
       int tl0 = -(flags.x & 1), tl1 = -((flags.x >> 1) & 1), tl2 = -((flags.x >> 2) & 1);
       rp_spanf f0 = e0.x * dx + (e0.y * dy + e0.z);
       rp_spanf f1 = e1.x * dx + (e1.y * dy + e1.z);
       rp_spanf f2 = e2.x * dx + (e2.y * dy + e2.z);
-      rp_spanf z = zp.x * dx + (zp.y * dy + zp.z);
+      rp_spanf z = RP_RASTER_DEPTH(f0, f1, f2, zv, wv);
       rp_spani in = ((f0 > 0.0f) | ((f0 == 0.0f) & tl0)) & ((f1 > 0.0f) | ((f1 == 0.0f) & tl1)) &
                     ((f2 > 0.0f) | ((f2 == 0.0f) & tl2)) & (z >= -1.0f) &
                     ((z < best_z) | ((z == best_z) & (key < best_key)));
@@ -343,6 +355,11 @@ void visibility_raster(__global const RasterView* view_in, __global const Raster
   /* Spheres: exact intersection of the ray through each pixel centre. */
   begin = tile_start[tile_count + tile];
   end = tile_end[tile_count + tile];
+  every_item = end > view.list_capacity;
+  if (every_item) {
+    begin = view.triangle_items;
+    end = view.triangle_items + view.sphere_count;
+  }
   if (begin < end) {
     const rp_mat4 inv = view.inv_view_proj, vp = view.view_proj;
     rp_spanf nx = ((float)(ox + lx0) + 0.5f + RP_LANES) * (2.0f / (float)view.width) - 1.0f;
@@ -369,7 +386,7 @@ void visibility_raster(__global const RasterView* view_in, __global const Raster
     for (uint base = begin; base < end; base += RP_BATCH) {
       uint n = min((uint)RP_BATCH, end - base);
       for (uint k = lid; k < n; k += RP_GROUP_SIZE) {
-        uint item = tile_list[base + k];
+        uint item = every_item ? base + k : tile_list[base + k];
         uint index = item - view.triangle_items;
         float4 cr = spheres[index].center_radius;
         l_e0[k] = (float4)(cr.xyz, cr.w * cr.w);

@@ -34,10 +34,9 @@ inline float4 rp_raster_transform(const rp_mat4 m, float4 p) {
 
 /* One triangle set up for one tile frame. Pixel centre (px, py) has frame coordinates
  * (dx, dy) = (px - ox, py - oy); edge i is e_i = e[i].x * dx + (e[i].y * dy + e[i].z), oriented
- * so that covered pixels have every e_i >= 0; z_ndc = z.x * dx + (z.y * dy + z.z). */
+ * so that covered pixels have every e_i >= 0. Depth: rp_raster_depth. */
 typedef struct {
   float4 e[3];
-  float4 z;
   int4 top_left; /* xyz: -1 if a centre exactly on edge i (e_i == 0) is covered, else 0;
                     w: -1 if the triangle is valid (non-degenerate) in this frame, else 0 */
 } RasterEdges;
@@ -67,22 +66,29 @@ inline RasterEdges rp_raster_edges(float4 v0, float4 v1, float4 v2, float ox, fl
   RasterEdges r;
   int valid = (det > 0.0f && isfinite(det)) ? -1 : 0;
   if (!valid) { /* covers nothing: all edges 0 and never top-left */
-    r.e[0] = r.e[1] = r.e[2] = r.z = (float4)(0.0f);
+    r.e[0] = r.e[1] = r.e[2] = (float4)(0.0f);
     r.top_left = (int4)(0);
     return r;
   }
-  float inv_det = 1.0f / det;
   r.e[0] = (float4)(a0, b0, c0, 0.0f);
   r.e[1] = (float4)(a1, b1, c1, 0.0f);
   r.e[2] = (float4)(a2, b2, c2, 0.0f);
-  /* z_ndc = sum E_i z_i / sum E_i w_i and sum E_i w_i = det everywhere */
-  r.z = (float4)(((v0.z * a0 + v1.z * a1) + v2.z * a2) * inv_det,
-                 ((v0.z * b0 + v1.z * b1) + v2.z * b2) * inv_det,
-                 ((v0.z * c0 + v1.z * c1) + v2.z * c2) * inv_det, 0.0f);
   r.top_left = (int4)(rp_raster_top_left(a0, b0, c0), rp_raster_top_left(a1, b1, c1),
                       rp_raster_top_left(a2, b2, c2), valid);
   return r;
 }
+
+/* z_ndc at a pixel from its edge values e_i and the vertices' clip z_i and w_i:
+ *     z_ndc = (e0 z0 + e1 z1 + e2 z2) / (e0 w0 + e1 w1 + e2 w2)
+ * (perspective-correct interpolation of clip z and w; the edges' common orientation sign
+ * cancels). The denominator equals det[P0, P1, P2] in exact arithmetic, but dividing by the
+ * pixel's own sum keeps the result a convex combination of the vertices' z_ndc even when the
+ * edge values carry large rounding errors (triangles seen almost edge-on): a screen-space depth
+ * plane with coefficients sum(z_i a_i) / det amplifies those errors by 1 / det (measured: up to
+ * 4e-4 off a double-precision reference in tests/passes/embree_visibility_test.cpp). */
+#define RP_RASTER_DEPTH(e0, e1, e2, zs, ws)                      \
+  ((((e0) * (zs).x + (e1) * (zs).y) + (e2) * (zs).z) /               \
+   (((e0) * (ws).x + (e1) * (ws).y) + (e2) * (ws).z))
 
 /* Conservative binning test: false only if some edge is negative over the whole rectangle of
  * centre (cx, cy) and half extents (h, h) in the frame of `t` (an invalid frame never rejects). */

@@ -55,6 +55,13 @@ typedef uint16 rp_spanu;
 #define rp_span_convert_float(v) RP_CAT(convert_float, RP_SPAN)(v)
 #endif
 
+/* True when some lane of mask m (from a comparison or logical operator) is set. */
+#if RP_SPAN == 1
+#define rp_span_any(m) ((m) != 0)
+#else
+#define rp_span_any(m) (any(m) != 0)
+#endif
+
 /* Span <-> private array of RP_SPAN scalars. */
 #if RP_SPAN == 1
 #define RP_SPAN_TO_ARRAY(v, arr) ((arr)[0] = (v))

@@ -14,8 +14,8 @@ namespace rp::gpu {
 /* Pixels per side of a binning tile; the raster kernel runs one work-group per tile. */
 #define RP_RASTER_TILE 16
 
-/* One rendered view (the camera, or the lamp for the shadow map), written by the host before
- * the view's kernels run. 160 bytes. */
+/* One rendered view (the camera, or the lamp for the shadow map), passed by value to the
+ * view's kernels (a kernel argument). 160 bytes. */
 typedef struct {
   rp_mat4 view_proj;      /* world -> clip */
   rp_mat4 inv_view_proj;  /* clip -> world: rays through pixel centres for analytic spheres */
@@ -23,7 +23,8 @@ typedef struct {
   rp_uint tiles_x, tiles_y; /* ceil(size / RP_RASTER_TILE) */
   rp_uint triangle_items; /* draw items [0, triangle_items) are triangles ... */
   rp_uint sphere_count;   /* ... items [triangle_items, triangle_items + sphere_count) spheres */
-  rp_uint list_capacity;  /* entries in the tile list buffer */
+  rp_uint list_capacity;  /* entries in the tile list buffer (a tile whose range goes past it
+                             rasterizes every item: kernels/visibility.cl) */
   rp_uint pad;
 } RasterView;
 

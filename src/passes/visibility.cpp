@@ -1,7 +1,11 @@
 // Host side of the compute rasterizer (kernels/visibility.cl). Per view (camera, lamp):
-// clear -> setup -> scan -> [read back the list total, grow the list once if needed] -> bin ->
-// raster. Device memory is sized by the triangle count, sphere
-// count, view size and list total, and only ever grows: a steady frame allocates nothing.
+// clear -> setup -> scan -> bin -> raster, then an asynchronous read of the tile-list total
+// that the next frame of the view waits for (long finished by then) to grow the list if it
+// overflowed (the raster kernel stays correct on overflow, only slower). The view parameters
+// go to the kernels by value, so a view writes nothing to the device and never waits for it.
+// Device memory is sized by the triangle count, sphere count, view size and list total, and
+// only ever grows; host-side state lives in ViewState/Impl members: a steady frame allocates
+// nothing of its own.
 #include "passes/visibility.h"
 
 #include <algorithm>
@@ -68,10 +72,13 @@ struct ViewState {
   bool depth_only = false;
   ::cl::Kernel clear, setup, scan, bin, raster;
   gpu::RasterView params{};
-  ::cl::Buffer params_buffer, tris, bounds, counts, start, cursor, list, total;
+  ::cl::Buffer tris, bounds, counts, start, cursor, list, total;
   ::cl::Buffer unused;  // stands in for the ids / bary planes the depth-only variant lacks
   size_t tris_cap = 0, bounds_cap = 0, tiles_cap = 0, list_cap = 0;
+  // The previous frame's list total, read back without blocking; total_event completes it.
   uint32_t total_host = 0;
+  ::cl::Event total_event;
+  bool total_pending = false;
 };
 
 struct VisibilityPass::Impl {
@@ -86,6 +93,15 @@ struct VisibilityPass::Impl {
   std::vector<uint32_t> draw_key;  // (first_triangle, triangle_count) per instance
   std::vector<uint32_t> draw_host;
 
+  Impl() = default;
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+  // A pending read of a list total writes into its ViewState: let it land first.
+  ~Impl() {
+    for (ViewState* v : {&camera, &shadow})
+      if (v->total_pending) v->total_event.wait();
+  }
+
   void init_view(ViewState& v, rp::cl::ProgramCache& programs, const std::string& pass,
                  bool depth_only) {
     v.pass = pass;
@@ -98,7 +114,6 @@ struct VisibilityPass::Impl {
     v.bin = programs.kernel("visibility.cl", "visibility_bin", options);
     v.raster = programs.kernel("visibility.cl", "visibility_raster", options);
     const ::cl::Context& ctx = context->context;
-    v.params_buffer = ::cl::Buffer(ctx, CL_MEM_READ_ONLY, sizeof(gpu::RasterView));
     v.total = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, sizeof(uint32_t));
     v.unused = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, 2 * sizeof(uint32_t));
   }
@@ -155,8 +170,16 @@ struct VisibilityPass::Impl {
       v.start = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, v.tiles_cap * sizeof(uint32_t));
       v.cursor = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, v.tiles_cap * sizeof(uint32_t));
     }
-    // First guess for the list: every item in about four tiles.
+    // First guess for the list: every item in about four tiles. Later frames grow it from
+    // the totals read back: the previous frame's (long complete) is checked here.
     ensure(ctx, v.list, v.list_cap, size_t(4) * items + tiles, sizeof(uint32_t));
+    if (v.total_pending) {
+      v.total_event.wait();
+      v.total_pending = false;
+      if (v.total_host > v.list_cap)
+        ensure(ctx, v.list, v.list_cap, size_t(v.total_host) + v.total_host / 4,
+               sizeof(uint32_t));
+    }
 
     gpu::RasterView& p = v.params;
     p.view_proj = gpu::to_gpu(view_proj);
@@ -168,10 +191,6 @@ struct VisibilityPass::Impl {
     p.triangle_items = draw_count;
     p.sphere_count = spheres;
     p.list_capacity = static_cast<uint32_t>(v.list_cap);
-    ::cl::Event write_event;
-    // Non-blocking: the blocking read of the total below completes it before `p` changes.
-    queue.enqueueWriteBuffer(v.params_buffer, CL_FALSE, 0, sizeof(p), &p, nullptr, &write_event);
-    profiler.record(v.pass, write_event);
 
     const uint32_t count_n = 2 * tiles;
     v.clear.setArg(0, v.counts);
@@ -181,7 +200,7 @@ struct VisibilityPass::Impl {
 
     if (items > 0) {
       cl_uint a = 0;
-      v.setup.setArg(a++, v.params_buffer);
+      v.setup.setArg(a++, p);
       v.setup.setArg(a++, draw_items);
       v.setup.setArg(a++, scene.instances);
       v.setup.setArg(a++, scene.triangles);
@@ -201,24 +220,9 @@ struct VisibilityPass::Impl {
     v.scan.setArg(4, v.total);
     profiler.enqueue(v.pass, v.scan, ::cl::NDRange(kScanGroup), ::cl::NDRange(kScanGroup));
 
-    // The exact list size is known now: grow once (with headroom) before filling.
-    ::cl::Event read_event;
-    queue.enqueueReadBuffer(v.total, CL_TRUE, 0, sizeof(uint32_t), &v.total_host, nullptr,
-                            &read_event);
-    profiler.record(v.pass, read_event);
-    if (v.total_host > v.list_cap) {
-      size_t want = size_t(v.total_host) + v.total_host / 4;
-      ensure(ctx, v.list, v.list_cap, want, sizeof(uint32_t));
-      p.list_capacity = static_cast<uint32_t>(v.list_cap);
-      ::cl::Event rewrite_event;
-      queue.enqueueWriteBuffer(v.params_buffer, CL_TRUE, 0, sizeof(p), &p, nullptr,
-                               &rewrite_event);
-      profiler.record(v.pass, rewrite_event);
-    }
-
     if (items > 0) {
       cl_uint a = 0;
-      v.bin.setArg(a++, v.params_buffer);
+      v.bin.setArg(a++, p);
       v.bin.setArg(a++, v.tris);
       v.bin.setArg(a++, v.bounds);
       v.bin.setArg(a++, v.cursor);
@@ -228,7 +232,7 @@ struct VisibilityPass::Impl {
     }
 
     cl_uint a = 0;
-    v.raster.setArg(a++, v.params_buffer);
+    v.raster.setArg(a++, p);
     v.raster.setArg(a++, v.tris);
     v.raster.setArg(a++, v.bounds);
     v.raster.setArg(a++, scene.spheres);
@@ -241,6 +245,12 @@ struct VisibilityPass::Impl {
     const size_t group_w = kTile / static_cast<size_t>(span);
     profiler.enqueue(v.pass, v.raster, ::cl::NDRange(tiles_x * group_w, tiles_y * kTile),
                      ::cl::NDRange(group_w, kTile));
+
+    // The total for the next frame's list size; nothing waits for it now.
+    queue.enqueueReadBuffer(v.total, CL_FALSE, 0, sizeof(uint32_t), &v.total_host, nullptr,
+                            &v.total_event);
+    profiler.record(v.pass, v.total_event);
+    v.total_pending = true;
   }
 };
 

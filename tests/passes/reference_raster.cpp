@@ -22,7 +22,7 @@ glm::vec4 transform(const glm::mat4& m, const glm::vec4& p) {
 
 struct Edges {
   float a[3], b[3], c[3];  // oriented edge i: a dx + (b dy + c)
-  float za, zb, zc;        // z_ndc plane
+  float z[3], w[3];        // vertices' clip z and w (RP_RASTER_DEPTH)
   bool top_left[3];
   bool valid;
   float sign;              // sign of det[P0, P1, P2] before orienting
@@ -58,10 +58,10 @@ Edges tile_edges(const glm::vec4 v[3], float ox, float oy) {
   r.sign = s;
   r.valid = det > 0.0f && std::isfinite(det);
   if (!r.valid) return r;
-  float inv_det = 1.0f / det;
-  r.za = ((v[0].z * r.a[0] + v[1].z * r.a[1]) + v[2].z * r.a[2]) * inv_det;
-  r.zb = ((v[0].z * r.b[0] + v[1].z * r.b[1]) + v[2].z * r.b[2]) * inv_det;
-  r.zc = ((v[0].z * r.c[0] + v[1].z * r.c[1]) + v[2].z * r.c[2]) * inv_det;
+  for (int i = 0; i < 3; ++i) {
+    r.z[i] = v[i].z;
+    r.w[i] = v[i].w;
+  }
   for (int i = 0; i < 3; ++i) r.top_left[i] = top_left(r.a[i], r.b[i], r.c[i]);
   return r;
 }
@@ -122,11 +122,14 @@ RefImage reference_raster(const scene::SceneAssets& assets, const scene::FrameSc
             const Edges& e = edges[t];
             if (!e.valid || tris[t].instance == RP_ID_NONE) continue;
             bool in = true;
+            float f[3];
             for (int i = 0; i < 3; ++i) {
-              float f = e.a[i] * dx + (e.b[i] * dy + e.c[i]);
-              in = in && (f > 0.0f || (f == 0.0f && e.top_left[i]));
+              f[i] = e.a[i] * dx + (e.b[i] * dy + e.c[i]);
+              in = in && (f[i] > 0.0f || (f[i] == 0.0f && e.top_left[i]));
             }
-            float z = e.za * dx + (e.zb * dy + e.zc);
+            // RP_RASTER_DEPTH: (e0 z0 + e1 z1 + e2 z2) / (e0 w0 + e1 w1 + e2 w2)
+            float z = ((f[0] * e.z[0] + f[1] * e.z[1]) + f[2] * e.z[2]) /
+                      ((f[0] * e.w[0] + f[1] * e.w[1]) + f[2] * e.w[2]);
             if (!in || !(z >= -1.0f)) continue;
             if (z <= 1.0f) ++(e.sign > 0.0f ? img.hits_positive[p] : img.hits_negative[p]);
             if (z < best_z[p] || (z == best_z[p] && t < best_key[p])) {
