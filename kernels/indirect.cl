@@ -9,7 +9,8 @@
  *   position  4 planes: the sample's world position x, y, z and its view depth (0 background)
  *   geom      4 planes: the sample's unit normal x, y, z and its plane offset dot(n, p);
  *             all 0 on background and padding (every geometry weight is then 0)
- *   history   4 planes: accumulated irradiance / pi r, g, b and its age in frames (0: none)
+ *   history   5 planes: accumulated irradiance / pi r, g, b, its age in frames (0: none) and
+ *             the accumulated second moment of its luminance (0.2126 r + 0.7152 g + 0.0722 b)
  * geom and history are double-buffered by the host: this frame's and the previous frame's.
  *
  * indirect_trace (one work-item per sample): GBuffer at the sample pixel, one cone (a loop with
@@ -19,13 +20,21 @@
  *     (0.5, 1, 1, 1, 0.5) per axis (symmetric, and every residue mod 4 - every cone of the set -
  *     gets the same total weight 1) times the tap's geometry weight for the centre sample (0 off
  *     the grid): the 16-cone estimate S of irradiance / pi;
- *   temporal: the sample's world position reprojected with prev_view_proj_unjittered into the
- *     previous frame's pixel grid, whose samples sat at 4 i + O(f - 1) + 0.5; the 2x2 previous
- *     samples around it, bilinear weights times their geometry weights for this sample, give the
- *     history H and its age a (weighted means). Total weight < RP_INDIRECT_MIN_HISTORY (moved,
+ *   temporal: the history of a sample is its block's accumulated irradiance, located at the
+ *     block's centre (4 i + 2 in pixels) whichever pixel of the block was sampled (so the
+ *     history integrates the 16 sample positions of a block over frames). The sample's world
+ *     position is reprojected with prev_view_proj_unjittered and shifted by (block centre -
+ *     sample pixel centre) = 1.5 - O(f) pixels; the 2x2 previous blocks around that point,
+ *     bilinear weights times the geometry weights of their (previous) samples for this sample,
+ *     give the history H and its age a (weighted means). A still camera lands exactly on the
+ *     block's own history. Total weight < RP_INDIRECT_MIN_HISTORY (moved,
  *     disoccluded, off screen) or history_valid = 0 (reset, camera cut, resize): no history,
- *     a = 0. out = H + alpha (S - H), alpha = max(1 / (a + 1), alpha_min), age min(a + 1, 255):
- *     a plain running mean for the first frames after a reset, then an exponential one.
+ *     a = 0. out = H + alpha (S - H), age min(a + 1, 255), alpha = max(1 / (a + 1), alpha_c):
+ *     a plain running mean for the first frames after a reset, then an exponential one whose
+ *     weight alpha_c grows from alpha_min (a still scene: low flicker) to RP_INDIRECT_ALPHA_FAST
+ *     as S's luminance leaves H's by 2 to 4 standard deviations (the light changed: little lag);
+ *     the standard deviation comes from the accumulated second moment (fifth plane), blended
+ *     with the same alpha.
  * No atomics, no local memory: bit-identical runs.
  */
 #include "shared/types.h"
@@ -34,6 +43,22 @@
 #include "common/cone_trace.h"
 #include "common/indirect.h"
 #include "common/indirect_simd.h"
+
+/* 1: the cone with full-diameter steps and position + level jitter (rp_cone_trace_coarse);
+ * 0: half-diameter steps with level jitter (rp_cone_trace_jittered). */
+#ifndef RP_INDIRECT_COARSE
+#define RP_INDIRECT_COARSE 1
+#endif
+
+/* Extra per-axis weight of every tap of the 3x3 history neighbourhood (see indirect_filter). */
+#ifndef RP_INDIRECT_RING
+#define RP_INDIRECT_RING 0.1f
+#endif
+
+/* Largest blend weight of a changed estimate (variance-guided blend, see indirect_filter). */
+#ifndef RP_INDIRECT_ALPHA_FAST
+#define RP_INDIRECT_ALPHA_FAST 0.35f
+#endif
 
 /* Smallest total reprojection weight that counts as history. */
 #ifndef RP_INDIRECT_MIN_HISTORY
@@ -72,9 +97,16 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
     float3 t, b;
     rp_cone_basis(n, &t, &b);
     const float3 dir = rp_cone_set16_dir(n, t, b, rp_indirect_cone_index(i, j, f));
+#if RP_INDIRECT_COARSE
+    c = rp_cone_trace_coarse(voxels, voxel_resolution, voxel_levels,
+                             rp_cone_apex(p, n, voxel_resolution), dir,
+                             rp_indirect_position_jitter(i, j, f),
+                             rp_indirect_level_jitter(i, j, f)).xyz;
+#else
     c = rp_cone_trace_jittered(voxels, voxel_resolution, voxel_levels,
                                rp_cone_apex(p, n, voxel_resolution), dir,
                                rp_indirect_level_jitter(i, j, f)).xyz;
+#endif
     d = dot(n, p);
   }
   radiance[s] = c.x;
@@ -167,20 +199,35 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
   const float w_px = (float)frame->width, h_px = (float)frame->height;
   const float8 sx = (cx * iw * 0.5f + 0.5f) * w_px; /* previous pixel coordinates */
   const float8 sy = (0.5f - cy * iw * 0.5f) * h_px;
-  const uint pcell = rp_indirect_sample_cell(frame->frame_index - 1u);
-  const float8 ux = (sx - (float)(pcell & 3u) - 0.5f) * (1.0f / RP_INDIRECT_SCALE);
-  const float8 uy = (sy - (float)(pcell >> 2) - 0.5f) * (1.0f / RP_INDIRECT_SCALE);
-  /* Clamped into the padding (weight 0) before the int conversion: far-off positions find no
-   * history. */
-  const float8 ux0 = floor(clamp(ux, -2.0f, (float)lr_width));
-  const float8 uy0 = floor(clamp(uy, -2.0f, (float)lr_height));
-  const float8 fx = clamp(ux - ux0, 0.0f, 1.0f), fy = clamp(uy - uy0, 0.0f, 1.0f);
-  const int8 t00 = (convert_int8(uy0) + RP_INDIRECT_PAD) * st + convert_int8(ux0) + RP_INDIRECT_PAD;
-  float8 hr = 0.0f, hg = 0.0f, hb = 0.0f, ha = 0.0f, hw = 0.0f;
-  for (int b = 0; b < 2; ++b) {
-    for (int a = 0; a < 2; ++a) {
-      const int8 t = t00 + (b * st + a);
-      const float8 w = (a ? fx : 1.0f - fx) * (b ? fy : 1.0f - fy) *
+  /* History lives at block centres (4 i + 2 in pixels): shift the reprojected sample by its
+   * block's centre minus the sample pixel's centre, 1.5 - O(f), so that with a still camera
+   * every block finds exactly its own history (no resampling blur, whichever pixel sampled). */
+  const uint cell = rp_indirect_sample_cell(frame->frame_index);
+  const float8 ux = (sx - (float)(cell & 3u) - 0.5f) * (1.0f / RP_INDIRECT_SCALE);
+  const float8 uy = (sy - (float)(cell >> 2) - 0.5f) * (1.0f / RP_INDIRECT_SCALE);
+  /* The 3x3 previous blocks around the nearest one (clamped into the padding, weight 0, before
+   * the int conversion: far-off positions find no history). Tap weight: the bilinear tent
+   * max(0, 1 - |u - t|) per axis plus a ring weight RP_INDIRECT_RING * (1 - g), g the nearest
+   * block's geometry weight, times the tap's geometry weight. With a still camera the block's
+   * own history has tent weight 1 and its neighbours only the ring weight, which is 0 while
+   * the block still sees its surface; the ring lets a block whose sample moved onto another
+   * surface (TAA jitter at a silhouette) continue its neighbours' history of that surface
+   * instead of starting over (measured: less flicker at silhouettes, no blur elsewhere). */
+  const float8 ur = floor(clamp(ux, -1.0f, (float)lr_width) + 0.5f);
+  const float8 vr = floor(clamp(uy, -1.0f, (float)lr_height) + 0.5f);
+  const int8 t11 = (convert_int8(vr) + RP_INDIRECT_PAD) * st + convert_int8(ur) + RP_INDIRECT_PAD;
+  const float8 g11 = rp_indirect_geometry_weight8(
+      nx, ny, nz, px, py, pz, indirect_gather8(prev_geom, t11),
+      indirect_gather8(prev_geom + pl, t11), indirect_gather8(prev_geom + 2 * pl, t11),
+      indirect_gather8(prev_geom + 3 * pl, t11), inv_sigma);
+  const float8 ring = RP_INDIRECT_RING * (1.0f - g11);
+  float8 hr = 0.0f, hg = 0.0f, hb = 0.0f, ha = 0.0f, hm = 0.0f, hw = 0.0f;
+  for (int b = -1; b <= 1; ++b) {
+    const float8 wy = fmax(1.0f - fabs(uy - (vr + (float)b)), 0.0f) + ring;
+    for (int a = -1; a <= 1; ++a) {
+      const int8 t = t11 + (b * st + a);
+      const float8 wx = fmax(1.0f - fabs(ux - (ur + (float)a)), 0.0f) + ring;
+      const float8 w = wx * wy *
                        rp_indirect_geometry_weight8(
                            nx, ny, nz, px, py, pz, indirect_gather8(prev_geom, t),
                            indirect_gather8(prev_geom + pl, t),
@@ -190,6 +237,7 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
       hg += w * indirect_gather8(prev_history + pl, t);
       hb += w * indirect_gather8(prev_history + 2 * pl, t);
       ha += w * indirect_gather8(prev_history + 3 * pl, t);
+      hm += w * indirect_gather8(prev_history + 4 * pl, t);
       hw += w;
     }
   }
@@ -201,10 +249,22 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
   const float8 h1 = select((float8)(0.0f), hg * inv_h, has);
   const float8 h2 = select((float8)(0.0f), hb * inv_h, has);
   const float8 age = select((float8)(0.0f), ha * inv_h, has);
-  const float8 alpha = fmax(1.0f / (age + 1.0f), alpha_min);
+  const float8 m2 = select((float8)(0.0f), hm * inv_h, has);
+  /* Variance-guided blend: luminance of this estimate against the history's mean and
+   * standard deviation (from its second moment m2): within 2 sigma (the frame-to-frame noise
+   * of the rotating cones and jitters) the slow alpha_min, beyond 4 sigma (the light changed: a
+   * fireball moved) up to RP_INDIRECT_ALPHA_FAST, smoothly in between. */
+  const float8 lum_s = 0.2126f * sr + 0.7152f * sg + 0.0722f * sb;
+  const float8 lum_h = 0.2126f * h0 + 0.7152f * h1 + 0.0722f * h2;
+  const float8 sigma = sqrt(fmax(m2 - lum_h * lum_h, 0.0f)) + 0.02f * lum_h + 1.0e-4f;
+  const float8 z = clamp((fabs(lum_s - lum_h) / sigma - 2.0f) * 0.5f, 0.0f, 1.0f);
+  const float8 alpha_change = alpha_min + (RP_INDIRECT_ALPHA_FAST - alpha_min) * z * z * (3.0f - 2.0f * z);
+  const float8 alpha = fmax(1.0f / (age + 1.0f), alpha_change);
   const float8 zero = 0.0f;
   indirect_store8(history + c, lanes, select(zero, h0 + alpha * (sr - h0), valid));
   indirect_store8(history + pl + c, lanes, select(zero, h1 + alpha * (sg - h1), valid));
   indirect_store8(history + 2 * pl + c, lanes, select(zero, h2 + alpha * (sb - h2), valid));
   indirect_store8(history + 3 * pl + c, lanes, select(zero, fmin(age + 1.0f, 255.0f), valid));
+  indirect_store8(history + 4 * pl + c, lanes,
+                  select(zero, m2 + alpha * (lum_s * lum_s - m2), valid));
 }

@@ -12,11 +12,11 @@
  *   default (the reference quality mode): rp_cone_diffuse16 (common/cone_trace.h), the mean of
  *     the 16-cone set traced per pixel with quarter-diameter steps;
  *   light_compose (the fast mode): a joint-bilateral upsample of the indirect pass's
- *     accumulated low-resolution irradiance (kernels/indirect.cl): the 2x2 samples around the
- *     pixel (this frame's samples sit at 4 i + O(f) + 0.5, common/indirect.h), bilinear weights
- *     times geometry weights (normal, plane distance); when those sum below 1e-4 (no sample on
- *     the pixel's surface nearby) the sample with the largest geometry weight, and when every
- *     geometry weight is 0 the plain bilinear mean.
+ *     accumulated low-resolution irradiance (kernels/indirect.cl): the 2x2 blocks around the
+ *     pixel (block histories sit at the block centres, 4 i + 2 in pixels), bilinear weights
+ *     times geometry weights (normal, plane distance) of the blocks' current samples; when those
+ *     sum below 1e-4 (no sample on the pixel's surface nearby) the block with the largest
+ *     geometry weight, and when every geometry weight is 0 the plain bilinear mean.
  * Kernels: light_shade (the reference mode: direct + 16 cones per pixel + emission) and
  * light_compose (the fast mode: direct + upsampled indirect + emission). light_compose works on
  * eight pixels of a row per work-item in float8 arithmetic (common/indirect_simd.h), so it runs
@@ -294,20 +294,20 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
   const int8 covered = cov != 0.0f;
   const float8 k = light_direct8(frame, shadow, px, py, pz, nx, ny, nz, x0, y);
 
-  /* Joint-bilateral upsample: pixel x + 0.5 lies at u = (x - O.x) / 4 between the samples'
-   * centres. The 8 pixels' 2x2 footprints lie in 4 sample columns c .. c + 3, read once per
+  /* Joint-bilateral upsample from the block centres (4 i + 2 in pixels: where the accumulated
+   * history lives, kernels/indirect.cl): pixel x + 0.5 lies at u = (x - 1.5) / 4. The 8 pixels'
+   * 2x2 footprints lie in 4 block columns c0 .. c0 + 3 (x0 is a multiple of 8), read once per
    * row and plane and picked per lane. */
   const int st = (int)lr_stride, pl = (int)lr_plane;
-  const uint cell = rp_indirect_sample_cell(frame->frame_index);
-  const int ox = (int)(cell & 3u), oy = (int)(cell >> 2);
-  const int c0 = ((int)x0 - ox) >> 2; /* floor((x0 - O.x) / 4), arithmetic shift */
-  const float8 ux = (convert_float8((int)x0 + (int8)(0, 1, 2, 3, 4, 5, 6, 7)) - (float)ox) *
+  const int c0 = ((int)x0 - 2) >> 2; /* floor((x0 - 1.5) / 4), arithmetic shift */
+  const float8 ux = (convert_float8((int)x0 + (int8)(0, 1, 2, 3, 4, 5, 6, 7)) - 1.5f) *
                     (1.0f / RP_INDIRECT_SCALE);
   const float8 ux0 = floor(ux);
   const float8 fx = ux - ux0;
   const int8 a = convert_int8(ux0) - c0; /* 0, 1 or 2: the lane's left column in c0 .. c0 + 3 */
-  const int j0 = ((int)y - oy) >> 2;
-  const float fy = (float)((int)y - oy - 4 * j0) * (1.0f / RP_INDIRECT_SCALE);
+  const float uyf = ((float)y - 1.5f) * (1.0f / RP_INDIRECT_SCALE);
+  const int j0 = (int)floor(uyf);
+  const float fy = uyf - (float)j0;
   const int r0 = rp_indirect_index(c0, j0, st), r1 = r0 + st;
   const int8 a0 = a == 0, a1 = a == 1;
 /* Left and right tap of each lane from the 4 columns of a plane row at r. */

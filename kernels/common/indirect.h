@@ -41,6 +41,15 @@
 #define RP_INDIRECT_SCALE 4
 #define RP_INDIRECT_PAD 2
 
+/* 1: the sample pixel rotates over the 16 pixels of its block (Bayer order); 0: every block
+ * samples its pixel (1, 1). Measured at 128x128 (static demo, 40 frames): rotating costs
+ * flicker (mean |frame - previous| 0.689 vs 0.645 codes, the reference 0.635) through blocks
+ * whose sample alternates between surfaces at edges, and gains nothing in PSNR (37.15 vs
+ * 37.21 dB). */
+#ifndef RP_INDIRECT_ROTATE_SAMPLE
+#define RP_INDIRECT_ROTATE_SAMPLE 0
+#endif
+
 /* Plane-distance tolerance, in low-resolution pixels at the receiver's depth. */
 #ifndef RP_INDIRECT_PLANE_SIGMA
 #define RP_INDIRECT_PLANE_SIGMA 1.0f
@@ -52,7 +61,14 @@ __constant uchar RP_BAYER4[16] = {0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7,
 __constant uchar RP_BAYER4_CELL[16] = {0, 10, 2, 8, 5, 15, 7, 13, 1, 11, 3, 9, 4, 14, 6, 12};
 
 /* Offset (x, y) in 0..3 of the sample pixel inside its block at frame f: cell & 3, cell >> 2. */
-inline uint rp_indirect_sample_cell(uint frame) { return RP_BAYER4_CELL[frame & 15u]; }
+inline uint rp_indirect_sample_cell(uint frame) {
+#if RP_INDIRECT_ROTATE_SAMPLE
+  return RP_BAYER4_CELL[frame & 15u];
+#else
+  (void)frame;
+  return 5u; /* cell (1, 1) */
+#endif
+}
 
 /* Cone of the 16-cone set that sample (i, j) traces at frame f. */
 inline uint rp_indirect_cone_index(uint i, uint j, uint frame) {
@@ -63,6 +79,14 @@ inline uint rp_indirect_cone_index(uint i, uint j, uint frame) {
 inline float rp_indirect_level_jitter(uint i, uint j, uint frame) {
   const float start = rp_hash_to_unit(rp_hash_u32(i ^ rp_hash_u32(j ^ 0x9e3779b9u)));
   const float u = start + 0.618034f * (float)(frame & 1023u);
+  return u - floor(u);
+}
+
+/* Second jitter in [0, 1) of sample (i, j) at frame f (the plastic-number sequence, so the
+ * pair of jitters covers the unit square evenly over frames). */
+inline float rp_indirect_position_jitter(uint i, uint j, uint frame) {
+  const float start = rp_hash_to_unit(rp_hash_u32(j ^ rp_hash_u32(i ^ 0x85ebca6bu)));
+  const float u = start + 0.754877666f * (float)(frame & 1023u);
   return u - floor(u);
 }
 

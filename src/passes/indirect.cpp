@@ -41,7 +41,7 @@ void IndirectPass::resize(uint32_t width, uint32_t height) {
   position_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
   for (int k = 0; k < 2; ++k) {
     geometry_[k] = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
-    history_[k] = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
+    history_[k] = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 5 * plane);
   }
   // Defined contents from the start (the filter ignores the previous frame's planes until
   // history_valid_, but they are read).

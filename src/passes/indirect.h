@@ -21,7 +21,8 @@ namespace rp::passes {
 struct LowResIndirect {
   uint32_t width = 0, height = 0;
   uint32_t stride = 0, plane = 0;
-  const ::cl::Buffer* irradiance = nullptr;  // 4 planes: irradiance / pi r, g, b; age in frames
+  const ::cl::Buffer* irradiance = nullptr;  // 5 planes: irradiance / pi r, g, b; age in frames;
+                                             // luminance second moment
   const ::cl::Buffer* geometry = nullptr;    // 4 planes: unit normal x, y, z; dot(normal, position)
   float pixel_scale = 0.0f;
 };
@@ -30,8 +31,9 @@ class IndirectPass {
  public:
   static constexpr uint32_t kScale = 4;  // full-resolution pixels per sample, per side
   // Weight of this frame's spatial estimate once a sample has history (after the first
-  // 1 / kAlphaMin frames, which are averaged evenly).
-  static constexpr float kAlphaMin = 0.15f;
+  // 1 / kAlphaMin frames, which are averaged evenly) while its light does not change; a changed
+  // estimate gets up to RP_INDIRECT_ALPHA_FAST (kernels/indirect.cl).
+  static constexpr float kAlphaMin = 0.04f;
 
   IndirectPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
 
@@ -45,6 +47,11 @@ class IndirectPass {
 
   // The next run starts a fresh history (world reset, camera cut).
   void reset_history() { history_valid_ = false; }
+
+  // The last run's other planes (tests, debugging; layout as LowResIndirect): this frame's cone
+  // radiance (3 planes: r, g, b) and sample positions (4 planes: x, y, z, view depth).
+  const ::cl::Buffer& radiance_planes() const { return radiance_; }
+  const ::cl::Buffer& position_planes() const { return position_; }
 
   // Samples per side for a frame of `pixels` pixels: ceil(pixels / kScale).
   static uint32_t low_res(uint32_t pixels) { return (pixels + kScale - 1) / kScale; }
@@ -66,7 +73,7 @@ class IndirectPass {
   ::cl::Buffer position_;            // 4 planes: this frame's sample positions and view depths
   ::cl::Buffer geometry_[2];         // 4 planes each; [current_]: this frame's, the other: the
                                      // previous frame's
-  ::cl::Buffer history_[2];          // 4 planes each, likewise
+  ::cl::Buffer history_[2];          // 5 planes each, likewise
   int current_ = 0;
   bool history_valid_ = false;
 };

@@ -130,8 +130,32 @@ glm::dvec4 quadrilinear(const Chain& c, const glm::dvec3& d, const glm::dvec3& p
   return (1.0 - f) * at_level(lo) + f * at_level(lo + 1);
 }
 
+namespace {
+
+glm::dvec4 trace_coarse(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
+                        const March& march) {
+  const double v0 = 2.0 / c.resolution, growth = 1.0 + 2.0 * tan_half_angle();
+  const glm::dvec3* apex = march.skip_behind_apex ? &origin : nullptr;
+  glm::dvec3 colour(0.0);
+  double alpha = 0.0;
+  for (int k = 0; k < 10; ++k) {
+    const double steps = k + march.position_jitter;
+    const glm::dvec3 q = origin + dir * (first_distance_in_voxels() * v0 * std::pow(growth, steps));
+    if (std::abs(q.x) > 1.0 || std::abs(q.y) > 1.0 || std::abs(q.z) > 1.0) break;
+    const double level = std::floor(steps * std::log2(growth) + march.jitter);
+    const glm::dvec4 s = quadrilinear(c, dir, q, level, apex, top_level(c));
+    colour += (1.0 - alpha) * glm::dvec3(s);  // a full-diameter step: the voxel as it is
+    alpha += (1.0 - alpha) * s.w;
+    if (alpha >= kOpaque) break;
+  }
+  return glm::dvec4(colour, alpha);
+}
+
+}  // namespace
+
 glm::dvec4 trace(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
                  const March& march) {
+  if (march.coarse) return trace_coarse(c, origin, dir, march);
   const double v0 = 2.0 / c.resolution;
   const double step = march.fine ? 0.25 : 0.5;  // of the diameter
   const int max_steps = march.fine ? 2 * kMaxSteps : kMaxSteps;

@@ -49,6 +49,10 @@ struct March {
   bool fine = false;      // quarter-diameter steps (twice the steps) instead of half
   double jitter = -1.0;   // < 0: quadrilinear samples; in [0, 1): one level, floor(L + jitter)
   bool skip_behind_apex = true;  // false: plain sampling (comparisons only; the kernel skips)
+  // rp_cone_trace_coarse: full-diameter steps, samples at t0 * 1.8^(k + position_jitter),
+  // level floor((k + position_jitter) log2(1.8) + jitter), no thickness correction.
+  bool coarse = false;
+  double position_jitter = 0.0;
 };
 // One cone from `origin` (its apex) along unit `dir`: (radiance, occlusion).
 glm::dvec4 trace(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,

@@ -40,7 +40,8 @@ __kernel void cone_test_trace(__global const float4* voxels, uint resolution, ui
   const size_t i = get_global_id(0);
   out[i] = rp_cone_trace(voxels, resolution, levels, origins[i].xyz, dirs[i].xyz);
 }
-/* dirs[i].w: 0 half-diameter steps, 1 quarter-diameter steps, 2 + u: level jitter u */
+/* dirs[i].w: 0 half-diameter steps, 1 quarter-diameter steps, 2 + u: level jitter u,
+ * 10 + u: full-diameter steps with level jitter u and position jitter origins[i].w */
 __kernel void cone_test_trace_mode(__global const float4* voxels, uint resolution, uint levels,
                                    __global const float4* origins, __global const float4* dirs,
                                    __global float4* out) {
@@ -48,8 +49,10 @@ __kernel void cone_test_trace_mode(__global const float4* voxels, uint resolutio
   const float mode = dirs[i].w;
   out[i] = mode == 0.0f ? rp_cone_trace(voxels, resolution, levels, origins[i].xyz, dirs[i].xyz)
          : mode == 1.0f ? rp_cone_trace_fine(voxels, resolution, levels, origins[i].xyz, dirs[i].xyz)
-                        : rp_cone_trace_jittered(voxels, resolution, levels, origins[i].xyz,
-                                                 dirs[i].xyz, mode - 2.0f);
+         : mode < 10.0f ? rp_cone_trace_jittered(voxels, resolution, levels, origins[i].xyz,
+                                                 dirs[i].xyz, mode - 2.0f)
+                        : rp_cone_trace_coarse(voxels, resolution, levels, origins[i].xyz,
+                                               dirs[i].xyz, origins[i].w, mode - 10.0f);
 }
 /* The set's directions: out[16 i + k] = cone k around normals[i]. */
 __kernel void cone_test_set16(__global const float4* voxels, uint resolution, uint levels,
@@ -329,7 +332,9 @@ TEST(ConeTrace, AnisotropicLookupPicksTheVolumesFacingTheCone) {
 }
 
 // Every way a cone steps and samples: half-diameter steps (quadrilinear), quarter-diameter
-// steps (the reference mode) and half-diameter steps with level-jittered samples (the fast mode).
+// steps (the reference mode), half-diameter steps with level-jittered samples, and
+// full-diameter steps with position and level jitter (the fast mode). Jitters keep the sampled
+// levels away from integers (no float vs double disagreement on a floor).
 TEST(ConeTrace, OneConeMatchesReferenceTrace) {
   // Sparse, mostly translucent volume so cones travel through several levels before stopping.
   std::mt19937 rng(3);
@@ -340,12 +345,14 @@ TEST(ConeTrace, OneConeMatchesReferenceTrace) {
     std::vector<glm::vec4> origins, dirs;
     std::vector<rp::test::cone::March> marches;
     auto add = [&](const glm::dvec3& o, const glm::dvec3& d) {
-      for (int mode = 0; mode < 3; ++mode) {
+      for (int mode = 0; mode < 4; ++mode) {
         rp::test::cone::March m;
         m.fine = mode == 1;
-        m.jitter = mode == 2 ? jitters[origins.size() % 4] : -1.0;
-        origins.push_back(v4(o));
-        dirs.push_back(v4(d, mode < 2 ? double(mode) : 2.0 + m.jitter));
+        m.jitter = mode >= 2 ? jitters[origins.size() % 4] : -1.0;
+        m.coarse = mode == 3;
+        m.position_jitter = mode == 3 ? 0.61 : 0.0;  // levels k * 0.848 + 0.517 + jitter
+        origins.push_back(v4(o, m.position_jitter));
+        dirs.push_back(v4(d, mode < 2 ? double(mode) : (mode == 2 ? 2.0 : 10.0) + m.jitter));
         marches.push_back(m);
       }
     };

@@ -1,0 +1,441 @@
+// The fast mode's indirect light (kernels/indirect.cl, light.cl's light_compose) against C++
+// references written from the rules in common/indirect.h and the kernels' headers, on a small
+// hand-made GBuffer (13x10 pixels: partial 4x4 blocks and a partial 8-pixel chunk) over a random
+// voxel chain: the one cone per block, the spatial filter (first frame: no history), the
+// temporal blend (second frame, still camera), and the upsampling + direct light of
+// light_compose (its direct term against light_shade's).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cone_reference.h"
+#include "passes/indirect.h"
+#include "passes/light.h"
+#include "render/gpu_scene.h"
+#include "support/cl_fixture.h"
+
+namespace {
+
+using rp::passes::IndirectPass;
+
+constexpr uint32_t kW = 13, kH = 10, kRes = 16;
+
+// ---- common/indirect.h, restated ----------------------------------------------------------
+uint32_t hash_u32(uint32_t v) {
+  const uint32_t state = v * 747796405u + 2891336453u;
+  const uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+float hash_to_unit(uint32_t h) { return float(h >> 8) * (1.0f / 16777216.0f); }
+const uint32_t kBayer[16] = {0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5};
+uint32_t cone_index(uint32_t i, uint32_t j, uint32_t f) {
+  return (kBayer[(j & 3u) * 4u + (i & 3u)] + 7u * f) & 15u;
+}
+float level_jitter(uint32_t i, uint32_t j, uint32_t f) {
+  const float u = hash_to_unit(hash_u32(i ^ hash_u32(j ^ 0x9e3779b9u))) + 0.618034f * float(f & 1023u);
+  return u - std::floor(u);
+}
+float position_jitter(uint32_t i, uint32_t j, uint32_t f) {
+  const float u = hash_to_unit(hash_u32(j ^ hash_u32(i ^ 0x85ebca6bu))) + 0.754877666f * float(f & 1023u);
+  return u - std::floor(u);
+}
+// Geometry weight of sample (normal s, plane offset sd) for a receiver at p with normal n.
+double geometry_weight(const glm::dvec3& n, const glm::dvec3& p, const glm::dvec3& s, double sd,
+                       double inv_sigma) {
+  const double wn = std::pow(std::max(glm::dot(n, s), 0.0), 8.0);
+  const double dist = (glm::dot(s, p) - sd) * inv_sigma;
+  const double wp = std::max(1.0 - 0.25 * dist * dist, 0.0);
+  return wn * wp * wp;
+}
+double inv_sigma(double depth, double pixel_scale) { return 1.0 / (depth * pixel_scale * 4.0); }
+
+// ---- the fixture --------------------------------------------------------------------------
+struct Pixel {
+  glm::vec3 p, n, albedo, emission;
+  float depth;
+  bool covered;
+};
+
+// Surfaces inside the box: a floor-like plane, a tilted plane and a few background pixels, so
+// that blocks see one surface, two, or none.
+std::vector<Pixel> make_gbuffer() {
+  std::vector<Pixel> px(size_t(kW) * kH);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const glm::vec3 tilted = glm::normalize(glm::vec3(0.3f, 0.8f, 0.5f));
+  for (uint32_t y = 0; y < kH; ++y)
+    for (uint32_t x = 0; x < kW; ++x) {
+      Pixel& q = px[y * kW + x];
+      q.covered = !(x >= 11 && y >= 8);  // a background corner
+      const bool plane_a = x + y < 12;
+      q.n = plane_a ? glm::vec3(0, 1, 0) : tilted;
+      const glm::vec3 base(-0.6f + 0.09f * float(x), -0.5f + 0.05f * float(y), -0.3f + 0.04f * float(y));
+      q.p = plane_a ? glm::vec3(base.x, -0.55f, base.z) : base - tilted * (glm::dot(base, tilted) - 0.1f);
+      q.albedo = glm::vec3(0.3f + 0.5f * u(rng), 0.3f + 0.5f * u(rng), 0.3f + 0.5f * u(rng));
+      q.emission = x == 3 && y == 2 ? glm::vec3(0.5f, 0.2f, 0.1f) : glm::vec3(0.0f);
+      q.depth = 2.0f + 0.1f * float(y);
+      if (!q.covered) q = Pixel{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f), 10.0f, false};
+    }
+  return px;
+}
+
+rp::test::cone::Chain random_chain() {
+  rp::test::cone::Chain c(kRes, 5);
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (uint32_t z = 0; z < kRes; ++z)
+    for (uint32_t y = 0; y < kRes; ++y)
+      for (uint32_t x = 0; x < kRes; ++x) {
+        if (u(rng) > 0.3) continue;
+        const double a = 0.7 * u(rng);
+        c.at(0, 0, x, y, z) = glm::vec4(glm::dvec4(3 * a * u(rng), 3 * a * u(rng), 3 * a * u(rng), a));
+      }
+  c.build_mips();
+  return c;
+}
+
+class IndirectFixture {
+ public:
+  IndirectFixture() : pixels_(make_gbuffer()), chain_(random_chain()) {
+    auto& ctx = rp::test::context();
+    scene_ = std::make_unique<rp::render::GpuScene>(ctx.context, ctx.queue, rp::scene::SceneAssets{});
+    gbuffer_.resize(ctx.context, kW, kH);
+    const size_t n = size_t(kW) * kH;
+    std::vector<float> albedo(n * 4), nd(n * 4), pos(n * 4), em(n * 4);
+    for (size_t i = 0; i < n; ++i) {
+      const Pixel& q = pixels_[i];
+      std::memcpy(&albedo[4 * i], &q.albedo, 12);
+      albedo[4 * i + 3] = q.covered ? 1.0f : 0.0f;
+      std::memcpy(&nd[4 * i], &q.n, 12);
+      nd[4 * i + 3] = q.depth;
+      std::memcpy(&pos[4 * i], &q.p, 12);
+      pos[4 * i + 3] = q.covered ? 1.0f : 0.0f;
+      std::memcpy(&em[4 * i], &q.emission, 12);
+    }
+    ctx.queue.enqueueWriteBuffer(gbuffer_.albedo, CL_TRUE, 0, n * 16, albedo.data());
+    ctx.queue.enqueueWriteBuffer(gbuffer_.normal_depth, CL_TRUE, 0, n * 16, nd.data());
+    ctx.queue.enqueueWriteBuffer(gbuffer_.position, CL_TRUE, 0, n * 16, pos.data());
+    ctx.queue.enqueueWriteBuffer(gbuffer_.emission, CL_TRUE, 0, n * 16, em.data());
+    voxels_ = ::cl::Buffer(ctx.context, CL_MEM_READ_ONLY, chain_.voxels.size() * 16);
+    ctx.queue.enqueueWriteBuffer(voxels_, CL_TRUE, 0, chain_.voxels.size() * 16, chain_.voxels.data());
+    shadow_.resize(ctx.context, 32);
+    const std::vector<float> empty_map(32 * 32, 1.0f);
+    ctx.queue.enqueueWriteBuffer(shadow_.depth, CL_TRUE, 0, empty_map.size() * 4, empty_map.data());
+    pass_ = std::make_unique<IndirectPass>(ctx, rp::test::programs());
+  }
+
+  // Runs the indirect pass for frame f (still camera) and reads every plane back.
+  rp::passes::LowResIndirect run(uint32_t f) {
+    rp::scene::FrameScene frame;
+    frame.frame_index = f;
+    frame.light.intensity = glm::vec3(3.0f, 2.5f, 2.0f);
+    scene_->update(frame, kW, kH, 32, kRes);
+    rp::cl::Profiler profiler(rp::test::context().queue);
+    rp::passes::LowResIndirect lr = pass_->run(profiler, *scene_, gbuffer_, voxels_, kRes, 5);
+    const auto times = profiler.collect();
+    EXPECT_EQ(times.count("indirect_trace"), 1u);
+    EXPECT_EQ(times.count("indirect_filter"), 1u);
+    auto& q = rp::test::context().queue;
+    const size_t plane = lr.plane;
+    radiance.resize(3 * plane);
+    position.resize(4 * plane);
+    geom.resize(4 * plane);
+    history.resize(5 * plane);
+    q.enqueueReadBuffer(pass_->radiance_planes(), CL_TRUE, 0, radiance.size() * 4, radiance.data());
+    q.enqueueReadBuffer(pass_->position_planes(), CL_TRUE, 0, position.size() * 4, position.data());
+    q.enqueueReadBuffer(*lr.geometry, CL_TRUE, 0, geom.size() * 4, geom.data());
+    q.enqueueReadBuffer(*lr.irradiance, CL_TRUE, 0, history.size() * 4, history.data());
+    return lr;
+  }
+
+  // Light pass output (hdr, direct, indirect; float4 per pixel) with or without upsampling.
+  void light(const rp::passes::LowResIndirect* lr, std::vector<float>& hdr,
+             std::vector<float>& direct, std::vector<float>& indirect) {
+    auto& ctx = rp::test::context();
+    const size_t n = size_t(kW) * kH;
+    ::cl::Buffer out(ctx.context, CL_MEM_READ_WRITE, n * 16);
+    rp::passes::LightComponents parts{::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16),
+                                      ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16)};
+    rp::cl::Profiler profiler(ctx.queue);
+    rp::passes::LightPass pass(ctx, rp::test::programs());
+    // The reference path with an empty chain: direct + emission only.
+    static const rp::test::cone::Chain empty(kRes, 5);
+    ::cl::Buffer empty_voxels(ctx.context, CL_MEM_READ_ONLY, empty.voxels.size() * 16);
+    ctx.queue.enqueueWriteBuffer(empty_voxels, CL_TRUE, 0, empty.voxels.size() * 16, empty.voxels.data());
+    pass.run(profiler, *scene_, gbuffer_, shadow_, lr ? voxels_ : empty_voxels, kRes, 5, out, &parts, lr);
+    profiler.collect();
+    hdr.resize(n * 4);
+    direct.resize(n * 4);
+    indirect.resize(n * 4);
+    ctx.queue.enqueueReadBuffer(out, CL_TRUE, 0, n * 16, hdr.data());
+    ctx.queue.enqueueReadBuffer(parts.direct, CL_TRUE, 0, n * 16, direct.data());
+    ctx.queue.enqueueReadBuffer(parts.indirect, CL_TRUE, 0, n * 16, indirect.data());
+  }
+
+  const Pixel& pixel(uint32_t x, uint32_t y) const { return pixels_[y * kW + x]; }
+  const rp::test::cone::Chain& chain() const { return chain_; }
+  float pixel_scale() const { return rp::passes::pixel_scale(*scene_); }
+  const rp::render::GpuScene& scene() const { return *scene_; }
+
+  std::vector<float> radiance, position, geom, history;
+
+ private:
+  std::vector<Pixel> pixels_;
+  rp::test::cone::Chain chain_;
+  std::unique_ptr<rp::render::GpuScene> scene_;
+  rp::render::GBuffer gbuffer_;
+  rp::render::ShadowMap shadow_;
+  ::cl::Buffer voxels_;
+  std::unique_ptr<IndirectPass> pass_;
+};
+
+uint32_t lr_w() { return IndirectPass::low_res(kW); }
+uint32_t lr_h() { return IndirectPass::low_res(kH); }
+// Padded plane index of sample (i, j) (common/indirect.h).
+size_t at(int i, int j) { return size_t(j + 2) * IndirectPass::plane_stride(lr_w()) + size_t(i + 2); }
+
+// The sample pixel of block (i, j): pixel (1, 1) of the block, clamped to the image.
+const Pixel& sample_pixel(const IndirectFixture& fx, uint32_t i, uint32_t j) {
+  return fx.pixel(std::min(4 * i + 1, kW - 1), std::min(4 * j + 1, kH - 1));
+}
+
+TEST(Indirect, LayoutIsPaddedAndPlanar) {
+  EXPECT_EQ(lr_w(), 4u);
+  EXPECT_EQ(lr_h(), 3u);
+  EXPECT_EQ(IndirectPass::plane_stride(4), 16u);
+  EXPECT_EQ(IndirectPass::plane_stride(8), 16u);
+  EXPECT_EQ(IndirectPass::plane_stride(9), 24u);
+  EXPECT_EQ(IndirectPass::plane_size(4, 3), 16u * 7u);
+}
+
+// One cone per block: the block's sample pixel, cone k of the set, full-diameter steps with the
+// block's two jitters (the C++ cone reference); padding stays zero.
+TEST(Indirect, EachBlockTracesItsConeOfTheSet) {
+  IndirectFixture fx;
+  const uint32_t f = 5;
+  const auto lr = fx.run(f);
+  const size_t plane = lr.plane;
+  int traced = 0, lit = 0;
+  for (uint32_t j = 0; j < lr_h(); ++j)
+    for (uint32_t i = 0; i < lr_w(); ++i) {
+      const Pixel& q = sample_pixel(fx, i, j);
+      const size_t s = at(int(i), int(j));
+      glm::dvec3 want(0.0), n(0.0), p(0.0);
+      if (q.covered) {
+        n = glm::dvec3(q.n);
+        p = glm::dvec3(q.p);
+        glm::dvec3 dirs[16];
+        rp::test::cone::diffuse_cones(n, dirs);
+        rp::test::cone::March m;
+        m.coarse = true;
+        m.jitter = level_jitter(i, j, f);
+        m.position_jitter = position_jitter(i, j, f);
+        want = glm::dvec3(rp::test::cone::trace(fx.chain(), p + n * (2.0 / kRes),
+                                                 dirs[cone_index(i, j, f)], m));
+        ++traced;
+        lit += want.x + want.y + want.z > 0.01;
+      }
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(fx.radiance[c * plane + s], want[c], 1e-5) << "block " << i << "," << j;
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(fx.geom[c * plane + s], n[c], 1e-6);
+        EXPECT_NEAR(fx.position[c * plane + s], p[c], 1e-6);
+      }
+      EXPECT_NEAR(fx.geom[3 * plane + s], glm::dot(n, p), 1e-6);
+      EXPECT_EQ(fx.position[3 * plane + s], q.covered ? q.depth : 0.0f);
+    }
+  EXPECT_EQ(traced, 11);  // block (3, 2) samples the background corner
+  EXPECT_GE(lit, 5);
+  for (int j = -2; j < int(lr_h()) + 2; ++j)
+    for (int i = -2; i < int(IndirectPass::plane_stride(lr_w())) - 2; ++i) {
+      if (i >= 0 && j >= 0 && i < int(lr_w()) && j < int(lr_h())) continue;
+      for (int c = 0; c < 4; ++c) EXPECT_EQ(fx.geom[c * plane + at(i, j)], 0.0f);
+    }
+}
+
+// Spatial estimate S of sample (i, j) from the planes of one frame.
+glm::dvec3 spatial(const IndirectFixture& fx, size_t plane, int i, int j, double pixel_scale) {
+  const size_t c = at(i, j);
+  const glm::dvec3 n(fx.geom[c], fx.geom[plane + c], fx.geom[2 * plane + c]);
+  const glm::dvec3 p(fx.position[c], fx.position[plane + c], fx.position[2 * plane + c]);
+  const double is = inv_sigma(fx.position[3 * plane + c], pixel_scale);
+  glm::dvec3 sum(0.0);
+  double wsum = 0.0;
+  for (int dy = -2; dy <= 2; ++dy)
+    for (int dx = -2; dx <= 2; ++dx) {
+      const int ti = i + dx, tj = j + dy;
+      if (ti < 0 || tj < 0 || ti >= int(lr_w()) || tj >= int(lr_h())) continue;
+      const size_t t = at(ti, tj);
+      const double w = (std::abs(dx) == 2 ? 0.5 : 1.0) * (std::abs(dy) == 2 ? 0.5 : 1.0) *
+                       geometry_weight(n, p, glm::dvec3(fx.geom[t], fx.geom[plane + t], fx.geom[2 * plane + t]),
+                                       fx.geom[3 * plane + t], is);
+      sum += w * glm::dvec3(fx.radiance[t], fx.radiance[plane + t], fx.radiance[2 * plane + t]);
+      wsum += w;
+    }
+  return sum / std::max(wsum, 1e-6);
+}
+
+// First frame: no history, so every sample's output is its spatial estimate with age 1.
+TEST(Indirect, FirstFrameIsTheSpatialFilter) {
+  IndirectFixture fx;
+  const auto lr = fx.run(2);
+  const size_t plane = lr.plane;
+  int mixed = 0;
+  for (int j = 0; j < int(lr_h()); ++j)
+    for (int i = 0; i < int(lr_w()); ++i) {
+      const size_t s = at(i, j);
+      const bool covered = sample_pixel(fx, uint32_t(i), uint32_t(j)).covered;
+      const glm::dvec3 want = covered ? spatial(fx, plane, i, j, lr.pixel_scale) : glm::dvec3(0.0);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(fx.history[c * plane + s], want[c], 1e-5 * (1.0 + std::abs(want[c])))
+            << "sample " << i << "," << j;
+      EXPECT_EQ(fx.history[3 * plane + s], covered ? 1.0f : 0.0f);
+      const double lum = glm::dot(want, glm::dvec3(0.2126, 0.7152, 0.0722));
+      EXPECT_NEAR(fx.history[4 * plane + s], lum * lum, 1e-5 * (1.0 + lum * lum));
+      mixed += std::abs(want.x - fx.radiance[s]) > 1e-3;
+    }
+  EXPECT_GE(mixed, 5);  // the filter really mixes neighbours
+}
+
+// Second frame: every sample's history from the previous frame's planes, as indirect_filter's
+// header says (reprojection with prev_view_proj_unjittered, block-centre shift, 3x3 blocks with
+// tent + ring weights times geometry weights, minimum weight, age-based alpha). The hand-made
+// positions do not lie under their pixels, so they reproject to other blocks (the first frame's
+// test covers samples without history).
+TEST(Indirect, SecondFrameBlendsWithTheReprojectedHistory) {
+  IndirectFixture fx;
+  fx.run(6);
+  const std::vector<float> prev_geom = fx.geom, prev_history = fx.history;
+  const auto lr = fx.run(7);
+  const size_t plane = lr.plane;
+  glm::dmat4 m;
+  for (int c = 0; c < 4; ++c) {
+    const auto& col = fx.scene().constants.prev_view_proj_unjittered.c[c];
+    m[c] = glm::dvec4(col.x, col.y, col.z, col.w);
+  }
+  int with_history = 0, elsewhere = 0;
+  for (int j = 0; j < int(lr_h()); ++j)
+    for (int i = 0; i < int(lr_w()); ++i) {
+      const size_t s = at(i, j);
+      if (!sample_pixel(fx, uint32_t(i), uint32_t(j)).covered) continue;
+      const glm::dvec3 n(fx.geom[s], fx.geom[plane + s], fx.geom[2 * plane + s]);
+      const glm::dvec3 p(fx.position[s], fx.position[plane + s], fx.position[2 * plane + s]);
+      const double is = inv_sigma(fx.position[3 * plane + s], lr.pixel_scale);
+      const glm::dvec4 clip = m * glm::dvec4(p, 1.0);
+      const double iw = 1.0 / (clip.w > 0.0 ? clip.w : 1.0);
+      const double sx = (clip.x * iw * 0.5 + 0.5) * kW, sy = (0.5 - clip.y * iw * 0.5) * kH;
+      const double ux = (sx - 1.0 - 0.5) / 4.0, uy = (sy - 1.0 - 0.5) / 4.0;
+      const int ur = int(std::floor(std::clamp(ux, -1.0, double(lr_w())) + 0.5));
+      const int vr = int(std::floor(std::clamp(uy, -1.0, double(lr_h())) + 0.5));
+      auto g_at = [&](int ti, int tj) {
+        const size_t t = at(ti, tj);
+        return geometry_weight(n, p, glm::dvec3(prev_geom[t], prev_geom[plane + t], prev_geom[2 * plane + t]),
+                               prev_geom[3 * plane + t], is);
+      };
+      const double ring = 0.1 * (1.0 - g_at(ur, vr));
+      glm::dvec4 hist(0.0);
+      double hw = 0.0, hm = 0.0;
+      for (int b = -1; b <= 1; ++b)
+        for (int a = -1; a <= 1; ++a) {
+          const double w = (std::max(1.0 - std::abs(ux - (ur + a)), 0.0) + ring) *
+                           (std::max(1.0 - std::abs(uy - (vr + b)), 0.0) + ring) * g_at(ur + a, vr + b);
+          const size_t t = at(ur + a, vr + b);
+          hist += w * glm::dvec4(prev_history[t], prev_history[plane + t], prev_history[2 * plane + t],
+                                 prev_history[3 * plane + t]);
+          hm += w * prev_history[4 * plane + t];
+          hw += w;
+        }
+      const bool has = clip.w > 0.0 && hw >= 0.05;
+      const glm::dvec4 h = has ? hist / hw : glm::dvec4(0.0);
+      const double m2 = has ? hm / hw : 0.0;
+      with_history += has;
+      elsewhere += ur != i || vr != j;
+      const glm::dvec3 sp = spatial(fx, plane, i, j, lr.pixel_scale);
+      // Variance-guided alpha: smoothstep over 2..4 standard deviations of the luminance.
+      const glm::dvec3 luma(0.2126, 0.7152, 0.0722);
+      const double lum_s = glm::dot(sp, luma), lum_h = glm::dot(glm::dvec3(h), luma);
+      const double sigma = std::sqrt(std::max(m2 - lum_h * lum_h, 0.0)) + 0.02 * lum_h + 1e-4;
+      const double z = std::clamp((std::abs(lum_s - lum_h) / sigma - 2.0) * 0.5, 0.0, 1.0);
+      const double lo = IndirectPass::kAlphaMin;
+      const double alpha = std::max(1.0 / (h.w + 1.0), lo + (0.35 - lo) * z * z * (3.0 - 2.0 * z));
+      const glm::dvec3 want = glm::dvec3(h) + alpha * (sp - glm::dvec3(h));
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(fx.history[c * plane + s], want[c], 2e-5 * (1.0 + std::abs(want[c])))
+            << "sample " << i << "," << j;
+      EXPECT_NEAR(fx.history[3 * plane + s], std::min(h.w + 1.0, 255.0), 1e-4);
+      EXPECT_NEAR(fx.history[4 * plane + s], m2 + alpha * (lum_s * lum_s - m2), 2e-5 * (1.0 + m2));
+    }
+  EXPECT_GE(with_history, 5);
+  EXPECT_GE(elsewhere, 5);
+}
+
+// light_compose = light_shade's direct term and emission + albedo * the upsampled irradiance:
+// block histories at the block centres (4 i + 2), bilinear times geometry weights, the best
+// match or plain bilinear as fallbacks.
+TEST(Indirect, ComposeUpsamplesTheBlocksAndMatchesTheDirectTerm) {
+  IndirectFixture fx;
+  const auto lr = fx.run(3);
+  const size_t plane = lr.plane;
+  std::vector<float> hdr_ref, direct_ref, indirect_ref, hdr, direct, indirect;
+  fx.light(nullptr, hdr_ref, direct_ref, indirect_ref);
+  fx.light(&lr, hdr, direct, indirect);
+  int lit = 0;
+  for (uint32_t y = 0; y < kH; ++y)
+    for (uint32_t x = 0; x < kW; ++x) {
+      const Pixel& q = fx.pixel(x, y);
+      const size_t o = 4 * (size_t(y) * kW + x);
+      if (!q.covered) {
+        for (int c = 0; c < 4; ++c) EXPECT_EQ(hdr[o + c], 0.0f) << x << "," << y;
+        continue;
+      }
+      const double ux = (x - 1.5) / 4.0, uy = (y - 1.5) / 4.0;
+      const int i0 = int(std::floor(ux)), j0 = int(std::floor(uy));
+      const double fx_ = ux - i0, fy_ = uy - j0;
+      double g[4], b[4];
+      glm::dvec3 h[4];
+      const double is = inv_sigma(q.depth, lr.pixel_scale);
+      for (int t = 0; t < 4; ++t) {
+        const size_t s = at(i0 + (t & 1), j0 + (t >> 1));
+        g[t] = geometry_weight(glm::dvec3(q.n), glm::dvec3(q.p),
+                               glm::dvec3(fx.geom[s], fx.geom[plane + s], fx.geom[2 * plane + s]),
+                               fx.geom[3 * plane + s], is);
+        b[t] = ((t & 1) ? fx_ : 1.0 - fx_) * ((t >> 1) ? fy_ : 1.0 - fy_);
+        h[t] = glm::dvec3(fx.history[s], fx.history[plane + s], fx.history[2 * plane + s]);
+      }
+      double wsum = 0.0;
+      glm::dvec3 irr(0.0);
+      for (int t = 0; t < 4; ++t) {
+        wsum += b[t] * g[t];
+        irr += b[t] * g[t] * h[t];
+      }
+      if (wsum >= 1e-4) {
+        irr /= wsum;
+      } else {
+        const int best = int(std::max_element(g, g + 4) - g);
+        irr = g[best] > 0.0 ? h[best] : b[0] * h[0] + b[1] * h[1] + b[2] * h[2] + b[3] * h[3];
+      }
+      const glm::dvec3 want_indirect = glm::dvec3(q.albedo) * irr;
+      lit += want_indirect.x > 1e-3;
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(direct[o + c], direct_ref[o + c], 1e-6 + 1e-5 * std::abs(direct_ref[o + c]))
+            << "direct " << x << "," << y;
+        EXPECT_NEAR(indirect[o + c], want_indirect[c], 1e-5 * (1.0 + want_indirect[c]))
+            << "indirect " << x << "," << y;
+        EXPECT_NEAR(hdr[o + c], hdr_ref[o + c] + want_indirect[c], 2e-5 * (1.0 + hdr[o + c]))
+            << "hdr " << x << "," << y;
+      }
+      EXPECT_EQ(hdr[o + 3], 1.0f);
+    }
+  EXPECT_GE(lit, 40);
+}
+
+}  // namespace
