@@ -1,0 +1,123 @@
+#include "app/quality_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <stdexcept>
+
+#include "app/commands.h"
+#include "app/simulation_source.h"
+#include "scene/demo_scene.h"
+
+namespace rp::app {
+namespace {
+
+void check_same_size(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  if (a.size() != b.size() || a.size() % 4 != 0)
+    throw std::invalid_argument("image comparison: the images differ in size");
+}
+
+CommonOptions with_quality(const CommonOptions& common, render::Quality quality) {
+  CommonOptions c = common;
+  c.quality = quality;
+  c.view = {};  // the final image
+  return c;
+}
+
+struct StaticRun {
+  std::vector<uint8_t> last;
+  double flicker = 0.0;
+};
+
+// The demo at rest for options.static_frames frames.
+StaticRun render_static(const CommonOptions& common, uint32_t width, uint32_t height,
+                        const QualityOptions& options) {
+  RenderSession session(common, width, height);
+  StaticRun run;
+  std::vector<uint8_t> rgba, previous;
+  double frame_ms = 0.0, flicker_sum = 0.0;
+  uint32_t flicker_count = 0;
+  for (uint32_t i = 0; i < options.static_frames; ++i) {
+    session.render(scene::make_demo_frame(session.assets(), i), rgba, frame_ms);
+    if (i > 0 && i + options.flicker_frames >= options.static_frames) {
+      flicker_sum += mean_abs_diff_rgb8(rgba, previous);
+      ++flicker_count;
+    }
+    previous.swap(rgba);
+  }
+  run.last = std::move(previous);
+  run.flicker = flicker_count > 0 ? flicker_sum / flicker_count : 0.0;
+  return run;
+}
+
+}  // namespace
+
+double psnr_rgb8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  check_same_size(a, b);
+  double sum = 0.0;
+  size_t count = 0;
+  for (size_t i = 0; i < a.size(); i += 4)
+    for (size_t c = 0; c < 3; ++c) {
+      const double d = double(a[i + c]) - double(b[i + c]);
+      sum += d * d;
+      ++count;
+    }
+  if (sum == 0.0 || count == 0) return std::numeric_limits<double>::infinity();
+  return 10.0 * std::log10(255.0 * 255.0 / (sum / double(count)));
+}
+
+double mean_abs_diff_rgb8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  check_same_size(a, b);
+  uint64_t sum = 0;
+  size_t count = 0;
+  for (size_t i = 0; i < a.size(); i += 4)
+    for (size_t c = 0; c < 3; ++c) {
+      sum += uint64_t(std::abs(int(a[i + c]) - int(b[i + c])));
+      ++count;
+    }
+  return count > 0 ? double(sum) / double(count) : 0.0;
+}
+
+QualityReport measure_quality(const CommonOptions& common, uint32_t width, uint32_t height,
+                              const QualityOptions& options) {
+  const CommonOptions fast = with_quality(common, render::Quality::kFast);
+  const CommonOptions reference = with_quality(common, render::Quality::kReference);
+  QualityReport report;
+  report.width = width;
+  report.height = height;
+
+  const StaticRun fast_static = render_static(fast, width, height, options);
+  const StaticRun ref_static = render_static(reference, width, height, options);
+  report.static_psnr_db = psnr_rgb8(fast_static.last, ref_static.last);
+  report.flicker_fast = fast_static.flicker;
+  report.flicker_reference = ref_static.flicker;
+
+  // Busy: both modes side by side, one frame each in turn (two sessions, two identical worlds).
+  SimulationArgs args;
+  args.seed = options.seed;
+  args.marbles = true;
+  args.fireball = true;
+  RenderSession fast_session(fast, width, height);
+  RenderSession ref_session(reference, width, height);
+  SimulationFrameSource fast_source(make_simulation_options(args, common.effects));
+  SimulationFrameSource ref_source(make_simulation_options(args, common.effects));
+  std::vector<uint8_t> fast_rgba, ref_rgba;
+  double frame_ms = 0.0;
+  for (uint32_t i = 0; i < options.busy_warmup + options.busy_frames; ++i) {
+    render_next_frame(fast_session, fast_source, common.effects, fast_rgba, frame_ms);
+    render_next_frame(ref_session, ref_source, common.effects, ref_rgba, frame_ms);
+    if (i >= options.busy_warmup) report.busy_psnr_db.push_back(psnr_rgb8(fast_rgba, ref_rgba));
+  }
+  if (!report.busy_psnr_db.empty()) {
+    std::vector<double> sorted = report.busy_psnr_db;
+    std::sort(sorted.begin(), sorted.end());
+    report.busy_min_psnr_db = sorted.front();
+    const size_t n = sorted.size();
+    report.busy_median_psnr_db =
+        n % 2 == 1 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  }
+  return report;
+}
+
+}  // namespace rp::app
