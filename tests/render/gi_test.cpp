@@ -1,5 +1,7 @@
 // Global illumination on the demo frame, measured on the light pass's indirect term: colour
-// bleeds from the walls onto the floor, and shadowed floor still receives bounce light.
+// bleeds from the walls onto the floor, and shadowed floor still receives bounce light. Both
+// quality modes: the fast one (one frame: the spatially filtered low-resolution cones,
+// upsampled) and the reference (16 cones per pixel).
 #include <algorithm>
 #include <vector>
 
@@ -18,10 +20,11 @@ struct Pixel {
   float albedo[3], direct[3], indirect[3];
 };
 
-std::vector<Pixel> render_indirect() {
+std::vector<Pixel> render_indirect(rp::render::Quality quality) {
   rp::scene::SceneAssets assets = rp::scene::make_demo_assets(rp::scene::default_asset_dir());
   rp::render::RenderSettings settings;
   settings.width = settings.height = kSize;
+  settings.quality = quality;
   rp::render::Renderer renderer(rp::test::context(), rp::test::programs(), assets, settings);
   renderer.set_debug_view({rp::passes::DebugView::kIndirect, 0, 0});
   renderer.render(rp::scene::make_demo_frame(assets, 0));
@@ -48,16 +51,21 @@ std::vector<Pixel> render_indirect() {
   return out;
 }
 
-const std::vector<Pixel>& pixels() {
-  static const std::vector<Pixel> p = render_indirect();
-  return p;
-}
+class GlobalIllumination : public ::testing::TestWithParam<rp::render::Quality> {
+ protected:
+  const std::vector<Pixel>& pixels() const {
+    static const std::vector<Pixel> fast = render_indirect(rp::render::Quality::kFast);
+    static const std::vector<Pixel> reference = render_indirect(rp::render::Quality::kReference);
+    return GetParam() == rp::render::Quality::kFast ? fast : reference;
+  }
+  double incoming_red_over_blue(float x0, float x1) const;
+};
 
 bool on_floor(const Pixel& p) { return p.ny > 0.99f && p.py < -0.99f; }
 
 // Red / blue of the light arriving at floor pixels with x in [x0, x1) (indirect / albedo, so the
 // wood's own colour drops out), summed over the visible floor of that strip.
-double incoming_red_over_blue(float x0, float x1) {
+double GlobalIllumination::incoming_red_over_blue(float x0, float x1) const {
   double red = 0.0, blue = 0.0;
   int count = 0;
   for (const Pixel& p : pixels()) {
@@ -70,7 +78,7 @@ double incoming_red_over_blue(float x0, float x1) {
   return red / std::max(blue, 1e-9);
 }
 
-TEST(GlobalIllumination, FloorIsWarmerByTheOrangeWallAndCoolerByTheBlueWall) {
+TEST_P(GlobalIllumination, FloorIsWarmerByTheOrangeWallAndCoolerByTheBlueWall) {
   double left = incoming_red_over_blue(-1.0f, -0.75f);
   double centre = incoming_red_over_blue(-0.15f, 0.15f);
   double right = incoming_red_over_blue(0.75f, 1.0f);
@@ -78,7 +86,7 @@ TEST(GlobalIllumination, FloorIsWarmerByTheOrangeWallAndCoolerByTheBlueWall) {
   EXPECT_LT(right, centre / 1.15) << "right " << right << " centre " << centre;
 }
 
-TEST(GlobalIllumination, ShadowedFloorReceivesBounceLight) {
+TEST_P(GlobalIllumination, ShadowedFloorReceivesBounceLight) {
   int shadowed = 0, lifted = 0;
   double sum = 0.0, lit_sum = 0.0;
   int lit = 0;
@@ -103,7 +111,7 @@ TEST(GlobalIllumination, ShadowedFloorReceivesBounceLight) {
   EXPECT_GT(sum / shadowed, (lit_sum / lit) / 3.0);
 }
 
-TEST(GlobalIllumination, CeilingFacingAwayFromTheLampIsLitOnlyByBounceLight) {
+TEST_P(GlobalIllumination, CeilingFacingAwayFromTheLampIsLitOnlyByBounceLight) {
   double direct = 0.0, indirect = 0.0;
   int count = 0;
   for (const Pixel& p : pixels()) {
@@ -116,5 +124,12 @@ TEST(GlobalIllumination, CeilingFacingAwayFromTheLampIsLitOnlyByBounceLight) {
   EXPECT_EQ(direct, 0.0);
   EXPECT_GT(indirect / count, 0.05);
 }
+
+INSTANTIATE_TEST_SUITE_P(Modes, GlobalIllumination,
+                         ::testing::Values(rp::render::Quality::kFast,
+                                           rp::render::Quality::kReference),
+                         [](const ::testing::TestParamInfo<rp::render::Quality>& mode) {
+                           return mode.param == rp::render::Quality::kFast ? "Fast" : "Reference";
+                         });
 
 }  // namespace
