@@ -139,14 +139,23 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
         colour = &post_[next];
         next ^= 1;
       }
-      if (fx.bloom && fx.bloom_strength > 0.0f) {
-        bloom_->run(profiler_, *colour, w, h, fx.bloom_strength, post_[next]);
+      const bool bloom_on = fx.bloom && fx.bloom_strength > 0.0f;
+      const bool blur_on = fx.motion_blur && fx.shutter > 0.0f;
+      if (bloom_on && blur_on) {  // the bloom's full-resolution mix fused into motion blur
+        bloom_->run_chain(profiler_, *colour, w, h);
+        motion_blur_->run(profiler_, *colour, gbuffer_, w, h, fx.shutter,
+                          bloom_->composite(fx.bloom_strength), post_[next]);
         colour = &post_[next];
-        next ^= 1;
-      }
-      if (fx.motion_blur && fx.shutter > 0.0f) {
-        motion_blur_->run(profiler_, *colour, gbuffer_, w, h, fx.shutter, post_[next]);
-        colour = &post_[next];
+      } else {
+        if (bloom_on) {
+          bloom_->run(profiler_, *colour, w, h, fx.bloom_strength, post_[next]);
+          colour = &post_[next];
+          next ^= 1;
+        }
+        if (blur_on) {
+          motion_blur_->run(profiler_, *colour, gbuffer_, w, h, fx.shutter, post_[next]);
+          colour = &post_[next];
+        }
       }
       tone_map_->run(profiler_, *scene_, *colour, rgba8_);
     } else {
