@@ -293,6 +293,10 @@ CliParse parse_cli(int argc, const char* const* argv) {
   bench->add_flag("--compare-visibility", bench_opts.compare_visibility,
                   "render the same frames with the compute rasterizer and with Embree and "
                   "compare the visibility cost side by side");
+  bench->add_flag("--quality-report", bench_opts.quality_report,
+                  "measure how close the fast quality mode comes to the reference mode at the "
+                  "bench size: PSNR on the static demo after TAA converged, per frame on the "
+                  "busy animation, and the flicker of both (issue 9's criteria)");
   add_simulation(bench, bench_opts.sim);
   CLI::Option* devices_opt = bench->add_option(
       "--devices", bench_opts.devices,
@@ -366,6 +370,10 @@ CliParse parse_cli(int argc, const char* const* argv) {
     else if (bench_opts.compare_visibility &&
              (devices_opt->count() || sizes_opt->count() || bench_opts.voxels.size() > 1))
       why = "--compare-visibility runs one device, size and voxel resolution";
+    else if (bench_opts.quality_report &&
+             (devices_opt->count() || sizes_opt->count() || bench_opts.voxels.size() > 1 ||
+              bench_opts.compare_visibility))
+      why = "--quality-report runs one device, size and voxel resolution";
     if (why) return usage("rolypoly bench", why);
     parsed.kind = ParsedCommand::Kind::kBench;
     bench_opts.size = bench_size.resolve();

@@ -47,6 +47,8 @@ struct BenchOptions {
   uint32_t warmup = 3;   // frames rendered first and not measured
   std::string json;      // "" = no JSON file
   bool compare_visibility = false;  // --compare-visibility: raster and Embree on the same frames
+  // --quality-report: fast vs reference quality mode at the bench size (app/quality_report.h)
+  bool quality_report = false;
   // The matrix (issue 7): every device x size x voxel resolution.
   std::string devices;           // --devices all|LIST ("" = the one --device, or the default)
   std::vector<uint32_t> sizes;   // --sizes: square sizes (empty = `size`)
