@@ -1,14 +1,30 @@
-/* Temporal anti-aliasing resolve (SPEC 6.7), one work-item per pixel on a 2D range rounded up
- * to the 8x8 work-group (bounds-checked). Straight-line per-pixel float4 code, no atomics, no
- * local memory: every output depends only on the inputs, so runs are bit-identical.
+/* Temporal anti-aliasing resolve (SPEC 6.7). Each work-item resolves 8 consecutive pixels of a
+ * row as one float8 per channel (planar in registers, common/taa.h): pixels x0 .. x0+7 with
+ * x0 = x_first + 8 * get_global_id(0), row get_global_id(1). The default build takes whole
+ * blocks only (x0 + 8 <= width; the range is rounded up to whole work-groups and blocks past
+ * that return) and reads and writes them with straight-line vector loads and stores. The
+ * RP_TAA_BORDER build resolves the one block per row that crosses the right border
+ * (x_first = 8 * (width / 8), or 0 for images narrower than 8): its loads clamp each lane to
+ * the last column and it writes only the pixels inside. src/passes/taa.cpp launches the
+ * first over the whole blocks and the second over the border column when width % 8 != 0. No
+ * atomics, no local memory: every output depends only on the inputs, so runs are bit-identical.
  *
- * Buffers (planar, row-major, top row first; src/render/frame_buffers.h):
+ * Why this shape (PoCL on the CPU, DESIGN.md): per-pixel rgb code is SLP-packed into 2-wide
+ * vectors inside the work-item, which stops PoCL's 8-wide vectorization across work-items;
+ * explicit float8 code is vector code everywhere. The 8 pixels of a block also share their
+ * horizontal neighbours (each input pixel is tone mapped 3 times instead of 5), and when the
+ * 8 pixels' history taps are 8 consecutive pixels (still background, an object moving as a
+ * whole) the bilinear history is 4 vector loads per channel instead of 32 scalar ones.
+ * Bounds branches inside the block's loads and stores cost ~20 %, hence the two builds.
+ *
+ * Buffers (row-major, top row first; src/render/frame_buffers.h):
  *   hdr_in       float4  linear HDR radiance of this (jittered) frame, w passed through
  *   velocity     float2  pixels, this frame minus previous (+y down), unjittered
  *   normal_depth float4  w = linear view depth (picks the velocity, below)
- *   history_in   float4  previous resolved frame, TONE-MAPPED rgb T(x) = x / (1 + x), w = 1
- *   history_out  float4  this resolved frame, tone-mapped (next frame's history_in)
- *   hdr_out      float4  this resolved frame back in linear HDR: T^-1(history_out.rgb), w of hdr_in
+ *   history_in   float   previous resolved frame, TONE-MAPPED rgb T(x) = x / (1 + x), as three
+ *                        planes of width * height floats: all R, then all G, then all B
+ *   history_out  float   this resolved frame, same layout (next frame's history_in)
+ *   hdr_out      float4  this resolved frame back in linear HDR: T^-1(history rgb), w of hdr_in
  *
  * Per pixel, on tone-mapped values (common/colour.h):
  *   1. Current colour c = T(hdr_in) at the pixel. The jittered samples are what TAA averages:
@@ -22,68 +38,209 @@
  *      the silhouettes of moving objects reproject with the object, not the background.
  *   4. History at previous position = pixel centre - velocity, bilinear (clamp to edge). Outside
  *      [0, width] x [0, height], or when history_valid = 0 (reset / resize), history = c.
- *   5. History clipped toward the box centre (common/taa.h), then
- *      out = hist * history_weight + c * (1 - history_weight).
+ *   5. History clipped toward the box centre (rp_taa_clip in common/taa.h), then
+ *      out = clamp(hist * history_weight + c * (1 - history_weight), 0, 1).
+ * tests/passes/taa_reference.cpp is the same algorithm in plain C++, one pixel at a time.
  */
 #include "common/colour.h"
 #include "common/sampling.h"
 #include "common/taa.h"
 
+#ifdef RP_TAA_BORDER /* the block crossing the right border: w - x0 < 8 pixels */
+#define RP_TAA_LOAD(img, row, R, G, B, A) RP_LOAD_PX8_CLAMPED(img, row, x0, w, R, G, B, A)
+#define RP_TAA_LOAD2(img, row, X, Y) RP_LOAD_PX8_FLOAT2_CLAMPED(img, row, x0, w, X, Y)
+#define RP_TAA_STORE(img, R, G, B, A) RP_STORE_PX8_FIRST(img, row, x0, w - x0, R, G, B, A)
+#define RP_TAA_STORE_PLANE(plane, V) RP_STORE_PLANE8_FIRST(plane, row, x0, w - x0, V)
+#else
+#define RP_TAA_LOAD(img, row, R, G, B, A) RP_LOAD_PX8(img, row, x0, R, G, B, A)
+#define RP_TAA_LOAD2(img, row, X, Y) RP_LOAD_PX8_FLOAT2(img, row, x0, X, Y)
+#define RP_TAA_STORE(img, R, G, B, A) RP_STORE_PX8(img, row, x0, R, G, B, A)
+#define RP_TAA_STORE_PLANE(plane, V) RP_STORE_PLANE8(plane, row, x0, V)
+#endif
+
+/* Bilinear history of lane k in plane P (scalar taps at the four indices, weights fx, fy). */
+#define RP_TAA_HISTORY_LANE(P, k)                                                          \
+  mix(mix(P[ia.s##k], P[ib.s##k], fx.s##k), mix(P[ic.s##k], P[id.s##k], fx.s##k), fy.s##k)
+#define RP_TAA_HISTORY_LANES(P)                                                            \
+  (float8)(RP_TAA_HISTORY_LANE(P, 0), RP_TAA_HISTORY_LANE(P, 1), RP_TAA_HISTORY_LANE(P, 2), \
+           RP_TAA_HISTORY_LANE(P, 3), RP_TAA_HISTORY_LANE(P, 4), RP_TAA_HISTORY_LANE(P, 5), \
+           RP_TAA_HISTORY_LANE(P, 6), RP_TAA_HISTORY_LANE(P, 7))
+/* The same when the lanes' taps are consecutive pixels (ia = ia.s0 + lane, ib = ia + 1,
+ * ic = ia + one row, id = ic + 1): four vector loads per plane. */
+#define RP_TAA_HISTORY_ROWS(P)                                                             \
+  mix(mix(vload8(0, P + ia.s0), vload8(0, P + ia.s0 + 1), fx),                             \
+      mix(vload8(0, P + ic.s0), vload8(0, P + ic.s0 + 1), fx), fy)
+
+/* Unjittered current sample of lane k: bilinear in HDR at the pixel centre + jitter. */
+#define RP_TAA_UNJITTER_LANE(k)                                                            \
+  rp_plane_bilinear_clamp(hdr_in, w, h, (float2)(cx.s##k + jitter_x, cy + jitter_y))
+
+/* Adds a neighbour row's tone-mapped YCoCg (as offsets from the centre pixel's, see step 2) to
+ * the cross sums and lets it compete for the nearest depth (strict <: earlier candidates win
+ * ties). */
+#define RP_TAA_ADD_ROW(row_start)                                                          \
+  do {                                                                                     \
+    float8 r_, g_, b_, a_, d_, vx_, vy_;                                                   \
+    RP_TAA_LOAD(hdr_in, row_start, r_, g_, b_, a_);                                        \
+    const rp_ycocg8 c_ =                                                                   \
+        rp_rgb_to_ycocg8(rp_tone_map8(r_), rp_tone_map8(g_), rp_tone_map8(b_));            \
+    const float8 dy_ = c_.y - c0.y, dco_ = c_.co - c0.co, dcg_ = c_.cg - c0.cg;            \
+    sum_y += dy_;                                                                          \
+    sum_co += dco_;                                                                        \
+    sum_cg += dcg_;                                                                        \
+    sq_y += dy_ * dy_;                                                                     \
+    sq_co += dco_ * dco_;                                                                  \
+    sq_cg += dcg_ * dcg_;                                                                  \
+    RP_TAA_LOAD(normal_depth, row_start, r_, g_, b_, d_);                                  \
+    RP_TAA_LOAD2(velocity, row_start, vx_, vy_);                                           \
+    const int8 closer_ = d_ < nd;                                                          \
+    nd = select(nd, d_, closer_);                                                          \
+    vx = select(vx, vx_, closer_);                                                         \
+    vy = select(vy, vy_, closer_);                                                         \
+  } while (0)
+
 __kernel void taa_resolve(__global const float4* restrict hdr_in,
                           __global const float2* restrict velocity,
                           __global const float4* restrict normal_depth,
-                          __global const float4* restrict history_in,
-                          __global float4* restrict history_out,
+                          __global const float* restrict history_in,
+                          __global float* restrict history_out,
                           __global float4* restrict hdr_out,
                           uint width, uint height,
                           float jitter_x, float jitter_y, /* this frame's jitter, pixels */
-                          float history_weight, float gamma, uint history_valid, uint unjitter) {
-  const int x = (int)get_global_id(0), y = (int)get_global_id(1);
+                          float history_weight, float gamma, uint history_valid, uint unjitter,
+                          uint x_first) {
   const int w = (int)width, h = (int)height;
-  if (x >= w || y >= h) return;
-  const int i = y * w + x;
+  const int x0 = (int)x_first + 8 * (int)get_global_id(0), y = (int)get_global_id(1);
+#ifdef RP_TAA_BORDER
+  if (x0 >= w || y >= h) return;
+#else
+  if (x0 + 8 > w || y >= h) return;
+#endif
+  const int row = y * w;
+  const int xl = max(x0 - 1, 0), xr = min(x0 + 8, w - 1); /* the block's outer neighbours */
+  const float8 cx = convert_float8((int8)(0, 1, 2, 3, 4, 5, 6, 7) + x0) + 0.5f; /* centres */
+  const float cy = (float)y + 0.5f;
 
-  /* Cross neighbourhood indices, clamped to the image. */
-  const int il = y * w + max(x - 1, 0), ir = y * w + min(x + 1, w - 1);
-  const int iu = max(y - 1, 0) * w + x, id = min(y + 1, h - 1) * w + x;
-
-  const float4 centre_hdr = hdr_in[i];
-  const float3 t0 = rp_tone_map(centre_hdr.xyz);
-  const float3 y0 = rp_rgb_to_ycocg(t0);
-  const float3 y1 = rp_rgb_to_ycocg(rp_tone_map(hdr_in[il].xyz));
-  const float3 y2 = rp_rgb_to_ycocg(rp_tone_map(hdr_in[ir].xyz));
-  const float3 y3 = rp_rgb_to_ycocg(rp_tone_map(hdr_in[iu].xyz));
-  const float3 y4 = rp_rgb_to_ycocg(rp_tone_map(hdr_in[id].xyz));
-  const float3 mean = (y0 + y1 + y2 + y3 + y4) * 0.2f;
-  const float3 mean_sq = (y0 * y0 + y1 * y1 + y2 * y2 + y3 * y3 + y4 * y4) * 0.2f;
-  const float3 stddev = sqrt(fmax(mean_sq - mean * mean, (float3)(0.0f)));
-
-  const float2 centre = (float2)((float)x + 0.5f, (float)y + 0.5f);
-  float3 current = t0;
-  if (unjitter != 0u)
-    current = rp_tone_map(
-        rp_plane_bilinear_clamp(hdr_in, w, h, centre + (float2)(jitter_x, jitter_y)).xyz);
-
-  /* Nearest surface in the cross: its velocity (strict < so the centre wins ties). */
-  int nearest = i;
-  float nearest_depth = normal_depth[i].w;
-  const float dl = normal_depth[il].w, dr = normal_depth[ir].w;
-  const float du = normal_depth[iu].w, dd = normal_depth[id].w;
-  if (dl < nearest_depth) { nearest = il; nearest_depth = dl; }
-  if (dr < nearest_depth) { nearest = ir; nearest_depth = dr; }
-  if (du < nearest_depth) { nearest = iu; nearest_depth = du; }
-  if (dd < nearest_depth) { nearest = id; nearest_depth = dd; }
-  const float2 prev = centre - velocity[nearest];
-
-  const bool on_screen = prev.x >= 0.0f && prev.y >= 0.0f && prev.x <= (float)w &&
-                         prev.y <= (float)h;
-  float3 result = current;
-  if (history_valid != 0u && on_screen) {
-    const float3 hist = rp_plane_bilinear_clamp(history_in, w, h, prev).xyz;
-    const float3 clipped =
-        rp_ycocg_to_rgb(rp_taa_clip(rp_rgb_to_ycocg(hist), mean, gamma * stddev));
-    result = clamp(clipped * history_weight + current * (1.0f - history_weight), 0.0f, 1.0f);
+  /* The pixels themselves: current colour (step 1), centre of the cross, first depth
+   * candidate. */
+  float8 cr, cg, cb, alpha, nd, vx, vy;
+  RP_TAA_LOAD(hdr_in, row, cr, cg, cb, alpha);
+  cr = rp_tone_map8(cr);
+  cg = rp_tone_map8(cg);
+  cb = rp_tone_map8(cb);
+  {
+    float8 unused0, unused1, unused2;
+    RP_TAA_LOAD(normal_depth, row, unused0, unused1, unused2, nd);
   }
-  history_out[i] = (float4)(result, 1.0f);
-  hdr_out[i] = (float4)(rp_tone_map_inverse(result), centre_hdr.w);
+  RP_TAA_LOAD2(velocity, row, vx, vy);
+
+  /* 2. Cross statistics in YCoCg. Left / right neighbours are the row shifted by one lane,
+   * with the block's outer pixels (tone mapped together as one float8) in the end lanes. The
+   * sums are of offsets d = v - centre: mean = centre + E[d], variance = E[d^2] - E[d]^2. Same
+   * maths as E[v^2] - E[v]^2, but without its cancellation when the neighbours are alike
+   * (tests/passes/taa_test.cpp: worst error against the double-precision reference 8e-6 ->
+   * 4e-7). */
+  const rp_ycocg8 c0 = rp_rgb_to_ycocg8(cr, cg, cb);
+  const float8 edges = rp_tone_map8((float8)(hdr_in[row + xl], hdr_in[row + xr]));
+  const float3 yl = rp_rgb_to_ycocg(edges.s012), yr = rp_rgb_to_ycocg(edges.s456);
+  const float8 ly = rp_shift_right8(c0.y, yl.x) - c0.y;
+  const float8 lo = rp_shift_right8(c0.co, yl.y) - c0.co;
+  const float8 lg = rp_shift_right8(c0.cg, yl.z) - c0.cg;
+  const float8 ry = rp_shift_left8(c0.y, yr.x) - c0.y;
+  const float8 ro = rp_shift_left8(c0.co, yr.y) - c0.co;
+  const float8 rg = rp_shift_left8(c0.cg, yr.z) - c0.cg;
+  float8 sum_y = ly + ry, sum_co = lo + ro, sum_cg = lg + rg;
+  float8 sq_y = ly * ly + ry * ry, sq_co = lo * lo + ro * ro, sq_cg = lg * lg + rg * rg;
+
+  /* 3. Nearest surface in the cross (order centre, left, right, up, down; strict <, so the
+   * centre wins ties) and its velocity. */
+  {
+    const float2 vl = velocity[row + xl], vr = velocity[row + xr];
+    const float8 dl = rp_shift_right8(nd, normal_depth[row + xl].w);
+    const float8 dr = rp_shift_left8(nd, normal_depth[row + xr].w);
+    const float8 vxl = rp_shift_right8(vx, vl.x), vyl = rp_shift_right8(vy, vl.y);
+    const float8 vxr = rp_shift_left8(vx, vr.x), vyr = rp_shift_left8(vy, vr.y);
+    int8 closer = dl < nd;
+    nd = select(nd, dl, closer);
+    vx = select(vx, vxl, closer);
+    vy = select(vy, vyl, closer);
+    closer = dr < nd;
+    nd = select(nd, dr, closer);
+    vx = select(vx, vxr, closer);
+    vy = select(vy, vyr, closer);
+  }
+  RP_TAA_ADD_ROW(max(y - 1, 0) * w);
+  RP_TAA_ADD_ROW(min(y + 1, h - 1) * w);
+
+  if (unjitter != 0u) {
+    const float4 s0 = RP_TAA_UNJITTER_LANE(0), s1 = RP_TAA_UNJITTER_LANE(1);
+    const float4 s2 = RP_TAA_UNJITTER_LANE(2), s3 = RP_TAA_UNJITTER_LANE(3);
+    const float4 s4 = RP_TAA_UNJITTER_LANE(4), s5 = RP_TAA_UNJITTER_LANE(5);
+    const float4 s6 = RP_TAA_UNJITTER_LANE(6), s7 = RP_TAA_UNJITTER_LANE(7);
+    float8 unused;
+    RP_DEINTERLEAVE8((float16)(s0, s1, s2, s3), (float16)(s4, s5, s6, s7), cr, cg, cb, unused);
+    cr = rp_tone_map8(cr);
+    cg = rp_tone_map8(cg);
+    cb = rp_tone_map8(cb);
+  }
+
+  /* 4. Reprojected history. */
+  float8 rr = cr, rg_ = cg, rb = cb;
+  const int plane = w * h; /* floats per history plane */
+  if (history_valid != 0u) {
+    const float8 oy = sum_y * 0.2f, oo = sum_co * 0.2f, og = sum_cg * 0.2f; /* E[d] */
+    const float8 my = c0.y + oy, mo = c0.co + oo, mg = c0.cg + og;             /* means */
+    const float8 ey =
+        rp_max8(gamma * sqrt(rp_max8(sq_y * 0.2f - oy * oy, 0.0f)), RP_TAA_MIN_EXTENT);
+    const float8 eo =
+        rp_max8(gamma * sqrt(rp_max8(sq_co * 0.2f - oo * oo, 0.0f)), RP_TAA_MIN_EXTENT);
+    const float8 eg =
+        rp_max8(gamma * sqrt(rp_max8(sq_cg * 0.2f - og * og, 0.0f)), RP_TAA_MIN_EXTENT);
+
+    const float8 px = cx - vx, py = cy - vy;
+    const int8 on_screen = (px >= 0.0f) & (py >= 0.0f) & (px <= (float)w) & (py <= (float)h);
+    /* (a NaN position becomes 0 here: the taps stay inside the image) */
+    const float8 hx = rp_clamp8(px - 0.5f, 0.0f, (float)(w - 1));
+    const float8 hy = rp_clamp8(py - 0.5f, 0.0f, (float)(h - 1));
+    const int8 ix0 = convert_int8(hx), iy0 = convert_int8(hy); /* >= 0: truncation = floor */
+    const float8 fx = hx - convert_float8(ix0), fy = hy - convert_float8(iy0);
+    /* (vector bounds, not min(int8, int): oclgrind 21.10 evaluates that form wrongly) */
+    const int8 ix1 = min(ix0 + 1, (int8)(w - 1)), iy1 = min(iy0 + 1, (int8)(h - 1));
+    const int8 ia = iy0 * w + ix0, ib = iy0 * w + ix1, ic = iy1 * w + ix0, id = iy1 * w + ix1;
+    __global const float* hist_r = history_in;
+    __global const float* hist_g = history_in + plane;
+    __global const float* hist_b = history_in + 2 * plane;
+    float8 hr, hg, hb;
+    if (all(ix0 == ix0.s0 + (int8)(0, 1, 2, 3, 4, 5, 6, 7)) && all(iy0 == iy0.s0) &&
+        ix0.s0 + 8 <= w - 1) {
+      hr = RP_TAA_HISTORY_ROWS(hist_r);
+      hg = RP_TAA_HISTORY_ROWS(hist_g);
+      hb = RP_TAA_HISTORY_ROWS(hist_b);
+    } else {
+      hr = RP_TAA_HISTORY_LANES(hist_r);
+      hg = RP_TAA_HISTORY_LANES(hist_g);
+      hb = RP_TAA_HISTORY_LANES(hist_b);
+    }
+    const rp_ycocg8 hc = rp_rgb_to_ycocg8(hr, hg, hb);
+
+    /* 5. Clip toward the box centre (rp_taa_clip, lane by lane), back to rgb, blend. */
+    const float8 dy = hc.y - my, dco = hc.co - mo, dcg = hc.cg - mg;
+    const float8 ay = fabs(dy) / ey, ao = fabs(dco) / eo, ag = fabs(dcg) / eg;
+    const float8 m1 = select(ao, ay, ay > ao), m = select(ag, m1, m1 > ag);
+    const int8 outside = m > 1.0f;
+    const float8 s = 1.0f / m;
+    const float8 qy = select(hc.y, my + dy * s, outside);
+    const float8 qo = select(hc.co, mo + dco * s, outside);
+    const float8 qg = select(hc.cg, mg + dcg * s, outside);
+    const float8 t = qy - qg;
+    const float f = history_weight, g = 1.0f - history_weight;
+    rr = select(cr, rp_clamp8((t + qo) * f + cr * g, 0.0f, 1.0f), on_screen);
+    rg_ = select(cg, rp_clamp8((qy + qg) * f + cg * g, 0.0f, 1.0f), on_screen);
+    rb = select(cb, rp_clamp8((t - qo) * f + cb * g, 0.0f, 1.0f), on_screen);
+  }
+  RP_TAA_STORE_PLANE(history_out, rr);
+  RP_TAA_STORE_PLANE(history_out + plane, rg_);
+  RP_TAA_STORE_PLANE(history_out + 2 * plane, rb);
+  RP_TAA_STORE(hdr_out, rp_tone_map_inverse8(rr), rp_tone_map_inverse8(rg_),
+               rp_tone_map_inverse8(rb), alpha);
 }

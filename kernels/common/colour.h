@@ -87,6 +87,21 @@ inline float rp_linear_to_srgb(float y) {
   return y <= 0.0031308f ? 12.92f * y : p;
 }
 
+/* 16 values at once, same curve and results (the clamp as selects: a NaN gives 0, and each
+ * limit is one instruction on x86, see rp_tone_map8). */
+inline float16 rp_linear_to_srgb16(float16 y) {
+  y = select((float16)(0.0f), y, y > 0.0f);
+  y = select((float16)(1.0f), y, y < 1.0f);
+  const float16 u = sqrt(sqrt(y));
+  float16 p = -0.06814578974f;
+  p = mad(p, u, 0.28952835701f);
+  p = mad(p, u, -0.57747730575f);
+  p = mad(p, u, 1.25540142003f);
+  p = mad(p, u, 0.16202704009f);
+  p = mad(p, u, -0.06134029111f);
+  return select(p, 12.92f * y, y <= 0.0031308f);
+}
+
 inline float3 rp_linear_to_srgb3(float3 c) {
   return (float3)(rp_linear_to_srgb(c.x), rp_linear_to_srgb(c.y), rp_linear_to_srgb(c.z));
 }
@@ -116,6 +131,20 @@ inline float3 rp_tone_map(float3 c) {
   return (float3)(rp_tone_map1(c.x), rp_tone_map1(c.y), rp_tone_map1(c.z));
 }
 
+/* Eight channels at once (same operator and results, lane by lane). The limits are selects:
+ * a NaN fails `x > 0` and becomes 0 as with fmax, +inf becomes 1e30, and each is one
+ * instruction on x86 where fmax / fmin also test for NaN (measured in kernels/taa.cl). */
+inline float8 rp_tone_map8(float8 x) {
+  x = select((float8)(0.0f), x, x > 0.0f);
+  x = select((float8)(1.0e30f), x, x < 1.0e30f);
+  return x / (1.0f + x);
+}
+inline float16 rp_tone_map16(float16 x) {
+  x = select((float16)(0.0f), x, x > 0.0f);
+  x = select((float16)(1.0e30f), x, x < 1.0e30f);
+  return x / (1.0f + x);
+}
+
 /* Largest mapped value the inverse accepts: T^-1 of it is 65535, so values at or above 1 (which
  * T never produces, but filtering or bloom could) map to a large finite radiance, not inf. */
 #define RP_TONE_MAP_MAX_MAPPED (65535.0f / 65536.0f)
@@ -127,6 +156,13 @@ inline float rp_tone_map_inverse1(float y) {
 }
 inline float3 rp_tone_map_inverse(float3 c) {
   return (float3)(rp_tone_map_inverse1(c.x), rp_tone_map_inverse1(c.y), rp_tone_map_inverse1(c.z));
+}
+
+/* Eight channels at once; the clamp as selects (see rp_tone_map8; NaN gives 0). */
+inline float8 rp_tone_map_inverse8(float8 y) {
+  y = select((float8)(0.0f), y, y > 0.0f);
+  y = select((float8)(RP_TONE_MAP_MAX_MAPPED), y, y < RP_TONE_MAP_MAX_MAPPED);
+  return y / (1.0f - y);
 }
 
 /* Rec. 709 luminance of linear rgb. */

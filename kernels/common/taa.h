@@ -1,6 +1,7 @@
-/* TAA helpers (OpenCL C only; SPEC 6.7): YCoCg colour space and the history clip.
- * Used by kernels/taa.cl; tests/passes/taa_test.cpp runs them through a probe kernel against
- * C++ references.
+/* TAA helpers (OpenCL C only; SPEC 6.7): YCoCg colour space, the history clip, and the
+ * 8-pixels-per-work-item (float8, planar) forms kernels/taa.cl uses.
+ * tests/passes/taa_test.cpp runs the scalar helpers through a probe kernel against C++
+ * references; the float8 forms are checked through the whole pass against the same reference.
  *
  * YCoCg (exactly invertible linear transform, luma Y and two chroma axes):
  *   Y  =  R/4 + G/2 + B/4      R = Y - Cg + Co
@@ -38,5 +39,118 @@ inline float3 rp_taa_clip(float3 q, float3 centre, float3 extent) {
   const float m = fmax(a.x, fmax(a.y, a.z));
   return m > 1.0f ? centre + v / m : q;
 }
+
+/* ---- Eight pixels at once: one float8 per channel (lane k = pixel x0 + k of a row) ----------
+ * PoCL vectorizes straight-line scalar code across work-items, but per-pixel rgb code gets
+ * SLP-packed into 2-wide vectors inside the work-item first, which blocks that (measured on
+ * this kernel). Explicit float8 code is vector code on every device. Loads and stores are
+ * macros: PoCL did not inline a loader function with two paths and paid for the call and its
+ * struct-in-memory return (~25 % of the kernel), and straight-line loads and stores without a
+ * per-access bounds branch let the register allocator keep more in registers (~20 %), so the
+ * whole-block and the border forms are separate macros (kernels/taa.cl builds one or the
+ * other). */
+
+/* RGBA of 8 consecutive pixels in two float16 (4 pixels each) -> planes R, G, B, A. */
+#define RP_DEINTERLEAVE8(P0, P1, R, G, B, A)                                              \
+  do {                                                                                   \
+    R = (float8)((P0).s048c, (P1).s048c);                                                \
+    G = (float8)((P0).s159d, (P1).s159d);                                                \
+    B = (float8)((P0).s26ae, (P1).s26ae);                                                \
+    A = (float8)((P0).s37bf, (P1).s37bf);                                                \
+  } while (0)
+
+/* Pixels x0 .. x0+7 of the row starting at element `row` of a float4 image, as planes R, G, B,
+ * A (float8 lvalues). All 8 pixels must exist (x0 + 8 <= width). */
+#define RP_LOAD_PX8(img, row, x0, R, G, B, A)                                             \
+  do {                                                                                   \
+    __global const float* f_ = (__global const float*)((img) + (row) + (x0));           \
+    const float16 p0_ = vload16(0, f_), p1_ = vload16(1, f_);                            \
+    RP_DEINTERLEAVE8(p0_, p1_, R, G, B, A);                                              \
+  } while (0)
+
+/* The same for a block that would cross the right border (width w): lanes past the last column
+ * repeat it (clamp to edge), so nothing outside the image is read. */
+#define RP_LOAD_PX8_CLAMPED(img, row, x0, w, R, G, B, A)                                  \
+  do {                                                                                   \
+    float t_[32];                                                                        \
+    for (int k_ = 0; k_ < 8; ++k_) vstore4((img)[(row) + min((x0) + k_, (w) - 1)], k_, t_); \
+    const float16 p0_ = vload16(0, t_), p1_ = vload16(1, t_);                            \
+    RP_DEINTERLEAVE8(p0_, p1_, R, G, B, A);                                              \
+  } while (0)
+
+/* Pixels x0 .. x0+7 of a float2 image row as planes X, Y (all 8 must exist). */
+#define RP_LOAD_PX8_FLOAT2(img, row, x0, X, Y)                                            \
+  do {                                                                                   \
+    const float16 p_ = vload16(0, (__global const float*)((img) + (row) + (x0)));       \
+    X = p_.even;                                                                         \
+    Y = p_.odd;                                                                          \
+  } while (0)
+
+#define RP_LOAD_PX8_FLOAT2_CLAMPED(img, row, x0, w, X, Y)                                 \
+  do {                                                                                   \
+    float t_[16];                                                                        \
+    for (int k_ = 0; k_ < 8; ++k_) vstore2((img)[(row) + min((x0) + k_, (w) - 1)], k_, t_); \
+    const float16 p_ = vload16(0, t_);                                                   \
+    X = p_.even;                                                                         \
+    Y = p_.odd;                                                                          \
+  } while (0)
+
+/* Writes planes R, G, B, A to pixels x0 .. x0+7 of a float4 image row. */
+#define RP_STORE_PX8(img, row, x0, R, G, B, A)                                            \
+  do {                                                                                   \
+    const float8 r_ = (R), g_ = (G), b_ = (B), a_ = (A);                                 \
+    __global float* f_ = (__global float*)((img) + (row) + (x0));                       \
+    vstore16((float16)(r_.s0, g_.s0, b_.s0, a_.s0, r_.s1, g_.s1, b_.s1, a_.s1, r_.s2, g_.s2, \
+                       b_.s2, a_.s2, r_.s3, g_.s3, b_.s3, a_.s3),                        \
+             0, f_);                                                                     \
+    vstore16((float16)(r_.s4, g_.s4, b_.s4, a_.s4, r_.s5, g_.s5, b_.s5, a_.s5, r_.s6, g_.s6, \
+                       b_.s6, a_.s6, r_.s7, g_.s7, b_.s7, a_.s7),                        \
+             1, f_);                                                                     \
+  } while (0)
+
+/* The same for the first n lanes only (0 < n < 8: a block that ends at the image border). */
+#define RP_STORE_PX8_FIRST(img, row, x0, n, R, G, B, A)                                   \
+  do {                                                                                   \
+    float r_[8], g_[8], b_[8], a_[8];                                                    \
+    vstore8((R), 0, r_);                                                                 \
+    vstore8((G), 0, g_);                                                                 \
+    vstore8((B), 0, b_);                                                                 \
+    vstore8((A), 0, a_);                                                                 \
+    for (int k_ = 0; k_ < (n); ++k_)                                                     \
+      (img)[(row) + (x0) + k_] = (float4)(r_[k_], g_[k_], b_[k_], a_[k_]);               \
+  } while (0)
+
+/* Writes one float8 to x0 .. x0+7 of a float image row / only its first n lanes. */
+#define RP_STORE_PLANE8(plane, row, x0, V) vstore8((V), 0, (plane) + (row) + (x0))
+#define RP_STORE_PLANE8_FIRST(plane, row, x0, n, V)                                       \
+  do {                                                                                   \
+    float t_[8];                                                                         \
+    vstore8((V), 0, t_);                                                                 \
+    for (int k_ = 0; k_ < (n); ++k_) (plane)[(row) + (x0) + k_] = t_[k_];                \
+  } while (0)
+
+/* Lane-wise max / min / clamp to [lo, hi] as compare + select: one instruction each on x86,
+ * where OpenCL's fmax / fmin / clamp must also ignore a NaN argument (three). A NaN `a` gives
+ * the bound, as fmax(NaN, b) does; bounds are never NaN here. */
+inline float8 rp_max8(float8 a, float b) { return select((float8)(b), a, a > b); }
+inline float8 rp_min8(float8 a, float b) { return select((float8)(b), a, a < b); }
+inline float8 rp_clamp8(float8 a, float lo, float hi) { return rp_min8(rp_max8(a, lo), hi); }
+
+/* YCoCg of 8 pixels. */
+typedef struct {
+  float8 y, co, cg;
+} rp_ycocg8;
+
+inline rp_ycocg8 rp_rgb_to_ycocg8(float8 r, float8 g, float8 b) {
+  rp_ycocg8 c;
+  c.y = 0.25f * r + 0.5f * g + 0.25f * b;
+  c.co = 0.5f * r - 0.5f * b;
+  c.cg = -0.25f * r + 0.5f * g - 0.25f * b;
+  return c;
+}
+
+/* Lane k -> the pixel to its left / right: lane 0's left is `left`, lane 7's right `right`. */
+inline float8 rp_shift_right8(float8 v, float left) { return (float8)(left, v.s012, v.s3456); }
+inline float8 rp_shift_left8(float8 v, float right) { return (float8)(v.s1234, v.s567, right); }
 
 #endif

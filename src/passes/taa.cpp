@@ -7,7 +7,11 @@
 namespace rp::passes {
 namespace {
 
-constexpr size_t kGroup = 8;  // 8x8 work-groups over the image, rounded up (kernel bounds-checks)
+// One work-item per block of 8 pixels of a row (kernels/taa.cl): the whole blocks in work-groups
+// of 16 blocks along the row (rounded up; the kernel skips blocks past the last whole one), the
+// block crossing the right border (width % 8 != 0) by the RP_TAA_BORDER build, 16 rows a group.
+constexpr uint32_t kPixelsPerItem = 8;
+constexpr size_t kGroup = 16;
 
 void check(const TaaSettings& s) {
   if (!(s.history_weight >= 0.0f && s.history_weight < 1.0f))
@@ -21,8 +25,8 @@ void check(const TaaSettings& s) {
 
 TaaPass::TaaPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
                  TaaSettings settings)
-    : context_(context.context), kernel_(programs.kernel("taa.cl", "taa_resolve")),
-      settings_(settings) {
+    : context_(context.context), programs_(&programs),
+      kernel_(programs.kernel("taa.cl", "taa_resolve")), settings_(settings) {
   check(settings_);
 }
 
@@ -41,7 +45,7 @@ void TaaPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                         std::to_string(gbuffer.height) + " but the frame is " +
                         std::to_string(w) + "x" + std::to_string(h));
   if (w != width_ || h != height_) {
-    const size_t bytes = size_t(w) * h * 16;
+    const size_t bytes = size_t(w) * h * 3 * sizeof(float);  // three planes, see taa.h
     history_[0] = ::cl::Buffer(context_, CL_MEM_READ_WRITE, bytes);
     history_[1] = ::cl::Buffer(context_, CL_MEM_READ_WRITE, bytes);
     width_ = w;
@@ -49,24 +53,37 @@ void TaaPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     history_valid_ = false;
   }
   const int next = 1 - current_;
-  cl_uint arg = 0;
-  kernel_.setArg(arg++, hdr_in);
-  kernel_.setArg(arg++, gbuffer.velocity);
-  kernel_.setArg(arg++, gbuffer.normal_depth);
-  kernel_.setArg(arg++, history_[current_]);
-  kernel_.setArg(arg++, history_[next]);
-  kernel_.setArg(arg++, hdr_out);
-  kernel_.setArg(arg++, cl_uint(w));
-  kernel_.setArg(arg++, cl_uint(h));
-  kernel_.setArg(arg++, scene.constants.jitter.x);
-  kernel_.setArg(arg++, scene.constants.jitter.y);
-  kernel_.setArg(arg++, settings_.history_weight);
-  kernel_.setArg(arg++, settings_.gamma);
-  kernel_.setArg(arg++, cl_uint(history_valid_ ? 1u : 0u));
-  kernel_.setArg(arg++, cl_uint(settings_.unjitter_current ? 1u : 0u));
-  profiler.enqueue("taa", kernel_,
-                   ::cl::NDRange(rp::cl::round_up(w, kGroup), rp::cl::round_up(h, kGroup)),
-                   ::cl::NDRange(kGroup, kGroup));
+  auto set_args = [&](::cl::Kernel& kernel, uint32_t x_first) {
+    cl_uint arg = 0;
+    kernel.setArg(arg++, hdr_in);
+    kernel.setArg(arg++, gbuffer.velocity);
+    kernel.setArg(arg++, gbuffer.normal_depth);
+    kernel.setArg(arg++, history_[current_]);
+    kernel.setArg(arg++, history_[next]);
+    kernel.setArg(arg++, hdr_out);
+    kernel.setArg(arg++, cl_uint(w));
+    kernel.setArg(arg++, cl_uint(h));
+    kernel.setArg(arg++, scene.constants.jitter.x);
+    kernel.setArg(arg++, scene.constants.jitter.y);
+    kernel.setArg(arg++, settings_.history_weight);
+    kernel.setArg(arg++, settings_.gamma);
+    kernel.setArg(arg++, cl_uint(history_valid_ ? 1u : 0u));
+    kernel.setArg(arg++, cl_uint(settings_.unjitter_current ? 1u : 0u));
+    kernel.setArg(arg++, cl_uint(x_first));
+  };
+  const uint32_t whole_blocks = w / kPixelsPerItem;
+  if (whole_blocks > 0) {
+    set_args(kernel_, 0);
+    profiler.enqueue("taa", kernel_, ::cl::NDRange(rp::cl::round_up(whole_blocks, kGroup), h),
+                     ::cl::NDRange(kGroup, 1));
+  }
+  if (w % kPixelsPerItem != 0) {
+    if (!border_kernel_())
+      border_kernel_ = programs_->kernel("taa.cl", "taa_resolve", "-DRP_TAA_BORDER=1");
+    set_args(border_kernel_, whole_blocks * kPixelsPerItem);
+    profiler.enqueue("taa", border_kernel_, ::cl::NDRange(1, rp::cl::round_up(h, kGroup)),
+                     ::cl::NDRange(1, kGroup));
+  }
   current_ = next;
   history_valid_ = true;
 }

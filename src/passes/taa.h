@@ -3,8 +3,9 @@
 //
 // Use: enable the 16-frame Halton jitter in GpuScene::update (jitter_frames = 16) while TAA is
 // on, run() after the light pass every frame, and reset_history() on camera cuts. The pass
-// owns its history (two tone-mapped float4 planes, ping-pong), allocated on first use and on
-// resize; a resize also resets it. The first frame after a reset outputs the current frame.
+// owns its history (tone-mapped rgb as three float planes per buffer, two buffers ping-pong,
+// 24 bytes per pixel in all), allocated on first use and on resize; a resize also resets it.
+// The first frame after a reset outputs the current frame.
 #pragma once
 
 #include <cstdint>
@@ -45,10 +46,12 @@ class TaaPass {
 
  private:
   ::cl::Context context_;
+  rp::cl::ProgramCache* programs_;
   ::cl::Kernel kernel_;
+  ::cl::Kernel border_kernel_;  // RP_TAA_BORDER build (width % 8 != 0), built on first use
   TaaSettings settings_;
   uint32_t width_ = 0, height_ = 0;
-  ::cl::Buffer history_[2];  // float4 tone-mapped rgb, w = 1; history_[current_] is the latest
+  ::cl::Buffer history_[2];  // tone-mapped R, G, B planes; history_[current_] is the latest
   int current_ = 0;
   bool history_valid_ = false;
 };

@@ -35,7 +35,7 @@ glm::vec3 clip_to_box(glm::vec3 q, glm::vec3 centre, glm::vec3 extent);
 // Bilinear, clamp to edge, pixel centres at +0.5.
 glm::vec3 bilinear(const std::vector<glm::vec3>& plane, uint32_t w, uint32_t h, glm::vec2 pos);
 
-// The resolve, frame after frame; history in tone-mapped rgb.
+// The resolve, frame after frame, computed in double precision; history in tone-mapped rgb.
 class Reference {
  public:
   explicit Reference(passes::TaaSettings settings) : settings_(settings) {}
@@ -45,7 +45,7 @@ class Reference {
 
  private:
   passes::TaaSettings settings_;
-  std::vector<glm::vec3> history_;  // empty: no history
+  std::vector<glm::dvec3> history_;  // empty: no history
   uint32_t width_ = 0, height_ = 0;
 };
 

@@ -134,6 +134,36 @@ TEST(ToneMap, NonFiniteAndNegativeInputs) {
   EXPECT_EQ(out[1], 0xFF000000u | (quantize_ref(srgb_encode_ref(0.5)) << 16) | 255u);
 }
 
+// The kernel resolves 16 pixels per work-item; a pixel count that is not a multiple of 16 ends
+// in a partial block, which must write exactly its own pixels (the words after them keep their
+// sentinel) with the same codes as in a whole block.
+TEST(ToneMap, PartialLastBlockWritesOnlyItsPixels) {
+  auto& ctx = rp::test::context();
+  std::vector<float> hdr = hdr_ramp(64);
+  const std::vector<uint32_t> whole = run_tone_map(hdr);  // 64 pixels: whole blocks only
+  for (uint32_t n : {1u, 15u, 17u, 37u}) {
+    rp::render::GpuScene scene(ctx.context, ctx.queue, rp::scene::SceneAssets{});
+    scene.constants.width = n;
+    scene.constants.height = 1;
+    ::cl::Buffer in(ctx.context, CL_MEM_READ_WRITE, hdr.size() * sizeof(float));
+    ctx.queue.enqueueWriteBuffer(in, CL_TRUE, 0, hdr.size() * sizeof(float), hdr.data());
+    std::vector<uint32_t> out(64, 0x12345678u);
+    ::cl::Buffer buf(ctx.context, CL_MEM_READ_WRITE, out.size() * sizeof(uint32_t));
+    ctx.queue.enqueueWriteBuffer(buf, CL_TRUE, 0, out.size() * sizeof(uint32_t), out.data());
+    rp::cl::Profiler profiler(ctx.queue);
+    rp::passes::ToneMapPass pass(ctx, rp::test::programs(), false);
+    pass.run(profiler, scene, in, buf);
+    profiler.collect();
+    ctx.queue.enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(uint32_t), out.data());
+    for (uint32_t i = 0; i < 64; ++i) {
+      if (i < n)
+        ASSERT_EQ(out[i], whole[i]) << "pixel " << i << " of " << n;
+      else
+        ASSERT_EQ(out[i], 0x12345678u) << "word " << i << " past " << n << " pixels was written";
+    }
+  }
+}
+
 // A probe kernel over colour.h: tone map, inverse, sRGB encode and the decode table.
 class ColourProbe : public ::testing::Test {
  protected:
