@@ -247,17 +247,19 @@ inline void vx_triangle_axes_span(VxVec A, VxVec B, VxVec C, VxAxes* t) {
 /* Lanes where no axis separates the triangle from the box of centre c (relative to the
  * origin, half size 0.5). The caller has restricted the voxel to the triangle's range. */
 inline rp_spani vx_triangle_box_span(const VxAxes* t, VxVec c) {
-  rp_spani separated = fabs(t->n_dist - vxv_dot(t->n, c)) > t->n_radius;
+  /* Written as "every axis overlaps" (<=, >=) rather than "not (some axis separates)": the
+   * two agree for finite values, and oclgrind 21.10 mis-evaluates negated vector masks. */
+  rp_spani overlap = fabs(t->n_dist - vxv_dot(t->n, c)) <= t->n_radius;
   for (int i = 0; i < 3; ++i) {
     const VxVec s = vxv_edge_projections(t->e[i], c);
     const int k = 3 * i;
-    separated |= (t->pmin[k] - s.x > t->radius[k]) | (t->pmax[k] - s.x < -t->radius[k]);
-    separated |= (t->pmin[k + 1] - s.y > t->radius[k + 1]) |
-                 (t->pmax[k + 1] - s.y < -t->radius[k + 1]);
-    separated |= (t->pmin[k + 2] - s.z > t->radius[k + 2]) |
-                 (t->pmax[k + 2] - s.z < -t->radius[k + 2]);
+    overlap &= (t->pmin[k] - s.x <= t->radius[k]) & (t->pmax[k] - s.x >= -t->radius[k]);
+    overlap &= (t->pmin[k + 1] - s.y <= t->radius[k + 1]) &
+               (t->pmax[k + 1] - s.y >= -t->radius[k + 1]);
+    overlap &= (t->pmin[k + 2] - s.z <= t->radius[k + 2]) &
+               (t->pmax[k + 2] - s.z >= -t->radius[k + 2]);
   }
-  return !separated;
+  return overlap;
 }
 
 /* ---- lighting per lane (vx_direct's formulas, common/direct_light.h) ---- */
@@ -312,14 +314,17 @@ inline VxVec vx_direct_span(const VxLight* L, __global const float* shadow, VxVe
   const rp_spanf cz = VX_ROW_POINT(L->lvp, z, q), cw = VX_ROW_POINT(L->lvp, w, q);
   const rp_spanf ndc_x = cx / cw, ndc_y = cy / cw, ndc_z = cz / cw;
   const rp_spani inside =
-      !((cw <= 0.0f) | (fabs(ndc_x) > 1.0f) | (fabs(ndc_y) > 1.0f) | (ndc_z > 1.0f));
+      (cw > 0.0f) & (fabs(ndc_x) <= 1.0f) & (fabs(ndc_y) <= 1.0f) & (ndc_z <= 1.0f);
   const rp_spanf receiver = cw - texel * (RP_VOXEL_SHADOW_DEPTH_BIAS +
                                           RP_VOXEL_SHADOW_REACH * tan_theta);
   const rp_spanf sx = (ndc_x * 0.5f + 0.5f) * L->size_f;
   const rp_spanf sy = (0.5f - ndc_y * 0.5f) * L->size_f;
-  /* Clamped before the int conversion (lanes outside the map may hold any value). */
-  const rp_spani tx = clamp(rp_span_convert_int(floor(clamp(sx, -1.0f, L->size_f))), 0, L->size - 1);
-  const rp_spani ty = clamp(rp_span_convert_int(floor(clamp(sy, -1.0f, L->size_f))), 0, L->size - 1);
+  /* Clamped before the int conversion (lanes outside the map may hold any value). Integer
+   * clamp with span bounds, not scalar ones: oclgrind 21.10 computes garbage for the
+   * (vector, scalar, scalar) integer forms of clamp, min and max. */
+  const rp_spani last = (rp_spani)(L->size - 1);
+  const rp_spani tx = clamp(rp_span_convert_int(floor(clamp(sx, -1.0f, L->size_f))), (rp_spani)(0), last);
+  const rp_spani ty = clamp(rp_span_convert_int(floor(clamp(sy, -1.0f, L->size_f))), (rp_spani)(0), last);
   int index[RP_SPAN], tap[RP_SPAN];
   float depth[RP_SPAN];
   RP_SPAN_TO_ARRAY(ty * L->size + tx, index);
@@ -489,11 +494,11 @@ inline void vx_setup(const VxLanes* L, uint resolution, VxSetup* s) {
                         &s->axes);
   const VxVec n = s->axes.n;
   const VxVec an = vxv_fabs(n);
-  valid &= !((an.x == 0.0f) & (an.y == 0.0f) & (an.z == 0.0f)); /* degenerate */
+  valid &= (an.x != 0.0f) | (an.y != 0.0f) | (an.z != 0.0f); /* else degenerate */
 
   /* Dominant axis d = argmax |n| (ties: x, then y, then z) and the two others u, v. */
   const rp_spani dom0 = (an.x >= an.y) & (an.x >= an.z);
-  const rp_spani dom1 = !dom0 & (an.y >= an.z);
+  const rp_spani dom1 = ((an.x < an.y) | (an.x < an.z)) & (an.y >= an.z); /* not dom0 */
   s->dom = select(select((rp_spani)(2), (rp_spani)(1), dom1), (rp_spani)(0), dom0);
 #define VX_UVD(x_, y_, z_, u, v, d) \
   u = select(select(x_, z_, dom1), y_, dom0); \
