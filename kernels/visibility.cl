@@ -268,20 +268,255 @@ void visibility_bin(const RasterView view, __global const RasterTriangle* tris,
   });
 }
 
-/* One work-group per tile, RP_GROUP_W x RP_TILE work-items, each owning RP_SPAN pixels of a
- * row. Items of the tile's lists are set up cooperatively in local memory, RP_BATCH at a time;
- * then every work-item tests its pixels against the batch, keeping its best (z_ndc, item) and,
- * for the camera, the winner's ids and edge values (barycentrics = e1, e2 over their sum). */
+/* ---- per-row evaluation, shared by both raster layouts ----
+ * The best surface so far of RP_SPAN pixels of a row: smallest (z_ndc, key) and, for the camera,
+ * the winner's ids and edge values (barycentrics = e1, e2 over their sum). */
+typedef struct {
+  rp_spanf z;
+  rp_spanu key;
+#if !RP_DEPTH_ONLY
+  rp_spanu instance, primitive;
+  rp_spanf e1, e2, sum;
+#endif
+} RasterBest;
+
+inline RasterBest rp_best_init(void) {
+  RasterBest b;
+  b.z = (rp_spanf)(1.0f);
+  b.key = (rp_spanu)(RP_ID_NONE);
+#if !RP_DEPTH_ONLY
+  b.instance = b.primitive = (rp_spanu)(RP_ID_NONE);
+  b.e1 = b.e2 = (rp_spanf)(0.0f);
+  b.sum = (rp_spanf)(1.0f);
+#endif
+  return b;
+}
+
+/* A triangle item set up for a tile: edges, the vertices' clip z and w, bounds in tile pixels
+ * (x0, y0, x1, y1), flags (top-left bits of edges 0..2, item, instance, primitive). */
+typedef struct {
+  float4 e0, e1, e2, z, w;
+  int4 box, flags;
+} RasterItem;
+
+inline RasterItem rp_item_triangle(__global const RasterTriangle* tris,
+                                   __global const int4* bounds_in, uint item, int ox, int oy) {
+  RasterTriangle t = tris[item];
+  RasterEdges r = rp_raster_edges(t.v[0], t.v[1], t.v[2], (float)ox, (float)oy);
+  RasterItem it;
+  it.e0 = r.e[0];
+  it.e1 = r.e[1];
+  it.e2 = r.e[2];
+  it.z = (float4)(t.v[0].z, t.v[1].z, t.v[2].z, 0.0f);
+  it.w = (float4)(t.v[0].w, t.v[1].w, t.v[2].w, 0.0f);
+  it.box = r.top_left.w ? bounds_in[item] - (int4)(ox, oy, ox, oy) : RP_EMPTY_BOUNDS;
+  it.flags = (int4)((r.top_left.x & 1) | (r.top_left.y & 2) | (r.top_left.z & 4), (int)item,
+                    (int)t.info.x, (int)t.info.y);
+  return it;
+}
+
+/* A sphere item: e0 = (centre, r^2), box, flags (0, item, sphere id, 0). */
+inline RasterItem rp_item_sphere(const RasterView* view, __global const Sphere* spheres,
+                                 __global const int4* bounds_in, uint item, int ox, int oy) {
+  uint index = item - view->triangle_items;
+  float4 cr = spheres[index].center_radius;
+  RasterItem it;
+  it.e0 = (float4)(cr.xyz, cr.w * cr.w);
+  it.e1 = it.e2 = it.z = it.w = (float4)(0.0f);
+  it.box = bounds_in[item] - (int4)(ox, oy, ox, oy);
+  it.flags = (int4)(0, (int)item, (int)(RP_ID_SPHERE_BIT | index), 0);
+  return it;
+}
+
+/* True when the item's box misses the span at row ly, columns lx0 .. lx0 + RP_SPAN - 1. */
+#define RP_ITEM_MISSES(box, lx0, ly) \
+  ((ly) < (box).y || (ly) > (box).w || (lx0) + (RP_SPAN - 1) < (box).x || (lx0) > (box).z)
+
+/* Tests pixel centres (dx, dy) (tile frame) against triangle item `it`. */
+inline void rp_best_triangle(RasterBest* b, const RasterItem* it, rp_spanf dx, float dy) {
+  const float4 e0 = it->e0, e1 = it->e1, e2 = it->e2;
+  const int4 flags = it->flags;
+  const uint key = (uint)flags.y;
+  const int tl0 = -(flags.x & 1), tl1 = -((flags.x >> 1) & 1), tl2 = -((flags.x >> 2) & 1);
+  rp_spanf f0 = e0.x * dx + (e0.y * dy + e0.z);
+  rp_spanf f1 = e1.x * dx + (e1.y * dy + e1.z);
+  rp_spanf f2 = e2.x * dx + (e2.y * dy + e2.z);
+  rp_spanf z = RP_RASTER_DEPTH(f0, f1, f2, it->z, it->w);
+  rp_spani in = ((f0 > 0.0f) | ((f0 == 0.0f) & tl0)) & ((f1 > 0.0f) | ((f1 == 0.0f) & tl1)) &
+                ((f2 > 0.0f) | ((f2 == 0.0f) & tl2)) & (z >= -1.0f) &
+                ((z < b->z) | ((z == b->z) & (key < b->key)));
+  b->z = select(b->z, z, in);
+  b->key = select(b->key, (rp_spanu)(key), in);
+#if !RP_DEPTH_ONLY
+  b->instance = select(b->instance, (rp_spanu)((uint)flags.z), in);
+  b->primitive = select(b->primitive, (rp_spanu)((uint)flags.w), in);
+  b->e1 = select(b->e1, f1, in);
+  b->e2 = select(b->e2, f2, in);
+  b->sum = select(b->sum, (f0 + f1) + f2, in);
+#endif
+}
+
+/* Camera rays through RP_SPAN pixel centres of a row: origin on the near plane, unit direction,
+ * and clip z and w along the ray (linear in the ray parameter t). */
+typedef struct {
+  rp_spanf ox, oy, oz, dx, dy, dz, z_o, w_o, z_d, w_d;
+} RasterRays;
+
+inline RasterRays rp_row_rays(const RasterView* view, int px0, int py) {
+  const rp_mat4 inv = view->inv_view_proj, vp = view->view_proj;
+  rp_spanf nx = ((float)px0 + 0.5f + RP_LANES) * (2.0f / (float)view->width) - 1.0f;
+  float ny = 1.0f - ((float)py + 0.5f) * (2.0f / (float)view->height);
+  /* points on the near (z_ndc = -1) and far (+1) planes, world space */
+#define RP_UNPROJECT(comp, zn) \
+  (((inv.c[0].comp * nx + inv.c[1].comp * ny) + inv.c[2].comp * (zn)) + inv.c[3].comp)
+  rp_spanf near_w = RP_UNPROJECT(w, -1.0f), far_w = RP_UNPROJECT(w, 1.0f);
+  RasterRays r;
+  r.ox = RP_UNPROJECT(x, -1.0f) / near_w;
+  r.oy = RP_UNPROJECT(y, -1.0f) / near_w;
+  r.oz = RP_UNPROJECT(z, -1.0f) / near_w;
+  rp_spanf rx = RP_UNPROJECT(x, 1.0f) / far_w - r.ox, ry = RP_UNPROJECT(y, 1.0f) / far_w - r.oy,
+           rz = RP_UNPROJECT(z, 1.0f) / far_w - r.oz;
+#undef RP_UNPROJECT
+  rp_spanf len = sqrt((rx * rx + ry * ry) + rz * rz);
+  r.dx = rx / len;
+  r.dy = ry / len;
+  r.dz = rz / len;
+  r.z_o = ((vp.c[0].z * r.ox + vp.c[1].z * r.oy) + vp.c[2].z * r.oz) + vp.c[3].z;
+  r.w_o = ((vp.c[0].w * r.ox + vp.c[1].w * r.oy) + vp.c[2].w * r.oz) + vp.c[3].w;
+  r.z_d = (vp.c[0].z * r.dx + vp.c[1].z * r.dy) + vp.c[2].z * r.dz;
+  r.w_d = (vp.c[0].w * r.dx + vp.c[1].w * r.dy) + vp.c[2].w * r.dz;
+  return r;
+}
+
+/* Exact intersection of the rays with sphere item `it`. */
+inline void rp_best_sphere(RasterBest* b, const RasterItem* it, const RasterRays* r) {
+  const float4 s = it->e0;
+  const uint key = (uint)it->flags.y;
+  rp_spanf cx = r->ox - s.x, cy = r->oy - s.y, cz = r->oz - s.z;
+  rp_spanf bq = (cx * r->dx + cy * r->dy) + cz * r->dz;
+  /* r^2 - squared distance of the centre from the ray (accurate for small spheres) */
+  rp_spanf px = cx - bq * r->dx, py = cy - bq * r->dy, pz = cz - bq * r->dz;
+  rp_spanf disc = s.w - ((px * px + py * py) + pz * pz);
+  rp_spanf root = sqrt(fmax(disc, 0.0f));
+  rp_spanf t0 = -bq - root;
+  rp_spanf t = select(-bq + root, t0, t0 >= 0.0f);
+  rp_spanf z = (r->z_o + t * r->z_d) / (r->w_o + t * r->w_d);
+  rp_spani in = (disc >= 0.0f) & (t >= 0.0f) & (z >= -1.0f) &
+                ((z < b->z) | ((z == b->z) & (key < b->key)));
+  b->z = select(b->z, z, in);
+  b->key = select(b->key, (rp_spanu)(key), in);
+#if !RP_DEPTH_ONLY
+  b->instance = select(b->instance, (rp_spanu)((uint)it->flags.z), in);
+  b->primitive = select(b->primitive, (rp_spanu)(0u), in);
+  b->e1 = select(b->e1, (rp_spanf)(0.0f), in);
+  b->e2 = select(b->e2, (rp_spanf)(0.0f), in);
+  b->sum = select(b->sum, (rp_spanf)(1.0f), in);
+#endif
+}
+
+/* One write per pixel and plane: RP_SPAN pixels from (x0, y). */
+inline void rp_best_store(const RasterView* view, const RasterBest* b, int x0, int y,
+                          __global float* depth_out, __global uint* ids_out,
+                          __global float* bary_out) {
+  if (y >= (int)view->height || x0 >= (int)view->width) return;
+  int valid = min(RP_SPAN, (int)view->width - x0);
+  size_t row = (size_t)y * view->width + (size_t)x0;
+  rp_store_span_f(b->z * 0.5f + 0.5f, depth_out + row, valid);
+#if !RP_DEPTH_ONLY
+  rp_store_span_pairs_u(b->instance, b->primitive, ids_out + 2 * row, valid);
+  rp_store_span_pairs_f(b->e1 / b->sum, b->e2 / b->sum, bary_out + 2 * row, valid);
+#else
+  (void)ids_out;
+  (void)bary_out;
+#endif
+}
+
+/* A tile's list range [*begin, *end) in the region at `region` (0 triangles, tile_count
+ * spheres), or, when the list overflowed there (the range ends past the capacity the binning
+ * could fill), every item of the kind: the per-row bounds test then skips the ones that miss
+ * the tile, so the result is the same, only slower. Returns whether every item is used. */
+inline bool rp_tile_range(const RasterView* view, __global const uint* tile_start,
+                          __global const uint* tile_end, uint region, uint tile, bool spheres,
+                          uint* begin, uint* end) {
+  *begin = tile_start[region + tile];
+  *end = tile_end[region + tile];
+  if (*end <= view->list_capacity) return false;
+  *begin = spheres ? view->triangle_items : 0u;
+  *end = spheres ? view->triangle_items + view->sphere_count : view->triangle_items;
+  return true;
+}
+
+#if RP_SPAN == RP_TILE
+/* CPU layout (RP_SPAN = RP_TILE): one work-item per tile, looping over the tile's rows, each row
+ * one span. No local memory and no barriers: PoCL runs the work-items of a group one after the
+ * other, and a barrier would make it save and restore every work-item's state around it. The
+ * tile's items are set up RP_TILE_BATCH at a time into private memory; the rows' best surfaces
+ * are kept in private memory between batches. Same arithmetic per pixel as the other layout,
+ * so the same result bit for bit. */
+#define RP_TILE_BATCH 32
+
+__kernel void visibility_raster(const RasterView view, __global const RasterTriangle* tris,
+                                __global const int4* bounds_in, __global const Sphere* spheres,
+                                __global const uint* tile_start, __global const uint* tile_end,
+                                __global const uint* tile_list, __global float* depth_out,
+                                __global uint* ids_out, __global float* bary_out) {
+  const uint tile_count = view.tiles_x * view.tiles_y;
+  const uint tile = (uint)get_global_id(0);
+  if (tile >= tile_count) return;
+  const uint tile_y = tile / view.tiles_x, tile_x = tile - tile_y * view.tiles_x;
+  const int ox = (int)tile_x * RP_TILE, oy = (int)tile_y * RP_TILE;
+  const rp_spanf dx = 0.5f + RP_LANES;
+
+  RasterBest rows[RP_TILE];
+  for (int ly = 0; ly < RP_TILE; ++ly) rows[ly] = rp_best_init();
+  RasterItem items[RP_TILE_BATCH];
+
+  for (int kind = 0; kind < 2; ++kind) { /* triangles, then spheres */
+    uint begin, end;
+    const bool every_item = rp_tile_range(&view, tile_start, tile_end, kind ? tile_count : 0u,
+                                          tile, kind != 0, &begin, &end);
+    for (uint base = begin; base < end; base += RP_TILE_BATCH) {
+      const uint n = min((uint)RP_TILE_BATCH, end - base);
+      int first_row = RP_TILE, last_row = -1;
+      for (uint k = 0; k < n; ++k) {
+        const uint item = every_item ? base + k : tile_list[base + k];
+        items[k] = kind ? rp_item_sphere(&view, spheres, bounds_in, item, ox, oy)
+                        : rp_item_triangle(tris, bounds_in, item, ox, oy);
+        first_row = min(first_row, items[k].box.y);
+        last_row = max(last_row, items[k].box.w);
+      }
+      first_row = max(first_row, 0);
+      last_row = min(last_row, RP_TILE - 1);
+      for (int ly = first_row; ly <= last_row; ++ly) {
+        RasterBest best = rows[ly];
+        if (kind == 0) {
+          const float dy = (float)ly + 0.5f;
+          for (uint k = 0; k < n; ++k)
+            if (!RP_ITEM_MISSES(items[k].box, 0, ly)) rp_best_triangle(&best, &items[k], dx, dy);
+        } else {
+          const RasterRays rays = rp_row_rays(&view, ox, oy + ly);
+          for (uint k = 0; k < n; ++k)
+            if (!RP_ITEM_MISSES(items[k].box, 0, ly)) rp_best_sphere(&best, &items[k], &rays);
+        }
+        rows[ly] = best;
+      }
+    }
+  }
+  for (int ly = 0; ly < RP_TILE; ++ly)
+    rp_best_store(&view, &rows[ly], ox, oy + ly, depth_out, ids_out, bary_out);
+}
+
+#else
+/* GPU layout: one work-group per tile, RP_GROUP_W x RP_TILE work-items, each owning RP_SPAN
+ * pixels of a row. Items of the tile's lists are set up cooperatively in local memory,
+ * RP_BATCH at a time; then every work-item tests its pixels against the batch. */
 __kernel __attribute__((reqd_work_group_size(RP_GROUP_W, RP_TILE, 1)))
 void visibility_raster(const RasterView view, __global const RasterTriangle* tris,
                        __global const int4* bounds_in, __global const Sphere* spheres,
                        __global const uint* tile_start, __global const uint* tile_end,
                        __global const uint* tile_list, __global float* depth_out,
                        __global uint* ids_out, __global float* bary_out) {
-  __local float4 l_e0[RP_BATCH], l_e1[RP_BATCH], l_e2[RP_BATCH];
-  __local float4 l_z[RP_BATCH], l_w[RP_BATCH]; /* vertices' clip z and w (RP_RASTER_DEPTH) */
-  __local int4 l_box[RP_BATCH];   /* item bounds in tile pixels (x0, y0, x1, y1) */
-  __local int4 l_flags[RP_BATCH]; /* top-left bits of edges 0..2, item, instance, primitive */
+  __local RasterItem l_items[RP_BATCH];
 
   uint tile_x = get_group_id(0), tile_y = get_group_id(1);
   uint tile = tile_y * view.tiles_x + tile_x;
@@ -289,154 +524,36 @@ void visibility_raster(const RasterView view, __global const RasterTriangle* tri
   uint lid = get_local_id(1) * RP_GROUP_W + get_local_id(0);
   int lx0 = (int)get_local_id(0) * RP_SPAN, ly = (int)get_local_id(1);
   int ox = (int)tile_x * RP_TILE, oy = (int)tile_y * RP_TILE;
-  float fox = (float)ox, foy = (float)oy;
   rp_spanf dx = ((float)lx0 + 0.5f) + RP_LANES;
   float dy = (float)ly + 0.5f;
+  RasterBest best = rp_best_init();
 
-  rp_spanf best_z = (rp_spanf)(1.0f);
-  rp_spanu best_key = (rp_spanu)(RP_ID_NONE);
-#if !RP_DEPTH_ONLY
-  rp_spanu best_instance = (rp_spanu)(RP_ID_NONE), best_primitive = (rp_spanu)(RP_ID_NONE);
-  rp_spanf best_e1 = (rp_spanf)(0.0f), best_e2 = (rp_spanf)(0.0f), best_sum = (rp_spanf)(1.0f);
-#endif
-
-  /* Triangles: the tile's list, or when the list overflowed (its end is past the capacity the
-   * binning could fill) every triangle item; the per-row bounds test then skips the ones that
-   * miss the tile, so the result is the same, only slower. */
-  uint begin = tile_start[tile], end = tile_end[tile];
-  bool every_item = end > view.list_capacity;
-  if (every_item) {
-    begin = 0u;
-    end = view.triangle_items;
-  }
-  for (uint base = begin; base < end; base += RP_BATCH) {
-    uint n = min((uint)RP_BATCH, end - base);
-    for (uint k = lid; k < n; k += RP_GROUP_SIZE) {
-      uint item = every_item ? base + k : tile_list[base + k];
-      RasterTriangle t = tris[item];
-      RasterEdges r = rp_raster_edges(t.v[0], t.v[1], t.v[2], fox, foy);
-      l_e0[k] = r.e[0];
-      l_e1[k] = r.e[1];
-      l_e2[k] = r.e[2];
-      l_z[k] = (float4)(t.v[0].z, t.v[1].z, t.v[2].z, 0.0f);
-      l_w[k] = (float4)(t.v[0].w, t.v[1].w, t.v[2].w, 0.0f);
-      l_box[k] = r.top_left.w ? bounds_in[item] - (int4)(ox, oy, ox, oy) : RP_EMPTY_BOUNDS;
-      l_flags[k] = (int4)((r.top_left.x & 1) | (r.top_left.y & 2) | (r.top_left.z & 4),
-                          (int)item, (int)t.info.x, (int)t.info.y);
-    }
-    barrier(CLK_LOCAL_MEM_FENCE);
-    for (uint k = 0; k < n; ++k) {
-      int4 box = l_box[k];
-      if (ly < box.y || ly > box.w || lx0 + (RP_SPAN - 1) < box.x || lx0 > box.z) continue;
-      float4 e0 = l_e0[k], e1 = l_e1[k], e2 = l_e2[k], zv = l_z[k], wv = l_w[k];
-      int4 flags = l_flags[k];
-      uint key = (uint)flags.y;
-      int tl0 = -(flags.x & 1), tl1 = -((flags.x >> 1) & 1), tl2 = -((flags.x >> 2) & 1);
-      rp_spanf f0 = e0.x * dx + (e0.y * dy + e0.z);
-      rp_spanf f1 = e1.x * dx + (e1.y * dy + e1.z);
-      rp_spanf f2 = e2.x * dx + (e2.y * dy + e2.z);
-      rp_spanf z = RP_RASTER_DEPTH(f0, f1, f2, zv, wv);
-      rp_spani in = ((f0 > 0.0f) | ((f0 == 0.0f) & tl0)) & ((f1 > 0.0f) | ((f1 == 0.0f) & tl1)) &
-                    ((f2 > 0.0f) | ((f2 == 0.0f) & tl2)) & (z >= -1.0f) &
-                    ((z < best_z) | ((z == best_z) & (key < best_key)));
-      best_z = select(best_z, z, in);
-      best_key = select(best_key, (rp_spanu)(key), in);
-#if !RP_DEPTH_ONLY
-      best_instance = select(best_instance, (rp_spanu)((uint)flags.z), in);
-      best_primitive = select(best_primitive, (rp_spanu)((uint)flags.w), in);
-      best_e1 = select(best_e1, f1, in);
-      best_e2 = select(best_e2, f2, in);
-      best_sum = select(best_sum, (f0 + f1) + f2, in);
-#endif
-    }
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-
-  /* Spheres: exact intersection of the ray through each pixel centre. */
-  begin = tile_start[tile_count + tile];
-  end = tile_end[tile_count + tile];
-  every_item = end > view.list_capacity;
-  if (every_item) {
-    begin = view.triangle_items;
-    end = view.triangle_items + view.sphere_count;
-  }
-  if (begin < end) {
-    const rp_mat4 inv = view.inv_view_proj, vp = view.view_proj;
-    rp_spanf nx = ((float)(ox + lx0) + 0.5f + RP_LANES) * (2.0f / (float)view.width) - 1.0f;
-    float ny = 1.0f - ((float)(oy + ly) + 0.5f) * (2.0f / (float)view.height);
-    /* points on the near (z_ndc = -1) and far (+1) planes, world space */
-#define RP_UNPROJECT(comp, zn) \
-  (((inv.c[0].comp * nx + inv.c[1].comp * ny) + inv.c[2].comp * (zn)) + inv.c[3].comp)
-    rp_spanf near_w = RP_UNPROJECT(w, -1.0f), far_w = RP_UNPROJECT(w, 1.0f);
-    rp_spanf ray_ox = RP_UNPROJECT(x, -1.0f) / near_w, ray_oy = RP_UNPROJECT(y, -1.0f) / near_w,
-             ray_oz = RP_UNPROJECT(z, -1.0f) / near_w;
-    rp_spanf rx = RP_UNPROJECT(x, 1.0f) / far_w - ray_ox, ry = RP_UNPROJECT(y, 1.0f) / far_w - ray_oy,
-             rz = RP_UNPROJECT(z, 1.0f) / far_w - ray_oz;
-#undef RP_UNPROJECT
-    rp_spanf len = sqrt((rx * rx + ry * ry) + rz * rz);
-    rx = rx / len;
-    ry = ry / len;
-    rz = rz / len;
-    /* clip z and w along the ray: linear in the ray parameter t */
-    rp_spanf z_o = ((vp.c[0].z * ray_ox + vp.c[1].z * ray_oy) + vp.c[2].z * ray_oz) + vp.c[3].z;
-    rp_spanf w_o = ((vp.c[0].w * ray_ox + vp.c[1].w * ray_oy) + vp.c[2].w * ray_oz) + vp.c[3].w;
-    rp_spanf z_d = (vp.c[0].z * rx + vp.c[1].z * ry) + vp.c[2].z * rz;
-    rp_spanf w_d = (vp.c[0].w * rx + vp.c[1].w * ry) + vp.c[2].w * rz;
-
+  for (int kind = 0; kind < 2; ++kind) { /* triangles, then spheres */
+    uint begin, end;
+    const bool every_item = rp_tile_range(&view, tile_start, tile_end, kind ? tile_count : 0u,
+                                          tile, kind != 0, &begin, &end);
+    if (begin >= end) continue; /* uniform across the group */
+    RasterRays rays;
+    if (kind) rays = rp_row_rays(&view, ox + lx0, oy + ly);
     for (uint base = begin; base < end; base += RP_BATCH) {
       uint n = min((uint)RP_BATCH, end - base);
       for (uint k = lid; k < n; k += RP_GROUP_SIZE) {
         uint item = every_item ? base + k : tile_list[base + k];
-        uint index = item - view.triangle_items;
-        float4 cr = spheres[index].center_radius;
-        l_e0[k] = (float4)(cr.xyz, cr.w * cr.w);
-        l_box[k] = bounds_in[item] - (int4)(ox, oy, ox, oy);
-        l_flags[k] = (int4)(0, (int)item, (int)(RP_ID_SPHERE_BIT | index), 0);
+        l_items[k] = kind ? rp_item_sphere(&view, spheres, bounds_in, item, ox, oy)
+                          : rp_item_triangle(tris, bounds_in, item, ox, oy);
       }
       barrier(CLK_LOCAL_MEM_FENCE);
       for (uint k = 0; k < n; ++k) {
-        int4 box = l_box[k];
-        if (ly < box.y || ly > box.w || lx0 + (RP_SPAN - 1) < box.x || lx0 > box.z) continue;
-        float4 s = l_e0[k];
-        int4 flags = l_flags[k];
-        uint key = (uint)flags.y;
-        rp_spanf cx = ray_ox - s.x, cy = ray_oy - s.y, cz = ray_oz - s.z;
-        rp_spanf b = (cx * rx + cy * ry) + cz * rz;
-        /* r^2 - squared distance of the centre from the ray (accurate for small spheres) */
-        rp_spanf px = cx - b * rx, py = cy - b * ry, pz = cz - b * rz;
-        rp_spanf disc = s.w - ((px * px + py * py) + pz * pz);
-        rp_spanf root = sqrt(fmax(disc, 0.0f));
-        rp_spanf t0 = -b - root;
-        rp_spanf t = select(-b + root, t0, t0 >= 0.0f);
-        rp_spanf z = (z_o + t * z_d) / (w_o + t * w_d);
-        rp_spani in = (disc >= 0.0f) & (t >= 0.0f) & (z >= -1.0f) &
-                      ((z < best_z) | ((z == best_z) & (key < best_key)));
-        best_z = select(best_z, z, in);
-        best_key = select(best_key, (rp_spanu)(key), in);
-#if !RP_DEPTH_ONLY
-        best_instance = select(best_instance, (rp_spanu)((uint)flags.z), in);
-        best_primitive = select(best_primitive, (rp_spanu)(0u), in);
-        best_e1 = select(best_e1, (rp_spanf)(0.0f), in);
-        best_e2 = select(best_e2, (rp_spanf)(0.0f), in);
-        best_sum = select(best_sum, (rp_spanf)(1.0f), in);
-#endif
+        const RasterItem it = l_items[k];
+        if (RP_ITEM_MISSES(it.box, lx0, ly)) continue;
+        if (kind)
+          rp_best_sphere(&best, &it, &rays);
+        else
+          rp_best_triangle(&best, &it, dx, dy);
       }
       barrier(CLK_LOCAL_MEM_FENCE);
     }
   }
-
-  /* One write per pixel and plane. */
-  int y = oy + ly, x0 = ox + lx0;
-  if (y < (int)view.height && x0 < (int)view.width) {
-    int valid = min(RP_SPAN, (int)view.width - x0);
-    size_t row = (size_t)y * view.width + (size_t)x0;
-    rp_store_span_f(best_z * 0.5f + 0.5f, depth_out + row, valid);
-#if !RP_DEPTH_ONLY
-    rp_store_span_pairs_u(best_instance, best_primitive, ids_out + 2 * row, valid);
-    rp_store_span_pairs_f(best_e1 / best_sum, best_e2 / best_sum, bary_out + 2 * row, valid);
-#else
-    (void)ids_out;
-    (void)bary_out;
-#endif
-  }
+  rp_best_store(&view, &best, ox + lx0, oy + ly, depth_out, ids_out, bary_out);
 }
+#endif

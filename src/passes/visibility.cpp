@@ -29,6 +29,7 @@ static_assert(sizeof(gpu::RasterTriangle) == 64);
 constexpr size_t kTile = RP_RASTER_TILE;
 constexpr size_t kItemGroup = 64;  // RP_ITEM_GROUP in visibility.cl
 constexpr size_t kScanGroup = 128; // RP_SCAN_GROUP in visibility.cl
+constexpr size_t kTilesPerGroup = 4;  // work-group of the one-tile-per-work-item raster layout
 
 // Pixels per raster work-item: SIMD-wide spans on CPUs (PoCL vectorizes float16 code, not the
 // loop over a tile's triangles), one pixel per work-item on GPUs. ROLYPOLY_RASTER_SPAN
@@ -242,9 +243,15 @@ struct VisibilityPass::Impl {
     v.raster.setArg(a++, depth_out);
     v.raster.setArg(a++, ids_out);
     v.raster.setArg(a++, bary_out);
-    const size_t group_w = kTile / static_cast<size_t>(span);
-    profiler.enqueue(v.pass, v.raster, ::cl::NDRange(tiles_x * group_w, tiles_y * kTile),
-                     ::cl::NDRange(group_w, kTile));
+    if (static_cast<size_t>(span) == kTile) {  // CPU layout: one work-item per tile
+      profiler.enqueue(v.pass, v.raster,
+                       ::cl::NDRange(rp::cl::round_up(tiles, kTilesPerGroup)),
+                       ::cl::NDRange(kTilesPerGroup));
+    } else {  // one work-group per tile, a work-item per span of a row
+      const size_t group_w = kTile / static_cast<size_t>(span);
+      profiler.enqueue(v.pass, v.raster, ::cl::NDRange(tiles_x * group_w, tiles_y * kTile),
+                       ::cl::NDRange(group_w, kTile));
+    }
 
     // The total for the next frame's list size; nothing waits for it now.
     queue.enqueueReadBuffer(v.total, CL_FALSE, 0, sizeof(uint32_t), &v.total_host, nullptr,
