@@ -89,6 +89,9 @@
 /* Triangles whose bounding box spans at most this many voxels along every axis are shaded once,
  * at their centroid (most tumbler triangles); larger ones per voxel. */
 #define RP_VOXEL_SMALL_TRIANGLE 2.0f
+/* Triangles shaded per voxel with at most this many candidate columns are voxelized in
+ * voxelize_triangles' lanes (one triangle a lane); larger ones by voxelize_large. */
+#define RP_VOXEL_LANE_COLUMNS 16
 /* Margin (grid units) added to a column's plane range when picking candidates. */
 #define RP_VOXEL_CANDIDATE_MARGIN (1.0f / 1024.0f)
 
@@ -411,7 +414,8 @@ inline VxTriangle vx_fetch_triangle(__global const Instance* instances, uint ins
 /* Everything the voxel loops need, per lane. */
 typedef struct {
   rp_spani valid;           /* a non-degenerate triangle with a non-empty voxel range */
-  rp_spani small;           /* shaded once at the centroid (else per voxel) */
+  rp_spani small, large;    /* shaded once at the centroid / per voxel (complementary masks:
+                               oclgrind 21.10 mis-evaluates negated vector masks) */
   VxVec w0, e01, e02;       /* world vertex 0 and edges */
   VxVec nw;                 /* unit geometric normal, oriented like the vertex normals */
   rp_spanf d00, d01, d11, inv_denom; /* barycentric projection (large triangles) */
@@ -541,7 +545,9 @@ inline void vx_setup(const VxLanes* L, uint resolution, VxSetup* s) {
   s->textured = s->tex_w > 0.0f;
 
   const VxVec extent = vxv_sub(hi, lo);
-  s->small = fmax(fmax(extent.x, extent.y), extent.z) <= RP_VOXEL_SMALL_TRIANGLE;
+  const rp_spanf span_max = fmax(fmax(extent.x, extent.y), extent.z);
+  s->small = span_max <= RP_VOXEL_SMALL_TRIANGLE;
+  s->large = span_max > RP_VOXEL_SMALL_TRIANGLE;
   s->valid = valid;
 }
 
@@ -603,6 +609,33 @@ inline void vx_column(const VxSetup* s, rp_spani iu, rp_spani iv, int R, rp_span
   *last = min(c1, s->rd1);
 }
 
+/* Radiance of the voxels (x, y, z) of the lanes in `hit` for triangles shaded per voxel: the
+ * voxel centre projected onto the plane, barycentrics clamped into the triangle (negative ones
+ * set to 0, renormalised; the centroid for a sliver whose sum is not usable). */
+inline VxVec vx_voxel_radiance(const VxSetup* s, const VxLight* light,
+                               __global const float* shadow,
+                               __global const float4* linear_texels, uint resolution,
+                               rp_spani x, rp_spani y, rp_spani z, rp_spani hit, int n_lanes) {
+  const float to_world = 2.0f / (float)resolution;
+  const VxVec centre = vxv((rp_span_convert_float(x) + 0.5f) * to_world - 1.0f,
+                           (rp_span_convert_float(y) + 0.5f) * to_world - 1.0f,
+                           (rp_span_convert_float(z) + 0.5f) * to_world - 1.0f);
+  const VxVec q = vxv_sub(centre, vxv_scale(s->nw, vxv_dot(s->nw, vxv_sub(centre, s->w0))));
+  const VxVec rel = vxv_sub(q, s->w0);
+  const rp_spanf d20 = vxv_dot(rel, s->e01), d21 = vxv_dot(rel, s->e02);
+  rp_spanf b1 = fmax((s->d11 * d20 - s->d01 * d21) * s->inv_denom, 0.0f);
+  rp_spanf b2 = fmax((s->d00 * d21 - s->d01 * d20) * s->inv_denom, 0.0f);
+  rp_spanf b0 = fmax(1.0f - b1 - b2, 0.0f);
+  const rp_spanf b_sum = b0 + b1 + b2;
+  const rp_spani usable = (b_sum > 0.0f) & (b_sum < 1.0e30f);
+  const float third = 1.0f / 3.0f;
+  b0 = select((rp_spanf)(third), b0 / b_sum, usable);
+  b1 = select((rp_spanf)(third), b1 / b_sum, usable);
+  b2 = select((rp_spanf)(third), b2 / b_sum, usable);
+  const VxVec p = vxv_add(vxv_add(s->w0, vxv_scale(s->e01, b1)), vxv_scale(s->e02, b2));
+  return vx_shade_span(s, light, shadow, linear_texels, p, b0, b1, b2, hit, n_lanes);
+}
+
 /* ---- kernels ---- */
 
 __kernel void voxelize_decode_texels(__global const uint* texels, __global float4* linear_out,
@@ -655,23 +688,30 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
   VxSetup s;
   vx_setup(&lanes, resolution, &s);
 
-  /* Large triangles go to voxelize_large (per voxel shading, lanes over columns). */
+  /* Triangles shaded per voxel with at most RP_VOXEL_LANE_COLUMNS candidate columns (thin
+   * ones, like a tumbler's cone) stay in their lane; larger ones go to voxelize_large (lanes
+   * over their columns). Either way each voxel gets the same value. */
+  const rp_spani columns = (s.ru1 - s.ru0 + 1) * (s.rv1 - s.rv0 + 1);
+  const rp_spani per_voxel = s.valid & s.large & (columns <= RP_VOXEL_LANE_COLUMNS);
   {
-    int lv[RP_SPAN], ls[RP_SPAN];
+    int lv[RP_SPAN], ls[RP_SPAN], lp[RP_SPAN];
     RP_SPAN_TO_ARRAY(s.valid, lv);
     RP_SPAN_TO_ARRAY(s.small, ls);
+    RP_SPAN_TO_ARRAY(per_voxel, lp);
     for (int i = 0; i < n; ++i)
-      if (lv[i] && !ls[i]) large_list[atomic_inc(large_count)] = first + (uint)i;
+      if (lv[i] && !ls[i] && !lp[i]) large_list[atomic_inc(large_count)] = first + (uint)i;
   }
-  const rp_spani active = s.valid & s.small;
+  const rp_spani small = s.valid & s.small;
+  const rp_spani active = small | per_voxel;
   if (!vx_lane_any(active, n)) return;
+  const bool any_per_voxel = vx_lane_any(per_voxel, n);
 
   /* A small triangle is shaded once, at its centroid, for all its voxels. */
   const VxLight light = vx_light(frame);
   const float third = 1.0f / 3.0f;
   const VxVec centroid = vxv_add(vxv_add(s.w0, vxv_scale(s.e01, third)), vxv_scale(s.e02, third));
   const VxVec radiance = vx_shade_span(&s, &light, shadow, linear_texels, centroid, third, third,
-                                       third, active, n);
+                                       third, small, n);
 
   /* Every column (iu, iv) of the lanes' candidate rectangles, one or two voxels along d each. */
   const int max_du = vx_lane_max(s.ru1 - s.ru0, active, n, 0);
@@ -692,7 +732,13 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
                                  rp_span_convert_float(z - s.origin[2]) + 0.5f);
         const rp_spani hit = col & (id <= d_last) & vx_triangle_box_span(&s.axes, centre);
         const rp_spanu voxel = rp_span_convert_uint((z * R + y) * R + x);
-        vx_accumulate_span(accum, overflow, voxel, radiance, hit, n);
+        VxVec value = radiance;
+        if (any_per_voxel && vx_lane_any(hit & per_voxel, n))
+          value = vxv_select(radiance,
+                             vx_voxel_radiance(&s, &light, shadow, linear_texels, resolution, x,
+                                               y, z, hit & per_voxel, n),
+                             per_voxel);
+        vx_accumulate_span(accum, overflow, voxel, value, hit, n);
       }
     }
   }
@@ -755,27 +801,8 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
         const rp_spani hit = col & (id <= d_last) & vx_triangle_box_span(&s.axes, box);
         if (!vx_lane_any(hit, RP_SPAN)) continue;
 
-        /* Shading point: the voxel centre on the plane, clamped into the triangle. */
-        const float to_world = 2.0f / (float)resolution;
-        const VxVec centre = vxv((rp_span_convert_float(x) + 0.5f) * to_world - 1.0f,
-                                 (rp_span_convert_float(y) + 0.5f) * to_world - 1.0f,
-                                 (rp_span_convert_float(z) + 0.5f) * to_world - 1.0f);
-        const VxVec q = vxv_sub(centre, vxv_scale(s.nw, vxv_dot(s.nw, vxv_sub(centre, s.w0))));
-        const VxVec rel = vxv_sub(q, s.w0);
-        const rp_spanf d20 = vxv_dot(rel, s.e01), d21 = vxv_dot(rel, s.e02);
-        rp_spanf b1 = fmax((s.d11 * d20 - s.d01 * d21) * s.inv_denom, 0.0f);
-        rp_spanf b2 = fmax((s.d00 * d21 - s.d01 * d20) * s.inv_denom, 0.0f);
-        rp_spanf b0 = fmax(1.0f - b1 - b2, 0.0f);
-        const rp_spanf b_sum = b0 + b1 + b2;
-        /* NaN or inf (a sliver): the centroid */
-        const rp_spani usable = (b_sum > 0.0f) & (b_sum < 1.0e30f);
-        const float third = 1.0f / 3.0f;
-        b0 = select((rp_spanf)(third), b0 / b_sum, usable);
-        b1 = select((rp_spanf)(third), b1 / b_sum, usable);
-        b2 = select((rp_spanf)(third), b2 / b_sum, usable);
-        const VxVec p = vxv_add(vxv_add(s.w0, vxv_scale(s.e01, b1)), vxv_scale(s.e02, b2));
-        const VxVec radiance =
-            vx_shade_span(&s, &light, shadow, linear_texels, p, b0, b1, b2, hit, RP_SPAN);
+        const VxVec radiance = vx_voxel_radiance(&s, &light, shadow, linear_texels, resolution,
+                                                 x, y, z, hit, RP_SPAN);
         const rp_spanu voxel = rp_span_convert_uint((z * R + y) * R + x);
         vx_accumulate_span(accum, overflow, voxel, radiance, hit, RP_SPAN);
       }
