@@ -212,7 +212,7 @@ inline float8 light_direct8(__global const FrameConstants* restrict frame,
   const float8 lx = lp.x - px, ly = lp.y - py, lz = lp.z - pz;
   const float8 inv_d = rsqrt(lx * lx + ly * ly + lz * lz);
   const float8 c = (nx * lx + ny * ly + nz * lz) * inv_d;
-  const float8 s = clamp(ly * inv_d, 0.0f, 1.0f);
+  const float8 s = fmin(fmax(ly * inv_d, (float8)(0.0f)), (float8)(1.0f));
   const float8 falloff = mad(s, mad(s, 0.204f, 0.446f), 0.35f); /* rp_lamp_falloff */
   const float8 k = select((float8)(0.0f), c * (inv_d * inv_d) * falloff, c > 0.0f);
   const rp_mat4 m = frame->light_view_proj;
@@ -245,8 +245,9 @@ inline float8 light_direct8(__global const FrameConstants* restrict frame,
   const float8 sa = shuffle(RP_LIGHT_COS16_V, (angle + 12u) & 15u);
   const float8 ox = (ca * dx - sa * dy) * RP_SHADOW_RADIUS;
   const float8 oy = (sa * dx + ca * dy) * RP_SHADOW_RADIUS;
-  const float8 sx = clamp((ndx * 0.5f + 0.5f) * size + ox, 0.0f, size - 1.0f);
-  const float8 sy = clamp((0.5f - ndy * 0.5f) * size + oy, 0.0f, size - 1.0f);
+  const float8 hi = (float8)(size - 1.0f), lo = (float8)(0.0f);
+  const float8 sx = fmin(fmax((ndx * 0.5f + 0.5f) * size + ox, lo), hi);
+  const float8 sy = fmin(fmax((0.5f - ndy * 0.5f) * size + oy, lo), hi);
   const int8 idx = convert_int8(sy) * isize + convert_int8(sx);
   const float8 d = (float8)(shadow[idx.s0], shadow[idx.s1], shadow[idx.s2], shadow[idx.s3],
                             shadow[idx.s4], shadow[idx.s5], shadow[idx.s6], shadow[idx.s7]);
@@ -254,8 +255,11 @@ inline float8 light_direct8(__global const FrameConstants* restrict frame,
    * compared without the division; an empty texel (d >= 1) is lit */
   const float near = frame->clip.z, far = frame->clip.w;
   const float8 den = (far + near) - (d * 2.0f - 1.0f) * (far - near);
-  const int8 lit = (d >= 1.0f) | (2.0f * near * far >= receiver * den);
-  return select((float8)(0.0f), k, lit | ~inside);
+  /* one mask of plain comparisons: oclgrind 21.10 evaluated the equivalent
+   * select(0, k, lit | (inside == 0)) wrongly for one pixel of a 16x16 frame (PoCL and the
+   * scalar light_direct agree) */
+  const int8 shadowed = inside & (d < 1.0f) & (2.0f * near * far < receiver * den);
+  return select(k, (float8)(0.0f), shadowed);
 #endif
 }
 
@@ -334,9 +338,12 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
   /* Fallbacks: the best geometric match (first of equals), else plain bilinear. */
   const float8 best = fmax(fmax(gw[0], gw[1]), fmax(gw[2], gw[3]));
   const int8 blend = wsum >= 1.0e-4f;
-  const int8 pick = ~blend & (best > 0.0f);
-  const int8 is0 = gw[0] == best, is1 = (gw[1] == best) & ~is0;
-  const int8 is2 = (gw[2] == best) & ~is0 & ~is1, is3 = (gw[3] == best) & ~is0 & ~is1 & ~is2;
+  /* masks are combined from comparisons, never negated with ~ (oclgrind 21.10 mis-evaluates
+   * negated vector masks) */
+  const int8 pick = (wsum < 1.0e-4f) & (best > 0.0f);
+  const int8 is0 = gw[0] == best, is1 = (gw[1] == best) & (gw[0] != best);
+  const int8 is2 = (gw[2] == best) & (gw[0] != best) & (gw[1] != best);
+  const int8 is3 = (gw[3] == best) & (gw[0] != best) & (gw[1] != best) & (gw[2] != best);
   const float8 one = 1.0f, zero = 0.0f;
   const float8 inv_w = 1.0f / fmax(wsum, 1.0e-4f);
   w00 = select(select(b00, select(zero, one, is0), pick), w00 * inv_w, blend);
