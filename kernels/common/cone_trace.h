@@ -106,7 +106,12 @@
 #define RP_CONE_LEVEL_STEP_FINE 0.263034406f /* log2(1.2) */
 #define RP_CONE_GROWTH_COARSE 1.8f       /* t factor per full-diameter step: 1 + 2 tan_h */
 #define RP_CONE_LEVEL_STEP_COARSE 0.847996907f /* log2(1.8) */
-#define RP_CONE_MAX_STEPS_COARSE 10      /* 1.8^10 t0 = 445 v0 */
+/* The coarse cone stops at this accumulated opacity, and after `levels` samples (1.25 v0 1.8^6 =
+ * 43-76 v0 for R = 64, R = 2^(levels - 1): most of the box). Measured at 128x128 against the
+ * reference mode: PSNR unchanged (36.93 -> 36.98 / 36.99 dB for each), trace time -15 % each. */
+#ifndef RP_CONE_OPAQUE_COARSE
+#define RP_CONE_OPAQUE_COARSE 0.9f
+#endif
 #define RP_CONE_SET_SIZE 16
 
 /* First float4 of level `level` >= 1 (its +x volume): R^3 for level 0, then six volumes of
@@ -287,7 +292,8 @@ inline float4 rp_cone_trace_jittered(__global const float4* voxels, uint resolut
  * jitters in [0, 1): the samples sit at t_k = t0 * 1.8^(k + u_pos) (the first sample slides
  * over one step, so over frames the samples cover the whole axis) and read the single level
  * floor(L_k + u_level), L_k = (k + u_pos) * log2(1.8). A step is one sampled voxel thick, so
- * opacity and radiance are used as they are. The fast mode's cone (see "Level jitter"). */
+ * opacity and radiance are used as they are. Stops at RP_CONE_OPAQUE_COARSE or after `levels`
+ * samples (see there). The fast mode's cone (see "Level jitter"). */
 inline float4 rp_cone_trace_coarse(__global const float4* voxels, uint resolution, uint levels,
                                    float3 origin, float3 dir, float u_pos, float u_level) {
   const float3 w = dir * dir;
@@ -298,13 +304,14 @@ inline float4 rp_cone_trace_coarse(__global const float4* voxels, uint resolutio
   float t = RP_CONE_T0 * v0 * exp2(level);
   level += u_level;
   float4 acc = (float4)(0.0f);
-  for (int k = 0; k < RP_CONE_MAX_STEPS_COARSE; ++k) {
+  const int max_steps = (int)levels;
+  for (int k = 0; k < max_steps; ++k) {
     const float3 q = origin + dir * t;
     if (fmax(fmax(fabs(q.x), fabs(q.y)), fabs(q.z)) > 1.0f) break; /* left the box */
     const float4 s = rp_cone_sample_level(voxels, resolution, top, dirs, w, q, (uint)level, origin);
     acc.xyz += (1.0f - acc.w) * s.xyz;
     acc.w += (1.0f - acc.w) * s.w;
-    if (acc.w >= RP_CONE_OPAQUE) break;
+    if (acc.w >= RP_CONE_OPAQUE_COARSE) break;
     t *= RP_CONE_GROWTH_COARSE;
     level += RP_CONE_LEVEL_STEP_COARSE;
   }

@@ -9,7 +9,9 @@ namespace rp::passes {
 namespace {
 
 constexpr size_t kGroup = 16;        // 16x16 work-groups (see gbuffer.cpp)
-constexpr size_t kComposeGroup = 8;  // light_compose: 8x8 work-groups of 8-pixel chunks
+// light_compose: work-groups of 16 x 4 chunks of 8 pixels (128 x 4 pixels; measured at 720x720
+// a little faster than 8x8, 4x16 or 32x4 chunks)
+constexpr size_t kComposeGroupX = 16, kComposeGroupY = 4;
 
 bool is_power_of_two(uint32_t v) { return v != 0 && (v & (v - 1)) == 0; }
 
@@ -136,9 +138,9 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   if (indirect != nullptr) {
     // light_compose: 8 pixels of a row per work-item.
     profiler.enqueue("light", k,
-                     ::cl::NDRange(rp::cl::round_up((w + 7) / 8, kComposeGroup),
-                                   rp::cl::round_up(h, kComposeGroup)),
-                     ::cl::NDRange(kComposeGroup, kComposeGroup));
+                     ::cl::NDRange(rp::cl::round_up((w + 7) / 8, kComposeGroupX),
+                                   rp::cl::round_up(h, kComposeGroupY)),
+                     ::cl::NDRange(kComposeGroupX, kComposeGroupY));
     return;
   }
   enqueue(profiler, k, w, h);

@@ -138,7 +138,7 @@ glm::dvec4 trace_coarse(const Chain& c, const glm::dvec3& origin, const glm::dve
   const glm::dvec3* apex = march.skip_behind_apex ? &origin : nullptr;
   glm::dvec3 colour(0.0);
   double alpha = 0.0;
-  for (int k = 0; k < 10; ++k) {
+  for (int k = 0; k < int(c.levels); ++k) {  // one sample per level at most
     const double steps = k + march.position_jitter;
     const glm::dvec3 q = origin + dir * (first_distance_in_voxels() * v0 * std::pow(growth, steps));
     if (std::abs(q.x) > 1.0 || std::abs(q.y) > 1.0 || std::abs(q.z) > 1.0) break;
@@ -146,7 +146,7 @@ glm::dvec4 trace_coarse(const Chain& c, const glm::dvec3& origin, const glm::dve
     const glm::dvec4 s = quadrilinear(c, dir, q, level, apex, top_level(c));
     colour += (1.0 - alpha) * glm::dvec3(s);  // a full-diameter step: the voxel as it is
     alpha += (1.0 - alpha) * s.w;
-    if (alpha >= kOpaque) break;
+    if (alpha >= 0.9) break;  // the coarse cone's own threshold
   }
   return glm::dvec4(colour, alpha);
 }

@@ -50,7 +50,8 @@ struct March {
   double jitter = -1.0;   // < 0: quadrilinear samples; in [0, 1): one level, floor(L + jitter)
   bool skip_behind_apex = true;  // false: plain sampling (comparisons only; the kernel skips)
   // rp_cone_trace_coarse: full-diameter steps, samples at t0 * 1.8^(k + position_jitter),
-  // level floor((k + position_jitter) log2(1.8) + jitter), no thickness correction.
+  // level floor((k + position_jitter) log2(1.8) + jitter), no thickness correction, at most
+  // `levels` samples, stops at opacity 0.9.
   bool coarse = false;
   double position_jitter = 0.0;
 };
