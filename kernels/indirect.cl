@@ -128,6 +128,12 @@ inline float8 indirect_gather8(__global const float* v, int8 idx) {
                   v[idx.s7]);
 }
 
+/* v[idx] lane by lane; one vector load when the lanes' indices are consecutive (`seq`: a still
+ * camera, where every sample reprojects next to its neighbour's). */
+inline float8 indirect_load8(__global const float* v, int8 idx, int seq) {
+  return seq ? vload8(0, v + idx.s0) : indirect_gather8(v, idx);
+}
+
 /* Stores lanes 0 .. n-1 of v at p[0 .. n-1]. */
 inline void indirect_store8(__global float* p, uint n, float8 v) {
   if (n == 8u) {
@@ -216,10 +222,11 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
   const float8 ur = floor(clamp(ux, -1.0f, (float)lr_width) + 0.5f);
   const float8 vr = floor(clamp(uy, -1.0f, (float)lr_height) + 0.5f);
   const int8 t11 = (convert_int8(vr) + RP_INDIRECT_PAD) * st + convert_int8(ur) + RP_INDIRECT_PAD;
+  const int seq = all(t11 == t11.s0 + (int8)(0, 1, 2, 3, 4, 5, 6, 7));
   const float8 g11 = rp_indirect_geometry_weight8(
-      nx, ny, nz, px, py, pz, indirect_gather8(prev_geom, t11),
-      indirect_gather8(prev_geom + pl, t11), indirect_gather8(prev_geom + 2 * pl, t11),
-      indirect_gather8(prev_geom + 3 * pl, t11), inv_sigma);
+      nx, ny, nz, px, py, pz, indirect_load8(prev_geom, t11, seq),
+      indirect_load8(prev_geom + pl, t11, seq), indirect_load8(prev_geom + 2 * pl, t11, seq),
+      indirect_load8(prev_geom + 3 * pl, t11, seq), inv_sigma);
   const float8 ring = RP_INDIRECT_RING * (1.0f - g11);
   float8 hr = 0.0f, hg = 0.0f, hb = 0.0f, ha = 0.0f, hm = 0.0f, hw = 0.0f;
   for (int b = -1; b <= 1; ++b) {
@@ -229,15 +236,15 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
       const float8 wx = fmax(1.0f - fabs(ux - (ur + (float)a)), 0.0f) + ring;
       const float8 w = wx * wy *
                        rp_indirect_geometry_weight8(
-                           nx, ny, nz, px, py, pz, indirect_gather8(prev_geom, t),
-                           indirect_gather8(prev_geom + pl, t),
-                           indirect_gather8(prev_geom + 2 * pl, t),
-                           indirect_gather8(prev_geom + 3 * pl, t), inv_sigma);
-      hr += w * indirect_gather8(prev_history, t);
-      hg += w * indirect_gather8(prev_history + pl, t);
-      hb += w * indirect_gather8(prev_history + 2 * pl, t);
-      ha += w * indirect_gather8(prev_history + 3 * pl, t);
-      hm += w * indirect_gather8(prev_history + 4 * pl, t);
+                           nx, ny, nz, px, py, pz, indirect_load8(prev_geom, t, seq),
+                           indirect_load8(prev_geom + pl, t, seq),
+                           indirect_load8(prev_geom + 2 * pl, t, seq),
+                           indirect_load8(prev_geom + 3 * pl, t, seq), inv_sigma);
+      hr += w * indirect_load8(prev_history, t, seq);
+      hg += w * indirect_load8(prev_history + pl, t, seq);
+      hb += w * indirect_load8(prev_history + 2 * pl, t, seq);
+      ha += w * indirect_load8(prev_history + 3 * pl, t, seq);
+      hm += w * indirect_load8(prev_history + 4 * pl, t, seq);
       hw += w;
     }
   }
