@@ -3,10 +3,12 @@
  *
  * Per view and frame, in order:
  *   visibility_clear    zero the per-tile counts
- *   visibility_setup    one work-item per draw item (triangle items, then sphere items):
- *                       transform, cull, pixel bounds, count the tiles it may touch
+ *   visibility_setup    one work-item per RP_SPAN triangle items: transform, cull, pixel
+ *                       bounds, edges in the bounds' frame (vector code across the lanes)
+ *   visibility_setup_spheres  one work-item per sphere item: pixel bounds
+ *   visibility_count    one work-item per item: count the tiles it may touch
  *   visibility_scan     one work-group: exclusive scan of the counts -> tile list ranges
- *   visibility_bin      the same walk as setup, now writing item indices into the tile lists
+ *   visibility_bin      the same walk as count, now writing item indices into the tile lists
  *   visibility_raster   one work-group per RP_RASTER_TILE^2 tile: nearest surface per pixel,
  *                       written once: depth, and (camera) ids and barycentrics
  *
@@ -46,6 +48,7 @@
 #define RP_BIN_HALF_EXTENT (0.5f * RP_TILE + 1.0f)
 #define RP_SCAN_GROUP 128
 #define RP_ITEM_GROUP 64
+#define RP_SETUP_GROUP 16 /* work-items (RP_SPAN triangles each) per visibility_setup group */
 
 /* Pixel bounds (x0, y0, x1, y1 inclusive) from bounds of the covered pixel positions, with a
  * one-pixel margin, clamped to the view; x0 > x1 when nothing is on screen. */
@@ -131,20 +134,27 @@ inline int4 rp_sphere_bounds(const rp_mat4 vp, float4 center_radius, float half_
   return rp_pixel_bounds(lo, hi, width, height);
 }
 
+/* Edges that reject nothing (invalid frame): the tile walk of a sphere. */
+inline RasterEdges rp_raster_no_edges(void) {
+  RasterEdges r;
+  r.e[0] = r.e[1] = r.e[2] = (float4)(0.0f);
+  r.top_left = (int4)(0);
+  return r;
+}
+
 /* Visits every tile an item may touch: the tiles of its bounds, for triangles only those the
- * edge test cannot reject. Setup counts with it, binning fills with it: same tiles both times. */
-#define RP_FOR_ITEM_TILES(view, bounds, is_triangle, tri, BODY)                                  \
+ * edge test (`edges`: the triangle set up in the frame of its bounds' first pixel) cannot
+ * reject. Counting and binning both use it with the same stored edges: same tiles both times. */
+#define RP_FOR_ITEM_TILES(view, bounds, is_triangle, edges, BODY)                                \
   do {                                                                                           \
     if ((bounds).x <= (bounds).z && (bounds).y <= (bounds).w) {                                  \
-      RasterEdges frame_edges;                                                                   \
       float fox = (float)(bounds).x, foy = (float)(bounds).y;                                    \
-      if (is_triangle) frame_edges = rp_raster_edges((tri).v[0], (tri).v[1], (tri).v[2], fox, foy); \
       int tx0 = (bounds).x / RP_TILE, ty0 = (bounds).y / RP_TILE;                                \
       int tx1 = (bounds).z / RP_TILE, ty1 = (bounds).w / RP_TILE;                                \
       for (int ty = ty0; ty <= ty1; ++ty) {                                                      \
         for (int tx = tx0; tx <= tx1; ++tx) {                                                    \
           if (is_triangle &&                                                                     \
-              !rp_raster_rect_may_overlap(frame_edges, (float)(tx * RP_TILE) + 0.5f * RP_TILE - fox, \
+              !rp_raster_rect_may_overlap((edges), (float)(tx * RP_TILE) + 0.5f * RP_TILE - fox, \
                                           (float)(ty * RP_TILE) + 0.5f * RP_TILE - foy,          \
                                           RP_BIN_HALF_EXTENT))                                   \
             continue;                                                                            \
@@ -160,58 +170,289 @@ __kernel void visibility_clear(__global uint* counts, uint n) {
   if (i < n) counts[i] = 0u;
 }
 
-__kernel __attribute__((reqd_work_group_size(RP_ITEM_GROUP, 1, 1)))
+/* ---- triangle set-up, RP_SPAN triangle items per work-item (one per lane) ----
+ * The same operations per lane as the scalar helpers above (rp_raster_transform,
+ * rp_to_pixel_space, rp_outside_frustum, rp_triangle_bounds, rp_pixel_bounds, rp_raster_edges),
+ * so the same bits. */
+
+/* Lane masks as ints: -1 / 0 (a scalar comparison gives 1). */
+#if RP_SPAN == 1
+#define RP_MASK_INT(m) (-(m))
+#else
+#define RP_MASK_INT(m) (m)
+#endif
+
+typedef struct {
+  rp_spanf x, y, z, w;
+} RpLanes4;
+
+/* m * p per lane, ((c0 x + c1 y) + c2 z) + c3 w (rp_raster_transform). */
+inline RpLanes4 rp_lanes_transform(const rp_mat4 m, RpLanes4 p) {
+  RpLanes4 r;
+#define RP_ROW(row) (((m.c[0].row * p.x + m.c[1].row * p.y) + m.c[2].row * p.z) + m.c[3].row * p.w)
+  r.x = RP_ROW(x);
+  r.y = RP_ROW(y);
+  r.z = RP_ROW(z);
+  r.w = RP_ROW(w);
+#undef RP_ROW
+  return r;
+}
+
+inline RpLanes4 rp_lanes_select(RpLanes4 a, RpLanes4 b, rp_spani m) {
+  RpLanes4 r;
+  r.x = select(a.x, b.x, m);
+  r.y = select(a.y, b.y, m);
+  r.z = select(a.z, b.z, m);
+  r.w = select(a.w, b.w, m);
+  return r;
+}
+
+/* One near-clipped polygon point (rp_triangle_bounds) into the lanes' bounds. */
+inline void rp_lanes_bound_point(RpLanes4 q, rp_spani use, rp_spanf* lo_x, rp_spanf* lo_y,
+                                 rp_spanf* hi_x, rp_spanf* hi_y, rp_spani* unbounded) {
+  const rp_spani in_front = use & (q.w > 0.0f);
+  const rp_spanf x = q.x / q.w, y = q.y / q.w;
+  *lo_x = select(*lo_x, fmin(*lo_x, x), in_front);
+  *lo_y = select(*lo_y, fmin(*lo_y, y), in_front);
+  *hi_x = select(*hi_x, fmax(*hi_x, x), in_front);
+  *hi_y = select(*hi_y, fmax(*hi_y, y), in_front);
+  *unbounded |= use & (q.w <= 0.0f);
+}
+
+/* rp_raster_top_left per lane, as -1 / 0. */
+#define RP_LANES_TOP_LEFT(a, b, c) \
+  RP_MASK_INT(((a) > 0.0f) | (((a) == 0.0f) & (((b) > 0.0f) | (((b) == 0.0f) & ((c) > 0.0f)))))
+
+/* One work-item per RP_SPAN triangle items: transform, cull, pixel bounds, triangle edges in the
+ * bounds' frame. Straight vector code: the tile walk and its atomics are visibility_count's. */
+__kernel __attribute__((reqd_work_group_size(RP_SETUP_GROUP, 1, 1)))
 void visibility_setup(const RasterView view, __global const uint2* draw_items,
                       __global const Instance* instances, __global const Triangle* triangles,
-                      __global const Vertex* vertices, __global const Sphere* spheres,
-                      __global RasterTriangle* tris_out, __global int4* bounds_out,
-                      __global uint* tile_counts) {
+                      __global const Vertex* vertices, __global RasterTriangle* tris_out,
+                      __global int4* bounds_out, __global RasterEdges* edges_out) {
+  const uint first = (uint)get_global_id(0) * RP_SPAN;
+  if (first >= view.triangle_items) return;
+  const int n = (int)min((uint)RP_SPAN, view.triangle_items - first);
+  const float half_w = 0.5f * (float)view.width, half_h = 0.5f * (float)view.height;
+
+  /* Gather: object positions, instance and primitive per lane (lanes >= n repeat lane 0). */
+  float pos[3][3][RP_SPAN];
+  uint inst_of[RP_SPAN], prim_of[RP_SPAN];
+  int drawn_of[RP_SPAN];
+  for (int i = 0; i < RP_SPAN; ++i) {
+    const uint2 d = draw_items[first + (uint)(i < n ? i : 0)];
+    __global const Instance* inst = &instances[d.x];
+    const Triangle t = triangles[d.y];
+    const uint idx[3] = {t.x, t.y, t.z};
+    for (int k = 0; k < 3; ++k) {
+      const float4 p = vertices[idx[k]].position_u;
+      pos[k][0][i] = p.x;
+      pos[k][1][i] = p.y;
+      pos[k][2][i] = p.z;
+    }
+    inst_of[i] = d.x;
+    prim_of[i] = d.y - inst->first_triangle;
+#if RP_DEPTH_ONLY
+    drawn_of[i] = inst->casts_shadow != 0u ? -1 : 0;
+#else
+    drawn_of[i] = -1;
+#endif
+  }
+  RpLanes4 obj[3];
+  for (int k = 0; k < 3; ++k) {
+    obj[k].x = RP_SPAN_FROM_ARRAY(pos[k][0]);
+    obj[k].y = RP_SPAN_FROM_ARRAY(pos[k][1]);
+    obj[k].z = RP_SPAN_FROM_ARRAY(pos[k][2]);
+    obj[k].w = (rp_spanf)(1.0f); /* position_u.w holds the texture u */
+  }
+
+  /* World positions through each distinct instance of the span (usually one). */
+  const rp_spanu inst_lanes = RP_SPAN_FROM_ARRAY(inst_of);
+  RpLanes4 clip[3];
+  int done[RP_SPAN];
+  RP_SPAN_TO_ARRAY((rp_spani)(0), done);
+  for (int i = 0; i < RP_SPAN; ++i) {
+    if (done[i]) continue;
+    const uint instance = inst_of[i];
+    const rp_spani group = inst_lanes == instance;
+    int g[RP_SPAN];
+    RP_SPAN_TO_ARRAY(group, g);
+    for (int j = i; j < RP_SPAN; ++j) done[j] |= g[j];
+    const rp_mat4 model = instances[instance].model;
+    for (int k = 0; k < 3; ++k) {
+      const RpLanes4 c = rp_lanes_transform(view.view_proj, rp_lanes_transform(model, obj[k]));
+      clip[k] = i == 0 ? c : rp_lanes_select(clip[k], c, group);
+    }
+  }
+
+  /* Homogeneous pixel space (rp_to_pixel_space). */
+  RpLanes4 v[3];
+  for (int k = 0; k < 3; ++k) {
+    v[k].x = (clip[k].x + clip[k].w) * half_w;
+    v[k].y = (clip[k].w - clip[k].y) * half_h;
+    v[k].z = clip[k].z;
+    v[k].w = clip[k].w;
+  }
+
+  /* Frustum: all three vertices outside one plane (rp_outside_frustum). */
+  rp_spani outside = (rp_spani)(0);
+  {
+    rp_spani o0 = (rp_spani)(-1), o1 = o0, o2 = o0, o3 = o0, o4 = o0, o5 = o0;
+    for (int k = 0; k < 3; ++k) {
+      o0 &= clip[k].x > clip[k].w;
+      o1 &= clip[k].x < -clip[k].w;
+      o2 &= clip[k].y > clip[k].w;
+      o3 &= clip[k].y < -clip[k].w;
+      o4 &= clip[k].z > clip[k].w;
+      o5 &= clip[k].z < -clip[k].w;
+    }
+    outside = o0 | o1 | o2 | o3 | o4 | o5;
+  }
+
+  /* Bounds of the near-clipped polygon (rp_triangle_bounds, rp_pixel_bounds). */
+  rp_spanf lo_x = INFINITY, lo_y = INFINITY, hi_x = -INFINITY, hi_y = -INFINITY;
+  rp_spani unbounded = (rp_spani)(0);
+  for (int k = 0; k < 3; ++k) {
+    const RpLanes4 a = v[k], b = v[(k + 1) % 3];
+    const rp_spanf da = a.z + a.w, db = b.z + b.w;
+    const rp_spani a_in = da >= 0.0f;
+    /* the edge crosses the near plane: (da >= 0) != (db >= 0), written without a negated
+     * mask (oclgrind 21.10 mis-evaluates those) */
+    const rp_spani crosses = (a_in & (db < 0.0f)) | ((da < 0.0f) & (db >= 0.0f));
+    rp_lanes_bound_point(a, a_in, &lo_x, &lo_y, &hi_x, &hi_y, &unbounded);
+    const rp_spanf t = da / (da - db);
+    RpLanes4 cut;
+    cut.x = a.x + (b.x - a.x) * t;
+    cut.y = a.y + (b.y - a.y) * t;
+    cut.z = a.z + (b.z - a.z) * t;
+    cut.w = a.w + (b.w - a.w) * t;
+    rp_lanes_bound_point(cut, crosses, &lo_x, &lo_y, &hi_x, &hi_y, &unbounded);
+  }
+  const float fw = (float)view.width, fh = (float)view.height;
+  lo_x = clamp(lo_x, -2.0f, fw + 2.0f);
+  lo_y = clamp(lo_y, -2.0f, fh + 2.0f);
+  hi_x = clamp(hi_x, -2.0f, fw + 2.0f);
+  hi_y = clamp(hi_y, -2.0f, fh + 2.0f);
+  /* Integer clamps with span bounds (oclgrind 21.10 mis-evaluates scalar ones). */
+  const rp_spani zero = (rp_spani)(0), last_x = (rp_spani)((int)view.width - 1),
+                 last_y = (rp_spani)((int)view.height - 1);
+  rp_spani bx0 = clamp(rp_span_convert_int(floor(lo_x)) - 1, zero, last_x);
+  rp_spani by0 = clamp(rp_span_convert_int(floor(lo_y)) - 1, zero, last_y);
+  rp_spani bx1 = clamp(rp_span_convert_int(floor(hi_x)) + 1, zero, last_x);
+  rp_spani by1 = clamp(rp_span_convert_int(floor(hi_y)) + 1, zero, last_y);
+  const rp_spani off_view = (lo_x > hi_x) | (lo_y > hi_y) | (hi_x < 0.0f) | (hi_y < 0.0f) |
+                            (lo_x > fw) | (lo_y > fh);
+  bx0 = select(bx0, zero, off_view);
+  by0 = select(by0, zero, off_view);
+  bx1 = select(bx1, (rp_spani)(-1), off_view);
+  by1 = select(by1, (rp_spani)(-1), off_view);
+  bx0 = select(bx0, zero, unbounded); /* unusual projections: the whole view */
+  by0 = select(by0, zero, unbounded);
+  bx1 = select(bx1, last_x, unbounded);
+  by1 = select(by1, last_y, unbounded);
+  const rp_spani empty = (RP_SPAN_FROM_ARRAY(drawn_of) != -1) | outside;
+  bx0 = select(bx0, zero, empty);
+  by0 = select(by0, zero, empty);
+  bx1 = select(bx1, (rp_spani)(-1), empty);
+  by1 = select(by1, (rp_spani)(-1), empty);
+
+  /* Edges in the frame of the bounds' first pixel (rp_raster_edges). */
+  const rp_spanf fox = rp_span_convert_float(bx0), foy = rp_span_convert_float(by0);
+  rp_spanf x[3], y[3], w[3];
+  for (int k = 0; k < 3; ++k) {
+    x[k] = v[k].x - fox * v[k].w;
+    y[k] = v[k].y - foy * v[k].w;
+    w[k] = v[k].w;
+  }
+  rp_spanf ea[3], eb[3], ec[3];
+  for (int k = 0; k < 3; ++k) {
+    const int j = (k + 1) % 3, l = (k + 2) % 3;
+    ea[k] = y[j] * w[l] - w[j] * y[l];
+    eb[k] = w[j] * x[l] - x[j] * w[l];
+    ec[k] = x[j] * y[l] - y[j] * x[l];
+  }
+  rp_spanf det = (w[0] * ec[0] + w[1] * ec[1]) + w[2] * ec[2];
+  const rp_spanf sgn = select((rp_spanf)(1.0f), (rp_spanf)(-1.0f), det < 0.0f);
+  for (int k = 0; k < 3; ++k) {
+    ea[k] *= sgn;
+    eb[k] *= sgn;
+    ec[k] *= sgn;
+  }
+  det *= sgn;
+  const rp_spani valid = (det > 0.0f) & RP_MASK_INT(isfinite(det));
+  int tl[3][RP_SPAN], valid_of[RP_SPAN];
+  float ef[3][3][RP_SPAN];
+  for (int k = 0; k < 3; ++k) {
+    const rp_spani top_left = RP_LANES_TOP_LEFT(ea[k], eb[k], ec[k]);
+    RP_SPAN_TO_ARRAY(select((rp_spani)(0), top_left, valid), tl[k]);
+    RP_SPAN_TO_ARRAY(select((rp_spanf)(0.0f), ea[k], valid), ef[k][0]);
+    RP_SPAN_TO_ARRAY(select((rp_spanf)(0.0f), eb[k], valid), ef[k][1]);
+    RP_SPAN_TO_ARRAY(select((rp_spanf)(0.0f), ec[k], valid), ef[k][2]);
+  }
+  RP_SPAN_TO_ARRAY(RP_MASK_INT(valid), valid_of);
+
+  /* Per-lane stores. */
+  float vf[3][4][RP_SPAN];
+  for (int k = 0; k < 3; ++k) {
+    RP_SPAN_TO_ARRAY(v[k].x, vf[k][0]);
+    RP_SPAN_TO_ARRAY(v[k].y, vf[k][1]);
+    RP_SPAN_TO_ARRAY(v[k].z, vf[k][2]);
+    RP_SPAN_TO_ARRAY(v[k].w, vf[k][3]);
+  }
+  int b0[RP_SPAN], b1[RP_SPAN], b2[RP_SPAN], b3[RP_SPAN];
+  RP_SPAN_TO_ARRAY(bx0, b0);
+  RP_SPAN_TO_ARRAY(by0, b1);
+  RP_SPAN_TO_ARRAY(bx1, b2);
+  RP_SPAN_TO_ARRAY(by1, b3);
+  for (int i = 0; i < n; ++i) {
+    RasterTriangle rt;
+    for (int k = 0; k < 3; ++k)
+      rt.v[k] = (float4)(vf[k][0][i], vf[k][1][i], vf[k][2][i], vf[k][3][i]);
+    rt.info = (uint4)(inst_of[i], prim_of[i], 0u, 0u);
+    tris_out[first + (uint)i] = rt;
+    bounds_out[first + (uint)i] = (int4)(b0[i], b1[i], b2[i], b3[i]);
+    RasterEdges e;
+    for (int k = 0; k < 3; ++k) e.e[k] = (float4)(ef[k][0][i], ef[k][1][i], ef[k][2][i], 0.0f);
+    e.top_left = (int4)(tl[0][i], tl[1][i], tl[2][i], valid_of[i]);
+    edges_out[first + (uint)i] = e;
+  }
+}
+
+/* Sphere items (after the triangle items): pixel bounds of the bounding cube. */
+__kernel __attribute__((reqd_work_group_size(RP_ITEM_GROUP, 1, 1)))
+void visibility_setup_spheres(const RasterView view, __global const Sphere* spheres,
+                              __global int4* bounds_out) {
+  const uint index = (uint)get_global_id(0);
+  if (index >= view.sphere_count) return;
+  const float half_w = 0.5f * (float)view.width, half_h = 0.5f * (float)view.height;
+  const Sphere s = spheres[index];
+  int4 bounds = RP_EMPTY_BOUNDS;
+#if RP_DEPTH_ONLY
+  const bool drawn = s.center_radius.w > 0.0f && s.prev_center.w != 0.0f; /* casts shadow */
+#else
+  const bool drawn = s.center_radius.w > 0.0f;
+#endif
+  if (drawn)
+    bounds = rp_sphere_bounds(view.view_proj, s.center_radius, half_w, half_h, view.width,
+                              view.height);
+  bounds_out[view.triangle_items + index] = bounds;
+}
+
+/* Counts every tile each item may touch (triangles at [tile], spheres at [tile_count + tile]). */
+__kernel __attribute__((reqd_work_group_size(RP_ITEM_GROUP, 1, 1)))
+void visibility_count(const RasterView view, __global const int4* bounds_in,
+                      __global const RasterEdges* edges_in, __global uint* tile_counts) {
   uint item = get_global_id(0);
   uint triangle_items = view.triangle_items;
   if (item >= triangle_items + view.sphere_count) return;
-  float half_w = 0.5f * (float)view.width, half_h = 0.5f * (float)view.height;
-  uint tile_count = view.tiles_x * view.tiles_y;
-
+  const int4 bounds = bounds_in[item];
+  if (bounds.x > bounds.z || bounds.y > bounds.w) return;
   if (item < triangle_items) {
-    uint2 d = draw_items[item];
-    __global const Instance* inst = &instances[d.x];
-    const rp_mat4 model = inst->model;
-    Triangle t = triangles[d.y];
-    float4 clip[3];
-    uint idx[3] = {t.x, t.y, t.z};
-    for (int i = 0; i < 3; ++i) {
-      float4 p = vertices[idx[i]].position_u;
-      p.w = 1.0f; /* position_u.w holds the texture u */
-      clip[i] = rp_raster_transform(view.view_proj, rp_raster_transform(model, p));
-    }
-    RasterTriangle rt;
-    for (int i = 0; i < 3; ++i) rt.v[i] = rp_to_pixel_space(clip[i], half_w, half_h);
-    rt.info = (uint4)(d.x, d.y - inst->first_triangle, 0u, 0u);
-    int4 bounds = RP_EMPTY_BOUNDS;
-#if RP_DEPTH_ONLY
-    bool drawn = inst->casts_shadow != 0u;
-#else
-    bool drawn = true;
-#endif
-    if (drawn && !rp_outside_frustum(clip, 3)) bounds = rp_triangle_bounds(rt.v, view.width, view.height);
-    tris_out[item] = rt;
-    bounds_out[item] = bounds;
-    RP_FOR_ITEM_TILES(view, bounds, true, rt, { atomic_inc(&tile_counts[tile]); });
+    const RasterEdges edges = edges_in[item];
+    RP_FOR_ITEM_TILES(view, bounds, true, edges, { atomic_inc(&tile_counts[tile]); });
   } else {
-    Sphere s = spheres[item - triangle_items];
-    int4 bounds = RP_EMPTY_BOUNDS;
-#if RP_DEPTH_ONLY
-    bool drawn = s.center_radius.w > 0.0f && s.prev_center.w != 0.0f; /* casts shadow */
-#else
-    bool drawn = s.center_radius.w > 0.0f;
-#endif
-    if (drawn)
-      bounds = rp_sphere_bounds(view.view_proj, s.center_radius, half_w, half_h, view.width,
-                                view.height);
-    bounds_out[item] = bounds;
-    RasterTriangle unused;
-    RP_FOR_ITEM_TILES(view, bounds, false, unused,
-                      { atomic_inc(&tile_counts[tile_count + tile]); });
+    const uint tile_count = view.tiles_x * view.tiles_y;
+    RP_FOR_ITEM_TILES(view, bounds, false, rp_raster_no_edges(), { atomic_inc(&tile_counts[tile_count + tile]); });
   }
 }
 
@@ -247,25 +488,27 @@ void visibility_scan(__global const uint* counts, uint n, __global uint* start,
 }
 
 __kernel __attribute__((reqd_work_group_size(RP_ITEM_GROUP, 1, 1)))
-void visibility_bin(const RasterView view, __global const RasterTriangle* tris,
-                    __global const int4* bounds_in, __global uint* tile_cursor,
+void visibility_bin(const RasterView view, __global const int4* bounds_in,
+                    __global const RasterEdges* edges_in, __global uint* tile_cursor,
                     __global uint* tile_list) {
   uint item = get_global_id(0);
   uint triangle_items = view.triangle_items;
   if (item >= triangle_items + view.sphere_count) return;
-  uint tile_count = view.tiles_x * view.tiles_y;
-  int4 bounds = bounds_in[item];
-  bool is_triangle = item < triangle_items;
-  RasterTriangle rt;
-  uint region = 0;
-  if (is_triangle)
-    rt = tris[item];
-  else
-    region = tile_count;
-  RP_FOR_ITEM_TILES(view, bounds, is_triangle, rt, {
-    uint slot = atomic_inc(&tile_cursor[region + tile]);
-    if (slot < view.list_capacity) tile_list[slot] = item;
-  });
+  const int4 bounds = bounds_in[item];
+  if (bounds.x > bounds.z || bounds.y > bounds.w) return;
+  if (item < triangle_items) {
+    const RasterEdges edges = edges_in[item];
+    RP_FOR_ITEM_TILES(view, bounds, true, edges, {
+      uint slot = atomic_inc(&tile_cursor[tile]);
+      if (slot < view.list_capacity) tile_list[slot] = item;
+    });
+  } else {
+    const uint tile_count = view.tiles_x * view.tiles_y;
+    RP_FOR_ITEM_TILES(view, bounds, false, rp_raster_no_edges(), {
+      uint slot = atomic_inc(&tile_cursor[tile_count + tile]);
+      if (slot < view.list_capacity) tile_list[slot] = item;
+    });
+  }
 }
 
 /* ---- per-row evaluation, shared by both raster layouts ----

@@ -1,5 +1,5 @@
 // Host side of the compute rasterizer (kernels/visibility.cl). Per view (camera, lamp):
-// clear -> setup -> scan -> bin -> raster, then an asynchronous read of the tile-list total
+// clear -> setup (triangles, spheres) -> count -> scan -> bin -> raster, then an asynchronous read of the tile-list total
 // that the next frame of the view waits for (long finished by then) to grow the list if it
 // overflowed (the raster kernel stays correct on overflow, only slower). The view parameters
 // go to the kernels by value, so a view writes nothing to the device and never waits for it.
@@ -29,7 +29,9 @@ static_assert(sizeof(gpu::RasterTriangle) == 64);
 constexpr size_t kTile = RP_RASTER_TILE;
 constexpr size_t kItemGroup = 64;  // RP_ITEM_GROUP in visibility.cl
 constexpr size_t kScanGroup = 128; // RP_SCAN_GROUP in visibility.cl
-constexpr size_t kTilesPerGroup = 4;  // work-group of the one-tile-per-work-item raster layout
+constexpr size_t kSetupGroup = 16;  // RP_SETUP_GROUP in visibility.cl
+constexpr size_t kTilesPerGroup = 4;
+constexpr size_t kRasterEdgesBytes = 64;  // RasterEdges (kernels/common/raster.h): 4 x 16 bytes  // work-group of the one-tile-per-work-item raster layout
 
 // Pixels per raster work-item: SIMD-wide spans on CPUs (PoCL vectorizes float16 code, not the
 // loop over a tile's triangles), one pixel per work-item on GPUs. ROLYPOLY_RASTER_SPAN
@@ -66,16 +68,17 @@ bool ensure(const ::cl::Context& context, ::cl::Buffer& buffer, size_t& capacity
 }  // namespace
 
 // Kernels and scratch memory of one view. Layouts: tris RasterTriangle[triangle items];
-// bounds int4[all items] (pixel x0, y0, x1, y1); counts/start/cursor uint[2 * tiles]
+// bounds int4[all items] (pixel x0, y0, x1, y1); edges RasterEdges[triangle items] (the
+// triangle in the frame of its bounds' first pixel); counts/start/cursor uint[2 * tiles]
 // (triangles of tile t at t, spheres at tiles + t); list uint[list_capacity] item indices.
 struct ViewState {
   std::string pass;
   bool depth_only = false;
-  ::cl::Kernel clear, setup, scan, bin, raster;
+  ::cl::Kernel clear, setup, setup_spheres, count, scan, bin, raster;
   gpu::RasterView params{};
-  ::cl::Buffer tris, bounds, counts, start, cursor, list, total;
+  ::cl::Buffer tris, bounds, edges, counts, start, cursor, list, total;
   ::cl::Buffer unused;  // stands in for the ids / bary planes the depth-only variant lacks
-  size_t tris_cap = 0, bounds_cap = 0, tiles_cap = 0, list_cap = 0;
+  size_t tris_cap = 0, bounds_cap = 0, edges_cap = 0, tiles_cap = 0, list_cap = 0;
   // The previous frame's list total, read back without blocking; total_event completes it.
   uint32_t total_host = 0;
   ::cl::Event total_event;
@@ -111,6 +114,8 @@ struct VisibilityPass::Impl {
     if (depth_only) options += " -DRP_DEPTH_ONLY=1";
     v.clear = programs.kernel("visibility.cl", "visibility_clear", options);
     v.setup = programs.kernel("visibility.cl", "visibility_setup", options);
+    v.setup_spheres = programs.kernel("visibility.cl", "visibility_setup_spheres", options);
+    v.count = programs.kernel("visibility.cl", "visibility_count", options);
     v.scan = programs.kernel("visibility.cl", "visibility_scan", options);
     v.bin = programs.kernel("visibility.cl", "visibility_bin", options);
     v.raster = programs.kernel("visibility.cl", "visibility_raster", options);
@@ -164,6 +169,7 @@ struct VisibilityPass::Impl {
     const uint32_t items = draw_count + spheres;
 
     ensure(ctx, v.tris, v.tris_cap, draw_count, sizeof(gpu::RasterTriangle));
+    ensure(ctx, v.edges, v.edges_cap, draw_count, kRasterEdgesBytes);
     ensure(ctx, v.bounds, v.bounds_cap, items, 4 * sizeof(int32_t));
     if (v.tiles_cap < size_t(2) * tiles) {  // only when the view size grows
       v.tiles_cap = size_t(2) * tiles;
@@ -201,16 +207,34 @@ struct VisibilityPass::Impl {
 
     if (items > 0) {
       cl_uint a = 0;
-      v.setup.setArg(a++, p);
-      v.setup.setArg(a++, draw_items);
-      v.setup.setArg(a++, scene.instances);
-      v.setup.setArg(a++, scene.triangles);
-      v.setup.setArg(a++, scene.vertices);
-      v.setup.setArg(a++, scene.spheres);
-      v.setup.setArg(a++, v.tris);
-      v.setup.setArg(a++, v.bounds);
-      v.setup.setArg(a++, v.counts);
-      profiler.enqueue(v.pass, v.setup, ::cl::NDRange(rp::cl::round_up(items, kItemGroup)),
+      if (draw_count > 0) {
+        v.setup.setArg(a++, p);
+        v.setup.setArg(a++, draw_items);
+        v.setup.setArg(a++, scene.instances);
+        v.setup.setArg(a++, scene.triangles);
+        v.setup.setArg(a++, scene.vertices);
+        v.setup.setArg(a++, v.tris);
+        v.setup.setArg(a++, v.bounds);
+        v.setup.setArg(a++, v.edges);
+        const size_t spans = (draw_count + static_cast<size_t>(span) - 1) / static_cast<size_t>(span);
+        profiler.enqueue(v.pass, v.setup, ::cl::NDRange(rp::cl::round_up(spans, kSetupGroup)),
+                         ::cl::NDRange(kSetupGroup));
+      }
+      if (spheres > 0) {
+        a = 0;
+        v.setup_spheres.setArg(a++, p);
+        v.setup_spheres.setArg(a++, scene.spheres);
+        v.setup_spheres.setArg(a++, v.bounds);
+        profiler.enqueue(v.pass, v.setup_spheres,
+                         ::cl::NDRange(rp::cl::round_up(spheres, kItemGroup)),
+                         ::cl::NDRange(kItemGroup));
+      }
+      a = 0;
+      v.count.setArg(a++, p);
+      v.count.setArg(a++, v.bounds);
+      v.count.setArg(a++, v.edges);
+      v.count.setArg(a++, v.counts);
+      profiler.enqueue(v.pass, v.count, ::cl::NDRange(rp::cl::round_up(items, kItemGroup)),
                        ::cl::NDRange(kItemGroup));
     }
 
@@ -224,8 +248,8 @@ struct VisibilityPass::Impl {
     if (items > 0) {
       cl_uint a = 0;
       v.bin.setArg(a++, p);
-      v.bin.setArg(a++, v.tris);
       v.bin.setArg(a++, v.bounds);
+      v.bin.setArg(a++, v.edges);
       v.bin.setArg(a++, v.cursor);
       v.bin.setArg(a++, v.list);
       profiler.enqueue(v.pass, v.bin, ::cl::NDRange(rp::cl::round_up(items, kItemGroup)),
