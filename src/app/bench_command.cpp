@@ -206,6 +206,7 @@ void add_efficiency(const CommonOptions& common, const rp::cl::DeviceInfo& info,
     p.taa = common.effects.taa;
     p.bloom = common.effects.bloom;
     p.motion_blur = common.effects.motion_blur;
+    p.reference_quality = common.quality == render::Quality::kReference;
     for (PassResult& pass : run.passes) {
       PassWork work = pass_work(pass.name, p);
       PassEfficiency& e = pass.efficiency;

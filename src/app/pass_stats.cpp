@@ -9,10 +9,11 @@ namespace rp::app {
 
 int pipeline_rank(const std::string& pass) {
   // Order of DESIGN.md's data flow; "upload" covers per-frame buffer writes.
-  static constexpr std::array<std::string_view, 14> order = {
-      "upload",     "visibility_host", "visibility", "gbuffer",  "shadow_map",
-      "voxelize",   "voxel_mips",      "light",      "taa",      "bloom",
-      "motion_blur", "tone_map",       "debug_view", "readback"};
+  static constexpr std::array<std::string_view, 16> order = {
+      "upload",      "visibility_host", "visibility",      "gbuffer",     "shadow_map",
+      "voxelize",    "voxel_mips",      "indirect_trace",  "indirect_filter", "light",
+      "taa",         "bloom",           "motion_blur",     "tone_map",    "debug_view",
+      "readback"};
   for (size_t i = 0; i < order.size(); ++i)
     if (order[i] == pass) return static_cast<int>(i);
   return static_cast<int>(order.size());

@@ -128,51 +128,18 @@ PassWork voxel_mips(const WorkParams& p) {
   return w;
 }
 
-// ---- light (kernels/light.cl, common/cone_trace.h): upper bound -------------------------------
-// Every pixel covered (the camera sits inside the box: true for the default views), every cone
-// takes all RP_CONE_MAX_STEPS samples (real cones stop at opacity 0.95 or the box's faces).
-// Per pixel: albedo, normal_depth, position, emission (4 x 16 B), one shadow tap (4 B), hdr
-// written (16 B); ~120 flops for the direct term, shadow projection and the cone basis.
-// Per cone step k the fractional level is L = 0.6575 k (RP_CONE_LEVEL_STEP), top = levels - 2:
-//   L = 0:        isotropic trilinear, 8 taps, ~104 flops (footprint 20 + 7 float4 mixes 84)
-//   0 < L < 1:    isotropic + directional level 1 (3 volumes x 8 taps) + mix = 32 taps
-//   floor(L) >= top: one directional level, 24 taps
-//   else:         two directional levels + mix, 48 taps
-// A directional sample: footprint and apex rows ~35 flops + 8 taps x 3 volumes weighted
-// (20 flops per tap) + trilinear mix 84 = ~280. Each tap is a float4 (16 B) gather.
-// Per step: position, box test, half-voxel opacity correction (sqrt, divide), front-to-back
-// accumulation: ~30 flops. 6 cones per pixel.
-constexpr int kConeSteps = 16;  // RP_CONE_MAX_STEPS
-constexpr double kConeLevelStep = 0.657503063;
-constexpr double kIsoFlops = 104, kDirFlops = 280, kMixFlops = 12, kStepFlops = 30;
-
-PassWork cone_upper_bound(uint32_t resolution) {
-  uint32_t levels = 0;
-  while ((resolution >> levels) > 0) ++levels;  // log2(R) + 1
-  const uint32_t top = levels >= 2 ? levels - 2 : 0;
-  PassWork cone;
-  for (int k = 0; k < kConeSteps; ++k) {
-    const double level = k * kConeLevelStep;
-    double taps = 0, flops = kStepFlops;
-    if (level <= 0.0 || top == 0) {
-      taps = 8, flops += kIsoFlops;
-    } else if (level < 1.0) {
-      taps = 8 + 24, flops += kIsoFlops + kDirFlops + kMixFlops;
-    } else if (uint32_t(level) >= top) {
-      taps = 24, flops += kDirFlops;
-    } else {
-      taps = 48, flops += 2 * kDirFlops + kMixFlops;
-    }
-    cone.bytes += taps * kFloat4;
-    cone.flops += flops;
-  }
-  return cone;
-}
-
+// ---- light (kernels/light.cl) --------------------------------------------------------------------
+// Fast mode (light_compose): per pixel position, normal_depth, albedo, emission (4 x 16 B), one
+// shadow tap (4 B), hdr written (16 B), and the joint-bilateral upsample's 2 x 2 low-resolution
+// taps of geometry (4 floats) and accumulated irradiance (3 floats), counted per pixel (an upper
+// bound: neighbouring pixels share them in cache). ~150 flops: direct term and shadow projection
+// (~80), four geometry weights (~50), weighted sum and compose (~20).
+// Reference mode (light_shade, 16 cones per pixel with data-dependent step counts) and the fast
+// mode's indirect_trace / indirect_filter are not modelled (their bytes and flops show as 0).
 PassWork light(const WorkParams& p) {
+  if (p.reference_quality) return {};
   const double n = double(p.width) * p.height;
-  const PassWork cone = cone_upper_bound(p.voxel_resolution);
-  return {n * (4 * kFloat4 + kFloat + kFloat4 + 6 * cone.bytes), n * (120 + 6 * cone.flops)};
+  return {n * (4 * kFloat4 + kFloat + kFloat4 + 4 * 7 * kFloat), n * 150};
 }
 
 // ---- taa (kernels/taa.cl): exact per pixel -----------------------------------------------------

@@ -28,6 +28,7 @@ struct WorkParams {
   uint32_t instance_triangles; // triangles drawn per frame (GpuScene::instance_triangle_count)
   uint32_t spheres;            // analytic spheres (GpuScene::sphere_count)
   bool taa, bloom, motion_blur;  // post-processing passes enabled (else their work is 0)
+  bool reference_quality = false;  // --quality reference: "light" is the per-pixel cone tracer
 };
 
 struct PassWork {

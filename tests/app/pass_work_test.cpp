@@ -64,14 +64,16 @@ TEST(PassWork, LightScalesLinearlyWithPixels) {
   EXPECT_DOUBLE_EQ(pass_work("light", p).bytes, b.bytes);
 }
 
-TEST(PassWork, LightConeTapsFollowTheLevelSchedule) {
-  // R = 64: levels 7, top 5; step k samples level 0.6575 k: k = 0 isotropic (8 taps), k = 1
-  // isotropic + level 1 (32), k = 2..7 two levels (48), k = 8..15 the top level (24):
-  // 8 + 32 + 6 * 48 + 8 * 24 = 520 float4 taps per cone, 6 cones; plus 84 B per pixel.
+TEST(PassWork, LightComposeCountsGBufferShadowUpsampleAndOutput) {
+  // Fast mode, one pixel: 4 GBuffer float4 planes (64 B) + shadow tap (4) + hdr (16) + 2x2
+  // low-resolution taps of 7 floats (112) = 196 B; the reference mode is not modelled.
   WorkParams p = base();
   p.width = 1;
   p.height = 1;
-  EXPECT_EQ(pass_work("light", p).bytes, 84.0 + 6 * 520 * 16);
+  EXPECT_EQ(pass_work("light", p).bytes, 196.0);
+  p.reference_quality = true;
+  EXPECT_EQ(pass_work("light", p).bytes, 0.0);
+  EXPECT_EQ(pass_work("indirect_trace", p).bytes, 0.0);
 }
 
 TEST(PassWork, VoxelizeScalesWithDrawnTriangles) {
