@@ -34,6 +34,9 @@
 #ifndef RP_DEPTH_ONLY
 #define RP_DEPTH_ONLY 0
 #endif
+#ifndef RP_TILE_LAYOUT
+#define RP_TILE_LAYOUT 0
+#endif
 
 /* Pixels per work-item along x in the raster kernel (RP_SPAN, common/span.h): 1 for GPUs; 8 or
  * 16 on CPUs, where the float8/float16 code maps onto SIMD registers. Results are bit-identical
@@ -689,14 +692,18 @@ inline bool rp_tile_range(const RasterView* view, __global const uint* tile_star
   return true;
 }
 
-#if RP_SPAN == RP_TILE
-/* CPU layout (RP_SPAN = RP_TILE): one work-item per tile, looping over the tile's rows, each row
- * one span. No local memory and no barriers: PoCL runs the work-items of a group one after the
- * other, and a barrier would make it save and restore every work-item's state around it. The
- * tile's items are set up RP_TILE_BATCH at a time into private memory; the rows' best surfaces
- * are kept in private memory between batches. Same arithmetic per pixel as the other layout,
- * so the same result bit for bit. */
+#if RP_TILE_LAYOUT
+/* CPU layout (-DRP_TILE_LAYOUT=1, RP_SPAN 8 or 16): one work-item per tile, looping over the
+ * tile's rows, each row RP_TILE / RP_SPAN spans. No local memory and no barriers: PoCL runs the
+ * work-items of a group one after the other, and a barrier would make it save and restore
+ * every work-item's state around it. The tile's items are set up RP_TILE_BATCH at a time into
+ * private memory; the spans' best surfaces are kept in private memory between batches. Same
+ * arithmetic per pixel as the other layout, so the same result bit for bit. */
+#if RP_SPAN < 8 || RP_TILE % RP_SPAN != 0
+#error "RP_TILE_LAYOUT needs RP_SPAN 8 or 16"
+#endif
 #define RP_TILE_BATCH 32
+#define RP_ROW_SPANS (RP_TILE / RP_SPAN)
 
 __kernel void visibility_raster(const RasterView view, __global const RasterTriangle* tris,
                                 __global const int4* bounds_in, __global const Sphere* spheres,
@@ -708,10 +715,9 @@ __kernel void visibility_raster(const RasterView view, __global const RasterTria
   if (tile >= tile_count) return;
   const uint tile_y = tile / view.tiles_x, tile_x = tile - tile_y * view.tiles_x;
   const int ox = (int)tile_x * RP_TILE, oy = (int)tile_y * RP_TILE;
-  const rp_spanf dx = 0.5f + RP_LANES;
 
-  RasterBest rows[RP_TILE];
-  for (int ly = 0; ly < RP_TILE; ++ly) rows[ly] = rp_best_init();
+  RasterBest spans[RP_TILE * RP_ROW_SPANS]; /* row ly, span sx at [ly * RP_ROW_SPANS + sx] */
+  for (int k = 0; k < RP_TILE * RP_ROW_SPANS; ++k) spans[k] = rp_best_init();
   RasterItem items[RP_TILE_BATCH];
 
   for (int kind = 0; kind < 2; ++kind) { /* triangles, then spheres */
@@ -720,33 +726,40 @@ __kernel void visibility_raster(const RasterView view, __global const RasterTria
                                           tile, kind != 0, &begin, &end);
     for (uint base = begin; base < end; base += RP_TILE_BATCH) {
       const uint n = min((uint)RP_TILE_BATCH, end - base);
-      int first_row = RP_TILE, last_row = -1;
+      int4 reach = (int4)(RP_TILE, RP_TILE, -1, -1); /* union of the batch's boxes */
       for (uint k = 0; k < n; ++k) {
         const uint item = every_item ? base + k : tile_list[base + k];
         items[k] = kind ? rp_item_sphere(&view, spheres, bounds_in, item, ox, oy)
                         : rp_item_triangle(tris, bounds_in, item, ox, oy);
-        first_row = min(first_row, items[k].box.y);
-        last_row = max(last_row, items[k].box.w);
+        reach = (int4)(min(reach.xy, items[k].box.xy), max(reach.zw, items[k].box.zw));
       }
-      first_row = max(first_row, 0);
-      last_row = min(last_row, RP_TILE - 1);
+      const int first_row = max(reach.y, 0), last_row = min(reach.w, RP_TILE - 1);
+      const int first_span = max(reach.x, 0) / RP_SPAN;
+      const int last_span = min(reach.z, RP_TILE - 1) / RP_SPAN;
       for (int ly = first_row; ly <= last_row; ++ly) {
-        RasterBest best = rows[ly];
-        if (kind == 0) {
-          const float dy = (float)ly + 0.5f;
-          for (uint k = 0; k < n; ++k)
-            if (!RP_ITEM_MISSES(items[k].box, 0, ly)) rp_best_triangle(&best, &items[k], dx, dy);
-        } else {
-          const RasterRays rays = rp_row_rays(&view, ox, oy + ly);
-          for (uint k = 0; k < n; ++k)
-            if (!RP_ITEM_MISSES(items[k].box, 0, ly)) rp_best_sphere(&best, &items[k], &rays);
+        for (int sx = first_span; sx <= last_span; ++sx) {
+          const int lx0 = sx * RP_SPAN;
+          RasterBest best = spans[ly * RP_ROW_SPANS + sx];
+          if (kind == 0) {
+            const rp_spanf dx = ((float)lx0 + 0.5f) + RP_LANES;
+            const float dy = (float)ly + 0.5f;
+            for (uint k = 0; k < n; ++k)
+              if (!RP_ITEM_MISSES(items[k].box, lx0, ly))
+                rp_best_triangle(&best, &items[k], dx, dy);
+          } else {
+            const RasterRays rays = rp_row_rays(&view, ox + lx0, oy + ly);
+            for (uint k = 0; k < n; ++k)
+              if (!RP_ITEM_MISSES(items[k].box, lx0, ly)) rp_best_sphere(&best, &items[k], &rays);
+          }
+          spans[ly * RP_ROW_SPANS + sx] = best;
         }
-        rows[ly] = best;
       }
     }
   }
   for (int ly = 0; ly < RP_TILE; ++ly)
-    rp_best_store(&view, &rows[ly], ox, oy + ly, depth_out, ids_out, bary_out);
+    for (int sx = 0; sx < RP_ROW_SPANS; ++sx)
+      rp_best_store(&view, &spans[ly * RP_ROW_SPANS + sx], ox + sx * RP_SPAN, oy + ly,
+                    depth_out, ids_out, bary_out);
 }
 
 #else

@@ -34,8 +34,10 @@ constexpr size_t kTilesPerGroup = 4;
 constexpr size_t kRasterEdgesBytes = 64;  // RasterEdges (kernels/common/raster.h): 4 x 16 bytes  // work-group of the one-tile-per-work-item raster layout
 
 // Pixels per raster work-item: SIMD-wide spans on CPUs (PoCL vectorizes float16 code, not the
-// loop over a tile's triangles), one pixel per work-item on GPUs. ROLYPOLY_RASTER_SPAN
-// (1, 4, 8 or 16) overrides the choice (tests use it to compare the variants).
+// loop over a tile's triangles; 16 measured faster than 8 on the 2-core AVX-512 EPYC), one
+// pixel per work-item on GPUs. ROLYPOLY_RASTER_SPAN (1, 4, 8 or 16) overrides the choice
+// (tests use it to compare the variants). CPUs with spans of 8 or 16 use the one-tile-per-
+// work-item raster layout (kernels/visibility.cl RP_TILE_LAYOUT).
 int choose_span(const rp::cl::Context& context) {
   if (const char* env = std::getenv("ROLYPOLY_RASTER_SPAN"); env && *env) {
     std::string s = env;
@@ -88,6 +90,7 @@ struct ViewState {
 struct VisibilityPass::Impl {
   const rp::cl::Context* context = nullptr;
   int span = 1;
+  bool tile_layout = false;  // raster: one work-item per tile (CPUs), else a group per tile
   ViewState camera, shadow;
   // Draw items uint2 (instance, global triangle index), instance-major so the item index
   // orders like (instance id, primitive id). Rebuilt only when the instance set changes.
@@ -111,6 +114,7 @@ struct VisibilityPass::Impl {
     v.pass = pass;
     v.depth_only = depth_only;
     std::string options = "-DRP_SPAN=" + std::to_string(span);
+    if (tile_layout) options += " -DRP_TILE_LAYOUT=1";
     if (depth_only) options += " -DRP_DEPTH_ONLY=1";
     v.clear = programs.kernel("visibility.cl", "visibility_clear", options);
     v.setup = programs.kernel("visibility.cl", "visibility_setup", options);
@@ -267,7 +271,7 @@ struct VisibilityPass::Impl {
     v.raster.setArg(a++, depth_out);
     v.raster.setArg(a++, ids_out);
     v.raster.setArg(a++, bary_out);
-    if (static_cast<size_t>(span) == kTile) {  // CPU layout: one work-item per tile
+    if (tile_layout) {  // CPU layout: one work-item per tile
       profiler.enqueue(v.pass, v.raster,
                        ::cl::NDRange(rp::cl::round_up(tiles, kTilesPerGroup)),
                        ::cl::NDRange(kTilesPerGroup));
@@ -289,6 +293,7 @@ VisibilityPass::VisibilityPass(const rp::cl::Context& context, rp::cl::ProgramCa
     : impl_(std::make_shared<Impl>()) {
   impl_->context = &context;
   impl_->span = choose_span(context);
+  impl_->tile_layout = context.info.is_cpu && impl_->span >= 8;
   impl_->init_view(impl_->camera, programs, "visibility", false);
   impl_->init_view(impl_->shadow, programs, "shadow_map", true);
 }
