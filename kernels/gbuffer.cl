@@ -11,8 +11,9 @@
  *   velocity float2 pixels, this frame minus previous, unjittered, +y down; 0 for background
  *
  * gbuffer_resolve: one work-item per span of RP_SPAN pixels of a row (common/span.h: 8 on
- * CPUs, 1 on GPUs), a 1D range over the spans in row-major order. Neighbouring pixels mostly show the same primitive (a Cornell box wall is
- * two triangles), so a span is resolved per distinct (instance, primitive) in it: the
+ * CPUs, 1 on GPUs), a 1D range over the spans in row-major order. Neighbouring pixels mostly
+ * show the same primitive (a Cornell box wall quad is 45 pixels wide at 720x720), so a span is
+ * resolved per distinct (instance, primitive) in it: the
  * primitive's data (instance matrices, vertices, material; or the sphere) is loaded once as
  * scalars and evaluated for all lanes with vector arithmetic, the lanes showing it keep the
  * result. A span showing one primitive costs one evaluation for RP_SPAN pixels. Velocity and
@@ -169,7 +170,8 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
         const rp_mat4 inv = frame->inv_view_proj;
         const rp_spanf ndc_x = ((float)x0 + 0.5f + RP_LANES) / (float)width * 2.0f - 1.0f;
         const float ndc_y = 1.0f - ((float)y + 0.5f) / (float)height * 2.0f;
-#define GB_UNPROJECT(row, zn) (inv.c[0].row * ndc_x + inv.c[1].row * ndc_y + inv.c[2].row * (zn) + inv.c[3].row)
+#define GB_UNPROJECT(row, zn) \
+  (inv.c[0].row * ndc_x + inv.c[1].row * ndc_y + inv.c[2].row * (zn) + inv.c[3].row)
         const rp_spanf near_w = GB_UNPROJECT(w, -1.0f), far_w = GB_UNPROJECT(w, 1.0f);
         ox = GB_UNPROJECT(x, -1.0f) / near_w;
         oy = GB_UNPROJECT(y, -1.0f) / near_w;

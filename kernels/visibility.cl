@@ -455,7 +455,8 @@ void visibility_count(const RasterView view, __global const int4* bounds_in,
     RP_FOR_ITEM_TILES(view, bounds, true, edges, { atomic_inc(&tile_counts[tile]); });
   } else {
     const uint tile_count = view.tiles_x * view.tiles_y;
-    RP_FOR_ITEM_TILES(view, bounds, false, rp_raster_no_edges(), { atomic_inc(&tile_counts[tile_count + tile]); });
+    RP_FOR_ITEM_TILES(view, bounds, false, rp_raster_no_edges(),
+                      { atomic_inc(&tile_counts[tile_count + tile]); });
   }
 }
 

@@ -142,7 +142,10 @@ inline float3 vx_direct(__global const FrameConstants* frame, __global const flo
 }
 
 /* ---- span arithmetic: one lane per triangle (voxelize_triangles) or per voxel column
- * (voxelize_large); the same IEEE operations in the same order as the scalar formulas ---- */
+ * (voxelize_large); the same IEEE operations in the same order as the scalar formulas.
+ * Functions that also read memory take VxVec arguments by pointer: inlined with by-value
+ * struct arguments they carry llvm.experimental.noalias.scope.decl, which oclgrind 21.10
+ * cannot run. ---- */
 
 typedef struct {
   rp_spanf x, y, z;
@@ -159,8 +162,12 @@ inline VxVec vxv_add(VxVec a, VxVec b) { return vxv(a.x + b.x, a.y + b.y, a.z + 
 inline VxVec vxv_sub(VxVec a, VxVec b) { return vxv(a.x - b.x, a.y - b.y, a.z - b.z); }
 inline VxVec vxv_scale(VxVec a, rp_spanf s) { return vxv(a.x * s, a.y * s, a.z * s); }
 inline VxVec vxv_mul(VxVec a, VxVec b) { return vxv(a.x * b.x, a.y * b.y, a.z * b.z); }
-inline VxVec vxv_fmin(VxVec a, VxVec b) { return vxv(fmin(a.x, b.x), fmin(a.y, b.y), fmin(a.z, b.z)); }
-inline VxVec vxv_fmax(VxVec a, VxVec b) { return vxv(fmax(a.x, b.x), fmax(a.y, b.y), fmax(a.z, b.z)); }
+inline VxVec vxv_fmin(VxVec a, VxVec b) {
+  return vxv(fmin(a.x, b.x), fmin(a.y, b.y), fmin(a.z, b.z));
+}
+inline VxVec vxv_fmax(VxVec a, VxVec b) {
+  return vxv(fmax(a.x, b.x), fmax(a.y, b.y), fmax(a.z, b.z));
+}
 inline VxVec vxv_fabs(VxVec a) { return vxv(fabs(a.x), fabs(a.y), fabs(a.z)); }
 inline VxVec vxv_select(VxVec a, VxVec b, rp_spani m) {
   return vxv(select(a.x, b.x, m), select(a.y, b.y, m), select(a.z, b.z, m));
@@ -249,7 +256,8 @@ inline void vx_triangle_axes_span(VxVec A, VxVec B, VxVec C, VxAxes* t) {
 
 /* Lanes where no axis separates the triangle from the box of centre c (relative to the
  * origin, half size 0.5). The caller has restricted the voxel to the triangle's range. */
-inline rp_spani vx_triangle_box_span(const VxAxes* t, VxVec c) {
+inline rp_spani vx_triangle_box_span(const VxAxes* t, const VxVec* cp) {
+  const VxVec c = *cp;
   /* Written as "every axis overlaps" (<=, >=) rather than "not (some axis separates)": the
    * two agree for finite values, and oclgrind 21.10 mis-evaluates negated vector masks. */
   rp_spani overlap = fabs(t->n_dist - vxv_dot(t->n, c)) <= t->n_radius;
@@ -291,19 +299,22 @@ inline VxLight vx_light(__global const FrameConstants* frame) {
 }
 
 /* Row r of M * (p, 1): ((c0 x + c1 y) + c2 z) + c3, as rp_mat4_mul_point. */
-#define VX_ROW_POINT(m, row, p) ((((m).c[0].row * (p).x + (m).c[1].row * (p).y) + (m).c[2].row * (p).z) + (m).c[3].row)
+#define VX_ROW_POINT(m, row, p) \
+  ((((m).c[0].row * (p).x + (m).c[1].row * (p).y) + (m).c[2].row * (p).z) + (m).c[3].row)
 
 /* Direct light (rgb, before albedo) at p with unit normal n for lanes in `active` (< n_lanes),
  * 0 elsewhere: rp_direct_unshadowed, rp_shadow_lookup and one rp_shadow_tap. */
-inline VxVec vx_direct_span(const VxLight* L, __global const float* shadow, VxVec p, VxVec n,
-                            rp_spani active, int n_lanes) {
+inline VxVec vx_direct_span(const VxLight* L, __global const float* shadow, const VxVec* pp,
+                            const VxVec* np, rp_spani active, int n_lanes) {
+  const VxVec p = *pp, n = *np;
   const VxVec to_light = vxv(L->light_pos.x - p.x, L->light_pos.y - p.y, L->light_pos.z - p.z);
   const rp_spanf d2 = vxv_dot(to_light, to_light);
   const rp_spanf inv_d = rsqrt(d2);
   const VxVec l = vxv_scale(to_light, inv_d);
   const rp_spanf c = vxv_dot(n, l);
   const rp_spanf s = clamp(l.y, 0.0f, 1.0f);
-  const rp_spanf falloff = mad(s, mad(s, (rp_spanf)(0.204f), (rp_spanf)(0.446f)), (rp_spanf)(0.35f));
+  const rp_spanf falloff =
+      mad(s, mad(s, (rp_spanf)(0.204f), (rp_spanf)(0.446f)), (rp_spanf)(0.35f));
   const rp_spanf scale = select((rp_spanf)(0.0f), c * (inv_d * inv_d) * falloff, c > 0.0f);
   const rp_spani lit = active & (scale > 0.0f);
 
@@ -326,8 +337,10 @@ inline VxVec vx_direct_span(const VxLight* L, __global const float* shadow, VxVe
    * clamp with span bounds, not scalar ones: oclgrind 21.10 computes garbage for the
    * (vector, scalar, scalar) integer forms of clamp, min and max. */
   const rp_spani last = (rp_spani)(L->size - 1);
-  const rp_spani tx = clamp(rp_span_convert_int(floor(clamp(sx, -1.0f, L->size_f))), (rp_spani)(0), last);
-  const rp_spani ty = clamp(rp_span_convert_int(floor(clamp(sy, -1.0f, L->size_f))), (rp_spani)(0), last);
+  const rp_spani tx =
+      clamp(rp_span_convert_int(floor(clamp(sx, -1.0f, L->size_f))), (rp_spani)(0), last);
+  const rp_spani ty =
+      clamp(rp_span_convert_int(floor(clamp(sy, -1.0f, L->size_f))), (rp_spani)(0), last);
   int index[RP_SPAN], tap[RP_SPAN];
   float depth[RP_SPAN];
   RP_SPAN_TO_ARRAY(ty * L->size + tx, index);
@@ -335,8 +348,9 @@ inline VxVec vx_direct_span(const VxLight* L, __global const float* shadow, VxVe
   for (int i = 0; i < RP_SPAN; ++i) depth[i] = (i < n_lanes && tap[i]) ? shadow[index[i]] : 1.0f;
   const rp_spanf d = RP_SPAN_FROM_ARRAY(depth);
   const rp_spanf z_ndc = d * 2.0f - 1.0f;
-  const rp_spanf lin = select(2.0f * L->near * L->far / ((L->far + L->near) - z_ndc * (L->far - L->near)),
-                              (rp_spanf)(3.0e38f), d >= 1.0f);
+  const rp_spanf lin =
+      select(2.0f * L->near * L->far / ((L->far + L->near) - z_ndc * (L->far - L->near)),
+             (rp_spanf)(3.0e38f), d >= 1.0f);
   const rp_spanf unshadowed = select((rp_spanf)(1.0f),
                                      select((rp_spanf)(0.0f), (rp_spanf)(1.0f), receiver <= lin),
                                      inside);
@@ -553,9 +567,10 @@ inline void vx_setup(const VxLanes* L, uint resolution, VxSetup* s) {
 
 /* Outgoing radiance of surface points p (unit normal nw, barycentrics b1, b2 for the texture
  * coordinates) of the lanes in `active`: albedo * texture(uv) * direct light + emission. */
-inline VxVec vx_shade_span(const VxSetup* s, const VxLight* L, __global const float* shadow,
-                           __global const float4* linear_texels, VxVec p, rp_spanf b0,
-                           rp_spanf b1, rp_spanf b2, rp_spani active, int n_lanes) {
+/* Albedo (material albedo times the texture at barycentrics (b0, b1, b2)) of the lanes in
+ * `active`; the material albedo elsewhere. */
+inline VxVec vx_albedo_span(const VxSetup* s, __global const float4* linear_texels, rp_spanf b0,
+                            rp_spanf b1, rp_spanf b2, rp_spani active, int n_lanes) {
   rp_spanf r = s->albedo.x, g = s->albedo.y, b = s->albedo.z;
   const rp_spani textured = s->textured & active;
   if (vx_lane_any(textured, n_lanes)) {
@@ -564,14 +579,32 @@ inline VxVec vx_shade_span(const VxSetup* s, const VxLight* L, __global const fl
     rp_span_texture_linear(linear_texels, textured, s->tex_w, s->tex_h, s->tex_offset, u, v,
                            n_lanes, &r, &g, &b);
   }
-  const VxVec light = vx_direct_span(L, shadow, p, s->nw, active, n_lanes);
-  return vxv(r * light.x + s->emission.x, g * light.y + s->emission.y,
-             b * light.z + s->emission.z);
+  return vxv(r, g, b);
+}
+
+/* Outgoing radiance albedo * direct light + emission at points p with unit normals n. */
+inline VxVec vx_radiance_span(const VxLight* L, __global const float* shadow,
+                              const VxVec* albedo, const VxVec* p, const VxVec* n,
+                              const VxVec* emission, rp_spani active, int n_lanes) {
+  const VxVec light = vx_direct_span(L, shadow, p, n, active, n_lanes);
+  return vxv(albedo->x * light.x + emission->x, albedo->y * light.y + emission->y,
+             albedo->z * light.z + emission->z);
+}
+
+/* Outgoing radiance of surface points p (barycentrics b0, b1, b2 for the texture coordinates)
+ * of the lanes in `active`: albedo * texture(uv) * direct light + emission. */
+inline VxVec vx_shade_span(const VxSetup* s, const VxLight* L, __global const float* shadow,
+                           __global const float4* linear_texels, const VxVec* p, rp_spanf b0,
+                           rp_spanf b1, rp_spanf b2, rp_spani active, int n_lanes) {
+  const VxVec albedo = vx_albedo_span(s, linear_texels, b0, b1, b2, active, n_lanes);
+  return vx_radiance_span(L, shadow, &albedo, p, &s->nw, &s->emission, active, n_lanes);
 }
 
 /* Adds (radiance, opacity 1) to voxel `voxel` of every lane in `hit`. */
 inline void vx_accumulate_span(volatile __global uint* accum, volatile __global uint* overflow,
-                               rp_spanu voxel, VxVec radiance, rp_spani hit, int n_lanes) {
+                               rp_spanu voxel, const VxVec* radiance_p, rp_spani hit,
+                               int n_lanes) {
+  const VxVec radiance = *radiance_p;
   int lh[RP_SPAN];
   RP_SPAN_TO_ARRAY(hit, lh);
   uint lv[RP_SPAN], lr[RP_SPAN], lg[RP_SPAN], lb[RP_SPAN];
@@ -609,13 +642,11 @@ inline void vx_column(const VxSetup* s, rp_spani iu, rp_spani iv, int R, rp_span
   *last = min(c1, s->rd1);
 }
 
-/* Radiance of the voxels (x, y, z) of the lanes in `hit` for triangles shaded per voxel: the
- * voxel centre projected onto the plane, barycentrics clamped into the triangle (negative ones
- * set to 0, renormalised; the centroid for a sliver whose sum is not usable). */
-inline VxVec vx_voxel_radiance(const VxSetup* s, const VxLight* light,
-                               __global const float* shadow,
-                               __global const float4* linear_texels, uint resolution,
-                               rp_spani x, rp_spani y, rp_spani z, rp_spani hit, int n_lanes) {
+/* Shading point of voxels (x, y, z) for triangles shaded per voxel: the voxel centre projected
+ * onto the plane, barycentrics clamped into the triangle (negative ones set to 0,
+ * renormalised; the centroid for a sliver whose sum is not usable). */
+inline VxVec vx_voxel_point(const VxSetup* s, uint resolution, rp_spani x, rp_spani y,
+                            rp_spani z, rp_spanf* b0_out, rp_spanf* b1_out, rp_spanf* b2_out) {
   const float to_world = 2.0f / (float)resolution;
   const VxVec centre = vxv((rp_span_convert_float(x) + 0.5f) * to_world - 1.0f,
                            (rp_span_convert_float(y) + 0.5f) * to_world - 1.0f,
@@ -632,8 +663,74 @@ inline VxVec vx_voxel_radiance(const VxSetup* s, const VxLight* light,
   b0 = select((rp_spanf)(third), b0 / b_sum, usable);
   b1 = select((rp_spanf)(third), b1 / b_sum, usable);
   b2 = select((rp_spanf)(third), b2 / b_sum, usable);
-  const VxVec p = vxv_add(vxv_add(s->w0, vxv_scale(s->e01, b1)), vxv_scale(s->e02, b2));
-  return vx_shade_span(s, light, shadow, linear_texels, p, b0, b1, b2, hit, n_lanes);
+  *b0_out = b0;
+  *b1_out = b1;
+  *b2_out = b2;
+  return vxv_add(vxv_add(s->w0, vxv_scale(s->e01, b1)), vxv_scale(s->e02, b2));
+}
+
+/* Radiance of the voxels (x, y, z) of the lanes in `hit` for triangles shaded per voxel. */
+inline VxVec vx_voxel_radiance(const VxSetup* s, const VxLight* light,
+                               __global const float* shadow,
+                               __global const float4* linear_texels, uint resolution,
+                               rp_spani x, rp_spani y, rp_spani z, rp_spani hit, int n_lanes) {
+  rp_spanf b0, b1, b2;
+  const VxVec p = vx_voxel_point(s, resolution, x, y, z, &b0, &b1, &b2);
+  return vx_shade_span(s, light, shadow, linear_texels, &p, b0, b1, b2, hit, n_lanes);
+}
+
+/* ---- the static surface cache (voxelize_cached; host side in src/passes/voxelize.cpp) ----
+ * Per-voxel samples of the large triangles of instances that have not moved: everything but
+ * the light (point, normal, albedo * texture, emission), so a frame only adds the direct light
+ * and accumulates. Built by voxelize_large in the VX_COUNT and VX_RECORD modes; the samples are
+ * computed by the same code as in VX_ACCUMULATE, and sums are order independent, so the volume
+ * is bit-identical with or without the cache. One sample is 4 float4:
+ *   (p.xyz, voxel index as bits), (unit normal, 0), (albedo * texture, 0), (emission, 0). */
+#define VX_ACCUMULATE 0u /* voxelize_large: shade and accumulate non-cached instances */
+#define VX_COUNT 1u      /* count the samples of cached instances */
+#define VX_RECORD 2u     /* write them (cache_count restarts at 0) */
+
+inline void vx_record_samples(const VxSetup* s, __global const float4* linear_texels,
+                              uint resolution, rp_spani x, rp_spani y, rp_spani z,
+                              rp_spanu voxel, rp_spani hit, uint record,
+                              volatile __global uint* cache_count, __global float4* cache,
+                              uint cache_capacity) {
+  int lh[RP_SPAN];
+  RP_SPAN_TO_ARRAY(hit, lh);
+  if (record == VX_COUNT) {
+    uint hits = 0;
+    for (int i = 0; i < RP_SPAN; ++i) hits += lh[i] != 0;
+    atomic_add(cache_count, hits);
+    return;
+  }
+  rp_spanf b0, b1, b2;
+  const VxVec p = vx_voxel_point(s, resolution, x, y, z, &b0, &b1, &b2);
+  const VxVec albedo = vx_albedo_span(s, linear_texels, b0, b1, b2, hit, RP_SPAN);
+  float v[12][RP_SPAN];
+  uint lv[RP_SPAN];
+  RP_SPAN_TO_ARRAY(p.x, v[0]);
+  RP_SPAN_TO_ARRAY(p.y, v[1]);
+  RP_SPAN_TO_ARRAY(p.z, v[2]);
+  RP_SPAN_TO_ARRAY(s->nw.x, v[3]);
+  RP_SPAN_TO_ARRAY(s->nw.y, v[4]);
+  RP_SPAN_TO_ARRAY(s->nw.z, v[5]);
+  RP_SPAN_TO_ARRAY(albedo.x, v[6]);
+  RP_SPAN_TO_ARRAY(albedo.y, v[7]);
+  RP_SPAN_TO_ARRAY(albedo.z, v[8]);
+  RP_SPAN_TO_ARRAY(s->emission.x, v[9]);
+  RP_SPAN_TO_ARRAY(s->emission.y, v[10]);
+  RP_SPAN_TO_ARRAY(s->emission.z, v[11]);
+  RP_SPAN_TO_ARRAY(voxel, lv);
+  for (int i = 0; i < RP_SPAN; ++i) {
+    if (!lh[i]) continue;
+    const uint slot = atomic_inc(cache_count);
+    if (slot >= cache_capacity) continue; /* the host sized it from VX_COUNT: cannot happen */
+    __global float4* q = cache + 4u * slot;
+    q[0] = (float4)(v[0][i], v[1][i], v[2][i], as_float(lv[i]));
+    q[1] = (float4)(v[3][i], v[4][i], v[5][i], 0.0f);
+    q[2] = (float4)(v[6][i], v[7][i], v[8][i], 0.0f);
+    q[3] = (float4)(v[9][i], v[10][i], v[11][i], 0.0f);
+  }
 }
 
 /* ---- kernels ---- */
@@ -710,8 +807,8 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
   const VxLight light = vx_light(frame);
   const float third = 1.0f / 3.0f;
   const VxVec centroid = vxv_add(vxv_add(s.w0, vxv_scale(s.e01, third)), vxv_scale(s.e02, third));
-  const VxVec radiance = vx_shade_span(&s, &light, shadow, linear_texels, centroid, third, third,
-                                       third, small, n);
+  const VxVec radiance = vx_shade_span(&s, &light, shadow, linear_texels, &centroid, third,
+                                       third, third, small, n);
 
   /* Every column (iu, iv) of the lanes' candidate rectangles, one or two voxels along d each. */
   const int max_du = vx_lane_max(s.ru1 - s.ru0, active, n, 0);
@@ -730,7 +827,7 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
         const VxVec centre = vxv(rp_span_convert_float(x - s.origin[0]) + 0.5f,
                                  rp_span_convert_float(y - s.origin[1]) + 0.5f,
                                  rp_span_convert_float(z - s.origin[2]) + 0.5f);
-        const rp_spani hit = col & (id <= d_last) & vx_triangle_box_span(&s.axes, centre);
+        const rp_spani hit = col & (id <= d_last) & vx_triangle_box_span(&s.axes, &centre);
         const rp_spanu voxel = rp_span_convert_uint((z * R + y) * R + x);
         VxVec value = radiance;
         if (any_per_voxel && vx_lane_any(hit & per_voxel, n))
@@ -738,7 +835,7 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
                              vx_voxel_radiance(&s, &light, shadow, linear_texels, resolution, x,
                                                y, z, hit & per_voxel, n),
                              per_voxel);
-        vx_accumulate_span(accum, overflow, voxel, value, hit, n);
+        vx_accumulate_span(accum, overflow, voxel, &value, hit, n);
       }
     }
   }
@@ -757,11 +854,17 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
                               __global const float4* linear_texels,
                               __global const float* shadow, uint resolution,
                               volatile __global uint* accum, volatile __global uint* overflow,
-                              uint flat) {
+                              uint flat, __global const uint* cached_instances, uint record,
+                              volatile __global uint* cache_count, __global float4* cache,
+                              uint cache_capacity) {
   const int R = (int)resolution;
   uint hint_index = 0, hint_start = 0;
   const VxTriangle t = vx_fetch_triangle(instances, instance_count, vertices, triangles,
                                          materials, textures, flat, &hint_index, &hint_start);
+  /* A cached instance's samples are shaded by voxelize_cached; recording passes handle only
+   * cached instances. */
+  if (hint_index >= instance_count) return;
+  if ((cached_instances[hint_index] != 0u) != (record != VX_ACCUMULATE)) return;
   VxLanes lanes;
   for (int i = 0; i < RP_SPAN; ++i) vx_put_lane(&lanes, i, &t);
   VxSetup s;
@@ -798,13 +901,18 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
         const VxVec box = vxv(rp_span_convert_float(x - s.origin[0]) + 0.5f,
                               rp_span_convert_float(y - s.origin[1]) + 0.5f,
                               rp_span_convert_float(z - s.origin[2]) + 0.5f);
-        const rp_spani hit = col & (id <= d_last) & vx_triangle_box_span(&s.axes, box);
+        const rp_spani hit = col & (id <= d_last) & vx_triangle_box_span(&s.axes, &box);
         if (!vx_lane_any(hit, RP_SPAN)) continue;
 
-        const VxVec radiance = vx_voxel_radiance(&s, &light, shadow, linear_texels, resolution,
-                                                 x, y, z, hit, RP_SPAN);
         const rp_spanu voxel = rp_span_convert_uint((z * R + y) * R + x);
-        vx_accumulate_span(accum, overflow, voxel, radiance, hit, RP_SPAN);
+        if (record == VX_ACCUMULATE) {
+          const VxVec radiance = vx_voxel_radiance(&s, &light, shadow, linear_texels,
+                                                   resolution, x, y, z, hit, RP_SPAN);
+          vx_accumulate_span(accum, overflow, voxel, &radiance, hit, RP_SPAN);
+        } else {
+          vx_record_samples(&s, linear_texels, resolution, x, y, z, voxel, hit, record,
+                            cache_count, cache, cache_capacity);
+        }
       }
     }
   }
@@ -825,13 +933,55 @@ __kernel void voxelize_large(__global const FrameConstants* frame,
                              volatile __global uint* accum,
                              volatile __global uint* overflow,
                              __global const uint* large_count,
-                             __global const uint* large_list) {
+                             __global const uint* large_list,
+                             __global const uint* cached_instances, uint record,
+                             volatile __global uint* cache_count, __global float4* cache,
+                             uint cache_capacity) {
   /* A fixed number of work-items strides over the frame's list (its length is only known on
    * the device). */
   const uint count = large_count[0];
   for (uint entry = (uint)get_global_id(0); entry < count; entry += (uint)get_global_size(0))
     vx_large_triangle(frame, instances, instance_count, vertices, triangles, materials, textures,
-                      linear_texels, shadow, resolution, accum, overflow, large_list[entry]);
+                      linear_texels, shadow, resolution, accum, overflow, large_list[entry],
+                      cached_instances, record, cache_count, cache, cache_capacity);
+}
+
+/* The frame's light on the cached samples: RP_SPAN samples per work-item. */
+__kernel void voxelize_cached(__global const FrameConstants* frame, __global const float* shadow,
+                              __global const float4* cache, uint samples,
+                              volatile __global uint* accum, volatile __global uint* overflow) {
+  const uint first = (uint)get_global_id(0) * RP_SPAN;
+  if (first >= samples) return;
+  const int n = (int)min((uint)RP_SPAN, samples - first);
+  float v[12][RP_SPAN];
+  uint lv[RP_SPAN];
+  for (int i = 0; i < RP_SPAN; ++i) {
+    const uint k = first + (uint)(i < n ? i : 0);
+    const float4 q0 = cache[4u * k], q1 = cache[4u * k + 1u], q2 = cache[4u * k + 2u],
+                 q3 = cache[4u * k + 3u];
+    v[0][i] = q0.x;
+    v[1][i] = q0.y;
+    v[2][i] = q0.z;
+    lv[i] = as_uint(q0.w);
+    v[3][i] = q1.x;
+    v[4][i] = q1.y;
+    v[5][i] = q1.z;
+    v[6][i] = q2.x;
+    v[7][i] = q2.y;
+    v[8][i] = q2.z;
+    v[9][i] = q3.x;
+    v[10][i] = q3.y;
+    v[11][i] = q3.z;
+  }
+  const VxVec p = vxv(VX_SPAN(v[0]), VX_SPAN(v[1]), VX_SPAN(v[2]));
+  const VxVec nrm = vxv(VX_SPAN(v[3]), VX_SPAN(v[4]), VX_SPAN(v[5]));
+  const VxVec albedo = vxv(VX_SPAN(v[6]), VX_SPAN(v[7]), VX_SPAN(v[8]));
+  const VxVec emission = vxv(VX_SPAN(v[9]), VX_SPAN(v[10]), VX_SPAN(v[11]));
+  const rp_spani active = rp_span_convert_int(RP_LANES) < n;
+  const VxLight light = vx_light(frame);
+  const VxVec radiance =
+      vx_radiance_span(&light, shadow, &albedo, &p, &nrm, &emission, active, n);
+  vx_accumulate_span(accum, overflow, VX_SPAN(lv), &radiance, active, n);
 }
 
 __kernel void voxelize_spheres(__global const FrameConstants* frame,

@@ -1,7 +1,8 @@
 // Host side of the compute rasterizer (kernels/visibility.cl). Per view (camera, lamp):
-// clear -> setup (triangles, spheres) -> count -> scan -> bin -> raster, then an asynchronous read of the tile-list total
-// that the next frame of the view waits for (long finished by then) to grow the list if it
-// overflowed (the raster kernel stays correct on overflow, only slower). The view parameters
+// clear -> setup (triangles, spheres) -> count -> scan -> bin -> raster, then an asynchronous
+// read of the tile-list total that the next frame of the view waits for (long finished by
+// then) to grow the list if it overflowed (the raster kernel stays correct on overflow, only
+// slower). The view parameters
 // go to the kernels by value, so a view writes nothing to the device and never waits for it.
 // Device memory is sized by the triangle count, sphere count, view size and list total, and
 // only ever grows; host-side state lives in ViewState/Impl members: a steady frame allocates
@@ -30,8 +31,8 @@ constexpr size_t kTile = RP_RASTER_TILE;
 constexpr size_t kItemGroup = 64;  // RP_ITEM_GROUP in visibility.cl
 constexpr size_t kScanGroup = 128; // RP_SCAN_GROUP in visibility.cl
 constexpr size_t kSetupGroup = 16;  // RP_SETUP_GROUP in visibility.cl
-constexpr size_t kTilesPerGroup = 4;
-constexpr size_t kRasterEdgesBytes = 64;  // RasterEdges (kernels/common/raster.h): 4 x 16 bytes  // work-group of the one-tile-per-work-item raster layout
+constexpr size_t kTilesPerGroup = 4;  // work-group of the one-tile-per-work-item raster layout
+constexpr size_t kRasterEdgesBytes = 64;  // RasterEdges (kernels/common/raster.h): 4 x 16 bytes
 
 // Pixels per raster work-item: SIMD-wide spans on CPUs (PoCL vectorizes float16 code, not the
 // loop over a tile's triangles; 16 measured faster than 8 on the 2-core AVX-512 EPYC), one
@@ -220,7 +221,8 @@ struct VisibilityPass::Impl {
         v.setup.setArg(a++, v.tris);
         v.setup.setArg(a++, v.bounds);
         v.setup.setArg(a++, v.edges);
-        const size_t spans = (draw_count + static_cast<size_t>(span) - 1) / static_cast<size_t>(span);
+        const size_t lanes = static_cast<size_t>(span);
+        const size_t spans = (draw_count + lanes - 1) / lanes;
         profiler.enqueue(v.pass, v.setup, ::cl::NDRange(rp::cl::round_up(spans, kSetupGroup)),
                          ::cl::NDRange(kSetupGroup));
       }

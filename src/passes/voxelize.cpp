@@ -1,7 +1,9 @@
 #include "passes/voxelize.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 
 #include "cl/error.h"
@@ -31,6 +33,17 @@ int choose_span(const rp::cl::Context& context) {
   return context.info.is_cpu ? 16 : 1;
 }
 
+// voxelize_large's modes (VX_ACCUMULATE, VX_COUNT, VX_RECORD in voxelize.cl).
+constexpr cl_uint kAccumulate = 0, kCount = 1, kRecord = 2;
+constexpr size_t kSampleBytes = 4 * 4 * sizeof(float);  // one cache sample: 4 float4
+
+// The part of an instance voxelization depends on apart from the light.
+bool same_geometry(const gpu::Instance& a, const gpu::Instance& b) {
+  return std::memcmp(&a.model, &b.model, sizeof(a.model)) == 0 &&
+         a.first_triangle == b.first_triangle && a.triangle_count == b.triangle_count &&
+         a.voxelize == b.voxelize;
+}
+
 }  // namespace
 
 VoxelizePass::VoxelizePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
@@ -40,24 +53,134 @@ VoxelizePass::VoxelizePass(const rp::cl::Context& context, rp::cl::ProgramCache&
   clear_ = programs.kernel("voxelize.cl", "voxelize_clear", options);
   triangles_ = programs.kernel("voxelize.cl", "voxelize_triangles", options);
   large_ = programs.kernel("voxelize.cl", "voxelize_large", options);
+  cached_ = programs.kernel("voxelize.cl", "voxelize_cached", options);
   spheres_ = programs.kernel("voxelize.cl", "voxelize_spheres", options);
   resolve_ = programs.kernel("voxelize.cl", "voxelize_resolve", options);
   large_count_ = ::cl::Buffer(context.context, CL_MEM_READ_WRITE, sizeof(cl_uint));
+  cache_count_ = ::cl::Buffer(context.context, CL_MEM_READ_WRITE, sizeof(cl_uint));
+  if (const char* env = std::getenv("ROLYPOLY_VOXELIZE_CACHE"); env && std::string(env) == "0")
+    cache_enabled_ = false;
 }
 
-void VoxelizePass::update_linear_texels(rp::cl::Profiler& profiler,
+bool VoxelizePass::update_linear_texels(rp::cl::Profiler& profiler,
                                         const render::GpuScene& scene) {
-  if (decoded_from_() != nullptr && decoded_from_() == scene.texels()) return;
+  if (decoded_from_() != nullptr && decoded_from_() == scene.texels()) return false;
   const size_t texels = scene.texels() ? scene.texels.getInfo<CL_MEM_SIZE>() / sizeof(cl_uint) : 0;
   linear_texels_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
                                 (texels > 0 ? texels : 1) * 4 * sizeof(float));
   decoded_from_ = scene.texels;
-  if (texels == 0) return;
+  if (texels == 0) return true;
   decode_.setArg(0, scene.texels);
   decode_.setArg(1, linear_texels_);
   decode_.setArg(2, cl_uint(texels));
   profiler.enqueue("voxelize", decode_, ::cl::NDRange(rp::cl::round_up(texels, kGroup)),
                    ::cl::NDRange(kGroup));
+  return true;
+}
+
+bool VoxelizePass::update_cache_plan(const render::GpuScene& scene, uint32_t resolution,
+                                     bool scene_changed) {
+  const std::vector<gpu::Instance>& now = scene.host_instances;
+  const size_t n = now.size();
+  const bool reset = scene_changed || tracked_.size() != n || resolution != cache_resolution_ ||
+                     cache_vertices_() != scene.vertices() ||
+                     cache_triangles_() != scene.triangles() ||
+                     cache_materials_() != scene.materials();
+  if (reset) {
+    tracked_ = now;
+    still_.assign(n, cache_enabled_ ? 1u : 0u);
+    cache_valid_ = false;
+    cache_resolution_ = resolution;
+    cache_vertices_ = scene.vertices;
+    cache_triangles_ = scene.triangles;
+    cache_materials_ = scene.materials;
+  } else {
+    for (size_t i = 0; i < n; ++i) {
+      if (!same_geometry(now[i], tracked_[i])) {
+        still_[i] = 0;
+        if (cached_host_[i]) cache_valid_ = false;
+      }
+      tracked_[i] = now[i];
+    }
+  }
+  if (flags_capacity_ < std::max<size_t>(n, 1)) {
+    flags_capacity_ = std::max<size_t>(n, 1);
+    cached_flags_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
+                                 flags_capacity_ * sizeof(cl_uint));
+    cache_valid_ = false;
+  }
+  if (cache_valid_) return false;
+  // A new plan: the instances that are still and voxelized.
+  cached_host_.assign(flags_capacity_, 0u);
+  bool any = false;
+  for (size_t i = 0; i < n; ++i) {
+    cached_host_[i] = still_[i] && now[i].voxelize ? 1u : 0u;
+    any |= cached_host_[i] != 0u;
+  }
+  context_->queue.enqueueWriteBuffer(cached_flags_, CL_TRUE, 0,
+                                     cached_host_.size() * sizeof(cl_uint), cached_host_.data());
+  cache_samples_ = 0;
+  cache_valid_ = true;
+  return any;
+}
+
+void VoxelizePass::set_large_args(const render::GpuScene& scene, const render::ShadowMap& shadow,
+                                  render::VoxelVolume& volume, cl_uint record) {
+  cl_uint arg = 0;
+  large_.setArg(arg++, scene.frame);
+  large_.setArg(arg++, scene.instances);
+  large_.setArg(arg++, cl_uint(scene.instance_count));
+  large_.setArg(arg++, scene.vertices);
+  large_.setArg(arg++, scene.triangles);
+  large_.setArg(arg++, scene.materials);
+  large_.setArg(arg++, scene.textures);
+  large_.setArg(arg++, linear_texels_);
+  large_.setArg(arg++, shadow.depth);
+  large_.setArg(arg++, volume.resolution);
+  large_.setArg(arg++, volume.accum);
+  large_.setArg(arg++, volume.overflow);
+  large_.setArg(arg++, large_count_);
+  large_.setArg(arg++, large_list_);
+  large_.setArg(arg++, cached_flags_);
+  large_.setArg(arg++, record);
+  large_.setArg(arg++, cache_count_);
+  large_.setArg(arg++, cache_() ? cache_ : cache_count_);  // a valid buffer before the first
+  large_.setArg(arg++, cl_uint(cache_capacity_));
+}
+
+void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                               const render::ShadowMap& shadow, render::VoxelVolume& volume) {
+  // Rare (the first frame, a cached instance that moved): blocking reads and writes are fine.
+  ::cl::CommandQueue& queue = profiler.queue();
+  const cl_uint zero = 0;
+  queue.enqueueWriteBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &zero);
+  set_large_args(scene, shadow, volume, kCount);
+  profiler.enqueue("voxelize", large_, ::cl::NDRange(large_items_), ::cl::NDRange(kSpanGroup));
+  cl_uint samples = 0;
+  queue.enqueueReadBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &samples);
+  if (samples > cache_capacity_) {
+    cache_capacity_ = samples + samples / 4;
+    cache_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, cache_capacity_ * kSampleBytes);
+  }
+  queue.enqueueWriteBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &zero);
+  if (samples > 0) {
+    set_large_args(scene, shadow, volume, kRecord);
+    profiler.enqueue("voxelize", large_, ::cl::NDRange(large_items_),
+                     ::cl::NDRange(kSpanGroup));
+    // In voxel order, so voxelize_cached walks the sums' memory forwards (the sums do not
+    // depend on the order).
+    std::vector<std::array<float, 16>> host(samples);
+    queue.enqueueReadBuffer(cache_, CL_TRUE, 0, samples * kSampleBytes, host.data());
+    auto voxel = [](const std::array<float, 16>& a) {
+      uint32_t v;
+      std::memcpy(&v, &a[3], sizeof v);
+      return v;
+    };
+    std::stable_sort(host.begin(), host.end(),
+                     [&](const auto& a, const auto& b) { return voxel(a) < voxel(b); });
+    queue.enqueueWriteBuffer(cache_, CL_TRUE, 0, samples * kSampleBytes, host.data());
+  }
+  cache_samples_ = samples;
 }
 
 void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
@@ -81,7 +204,10 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
     large_list_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
                                large_capacity_ * sizeof(cl_uint));
   }
-  update_linear_texels(profiler, scene);
+  const bool scene_changed = update_linear_texels(profiler, scene);
+  const bool rebuild = update_cache_plan(scene, r, scene_changed);
+  large_items_ = std::min(rp::cl::round_up(std::max<size_t>(triangles, 1), kSpanGroup),
+                          context_->info.is_cpu ? size_t(128) : size_t(8192));
 
   clear_.setArg(0, volume.accum);
   clear_.setArg(1, volume.overflow);
@@ -115,24 +241,24 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
     // The list's length is only known on the device (reading it back would stall the
     // queue): a fixed number of work-items strides over it. Few on CPUs, where every
     // work-group costs a few microseconds even when it has nothing to do.
-    arg = 0;
-    large_.setArg(arg++, scene.frame);
-    large_.setArg(arg++, scene.instances);
-    large_.setArg(arg++, cl_uint(scene.instance_count));
-    large_.setArg(arg++, scene.vertices);
-    large_.setArg(arg++, scene.triangles);
-    large_.setArg(arg++, scene.materials);
-    large_.setArg(arg++, scene.textures);
-    large_.setArg(arg++, linear_texels_);
-    large_.setArg(arg++, shadow.depth);
-    large_.setArg(arg++, r);
-    large_.setArg(arg++, volume.accum);
-    large_.setArg(arg++, volume.overflow);
-    large_.setArg(arg++, large_count_);
-    large_.setArg(arg++, large_list_);
-    const size_t large_items =
-        std::min(rp::cl::round_up(triangles, kSpanGroup), context_->info.is_cpu ? size_t(128) : size_t(8192));
-    profiler.enqueue("voxelize", large_, ::cl::NDRange(large_items), ::cl::NDRange(kSpanGroup));
+    if (rebuild) build_cache(profiler, scene, shadow, volume);
+    set_large_args(scene, shadow, volume, kAccumulate);
+    profiler.enqueue("voxelize", large_, ::cl::NDRange(large_items_), ::cl::NDRange(kSpanGroup));
+  }
+
+  if (cache_samples_ > 0) {
+    cl_uint arg = 0;
+    cached_.setArg(arg++, scene.frame);
+    cached_.setArg(arg++, shadow.depth);
+    cached_.setArg(arg++, cache_);
+    cached_.setArg(arg++, cache_samples_);
+    cached_.setArg(arg++, volume.accum);
+    cached_.setArg(arg++, volume.overflow);
+    const size_t span = static_cast<size_t>(span_);
+    profiler.enqueue("voxelize", cached_,
+                     ::cl::NDRange(rp::cl::round_up((cache_samples_ + span - 1) / span,
+                                                    kSpanGroup)),
+                     ::cl::NDRange(kSpanGroup));
   }
 
   if (scene.sphere_count > 0) {

@@ -5,6 +5,9 @@
 // kernels/voxelize.cl; coordinates and direction convention: kernels/common/voxel.h.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
 #include "render/frame_buffers.h"
@@ -28,11 +31,20 @@ class VoxelizePass {
  private:
   // Decodes scene.texels into linear_texels_ when the scene's texel buffer is not the one
   // decoded last (held in decoded_from_, so its handle cannot be reused by another buffer).
-  void update_linear_texels(rp::cl::Profiler& profiler, const render::GpuScene& scene);
+  // Returns true when it decoded (the scene changed).
+  bool update_linear_texels(rp::cl::Profiler& profiler, const render::GpuScene& scene);
+  // Follows which instances have not changed since tracking began (still_) and decides the
+  // instances of the static surface cache; returns true when the cache must be rebuilt.
+  bool update_cache_plan(const render::GpuScene& scene, uint32_t resolution, bool scene_changed);
+  // VX_COUNT then VX_RECORD passes of voxelize_large over the frame's large-triangle list.
+  void build_cache(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                   const render::ShadowMap& shadow, render::VoxelVolume& volume);
+  void set_large_args(const render::GpuScene& scene, const render::ShadowMap& shadow,
+                      render::VoxelVolume& volume, cl_uint record);
 
   const rp::cl::Context* context_;
   int span_ = 1;  // triangles (voxelize_triangles) or voxel columns (voxelize_large) a work-item
-  ::cl::Kernel decode_, clear_, triangles_, large_, spheres_, resolve_;
+  ::cl::Kernel decode_, clear_, triangles_, large_, cached_, spheres_, resolve_;
   ::cl::Buffer linear_texels_;  // float4 per texel: linear rgba of scene.texels
   ::cl::Buffer decoded_from_;   // the texel buffer linear_texels_ was decoded from
   // Large triangles of the frame (flat instance-triangle indices, in no particular order) and
@@ -40,6 +52,26 @@ class VoxelizePass {
   // scene's instance triangle count, never per frame otherwise.
   ::cl::Buffer large_count_, large_list_;
   size_t large_capacity_ = 0;
+  size_t large_items_ = 0;  // work-items of voxelize_large (a fixed number strides the list)
+
+  // Static surface cache (kernels/voxelize.cl voxelize_cached): per-voxel samples of the large
+  // triangles of instances that have not changed (model, triangle range, voxelize flag) since
+  // tracking began; tracking restarts when the instance count, the scene's buffers or the
+  // resolution change. An instance that changes leaves the cache for good (a rebuild without
+  // it). The volume is bit-identical with or without the cache. ROLYPOLY_VOXELIZE_CACHE=0
+  // turns it off (tests compare both).
+  bool cache_enabled_ = true;
+  std::vector<gpu::Instance> tracked_;   // the instances as of the last frame
+  std::vector<uint32_t> still_;          // 1: unchanged since tracking began
+  std::vector<uint32_t> cached_host_;    // 1: in the cache (what cached_flags_ holds)
+  ::cl::Buffer cached_flags_;            // uint per instance
+  size_t flags_capacity_ = 0;
+  ::cl::Buffer cache_, cache_count_;     // 4 float4 per sample; sample count scratch
+  size_t cache_capacity_ = 0;            // samples
+  uint32_t cache_samples_ = 0;
+  bool cache_valid_ = false;
+  uint32_t cache_resolution_ = 0;
+  ::cl::Buffer cache_vertices_, cache_triangles_, cache_materials_;  // scene buffers tracked
 };
 
 }  // namespace rp::passes

@@ -394,8 +394,14 @@ std::vector<float> reference_resolve(const VoxelSums& sums) {
 }
 
 VoxelGpuOutput run_voxelize(render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r) {
-  rp::cl::Context& ctx = context();
+  passes::VoxelizePass pass(context(), programs());
   render::VoxelVolume vol;
+  return run_voxelize(pass, vol, gpu, shadow, r);
+}
+
+VoxelGpuOutput run_voxelize(passes::VoxelizePass& pass, render::VoxelVolume& vol,
+                            render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r) {
+  rp::cl::Context& ctx = context();
   vol.resize(ctx.context, r);
   gpu.constants.voxel_resolution = vol.resolution;
   gpu.constants.voxel_levels = vol.levels;
@@ -413,7 +419,6 @@ VoxelGpuOutput run_voxelize(render::GpuScene& gpu, const std::vector<float>& sha
     throw std::invalid_argument("run_voxelize: shadow map size does not match the constants");
   ctx.queue.enqueueWriteBuffer(sm.depth, CL_TRUE, 0, shadow.size() * sizeof(float), shadow.data());
 
-  passes::VoxelizePass pass(ctx, programs());
   rp::cl::Profiler profiler(ctx.queue);
   pass.run(profiler, gpu, sm, vol);
   VoxelGpuOutput out;

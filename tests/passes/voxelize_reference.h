@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cl/profiler.h"
+#include "passes/voxelize.h"
 #include "render/gpu_scene.h"
 #include "render/gpu_types.h"
 #include "scene/frame_scene.h"
@@ -71,6 +72,11 @@ struct VoxelGpuOutput {
 // (gpu.constants.shadow_size^2 depths). The volume's buffers start filled with garbage so a
 // missing clear or resolve shows.
 VoxelGpuOutput run_voxelize(render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r);
+
+// The same with a given pass (its state, the static surface cache, carries over between
+// calls) and volume (resized to r; garbage is written into it first all the same).
+VoxelGpuOutput run_voxelize(passes::VoxelizePass& pass, render::VoxelVolume& vol,
+                            render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r);
 
 // The reference input for the same scene.
 VoxelRefInput reference_input(const scene::SceneAssets& assets, const scene::FrameScene& frame,
