@@ -682,8 +682,9 @@ inline VxVec vx_voxel_radiance(const VxSetup* s, const VxLight* light,
 /* ---- the static surface cache (voxelize_cached; host side in src/passes/voxelize.cpp) ----
  * Per-voxel samples of the large triangles of instances that have not moved: everything but
  * the light (point, normal, albedo * texture, emission), so a frame only adds the direct light
- * and accumulates. Built by voxelize_large in the VX_COUNT and VX_RECORD modes; the samples are
- * computed by the same code as in VX_ACCUMULATE, and sums are order independent, so the volume
+ * and accumulates. Built by voxelize_large in the VX_COUNT and VX_RECORD modes (in no
+ * particular order); the samples are computed by the same code as in VX_ACCUMULATE, and sums
+ * are order independent, so the volume
  * is bit-identical with or without the cache. One sample is 4 float4:
  *   (p.xyz, voxel index as bits), (unit normal, 0), (albedo * texture, 0), (emission, 0). */
 #define VX_ACCUMULATE 0u /* voxelize_large: shade and accumulate non-cached instances */

@@ -1,7 +1,6 @@
 #include "passes/voxelize.h"
 
 #include <algorithm>
-#include <array>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -167,18 +166,6 @@ void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScen
     set_large_args(scene, shadow, volume, kRecord);
     profiler.enqueue("voxelize", large_, ::cl::NDRange(large_items_),
                      ::cl::NDRange(kSpanGroup));
-    // In voxel order, so voxelize_cached walks the sums' memory forwards (the sums do not
-    // depend on the order).
-    std::vector<std::array<float, 16>> host(samples);
-    queue.enqueueReadBuffer(cache_, CL_TRUE, 0, samples * kSampleBytes, host.data());
-    auto voxel = [](const std::array<float, 16>& a) {
-      uint32_t v;
-      std::memcpy(&v, &a[3], sizeof v);
-      return v;
-    };
-    std::stable_sort(host.begin(), host.end(),
-                     [&](const auto& a, const auto& b) { return voxel(a) < voxel(b); });
-    queue.enqueueWriteBuffer(cache_, CL_TRUE, 0, samples * kSampleBytes, host.data());
   }
   cache_samples_ = samples;
 }

@@ -58,7 +58,8 @@ class VoxelizePass {
   // triangles of instances that have not changed (model, triangle range, voxelize flag) since
   // tracking began; tracking restarts when the instance count, the scene's buffers or the
   // resolution change. An instance that changes leaves the cache for good (a rebuild without
-  // it). The volume is bit-identical with or without the cache. ROLYPOLY_VOXELIZE_CACHE=0
+  // it), so a session rebuilds at most once per instance. The volume is bit-identical with or
+  // without the cache. ROLYPOLY_VOXELIZE_CACHE=0
   // turns it off (tests compare both).
   bool cache_enabled_ = true;
   std::vector<gpu::Instance> tracked_;   // the instances as of the last frame
