@@ -46,7 +46,7 @@ int choose_span(const rp::cl::Context& context) {
     throw rp::cl::Error("ROLYPOLY_RASTER_SPAN must be 1, 4, 8 or 16, not '" + s + "'");
   }
   if (context.info.is_cpu) return 16;
-  // One pixel per work-item needs 16x16 work-groups and ~24 KiB of local memory.
+  // One pixel per work-item needs 16x16 work-groups and 28 KiB of local memory (256 RasterItems).
   if (context.info.max_work_group_size < 256 || context.info.local_mem_bytes < 32 * 1024) return 4;
   return 1;
 }
