@@ -50,6 +50,12 @@
 #define RP_INDIRECT_COARSE 1
 #endif
 
+/* 1: indirect_trace traces all 16 cones per block and averages them (the build used while there
+ * is no history: first frame, reset, camera cut, resize); 0: one cone per block (steady state). */
+#ifndef RP_INDIRECT_WARM_START
+#define RP_INDIRECT_WARM_START 0
+#endif
+
 /* Extra per-axis weight of every tap of the 3x3 history neighbourhood (see indirect_filter). */
 #ifndef RP_INDIRECT_RING
 #define RP_INDIRECT_RING 0.1f
@@ -64,6 +70,23 @@
 #ifndef RP_INDIRECT_MIN_HISTORY
 #define RP_INDIRECT_MIN_HISTORY 0.05f
 #endif
+
+/* Radiance of one cone of the set from sample (i, j)'s surface point p (normal n) in frame f,
+ * with the block's position and level jitters. */
+inline float3 indirect_cone(__global const float4* voxels, uint voxel_resolution,
+                            uint voxel_levels, float3 p, float3 n, float3 dir, uint i, uint j,
+                            uint f) {
+#if RP_INDIRECT_COARSE
+  return rp_cone_trace_coarse(voxels, voxel_resolution, voxel_levels,
+                              rp_cone_apex(p, n, voxel_resolution), dir,
+                              rp_indirect_position_jitter(i, j, f),
+                              rp_indirect_level_jitter(i, j, f)).xyz;
+#else
+  return rp_cone_trace_jittered(voxels, voxel_resolution, voxel_levels,
+                                rp_cone_apex(p, n, voxel_resolution), dir,
+                                rp_indirect_level_jitter(i, j, f)).xyz;
+#endif
+}
 
 __kernel void indirect_trace(__global const FrameConstants* frame,
                              __global const float4* normal_depth_plane,
@@ -96,16 +119,16 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
     depth = nd.w;
     float3 t, b;
     rp_cone_basis(n, &t, &b);
-    const float3 dir = rp_cone_set16_dir(n, t, b, rp_indirect_cone_index(i, j, f));
-#if RP_INDIRECT_COARSE
-    c = rp_cone_trace_coarse(voxels, voxel_resolution, voxel_levels,
-                             rp_cone_apex(p, n, voxel_resolution), dir,
-                             rp_indirect_position_jitter(i, j, f),
-                             rp_indirect_level_jitter(i, j, f)).xyz;
+#if RP_INDIRECT_WARM_START
+    /* No history yet (first frame, reset, camera cut, resize): every cone of the set, so the
+     * first frame shows the whole estimate instead of one cone per block. */
+    for (uint k = 0u; k < 16u; ++k)
+      c += indirect_cone(voxels, voxel_resolution, voxel_levels, p, n,
+                         rp_cone_set16_dir(n, t, b, k), i, j, f);
+    c *= 1.0f / 16.0f;
 #else
-    c = rp_cone_trace_jittered(voxels, voxel_resolution, voxel_levels,
-                               rp_cone_apex(p, n, voxel_resolution), dir,
-                               rp_indirect_level_jitter(i, j, f)).xyz;
+    c = indirect_cone(voxels, voxel_resolution, voxel_levels, p, n,
+                      rp_cone_set16_dir(n, t, b, rp_indirect_cone_index(i, j, f)), i, j, f);
 #endif
     d = dot(n, p);
   }

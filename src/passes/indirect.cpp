@@ -32,6 +32,8 @@ float pixel_scale(const render::GpuScene& scene) {
 IndirectPass::IndirectPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
     : context_(&context),
       trace_(programs.kernel("indirect.cl", "indirect_trace")),
+      warm_trace_(
+          programs.kernel("indirect.cl", "indirect_trace", "-DRP_INDIRECT_WARM_START=1")),
       filter_(programs.kernel("indirect.cl", "indirect_filter")) {}
 
 void IndirectPass::resize(uint32_t width, uint32_t height) {
@@ -72,21 +74,24 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   const int cur = current_, prev = current_ ^ 1;
   const ::cl::NDRange local(kGroup, kGroup);
 
+  // Without history the block traces the whole cone set (a converged-looking first frame after
+  // a start, reset, camera cut or resize, at 16x the trace cost for that one frame).
+  ::cl::Kernel& trace = history_valid_ ? trace_ : warm_trace_;
   cl_uint arg = 0;
-  trace_.setArg(arg++, scene.frame);
-  trace_.setArg(arg++, gbuffer.normal_depth);
-  trace_.setArg(arg++, gbuffer.position);
-  trace_.setArg(arg++, voxels);
-  trace_.setArg(arg++, cl_uint(voxel_resolution));
-  trace_.setArg(arg++, cl_uint(voxel_levels));
-  trace_.setArg(arg++, cl_uint(lw));
-  trace_.setArg(arg++, cl_uint(lh));
-  trace_.setArg(arg++, cl_uint(stride));
-  trace_.setArg(arg++, cl_uint(plane));
-  trace_.setArg(arg++, radiance_);
-  trace_.setArg(arg++, position_);
-  trace_.setArg(arg++, geometry_[cur]);
-  profiler.enqueue("indirect_trace", trace_,
+  trace.setArg(arg++, scene.frame);
+  trace.setArg(arg++, gbuffer.normal_depth);
+  trace.setArg(arg++, gbuffer.position);
+  trace.setArg(arg++, voxels);
+  trace.setArg(arg++, cl_uint(voxel_resolution));
+  trace.setArg(arg++, cl_uint(voxel_levels));
+  trace.setArg(arg++, cl_uint(lw));
+  trace.setArg(arg++, cl_uint(lh));
+  trace.setArg(arg++, cl_uint(stride));
+  trace.setArg(arg++, cl_uint(plane));
+  trace.setArg(arg++, radiance_);
+  trace.setArg(arg++, position_);
+  trace.setArg(arg++, geometry_[cur]);
+  profiler.enqueue("indirect_trace", trace,
                    ::cl::NDRange(rp::cl::round_up(lw, kGroup), rp::cl::round_up(lh, kGroup)),
                    local);
 

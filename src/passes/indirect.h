@@ -66,7 +66,8 @@ class IndirectPass {
   void resize(uint32_t width, uint32_t height);
 
   const rp::cl::Context* context_;
-  ::cl::Kernel trace_;
+  ::cl::Kernel trace_;       // one cone per block (history valid)
+  ::cl::Kernel warm_trace_;  // all 16 cones per block (no history yet)
   ::cl::Kernel filter_;
   uint32_t width_ = 0, height_ = 0;  // full-resolution size the planes were made for
   ::cl::Buffer radiance_;            // 3 planes: this frame's cone radiance r, g, b
