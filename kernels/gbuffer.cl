@@ -52,6 +52,17 @@ __kernel void gbuffer_decode_texels(__global const uint* texels, __global float4
 /* Clip coordinates -> pixel coordinates (rp_clip_to_screen), per lane. */
 #define GB_SCREEN_X(cx, inv_w, size_x) (((cx) * (inv_w) * 0.5f + 0.5f) * (size_x))
 #define GB_SCREEN_Y(cy, inv_w, size_y) ((0.5f - (cy) * (inv_w) * 0.5f) * (size_y))
+/* Albedo and emission (float4 rgb) into the span's ar..ab / er..eb lanes selected by `group`. */
+#define GB_SELECT_ALBEDO_EMISSION(alb4, emi4, group)         \
+  do {                                                       \
+    const float4 alb_ = (alb4), emi_ = (emi4);               \
+    ar = select(ar, (rp_spanf)(alb_.x), group);              \
+    ag = select(ag, (rp_spanf)(alb_.y), group);              \
+    ab = select(ab, (rp_spanf)(alb_.z), group);              \
+    er = select(er, (rp_spanf)(emi_.x), group);              \
+    eg = select(eg, (rp_spanf)(emi_.y), group);              \
+    eb = select(eb, (rp_spanf)(emi_.z), group);              \
+  } while (0)
 
 __kernel void gbuffer_resolve(__global const FrameConstants* frame,
                               __global const uint* ids,
@@ -143,13 +154,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
       ny = select(ny, wny * inv_len, group);
       nz = select(nz, wnz * inv_len, group);
       __global const Material* mat = materials + tri.w;
-      const float4 alb = mat->albedo, emi = mat->emission;
-      ar = select(ar, (rp_spanf)(alb.x), group);
-      ag = select(ag, (rp_spanf)(alb.y), group);
-      ab = select(ab, (rp_spanf)(alb.z), group);
-      er = select(er, (rp_spanf)(emi.x), group);
-      eg = select(eg, (rp_spanf)(emi.y), group);
-      eb = select(eb, (rp_spanf)(emi.z), group);
+      GB_SELECT_ALBEDO_EMISSION(mat->albedo, mat->emission, group);
       const uint texture = mat->texture;
       if (texture != RP_TEXTURE_NONE) {
         __global const TextureInfo* info = textures + texture;
@@ -209,13 +214,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
       nx = select(nx, rx * inv_len, group);
       ny = select(ny, ry * inv_len, group);
       nz = select(nz, rz * inv_len, group);
-      const float4 alb = s->albedo, emi = s->emission;
-      ar = select(ar, (rp_spanf)(alb.x), group);
-      ag = select(ag, (rp_spanf)(alb.y), group);
-      ab = select(ab, (rp_spanf)(alb.z), group);
-      er = select(er, (rp_spanf)(emi.x), group);
-      eg = select(eg, (rp_spanf)(emi.y), group);
-      eb = select(eb, (rp_spanf)(emi.z), group);
+      GB_SELECT_ALBEDO_EMISSION(s->albedo, s->emission, group);
       covered |= group;
     }
   }

@@ -17,7 +17,7 @@
  *     golden-ratio sequence over frames) for rp_cone_trace_jittered.
  *
  * Geometry weight of a sample with unit normal n_s and plane offset d_s = dot(n_s, p_s) seen from
- * a receiver at p with unit normal n (rp_indirect_geometry_weight):
+ * a receiver at p with unit normal n (rp_indirect_geometry_weight8):
  *   w = max(dot(n, n_s), 0)^8 * max(1 - (dist / (2 sigma))^2, 0)^2,  dist = dot(n_s, p) - d_s,
  * sigma = RP_INDIRECT_PLANE_SIGMA low-resolution pixels at the receiver's view depth (world size
  * of one pixel = view depth * pixel_scale, pixel_scale = 2 / (height * P[1][1]) from the
@@ -90,26 +90,13 @@ inline float rp_indirect_position_jitter(uint i, uint j, uint frame) {
   return u - floor(u);
 }
 
-/* Geometry weight (see the header) of a sample with normal (sx, sy, sz) and plane offset sd for
- * a receiver at (px, py, pz) with normal (nx, ny, nz); inv_sigma = 1 / plane tolerance. */
-inline float rp_indirect_geometry_weight(float nx, float ny, float nz, float px, float py,
-                                         float pz, float sx, float sy, float sz, float sd,
-                                         float inv_sigma) {
-  float wn = fmax(nx * sx + ny * sy + nz * sz, 0.0f);
-  wn *= wn;
-  wn *= wn;
-  wn *= wn;
-  const float dist = (sx * px + sy * py + sz * pz - sd) * inv_sigma;
-  const float wp = fmax(1.0f - 0.25f * dist * dist, 0.0f);
-  return wn * (wp * wp);
-}
-
 /* Index of sample (i, j) in a padded plane (-RP_INDIRECT_PAD <= i, j; see the header). */
 inline int rp_indirect_index(int i, int j, int stride) {
   return (j + RP_INDIRECT_PAD) * stride + i + RP_INDIRECT_PAD;
 }
 
-/* rp_indirect_geometry_weight on eight lanes. */
+/* Geometry weight w (see the header) of eight samples with normals (sx, sy, sz) and plane
+ * offsets sd for eight receivers at (px, py, pz) with normals (nx, ny, nz); inv_sigma = 1 / sigma. */
 inline float8 rp_indirect_geometry_weight8(float8 nx, float8 ny, float8 nz, float8 px, float8 py,
                                            float8 pz, float8 sx, float8 sy, float8 sz, float8 sd,
                                            float8 inv_sigma) {
@@ -122,10 +109,7 @@ inline float8 rp_indirect_geometry_weight8(float8 nx, float8 ny, float8 nz, floa
   return wn * (wp * wp);
 }
 
-/* 1 / sigma for a receiver at view depth `depth` (see the header). */
-inline float rp_indirect_inv_sigma(float depth, float pixel_scale) {
-  return 1.0f / fmax(depth * pixel_scale * (RP_INDIRECT_SCALE * RP_INDIRECT_PLANE_SIGMA), 1.0e-6f);
-}
+/* 1 / sigma for receivers at view depth `depth` (see the header). */
 inline float8 rp_indirect_inv_sigma8(float8 depth, float pixel_scale) {
   return 1.0f / fmax(depth * (pixel_scale * (RP_INDIRECT_SCALE * RP_INDIRECT_PLANE_SIGMA)), 1.0e-6f);
 }
