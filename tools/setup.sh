@@ -21,7 +21,7 @@ PACKAGES=(
   cmake make g++ pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers clinfo oclgrind
   libglm-dev libglfw3-dev libgl-dev libstb-dev libembree-dev
-  libgtest-dev libcli11-dev nlohmann-json3-dev
+  libgtest-dev libcli11-dev nlohmann-json3-dev libopenexr-dev
   xvfb xauth libgl1-mesa-dri xdotool
   clang libclang-rt-14-dev
 )

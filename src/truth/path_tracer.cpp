@@ -1,0 +1,304 @@
+// The path tracer's integrator and thread pool (conventions in truth/path_tracer.h).
+#include "truth/path_tracer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "truth/sampling.h"
+#include "truth/trace_scene.h"
+
+namespace rp::truth {
+namespace {
+
+constexpr float kRayOffset = 1.0e-4f;   // world units (the box is 2 across)
+constexpr float kFar = 1.0e30f;
+constexpr uint32_t kRouletteAfter = 3;  // gathers before Russian roulette may end a path
+
+// Emissive spheres for next-event estimation, chosen in proportion to luminance x r^2 (their
+// power up to a constant).
+struct SphereLights {
+  std::vector<uint32_t> sphere;  // frame sphere index
+  std::vector<float> cdf;        // inclusive, last = 1
+  std::vector<float> pick;       // probability of each entry
+  std::vector<float> pick_of_sphere;  // per frame sphere: its probability (0 if not a light)
+
+  explicit SphereLights(const scene::FrameScene& frame) : pick_of_sphere(frame.spheres.size()) {
+    double total = 0.0;
+    std::vector<double> power;
+    for (size_t i = 0; i < frame.spheres.size(); ++i) {
+      const scene::Sphere& s = frame.spheres[i];
+      const double p = double(luminance(s.emission)) * double(s.radius) * double(s.radius);
+      if (!(s.radius > 0.0f) || !(p > 0.0)) continue;
+      sphere.push_back(uint32_t(i));
+      power.push_back(p);
+      total += p;
+    }
+    double running = 0.0;
+    for (size_t k = 0; k < sphere.size(); ++k) {
+      running += power[k];
+      cdf.push_back(k + 1 == sphere.size() ? 1.0f : float(running / total));
+      pick.push_back(float(power[k] / total));
+      pick_of_sphere[sphere[k]] = pick.back();
+    }
+  }
+  bool empty() const { return sphere.empty(); }
+  size_t choose(float u) const {
+    return size_t(std::upper_bound(cdf.begin(), cdf.end() - 1, u) - cdf.begin());
+  }
+};
+
+// Radiance of one camera sample, split into the components of path_tracer.h.
+struct SampleResult {
+  glm::vec3 direct{0.0f}, indirect{0.0f}, emission{0.0f}, albedo{0.0f};
+};
+
+class Integrator {
+ public:
+  Integrator(const TraceScene& scene, const SphereLights& lights, uint32_t bounces)
+      : scene_(scene), lights_(lights), bounces_(bounces), light_(scene.frame().light) {}
+
+  uint64_t rays = 0;
+
+  // The lamp's direct light leaving `s` towards any direction (Lambertian, rolypoly's units).
+  glm::vec3 lamp(const Surface& s) {
+    if (light_.intensity == glm::vec3(0.0f)) return glm::vec3(0.0f);
+    const glm::vec3 to_light = light_.position - s.p;
+    const float d2 = glm::dot(to_light, to_light);
+    const float d = std::sqrt(d2);
+    const glm::vec3 l = to_light / d;
+    const float c = glm::dot(s.ns, l);
+    if (c <= 0.0f || glm::dot(s.ng, l) <= 0.0f) return glm::vec3(0.0f);
+    ++rays;
+    if (scene_.shadowed(s.p + s.ng * kRayOffset, l, d)) return glm::vec3(0.0f);
+    const float e = std::clamp(l.y, 0.0f, 1.0f);
+    const float falloff = 0.35f + e * (0.446f + 0.204f * e);  // direct_light.h rp_lamp_falloff
+    return s.albedo * light_.intensity * (c / d2 * falloff);
+  }
+
+  // Light from the emissive spheres reflected by `s`, sampled by the spheres (MIS weighted).
+  glm::vec3 sphere_light(const Surface& s, Pcg32& rng) {
+    const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+    if (lights_.empty()) return glm::vec3(0.0f);
+    const size_t k = lights_.choose(u0);
+    const scene::Sphere& light = scene_.frame().spheres[lights_.sphere[k]];
+    const glm::vec3 to_centre = light.center - s.p;
+    const float dist = glm::length(to_centre);
+    if (dist <= light.radius * 1.0001f) return glm::vec3(0.0f);  // inside the light
+    const float omc = sphere_cone_omc(light.radius, dist);
+    const glm::vec3 wi = sample_cone(to_centre / dist, omc, u1, u2);
+    const float c = glm::dot(s.ns, wi);
+    if (c <= 0.0f || glm::dot(s.ng, wi) <= 0.0f) return glm::vec3(0.0f);
+    ++rays;
+    Surface hit;
+    if (!scene_.intersect(s.p + s.ng * kRayOffset, wi, kFar, hit) ||
+        hit.sphere != lights_.sphere[k])
+      return glm::vec3(0.0f);  // something else is in front (or the tangent ray missed)
+    const float light_pdf = lights_.pick[k] * cone_pdf(omc);
+    const float bsdf_pdf = c / kPi;
+    return s.albedo * hit.emission * (c / kPi / light_pdf * power_heuristic(light_pdf, bsdf_pdf));
+  }
+
+  // MIS weight of an emissive sphere reached by a cosine-sampled ray from `from` (pdf bsdf_pdf).
+  float hit_weight(const Surface& from, const Surface& hit, float bsdf_pdf) const {
+    const float pick = lights_.pick_of_sphere.empty() ? 0.0f : lights_.pick_of_sphere[hit.sphere];
+    if (pick <= 0.0f) return 1.0f;
+    const scene::Sphere& light = scene_.frame().spheres[hit.sphere];
+    const float dist = glm::length(light.center - from.p);
+    if (dist <= light.radius * 1.0001f) return 1.0f;  // never sampled from inside
+    return power_heuristic(bsdf_pdf, pick * cone_pdf(sphere_cone_omc(light.radius, dist)));
+  }
+
+  SampleResult trace(glm::vec3 org, glm::vec3 dir, Pcg32& rng) {
+    SampleResult r;
+    Surface s;
+    ++rays;
+    if (!scene_.intersect(org, dir, kFar, s)) return r;
+    r.emission = s.emission;
+    r.albedo = s.albedo;
+    r.direct = lamp(s);
+    glm::vec3 beta(1.0f);  // throughput from the camera to s, albedos of the gathers so far
+    for (uint32_t gather = 1; gather <= bounces_; ++gather) {
+      if (s.albedo == glm::vec3(0.0f)) break;
+      r.indirect += beta * sphere_light(s, rng);
+      const float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+      if (gather > kRouletteAfter) {
+        const float q = std::min(0.95f, std::max({beta.x, beta.y, beta.z}));
+        if (!(u3 < q)) break;
+        beta /= q;
+      }
+      const glm::vec3 wi = sample_cosine_hemisphere(s.ns, u1, u2);
+      const float c = glm::dot(s.ns, wi);
+      if (c <= 0.0f || glm::dot(s.ng, wi) <= 0.0f) break;  // below the true surface
+      beta *= s.albedo;
+      Surface next;
+      ++rays;
+      if (!scene_.intersect(s.p + s.ng * kRayOffset, wi, kFar, next)) break;
+      if (next.lights_scene && next.emission != glm::vec3(0.0f)) {
+        const float w = next.sphere != 0xFFFFFFFFu ? hit_weight(s, next, c / kPi) : 1.0f;
+        r.indirect += beta * next.emission * w;
+      }
+      s = next;
+      r.indirect += beta * lamp(s);
+    }
+    return r;
+  }
+
+ private:
+  const TraceScene& scene_;
+  const SphereLights& lights_;
+  uint32_t bounces_;
+  scene::PointLight light_;
+};
+
+// Camera rays: pixel coordinates (x right, y down, pixel centres at +0.5) -> world direction.
+struct CameraRays {
+  glm::dmat4 inv_view_proj;
+  glm::vec3 origin;
+  double width, height;
+  CameraRays(const scene::Camera& camera, uint32_t w, uint32_t h)
+      : inv_view_proj(glm::inverse(glm::dmat4(camera.projection(float(w) / float(h))) *
+                                   glm::dmat4(camera.view()))),
+        origin(camera.position),
+        width(w),
+        height(h) {}
+  glm::vec3 direction(double px, double py) const {
+    const glm::dvec4 ndc(2.0 * px / width - 1.0, 1.0 - 2.0 * py / height, 1.0, 1.0);
+    const glm::dvec4 far = inv_view_proj * ndc;
+    return glm::normalize(glm::vec3(glm::dvec3(far) / far.w) - origin);
+  }
+};
+
+// Runs rows [0, rows) on `threads` workers (row order varies; each row writes only its own
+// pixels), calling `progress` on this thread about ten times a second and stopping between rows
+// when `cancel` is set.
+template <class RowFn>
+void run_rows(uint32_t rows, unsigned threads, RowFn row_fn, const ProgressFn& progress,
+              const std::atomic<bool>* cancel) {
+  std::atomic<uint32_t> next{0}, done{0};
+  std::atomic<bool> stop{false};
+  std::mutex mutex;
+  std::condition_variable finished;
+  std::exception_ptr error;
+  auto work = [&] {
+    try {
+      for (uint32_t y = next++; y < rows && !stop; y = next++) {
+        row_fn(y);
+        ++done;
+      }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (!error) error = std::current_exception();
+      stop = true;
+    }
+    std::lock_guard<std::mutex> lock(mutex);
+    finished.notify_all();
+  };
+  std::vector<std::thread> pool;
+  for (unsigned i = 0; i < threads; ++i) pool.emplace_back(work);
+  {
+    std::unique_lock<std::mutex> lock(mutex);
+    while (done < rows && !stop) {
+      finished.wait_for(lock, std::chrono::milliseconds(100));
+      if (cancel && cancel->load()) stop = true;
+      lock.unlock();
+      if (progress) progress(done.load(), rows);
+      lock.lock();
+    }
+  }
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+  if (done < rows) throw PathTracer::Cancelled();
+  if (progress) progress(rows, rows);
+}
+
+}  // namespace
+
+struct PathTracer::Impl {
+  explicit Impl(const scene::SceneAssets& a) : assets(a) {}
+  TraceAssets assets;
+};
+
+PathTracer::PathTracer(const scene::SceneAssets& assets) : impl_(std::make_unique<Impl>(assets)) {}
+PathTracer::~PathTracer() = default;
+
+PathTracedImage PathTracer::render(const scene::FrameScene& frame,
+                                   const PathTraceSettings& settings, const ProgressFn& progress,
+                                   const std::atomic<bool>* cancel) {
+  if (settings.width == 0 || settings.height == 0 || settings.spp == 0)
+    throw std::invalid_argument("path tracer: the size and the samples per pixel must be >= 1");
+  const auto start = std::chrono::steady_clock::now();
+  const TraceScene scene(impl_->assets, frame);
+  const SphereLights lights(frame);
+  const CameraRays camera(frame.camera, settings.width, settings.height);
+  const uint32_t w = settings.width, h = settings.height;
+  PathTracedImage image;
+  image.width = w;
+  image.height = h;
+  for (std::vector<float>* plane :
+       {&image.combined, &image.direct, &image.indirect, &image.emission, &image.albedo})
+    plane->assign(size_t(w) * h * 3, 0.0f);
+  const unsigned threads =
+      settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
+  std::atomic<uint64_t> rays{0};
+
+  auto row = [&](uint32_t y) {
+    Integrator integrator(scene, lights, settings.bounces);
+    for (uint32_t x = 0; x < w; ++x) {
+      const uint64_t pixel = uint64_t(y) * w + x;
+      Pcg32 rng(settings.seed, pixel);
+      glm::dvec3 sum[4] = {};  // direct, indirect, emission, albedo
+      for (uint32_t i = 0; i < settings.spp; ++i) {
+        const float jx = rng.uniform(), jy = rng.uniform();
+        const SampleResult r = integrator.trace(
+            camera.origin, camera.direction(double(x) + jx, double(y) + jy), rng);
+        sum[0] += glm::dvec3(r.direct);
+        sum[1] += glm::dvec3(r.indirect);
+        sum[2] += glm::dvec3(r.emission);
+        sum[3] += glm::dvec3(r.albedo);
+      }
+      const double inv = 1.0 / double(settings.spp);
+      for (int c = 0; c < 3; ++c) {
+        const size_t k = 3 * pixel + size_t(c);
+        image.direct[k] = float(sum[0][c] * inv);
+        image.indirect[k] = float(sum[1][c] * inv);
+        image.emission[k] = float(sum[2][c] * inv);
+        image.albedo[k] = float(sum[3][c] * inv);
+        image.combined[k] = float((sum[0][c] + sum[1][c] + sum[2][c]) * inv);
+      }
+    }
+    rays += integrator.rays;
+  };
+  run_rows(h, threads, row, progress, cancel);
+  image.rays = rays.load();
+  image.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return image;
+}
+
+std::vector<PrimaryHit> PathTracer::primary_hits(const scene::FrameScene& frame, uint32_t width,
+                                                 uint32_t height) {
+  const TraceScene scene(impl_->assets, frame);
+  const CameraRays camera(frame.camera, width, height);
+  std::vector<PrimaryHit> hits(size_t(width) * height);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      Surface s;
+      if (!scene.intersect(camera.origin, camera.direction(x + 0.5, y + 0.5), kFar, s)) continue;
+      PrimaryHit& hit = hits[size_t(y) * width + x];
+      hit.instance = s.instance;
+      hit.sphere = s.sphere;
+      hit.material = s.material;
+      const glm::vec3 to_light = frame.light.position - s.p;
+      const float d = glm::length(to_light);
+      hit.lamp_cos = glm::dot(s.ns, to_light / d);
+      hit.lamp_visible = !scene.shadowed(s.p + s.ng * kRayOffset, to_light / d, d);
+    }
+  return hits;
+}
+
+}  // namespace rp::truth

@@ -1,0 +1,117 @@
+// Ground truth (issue 13): an unbiased Monte Carlo path tracer of a scene::FrameScene on the
+// host's cores with Embree, with exactly rolypoly's conventions, so that every real-time mode can
+// be held against it pixel by pixel (app/accuracy_report.h).
+//
+// Conventions (the same as the real-time passes; DESIGN.md "Ground truth is part of the product"):
+//   camera    pinhole at Camera::position; pixel (x, y), (0, 0) top-left, is box filtered: each
+//             sample is a ray through a uniformly random point of the pixel, unprojected with the
+//             unjittered inverse view-projection of Camera::view() / projection(width / height).
+//   surfaces  Lambertian, albedo = material albedo x bilinear texture (wrap, texel centres at
+//             +0.5, rows top to bottom, v up; sRGB decoded exactly), emission = material
+//             emission (meshes) or Sphere::emission. Shading normal: mesh vertex normals
+//             interpolated and transformed by the inverse transpose of the model matrix; spheres
+//             analytic.
+//   lamp      the point light of kernels/common/direct_light.h: at a point p with normal n,
+//             L_direct = albedo * I * max(n.l, 0) / d^2 * falloff(l.y) * V, falloff(s) = 0.35 +
+//             s (0.446 + 0.204 s) for s = clamp(l.y, 0, 1), V = 1 unless a shadow caster (an
+//             instance or sphere with casts_shadow) lies between p and the lamp centre. I is pi
+//             times a physical radiant intensity, so no 1/pi appears (DESIGN.md "Light units").
+//   emitters  mesh emission is counted where a path hits it, except on instances that are not
+//             part of the GI volume (MeshInstance::voxelize == false: the lamp cap), which the
+//             camera sees but whose light is already the point light; emissive spheres (fireball,
+//             particles) are also sampled by next-event estimation, chosen in proportion to their
+//             power (luminance x r^2) and sampled uniformly in the cone they subtend, combined with
+//             the hits of cosine-sampled rays by multiple importance sampling (power heuristic).
+//   bounces   rolypoly's meaning: the lamp lights surfaces directly; every other light arrives by
+//             gathering (the voxel cone tracer's job in the real-time passes). `bounces` = N
+//             counts the gathers: light that left an emitter or a lamp-lit surface and was
+//             reflected by at most N surfaces besides the one the camera sees. 0 = the direct
+//             lamp light and the emission the camera sees; 1 = plus one gather (emitters and
+//             lamp-lit surfaces seen from the camera's surface), as the real-time passes model
+//             today. Russian roulette only after the third gather (unbiased).
+//   components (per pixel, the mean over its samples, linear radiance in the renderer's units):
+//             direct   = the lamp's direct light at the surface the camera sees
+//             emission = that surface's own emission
+//             indirect = everything else reaching the camera from it (gathered light)
+//             combined = direct + indirect + emission
+//             albedo   = that surface's albedo (0 where no surface: background)
+//             so they mean the same as the light pass's direct / indirect terms, the GBuffer's
+//             emission and albedo, and its HDR output (kernels/light.cl).
+//   noise     every pixel draws from its own random stream (seed, pixel index), and a pixel is
+//             traced start to end by one thread: the image is bit-identical for any thread count.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene/frame_scene.h"
+
+namespace rp::truth {
+
+struct PathTraceSettings {
+  uint32_t width = 720, height = 720;
+  uint32_t spp = 64;      // samples per pixel (>= 1)
+  uint32_t bounces = 1;   // gathers, see the header (0 = direct only)
+  uint64_t seed = 1;      // random streams (per pixel)
+  unsigned threads = 0;   // 0 = every hardware thread
+};
+
+// Linear float RGB images: 3 floats per pixel, row-major, top row first (index 3 (y w + x) + c).
+struct PathTracedImage {
+  uint32_t width = 0, height = 0;
+  std::vector<float> combined, direct, indirect, emission, albedo;
+  uint64_t rays = 0;      // every ray traced (camera, gather, shadow and light-sample rays)
+  double seconds = 0.0;   // wall clock of the render
+  double rays_per_second() const { return seconds > 0.0 ? double(rays) / seconds : 0.0; }
+};
+
+// What the camera sees at a pixel's centre (for the accuracy report's named regions).
+struct PrimaryHit {
+  static constexpr uint32_t kNone = 0xFFFFFFFFu;
+  uint32_t instance = kNone;  // FrameScene::instances index, or kNone
+  uint32_t sphere = kNone;    // FrameScene::spheres index, or kNone
+  uint32_t material = kNone;  // SceneAssets::materials index of a mesh hit, or kNone
+  float lamp_cos = 0.0f;      // dot(shading normal, direction to the lamp centre)
+  bool lamp_visible = false;  // no shadow caster between the point and the lamp centre
+  bool hit() const { return instance != kNone || sphere != kNone; }
+};
+
+// Called between rows from the thread that called render(): rows finished so far, rows in all.
+using ProgressFn = std::function<void(uint32_t done, uint32_t total)>;
+
+class PathTracer {
+ public:
+  // Builds one BVH per mesh and the linear textures. Throws std::runtime_error (Embree errors,
+  // meshes referring to missing vertices, materials or textures).
+  explicit PathTracer(const scene::SceneAssets& assets);
+  ~PathTracer();
+  PathTracer(const PathTracer&) = delete;
+  PathTracer& operator=(const PathTracer&) = delete;
+
+  // Path traces `frame` (its camera, light, instances and spheres; the previous-frame fields are
+  // ignored). `progress` (optional) is called about ten times a second; when `cancel` (optional)
+  // becomes true the render stops early and throws Cancelled. Throws std::invalid_argument for
+  // a zero size or spp.
+  PathTracedImage render(const scene::FrameScene& frame, const PathTraceSettings& settings,
+                         const ProgressFn& progress = {},
+                         const std::atomic<bool>* cancel = nullptr);
+
+  // The surface at each pixel centre (width * height entries, row-major) with the lamp's
+  // visibility there: the regions of the accuracy report.
+  std::vector<PrimaryHit> primary_hits(const scene::FrameScene& frame, uint32_t width,
+                                       uint32_t height);
+
+  struct Cancelled : std::runtime_error {
+    Cancelled() : std::runtime_error("path tracing cancelled") {}
+  };
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rp::truth
