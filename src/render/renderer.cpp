@@ -78,7 +78,8 @@ void Renderer::resize(uint32_t width, uint32_t height) {
     if (out_of_device_memory(e.err())) throw_out_of_memory(e, width, height);
     throw;
   }
-  if (light_components_.direct() != nullptr) set_debug_view(view_);  // reallocate at the new size
+  components_written_ = false;  // what they hold is of the old size
+  update_light_components();    // reallocate at the new size (when they are needed)
 }
 
 void Renderer::set_debug_view(const passes::DebugViewSettings& view) {
@@ -87,18 +88,33 @@ void Renderer::set_debug_view(const passes::DebugViewSettings& view) {
                         std::to_string(view.dir) + " does not exist (levels 0.." +
                         std::to_string(voxels_.levels - 1) + ", directions 0..5)");
   view_ = view;
-  if (passes::needs_light_components(view.view)) {
-    const size_t bytes = size_t(settings_.width) * settings_.height * 16;
-    try {
-      light_components_.direct = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, bytes);
-      light_components_.indirect = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, bytes);
-    } catch (const ::cl::Error& e) {
-      light_components_ = {};
-      if (out_of_device_memory(e.err())) throw_out_of_memory(e, settings_.width, settings_.height);
-      throw;
-    }
-  } else {
+  update_light_components();
+}
+
+void Renderer::set_keep_light_components(bool keep) {
+  keep_components_ = keep;
+  update_light_components();
+}
+
+void Renderer::update_light_components() {
+  if (!passes::needs_light_components(view_.view) && !keep_components_) {
     light_components_ = {};
+    components_pixels_ = 0;
+    components_written_ = false;
+    return;
+  }
+  const size_t n = size_t(settings_.width) * settings_.height;
+  if (light_components_.direct() != nullptr && components_pixels_ == n) return;  // still fits
+  components_written_ = false;
+  try {
+    light_components_.direct = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
+    light_components_.indirect = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
+    components_pixels_ = n;
+  } catch (const ::cl::Error& e) {
+    light_components_ = {};
+    components_pixels_ = 0;
+    if (out_of_device_memory(e.err())) throw_out_of_memory(e, settings_.width, settings_.height);
+    throw;
   }
 }
 
@@ -122,7 +138,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     gbuffer_pass_->run(profiler_, *scene_, vis_, gbuffer_);
     voxelize_->run(profiler_, *scene_, shadow_, voxels_);
     voxel_mips_->run(profiler_, voxels_);
-    const bool split = passes::needs_light_components(view_.view);
+    const bool split = passes::needs_light_components(view_.view) || keep_components_;
     passes::LowResIndirect low_res;
     if (indirect_)
       low_res = indirect_->run(profiler_, *scene_, gbuffer_, voxels_.chain, voxels_.resolution,
@@ -168,6 +184,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
       in.voxel_levels = voxels_.levels;
       debug_view_pass_->run(profiler_, *scene_, view_, in, rgba8_);
     }
+    components_written_ = split;
     rp::cl::PassTimes times = profiler_.collect();
     if (embree_) times["visibility_host"] = host_visibility_ms;
     return times;
@@ -188,6 +205,37 @@ void Renderer::set_effects(const Effects& effects) {
 void Renderer::reset_history() {
   taa_->reset_history();
   if (indirect_) indirect_->reset_history();
+}
+
+void Renderer::read_components(LinearComponents& out) {
+  if (!components_written_)
+    throw rp::cl::Error("the light components were not written: keep them "
+                        "(set_keep_light_components) before rendering a frame");
+  const uint32_t w = settings_.width, h = settings_.height;
+  const size_t n = size_t(w) * h;
+  std::vector<float> rgba(n * 4), albedo(n * 4);
+  // float4 per pixel -> 3 floats; 0 where the GBuffer's albedo.a says background (1 covered,
+  // 0 background), whatever the buffer holds there.
+  const auto read_rgb = [&](const ::cl::Buffer& buffer, std::vector<float>& rgb) {
+    context_.queue.enqueueReadBuffer(buffer, CL_TRUE, 0, n * 16, rgba.data());
+    rgb.resize(n * 3);
+    for (size_t i = 0; i < n; ++i)
+      for (size_t c = 0; c < 3; ++c)
+        rgb[3 * i + c] = albedo[4 * i + 3] != 0.0f ? rgba[4 * i + c] : 0.0f;
+  };
+  try {
+    context_.queue.enqueueReadBuffer(gbuffer_.albedo, CL_TRUE, 0, n * 16, albedo.data());
+    out.width = w;
+    out.height = h;
+    read_rgb(hdr_, out.combined);
+    read_rgb(light_components_.direct, out.direct);
+    read_rgb(light_components_.indirect, out.indirect);
+    read_rgb(gbuffer_.emission, out.emission);
+    read_rgb(gbuffer_.albedo, out.albedo);
+  } catch (const ::cl::Error& e) {
+    throw rp::cl::Error(std::string("OpenCL call failed while reading the light components: ") +
+                        e.what() + " (" + rp::cl::error_name(e.err()) + ")");
+  }
 }
 
 void Renderer::read_rgba8(std::vector<uint8_t>& out) {

@@ -61,6 +61,16 @@ enum class VisibilityBackend { kRaster, kEmbree };
 //               measured against.
 enum class Quality { kFast, kReference };
 
+// The light pass's linear images read back to the host (Renderer::read_components): RGB, 3
+// floats per pixel, row-major, top row first; background pixels 0. The same meaning as
+// rp::truth::PathTracedImage's fields: combined = the light pass's HDR output (direct + indirect
+// + emission, before post-processing), direct = albedo x lamp light (shadowed), indirect =
+// albedo x gathered (cone traced) light, emission and albedo from the GBuffer.
+struct LinearComponents {
+  uint32_t width = 0, height = 0;
+  std::vector<float> combined, direct, indirect, emission, albedo;
+};
+
 struct RenderSettings {
   uint32_t width = 720, height = 720;
   uint32_t shadow_size = 1024;  // shadow map texels per side
@@ -94,8 +104,15 @@ class Renderer {
   void set_debug_view(const passes::DebugViewSettings& view);
   const passes::DebugViewSettings& debug_view() const { return view_; }
   // The light pass's direct and indirect terms (float4 per pixel), written only while the
-  // direct or indirect debug view is on (empty buffers otherwise).
+  // direct or indirect debug view is on or they are kept (empty buffers otherwise).
   const passes::LightComponents& light_components() const { return light_components_; }
+  // Keeps the light pass writing its direct and indirect terms whatever is shown (allocates the
+  // two float4 buffers, 32 bytes per pixel, now and on resize), for read_components.
+  void set_keep_light_components(bool keep);
+  // Reads the last frame's HDR output, light components and GBuffer emission / albedo back
+  // (blocking). Throws rp::cl::Error unless the components were written (a direct / indirect
+  // view or set_keep_light_components(true) before the frame).
+  void read_components(LinearComponents& out);
 
   // Switches post-processing effects between frames (turning TAA on starts a fresh history).
   void set_effects(const Effects& effects);
@@ -133,7 +150,15 @@ class Renderer {
   std::unique_ptr<passes::MotionBlurPass> motion_blur_;
   std::unique_ptr<passes::DebugViewPass> debug_view_pass_;
   passes::DebugViewSettings view_;
+  // Allocates light_components_ when the view or keep_components_ needs them and they do not
+  // exist at the current size; drops them otherwise.
+  void update_light_components();
+
   passes::LightComponents light_components_;  // set only while a direct/indirect view is on
+                                              // or keep_components_
+  bool keep_components_ = false;
+  size_t components_pixels_ = 0;     // pixels light_components_ was allocated for
+  bool components_written_ = false;  // the last frame wrote light_components_
   VisibilityBuffer vis_;
   ShadowMap shadow_;
   GBuffer gbuffer_;
