@@ -11,7 +11,10 @@
 // - a parsed command whose values break what the commands rely on: sizes 1..16384, voxels
 //   32/64/128 (or 0 = default), shadow map 1..16384 (or 0), bloom strength in [0, 1], a debug
 //   view that exists with --level/--dir only for voxels, render/bench frames >= 1, a bench scene
-//   that exists, no conflicting bench options, command_line = "rolypoly" + the words.
+//   that exists, no conflicting bench options, command_line = "rolypoly" + the words; --spp
+//   1..1000000 and --bounces 0..1000, both at their defaults unless --quality pathtraced, which
+//   only render and bench take (render: views final/direct/indirect/albedo, EXR on; bench: one
+//   size, default scene, no matrix, comparison or report options; neither: --device).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -69,10 +72,12 @@ std::string describe(const CliParse& result) {
                   std::to_string(c.view.dir));
   add("visibility", std::to_string(int(c.visibility)));
   add("quality", std::to_string(int(c.quality)));
+  add("pathtraced", std::to_string(c.pathtraced) + " " + std::to_string(c.spp) + " " +
+                        std::to_string(c.bounces));
   add("render", std::to_string(p.render.size.width) + "x" + std::to_string(p.render.size.height) +
                     " " + std::to_string(p.render.frames) + " " +
                     std::to_string(p.render.frames_given) + " " + p.render.out_dir + " " +
-                    p.render.video);
+                    p.render.video + " " + std::to_string(p.render.exr));
   sim(p.render.sim);
   add("run", std::to_string(p.run.size.width) + "x" + std::to_string(p.run.size.height) + " " +
                  std::to_string(p.run.frames) + " " + p.run.capture + " " + p.run.record);
@@ -120,6 +125,14 @@ void check_command(const ParsedCommand& p, const std::vector<std::string>& words
           "--visibility out of range");
   require(c.quality == rp::render::Quality::kFast || c.quality == rp::render::Quality::kReference,
           "--quality out of range");
+  require(c.spp >= 1 && c.spp <= 1000000, "--spp out of range");
+  require(c.bounces <= 1000, "--bounces out of range");
+  if (!c.pathtraced)
+    require(c.spp == 256 && c.bounces == 1, "--spp/--bounces accepted without --quality pathtraced");
+  else
+    require(c.device.empty() && (p.kind == ParsedCommand::Kind::kRender ||
+                                 p.kind == ParsedCommand::Kind::kBench),
+            "--quality pathtraced with --device or outside render and bench");
   switch (p.kind) {
     case ParsedCommand::Kind::kDevices: break;
     case ParsedCommand::Kind::kRender:
@@ -127,6 +140,13 @@ void check_command(const ParsedCommand& p, const std::vector<std::string>& words
               "render size out of range");
       require(p.render.frames >= 1 && p.render.frames <= 1000000, "render --frames out of range");
       check_view(c.view);
+      if (c.pathtraced) {
+        using rp::passes::DebugView;
+        require(c.view.view == DebugView::kFinal || c.view.view == DebugView::kDirect ||
+                    c.view.view == DebugView::kIndirect || c.view.view == DebugView::kAlbedo,
+                "--quality pathtraced with a view the path tracer has no image for");
+        require(p.render.exr, "--quality pathtraced without its EXR");
+      }
       break;
     case ParsedCommand::Kind::kRun:
       require(valid_size(p.run.size.width) && valid_size(p.run.size.height),
@@ -145,6 +165,11 @@ void check_command(const ParsedCommand& p, const std::vector<std::string>& words
       if (b.compare_visibility)
         require(b.devices.empty() && b.sizes.empty() && b.voxels.size() <= 1,
                 "--compare-visibility with several devices, sizes or voxel resolutions");
+      if (c.pathtraced)
+        require(b.devices.empty() && b.sizes.empty() && b.voxels.empty() &&
+                    !b.compare_visibility && !b.quality_report && b.scene == "default" &&
+                    b.chart.empty() && b.markdown.empty(),
+                "bench --quality pathtraced with matrix, comparison or report options");
       std::string line = "rolypoly";
       for (const std::string& w : words) line += " " + w;
       require(b.command_line == line, "bench command_line is not the arguments");

@@ -297,6 +297,7 @@ int quality_report(const CommonOptions& common, const BenchOptions& options) {
 }  // namespace
 
 int bench_command(const CommonOptions& common, const BenchOptions& options) {
+  if (common.pathtraced) return pathtrace_bench_command(common, options);
   if (options.quality_report) {
     CommonOptions c = common;
     if (!options.voxels.empty()) c.voxels = options.voxels.front();

@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -117,8 +118,9 @@ struct SizeArgs {
   ImageSize resolve() const { return {width ? width : size, height ? height : size}; }
 };
 
-// `voxel_option`: false for bench, which takes a list of resolutions instead.
-void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option = true) {
+// `voxel_option`: false for bench, which takes a list of resolutions instead. `pathtraced`:
+// --quality also offers pathtraced (render and bench; the window shows only real-time frames).
+void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pathtraced) {
   cmd->add_option("--device", common.device,
                   "OpenCL device: index from `rolypoly devices` or part of its name "
                   "(case-insensitive); default: first GPU, else first CPU");
@@ -142,16 +144,27 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option = true) 
          "where the visibility buffer comes from: raster (compute rasterizer on the OpenCL "
          "device, default) or embree (Embree primary rays on the host's cores, uploaded)")
       ->check(CLI::IsMember({"raster", "embree"}));
+  std::string quality_help =
+      "indirect light: fast (real-time default: reduced resolution, interleaved cones, "
+      "temporal accumulation), reference (per-pixel 16 cones at full resolution, twice the "
+      "steps, no temporal reuse)";
+  std::vector<std::string> qualities = {"fast", "reference"};
+  if (pathtraced) {
+    quality_help += " or pathtraced (the ground truth: Monte Carlo path tracing of the same "
+                    "frame on the host's cores with Embree, no OpenCL device; --spp, --bounces)";
+    qualities.push_back("pathtraced");
+  } else {
+    quality_help += " (render and bench also take pathtraced)";
+  }
   cmd->add_option_function<std::string>(
          "--quality",
          [&common](const std::string& name) {
            common.quality =
                name == "reference" ? render::Quality::kReference : render::Quality::kFast;
+           common.pathtraced = name == "pathtraced";
          },
-         "indirect light: fast (real-time default: reduced resolution, interleaved cones, "
-         "temporal accumulation) or reference (per-pixel 16 cones at full resolution, twice "
-         "the steps, no temporal reuse)")
-      ->check(CLI::IsMember({"fast", "reference"}));
+         quality_help)
+      ->check(CLI::IsMember(qualities));
   auto off = [&](const char* name, bool& flag, const char* what) {
     cmd->add_flag_callback(name, [&flag] { flag = false; }, what);
   };
@@ -162,6 +175,37 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option = true) 
                   "bloom mix factor f: colour * (1 - f) + bloom * f")
       ->capture_default_str()
       ->check(decimal_in(0.0, 1.0));
+}
+
+// --spp / --bounces (render and bench): the path tracer's settings.
+void add_pathtrace(CLI::App* cmd, CommonOptions& common) {
+  cmd->add_option("--spp", common.spp, "--quality pathtraced: samples per pixel")
+      ->capture_default_str()
+      ->transform(whole_number(1, 1000000));
+  cmd->add_option("--bounces", common.bounces,
+                  "--quality pathtraced: gathers: light that left an emitter or a lamp-lit surface "
+                  "reaches the camera after at most N reflections besides the surface the camera "
+                  "sees (0 = direct lamp light and seen emission only; 1 = one gather, what the "
+                  "real-time modes model)")
+      ->capture_default_str()
+      ->transform(whole_number(0, 1000));
+}
+
+// Usage checks of --quality pathtraced and its options (render and bench): "" when fine.
+// Options that pick the OpenCL device or change the real-time image cannot apply to the host
+// path tracer, so they are refused rather than silently ignored; the --no-* switches ask for
+// less post-processing than the path tracer already has none of, and pass.
+std::string check_pathtrace(const CLI::App* cmd, const CommonOptions& common) {
+  if (!common.pathtraced) {
+    if (cmd->count("--spp") || cmd->count("--bounces"))
+      return "--spp and --bounces apply to --quality pathtraced";
+    return "";
+  }
+  for (const char* name : {"--device", "--visibility", "--shadow-size", "--bloom-strength"})
+    if (cmd->count(name))
+      return std::string(name) + " does not apply to --quality pathtraced (the path tracer "
+                                 "runs on the host's cores, without post-processing)";
+  return "";
 }
 
 void add_size(CLI::App* cmd, SizeArgs& size) {
@@ -252,7 +296,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
   CLI::App* devices = app.add_subcommand("devices", "list every OpenCL platform and device");
 
   CLI::App* render = app.add_subcommand("render", "render frames headless into numbered PNGs");
-  add_common(render, common);
+  add_common(render, common, true, true);
+  add_pathtrace(render, common);
   add_size(render, render_size);
   render->add_option("--frames", render_opts.frames, "number of frames")
       ->capture_default_str()
@@ -261,11 +306,14 @@ CliParse parse_cli(int argc, const char* const* argv) {
       ->capture_default_str();
   render->add_option("--video", render_opts.video,
                      "also encode the frames into this video file with ffmpeg (60 fps)");
+  render->add_flag("--exr", render_opts.exr,
+                   "also write frame_NNNN.exr: the linear combined image and its direct, "
+                   "indirect, emission and albedo layers (always with --quality pathtraced)");
   add_simulation(render, render_opts.sim);
   add_view(render, render_view);
 
   CLI::App* run = app.add_subcommand("run", "show the frames in a window (Esc quits)");
-  add_common(run, common);
+  add_common(run, common, true, false);
   add_size(run, run_size);
   run->add_option("--frames", run_opts.frames, "frames to show, 0 = until the window is closed")
       ->capture_default_str()
@@ -281,7 +329,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
   CLI::App* bench = app.add_subcommand(
       "bench", "time every pass over many frames, on one or many devices, sizes and voxel "
                "resolutions");
-  add_common(bench, common, false);
+  add_common(bench, common, false, true);
+  add_pathtrace(bench, common);
   add_size(bench, bench_size);
   bench->add_option("--frames", bench_opts.frames, "measured frames")
       ->capture_default_str()
@@ -354,6 +403,18 @@ CliParse parse_cli(int argc, const char* const* argv) {
   if (devices->parsed()) {
     parsed.kind = ParsedCommand::Kind::kDevices;
   } else if (render->parsed()) {
+    if (std::string why = check_pathtrace(render, common); !why.empty())
+      return usage("rolypoly render", why);
+    if (common.pathtraced) {
+      const passes::DebugView v = common.view.view;
+      if (v != passes::DebugView::kFinal && v != passes::DebugView::kDirect &&
+          v != passes::DebugView::kIndirect && v != passes::DebugView::kAlbedo)
+        return usage("rolypoly render",
+                     "--view " + render_view.view +
+                         " is not available with --quality pathtraced; use final, direct, "
+                         "indirect or albedo");
+      render_opts.exr = true;  // the path-traced frames always come with their EXR
+    }
     parsed.kind = ParsedCommand::Kind::kRender;
     render_opts.size = render_size.resolve();
     render_opts.frames_given = render->count("--frames") > 0;
@@ -374,7 +435,17 @@ CliParse parse_cli(int argc, const char* const* argv) {
              (devices_opt->count() || sizes_opt->count() || bench_opts.voxels.size() > 1 ||
               bench_opts.compare_visibility))
       why = "--quality-report runs one device, size and voxel resolution";
+    else if (common.pathtraced &&
+             (devices_opt->count() || sizes_opt->count() || bench->count("--voxels") ||
+              bench_opts.compare_visibility || bench_opts.quality_report ||
+              bench->count("--chart") || bench->count("--markdown") ||
+              bench_opts.scene != "default"))
+      why = "--quality pathtraced benches the path tracer on the host at one size and the "
+            "default scene (no --devices, --sizes, --voxels, --compare-visibility, "
+            "--quality-report, --chart, --markdown or --scene busy)";
     if (why) return usage("rolypoly bench", why);
+    if (std::string pt = check_pathtrace(bench, common); !pt.empty())
+      return usage("rolypoly bench", pt);
     parsed.kind = ParsedCommand::Kind::kBench;
     bench_opts.size = bench_size.resolve();
     bench_opts.command_line = "rolypoly";

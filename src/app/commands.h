@@ -29,6 +29,8 @@ struct RenderOptions {
   bool frames_given = false;  // --frames on the command line (else a replay's frame count)
   std::string out_dir = "out";
   std::string video;          // --video FILE.mp4: also pipe the frames to ffmpeg
+  bool exr = false;           // --exr: also frame_NNNN.exr (linear components; always when
+                              // path traced)
   SimulationArgs sim;
 };
 
@@ -61,12 +63,18 @@ struct BenchOptions {
 
 // Prints every OpenCL platform/device.
 int devices_command();
-// Headless: frame_0000.png ... into out_dir.
+// Headless: frame_0000.png ... into out_dir (with common.pathtraced: pathtrace_render_command).
 int render_command(const CommonOptions& common, const RenderOptions& options);
+// --quality pathtraced: the same frames path traced on the host (no OpenCL), frame_NNNN.png
+// and frame_NNNN.exr (app/pathtrace_command.cpp).
+int pathtrace_render_command(const CommonOptions& common, const RenderOptions& options);
 // Window (GLFW); throws rp::display::DisplayError when no window can be opened.
 int run_command(const CommonOptions& common, const RunOptions& options);
 // Timing tables per device and run, optional JSON, chart and Markdown. Exit code 0 when at
 // least one device completed, 1 when every device was skipped.
 int bench_command(const CommonOptions& common, const BenchOptions& options);
+// bench --quality pathtraced: seconds and Mrays/s per path-traced frame, optional JSON (schema
+// "rolypoly-pathtrace-bench/1").
+int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& options);
 
 }  // namespace rp::app

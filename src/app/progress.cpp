@@ -1,6 +1,7 @@
 #include "app/progress.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <unistd.h>
 
@@ -25,9 +26,29 @@ std::string ProgressBar::render_line(const std::string& label, size_t done, size
   return line;
 }
 
+std::string ProgressBar::eta_text(double elapsed_s, size_t done, size_t total) {
+  if (done == 0 || done >= total || !(elapsed_s >= 1.0)) return "";
+  const double left = elapsed_s * double(total - done) / double(done);
+  char text[48];
+  if (left >= 3600.0)
+    std::snprintf(text, sizeof text, ", ETA %dh%02dm", int(left / 3600.0),
+                  int(std::fmod(left, 3600.0) / 60.0));
+  else if (left >= 60.0)
+    std::snprintf(text, sizeof text, ", ETA %dm%02ds", int(left / 60.0), int(std::fmod(left, 60.0)));
+  else
+    std::snprintf(text, sizeof text, ", ETA %ds", int(std::ceil(left)));
+  return text;
+}
+
 void ProgressBar::update(size_t done) {
   if (!enabled_) return;
-  std::fprintf(stream_, "\r%s", render_line(label_, done, total_).c_str());
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  std::string line = render_line(label_, done, total_) + eta_text(elapsed, done, total_);
+  const size_t length = line.size();
+  if (length < drawn_length_) line.append(drawn_length_ - length, ' ');
+  drawn_length_ = length;
+  std::fprintf(stream_, "\r%s", line.c_str());
   std::fflush(stream_);
   drawn_ = true;
 }
@@ -38,6 +59,7 @@ void ProgressBar::finish() {
     std::fflush(stream_);
   }
   drawn_ = false;
+  drawn_length_ = 0;
 }
 
 }  // namespace rp::app

@@ -1,7 +1,8 @@
 // A one-line progress bar on stderr, drawn only when stderr is a terminal (so logs and test
-// captures stay clean).
+// captures stay clean), with the estimated time left once there is progress to go by.
 #pragma once
 
+#include <chrono>
 #include <cstdio>
 #include <string>
 
@@ -21,6 +22,9 @@ class ProgressBar {
   // The text drawn for `done` of `total` (without the leading carriage return); for tests.
   static std::string render_line(const std::string& label, size_t done, size_t total,
                                  size_t bar_width = 30);
+  // ", ETA 2m05s" after `elapsed_s` seconds for `done` of `total` at the same rate; "" before
+  // any progress, when finished, or before a second has passed (too early to tell).
+  static std::string eta_text(double elapsed_s, size_t done, size_t total);
 
  private:
   std::string label_;
@@ -28,6 +32,8 @@ class ProgressBar {
   bool enabled_;
   std::FILE* stream_;
   bool drawn_ = false;
+  size_t drawn_length_ = 0;  // characters of the last line drawn (a shorter one pads over it)
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace rp::app

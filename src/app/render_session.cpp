@@ -88,7 +88,8 @@ void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint3
                " (--size " + std::to_string(side) + ")";
   throw rp::cl::Error(message);
 }
-RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint32_t height)
+RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint32_t height,
+                             bool keep_components)
     : assets_(scene::make_demo_assets(options.asset_dir.empty() ? scene::default_asset_dir()
                                                                 : options.asset_dir)),
       context_(rp::cl::Context::create(options.device)),
@@ -104,9 +105,18 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   // Before any allocation or kernel build: a size the device cannot hold fails at once, with
   // what would fit.
   check_device_memory(context_.info, width, height, settings.shadow_size,
-                      settings.voxel_resolution, passes::needs_light_components(options.view.view));
+                      settings.voxel_resolution,
+                      passes::needs_light_components(options.view.view) || keep_components);
   renderer_ = std::make_unique<render::Renderer>(context_, programs_, assets_, settings);
   set_view(options.view);
+  if (keep_components) renderer_->set_keep_light_components(true);
+}
+
+void RenderSession::set_keep_components(bool keep) {
+  if (keep)
+    check_device_memory(context_.info, width(), height(), renderer_->settings().shadow_size,
+                        renderer_->settings().voxel_resolution, true);
+  renderer_->set_keep_light_components(keep);
 }
 
 void RenderSession::set_view(const passes::DebugViewSettings& view) {

@@ -27,12 +27,20 @@ struct CommonOptions {
   passes::DebugViewSettings view;  // --view / --level / --dir (render, run): what is shown
   render::VisibilityBackend visibility = render::VisibilityBackend::kRaster;  // --visibility
   render::Quality quality = render::Quality::kFast;                          // --quality
+  // --quality pathtraced (render, bench): the host path tracer (truth/path_tracer.h) instead of
+  // the OpenCL renderer; `quality` is then unused. --spp / --bounces are its settings.
+  bool pathtraced = false;
+  uint32_t spp = 256;    // --spp: samples per pixel, 1..1000000
+  uint32_t bounces = 1;  // --bounces: gathers, 0..1000; 1 = what the real-time modes model
 };
 
 // Not copyable or movable: the program cache and renderer point at the context.
 class RenderSession {
  public:
-  RenderSession(const CommonOptions& options, uint32_t width, uint32_t height);
+  // keep_components: set_keep_components(true) from the start, counted in the memory check
+  // that runs before anything is allocated (`render --exr`).
+  RenderSession(const CommonOptions& options, uint32_t width, uint32_t height,
+                bool keep_components = false);
   RenderSession(const RenderSession&) = delete;
   RenderSession& operator=(const RenderSession&) = delete;
 
@@ -49,6 +57,11 @@ class RenderSession {
 
   // Post-processing switches for the next frames (keys T, B, M in the window).
   void set_effects(const render::Effects& effects) { renderer_->set_effects(effects); }
+  // Keeps the light pass's direct / indirect terms for read_components whatever the view
+  // (`render --exr`); checks the device memory with them counted first (rp::cl::Error).
+  void set_keep_components(bool keep);
+  // The last frame's linear images (render::Renderer::read_components; blocking).
+  void read_components(render::LinearComponents& out) { renderer_->read_components(out); }
   void reset_history() { renderer_->reset_history(); }
 
   const rp::cl::DeviceInfo& device() const { return context_.info; }
@@ -68,7 +81,8 @@ class RenderSession {
 // from render/frame_buffers.h, renderer.h and the passes (bytes, an estimate that errs high):
 // per pixel: visibility 20 (depth, ids, bary), GBuffer 72 (4 float4 + velocity float2), HDR 16,
 // post ping-pong 32, RGBA8 4, TAA history 32, bloom chain <= 32/3 (half-size levels, down + up),
-// motion blur 4 (+ 20 per 20x20 tile), direct/indirect components 32 (only for those views),
+// motion blur 4 (+ 20 per 20x20 tile), direct/indirect components 32 (only for those views or
+// when kept for `render --exr`),
 // raster tile lists 24 per tile; fixed: shadow map 4 * size^2, voxel chain + accum + overflow,
 // and kSceneReserveBytes for meshes, textures and draw lists.
 struct DeviceMemoryNeed {

@@ -109,6 +109,79 @@ TEST(ParseCli, UsageErrorsAndHelp) {
   EXPECT_NE(help.message.find("--bloom-strength"), std::string::npos);
 }
 
+TEST(ParseCli, PathtracedQualityAndItsOptions) {
+  const ParsedCommand defaults = command({"render"});
+  EXPECT_FALSE(defaults.common.pathtraced);
+  EXPECT_EQ(defaults.common.spp, 256u);
+  EXPECT_EQ(defaults.common.bounces, 1u);
+  EXPECT_FALSE(defaults.render.exr);
+  EXPECT_TRUE(command({"render", "--exr"}).render.exr);
+
+  const ParsedCommand p = command({"render", "--quality", "pathtraced", "--spp", "1000000",
+                                   "--bounces", "0", "--view", "indirect"});
+  EXPECT_TRUE(p.common.pathtraced);
+  EXPECT_EQ(p.common.spp, 1000000u);
+  EXPECT_EQ(p.common.bounces, 0u);
+  EXPECT_TRUE(p.render.exr) << "the path-traced frames always come with their EXR";
+  EXPECT_EQ(p.common.view.view, passes::DebugView::kIndirect);
+  EXPECT_EQ(command({"render", "--quality", "pathtraced", "--bounces", "1000"}).common.bounces,
+            1000u);
+  const ParsedCommand b = command({"bench", "--quality", "pathtraced", "--spp", "8", "--json",
+                                   "x.json", "--frames", "2"});
+  EXPECT_TRUE(b.common.pathtraced);
+  EXPECT_EQ(b.common.spp, 8u);
+  EXPECT_FALSE(command({"render", "--quality", "reference"}).common.pathtraced);
+
+  for (const std::vector<std::string>& words : std::vector<std::vector<std::string>>{
+           {"render", "--spp", "4"}, {"render", "--bounces", "1"}, {"bench", "--spp", "4"},
+           {"render", "--quality", "fast", "--bounces", "2"}}) {
+    const CliExit e = exit_of(words);
+    EXPECT_EQ(e.exit_code, 2) << words[1];
+    EXPECT_NE(e.message.find("--spp and --bounces apply to --quality pathtraced"),
+              std::string::npos)
+        << e.message;
+  }
+  for (const char* bad : {"0", "1000001", "-1", "0x10", "four"})
+    EXPECT_EQ(exit_of({"render", "--quality", "pathtraced", "--spp", bad}).exit_code, 2) << bad;
+  EXPECT_EQ(exit_of({"render", "--quality", "pathtraced", "--bounces", "1001"}).exit_code, 2);
+  const CliExit view = exit_of({"render", "--quality", "pathtraced", "--view", "depth"});
+  EXPECT_EQ(view.exit_code, 2);
+  EXPECT_NE(view.message.find("--view depth is not available with --quality pathtraced; use "
+                              "final, direct, indirect or albedo"),
+            std::string::npos)
+      << view.message;
+  // Options of the OpenCL renderer that cannot apply to the host path tracer.
+  for (const char* option : {"--device", "--visibility", "--shadow-size", "--bloom-strength"}) {
+    const std::string value = std::string(option) == "--visibility" ? "embree" : "1";
+    const CliExit e = exit_of({"render", "--quality", "pathtraced", option, value});
+    EXPECT_EQ(e.exit_code, 2) << option;
+    EXPECT_NE(e.message.find(std::string(option) + " does not apply to --quality pathtraced"),
+              std::string::npos)
+        << e.message;
+  }
+  EXPECT_TRUE(command({"render", "--quality", "pathtraced", "--no-taa"}).common.pathtraced);
+  for (const std::vector<std::string>& words : std::vector<std::vector<std::string>>{
+           {"--devices", "all"}, {"--sizes", "16,32"}, {"--voxels", "32"},
+           {"--compare-visibility"}, {"--quality-report"}, {"--chart", "c.svg"},
+           {"--markdown", "m.md"}, {"--scene", "busy"}, {"--device", "0"}}) {
+    std::vector<std::string> argv = {"bench", "--quality", "pathtraced"};
+    argv.insert(argv.end(), words.begin(), words.end());
+    EXPECT_EQ(exit_of(argv).exit_code, 2) << words[0];
+  }
+  // The window shows real-time frames only.
+  EXPECT_EQ(exit_of({"run", "--quality", "pathtraced"}).exit_code, 2);
+  EXPECT_EQ(exit_of({"run", "--spp", "4"}).exit_code, 2);
+  EXPECT_EQ(exit_of({"run", "--exr"}).exit_code, 2);
+
+  for (const char* sub : {"render", "bench"}) {
+    const CliExit help = exit_of({sub, "--help"});
+    EXPECT_NE(help.message.find("pathtraced"), std::string::npos) << sub;
+    EXPECT_NE(help.message.find("--spp"), std::string::npos) << sub;
+    EXPECT_NE(help.message.find("--bounces"), std::string::npos) << sub;
+  }
+  EXPECT_NE(exit_of({"render", "--help"}).message.find("--exr"), std::string::npos);
+}
+
 TEST(ParseCli, BenchKeepsItsCommandLineAndTheSameArgvParsesTheSameTwice) {
   const std::vector<std::string> words = {"bench", "--devices", "all", "--sizes", "256,512",
                                           "--voxels", "32,64", "--scene", "busy"};
