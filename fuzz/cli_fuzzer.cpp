@@ -14,10 +14,14 @@
 //   that exists, no conflicting bench options, command_line = "rolypoly" + the words; --spp
 //   1..1000000 and --bounces 0..1000, both at their defaults unless --quality pathtraced, which
 //   only render and bench take (render: views final/direct/indirect/albedo, EXR on; bench: one
-//   size, default scene, no matrix, comparison or report options; neither: --device).
+//   size, default scene, no matrix, comparison or report options; neither: --device); bench
+//   --accuracy alone on one device and size (--spp its truth's samples), its --out,
+//   --truth-cache and thresholds (finite, 0..1000) only with it.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <cstdlib>
 #include <exception>
 #include <string>
@@ -87,6 +91,10 @@ std::string describe(const CliParse& result) {
                    std::to_string(b.frames) + " " + std::to_string(b.warmup) + " " + b.json +
                    " " + std::to_string(b.compare_visibility) + " " + b.devices + " " +
                    b.scene + " " + b.chart + " " + b.markdown + " " + b.command_line);
+  add("accuracy", std::to_string(b.accuracy) + " " + std::to_string(b.size_given) + " " +
+                      std::to_string(b.accuracy_spp) + " " + b.out_dir + " " + b.truth_cache +
+                      " " + (b.max_indirect_l1 ? std::to_string(*b.max_indirect_l1) : "-") +
+                      " " + (b.max_indirect_bias ? std::to_string(*b.max_indirect_bias) : "-"));
   for (uint32_t v : b.sizes) add("sizes", std::to_string(v));
   for (uint32_t v : b.voxels) add("bvoxels", std::to_string(v));
   sim(b.sim);
@@ -127,8 +135,10 @@ void check_command(const ParsedCommand& p, const std::vector<std::string>& words
           "--quality out of range");
   require(c.spp >= 1 && c.spp <= 1000000, "--spp out of range");
   require(c.bounces <= 1000, "--bounces out of range");
+  const bool accuracy = p.kind == ParsedCommand::Kind::kBench && p.bench.accuracy;
   if (!c.pathtraced)
-    require(c.spp == 256 && c.bounces == 1, "--spp/--bounces accepted without --quality pathtraced");
+    require((c.spp == 256 || accuracy) && c.bounces == 1,
+            "--spp/--bounces accepted without --quality pathtraced (or --spp without --accuracy)");
   else
     require(c.device.empty() && (p.kind == ParsedCommand::Kind::kRender ||
                                  p.kind == ParsedCommand::Kind::kBench),
@@ -170,6 +180,20 @@ void check_command(const ParsedCommand& p, const std::vector<std::string>& words
                     !b.compare_visibility && !b.quality_report && b.scene == "default" &&
                     b.chart.empty() && b.markdown.empty(),
                 "bench --quality pathtraced with matrix, comparison or report options");
+      if (b.accuracy) {
+        require(b.devices.empty() && b.sizes.empty() && b.voxels.size() <= 1 &&
+                    !b.compare_visibility && !b.quality_report && !c.pathtraced &&
+                    b.scene == "default" && b.chart.empty() && b.markdown.empty(),
+                "bench --accuracy with matrix, comparison, report or path-tracer options");
+        require(b.accuracy_spp >= 1 && b.accuracy_spp <= 1000000, "--accuracy --spp out of range");
+      } else {
+        require(b.out_dir == "out/accuracy" && b.truth_cache.empty() && !b.max_indirect_l1 &&
+                    !b.max_indirect_bias,
+                "--accuracy's options accepted without --accuracy");
+      }
+      for (const std::optional<double>& t : {b.max_indirect_l1, b.max_indirect_bias})
+        require(!t || (std::isfinite(*t) && *t >= 0.0 && *t <= 1000.0),
+                "--max-indirect-* threshold out of range");
       std::string line = "rolypoly";
       for (const std::string& w : words) line += " " + w;
       require(b.command_line == line, "bench command_line is not the arguments");

@@ -298,6 +298,11 @@ int quality_report(const CommonOptions& common, const BenchOptions& options) {
 
 int bench_command(const CommonOptions& common, const BenchOptions& options) {
   if (common.pathtraced) return pathtrace_bench_command(common, options);
+  if (options.accuracy) {
+    CommonOptions c = common;
+    if (!options.voxels.empty()) c.voxels = options.voxels.front();
+    return accuracy_command(c, options);
+  }
   if (options.quality_report) {
     CommonOptions c = common;
     if (!options.voxels.empty()) c.voxels = options.voxels.front();

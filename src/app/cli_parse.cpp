@@ -346,6 +346,28 @@ CliParse parse_cli(int argc, const char* const* argv) {
                   "measure how close the fast quality mode comes to the reference mode at the "
                   "bench size: PSNR on the static demo after TAA converged, per frame on the "
                   "busy animation, and the flicker of both (issue 9's criteria)");
+  bench->add_flag("--accuracy", bench_opts.accuracy,
+                  "hold the fast and reference modes against the path-traced truth of the demo "
+                  "frame (1 and 64 bounces; cached on disk): PSNR, indirect L1 and bias per "
+                  "region, side-wall hue, leaks; default size 360, --spp 1024");
+  bench->add_option("--out", bench_opts.out_dir,
+                    "--accuracy: folder for the side-by-side PNG and the heat maps")
+      ->capture_default_str();
+  bench->add_option("--truth-cache", bench_opts.truth_cache,
+                    "--accuracy: folder of cached path-traced truths (default "
+                    "$XDG_CACHE_HOME/rolypoly/truth or ~/.cache/rolypoly/truth)");
+  bench->add_option_function<std::string>(
+           "--max-indirect-l1",
+           [&bench_opts](const std::string& v) { bench_opts.max_indirect_l1 = std::strtod(v.c_str(), nullptr); },
+           "--accuracy: exit 3 when the fast mode's indirect relative L1 against the 1-bounce "
+           "truth exceeds this (e.g. 0.15)")
+      ->check(decimal_in(0.0, 1000.0));
+  bench->add_option_function<std::string>(
+           "--max-indirect-bias",
+           [&bench_opts](const std::string& v) { bench_opts.max_indirect_bias = std::strtod(v.c_str(), nullptr); },
+           "--accuracy: exit 3 when the fast mode's |indirect bias| against the 1-bounce truth "
+           "exceeds this (e.g. 0.10)")
+      ->check(decimal_in(0.0, 1000.0));
   add_simulation(bench, bench_opts.sim);
   CLI::Option* devices_opt = bench->add_option(
       "--devices", bench_opts.devices,
@@ -443,11 +465,29 @@ CliParse parse_cli(int argc, const char* const* argv) {
       why = "--quality pathtraced benches the path tracer on the host at one size and the "
             "default scene (no --devices, --sizes, --voxels, --compare-visibility, "
             "--quality-report, --chart, --markdown or --scene busy)";
+    else if (bench_opts.accuracy &&
+             (devices_opt->count() || sizes_opt->count() || bench_opts.voxels.size() > 1 ||
+              bench_opts.compare_visibility || bench_opts.quality_report || common.pathtraced ||
+              bench->count("--bounces") || bench->count("--chart") ||
+              bench->count("--markdown") || bench_opts.scene != "default"))
+      why = "--accuracy runs one device and voxel resolution on the demo frame (no --devices, "
+            "--sizes, --compare-visibility, --quality-report, --quality pathtraced, --bounces, "
+            "--chart, --markdown or --scene busy)";
+    else if (!bench_opts.accuracy &&
+             (bench->count("--out") || bench->count("--truth-cache") ||
+              bench->count("--max-indirect-l1") || bench->count("--max-indirect-bias")))
+      why = "--out, --truth-cache, --max-indirect-l1 and --max-indirect-bias belong to "
+            "--accuracy";
     if (why) return usage("rolypoly bench", why);
-    if (std::string pt = check_pathtrace(bench, common); !pt.empty())
+    if (bench_opts.accuracy) {
+      if (bench->count("--spp")) bench_opts.accuracy_spp = common.spp;
+    } else if (std::string pt = check_pathtrace(bench, common); !pt.empty()) {
       return usage("rolypoly bench", pt);
+    }
     parsed.kind = ParsedCommand::Kind::kBench;
     bench_opts.size = bench_size.resolve();
+    bench_opts.size_given =
+        bench->count("--size") || bench->count("--width") || bench->count("--height");
     bench_opts.command_line = "rolypoly";
     for (int i = 1; i < argc; ++i) {
       bench_opts.command_line += ' ';

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,14 @@ struct BenchOptions {
   bool compare_visibility = false;  // --compare-visibility: raster and Embree on the same frames
   // --quality-report: fast vs reference quality mode at the bench size (app/quality_report.h)
   bool quality_report = false;
+  // --accuracy: every real-time mode against the path-traced truth (app/accuracy_report.h);
+  // its size defaults to 360 (size_given: --size/--width/--height on the command line).
+  bool accuracy = false;
+  bool size_given = false;
+  uint32_t accuracy_spp = 1024;         // --spp with --accuracy: the truth's samples per pixel
+  std::string out_dir = "out/accuracy";  // --out: the report's PNGs
+  std::string truth_cache;              // --truth-cache DIR ("" = the default cache folder)
+  std::optional<double> max_indirect_l1, max_indirect_bias;  // exit 3 when missed
   // The matrix (issue 7): every device x size x voxel resolution.
   std::string devices;           // --devices all|LIST ("" = the one --device, or the default)
   std::vector<uint32_t> sizes;   // --sizes: square sizes (empty = `size`)
@@ -73,6 +82,9 @@ int run_command(const CommonOptions& common, const RunOptions& options);
 // Timing tables per device and run, optional JSON, chart and Markdown. Exit code 0 when at
 // least one device completed, 1 when every device was skipped.
 int bench_command(const CommonOptions& common, const BenchOptions& options);
+// bench --accuracy: the real-time modes against the path-traced truth (app/accuracy_report.h);
+// exit 3 when a --max-indirect-* threshold is missed, 130 when interrupted.
+int accuracy_command(const CommonOptions& common, const BenchOptions& options);
 // bench --quality pathtraced: seconds and Mrays/s per path-traced frame, optional JSON (schema
 // "rolypoly-pathtrace-bench/1").
 int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& options);

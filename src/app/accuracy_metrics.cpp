@@ -1,0 +1,176 @@
+// Measures of the accuracy report (see accuracy_metrics.h).
+#include "app/accuracy_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "scene/demo_scene.h"
+
+namespace rp::app {
+namespace {
+
+uint16_t bit(Region r) { return uint16_t(1u << unsigned(r)); }
+
+double luma(const std::vector<float>& rgb, size_t pixel) {
+  return 0.2126 * rgb[3 * pixel] + 0.7152 * rgb[3 * pixel + 1] + 0.0722 * rgb[3 * pixel + 2];
+}
+
+void check_sizes(const std::vector<float>& a, const std::vector<float>& b,
+                 const std::vector<uint16_t>& labels) {
+  if (a.size() != b.size() || a.size() != 3 * labels.size())
+    throw std::invalid_argument("accuracy: images and region labels differ in size");
+}
+
+// The renderer's tone map and exact sRGB encode of one channel, in [0, 1) (not quantised).
+double tone_mapped(double x) {
+  const double y = x > 0.0 ? x / (1.0 + x) : 0.0;
+  return y <= 0.0031308 ? 12.92 * y : 1.055 * std::pow(y, 1.0 / 2.4) - 0.055;
+}
+
+// The label a primary hit gives (without the erosion): one named region or none (kImage).
+Region label_of(const truth::PrimaryHit& h) {
+  namespace demo = scene::demo;
+  switch (h.material) {
+    case demo::kCeilingMaterial: return Region::kCeiling;
+    case demo::kBackMaterial: return Region::kBackWall;
+    case demo::kLeftMaterial: return Region::kLeftWall;
+    case demo::kRightMaterial: return Region::kRightWall;
+    case demo::kFloorMaterial:
+      return h.lamp_visible && h.lamp_cos > 0.0f ? Region::kFloorLit : Region::kFloorShadow;
+    case demo::kTumblerMaterial:
+      return h.lamp_visible && h.lamp_cos > 0.0f ? Region::kTumblerLit : Region::kTumblerShadowed;
+    default: return Region::kImage;  // lamp cap, spheres: counted in the whole image only
+  }
+}
+
+}  // namespace
+
+const char* region_name(Region r) {
+  switch (r) {
+    case Region::kImage: return "image";
+    case Region::kCeiling: return "ceiling";
+    case Region::kFloorLit: return "floor_lit";
+    case Region::kFloorShadow: return "floor_in_shadow";
+    case Region::kBackWall: return "back_wall";
+    case Region::kLeftWall: return "left_wall";
+    case Region::kRightWall: return "right_wall";
+    case Region::kTumblerLit: return "tumblers_lit";
+    case Region::kTumblerShadowed: return "tumblers_shadowed";
+    case Region::kCount: break;
+  }
+  return "?";
+}
+
+std::vector<uint16_t> classify_regions(const std::vector<truth::PrimaryHit>& hits, uint32_t width,
+                                       uint32_t height) {
+  if (hits.size() != size_t(width) * height)
+    throw std::invalid_argument("accuracy: primary hits do not match the image size");
+  std::vector<Region> raw(hits.size(), Region::kCount);  // kCount = background
+  for (size_t i = 0; i < hits.size(); ++i)
+    if (hits[i].hit()) raw[i] = label_of(hits[i]);
+  std::vector<uint16_t> labels(hits.size(), 0);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      const size_t i = size_t(y) * width + x;
+      if (raw[i] == Region::kCount) continue;
+      labels[i] = bit(Region::kImage);
+      if (raw[i] == Region::kImage) continue;
+      const bool same = x > 0 && x + 1 < width && y > 0 && y + 1 < height &&
+                        raw[i - 1] == raw[i] && raw[i + 1] == raw[i] &&
+                        raw[i - width] == raw[i] && raw[i + width] == raw[i];
+      if (same) labels[i] |= bit(raw[i]);
+    }
+  return labels;
+}
+
+ErrorStats compare_region(const std::vector<float>& a, const std::vector<float>& truth,
+                          const std::vector<uint16_t>& labels, Region region) {
+  check_sizes(a, truth, labels);
+  double abs_sum = 0.0, a_sum = 0.0, t_sum = 0.0;
+  ErrorStats s;
+  for (size_t i = 0; i < labels.size(); ++i) {
+    if (!(labels[i] & bit(region))) continue;
+    ++s.pixels;
+    for (size_t c = 0; c < 3; ++c) {
+      abs_sum += std::abs(double(a[3 * i + c]) - double(truth[3 * i + c]));
+      a_sum += a[3 * i + c];
+      t_sum += truth[3 * i + c];
+    }
+  }
+  s.sum_truth = t_sum;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  s.rel_l1 = t_sum > 0.0 ? abs_sum / t_sum : nan;
+  s.bias = t_sum > 0.0 ? a_sum / t_sum - 1.0 : nan;
+  return s;
+}
+
+IncomingLight incoming_indirect(const std::vector<float>& indirect,
+                                const std::vector<float>& albedo,
+                                const std::vector<uint16_t>& labels, Region region) {
+  check_sizes(indirect, albedo, labels);
+  IncomingLight in;
+  std::array<uint64_t, 3> n{};
+  for (size_t i = 0; i < labels.size(); ++i) {
+    if (!(labels[i] & bit(region))) continue;
+    for (size_t c = 0; c < 3; ++c)
+      if (albedo[3 * i + c] > 1.0e-3f) {  // a channel the surface reflects
+        in.rgb[c] += double(indirect[3 * i + c]) / double(albedo[3 * i + c]);
+        ++n[c];
+      }
+  }
+  for (size_t c = 0; c < 3; ++c) in.rgb[c] = n[c] ? in.rgb[c] / double(n[c]) : 0.0;
+  return in;
+}
+
+LeakStats leaks_and_misses(const std::vector<float>& a, const std::vector<float>& truth,
+                           const std::vector<uint16_t>& labels) {
+  check_sizes(a, truth, labels);
+  LeakStats s;
+  double sum = 0.0;
+  for (size_t i = 0; i < labels.size(); ++i)
+    if (labels[i] & bit(Region::kImage)) {
+      sum += luma(truth, i);
+      ++s.covered_pixels;
+    }
+  s.epsilon = s.covered_pixels ? 0.05 * sum / double(s.covered_pixels) : 0.0;
+  for (size_t i = 0; i < labels.size(); ++i) {
+    if (!(labels[i] & bit(Region::kImage))) continue;
+    const double v = luma(a, i), t = luma(truth, i);
+    if (v > 1.5 * t + s.epsilon) ++s.leak_pixels;
+    if (v < (t - s.epsilon) / 1.5) ++s.missing_pixels;
+  }
+  return s;
+}
+
+double tone_mapped_psnr(const std::vector<float>& a, const std::vector<float>& b) {
+  if (a.size() != b.size() || a.empty())
+    throw std::invalid_argument("accuracy: PSNR of images of different sizes");
+  double sum = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const double d = tone_mapped(a[i]) - tone_mapped(b[i]);
+    sum += d * d;
+  }
+  if (sum == 0.0) return std::numeric_limits<double>::infinity();
+  return 10.0 * std::log10(1.0 / (sum / double(a.size())));
+}
+
+void signed_heat_map(const std::vector<float>& a, const std::vector<float>& truth,
+                     const std::vector<uint16_t>& labels, double eps, std::vector<uint8_t>& rgba) {
+  check_sizes(a, truth, labels);
+  rgba.assign(labels.size() * 4, 0);
+  for (size_t i = 0; i < labels.size(); ++i) {
+    uint8_t* p = &rgba[4 * i];
+    p[3] = 255;
+    if (!(labels[i] & bit(Region::kImage))) continue;
+    const double rel = std::clamp((luma(a, i) - luma(truth, i)) / (luma(truth, i) + eps), -1.0, 1.0);
+    // white at 0, towards red (too bright) or blue (too dark)
+    const auto fade = uint8_t(std::lround(255.0 * (1.0 - std::abs(rel))));
+    p[0] = rel >= 0.0 ? 255 : fade;
+    p[1] = fade;
+    p[2] = rel <= 0.0 ? 255 : fade;
+  }
+}
+
+}  // namespace rp::app

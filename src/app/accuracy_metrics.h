@@ -1,0 +1,81 @@
+// The measures of `rolypoly bench --accuracy` (app/accuracy_report.h): how a real-time frame's
+// linear components differ from the path-traced truth of the same frame, over the image and per
+// named region of the demo scene. Pure functions on host images (3 floats per pixel, RGB,
+// row-major), so they are tested on synthetic images.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/frame_scene.h"
+#include "truth/path_tracer.h"
+
+namespace rp::app {
+
+// Named regions of the demo frame, from what the camera sees at each pixel centre (the path
+// tracer's primary hits) and whether the lamp reaches that point. kImage is every covered pixel;
+// the named ones keep only pixels whose four neighbours carry the same label, so a region's
+// figures describe its surface, not its silhouette.
+enum class Region : uint8_t {
+  kImage,
+  kCeiling,
+  kFloorLit,
+  kFloorShadow,     // floor the lamp does not reach: in a tumbler's (or marble's) shadow
+  kBackWall,
+  kLeftWall,        // orange, x = -1
+  kRightWall,       // sky blue, x = +1
+  kTumblerLit,      // tumbler surface facing the lamp and reached by it
+  kTumblerShadowed, // tumbler surface turned away from the lamp or shadowed
+  kCount
+};
+inline constexpr size_t kRegionCount = size_t(Region::kCount);
+const char* region_name(Region r);
+
+// Label per pixel: bit r set when the pixel belongs to region r (kImage for every covered
+// pixel). Material indices are those of scene::make_demo_assets (scene::demo).
+std::vector<uint16_t> classify_regions(const std::vector<truth::PrimaryHit>& hits, uint32_t width,
+                                       uint32_t height);
+
+// sum |a - t| / sum t and sum a / sum t - 1 over the RGB channels of the pixels in `region`.
+struct ErrorStats {
+  double rel_l1 = 0.0;
+  double bias = 0.0;
+  double sum_truth = 0.0;  // over the region's pixels and channels
+  uint64_t pixels = 0;
+};
+ErrorStats compare_region(const std::vector<float>& a, const std::vector<float>& truth,
+                          const std::vector<uint16_t>& labels, Region region);
+
+// Mean incoming indirect light on a surface (indirect radiance / albedo, per channel) over a
+// region, and its hue R - B.
+struct IncomingLight {
+  std::array<double, 3> rgb{};
+  double r_minus_b() const { return rgb[0] - rgb[2]; }
+};
+IncomingLight incoming_indirect(const std::vector<float>& indirect,
+                                const std::vector<float>& albedo,
+                                const std::vector<uint16_t>& labels, Region region);
+
+// Pixels (covered) where a's indirect luminance exceeds 1.5 x the truth's + eps (leaks: light
+// where the truth is dark) or falls below (truth - eps) / 1.5 (missing light); eps = 5 % of the
+// truth's mean indirect luminance over the covered pixels.
+struct LeakStats {
+  uint64_t leak_pixels = 0, missing_pixels = 0, covered_pixels = 0;
+  double epsilon = 0.0;
+};
+LeakStats leaks_and_misses(const std::vector<float>& a, const std::vector<float>& truth,
+                           const std::vector<uint16_t>& labels);
+
+// PSNR (dB, peak 1) of two radiance images after the renderer's tone map x / (1 + x) and the
+// sRGB encode (no quantisation), over all pixels and channels; +inf when identical.
+double tone_mapped_psnr(const std::vector<float>& a, const std::vector<float>& b);
+
+// Signed relative difference of indirect luminance, (a - t) / (t + eps), drawn as RGBA8: blue
+// where a is too dark (-1 or less: full blue), white where equal, red where too bright (+1 or
+// more); background black.
+void signed_heat_map(const std::vector<float>& a, const std::vector<float>& truth,
+                     const std::vector<uint16_t>& labels, double eps, std::vector<uint8_t>& rgba);
+
+}  // namespace rp::app

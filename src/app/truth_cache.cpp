@@ -1,0 +1,175 @@
+// Disk cache of path-traced truths (see truth_cache.h).
+#include "app/truth_cache.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/png_output.h"
+#include "truth/exr_io.h"
+
+namespace rp::app {
+namespace {
+
+class Fnv1a {
+ public:
+  void bytes(const void* data, size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < n; ++i) h_ = (h_ ^ p[i]) * 0x100000001B3ull;
+  }
+  template <class T>
+  void value(const T& v) {
+    bytes(&v, sizeof v);
+  }
+  void vec(glm::vec3 v) { bytes(&v.x, 3 * sizeof(float)); }
+  void mat(const glm::mat4& m) { bytes(&m[0][0], 16 * sizeof(float)); }
+  void text(const std::string& s) {
+    value(s.size());
+    bytes(s.data(), s.size());
+  }
+  uint64_t get() const { return h_; }
+
+ private:
+  uint64_t h_ = 0xCBF29CE484222325ull;
+};
+
+const char* const kLayers[] = {"", "direct", "indirect", "emission", "albedo"};
+
+std::vector<float>* layer(truth::PathTracedImage& img, int i) {
+  std::vector<float>* planes[] = {&img.combined, &img.direct, &img.indirect, &img.emission,
+                                  &img.albedo};
+  return planes[i];
+}
+
+bool load(const std::filesystem::path& exr, const std::filesystem::path& meta,
+          const truth::PathTraceSettings& s, truth::PathTracedImage& img) {
+  std::error_code ec;
+  if (!std::filesystem::exists(exr, ec) || !std::filesystem::exists(meta, ec)) return false;
+  try {
+    std::ifstream in(meta);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    img.seconds = j.at("seconds").get<double>();
+    img.rays = j.at("rays").get<uint64_t>();
+    for (int i = 0; i < 5; ++i) {
+      uint32_t w = 0, h = 0;
+      *layer(img, i) = truth::read_exr_layer(exr, kLayers[i], w, h);
+      if (w != s.width || h != s.height) return false;
+    }
+    img.width = s.width;
+    img.height = s.height;
+    return true;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rolypoly: the cached truth %s is unreadable (%s); rendering it anew\n",
+                 exr.string().c_str(), e.what());
+    return false;
+  }
+}
+
+}  // namespace
+
+std::string truth_key(const scene::SceneAssets& assets, const scene::FrameScene& frame,
+                      const truth::PathTraceSettings& settings) {
+  Fnv1a h;
+  h.text(kPathTracerVersion);
+  h.value(settings.width);
+  h.value(settings.height);
+  h.value(settings.spp);
+  h.value(settings.bounces);
+  h.value(settings.seed);
+  for (const scene::Mesh& m : assets.meshes) {
+    h.text(m.name);
+    for (const scene::Vertex& v : m.vertices) {
+      h.vec(v.position);
+      h.vec(v.normal);
+      h.bytes(&v.uv.x, 2 * sizeof(float));
+    }
+    h.bytes(m.triangles.data(), m.triangles.size() * sizeof(glm::uvec3));
+    h.bytes(m.materials.data(), m.materials.size() * sizeof(uint32_t));
+  }
+  for (const scene::Material& m : assets.materials) {
+    h.vec(m.albedo);
+    h.vec(m.emission);
+    h.value(m.texture);
+  }
+  for (const scene::Texture& t : assets.textures) {
+    h.value(t.width);
+    h.value(t.height);
+    h.bytes(t.rgba.data(), t.rgba.size());
+  }
+  const scene::Camera& c = frame.camera;
+  h.vec(c.position);
+  h.vec(c.target);
+  h.vec(c.up);
+  h.value(c.fov_y_deg);
+  h.value(c.near_plane);
+  h.value(c.far_plane);
+  h.vec(frame.light.position);
+  h.vec(frame.light.intensity);
+  h.value(frame.light.lamp_radius);
+  for (const scene::MeshInstance& i : frame.instances) {
+    h.value(i.mesh);
+    h.mat(i.model);
+    h.value(uint8_t(i.casts_shadow));
+    h.value(uint8_t(i.voxelize));
+  }
+  for (const scene::Sphere& s : frame.spheres) {
+    h.vec(s.center);
+    h.value(s.radius);
+    h.vec(s.albedo);
+    h.vec(s.emission);
+    h.value(uint8_t(s.casts_shadow));
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.get()));
+  return hex;
+}
+
+std::filesystem::path default_truth_cache_dir() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    return std::filesystem::path(xdg) / "rolypoly" / "truth";
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return std::filesystem::path(home) / ".cache" / "rolypoly" / "truth";
+  return std::filesystem::path(".rolypoly-cache") / "truth";
+}
+
+CachedTruth cached_path_trace(truth::PathTracer& tracer, const scene::SceneAssets& assets,
+                              const scene::FrameScene& frame,
+                              const truth::PathTraceSettings& settings,
+                              const std::filesystem::path& dir, const truth::ProgressFn& progress,
+                              const std::atomic<bool>* cancel) {
+  const std::string key = truth_key(assets, frame, settings);
+  CachedTruth out;
+  out.file = dir / ("truth-" + key + ".exr");
+  const std::filesystem::path meta = dir / ("truth-" + key + ".json");
+  if (load(out.file, meta, settings, out.image)) {
+    out.from_cache = true;
+    return out;
+  }
+  out.image = tracer.render(frame, settings, progress, cancel);
+  try {
+    ensure_directory(dir);
+    std::vector<truth::ExrLayer> layers;
+    for (int i = 0; i < 5; ++i) layers.push_back({kLayers[i], layer(out.image, i)});
+    truth::write_exr_atomic(out.file, settings.width, settings.height, layers);
+    nlohmann::json j;
+    j["key"] = key;
+    j["version"] = kPathTracerVersion;
+    j["width"] = settings.width;
+    j["height"] = settings.height;
+    j["spp"] = settings.spp;
+    j["bounces"] = settings.bounces;
+    j["seed"] = settings.seed;
+    j["seconds"] = out.image.seconds;
+    j["rays"] = out.image.rays;
+    write_text_atomic(meta, j.dump(2) + "\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rolypoly: warning: could not store the truth in the cache: %s\n",
+                 e.what());
+  }
+  return out;
+}
+
+}  // namespace rp::app

@@ -1,0 +1,118 @@
+// The accuracy report's measures (src/app/accuracy_metrics.h) on synthetic images whose answers
+// are worked out by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "app/accuracy_metrics.h"
+#include "scene/demo_scene.h"
+
+namespace rp::app {
+namespace {
+
+uint16_t bit(Region r) { return uint16_t(1u << unsigned(r)); }
+
+// A 5x5 image: a 3x3 block of back wall in the middle, ringed by left wall; one background pixel.
+std::vector<truth::PrimaryHit> hits_5x5() {
+  std::vector<truth::PrimaryHit> hits(25);
+  for (uint32_t y = 0; y < 5; ++y)
+    for (uint32_t x = 0; x < 5; ++x) {
+      truth::PrimaryHit& h = hits[y * 5 + x];
+      h.instance = 0;
+      const bool inner = x >= 1 && x <= 3 && y >= 1 && y <= 3;
+      h.material = inner ? scene::demo::kBackMaterial : scene::demo::kLeftMaterial;
+    }
+  hits[0] = truth::PrimaryHit{};  // background
+  return hits;
+}
+
+TEST(AccuracyMetrics, RegionsAreErodedByOnePixel) {
+  const std::vector<uint16_t> labels = classify_regions(hits_5x5(), 5, 5);
+  EXPECT_EQ(labels[0], 0);                    // background: in no region
+  EXPECT_EQ(labels[1], bit(Region::kImage));  // left wall on the border: image only
+  // Only the centre of the 3x3 back-wall block has four back-wall neighbours.
+  EXPECT_EQ(labels[12], bit(Region::kImage) | bit(Region::kBackWall));
+  EXPECT_EQ(labels[6], bit(Region::kImage));
+  int back = 0;
+  for (uint16_t l : labels) back += (l & bit(Region::kBackWall)) ? 1 : 0;
+  EXPECT_EQ(back, 1);
+}
+
+TEST(AccuracyMetrics, FloorAndTumblersSplitByTheLamp) {
+  std::vector<truth::PrimaryHit> hits(9);
+  for (auto& h : hits) {
+    h.instance = 0;
+    h.material = scene::demo::kFloorMaterial;
+    h.lamp_visible = false;
+    h.lamp_cos = 0.5f;
+  }
+  EXPECT_TRUE(classify_regions(hits, 3, 3)[4] & bit(Region::kFloorShadow));
+  for (auto& h : hits) h.lamp_visible = true;
+  EXPECT_TRUE(classify_regions(hits, 3, 3)[4] & bit(Region::kFloorLit));
+  for (auto& h : hits) h.material = scene::demo::kTumblerMaterial, h.lamp_cos = -0.2f;
+  EXPECT_TRUE(classify_regions(hits, 3, 3)[4] & bit(Region::kTumblerShadowed));
+}
+
+TEST(AccuracyMetrics, RelativeL1AndBias) {
+  // Two covered pixels: truth (1, 1, 1) and (3, 3, 3); a = (2, 2, 2) and (3, 3, 0).
+  const std::vector<uint16_t> labels = {bit(Region::kImage), bit(Region::kImage), 0};
+  const std::vector<float> truth = {1, 1, 1, 3, 3, 3, 9, 9, 9};
+  const std::vector<float> a = {2, 2, 2, 3, 3, 0, 0, 0, 0};
+  const ErrorStats s = compare_region(a, truth, labels, Region::kImage);
+  EXPECT_EQ(s.pixels, 2u);
+  EXPECT_DOUBLE_EQ(s.sum_truth, 12.0);
+  EXPECT_DOUBLE_EQ(s.rel_l1, (1 + 1 + 1 + 0 + 0 + 3) / 12.0);
+  EXPECT_DOUBLE_EQ(s.bias, (6 + 6) / 12.0 - 1.0);
+  EXPECT_TRUE(std::isnan(compare_region(a, truth, labels, Region::kCeiling).rel_l1));
+}
+
+TEST(AccuracyMetrics, IncomingLightDividesByAlbedoAndGivesTheHue) {
+  const std::vector<uint16_t> labels = {uint16_t(bit(Region::kImage) | bit(Region::kLeftWall)),
+                                        uint16_t(bit(Region::kImage) | bit(Region::kLeftWall))};
+  const std::vector<float> albedo = {0.8f, 0.35f, 0.05f, 0.8f, 0.35f, 0.05f};
+  // Bluish light arriving: (0.2, 0.3, 0.4) times the albedo.
+  std::vector<float> indirect(6);
+  const float in[3] = {0.2f, 0.3f, 0.4f};
+  for (int i = 0; i < 6; ++i) indirect[size_t(i)] = albedo[size_t(i)] * in[i % 3];
+  const IncomingLight l = incoming_indirect(indirect, albedo, labels, Region::kLeftWall);
+  EXPECT_NEAR(l.rgb[0], 0.2, 1e-6);
+  EXPECT_NEAR(l.rgb[2], 0.4, 1e-6);
+  EXPECT_LT(l.r_minus_b(), 0.0);
+}
+
+TEST(AccuracyMetrics, LeaksAndMissingPixels) {
+  // Truth luminance 1 everywhere (grey 1); eps = 0.05.
+  const std::vector<uint16_t> labels(4, bit(Region::kImage));
+  const std::vector<float> truth(12, 1.0f);
+  const std::vector<float> a = {2, 2, 2, 1.5f, 1.5f, 1.5f, 0.5f, 0.5f, 0.5f, 0.7f, 0.7f, 0.7f};
+  const LeakStats s = leaks_and_misses(a, truth, labels);
+  EXPECT_NEAR(s.epsilon, 0.05, 1e-9);
+  EXPECT_EQ(s.leak_pixels, 1u);     // 2 > 1.55; 1.5 is not
+  EXPECT_EQ(s.missing_pixels, 1u);  // 0.5 < 0.95 / 1.5 = 0.633; 0.7 is not
+  EXPECT_EQ(s.covered_pixels, 4u);
+}
+
+TEST(AccuracyMetrics, PsnrAfterToneMap) {
+  const std::vector<float> a = {1.0f, 1.0f, 1.0f};
+  EXPECT_TRUE(std::isinf(tone_mapped_psnr(a, a)));
+  // Tone map 1 -> 0.5, 3 -> 0.75; sRGB 0.5 -> 0.7353569, 0.75 -> 0.8808250.
+  const std::vector<float> b = {3.0f, 3.0f, 3.0f};
+  const double d = 0.8808250 - 0.7353569;
+  EXPECT_NEAR(tone_mapped_psnr(a, b), 10.0 * std::log10(1.0 / (d * d)), 1e-3);
+}
+
+TEST(AccuracyMetrics, HeatMapSigns) {
+  const std::vector<uint16_t> labels = {bit(Region::kImage), bit(Region::kImage),
+                                        bit(Region::kImage), 0};
+  const std::vector<float> truth(12, 1.0f);
+  const std::vector<float> a = {1, 1, 1, 3, 3, 3, 0, 0, 0, 5, 5, 5};
+  std::vector<uint8_t> rgba;
+  signed_heat_map(a, truth, labels, 0.0, rgba);
+  EXPECT_EQ(rgba[0], 255); EXPECT_EQ(rgba[1], 255); EXPECT_EQ(rgba[2], 255);  // equal: white
+  EXPECT_EQ(rgba[4], 255); EXPECT_EQ(rgba[5], 0); EXPECT_EQ(rgba[6], 0);      // too bright: red
+  EXPECT_EQ(rgba[8], 0); EXPECT_EQ(rgba[9], 0); EXPECT_EQ(rgba[10], 255);     // too dark: blue
+  EXPECT_EQ(rgba[12], 0); EXPECT_EQ(rgba[13], 0); EXPECT_EQ(rgba[14], 0);     // background
+}
+
+}  // namespace
+}  // namespace rp::app
