@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "app/host_tone_map.h"
 #include "scene/demo_scene.h"
 
 namespace rp::app {
@@ -21,12 +22,6 @@ void check_sizes(const std::vector<float>& a, const std::vector<float>& b,
                  const std::vector<uint16_t>& labels) {
   if (a.size() != b.size() || a.size() != 3 * labels.size())
     throw std::invalid_argument("accuracy: images and region labels differ in size");
-}
-
-// The renderer's tone map and exact sRGB encode of one channel, in [0, 1) (not quantised).
-double tone_mapped(double x) {
-  const double y = x > 0.0 ? x / (1.0 + x) : 0.0;
-  return y <= 0.0031308 ? 12.92 * y : 1.055 * std::pow(y, 1.0 / 2.4) - 0.055;
 }
 
 // The label a primary hit gives (without the erosion): one named region or none (kImage).
@@ -149,7 +144,7 @@ double tone_mapped_psnr(const std::vector<float>& a, const std::vector<float>& b
     throw std::invalid_argument("accuracy: PSNR of images of different sizes");
   double sum = 0.0;
   for (size_t i = 0; i < a.size(); ++i) {
-    const double d = tone_mapped(a[i]) - tone_mapped(b[i]);
+    const double d = tone_map_srgb(a[i]) - tone_map_srgb(b[i]);
     sum += d * d;
   }
   if (sum == 0.0) return std::numeric_limits<double>::infinity();

@@ -26,6 +26,11 @@ uint8_t tone_map_code(float radiance) {
   return quantize(srgb_encode(double(x / (1.0f + x))));
 }
 
+double tone_map_srgb(double radiance) {
+  const double x = radiance > 0.0 ? std::min(radiance, 1.0e30) : 0.0;
+  return srgb_encode(x / (1.0 + x));
+}
+
 uint8_t srgb_code(float linear) {
   return quantize(srgb_encode(linear > 0.0f ? double(linear) : 0.0));
 }

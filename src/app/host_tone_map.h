@@ -13,6 +13,9 @@ namespace rp::app {
 // piecewise sRGB encode (12.92 y below 0.0031308, 1.055 y^(1/2.4) - 0.055 above), then rounded
 // to the nearest of 0..255.
 uint8_t tone_map_code(float radiance);
+// The same without the quantisation: T(x) then the exact sRGB encode, in [0, 1) (the accuracy
+// report's PSNR is taken on these values).
+double tone_map_srgb(double radiance);
 // One channel without the tone map: linear [0, 1] (clamped) -> exact sRGB -> nearest code; the
 // albedo view's encode.
 uint8_t srgb_code(float linear);

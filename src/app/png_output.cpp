@@ -12,21 +12,10 @@
 
 #include <stb/stb_image_write.h>
 
+#include "io/temporary_file.h"
+
 namespace rp::app {
 namespace {
-
-// Hidden temporary name in the same folder (rename is atomic only within one file system).
-std::filesystem::path temporary_for(const std::filesystem::path& path) {
-  // Appending to one string (rather than "." + name + ...) also avoids a GCC 12 -Wrestrict
-  // false positive on operator+(const char*, std::string&&).
-  std::string name = ".";
-  name += path.filename().string();
-  name += ".tmp";
-  name += std::to_string(getpid());
-  std::filesystem::path tmp = path;
-  tmp.replace_filename(name);
-  return tmp;
-}
 
 void commit(const std::filesystem::path& tmp, const std::filesystem::path& path) {
   std::error_code ec;
@@ -49,7 +38,7 @@ void write_png_atomic(const std::filesystem::path& path, int width, int height,
                       const std::vector<uint8_t>& rgba) {
   if (width <= 0 || height <= 0 || rgba.size() != size_t(width) * size_t(height) * 4)
     throw std::runtime_error("cannot write " + path.string() + ": image size mismatch");
-  std::filesystem::path tmp = temporary_for(path);
+  std::filesystem::path tmp = io::temporary_for(path);
   if (!stbi_write_png(tmp.c_str(), width, height, 4, rgba.data(), width * 4)) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);
@@ -60,7 +49,7 @@ void write_png_atomic(const std::filesystem::path& path, int width, int height,
 }
 
 void write_text_atomic(const std::filesystem::path& path, const std::string& text) {
-  std::filesystem::path tmp = temporary_for(path);
+  std::filesystem::path tmp = io::temporary_for(path);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out << text;
@@ -83,7 +72,7 @@ void ensure_directory(const std::filesystem::path& dir) {
                              (ec ? ": " + ec.message() : ": a file of that name exists"));
   // An existing folder may still refuse new files (read-only mount, /proc, no permission):
   // find out now by creating and removing an empty probe file, not after the first frame.
-  std::filesystem::path probe = temporary_for(dir / ".rolypoly-write-test");
+  std::filesystem::path probe = io::temporary_for(dir / ".rolypoly-write-test");
   int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
   if (fd < 0) {
     const int err = errno;

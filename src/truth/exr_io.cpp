@@ -5,7 +5,6 @@
 #include <stdexcept>
 #include <system_error>
 
-#include <unistd.h>
 
 #include <Iex.h>
 #include <ImfChannelList.h>
@@ -13,6 +12,8 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+
+#include "io/temporary_file.h"
 
 namespace rp::truth {
 namespace {
@@ -30,17 +31,6 @@ std::string channel_name(const std::string& layer, const char* component) {
 
 std::string layer_label(const std::string& layer) {
   return layer.empty() ? std::string("'' (R, G, B)") : "'" + layer + "'";
-}
-
-// Hidden temporary name in the same folder: rename is atomic only within one file system.
-std::filesystem::path temporary_for(const std::filesystem::path& path) {
-  std::string name = ".";
-  name += path.filename().string();
-  name += ".tmp";
-  name += std::to_string(getpid());
-  std::filesystem::path tmp = path;
-  tmp.replace_filename(name);
-  return tmp;
 }
 
 // Describes an exception from OpenEXR (Iex::BaseExc is a std::exception in OpenEXR 3; named
@@ -111,7 +101,7 @@ void write_exr_atomic(const std::filesystem::path& path, uint32_t width, uint32_
                  "x" + std::to_string(height) + " RGB pixels");
   }
 
-  const std::filesystem::path tmp = temporary_for(path);
+  const std::filesystem::path tmp = rp::io::temporary_for(path);
   std::string reason;
   try {
     Imf::Header header{int(width), int(height)};
