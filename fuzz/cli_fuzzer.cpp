@@ -12,11 +12,12 @@
 //   32/64/128 (or 0 = default), shadow map 1..16384 (or 0), bloom strength in [0, 1], a debug
 //   view that exists with --level/--dir only for voxels, render/bench frames >= 1, a bench scene
 //   that exists, no conflicting bench options, command_line = "rolypoly" + the words; --spp
-//   1..1000000 and --bounces 0..1000, both at their defaults unless --quality pathtraced, which
-//   only render and bench take (render: views final/direct/indirect/albedo, EXR on; bench: one
-//   size, default scene, no matrix, comparison or report options; neither: --device); bench
-//   --accuracy alone on one device and size (--spp its truth's samples), its --out,
-//   --truth-cache and thresholds (finite, 0..1000) only with it.
+//   1..1000000, at its default unless --quality pathtraced (or bench --accuracy), which only
+//   render and bench take (render: views final/direct/indirect/albedo, EXR on; bench: one
+//   size, default scene, no matrix, comparison or report options; neither: --device);
+//   --bounces in every mode, 1..1000 in the real-time modes and 0..1000 path traced; bench
+//   --accuracy alone on one device and size at its own bounce counts (--spp its truth's
+//   samples), its --out, --truth-cache and thresholds (finite, 0..1000) only with it.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -93,8 +94,11 @@ std::string describe(const CliParse& result) {
                    b.scene + " " + b.chart + " " + b.markdown + " " + b.command_line);
   add("accuracy", std::to_string(b.accuracy) + " " + std::to_string(b.size_given) + " " +
                       std::to_string(b.accuracy_spp) + " " + b.out_dir + " " + b.truth_cache +
-                      " " + (b.max_indirect_l1 ? std::to_string(*b.max_indirect_l1) : "-") +
-                      " " + (b.max_indirect_bias ? std::to_string(*b.max_indirect_bias) : "-"));
+                      " " + std::to_string(b.require_wall_hue));
+  for (const std::optional<double>& t : {b.max_indirect_l1, b.max_indirect_bias,
+                                         b.max_region_bias, b.max_indirect_l1_single,
+                                         b.min_psnr_taa})
+    add("threshold", t ? std::to_string(*t) : "-");
   for (uint32_t v : b.sizes) add("sizes", std::to_string(v));
   for (uint32_t v : b.voxels) add("bvoxels", std::to_string(v));
   sim(b.sim);
@@ -136,9 +140,12 @@ void check_command(const ParsedCommand& p, const std::vector<std::string>& words
   require(c.spp >= 1 && c.spp <= 1000000, "--spp out of range");
   require(c.bounces <= 1000, "--bounces out of range");
   const bool accuracy = p.kind == ParsedCommand::Kind::kBench && p.bench.accuracy;
+  if (accuracy)
+    require(c.bounces == rp::render::RenderSettings::kDefaultBounces,
+            "bench --accuracy took --bounces (it renders 1 and 64 itself)");
   if (!c.pathtraced)
-    require((c.spp == 256 || accuracy) && c.bounces == 1,
-            "--spp/--bounces accepted without --quality pathtraced (or --spp without --accuracy)");
+    require((c.spp == 256 || accuracy) && c.bounces >= 1,
+            "--spp without --quality pathtraced or --accuracy, or --bounces 0 in a real-time mode");
   else
     require(c.device.empty() && (p.kind == ParsedCommand::Kind::kRender ||
                                  p.kind == ParsedCommand::Kind::kBench),
@@ -188,12 +195,15 @@ void check_command(const ParsedCommand& p, const std::vector<std::string>& words
         require(b.accuracy_spp >= 1 && b.accuracy_spp <= 1000000, "--accuracy --spp out of range");
       } else {
         require(b.out_dir == "out/accuracy" && b.truth_cache.empty() && !b.max_indirect_l1 &&
-                    !b.max_indirect_bias,
+                    !b.max_indirect_bias && !b.max_region_bias && !b.max_indirect_l1_single &&
+                    !b.min_psnr_taa && !b.require_wall_hue,
                 "--accuracy's options accepted without --accuracy");
       }
-      for (const std::optional<double>& t : {b.max_indirect_l1, b.max_indirect_bias})
+      for (const std::optional<double>& t : {b.max_indirect_l1, b.max_indirect_bias,
+                                             b.max_region_bias, b.max_indirect_l1_single,
+                                             b.min_psnr_taa})
         require(!t || (std::isfinite(*t) && *t >= 0.0 && *t <= 1000.0),
-                "--max-indirect-* threshold out of range");
+                "--accuracy threshold out of range");
       std::string line = "rolypoly";
       for (const std::string& w : words) line += " " + w;
       require(b.command_line == line, "bench command_line is not the arguments");

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <exception>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -177,16 +178,31 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
       ->check(decimal_in(0.0, 1.0));
 }
 
-// --spp / --bounces (render and bench): the path tracer's settings.
-void add_pathtrace(CLI::App* cmd, CommonOptions& common) {
+// --bounces 0 (no indirect light at all) exists only in the path tracer: "" when fine.
+std::string check_bounces(const CommonOptions& common) {
+  if (!common.pathtraced && common.bounces == 0)
+    return "--bounces 0 applies to --quality pathtraced; the fast and reference modes take 1 "
+           "(single bounce) to 1000";
+  return "";
+}
+
+// --spp (render and bench): the path tracer's samples per pixel (and bench --accuracy's truth).
+void add_spp(CLI::App* cmd, CommonOptions& common) {
   cmd->add_option("--spp", common.spp, "--quality pathtraced: samples per pixel")
       ->capture_default_str()
       ->transform(whole_number(1, 1000000));
+}
+
+// --bounces (render, run and bench): every mode's bounce count, so each can be compared with
+// the path tracer at the same count.
+void add_bounces(CLI::App* cmd, CommonOptions& common) {
   cmd->add_option("--bounces", common.bounces,
-                  "--quality pathtraced: gathers: light that left an emitter or a lamp-lit surface "
-                  "reaches the camera after at most N reflections besides the surface the camera "
-                  "sees (0 = direct lamp light and seen emission only; 1 = one gather, what the "
-                  "real-time modes model)")
+                  "indirect bounces: light that left an emitter or a lamp-lit surface reaches "
+                  "the camera after at most N reflections besides the surface the camera sees. "
+                  "fast and reference: 1 = single-bounce indirect light, any N >= 2 = "
+                  "multi-bounce (the voxels' feedback converges to all bounces, compared with the "
+                  "path-traced truth at 64); 1..1000. pathtraced: N gathers, 0..1000 (0 = direct "
+                  "lamp light and seen emission only)")
       ->capture_default_str()
       ->transform(whole_number(0, 1000));
 }
@@ -194,12 +210,12 @@ void add_pathtrace(CLI::App* cmd, CommonOptions& common) {
 // Usage checks of --quality pathtraced and its options (render and bench): "" when fine.
 // Options that pick the OpenCL device or change the real-time image cannot apply to the host
 // path tracer, so they are refused rather than silently ignored; the --no-* switches ask for
-// less post-processing than the path tracer already has none of, and pass.
+// less post-processing than the path tracer already has none of, and pass. --bounces applies to
+// every mode, but the real-time modes always model at least one bounce.
 std::string check_pathtrace(const CLI::App* cmd, const CommonOptions& common) {
   if (!common.pathtraced) {
-    if (cmd->count("--spp") || cmd->count("--bounces"))
-      return "--spp and --bounces apply to --quality pathtraced";
-    return "";
+    if (cmd->count("--spp")) return "--spp applies to --quality pathtraced";
+    return check_bounces(common);
   }
   for (const char* name : {"--device", "--visibility", "--shadow-size", "--bloom-strength"})
     if (cmd->count(name))
@@ -297,7 +313,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
 
   CLI::App* render = app.add_subcommand("render", "render frames headless into numbered PNGs");
   add_common(render, common, true, true);
-  add_pathtrace(render, common);
+  add_spp(render, common);
+  add_bounces(render, common);
   add_size(render, render_size);
   render->add_option("--frames", render_opts.frames, "number of frames")
       ->capture_default_str()
@@ -314,6 +331,7 @@ CliParse parse_cli(int argc, const char* const* argv) {
 
   CLI::App* run = app.add_subcommand("run", "show the frames in a window (Esc quits)");
   add_common(run, common, true, false);
+  add_bounces(run, common);
   add_size(run, run_size);
   run->add_option("--frames", run_opts.frames, "frames to show, 0 = until the window is closed")
       ->capture_default_str()
@@ -330,7 +348,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
       "bench", "time every pass over many frames, on one or many devices, sizes and voxel "
                "resolutions");
   add_common(bench, common, false, true);
-  add_pathtrace(bench, common);
+  add_spp(bench, common);
+  add_bounces(bench, common);
   add_size(bench, bench_size);
   bench->add_option("--frames", bench_opts.frames, "measured frames")
       ->capture_default_str()
@@ -348,26 +367,48 @@ CliParse parse_cli(int argc, const char* const* argv) {
                   "busy animation, and the flicker of both (issue 9's criteria)");
   bench->add_flag("--accuracy", bench_opts.accuracy,
                   "hold the fast and reference modes against the path-traced truth of the demo "
-                  "frame (1 and 64 bounces; cached on disk): PSNR, indirect L1 and bias per "
-                  "region, side-wall hue, leaks; default size 360, --spp 1024");
+                  "frame (cached on disk): each at 64 bounces against the 64-bounce truth and at "
+                  "--bounces 1 against the 1-bounce truth, plus the fast mode's final image with "
+                  "TAA; PSNR, indirect L1 and bias per region, side-wall hue, leaks; default size "
+                  "360, --spp 1024");
   bench->add_option("--out", bench_opts.out_dir,
-                    "--accuracy: folder for the side-by-side PNG and the heat maps")
+                    "--accuracy: folder for the side-by-side PNGs and the heat maps")
       ->capture_default_str();
   bench->add_option("--truth-cache", bench_opts.truth_cache,
                     "--accuracy: folder of cached path-traced truths (default "
                     "$XDG_CACHE_HOME/rolypoly/truth or ~/.cache/rolypoly/truth)");
-  bench->add_option_function<std::string>(
-           "--max-indirect-l1",
-           [&bench_opts](const std::string& v) { bench_opts.max_indirect_l1 = std::strtod(v.c_str(), nullptr); },
-           "--accuracy: exit 3 when the fast mode's indirect relative L1 against the 1-bounce "
-           "truth exceeds this (e.g. 0.15)")
-      ->check(decimal_in(0.0, 1000.0));
-  bench->add_option_function<std::string>(
-           "--max-indirect-bias",
-           [&bench_opts](const std::string& v) { bench_opts.max_indirect_bias = std::strtod(v.c_str(), nullptr); },
-           "--accuracy: exit 3 when the fast mode's |indirect bias| against the 1-bounce truth "
-           "exceeds this (e.g. 0.10)")
-      ->check(decimal_in(0.0, 1000.0));
+  // --accuracy's thresholds: exit 3 when one is missed. Fractions (0.15 = 15 %), PSNR in dB.
+  auto threshold = [&](const char* name, std::optional<double>& value, const std::string& what,
+                       double hi) {
+    bench->add_option_function<std::string>(
+             name, [&value](const std::string& v) { value = std::strtod(v.c_str(), nullptr); },
+             "--accuracy: exit 3 when " + what)
+        ->check(decimal_in(0.0, hi));
+  };
+  threshold("--max-indirect-l1", bench_opts.max_indirect_l1,
+            "the fast mode's indirect relative L1 over the image (64 bounces against the "
+            "64-bounce truth) exceeds this fraction (e.g. 0.15)",
+            1000.0);
+  threshold("--max-indirect-bias", bench_opts.max_indirect_bias,
+            "the fast mode's |indirect bias| over the image (64 bounces against the 64-bounce "
+            "truth) exceeds this fraction (e.g. 0.10)",
+            1000.0);
+  threshold("--max-region-bias", bench_opts.max_region_bias,
+            "the fast mode's |indirect bias| (64 bounces against the 64-bounce truth) in any "
+            "named region exceeds this fraction (e.g. 0.15)",
+            1000.0);
+  threshold("--max-indirect-l1-single", bench_opts.max_indirect_l1_single,
+            "the fast mode's indirect relative L1 over the image at --bounces 1 against the "
+            "1-bounce truth exceeds this fraction (e.g. 0.12)",
+            1000.0);
+  threshold("--min-psnr-taa", bench_opts.min_psnr_taa,
+            "the PSNR (dB) of the fast mode's final image with TAA (no bloom or motion blur, "
+            "64 bounces) against the 64-bounce truth is below this (e.g. 30)",
+            1000.0);
+  bench->add_flag("--require-wall-hue", bench_opts.require_wall_hue,
+                  "--accuracy: exit 3 unless on each side wall the incoming indirect light's "
+                  "sign of R - B is the truth's: fast at 64 bounces as the 64-bounce truth, fast "
+                  "at 1 bounce as the 1-bounce truth");
   add_simulation(bench, bench_opts.sim);
   CLI::Option* devices_opt = bench->add_option(
       "--devices", bench_opts.devices,
@@ -441,6 +482,7 @@ CliParse parse_cli(int argc, const char* const* argv) {
     render_opts.size = render_size.resolve();
     render_opts.frames_given = render->count("--frames") > 0;
   } else if (run->parsed()) {
+    if (std::string why = check_bounces(common); !why.empty()) return usage("rolypoly run", why);
     parsed.kind = ParsedCommand::Kind::kRun;
     run_opts.size = run_size.resolve();
   } else if (bench->parsed()) {
@@ -470,14 +512,17 @@ CliParse parse_cli(int argc, const char* const* argv) {
               bench_opts.compare_visibility || bench_opts.quality_report || common.pathtraced ||
               bench->count("--bounces") || bench->count("--chart") ||
               bench->count("--markdown") || bench_opts.scene != "default"))
-      why = "--accuracy runs one device and voxel resolution on the demo frame (no --devices, "
-            "--sizes, --compare-visibility, --quality-report, --quality pathtraced, --bounces, "
-            "--chart, --markdown or --scene busy)";
+      why = "--accuracy runs one device and voxel resolution on the demo frame, at 1 and 64 "
+            "bounces (no --devices, --sizes, --compare-visibility, --quality-report, --quality "
+            "pathtraced, --bounces, --chart, --markdown or --scene busy)";
     else if (!bench_opts.accuracy &&
              (bench->count("--out") || bench->count("--truth-cache") ||
-              bench->count("--max-indirect-l1") || bench->count("--max-indirect-bias")))
-      why = "--out, --truth-cache, --max-indirect-l1 and --max-indirect-bias belong to "
-            "--accuracy";
+              bench->count("--max-indirect-l1") || bench->count("--max-indirect-bias") ||
+              bench->count("--max-region-bias") || bench->count("--max-indirect-l1-single") ||
+              bench->count("--min-psnr-taa") || bench_opts.require_wall_hue))
+      why = "--out, --truth-cache and the thresholds (--max-indirect-l1, --max-indirect-bias, "
+            "--max-region-bias, --max-indirect-l1-single, --min-psnr-taa, --require-wall-hue) "
+            "belong to --accuracy";
     if (why) return usage("rolypoly bench", why);
     if (bench_opts.accuracy) {
       if (bench->count("--spp")) bench_opts.accuracy_spp = common.spp;

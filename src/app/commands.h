@@ -59,7 +59,10 @@ struct BenchOptions {
   uint32_t accuracy_spp = 1024;         // --spp with --accuracy: the truth's samples per pixel
   std::string out_dir = "out/accuracy";  // --out: the report's PNGs
   std::string truth_cache;              // --truth-cache DIR ("" = the default cache folder)
-  std::optional<double> max_indirect_l1, max_indirect_bias;  // exit 3 when missed
+  // Thresholds (exit 3 when missed; app/accuracy_report.h): fractions, PSNR in dB.
+  std::optional<double> max_indirect_l1, max_indirect_bias, max_region_bias;
+  std::optional<double> max_indirect_l1_single, min_psnr_taa;
+  bool require_wall_hue = false;
   // The matrix (issue 7): every device x size x voxel resolution.
   std::string devices;           // --devices all|LIST ("" = the one --device, or the default)
   std::vector<uint32_t> sizes;   // --sizes: square sizes (empty = `size`)
@@ -83,7 +86,8 @@ int run_command(const CommonOptions& common, const RunOptions& options);
 // least one device completed, 1 when every device was skipped.
 int bench_command(const CommonOptions& common, const BenchOptions& options);
 // bench --accuracy: the real-time modes against the path-traced truth (app/accuracy_report.h);
-// exit 3 when a --max-indirect-* threshold is missed, 130 when interrupted.
+// exit 3 when a threshold (--max-indirect-l1 ... --require-wall-hue) is missed, 130 when
+// interrupted.
 int accuracy_command(const CommonOptions& common, const BenchOptions& options);
 // bench --quality pathtraced: seconds and Mrays/s per path-traced frame, optional JSON (schema
 // "rolypoly-pathtrace-bench/1").

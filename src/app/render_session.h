@@ -28,10 +28,13 @@ struct CommonOptions {
   render::VisibilityBackend visibility = render::VisibilityBackend::kRaster;  // --visibility
   render::Quality quality = render::Quality::kFast;                          // --quality
   // --quality pathtraced (render, bench): the host path tracer (truth/path_tracer.h) instead of
-  // the OpenCL renderer; `quality` is then unused. --spp / --bounces are its settings.
+  // the OpenCL renderer; `quality` is then unused. --spp is its samples per pixel.
   bool pathtraced = false;
-  uint32_t spp = 256;    // --spp: samples per pixel, 1..1000000
-  uint32_t bounces = 1;  // --bounces: gathers, 0..1000; 1 = what the real-time modes model
+  uint32_t spp = 256;  // --spp: samples per pixel, 1..1000000
+  // --bounces (every mode): the path tracer's gathers (0..1000) or the real-time modes'
+  // render::RenderSettings::bounces (1..1000: 1 = single bounce, >= 2 = multi-bounce, which
+  // converges to all bounces). Default 64, "all bounces", in every mode.
+  uint32_t bounces = render::RenderSettings::kDefaultBounces;
 };
 
 // Not copyable or movable: the program cache and renderer point at the context.

@@ -113,7 +113,7 @@ TEST(ParseCli, PathtracedQualityAndItsOptions) {
   const ParsedCommand defaults = command({"render"});
   EXPECT_FALSE(defaults.common.pathtraced);
   EXPECT_EQ(defaults.common.spp, 256u);
-  EXPECT_EQ(defaults.common.bounces, 1u);
+  EXPECT_EQ(defaults.common.bounces, 64u) << "all bounces, in every mode";
   EXPECT_FALSE(defaults.render.exr);
   EXPECT_TRUE(command({"render", "--exr"}).render.exr);
 
@@ -133,14 +133,14 @@ TEST(ParseCli, PathtracedQualityAndItsOptions) {
   EXPECT_FALSE(command({"render", "--quality", "reference"}).common.pathtraced);
 
   for (const std::vector<std::string>& words : std::vector<std::vector<std::string>>{
-           {"render", "--spp", "4"}, {"render", "--bounces", "1"}, {"bench", "--spp", "4"},
-           {"render", "--quality", "fast", "--bounces", "2"}}) {
+           {"render", "--spp", "4"}, {"bench", "--spp", "4"},
+           {"render", "--quality", "fast", "--spp", "2"}}) {
     const CliExit e = exit_of(words);
     EXPECT_EQ(e.exit_code, 2) << words[1];
-    EXPECT_NE(e.message.find("--spp and --bounces apply to --quality pathtraced"),
-              std::string::npos)
+    EXPECT_NE(e.message.find("--spp applies to --quality pathtraced"), std::string::npos)
         << e.message;
   }
+  EXPECT_EQ(command({"render", "--quality", "pathtraced"}).common.bounces, 64u);
   for (const char* bad : {"0", "1000001", "-1", "0x10", "four"})
     EXPECT_EQ(exit_of({"render", "--quality", "pathtraced", "--spp", bad}).exit_code, 2) << bad;
   EXPECT_EQ(exit_of({"render", "--quality", "pathtraced", "--bounces", "1001"}).exit_code, 2);
@@ -171,15 +171,67 @@ TEST(ParseCli, PathtracedQualityAndItsOptions) {
   // The window shows real-time frames only.
   EXPECT_EQ(exit_of({"run", "--quality", "pathtraced"}).exit_code, 2);
   EXPECT_EQ(exit_of({"run", "--spp", "4"}).exit_code, 2);
+  EXPECT_EQ(exit_of({"run", "--bounces", "0"}).exit_code, 2);
   EXPECT_EQ(exit_of({"run", "--exr"}).exit_code, 2);
 
   for (const char* sub : {"render", "bench"}) {
     const CliExit help = exit_of({sub, "--help"});
     EXPECT_NE(help.message.find("pathtraced"), std::string::npos) << sub;
     EXPECT_NE(help.message.find("--spp"), std::string::npos) << sub;
-    EXPECT_NE(help.message.find("--bounces"), std::string::npos) << sub;
   }
   EXPECT_NE(exit_of({"render", "--help"}).message.find("--exr"), std::string::npos);
+}
+
+// --bounces applies to every mode of render, run and bench: 1 = single bounce, >= 2 =
+// multi-bounce in the real-time modes; 0 only for the path tracer.
+TEST(ParseCli, BouncesInEveryMode) {
+  for (const char* sub : {"render", "run", "bench"}) {
+    EXPECT_EQ(command({sub}).common.bounces, 64u) << sub;
+    for (const char* quality : {"fast", "reference"}) {
+      EXPECT_EQ(command({sub, "--quality", quality, "--bounces", "1"}).common.bounces, 1u) << sub;
+      EXPECT_EQ(command({sub, "--quality", quality, "--bounces", "1000"}).common.bounces, 1000u)
+          << sub;
+      const CliExit zero = exit_of({sub, "--quality", quality, "--bounces", "0"});
+      EXPECT_EQ(zero.exit_code, 2) << sub;
+      EXPECT_NE(zero.message.find("--bounces 0 applies to --quality pathtraced"),
+                std::string::npos)
+          << zero.message;
+    }
+    for (const char* bad : {"1001", "-1", "two", "0x2"})
+      EXPECT_EQ(exit_of({sub, "--bounces", bad}).exit_code, 2) << sub << " " << bad;
+    const CliExit help = exit_of({sub, "--help"});
+    EXPECT_NE(help.message.find("--bounces"), std::string::npos) << sub;
+    EXPECT_NE(help.message.find("multi-bounce"), std::string::npos) << sub;
+  }
+  EXPECT_EQ(command({"bench", "--bounces", "2", "--quality-report"}).common.bounces, 2u);
+  EXPECT_EQ(command({"bench", "--bounces", "3", "--sizes", "16,32"}).common.bounces, 3u);
+  EXPECT_EQ(command({"bench", "--bounces", "1", "--compare-visibility"}).common.bounces, 1u);
+  // bench --accuracy renders both counts itself.
+  EXPECT_EQ(exit_of({"bench", "--accuracy", "--bounces", "1"}).exit_code, 2);
+}
+
+TEST(ParseCli, AccuracyThresholds) {
+  const ParsedCommand p = command({"bench", "--accuracy", "--max-indirect-l1", "0.15",
+                                   "--max-indirect-bias", "0.1", "--max-region-bias", "0.15",
+                                   "--max-indirect-l1-single", "0.12", "--min-psnr-taa", "30",
+                                   "--require-wall-hue"});
+  EXPECT_TRUE(p.bench.accuracy);
+  EXPECT_EQ(p.bench.max_indirect_l1, 0.15);
+  EXPECT_EQ(p.bench.max_indirect_bias, 0.1);
+  EXPECT_EQ(p.bench.max_region_bias, 0.15);
+  EXPECT_EQ(p.bench.max_indirect_l1_single, 0.12);
+  EXPECT_EQ(p.bench.min_psnr_taa, 30.0);
+  EXPECT_TRUE(p.bench.require_wall_hue);
+  const ParsedCommand none = command({"bench", "--accuracy"});
+  EXPECT_FALSE(none.bench.max_region_bias || none.bench.max_indirect_l1_single ||
+               none.bench.min_psnr_taa || none.bench.require_wall_hue);
+  for (const char* option : {"--max-region-bias", "--max-indirect-l1-single", "--min-psnr-taa"}) {
+    EXPECT_EQ(exit_of({"bench", option, "1"}).exit_code, 2) << option;
+    EXPECT_EQ(exit_of({"bench", "--accuracy", option, "inf"}).exit_code, 2) << option;
+  }
+  const CliExit hue = exit_of({"bench", "--require-wall-hue"});
+  EXPECT_EQ(hue.exit_code, 2);
+  EXPECT_NE(hue.message.find("belong to --accuracy"), std::string::npos) << hue.message;
 }
 
 TEST(ParseCli, BenchKeepsItsCommandLineAndTheSameArgvParsesTheSameTwice) {

@@ -54,6 +54,20 @@ TEST(RendererCli, WidthAndHeightOverrideSize) {
   EXPECT_EQ(img.height, 16);
 }
 
+// --bounces reaches the real-time renderer in every mode: 1 (single bounce) and N >= 2
+// (multi-bounce) both render, in render and bench.
+TEST(RendererCli, BouncesInTheRealTimeModes) {
+  for (const char* args : {"--bounces 1", "--bounces 2 --quality reference", "--bounces 1000"}) {
+    TempDir dir;
+    CommandResult r = run_rolypoly(std::string("render --size 16 --frames 2 ") + args +
+                                   " --out " + shell_quote(dir.path().string()));
+    ASSERT_EQ(r.exit_code, 0) << r.command << "\n" << r.out << r.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "frame_0001.png")) << args;
+  }
+  CommandResult b = run_rolypoly("bench --size 16 --frames 1 --warmup 0 --bounces 1");
+  EXPECT_EQ(b.exit_code, 0) << b.out << b.err;
+}
+
 TEST(RendererCli, BenchWritesJsonWithTheSchemaFields) {
   // A single-device, single-size bench writes the matrix schema with one device and one run.
   TempDir dir;
