@@ -151,6 +151,20 @@ double tone_mapped_psnr(const std::vector<float>& a, const std::vector<float>& b
   return 10.0 * std::log10(1.0 / (sum / double(a.size())));
 }
 
+double rgba8_psnr(const std::vector<uint8_t>& rgba, const std::vector<float>& radiance) {
+  if (rgba.size() / 4 != radiance.size() / 3 || rgba.size() % 4 || radiance.size() % 3 ||
+      rgba.empty())
+    throw std::invalid_argument("accuracy: PSNR of images of different sizes");
+  double sum = 0.0;
+  for (size_t p = 0; p < rgba.size() / 4; ++p)
+    for (size_t c = 0; c < 3; ++c) {
+      const double d = rgba[4 * p + c] / 255.0 - tone_map_srgb(radiance[3 * p + c]);
+      sum += d * d;
+    }
+  if (sum == 0.0) return std::numeric_limits<double>::infinity();
+  return 10.0 * std::log10(1.0 / (sum / double(radiance.size())));
+}
+
 void signed_heat_map(const std::vector<float>& a, const std::vector<float>& truth,
                      const std::vector<uint16_t>& labels, double eps, std::vector<uint8_t>& rgba) {
   check_sizes(a, truth, labels);

@@ -71,6 +71,10 @@ LeakStats leaks_and_misses(const std::vector<float>& a, const std::vector<float>
 // PSNR (dB, peak 1) of two radiance images after the renderer's tone map x / (1 + x) and the
 // sRGB encode (no quantisation), over all pixels and channels; +inf when identical.
 double tone_mapped_psnr(const std::vector<float>& a, const std::vector<float>& b);
+// The same for a finished 8-bit frame (RGBA8, 4 bytes per pixel, alpha ignored; code / 255)
+// against a radiance image (3 floats per pixel) through the same tone map and sRGB encode: the
+// final image after TAA, which the renderer hands out only as RGBA8.
+double rgba8_psnr(const std::vector<uint8_t>& rgba, const std::vector<float>& radiance);
 
 // Signed relative difference of indirect luminance, (a - t) / (t + eps), drawn as RGBA8: blue
 // where a is too dark (-1 or less: full blue), white where equal, red where too bright (+1 or

@@ -1,11 +1,21 @@
-// `rolypoly bench --accuracy` (issue 13): the demo frame (scene::make_demo_frame, at rest)
-// path traced as ground truth at one gather (what the real-time passes model today) and at many,
-// against the fast mode after its temporal accumulation converged and the reference mode, all
-// without TAA, bloom and motion blur (and so without jitter). For each mode and truth: the final
-// image's PSNR after the tone map, the direct component's error, the indirect component's
-// relative L1 and bias over the image and per named region (app/accuracy_metrics.h), the hue of
-// the indirect light arriving on each side wall, and the leak / missing pixel counts. Writes a
-// JSON (schema rolypoly-accuracy/1), a side-by-side PNG and signed difference heat maps.
+// `rolypoly bench --accuracy` (issues 13 and 14): the demo frame (scene::make_demo_frame, at rest)
+// path traced as ground truth at one gather and at many (64), against four real-time
+// configurations, each at the truth's bounce count and all without TAA, bloom and motion blur
+// (and so without jitter):
+//   fast_many       the fast mode at 64 bounces (the default) after its temporal accumulation
+//                   converged, against the many-bounce truth ("fast/N");
+//   reference_many  the reference mode at 64 bounces, after the voxels' bounce feedback
+//                   converged, against the many-bounce truth ("ref/N");
+//   fast_one        the fast mode at --bounces 1, converged, against the 1-bounce truth ("fast/1");
+//   reference_one   the reference mode at --bounces 1 (one frame), against the 1-bounce truth
+//                   ("ref/1");
+// and a fifth render, fast_many_taa: the fast mode at 64 bounces with TAA on (bloom and motion
+// blur off) for `converge_frames` frames, whose finished 8-bit image is held against the
+// many-bounce truth (final PSNR only). For each of the four: the final image's PSNR after the
+// tone map, the direct component's error, the indirect component's relative L1 and bias over the
+// image and per named region (app/accuracy_metrics.h), the hue of the indirect light arriving on
+// each side wall, and the leak / missing pixel counts. Writes a JSON (schema rolypoly-accuracy/2,
+// README "Accuracy against the ground truth"), side-by-side PNGs and signed difference heat maps.
 #pragma once
 
 #include <cstdint>
@@ -22,19 +32,32 @@ namespace rp::app {
 struct AccuracyOptions {
   uint32_t width = 360, height = 360;
   uint32_t spp = 1024;             // the truth's samples per pixel
-  uint32_t many_bounces = 64;      // the "many" truth (Russian roulette ends paths long before)
-  uint32_t converge_frames = 128;  // fast-mode frames before it is measured (blend 0.04)
+  // The "many" truth and the real-time modes' bounces against it (Russian roulette ends the
+  // truth's paths long before 64; the real-time feedback converges to all bounces).
+  uint32_t many_bounces = render::RenderSettings::kDefaultBounces;
+  uint32_t converge_frames = 128;  // fast-mode frames before it is measured (blend 0.04),
+                                   // also the TAA render's frames
+  // Reference-mode frames at many bounces: the voxels carry the previous frame's indirect light,
+  // one more bounce per frame (at 1 bounce the reference mode needs one frame).
+  uint32_t reference_many_frames = 32;
   uint64_t seed = 1;               // the truth's random streams
   std::filesystem::path cache_dir;                  // empty: default_truth_cache_dir()
-  std::filesystem::path out_dir = "out/accuracy";   // accuracy_side_by_side.png, _heat.png
+  std::filesystem::path out_dir = "out/accuracy";   // accuracy_{side_by_side,indirect_heat,
+                                                    // final_taa}.png
   std::string json_path;                            // "" = no JSON file
-  std::optional<double> max_indirect_l1, max_indirect_bias;  // thresholds (exit 3 when missed)
+  // Thresholds (exit 3 when one is missed), each on the fast mode: fractions, PSNR in dB.
+  std::optional<double> max_indirect_l1;         // fast_many: indirect relative L1, image
+  std::optional<double> max_indirect_bias;       // fast_many: |indirect bias|, image
+  std::optional<double> max_region_bias;         // fast_many: |indirect bias|, every named region
+  std::optional<double> max_indirect_l1_single;  // fast_one: indirect relative L1, image
+  std::optional<double> min_psnr_taa;            // fast_many_taa: final PSNR (dB)
+  bool require_wall_hue = false;  // both walls: sign(R - B) of fast_many and fast_one as truth's
   std::string command_line;
 };
 
 struct AccuracyResult {
-  nlohmann::json json;   // the whole report (schema rolypoly-accuracy/1)
-  std::string table;     // what is printed
+  nlohmann::json json;   // the whole report (schema rolypoly-accuracy/2)
+  std::string table;     // what is printed, thresholds included
   bool passed = true;    // every given threshold met
 };
 

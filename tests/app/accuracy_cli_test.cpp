@@ -25,43 +25,95 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
                            shell_quote((dir / "acc.json").string());
   const rp::test::CommandResult first = run_rolypoly(args);
   ASSERT_EQ(first.exit_code, 0) << first.command << "\n" << first.out << first.err;
-  EXPECT_NE(first.out.find("indirect bias ceiling"), std::string::npos) << first.out;
+  for (const char* text : {"indirect bias ceiling", "fast/N", "ref/N", "fast/1", "ref/1",
+                           "final PSNR, TAA (dB)", "right_wall reference N",
+                           "left_wall  sign of R - B: fast N as truth N"})
+    EXPECT_NE(first.out.find(text), std::string::npos) << text << "\n" << first.out;
   EXPECT_EQ(first.out.find("from the cache"), std::string::npos);
-  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "accuracy_side_by_side.png"));
-  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "accuracy_indirect_heat.png"));
+  EXPECT_EQ(first.out.find("threshold"), std::string::npos) << "none asked for";
+  for (const char* png : {"accuracy_side_by_side.png", "accuracy_indirect_heat.png",
+                          "accuracy_final_taa.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / png)) << png;
   EXPECT_EQ(rp::test::files_with_suffix(dir / "cache", ".exr").size(), 2u);  // 1 and 64 bounces
 
   std::ifstream in(dir / "acc.json");
   const nlohmann::json j = nlohmann::json::parse(in);
-  EXPECT_EQ(j["schema"], "rolypoly-accuracy/1");
+  EXPECT_EQ(j["schema"], "rolypoly-accuracy/2");
   EXPECT_EQ(j["width"], 24);
-  for (const char* mode : {"fast", "reference"})
-    for (const char* vs : {"vs_one_bounce", "vs_many_bounces"}) {
-      const nlohmann::json& m = j["modes"][mode][vs];
-      EXPECT_TRUE(m["final_psnr_db"].is_number()) << mode << vs;
-      EXPECT_GE(m["indirect"]["image"]["rel_l1"].get<double>(), 0.0);
-      EXPECT_TRUE(m["indirect"].contains("ceiling"));
-      EXPECT_TRUE(m["incoming_indirect"].contains("left_wall"));
-      // The direct light is the same model in both: it agrees far better than the indirect.
-      EXPECT_LT(std::abs(m["direct"]["bias"].get<double>()), 0.1) << mode << vs;
-    }
+  EXPECT_FALSE(j.contains("thresholds"));
+  EXPECT_TRUE(j["passed"].get<bool>());
+  const nlohmann::json& cfg = j["configurations"];
+  for (const char* key : {"fast_many", "reference_many", "fast_one", "reference_one"}) {
+    const nlohmann::json& m = cfg[key];
+    const bool many = std::string(key).ends_with("many");
+    EXPECT_EQ(m["bounces"], many ? 64 : 1) << key;
+    EXPECT_EQ(m["truth"], many ? "many" : "one") << key;
+    EXPECT_EQ(m["quality"], std::string(key).starts_with("fast") ? "fast" : "reference");
+    EXPECT_FALSE(m["taa"].get<bool>());
+    EXPECT_GE(m["frames"].get<int>(), 1);
+    EXPECT_TRUE(m["final_psnr_db"].is_number()) << key;
+    EXPECT_GE(m["indirect"]["image"]["rel_l1"].get<double>(), 0.0);
+    EXPECT_TRUE(m["indirect"].contains("ceiling"));
+    EXPECT_TRUE(m["incoming_indirect"]["left_wall"].contains("same_hue_sign_as_truth"));
+    EXPECT_TRUE(m["leaks"]["leak_pixels"].is_number());
+    // The direct light is the same model in both: it agrees far better than the indirect.
+    EXPECT_LT(std::abs(m["direct"]["bias"].get<double>()), 0.1) << key;
+  }
+  EXPECT_EQ(cfg["fast_one"]["frames"], 128);
+  EXPECT_EQ(cfg["reference_one"]["frames"], 1);
+  const nlohmann::json& taa = cfg["fast_many_taa"];
+  EXPECT_TRUE(taa["taa"].get<bool>());
+  EXPECT_FALSE(taa["bloom"].get<bool>());
+  EXPECT_EQ(taa["bounces"], 64);
+  EXPECT_GT(taa["final_psnr_db"].get<double>(), 5.0);
   // Many bounces carry more light than one.
   EXPECT_GT(j["truth"]["many"]["incoming_indirect"]["right_wall"]["rgb"][0].get<double>(),
             j["truth"]["one"]["incoming_indirect"]["right_wall"]["rgb"][0].get<double>());
+  EXPECT_LT(j["truth"]["one"]["indirect_vs_many"]["bias"].get<double>(), -0.1);
 
-  const rp::test::CommandResult second = run_rolypoly(args + " --max-indirect-l1 0.0001");
-  EXPECT_EQ(second.exit_code, 3) << second.out << second.err;  // missed on purpose
+  // Every threshold, two missed on purpose; the truths come from the cache.
+  const rp::test::CommandResult second = run_rolypoly(
+      args + " --max-indirect-l1 0.0001 --max-indirect-bias 1000 --max-region-bias 1000 "
+             "--max-indirect-l1-single 1000 --min-psnr-taa 1000 --require-wall-hue");
+  EXPECT_EQ(second.exit_code, 3) << second.out << second.err;
   EXPECT_NE(second.out.find("(from the cache)"), std::string::npos) << second.out;
-  EXPECT_NE(second.out.find("max_indirect_l1 0.000: MISSED"), std::string::npos) << second.out;
-  const rp::test::CommandResult third = run_rolypoly(args + " --max-indirect-l1 1000");
+  EXPECT_NE(second.out.find("threshold max_indirect_l1 "), std::string::npos) << second.out;
+  EXPECT_NE(second.out.find("limit 0.0001: MISSED"), std::string::npos) << second.out;
+  std::ifstream in2(dir / "acc.json");
+  const nlohmann::json j2 = nlohmann::json::parse(in2);
+  EXPECT_FALSE(j2["passed"].get<bool>());
+  for (const char* name : {"max_indirect_l1", "max_indirect_bias", "max_region_bias",
+                           "max_indirect_l1_single", "min_psnr_taa", "require_wall_hue"}) {
+    const nlohmann::json& th = j2["thresholds"][name];
+    EXPECT_TRUE(th["limit"].is_number()) << name;
+    EXPECT_TRUE(th["passed"].is_boolean()) << name;
+    EXPECT_TRUE(th.contains("value")) << name;
+  }
+  EXPECT_FALSE(j2["thresholds"]["max_indirect_l1"]["passed"].get<bool>());
+  EXPECT_TRUE(j2["thresholds"]["max_indirect_bias"]["passed"].get<bool>());
+  EXPECT_TRUE(j2["thresholds"]["max_region_bias"]["passed"].get<bool>());
+  EXPECT_TRUE(j2["thresholds"]["max_region_bias"]["region"].is_string());
+  EXPECT_FALSE(j2["thresholds"]["min_psnr_taa"]["passed"].get<bool>());
+  EXPECT_NE(second.out.find("threshold min_psnr_taa"), std::string::npos) << second.out;
+  EXPECT_EQ(j2["thresholds"]["min_psnr_taa"]["value"].get<double>(),
+            j2["configurations"]["fast_many_taa"]["final_psnr_db"].get<double>());
+  EXPECT_TRUE(j2["thresholds"]["require_wall_hue"]["walls"]["left_wall"].contains("fast_one"));
+
+  const rp::test::CommandResult third = run_rolypoly(
+      args + " --max-indirect-l1 1000 --max-indirect-l1-single 1000 --min-psnr-taa 0");
   EXPECT_EQ(third.exit_code, 0) << third.out << third.err;
+  EXPECT_NE(third.out.find("threshold min_psnr_taa"), std::string::npos) << third.out;
+  EXPECT_EQ(third.out.find("MISSED"), std::string::npos) << third.out;
 }
 
 TEST(AccuracyCli, UsageErrors) {
   for (const char* args :
-       {"bench --out x", "bench --max-indirect-l1 0.1", "bench --accuracy --sizes 16,32",
+       {"bench --out x", "bench --max-indirect-l1 0.1", "bench --max-region-bias 0.1",
+        "bench --max-indirect-l1-single 0.1", "bench --min-psnr-taa 30",
+        "bench --require-wall-hue", "bench --accuracy --sizes 16,32",
         "bench --accuracy --quality-report", "bench --accuracy --bounces 3",
-        "bench --accuracy --max-indirect-bias nan", "bench --accuracy --quality pathtraced"}) {
+        "bench --accuracy --max-indirect-bias nan", "bench --accuracy --min-psnr-taa -1",
+        "bench --accuracy --max-region-bias x", "bench --accuracy --quality pathtraced"}) {
     const rp::test::CommandResult r = run_rolypoly(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
   }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "app/accuracy_metrics.h"
 #include "scene/demo_scene.h"
@@ -99,6 +100,17 @@ TEST(AccuracyMetrics, PsnrAfterToneMap) {
   const std::vector<float> b = {3.0f, 3.0f, 3.0f};
   const double d = 0.8808250 - 0.7353569;
   EXPECT_NEAR(tone_mapped_psnr(a, b), 10.0 * std::log10(1.0 / (d * d)), 1e-3);
+}
+
+TEST(AccuracyMetrics, PsnrOfAnEightBitFrame) {
+  // Tone map 1 -> 0.5 -> sRGB 0.7353569; code 188 = 0.7372549; alpha is ignored.
+  const std::vector<float> radiance = {1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f};
+  const std::vector<uint8_t> rgba = {188, 188, 188, 0, 188, 188, 188, 255};
+  const double d = 188.0 / 255.0 - 0.7353569;
+  EXPECT_NEAR(rgba8_psnr(rgba, radiance), 10.0 * std::log10(1.0 / (d * d)), 1e-2);
+  const std::vector<uint8_t> black = {0, 0, 0, 255, 0, 0, 0, 255};
+  EXPECT_TRUE(std::isinf(rgba8_psnr(black, std::vector<float>(6, 0.0f))));
+  EXPECT_THROW(rgba8_psnr(black, std::vector<float>(3, 0.0f)), std::invalid_argument);
 }
 
 TEST(AccuracyMetrics, HeatMapSigns) {
