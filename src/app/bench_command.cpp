@@ -282,11 +282,13 @@ int quality_report(const CommonOptions& common, const BenchOptions& options) {
     char text[1024];
     std::snprintf(text, sizeof text,
                   "{\n  \"schema\": \"rolypoly-quality/1\",\n  \"command\": \"%s\",\n"
-                  "  \"width\": %u, \"height\": %u,\n  \"static_psnr_db\": %.3f,\n"
+                  "  \"width\": %u, \"height\": %u, \"bounces\": %u,\n"
+                  "  \"static_psnr_db\": %.3f,\n"
                   "  \"busy_min_psnr_db\": %.3f, \"busy_median_psnr_db\": %.3f,\n"
                   "  \"flicker_fast\": %.4f, \"flicker_reference\": %.4f,\n"
                   "  \"busy_psnr_db\": ",
-                  options.command_line.c_str(), w, h, r.static_psnr_db, r.busy_min_psnr_db,
+                  options.command_line.c_str(), w, h, common.bounces, r.static_psnr_db,
+                  r.busy_min_psnr_db,
                   r.busy_median_psnr_db, r.flicker_fast, r.flicker_reference);
     write_text_atomic(options.json, std::string(text) + busy + "\n}\n");
     std::printf("wrote %s\n", options.json.c_str());
@@ -329,6 +331,7 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
   matrix.command = options.command_line;
   matrix.scene = options.scene;
   matrix.seed = options.sim.seed;
+  matrix.bounces = common.bounces;
   matrix.frames = options.frames;
   matrix.warmup = options.warmup;
   matrix.sizes = plan.sizes;

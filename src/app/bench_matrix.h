@@ -103,6 +103,9 @@ struct BenchMatrix {
   std::string command;     // the command line that produced it (informational)
   std::string scene;       // "default" or "busy"
   uint64_t seed = 1;
+  // --bounces of the real-time modes (1 = single bounce); files from before issue 14 have no
+  // field and read as 1, the only count the renderer had then.
+  uint32_t bounces = 1;
   uint32_t frames = 0, warmup = 0;
   std::vector<std::pair<uint32_t, uint32_t>> sizes;  // (width, height)
   std::vector<uint32_t> voxels;

@@ -133,6 +133,7 @@ std::string matrix_json(const BenchMatrix& m) {
   j["command"] = m.command;
   j["scene"] = m.scene;
   j["seed"] = m.seed;
+  j["bounces"] = m.bounces;
   j["frames"] = m.frames;
   j["warmup"] = m.warmup;
   Json sizes = Json::array();
@@ -179,6 +180,7 @@ BenchMatrix parse_matrix_json(const std::string& text) {
   m.command = j.at("command");
   m.scene = j.at("scene");
   m.seed = j.at("seed");
+  m.bounces = j.value("bounces", 1u);
   m.frames = j.at("frames");
   m.warmup = j.at("warmup");
   for (const Json& s : j.at("sizes")) m.sizes.push_back({s.at(0), s.at(1)});

@@ -378,33 +378,27 @@ CliParse parse_cli(int argc, const char* const* argv) {
                     "--accuracy: folder of cached path-traced truths (default "
                     "$XDG_CACHE_HOME/rolypoly/truth or ~/.cache/rolypoly/truth)");
   // --accuracy's thresholds: exit 3 when one is missed. Fractions (0.15 = 15 %), PSNR in dB.
-  auto threshold = [&](const char* name, std::optional<double>& value, const std::string& what,
-                       double hi) {
+  auto threshold = [&](const char* name, std::optional<double>& value, const std::string& what) {
     bench->add_option_function<std::string>(
              name, [&value](const std::string& v) { value = std::strtod(v.c_str(), nullptr); },
              "--accuracy: exit 3 when " + what)
-        ->check(decimal_in(0.0, hi));
+        ->check(decimal_in(0.0, 1000.0));
   };
   threshold("--max-indirect-l1", bench_opts.max_indirect_l1,
             "the fast mode's indirect relative L1 over the image (64 bounces against the "
-            "64-bounce truth) exceeds this fraction (e.g. 0.15)",
-            1000.0);
+            "64-bounce truth) exceeds this fraction (e.g. 0.15)");
   threshold("--max-indirect-bias", bench_opts.max_indirect_bias,
             "the fast mode's |indirect bias| over the image (64 bounces against the 64-bounce "
-            "truth) exceeds this fraction (e.g. 0.10)",
-            1000.0);
+            "truth) exceeds this fraction (e.g. 0.10)");
   threshold("--max-region-bias", bench_opts.max_region_bias,
             "the fast mode's |indirect bias| (64 bounces against the 64-bounce truth) in any "
-            "named region exceeds this fraction (e.g. 0.15)",
-            1000.0);
+            "named region exceeds this fraction (e.g. 0.15)");
   threshold("--max-indirect-l1-single", bench_opts.max_indirect_l1_single,
             "the fast mode's indirect relative L1 over the image at --bounces 1 against the "
-            "1-bounce truth exceeds this fraction (e.g. 0.12)",
-            1000.0);
+            "1-bounce truth exceeds this fraction (e.g. 0.12)");
   threshold("--min-psnr-taa", bench_opts.min_psnr_taa,
             "the PSNR (dB) of the fast mode's final image with TAA (no bloom or motion blur, "
-            "64 bounces) against the 64-bounce truth is below this (e.g. 30)",
-            1000.0);
+            "64 bounces) against the 64-bounce truth is below this (e.g. 30)");
   bench->add_flag("--require-wall-hue", bench_opts.require_wall_hue,
                   "--accuracy: exit 3 unless on each side wall the incoming indirect light's "
                   "sign of R - B is the truth's: fast at 64 bounces as the 64-bounce truth, fast "

@@ -171,6 +171,7 @@ BenchMatrix sample_matrix() {
   m.command = "rolypoly bench --devices all --sizes 256,512";
   m.scene = "busy";
   m.seed = 42;
+  m.bounces = 2;
   m.frames = 3;
   m.warmup = 1;
   m.sizes = {{256, 256}, {512, 512}};
@@ -221,6 +222,7 @@ TEST(BenchJson, MatrixRoundTripsExactly) {
   EXPECT_EQ(p.command, m.command);
   EXPECT_EQ(p.scene, m.scene);
   EXPECT_EQ(p.seed, m.seed);
+  EXPECT_EQ(p.bounces, 2u);
   EXPECT_EQ(p.frames, m.frames);
   EXPECT_EQ(p.warmup, m.warmup);
   EXPECT_EQ(p.sizes, m.sizes);
