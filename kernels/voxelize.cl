@@ -116,9 +116,32 @@ inline void vx_add_fixed(volatile __global uint* accum, volatile __global uint* 
   const uint qs[4] = {q.x, q.y, q.z, q.w};
   for (uint c = 0; c < 4u; ++c) {
     if (qs[c] == 0u) continue;
-    const uint old = atomic_add(accum + 4u * voxel + c, qs[c]);
+    const uint old = atomic_add(accum + RP_VOXEL_ACCUM_WORDS * voxel + c, qs[c]);
     if (old > 0xFFFFFFFFu - qs[c]) atomic_or(overflow + voxel, 1u << c);
   }
+}
+
+/* Adds the facing coverage of a surface with normal n (any length, not 0) and opacity a to
+ * voxel `voxel` (see "Facing" in the header): per axis i, round(a |n_i| / max|n| * UNIT) into
+ * the half of word 4 + i that matches the sign of n_i. */
+inline void vx_add_facing(volatile __global uint* accum, uint voxel, float3 n, float a) {
+  const float3 an = fabs(n);
+  const float scale = a * RP_VOXEL_FACING_UNIT / fmax(fmax(an.x, an.y), an.z);
+  const float c[3] = {an.x * scale, an.y * scale, an.z * scale};
+  const float s[3] = {n.x, n.y, n.z};
+  for (uint i = 0; i < 3u; ++i) {
+    const uint q = (uint)(fmin(c[i], RP_VOXEL_FACING_UNIT) + 0.5f);
+    if (q == 0u) continue;
+    atomic_add(accum + RP_VOXEL_ACCUM_WORDS * voxel + 4u + i, s[i] > 0.0f ? q : q << 16);
+  }
+}
+
+/* Facing coverage `a` in every direction (spheres: seen alike from everywhere). */
+inline void vx_add_facing_all(volatile __global uint* accum, uint voxel, float a) {
+  const uint q = (uint)(fmin(a, 1.0f) * RP_VOXEL_FACING_UNIT + 0.5f);
+  if (q == 0u) return;
+  for (uint i = 0; i < 3u; ++i)
+    atomic_add(accum + RP_VOXEL_ACCUM_WORDS * voxel + 4u + i, q | (q << 16));
 }
 
 /* Adds (rgb * a, a) to voxel `voxel`. */
@@ -602,9 +625,13 @@ inline VxVec vx_shade_span(const VxSetup* s, const VxLight* L, __global const fl
 
 /* Adds (radiance, opacity 1) to voxel `voxel` of every lane in `hit`. */
 inline void vx_accumulate_span(volatile __global uint* accum, volatile __global uint* overflow,
-                               rp_spanu voxel, const VxVec* radiance_p, rp_spani hit,
-                               int n_lanes) {
+                               rp_spanu voxel, const VxVec* radiance_p, const VxVec* normal_p,
+                               rp_spani hit, int n_lanes) {
   const VxVec radiance = *radiance_p;
+  float nx[RP_SPAN], ny[RP_SPAN], nz[RP_SPAN];
+  RP_SPAN_TO_ARRAY(normal_p->x, nx);
+  RP_SPAN_TO_ARRAY(normal_p->y, ny);
+  RP_SPAN_TO_ARRAY(normal_p->z, nz);
   int lh[RP_SPAN];
   RP_SPAN_TO_ARRAY(hit, lh);
   uint lv[RP_SPAN], lr[RP_SPAN], lg[RP_SPAN], lb[RP_SPAN];
@@ -618,7 +645,10 @@ inline void vx_accumulate_span(volatile __global uint* accum, volatile __global 
   RP_SPAN_TO_ARRAY(voxel, lv);
   const uint one = vx_fixed(1.0f);
   for (int i = 0; i < n_lanes; ++i)
-    if (lh[i]) vx_add_fixed(accum, overflow, lv[i], (uint4)(lr[i], lg[i], lb[i], one));
+    if (lh[i]) {
+      vx_add_fixed(accum, overflow, lv[i], (uint4)(lr[i], lg[i], lb[i], one));
+      vx_add_facing(accum, lv[i], (float3)(nx[i], ny[i], nz[i]), 1.0f);
+    }
 }
 
 /* The voxel (x, y, z) of lanes at (iu, iv, id) in their (u, v, d) frame. */
@@ -748,7 +778,8 @@ __kernel void voxelize_clear(__global uint4* accum, __global uint* overflow, uin
   const uint i = (uint)get_global_id(0);
   if (i == 0u) large_count[0] = 0u;
   if (i >= voxel_count) return;
-  accum[i] = (uint4)(0u);
+  accum[2u * i] = (uint4)(0u);
+  accum[2u * i + 1u] = (uint4)(0u);
   overflow[i] = 0u;
 }
 
@@ -836,7 +867,7 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
                              vx_voxel_radiance(&s, &light, shadow, linear_texels, resolution, x,
                                                y, z, hit & per_voxel, n),
                              per_voxel);
-        vx_accumulate_span(accum, overflow, voxel, &value, hit, n);
+        vx_accumulate_span(accum, overflow, voxel, &value, &s.nw, hit, n);
       }
     }
   }
@@ -909,7 +940,7 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
         if (record == VX_ACCUMULATE) {
           const VxVec radiance = vx_voxel_radiance(&s, &light, shadow, linear_texels,
                                                    resolution, x, y, z, hit, RP_SPAN);
-          vx_accumulate_span(accum, overflow, voxel, &radiance, hit, RP_SPAN);
+          vx_accumulate_span(accum, overflow, voxel, &radiance, &s.nw, hit, RP_SPAN);
         } else {
           vx_record_samples(&s, linear_texels, resolution, x, y, z, voxel, hit, record,
                             cache_count, cache, cache_capacity);
@@ -982,7 +1013,7 @@ __kernel void voxelize_cached(__global const FrameConstants* frame, __global con
   const VxLight light = vx_light(frame);
   const VxVec radiance =
       vx_radiance_span(&light, shadow, &albedo, &p, &nrm, &emission, active, n);
-  vx_accumulate_span(accum, overflow, VX_SPAN(lv), &radiance, active, n);
+  vx_accumulate_span(accum, overflow, VX_SPAN(lv), &radiance, &nrm, active, n);
 }
 
 __kernel void voxelize_spheres(__global const FrameConstants* frame,
@@ -1042,6 +1073,7 @@ __kernel void voxelize_spheres(__global const FrameConstants* frame,
           radiance = albedo * vx_direct(frame, shadow, cw + n * rw, n) + emission;
         }
         vx_accumulate(accum, overflow, rp_voxel_index(vox, resolution), radiance, a);
+        vx_add_facing_all(accum, rp_voxel_index(vox, resolution), a);
       }
     }
   }
@@ -1051,7 +1083,7 @@ __kernel void voxelize_resolve(__global const uint4* accum, __global const uint*
                                __global float4* level0, uint voxel_count) {
   const uint i = (uint)get_global_id(0);
   if (i >= voxel_count) return;
-  float4 sum = convert_float4(accum[i]) * (1.0f / RP_VOXEL_FIXED_SCALE);
+  float4 sum = convert_float4(accum[2u * i]) * (1.0f / RP_VOXEL_FIXED_SCALE);
   const uint bits = overflow[i];
   if (bits != 0u) {
     if (bits & 1u) sum.x = RP_VOXEL_SATURATED;

@@ -78,6 +78,11 @@ struct RenderSettings {
   Effects effects;
   VisibilityBackend visibility = VisibilityBackend::kRaster;  // --visibility raster|embree
   Quality quality = Quality::kFast;  // --quality fast|reference
+  // --bounces: 1 = single-bounce indirect light (cones gather the voxels' direct light and
+  // emission); >= 2 = multi-bounce: the voxels' radiance also carries the indirect light they
+  // receive (passes/bounce.h), which converges to all bounces (the truth at 64).
+  uint32_t bounces = kDefaultBounces;
+  static constexpr uint32_t kDefaultBounces = 64;
 };
 
 class Renderer {
