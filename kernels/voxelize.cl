@@ -75,6 +75,7 @@
 #include "common/voxel.h"
 #include "common/span.h"
 #include "common/span_texture.h"
+#include "common/bounce.h"
 
 #if !defined(RP_VOXEL_FIXED_BITS) || !defined(RP_VOXEL_MAX_CONTRIB) || !defined(RP_VOXEL_SATURATED)
 #error "voxelize.cl needs -DRP_VOXEL_FIXED_BITS, -DRP_VOXEL_MAX_CONTRIB, -DRP_VOXEL_SATURATED"
@@ -306,10 +307,15 @@ typedef struct {
   int size;
   float near, far;  /* light clip planes */
   float texel_den;  /* size * |row 0 of lvp|: a texel is 2 |w| / texel_den world units */
+  __global const float4* bounce; /* the bounce grid (common/bounce.h) */
+  uint bounce_cells;             /* its cells per side; 0: no bounce light (one bounce) */
 } VxLight;
 
-inline VxLight vx_light(__global const FrameConstants* frame) {
+inline VxLight vx_light(__global const FrameConstants* frame, __global const float4* bounce,
+                        uint bounce_cells) {
   VxLight L;
+  L.bounce = bounce;
+  L.bounce_cells = bounce_cells;
   L.light_pos = frame->light_pos.xyz;
   L.intensity = frame->light_intensity.xyz;
   L.lvp = frame->light_view_proj;
@@ -609,7 +615,30 @@ inline VxVec vx_albedo_span(const VxSetup* s, __global const float4* linear_texe
 inline VxVec vx_radiance_span(const VxLight* L, __global const float* shadow,
                               const VxVec* albedo, const VxVec* p, const VxVec* n,
                               const VxVec* emission, rp_spani active, int n_lanes) {
-  const VxVec light = vx_direct_span(L, shadow, p, n, active, n_lanes);
+  VxVec light = vx_direct_span(L, shadow, p, n, active, n_lanes);
+  if (L->bounce_cells != 0u) { /* the light of earlier bounces (several bounces) */
+    float px[RP_SPAN], py[RP_SPAN], pz[RP_SPAN], nx[RP_SPAN], ny[RP_SPAN], nz[RP_SPAN];
+    float ex[RP_SPAN], ey[RP_SPAN], ez[RP_SPAN];
+    int la[RP_SPAN];
+    RP_SPAN_TO_ARRAY(p->x, px);
+    RP_SPAN_TO_ARRAY(p->y, py);
+    RP_SPAN_TO_ARRAY(p->z, pz);
+    RP_SPAN_TO_ARRAY(n->x, nx);
+    RP_SPAN_TO_ARRAY(n->y, ny);
+    RP_SPAN_TO_ARRAY(n->z, nz);
+    RP_SPAN_TO_ARRAY(active, la);
+    for (int i = 0; i < RP_SPAN; ++i) {
+      float3 e = (float3)(0.0f);
+      if (i < n_lanes && la[i])
+        e = rp_bounce_irradiance(L->bounce, L->bounce_cells, (float3)(px[i], py[i], pz[i]),
+                                 (float3)(nx[i], ny[i], nz[i]));
+      ex[i] = e.x;
+      ey[i] = e.y;
+      ez[i] = e.z;
+    }
+    light = vxv_add(light, vxv(RP_SPAN_FROM_ARRAY(ex), RP_SPAN_FROM_ARRAY(ey),
+                               RP_SPAN_FROM_ARRAY(ez)));
+  }
   return vxv(albedo->x * light.x + emission->x, albedo->y * light.y + emission->y,
              albedo->z * light.z + emission->z);
 }
@@ -796,7 +825,8 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
                                  volatile __global uint* accum,
                                  volatile __global uint* overflow,
                                  volatile __global uint* large_count,
-                                 __global uint* large_list) {
+                                 __global uint* large_list,
+                                 __global const float4* bounce, uint bounce_cells) {
   const uint first = (uint)get_global_id(0) * RP_SPAN;
   if (first >= triangle_total) return;
   const int n = (int)min((uint)RP_SPAN, triangle_total - first);
@@ -836,7 +866,7 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
   const bool any_per_voxel = vx_lane_any(per_voxel, n);
 
   /* A small triangle is shaded once, at its centroid, for all its voxels. */
-  const VxLight light = vx_light(frame);
+  const VxLight light = vx_light(frame, bounce, bounce_cells);
   const float third = 1.0f / 3.0f;
   const VxVec centroid = vxv_add(vxv_add(s.w0, vxv_scale(s.e01, third)), vxv_scale(s.e02, third));
   const VxVec radiance = vx_shade_span(&s, &light, shadow, linear_texels, &centroid, third,
@@ -888,7 +918,8 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
                               volatile __global uint* accum, volatile __global uint* overflow,
                               uint flat, __global const uint* cached_instances, uint record,
                               volatile __global uint* cache_count, __global float4* cache,
-                              uint cache_capacity) {
+                              uint cache_capacity, __global const float4* bounce,
+                              uint bounce_cells) {
   const int R = (int)resolution;
   uint hint_index = 0, hint_start = 0;
   const VxTriangle t = vx_fetch_triangle(instances, instance_count, vertices, triangles,
@@ -909,7 +940,7 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
   RP_SPAN_TO_ARRAY(s.rv1, rv1);
   RP_SPAN_TO_ARRAY(s.valid, valid);
   if (!valid[0]) return;
-  const VxLight light = vx_light(frame);
+  const VxLight light = vx_light(frame, bounce, bounce_cells);
   const rp_spani lane = rp_span_convert_int(RP_LANES);
 
   /* The columns of the candidate rectangle numbered row by row (k = (iv - rv0) * width +
@@ -968,20 +999,23 @@ __kernel void voxelize_large(__global const FrameConstants* frame,
                              __global const uint* large_list,
                              __global const uint* cached_instances, uint record,
                              volatile __global uint* cache_count, __global float4* cache,
-                             uint cache_capacity) {
+                             uint cache_capacity,
+                             __global const float4* bounce, uint bounce_cells) {
   /* A fixed number of work-items strides over the frame's list (its length is only known on
    * the device). */
   const uint count = large_count[0];
   for (uint entry = (uint)get_global_id(0); entry < count; entry += (uint)get_global_size(0))
     vx_large_triangle(frame, instances, instance_count, vertices, triangles, materials, textures,
                       linear_texels, shadow, resolution, accum, overflow, large_list[entry],
-                      cached_instances, record, cache_count, cache, cache_capacity);
+                      cached_instances, record, cache_count, cache, cache_capacity, bounce,
+                      bounce_cells);
 }
 
 /* The frame's light on the cached samples: RP_SPAN samples per work-item. */
 __kernel void voxelize_cached(__global const FrameConstants* frame, __global const float* shadow,
                               __global const float4* cache, uint samples,
-                              volatile __global uint* accum, volatile __global uint* overflow) {
+                              volatile __global uint* accum, volatile __global uint* overflow,
+                              __global const float4* bounce, uint bounce_cells) {
   const uint first = (uint)get_global_id(0) * RP_SPAN;
   if (first >= samples) return;
   const int n = (int)min((uint)RP_SPAN, samples - first);
@@ -1010,7 +1044,7 @@ __kernel void voxelize_cached(__global const FrameConstants* frame, __global con
   const VxVec albedo = vxv(VX_SPAN(v[6]), VX_SPAN(v[7]), VX_SPAN(v[8]));
   const VxVec emission = vxv(VX_SPAN(v[9]), VX_SPAN(v[10]), VX_SPAN(v[11]));
   const rp_spani active = rp_span_convert_int(RP_LANES) < n;
-  const VxLight light = vx_light(frame);
+  const VxLight light = vx_light(frame, bounce, bounce_cells);
   const VxVec radiance =
       vx_radiance_span(&light, shadow, &albedo, &p, &nrm, &emission, active, n);
   vx_accumulate_span(accum, overflow, VX_SPAN(lv), &radiance, &nrm, active, n);
@@ -1021,7 +1055,8 @@ __kernel void voxelize_spheres(__global const FrameConstants* frame,
                                __global const float* shadow,
                                uint resolution,
                                volatile __global uint* accum,
-                               volatile __global uint* overflow) {
+                               volatile __global uint* overflow,
+                               __global const float4* bounce, uint bounce_cells) {
   const uint gid = (uint)get_global_id(0);
   if (gid >= sphere_count) return;
   __global const Sphere* s = spheres + gid;
@@ -1046,7 +1081,17 @@ __kernel void voxelize_spheres(__global const FrameConstants* frame,
   float3 small_radiance = (float3)(0.0f);
   if (small) { /* the sphere's mean radiance: 1/4 of the light at the point facing the lamp */
     const float3 l = normalize(frame->light_pos.xyz - cw);
-    small_radiance = albedo * (vx_direct(frame, shadow, cw + l * rw, l) * 0.25f) + emission;
+    float3 e = (float3)(0.0f);
+    if (bounce_cells != 0u) { /* mean over the six axis directions */
+      const float3 axes[3] = {(float3)(1.0f, 0.0f, 0.0f), (float3)(0.0f, 1.0f, 0.0f),
+                              (float3)(0.0f, 0.0f, 1.0f)};
+      for (int a = 0; a < 3; ++a)
+        e += rp_bounce_irradiance(bounce, bounce_cells, cw, axes[a]) +
+             rp_bounce_irradiance(bounce, bounce_cells, cw, -axes[a]);
+      e *= 1.0f / 6.0f;
+    }
+    small_radiance =
+        albedo * (vx_direct(frame, shadow, cw + l * rw, l) * 0.25f + e) + emission;
   }
 
   for (int k = rz.x; k <= rz.y; ++k) {
@@ -1070,7 +1115,10 @@ __kernel void voxelize_spheres(__global const FrameConstants* frame,
           const float3 to_voxel = rp_voxel_center_world(vox, resolution) - cw;
           const float len2 = dot(to_voxel, to_voxel);
           const float3 n = len2 > 0.0f ? to_voxel * rsqrt(len2) : (float3)(0.0f, 1.0f, 0.0f);
-          radiance = albedo * vx_direct(frame, shadow, cw + n * rw, n) + emission;
+          const float3 e = bounce_cells != 0u
+                               ? rp_bounce_irradiance(bounce, bounce_cells, cw + n * rw, n)
+                               : (float3)(0.0f);
+          radiance = albedo * (vx_direct(frame, shadow, cw + n * rw, n) + e) + emission;
         }
         vx_accumulate(accum, overflow, rp_voxel_index(vox, resolution), radiance, a);
         vx_add_facing_all(accum, rp_voxel_index(vox, resolution), a);
