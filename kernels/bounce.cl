@@ -11,9 +11,11 @@
  * traced with rp_cone_trace_coarse and per-cell-face jitters.
  *   cones = 16: all of them, their mean replaces the face (the reference mode, and the warm
  *               start after a reset): age 1.
- *   cones = 1:  cone (frame + hash) mod 16, blended into the face as a running mean for the
- *               first 16 gathers (so after 16 frames the face is the mean of the whole set),
- *               then exponentially with weight RP_BOUNCE_ALPHA (the fast mode).
+ *   cones = 1:  half the faces a frame (face index parity = frame parity; the work-items
+ *               cover 3 G^3 faces), cone (frame / 2 + hash) mod 16, blended into the face as
+ *               a running mean for the first 16 gathers (so after 32 frames the face is the
+ *               mean of the whole set), then exponentially with weight RP_BOUNCE_ALPHA (the
+ *               fast mode).
  * No atomics: bit-identical runs.
  */
 #include "shared/voxel_layout.h"
@@ -38,7 +40,9 @@ inline bool bounce_cell_occupied(__global const float4* voxels, uint resolution,
 __kernel void bounce_gather(__global const float4* voxels, uint resolution, uint levels,
                             __global float4* bounce, uint frame, uint cones) {
   const uint cells = rp_bounce_cells(resolution);
-  const uint gid = (uint)get_global_id(0);
+  /* one cone: half the faces per frame (those of the frame's parity), the other half next */
+  const uint gid = cones >= RP_CONE_SET_SIZE ? (uint)get_global_id(0)
+                                             : 2u * (uint)get_global_id(0) + (frame & 1u);
   if (gid >= 6u * cells * cells * cells) return;
   const uint cell = gid / 6u, face = gid - 6u * cell;
   const int3 v = (int3)((int)(cell % cells), (int)((cell / cells) % cells),
@@ -70,7 +74,7 @@ __kernel void bounce_gather(__global const float4* voxels, uint resolution, uint
     bounce[gid] = (float4)(sum * (1.0f / (float)RP_CONE_SET_SIZE), 1.0f);
     return;
   }
-  const uint k = (frame + h) & (RP_CONE_SET_SIZE - 1u);
+  const uint k = ((frame >> 1) + h) & (RP_CONE_SET_SIZE - 1u);
   const float3 s =
       rp_cone_trace_coarse(voxels, resolution, levels, origin, rp_cone_set16_dir(n, t, b, k),
                            u_pos, u_level).xyz;

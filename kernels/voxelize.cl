@@ -1081,15 +1081,8 @@ __kernel void voxelize_spheres(__global const FrameConstants* frame,
   float3 small_radiance = (float3)(0.0f);
   if (small) { /* the sphere's mean radiance: 1/4 of the light at the point facing the lamp */
     const float3 l = normalize(frame->light_pos.xyz - cw);
-    float3 e = (float3)(0.0f);
-    if (bounce_cells != 0u) { /* mean over the six axis directions */
-      const float3 axes[3] = {(float3)(1.0f, 0.0f, 0.0f), (float3)(0.0f, 1.0f, 0.0f),
-                              (float3)(0.0f, 0.0f, 1.0f)};
-      for (int a = 0; a < 3; ++a)
-        e += rp_bounce_irradiance(bounce, bounce_cells, cw, axes[a]) +
-             rp_bounce_irradiance(bounce, bounce_cells, cw, -axes[a]);
-      e *= 1.0f / 6.0f;
-    }
+    const float3 e =
+        bounce_cells != 0u ? rp_bounce_mean(bounce, bounce_cells, cw) : (float3)(0.0f);
     small_radiance =
         albedo * (vx_direct(frame, shadow, cw + l * rw, l) * 0.25f + e) + emission;
   }

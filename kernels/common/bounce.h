@@ -56,4 +56,23 @@ inline float3 rp_bounce_irradiance(__global const float4* bounce, uint cells, fl
   return weight > 0.0f ? sum / weight : (float3)(0.0f);
 }
 
+/* Mean irradiance / pi over the six faces of the cell containing p (faces not gathered left
+ * out): what a particle smaller than a voxel receives on average over its surface. 6 loads. */
+inline float3 rp_bounce_mean(__global const float4* bounce, uint cells, float3 p) {
+  const float gf = (float)cells;
+  const float3 g = clamp(floor((p + 1.0f) * (0.5f * gf)), 0.0f, gf - 1.0f);
+  __global const float4* cell =
+      bounce + 6u * (((uint)g.z * cells + (uint)g.y) * cells + (uint)g.x);
+  float3 sum = (float3)(0.0f);
+  float count = 0.0f;
+  for (uint f = 0; f < 6u; ++f) {
+    const float4 e = cell[f];
+    if (e.w > 0.0f) {
+      sum += e.xyz;
+      count += 1.0f;
+    }
+  }
+  return count > 0.0f ? sum / count : (float3)(0.0f);
+}
+
 #endif

@@ -113,6 +113,10 @@
 #define RP_CONE_OPAQUE_COARSE 0.9f
 #endif
 #define RP_CONE_SET_SIZE 16
+/* Strength of the near-field occlusion (rp_cone_near_occlusion). */
+#ifndef RP_CONE_NEAR_OCCLUSION
+#define RP_CONE_NEAR_OCCLUSION 0.6f
+#endif
 
 /* First float4 of level `level` >= 1 (its +x volume): R^3 for level 0, then six volumes of
  * (R >> k)^3 per level k. With R = 2^m the sum over k = 1 .. l-1 is the geometric series
@@ -394,6 +398,28 @@ inline float3 rp_cone_apex(float3 p, float3 n, uint resolution) {
   return p + n * (RP_CONE_NORMAL_OFFSET * 2.0f / (float)resolution);
 }
 
+/* Near-field occlusion of surface point p (unit normal n): the opacity that the level-1
+ * volumes facing n (weights n^2, no rows-behind-the-apex rule) show at the cones' apex. The
+ * volumes hold only what faces the cone (voxel_mips.cl), so the surface's own voxels and flat
+ * neighbours count nothing, while a surface that faces p within about two voxels (the
+ * underside of a tumbler over the floor near its contact point) does: there the cones start
+ * inside or behind it and would otherwise see past it. The diffuse light is scaled by one
+ * minus this. */
+inline float rp_cone_near_occlusion(__global const float4* voxels, uint resolution, uint levels,
+                                    float3 p, float3 n) {
+  if (levels < 2u) return 0.0f;
+  const uint3 dirs = rp_voxel_cone_dirs(n);
+  const float3 w = n * n;
+  const uint m = resolution >> 1;
+  const uint m3 = m * m * m;
+  const uint base = rp_cone_level_base(resolution, 1u);
+  const float3 apex = rp_cone_apex(p, n, resolution);
+  const float a = w.x * rp_cone_trilinear(voxels + base + dirs.x * m3, m, apex).w +
+                  w.y * rp_cone_trilinear(voxels + base + dirs.y * m3, m, apex).w +
+                  w.z * rp_cone_trilinear(voxels + base + dirs.z * m3, m, apex).w;
+  return clamp(a * RP_CONE_NEAR_OCCLUSION, 0.0f, 1.0f);
+}
+
 /* Mean radiance of the 16 diffuse cones (quarter-diameter steps) around unit normal n at
  * surface point p: irradiance / pi (see the header). The reference mode's per-pixel estimate. */
 inline float3 rp_cone_diffuse16(__global const float4* voxels, uint resolution, uint levels,
@@ -405,7 +431,8 @@ inline float3 rp_cone_diffuse16(__global const float4* voxels, uint resolution, 
 #pragma unroll
   for (uint k = 0; k < RP_CONE_SET_SIZE; ++k)
     sum += rp_cone_trace_fine(voxels, resolution, levels, o, rp_cone_set16_dir(n, t, b, k)).xyz;
-  return sum * (1.0f / (float)RP_CONE_SET_SIZE);
+  return sum * ((1.0f - rp_cone_near_occlusion(voxels, resolution, levels, p, n)) /
+                (float)RP_CONE_SET_SIZE);
 }
 
 #endif

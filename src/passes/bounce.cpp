@@ -35,7 +35,8 @@ void BouncePass::run(rp::cl::Profiler& profiler, const render::VoxelVolume& volu
   gather_.setArg(3, grid_);
   gather_.setArg(4, cl_uint(frame));
   gather_.setArg(5, cl_uint(cones == Cones::kAll ? 16 : 1));
-  profiler.enqueue("bounce", gather_, ::cl::NDRange(rp::cl::round_up(faces, kGroup)),
+  const size_t items = cones == Cones::kAll ? faces : faces / 2;  // one cone: half a frame
+  profiler.enqueue("bounce", gather_, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
                    ::cl::NDRange(kGroup));
   valid_ = true;
 }
