@@ -195,6 +195,32 @@ inline void mips_store16(__global float4* chain, uint at, MipsLanes v) {
   vstore16(shuffle2(rg_hi, ba_hi, zip2_hi), 3, f);
 }
 
+/* Facing word `axis` (0..2) of the children with index i (x + 2y + 4z) of parents
+ * (p.x .. p.x + 15, p.y, p.z) of level 1 (child_n = R per side). */
+inline uint16 mips_load_facing16(__global const uint* accum, uint child_n, int3 p, uint i,
+                                 uint axis) {
+  const uint y = 2u * (uint)p.y + ((i >> 1) & 1u), z = 2u * (uint)p.z + (i >> 2);
+  const uint first = (z * child_n + y) * child_n + 2u * (uint)p.x + (i & 1u);
+  uint w[16];
+  for (uint k = 0; k < 16u; ++k) w[k] = accum[RP_VOXEL_ACCUM_WORDS * (first + 2u * k) + 4u + axis];
+  return vload16(0, w);
+}
+
+/* mips_facing on 16 lanes: iso seen along `dir` given the facing word of dir's axis. */
+inline MipsLanes mips_facing16(MipsLanes iso, uint16 word, uint dir) {
+  const uint16 half_sum = (dir & 1u) == 0u ? word >> 16 : word & (uint16)(0xFFFFu);
+  const float16 c =
+      fmin(fmin(convert_float16(half_sum) * (1.0f / RP_VOXEL_FACING_UNIT), 1.0f), iso.a);
+  const int16 on = iso.a > 0.0f;
+  const float16 k = c / iso.a;
+  MipsLanes r;
+  r.r = select((float16)(0.0f), iso.r * k, on);
+  r.g = select((float16)(0.0f), iso.g * k, on);
+  r.b = select((float16)(0.0f), iso.b * k, on);
+  r.a = select((float16)(0.0f), c, on);
+  return r;
+}
+
 /* One work-item per 16 parents along x (the host launches this build only for levels with a
  * multiple of 16 voxels per side). */
 __kernel void voxel_mips_build(__global float4* chain, __global const uint4* accum,
@@ -208,8 +234,18 @@ __kernel void voxel_mips_build(__global float4* chain, __global const uint4* acc
   const uint child_n = 2u * n;
   const uint dst = rp_voxel_index(p, n);
   MipsLanes c[8];
-  if (level == 1u) { /* from level 0 and its facing coverage: parent by parent */
-    for (int k = 0; k < 16; ++k) mips_build_level1(chain, accum, resolution, p + (int3)(k, 0, 0));
+  if (level == 1u) { /* from level 0 and its facing coverage (mips_facing per lane) */
+    MipsLanes iso[8];
+    mips_load_children16(chain, rp_voxel_offset(resolution, 0u, 0u), child_n, p, iso);
+    __global const uint* words = (__global const uint*)accum;
+    for (uint axis = 0; axis < 3u; ++axis) {
+      uint16 facing[8];
+      for (uint i = 0; i < 8u; ++i) facing[i] = mips_load_facing16(words, child_n, p, i, axis);
+      for (uint dir = 2u * axis; dir < 2u * axis + 2u; ++dir) {
+        for (uint i = 0; i < 8u; ++i) c[i] = mips_facing16(iso[i], facing[i], dir);
+        mips_store16(chain, rp_voxel_offset(resolution, 1u, dir) + dst, mips_composite16(c, dir));
+      }
+    }
   } else {
     for (uint dir = 0; dir < 6u; ++dir) {
       mips_load_children16(chain, rp_voxel_offset(resolution, level - 1u, dir), child_n, p, c);

@@ -47,11 +47,25 @@ inline float3 rp_bounce_irradiance(__global const float4* bounce, uint cells, fl
                      ((c & 4u) ? f.z : 1.0f - f.z);
     if (wc <= 0.0f) continue;
     __global const float4* cell = bounce + 6u * ((z * cells + y) * cells + x);
-    const float4 ex = cell[fx], ey = cell[fy], ez = cell[fz];
-    const float vx = ex.w > 0.0f ? w.x : 0.0f, vy = ey.w > 0.0f ? w.y : 0.0f;
-    const float vz = ez.w > 0.0f ? w.z : 0.0f;
-    sum += wc * (ex.xyz * vx + ey.xyz * vy + ez.xyz * vz);
-    weight += wc * (vx + vy + vz);
+    /* faces with weight 0 are not loaded (a wall's normal reads one face) */
+    if (w.x > 0.0f) {
+      const float4 e = cell[fx];
+      const float v = e.w > 0.0f ? wc * w.x : 0.0f;
+      sum += v * e.xyz;
+      weight += v;
+    }
+    if (w.y > 0.0f) {
+      const float4 e = cell[fy];
+      const float v = e.w > 0.0f ? wc * w.y : 0.0f;
+      sum += v * e.xyz;
+      weight += v;
+    }
+    if (w.z > 0.0f) {
+      const float4 e = cell[fz];
+      const float v = e.w > 0.0f ? wc * w.z : 0.0f;
+      sum += v * e.xyz;
+      weight += v;
+    }
   }
   return weight > 0.0f ? sum / weight : (float3)(0.0f);
 }
