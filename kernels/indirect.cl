@@ -130,6 +130,7 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
     c = indirect_cone(voxels, voxel_resolution, voxel_levels, p, n,
                       rp_cone_set16_dir(n, t, b, rp_indirect_cone_index(i, j, f)), i, j, f);
 #endif
+    c *= 1.0f - rp_cone_near_occlusion(voxels, voxel_resolution, voxel_levels, p, n);
     d = dot(n, p);
   }
   radiance[s] = c.x;

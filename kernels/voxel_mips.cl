@@ -48,6 +48,23 @@ inline void mips_load_children(__global const float4* chain, uint base, uint chi
   }
 }
 
+/* Level-0 voxel `iso` (isotropic) as a cone travelling along `dir` sees it, from its facing
+ * coverage words (x, y, z: shared/voxel_layout.h): opacity c = the coverage of what faces the
+ * cone (at most iso.a), radiance the voxel's mean radiance times c. A wall's voxels thus exist
+ * only for cones that look at the wall's front: cones leaving the wall pass through them. */
+inline float4 mips_facing(float4 iso, uint4 facing, uint dir) {
+  const uint axis = dir >> 1;
+  const uint word = axis == 0u ? facing.x : (axis == 1u ? facing.y : facing.z);
+  const uint half_sum = (dir & 1u) == 0u ? word >> 16 : word & 0xFFFFu; /* +dir sees -facing */
+  const float c = fmin(fmin((float)half_sum * (1.0f / RP_VOXEL_FACING_UNIT), 1.0f), iso.w);
+  return iso.w > 0.0f ? (float4)(iso.xyz * (c / iso.w), c) : (float4)(0.0f);
+}
+
+/* Level 1 voxel p in all six directions from level 0 (isotropic values and facing coverage;
+ * accum: the voxelizer's scratch, RP_VOXEL_ACCUM_WORDS uints per voxel). */
+inline void mips_build_level1(__global float4* chain, __global const uint4* accum,
+                              uint resolution, int3 p);
+
 /* The parent value seen along direction `dir` (see the header). */
 inline float4 mips_composite(const float4 c[8], uint dir) {
   const uint axis = dir >> 1;          /* RP_DIR_POS_X, NEG_X = 0, 1; Y: 2, 3; Z: 4, 5 */
@@ -63,6 +80,25 @@ inline float4 mips_composite(const float4 c[8], uint dir) {
     col[k++] = f + (1.0f - f.w) * b;
   }
   return ((col[0] + col[1]) + (col[2] + col[3])) * 0.25f;
+}
+
+inline void mips_build_level1(__global float4* chain, __global const uint4* accum,
+                              uint resolution, int3 p) {
+  const uint n = resolution >> 1, child_n = resolution;
+  float4 iso[8];
+  uint4 facing[8];
+  mips_load_children(chain, 0u, child_n, p, iso);
+  const uint x0 = 2u * (uint)p.x, y0 = 2u * (uint)p.y, z0 = 2u * (uint)p.z;
+  for (uint i = 0; i < 8u; ++i) {
+    const uint x = x0 + (i & 1u), y = y0 + ((i >> 1) & 1u), z = z0 + (i >> 2);
+    facing[i] = accum[2u * ((z * child_n + y) * child_n + x) + 1u];
+  }
+  const uint dst = rp_voxel_index(p, n);
+  for (uint dir = 0; dir < 6u; ++dir) {
+    float4 c[8];
+    for (uint i = 0; i < 8u; ++i) c[i] = mips_facing(iso[i], facing[i], dir);
+    chain[rp_voxel_offset(resolution, 1u, dir) + dst] = mips_composite(c, dir);
+  }
 }
 
 #if RP_SPAN == 16
@@ -159,9 +195,36 @@ inline void mips_store16(__global float4* chain, uint at, MipsLanes v) {
   vstore16(shuffle2(rg_hi, ba_hi, zip2_hi), 3, f);
 }
 
+/* Facing word `axis` (0..2) of the children with index i (x + 2y + 4z) of parents
+ * (p.x .. p.x + 15, p.y, p.z) of level 1 (child_n = R per side). */
+inline uint16 mips_load_facing16(__global const uint* accum, uint child_n, int3 p, uint i,
+                                 uint axis) {
+  const uint y = 2u * (uint)p.y + ((i >> 1) & 1u), z = 2u * (uint)p.z + (i >> 2);
+  const uint first = (z * child_n + y) * child_n + 2u * (uint)p.x + (i & 1u);
+  uint w[16];
+  for (uint k = 0; k < 16u; ++k) w[k] = accum[RP_VOXEL_ACCUM_WORDS * (first + 2u * k) + 4u + axis];
+  return vload16(0, w);
+}
+
+/* mips_facing on 16 lanes: iso seen along `dir` given the facing word of dir's axis. */
+inline MipsLanes mips_facing16(MipsLanes iso, uint16 word, uint dir) {
+  const uint16 half_sum = (dir & 1u) == 0u ? word >> 16 : word & (uint16)(0xFFFFu);
+  const float16 c =
+      fmin(fmin(convert_float16(half_sum) * (1.0f / RP_VOXEL_FACING_UNIT), 1.0f), iso.a);
+  const int16 on = iso.a > 0.0f;
+  const float16 k = c / iso.a;
+  MipsLanes r;
+  r.r = select((float16)(0.0f), iso.r * k, on);
+  r.g = select((float16)(0.0f), iso.g * k, on);
+  r.b = select((float16)(0.0f), iso.b * k, on);
+  r.a = select((float16)(0.0f), c, on);
+  return r;
+}
+
 /* One work-item per 16 parents along x (the host launches this build only for levels with a
  * multiple of 16 voxels per side). */
-__kernel void voxel_mips_build(__global float4* chain, uint resolution, uint level) {
+__kernel void voxel_mips_build(__global float4* chain, __global const uint4* accum,
+                               uint resolution, uint level) {
   const uint n = rp_voxel_level_size(resolution, level);
   const uint spans = n / 16u;
   const uint gid = (uint)get_global_id(0);
@@ -171,10 +234,18 @@ __kernel void voxel_mips_build(__global float4* chain, uint resolution, uint lev
   const uint child_n = 2u * n;
   const uint dst = rp_voxel_index(p, n);
   MipsLanes c[8];
-  if (level == 1u) { /* all directions from the isotropic level 0: load once */
-    mips_load_children16(chain, rp_voxel_offset(resolution, 0u, 0u), child_n, p, c);
-    for (uint dir = 0; dir < 6u; ++dir)
-      mips_store16(chain, rp_voxel_offset(resolution, 1u, dir) + dst, mips_composite16(c, dir));
+  if (level == 1u) { /* from level 0 and its facing coverage (mips_facing per lane) */
+    MipsLanes iso[8];
+    mips_load_children16(chain, rp_voxel_offset(resolution, 0u, 0u), child_n, p, iso);
+    __global const uint* words = (__global const uint*)accum;
+    for (uint axis = 0; axis < 3u; ++axis) {
+      uint16 facing[8];
+      for (uint i = 0; i < 8u; ++i) facing[i] = mips_load_facing16(words, child_n, p, i, axis);
+      for (uint dir = 2u * axis; dir < 2u * axis + 2u; ++dir) {
+        for (uint i = 0; i < 8u; ++i) c[i] = mips_facing16(iso[i], facing[i], dir);
+        mips_store16(chain, rp_voxel_offset(resolution, 1u, dir) + dst, mips_composite16(c, dir));
+      }
+    }
   } else {
     for (uint dir = 0; dir < 6u; ++dir) {
       mips_load_children16(chain, rp_voxel_offset(resolution, level - 1u, dir), child_n, p, c);
@@ -186,7 +257,8 @@ __kernel void voxel_mips_build(__global float4* chain, uint resolution, uint lev
 
 #else
 
-__kernel void voxel_mips_build(__global float4* chain, uint resolution, uint level) {
+__kernel void voxel_mips_build(__global float4* chain, __global const uint4* accum,
+                               uint resolution, uint level) {
   const uint n = rp_voxel_level_size(resolution, level);
   const uint gid = (uint)get_global_id(0);
   if (level == 0u || n == 0u || gid >= n * n * n) return;
@@ -195,10 +267,8 @@ __kernel void voxel_mips_build(__global float4* chain, uint resolution, uint lev
   const uint dst = rp_voxel_index(p, n);
 
   float4 c[8];
-  if (level == 1u) { /* all directions from the isotropic level 0: load once */
-    mips_load_children(chain, rp_voxel_offset(resolution, 0u, 0u), child_n, p, c);
-    for (uint dir = 0; dir < 6u; ++dir)
-      chain[rp_voxel_offset(resolution, 1u, dir) + dst] = mips_composite(c, dir);
+  if (level == 1u) { /* from level 0 and its facing coverage */
+    mips_build_level1(chain, accum, resolution, p);
   } else {
     for (uint dir = 0; dir < 6u; ++dir) {
       mips_load_children(chain, rp_voxel_offset(resolution, level - 1u, dir), child_n, p, c);

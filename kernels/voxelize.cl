@@ -75,6 +75,7 @@
 #include "common/voxel.h"
 #include "common/span.h"
 #include "common/span_texture.h"
+#include "common/bounce.h"
 
 #if !defined(RP_VOXEL_FIXED_BITS) || !defined(RP_VOXEL_MAX_CONTRIB) || !defined(RP_VOXEL_SATURATED)
 #error "voxelize.cl needs -DRP_VOXEL_FIXED_BITS, -DRP_VOXEL_MAX_CONTRIB, -DRP_VOXEL_SATURATED"
@@ -116,9 +117,32 @@ inline void vx_add_fixed(volatile __global uint* accum, volatile __global uint* 
   const uint qs[4] = {q.x, q.y, q.z, q.w};
   for (uint c = 0; c < 4u; ++c) {
     if (qs[c] == 0u) continue;
-    const uint old = atomic_add(accum + 4u * voxel + c, qs[c]);
+    const uint old = atomic_add(accum + RP_VOXEL_ACCUM_WORDS * voxel + c, qs[c]);
     if (old > 0xFFFFFFFFu - qs[c]) atomic_or(overflow + voxel, 1u << c);
   }
+}
+
+/* Adds the facing coverage of a surface with normal n (any length, not 0) and opacity a to
+ * voxel `voxel` (see "Facing" in the header): per axis i, round(a |n_i| / max|n| * UNIT) into
+ * the half of word 4 + i that matches the sign of n_i. */
+inline void vx_add_facing(volatile __global uint* accum, uint voxel, float3 n, float a) {
+  const float3 an = fabs(n);
+  const float scale = a * RP_VOXEL_FACING_UNIT / fmax(fmax(an.x, an.y), an.z);
+  const float c[3] = {an.x * scale, an.y * scale, an.z * scale};
+  const float s[3] = {n.x, n.y, n.z};
+  for (uint i = 0; i < 3u; ++i) {
+    const uint q = (uint)(fmin(c[i], RP_VOXEL_FACING_UNIT) + 0.5f);
+    if (q == 0u) continue;
+    atomic_add(accum + RP_VOXEL_ACCUM_WORDS * voxel + 4u + i, s[i] > 0.0f ? q : q << 16);
+  }
+}
+
+/* Facing coverage `a` in every direction (spheres: seen alike from everywhere). */
+inline void vx_add_facing_all(volatile __global uint* accum, uint voxel, float a) {
+  const uint q = (uint)(fmin(a, 1.0f) * RP_VOXEL_FACING_UNIT + 0.5f);
+  if (q == 0u) return;
+  for (uint i = 0; i < 3u; ++i)
+    atomic_add(accum + RP_VOXEL_ACCUM_WORDS * voxel + 4u + i, q | (q << 16));
 }
 
 /* Adds (rgb * a, a) to voxel `voxel`. */
@@ -283,10 +307,15 @@ typedef struct {
   int size;
   float near, far;  /* light clip planes */
   float texel_den;  /* size * |row 0 of lvp|: a texel is 2 |w| / texel_den world units */
+  __global const float4* bounce; /* the bounce grid (common/bounce.h) */
+  uint bounce_cells;             /* its cells per side; 0: no bounce light (one bounce) */
 } VxLight;
 
-inline VxLight vx_light(__global const FrameConstants* frame) {
+inline VxLight vx_light(__global const FrameConstants* frame, __global const float4* bounce,
+                        uint bounce_cells) {
   VxLight L;
+  L.bounce = bounce;
+  L.bounce_cells = bounce_cells;
   L.light_pos = frame->light_pos.xyz;
   L.intensity = frame->light_intensity.xyz;
   L.lvp = frame->light_view_proj;
@@ -586,7 +615,30 @@ inline VxVec vx_albedo_span(const VxSetup* s, __global const float4* linear_texe
 inline VxVec vx_radiance_span(const VxLight* L, __global const float* shadow,
                               const VxVec* albedo, const VxVec* p, const VxVec* n,
                               const VxVec* emission, rp_spani active, int n_lanes) {
-  const VxVec light = vx_direct_span(L, shadow, p, n, active, n_lanes);
+  VxVec light = vx_direct_span(L, shadow, p, n, active, n_lanes);
+  if (L->bounce_cells != 0u) { /* the light of earlier bounces (several bounces) */
+    float px[RP_SPAN], py[RP_SPAN], pz[RP_SPAN], nx[RP_SPAN], ny[RP_SPAN], nz[RP_SPAN];
+    float ex[RP_SPAN], ey[RP_SPAN], ez[RP_SPAN];
+    int la[RP_SPAN];
+    RP_SPAN_TO_ARRAY(p->x, px);
+    RP_SPAN_TO_ARRAY(p->y, py);
+    RP_SPAN_TO_ARRAY(p->z, pz);
+    RP_SPAN_TO_ARRAY(n->x, nx);
+    RP_SPAN_TO_ARRAY(n->y, ny);
+    RP_SPAN_TO_ARRAY(n->z, nz);
+    RP_SPAN_TO_ARRAY(active, la);
+    for (int i = 0; i < RP_SPAN; ++i) {
+      float3 e = (float3)(0.0f);
+      if (i < n_lanes && la[i])
+        e = rp_bounce_irradiance(L->bounce, L->bounce_cells, (float3)(px[i], py[i], pz[i]),
+                                 (float3)(nx[i], ny[i], nz[i]));
+      ex[i] = e.x;
+      ey[i] = e.y;
+      ez[i] = e.z;
+    }
+    light = vxv_add(light, vxv(RP_SPAN_FROM_ARRAY(ex), RP_SPAN_FROM_ARRAY(ey),
+                               RP_SPAN_FROM_ARRAY(ez)));
+  }
   return vxv(albedo->x * light.x + emission->x, albedo->y * light.y + emission->y,
              albedo->z * light.z + emission->z);
 }
@@ -602,9 +654,13 @@ inline VxVec vx_shade_span(const VxSetup* s, const VxLight* L, __global const fl
 
 /* Adds (radiance, opacity 1) to voxel `voxel` of every lane in `hit`. */
 inline void vx_accumulate_span(volatile __global uint* accum, volatile __global uint* overflow,
-                               rp_spanu voxel, const VxVec* radiance_p, rp_spani hit,
-                               int n_lanes) {
+                               rp_spanu voxel, const VxVec* radiance_p, const VxVec* normal_p,
+                               rp_spani hit, int n_lanes) {
   const VxVec radiance = *radiance_p;
+  float nx[RP_SPAN], ny[RP_SPAN], nz[RP_SPAN];
+  RP_SPAN_TO_ARRAY(normal_p->x, nx);
+  RP_SPAN_TO_ARRAY(normal_p->y, ny);
+  RP_SPAN_TO_ARRAY(normal_p->z, nz);
   int lh[RP_SPAN];
   RP_SPAN_TO_ARRAY(hit, lh);
   uint lv[RP_SPAN], lr[RP_SPAN], lg[RP_SPAN], lb[RP_SPAN];
@@ -618,7 +674,10 @@ inline void vx_accumulate_span(volatile __global uint* accum, volatile __global 
   RP_SPAN_TO_ARRAY(voxel, lv);
   const uint one = vx_fixed(1.0f);
   for (int i = 0; i < n_lanes; ++i)
-    if (lh[i]) vx_add_fixed(accum, overflow, lv[i], (uint4)(lr[i], lg[i], lb[i], one));
+    if (lh[i]) {
+      vx_add_fixed(accum, overflow, lv[i], (uint4)(lr[i], lg[i], lb[i], one));
+      vx_add_facing(accum, lv[i], (float3)(nx[i], ny[i], nz[i]), 1.0f);
+    }
 }
 
 /* The voxel (x, y, z) of lanes at (iu, iv, id) in their (u, v, d) frame. */
@@ -748,7 +807,8 @@ __kernel void voxelize_clear(__global uint4* accum, __global uint* overflow, uin
   const uint i = (uint)get_global_id(0);
   if (i == 0u) large_count[0] = 0u;
   if (i >= voxel_count) return;
-  accum[i] = (uint4)(0u);
+  accum[2u * i] = (uint4)(0u);
+  accum[2u * i + 1u] = (uint4)(0u);
   overflow[i] = 0u;
 }
 
@@ -765,7 +825,8 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
                                  volatile __global uint* accum,
                                  volatile __global uint* overflow,
                                  volatile __global uint* large_count,
-                                 __global uint* large_list) {
+                                 __global uint* large_list,
+                                 __global const float4* bounce, uint bounce_cells) {
   const uint first = (uint)get_global_id(0) * RP_SPAN;
   if (first >= triangle_total) return;
   const int n = (int)min((uint)RP_SPAN, triangle_total - first);
@@ -805,7 +866,7 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
   const bool any_per_voxel = vx_lane_any(per_voxel, n);
 
   /* A small triangle is shaded once, at its centroid, for all its voxels. */
-  const VxLight light = vx_light(frame);
+  const VxLight light = vx_light(frame, bounce, bounce_cells);
   const float third = 1.0f / 3.0f;
   const VxVec centroid = vxv_add(vxv_add(s.w0, vxv_scale(s.e01, third)), vxv_scale(s.e02, third));
   const VxVec radiance = vx_shade_span(&s, &light, shadow, linear_texels, &centroid, third,
@@ -836,7 +897,7 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
                              vx_voxel_radiance(&s, &light, shadow, linear_texels, resolution, x,
                                                y, z, hit & per_voxel, n),
                              per_voxel);
-        vx_accumulate_span(accum, overflow, voxel, &value, hit, n);
+        vx_accumulate_span(accum, overflow, voxel, &value, &s.nw, hit, n);
       }
     }
   }
@@ -857,7 +918,8 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
                               volatile __global uint* accum, volatile __global uint* overflow,
                               uint flat, __global const uint* cached_instances, uint record,
                               volatile __global uint* cache_count, __global float4* cache,
-                              uint cache_capacity) {
+                              uint cache_capacity, __global const float4* bounce,
+                              uint bounce_cells) {
   const int R = (int)resolution;
   uint hint_index = 0, hint_start = 0;
   const VxTriangle t = vx_fetch_triangle(instances, instance_count, vertices, triangles,
@@ -878,7 +940,7 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
   RP_SPAN_TO_ARRAY(s.rv1, rv1);
   RP_SPAN_TO_ARRAY(s.valid, valid);
   if (!valid[0]) return;
-  const VxLight light = vx_light(frame);
+  const VxLight light = vx_light(frame, bounce, bounce_cells);
   const rp_spani lane = rp_span_convert_int(RP_LANES);
 
   /* The columns of the candidate rectangle numbered row by row (k = (iv - rv0) * width +
@@ -909,7 +971,7 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
         if (record == VX_ACCUMULATE) {
           const VxVec radiance = vx_voxel_radiance(&s, &light, shadow, linear_texels,
                                                    resolution, x, y, z, hit, RP_SPAN);
-          vx_accumulate_span(accum, overflow, voxel, &radiance, hit, RP_SPAN);
+          vx_accumulate_span(accum, overflow, voxel, &radiance, &s.nw, hit, RP_SPAN);
         } else {
           vx_record_samples(&s, linear_texels, resolution, x, y, z, voxel, hit, record,
                             cache_count, cache, cache_capacity);
@@ -937,20 +999,23 @@ __kernel void voxelize_large(__global const FrameConstants* frame,
                              __global const uint* large_list,
                              __global const uint* cached_instances, uint record,
                              volatile __global uint* cache_count, __global float4* cache,
-                             uint cache_capacity) {
+                             uint cache_capacity,
+                             __global const float4* bounce, uint bounce_cells) {
   /* A fixed number of work-items strides over the frame's list (its length is only known on
    * the device). */
   const uint count = large_count[0];
   for (uint entry = (uint)get_global_id(0); entry < count; entry += (uint)get_global_size(0))
     vx_large_triangle(frame, instances, instance_count, vertices, triangles, materials, textures,
                       linear_texels, shadow, resolution, accum, overflow, large_list[entry],
-                      cached_instances, record, cache_count, cache, cache_capacity);
+                      cached_instances, record, cache_count, cache, cache_capacity, bounce,
+                      bounce_cells);
 }
 
 /* The frame's light on the cached samples: RP_SPAN samples per work-item. */
 __kernel void voxelize_cached(__global const FrameConstants* frame, __global const float* shadow,
                               __global const float4* cache, uint samples,
-                              volatile __global uint* accum, volatile __global uint* overflow) {
+                              volatile __global uint* accum, volatile __global uint* overflow,
+                              __global const float4* bounce, uint bounce_cells) {
   const uint first = (uint)get_global_id(0) * RP_SPAN;
   if (first >= samples) return;
   const int n = (int)min((uint)RP_SPAN, samples - first);
@@ -979,10 +1044,10 @@ __kernel void voxelize_cached(__global const FrameConstants* frame, __global con
   const VxVec albedo = vxv(VX_SPAN(v[6]), VX_SPAN(v[7]), VX_SPAN(v[8]));
   const VxVec emission = vxv(VX_SPAN(v[9]), VX_SPAN(v[10]), VX_SPAN(v[11]));
   const rp_spani active = rp_span_convert_int(RP_LANES) < n;
-  const VxLight light = vx_light(frame);
+  const VxLight light = vx_light(frame, bounce, bounce_cells);
   const VxVec radiance =
       vx_radiance_span(&light, shadow, &albedo, &p, &nrm, &emission, active, n);
-  vx_accumulate_span(accum, overflow, VX_SPAN(lv), &radiance, active, n);
+  vx_accumulate_span(accum, overflow, VX_SPAN(lv), &radiance, &nrm, active, n);
 }
 
 __kernel void voxelize_spheres(__global const FrameConstants* frame,
@@ -990,7 +1055,8 @@ __kernel void voxelize_spheres(__global const FrameConstants* frame,
                                __global const float* shadow,
                                uint resolution,
                                volatile __global uint* accum,
-                               volatile __global uint* overflow) {
+                               volatile __global uint* overflow,
+                               __global const float4* bounce, uint bounce_cells) {
   const uint gid = (uint)get_global_id(0);
   if (gid >= sphere_count) return;
   __global const Sphere* s = spheres + gid;
@@ -1015,7 +1081,10 @@ __kernel void voxelize_spheres(__global const FrameConstants* frame,
   float3 small_radiance = (float3)(0.0f);
   if (small) { /* the sphere's mean radiance: 1/4 of the light at the point facing the lamp */
     const float3 l = normalize(frame->light_pos.xyz - cw);
-    small_radiance = albedo * (vx_direct(frame, shadow, cw + l * rw, l) * 0.25f) + emission;
+    const float3 e =
+        bounce_cells != 0u ? rp_bounce_mean(bounce, bounce_cells, cw) : (float3)(0.0f);
+    small_radiance =
+        albedo * (vx_direct(frame, shadow, cw + l * rw, l) * 0.25f + e) + emission;
   }
 
   for (int k = rz.x; k <= rz.y; ++k) {
@@ -1039,9 +1108,13 @@ __kernel void voxelize_spheres(__global const FrameConstants* frame,
           const float3 to_voxel = rp_voxel_center_world(vox, resolution) - cw;
           const float len2 = dot(to_voxel, to_voxel);
           const float3 n = len2 > 0.0f ? to_voxel * rsqrt(len2) : (float3)(0.0f, 1.0f, 0.0f);
-          radiance = albedo * vx_direct(frame, shadow, cw + n * rw, n) + emission;
+          const float3 e = bounce_cells != 0u
+                               ? rp_bounce_irradiance(bounce, bounce_cells, cw + n * rw, n)
+                               : (float3)(0.0f);
+          radiance = albedo * (vx_direct(frame, shadow, cw + n * rw, n) + e) + emission;
         }
         vx_accumulate(accum, overflow, rp_voxel_index(vox, resolution), radiance, a);
+        vx_add_facing_all(accum, rp_voxel_index(vox, resolution), a);
       }
     }
   }
@@ -1051,7 +1124,7 @@ __kernel void voxelize_resolve(__global const uint4* accum, __global const uint*
                                __global float4* level0, uint voxel_count) {
   const uint i = (uint)get_global_id(0);
   if (i >= voxel_count) return;
-  float4 sum = convert_float4(accum[i]) * (1.0f / RP_VOXEL_FIXED_SCALE);
+  float4 sum = convert_float4(accum[2u * i]) * (1.0f / RP_VOXEL_FIXED_SCALE);
   const uint bits = overflow[i];
   if (bits != 0u) {
     if (bits & 1u) sum.x = RP_VOXEL_SATURATED;

@@ -113,6 +113,10 @@
 #define RP_CONE_OPAQUE_COARSE 0.9f
 #endif
 #define RP_CONE_SET_SIZE 16
+/* Strength of the near-field occlusion (rp_cone_near_occlusion). */
+#ifndef RP_CONE_NEAR_OCCLUSION
+#define RP_CONE_NEAR_OCCLUSION 0.6f
+#endif
 
 /* First float4 of level `level` >= 1 (its +x volume): R^3 for level 0, then six volumes of
  * (R >> k)^3 per level k. With R = 2^m the sum over k = 1 .. l-1 is the geometric series
@@ -230,6 +234,31 @@ inline float4 rp_cone_sample_level(__global const float4* voxels, uint resolutio
  * rows-behind-the-apex rule it would always read as empty). */
 inline uint rp_cone_top_level(uint levels) { return levels >= 2u ? levels - 2u : 0u; }
 
+/* What a cone that leaves the box sees in the face it leaves through: the box's walls lie on
+ * its faces, so a ray that reaches a face ends on the wall there (or in the open, where the
+ * volume is empty). A cone steps in growing strides and reads the walls' voxels through the
+ * d^2-weighted blend of three volumes, of which only the one across the wall sees the wall
+ * (the others see it edge on), so without this term a cone meeting a wall at 45 degrees would
+ * take half its light: measured on the demo, indirect light 40 % short everywhere. Returns the
+ * sample of the volume facing the cone across that face (premultiplied) at level
+ * clamp(floor(level), 1, top) at the exit point. */
+inline float4 rp_cone_exit(__global const float4* voxels, uint resolution, uint top, uint3 dirs,
+                           float3 origin, float3 dir, float level) {
+  if (top == 0u) return (float4)(0.0f);
+  const float3 face = (float3)(dir.x >= 0.0f ? 1.0f : -1.0f, dir.y >= 0.0f ? 1.0f : -1.0f,
+                               dir.z >= 0.0f ? 1.0f : -1.0f);
+  const float big = 1.0e30f;
+  const float tx = dir.x != 0.0f ? (face.x - origin.x) / dir.x : big;
+  const float ty = dir.y != 0.0f ? (face.y - origin.y) / dir.y : big;
+  const float tz = dir.z != 0.0f ? (face.z - origin.z) / dir.z : big;
+  const float t = fmin(fmin(tx, ty), tz);
+  const uint volume_dir = t == tx ? dirs.x : (t == ty ? dirs.y : dirs.z);
+  const uint l = (uint)clamp(floor(level), 1.0f, (float)top);
+  const uint n = resolution >> l;
+  const uint base = rp_cone_level_base(resolution, l) + volume_dir * n * n * n;
+  return rp_cone_trilinear(voxels + base, n, origin + dir * t);
+}
+
 /* One cone from `origin` along unit `dir` (apex at origin): (radiance rgb, occlusion a).
  * fine = 0: half-diameter steps, 1: quarter-diameter steps (compile-time constants at every call
  * site, so the branches fold). jitter < 0: quadrilinear samples; jitter in [0, 1): single-level
@@ -248,7 +277,12 @@ inline float4 rp_cone_march(__global const float4* voxels, uint resolution, uint
   float4 acc = (float4)(0.0f);
   for (int k = 0; k < max_steps; ++k) {
     const float3 q = origin + dir * t;
-    if (fmax(fmax(fabs(q.x), fabs(q.y)), fabs(q.z)) > 1.0f) break;  /* left the box */
+    if (fmax(fmax(fabs(q.x), fabs(q.y)), fabs(q.z)) > 1.0f) { /* left the box: its wall */
+      const float4 e = rp_cone_exit(voxels, resolution, top, dirs, origin, dir, level);
+      acc.xyz += (1.0f - acc.w) * e.xyz;
+      acc.w += (1.0f - acc.w) * e.w;
+      break;
+    }
     float4 s = jitter < 0.0f
                    ? rp_cone_sample(voxels, resolution, top, dirs, w, q, level, origin)
                    : rp_cone_sample_level(voxels, resolution, top, dirs, w, q, (uint)level, origin);
@@ -307,7 +341,12 @@ inline float4 rp_cone_trace_coarse(__global const float4* voxels, uint resolutio
   const int max_steps = (int)levels;
   for (int k = 0; k < max_steps; ++k) {
     const float3 q = origin + dir * t;
-    if (fmax(fmax(fabs(q.x), fabs(q.y)), fabs(q.z)) > 1.0f) break; /* left the box */
+    if (fmax(fmax(fabs(q.x), fabs(q.y)), fabs(q.z)) > 1.0f) { /* left the box: its wall */
+      const float4 e = rp_cone_exit(voxels, resolution, top, dirs, origin, dir, level);
+      acc.xyz += (1.0f - acc.w) * e.xyz;
+      acc.w += (1.0f - acc.w) * e.w;
+      break;
+    }
     const float4 s = rp_cone_sample_level(voxels, resolution, top, dirs, w, q, (uint)level, origin);
     acc.xyz += (1.0f - acc.w) * s.xyz;
     acc.w += (1.0f - acc.w) * s.w;
@@ -359,6 +398,28 @@ inline float3 rp_cone_apex(float3 p, float3 n, uint resolution) {
   return p + n * (RP_CONE_NORMAL_OFFSET * 2.0f / (float)resolution);
 }
 
+/* Near-field occlusion of surface point p (unit normal n): the opacity that the level-1
+ * volumes facing n (weights n^2, no rows-behind-the-apex rule) show at the cones' apex. The
+ * volumes hold only what faces the cone (voxel_mips.cl), so the surface's own voxels and flat
+ * neighbours count nothing, while a surface that faces p within about two voxels (the
+ * underside of a tumbler over the floor near its contact point) does: there the cones start
+ * inside or behind it and would otherwise see past it. The diffuse light is scaled by one
+ * minus this. */
+inline float rp_cone_near_occlusion(__global const float4* voxels, uint resolution, uint levels,
+                                    float3 p, float3 n) {
+  if (levels < 2u) return 0.0f;
+  const uint3 dirs = rp_voxel_cone_dirs(n);
+  const float3 w = n * n;
+  const uint m = resolution >> 1;
+  const uint m3 = m * m * m;
+  const uint base = rp_cone_level_base(resolution, 1u);
+  const float3 apex = rp_cone_apex(p, n, resolution);
+  const float a = w.x * rp_cone_trilinear(voxels + base + dirs.x * m3, m, apex).w +
+                  w.y * rp_cone_trilinear(voxels + base + dirs.y * m3, m, apex).w +
+                  w.z * rp_cone_trilinear(voxels + base + dirs.z * m3, m, apex).w;
+  return clamp(a * RP_CONE_NEAR_OCCLUSION, 0.0f, 1.0f);
+}
+
 /* Mean radiance of the 16 diffuse cones (quarter-diameter steps) around unit normal n at
  * surface point p: irradiance / pi (see the header). The reference mode's per-pixel estimate. */
 inline float3 rp_cone_diffuse16(__global const float4* voxels, uint resolution, uint levels,
@@ -370,7 +431,8 @@ inline float3 rp_cone_diffuse16(__global const float4* voxels, uint resolution, 
 #pragma unroll
   for (uint k = 0; k < RP_CONE_SET_SIZE; ++k)
     sum += rp_cone_trace_fine(voxels, resolution, levels, o, rp_cone_set16_dir(n, t, b, k)).xyz;
-  return sum * (1.0f / (float)RP_CONE_SET_SIZE);
+  return sum * ((1.0f - rp_cone_near_occlusion(voxels, resolution, levels, p, n)) /
+                (float)RP_CONE_SET_SIZE);
 }
 
 #endif

@@ -22,6 +22,18 @@
 #define RP_DIR_POS_Z 4u
 #define RP_DIR_NEG_Z 5u
 
+/* Facing coverage (the voxelizer's scratch `accum`, 8 uints per level-0 voxel): words 0-3 the
+ * fixed-point radiance and opacity sums, words 4, 5, 6 the facing coverage along x, y, z, word
+ * 7 unused. A word's low 16 bits sum what faces the + direction of its axis (surfaces with
+ * n_i > 0), the high 16 bits what faces the - direction; each surface adds
+ * round(a |n_i| / max_j |n_j| * RP_VOXEL_FACING_UNIT) (a plane crossing the voxel covers its
+ * projection onto the face across axis i by that fraction), a sphere round(a * UNIT) to both
+ * halves of every axis. A cone travelling along +x sees what faces -x: its coverage is
+ * min(high half / UNIT, 1). A half holds 511 full contributions before it would carry into its
+ * neighbour (the demo's voxels hold a few dozen). */
+#define RP_VOXEL_ACCUM_WORDS 8u
+#define RP_VOXEL_FACING_UNIT 128.0f
+
 #ifdef __OPENCL_VERSION__
 #define RP_VOXEL_FN static inline
 #define RP_VOXEL_UINT uint

@@ -38,8 +38,9 @@ void VoxelMipsPass::run(rp::cl::Profiler& profiler, render::VoxelVolume& volume)
     const bool span16 = use_span16_ && n % 16 == 0;
     ::cl::Kernel& k = span16 ? span16_ : kernel_;
     k.setArg(0, volume.chain);
-    k.setArg(1, cl_uint(volume.resolution));
-    k.setArg(2, level);
+    k.setArg(1, volume.accum);
+    k.setArg(2, cl_uint(volume.resolution));
+    k.setArg(3, level);
     const size_t items = span16 ? n / 16 * n * n : n * n * n;
     profiler.enqueue("voxel_mips", k, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
                      ::cl::NDRange(kGroup));

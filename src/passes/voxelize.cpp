@@ -145,6 +145,8 @@ void VoxelizePass::set_large_args(const render::GpuScene& scene, const render::S
   large_.setArg(arg++, cache_count_);
   large_.setArg(arg++, cache_() ? cache_ : cache_count_);  // a valid buffer before the first
   large_.setArg(arg++, cl_uint(cache_capacity_));
+  large_.setArg(arg++, *bounce_);
+  large_.setArg(arg++, bounce_cells_);
 }
 
 void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScene& scene,
@@ -171,8 +173,15 @@ void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScen
 }
 
 void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
-                       const render::ShadowMap& shadow, render::VoxelVolume& volume) {
+                       const render::ShadowMap& shadow, render::VoxelVolume& volume,
+                       const ::cl::Buffer* bounce, uint32_t bounce_cells) {
   const cl_uint r = volume.resolution;
+  if (bounce != nullptr && bounce_cells == 0)
+    throw rp::cl::Error("voxelize pass: a bounce grid needs its cells per side");
+  if (no_bounce_() == nullptr)  // a valid argument when there is no grid (never read)
+    no_bounce_ = ::cl::Buffer(context_->context, CL_MEM_READ_ONLY, 4 * sizeof(float));
+  bounce_ = bounce != nullptr ? bounce : &no_bounce_;
+  bounce_cells_ = bounce != nullptr ? bounce_cells : 0;
   if (!render::VoxelVolume::valid_resolution(r) || volume.chain() == nullptr)
     throw rp::cl::Error("voxelize pass: the voxel volume has not been allocated (resize it)");
   if (scene.constants.voxel_resolution != r || scene.constants.voxel_levels != volume.levels)
@@ -220,6 +229,8 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
     triangles_.setArg(arg++, volume.overflow);
     triangles_.setArg(arg++, large_count_);
     triangles_.setArg(arg++, large_list_);
+    triangles_.setArg(arg++, *bounce_);
+    triangles_.setArg(arg++, bounce_cells_);
     const size_t span = static_cast<size_t>(span_);
     profiler.enqueue("voxelize", triangles_,
                      ::cl::NDRange(rp::cl::round_up((triangles + span - 1) / span, kSpanGroup)),
@@ -241,6 +252,8 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
     cached_.setArg(arg++, cache_samples_);
     cached_.setArg(arg++, volume.accum);
     cached_.setArg(arg++, volume.overflow);
+    cached_.setArg(arg++, *bounce_);
+    cached_.setArg(arg++, bounce_cells_);
     const size_t span = static_cast<size_t>(span_);
     profiler.enqueue("voxelize", cached_,
                      ::cl::NDRange(rp::cl::round_up((cache_samples_ + span - 1) / span,
@@ -257,6 +270,8 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
     spheres_.setArg(arg++, r);
     spheres_.setArg(arg++, volume.accum);
     spheres_.setArg(arg++, volume.overflow);
+    spheres_.setArg(arg++, *bounce_);
+    spheres_.setArg(arg++, bounce_cells_);
     profiler.enqueue("voxelize", spheres_,
                      ::cl::NDRange(rp::cl::round_up(scene.sphere_count, kGroup)),
                      ::cl::NDRange(kGroup));

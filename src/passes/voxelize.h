@@ -25,8 +25,11 @@ class VoxelizePass {
   // resolution comes from `volume`; scene.constants.voxel_resolution and voxel_levels must
   // match it (they are what the cone tracer reads), and shadow.size must equal
   // scene.constants.shadow_size: otherwise throws rp::cl::Error. Enqueues only (no wait).
+  // bounce: the bounce grid (passes/bounce.h, bounce_cells per side) whose light the voxels
+  // reflect besides the lamp's (several bounces), or nullptr (one bounce).
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
-           const render::ShadowMap& shadow, render::VoxelVolume& volume);
+           const render::ShadowMap& shadow, render::VoxelVolume& volume,
+           const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0);
 
  private:
   // Decodes scene.texels into linear_texels_ when the scene's texel buffer is not the one
@@ -43,6 +46,9 @@ class VoxelizePass {
                       render::VoxelVolume& volume, cl_uint record);
 
   const rp::cl::Context* context_;
+  const ::cl::Buffer* bounce_ = nullptr;  // this run's bounce grid (or no_bounce_)
+  cl_uint bounce_cells_ = 0;
+  ::cl::Buffer no_bounce_;
   int span_ = 1;  // triangles (voxelize_triangles) or voxel columns (voxelize_large) a work-item
   ::cl::Kernel decode_, clear_, triangles_, large_, cached_, spheres_, resolve_;
   ::cl::Buffer linear_texels_;  // float4 per texel: linear rgba of scene.texels

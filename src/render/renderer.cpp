@@ -1,6 +1,9 @@
 #include "render/renderer.h"
 
+#include <algorithm>
+
 #include "cl/error.h"
+#include "passes/bounce.h"
 #include "passes/debug_view.h"
 #include "passes/embree_visibility.h"
 #include "passes/gbuffer.h"
@@ -47,6 +50,7 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   gbuffer_pass_ = std::make_unique<passes::GBufferPass>(context, programs);
   voxelize_ = std::make_unique<passes::VoxelizePass>(context, programs);
   voxel_mips_ = std::make_unique<passes::VoxelMipsPass>(context, programs);
+  if (settings_.bounces >= 2) bounce_ = std::make_unique<passes::BouncePass>(context, programs);
   if (settings_.quality == Quality::kFast)
     indirect_ = std::make_unique<passes::IndirectPass>(context, programs);
   light_ = std::make_unique<passes::LightPass>(context, programs);
@@ -124,7 +128,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     // A camera cut (this frame's previous camera is not what the last frame showed) makes the
     // TAA history meaningless.
     const glm::mat4 prev_view = frame.prev_camera.view();
-    if (last_view_ && *last_view_ != prev_view) reset_history();
+    if (last_view_ && *last_view_ != prev_view) reset_view_history();
     last_view_ = frame.camera.view();
     scene_->update(frame, settings_.width, settings_.height, settings_.shadow_size,
                    voxels_.resolution,
@@ -136,8 +140,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
       visibility_->render(profiler_, *scene_, vis_);
     visibility_->render_shadow(profiler_, *scene_, shadow_);
     gbuffer_pass_->run(profiler_, *scene_, vis_, gbuffer_);
-    voxelize_->run(profiler_, *scene_, shadow_, voxels_);
-    voxel_mips_->run(profiler_, voxels_);
+    build_voxels();
     const bool split = passes::needs_light_components(view_.view) || keep_components_;
     passes::LowResIndirect low_res;
     if (indirect_)
@@ -202,9 +205,44 @@ void Renderer::set_effects(const Effects& effects) {
   settings_.effects = effects;
 }
 
-void Renderer::reset_history() {
+void Renderer::reset_view_history() {
   taa_->reset_history();
   if (indirect_) indirect_->reset_history();
+}
+
+void Renderer::reset_history() {
+  reset_view_history();
+  if (bounce_) bounce_->reset();
+}
+
+void Renderer::build_voxels() {
+  const auto voxelize = [&](bool with_bounce) {
+    voxelize_->run(profiler_, *scene_, shadow_, voxels_, with_bounce ? &bounce_->grid() : nullptr,
+                   passes::BouncePass::cells(voxels_.resolution));
+    voxel_mips_->run(profiler_, voxels_);
+  };
+  if (!bounce_) {
+    voxelize(false);
+    return;
+  }
+  const bool reference = settings_.quality == Quality::kReference;
+  const uint32_t frame = scene_->constants.frame_index;
+  if (!bounce_->valid()) {
+    // Warm start: every gather adds a bounce; iterate so that the first frame already shows
+    // several (the fast mode then converges over the next frames).
+    voxelize(false);
+    const uint32_t iterations =
+        std::min(settings_.bounces - 1, reference ? kWarmGathersReference : kWarmGathersFast);
+    for (uint32_t i = 0; i < iterations; ++i) {
+      bounce_->run(profiler_, voxels_, frame, passes::BouncePass::Cones::kAll);
+      voxelize(true);
+    }
+  } else {
+    voxelize(true);
+  }
+  // This frame's gather, for the next frame's voxels.
+  bounce_->run(profiler_, voxels_, frame,
+               reference ? passes::BouncePass::Cones::kAll : passes::BouncePass::Cones::kOne);
 }
 
 void Renderer::read_components(LinearComponents& out) {

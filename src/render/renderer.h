@@ -26,6 +26,7 @@ class ToneMapPass;
 class DebugViewPass;
 class VoxelizePass;
 class VoxelMipsPass;
+class BouncePass;
 class TaaPass;
 class BloomPass;
 class MotionBlurPass;
@@ -78,6 +79,11 @@ struct RenderSettings {
   Effects effects;
   VisibilityBackend visibility = VisibilityBackend::kRaster;  // --visibility raster|embree
   Quality quality = Quality::kFast;  // --quality fast|reference
+  // --bounces: 1 = single-bounce indirect light (cones gather the voxels' direct light and
+  // emission); >= 2 = multi-bounce: the voxels' radiance also carries the indirect light they
+  // receive (passes/bounce.h), which converges to all bounces (the truth at 64).
+  uint32_t bounces = kDefaultBounces;
+  static constexpr uint32_t kDefaultBounces = 64;
 };
 
 class Renderer {
@@ -133,6 +139,16 @@ class Renderer {
   const VoxelVolume& voxels() const { return voxels_; }
 
  private:
+  // Gathers of the whole cone set the first frame after a reset iterates (several bounces):
+  // each adds a bounce (the rest then converge over the frames: one gather per frame).
+  static constexpr uint32_t kWarmGathersFast = 3;
+  static constexpr uint32_t kWarmGathersReference = 8;
+
+  // Voxelizes the frame and builds the mips; with several bounces, also the bounce gathers.
+  void build_voxels();
+  // Forgets the view-dependent histories (TAA, the fast mode's indirect light): camera cuts.
+  void reset_view_history();
+
   const rp::cl::Context& context_;
   RenderSettings settings_;
   rp::cl::Profiler profiler_;
@@ -142,6 +158,7 @@ class Renderer {
   std::unique_ptr<passes::GBufferPass> gbuffer_pass_;
   std::unique_ptr<passes::VoxelizePass> voxelize_;
   std::unique_ptr<passes::VoxelMipsPass> voxel_mips_;
+  std::unique_ptr<passes::BouncePass> bounce_;  // only with settings_.bounces >= 2
   std::unique_ptr<passes::IndirectPass> indirect_;  // set with Quality::kFast
   std::unique_ptr<passes::LightPass> light_;
   std::unique_ptr<passes::ToneMapPass> tone_map_;

@@ -31,7 +31,9 @@ struct VoxelVolume {
   uint32_t levels = 0;      // log2(R) + 1: level 0 (R^3, isotropic) down to level log2(R) (1^3)
   ::cl::Buffer chain;       // float4[gpu::rp_voxel_total(R, levels)]: level 0, then six
                             // directional volumes per level (rgb premultiplied radiance, a opacity)
-  ::cl::Buffer accum;       // uint4[R^3] voxelizer scratch: fixed-point sums (r*a, g*a, b*a, a)
+  ::cl::Buffer accum;       // uint[8 R^3] voxelizer scratch per voxel: fixed-point sums (r*a,
+                            // g*a, b*a, a), facing coverage x, y, z, unused (voxel_layout.h);
+                            // the mip builder reads the facing coverage for level 1
   ::cl::Buffer overflow;    // uint[R^3] voxelizer scratch: bit c set = channel c of accum wrapped
 
   // Resolutions the passes accept: powers of two from 2 to 256 (the app uses 32, 64 or 128).
@@ -58,7 +60,8 @@ struct VoxelVolume {
     levels = levels_for(r);
     const size_t voxels = size_t(r) * r * r;
     chain = ::cl::Buffer(context, CL_MEM_READ_WRITE, chain_elements() * 4 * sizeof(float));
-    accum = ::cl::Buffer(context, CL_MEM_READ_WRITE, voxels * 4 * sizeof(uint32_t));
+    accum = ::cl::Buffer(context, CL_MEM_READ_WRITE,
+                         voxels * RP_VOXEL_ACCUM_WORDS * sizeof(uint32_t));
     overflow = ::cl::Buffer(context, CL_MEM_READ_WRITE, voxels * sizeof(uint32_t));
   }
 };

@@ -1,0 +1,44 @@
+#include "passes/bounce.h"
+
+#include <vector>
+
+#include "cl/error.h"
+
+namespace rp::passes {
+namespace {
+constexpr size_t kGroup = 64;
+}  // namespace
+
+BouncePass::BouncePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
+    : context_(&context), gather_(programs.kernel("bounce.cl", "bounce_gather")) {}
+
+void BouncePass::run(rp::cl::Profiler& profiler, const render::VoxelVolume& volume,
+                     uint32_t frame, Cones cones) {
+  if (!render::VoxelVolume::valid_resolution(volume.resolution) || volume.chain() == nullptr)
+    throw rp::cl::Error("bounce pass: the voxel volume has not been allocated (resize it)");
+  const size_t g = cells(volume.resolution);
+  const size_t faces = 6 * g * g * g;
+  if (resolution_ != volume.resolution || grid_() == nullptr) {
+    grid_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, faces * 4 * sizeof(float));
+    resolution_ = volume.resolution;
+    valid_ = false;
+  }
+  if (!valid_) {  // start from nothing: every face age 0
+    const std::vector<float> zeros(faces * 4, 0.0f);
+    context_->queue.enqueueWriteBuffer(grid_, CL_FALSE, 0, zeros.size() * sizeof(float),
+                                       zeros.data());
+    context_->queue.finish();
+  }
+  gather_.setArg(0, volume.chain);
+  gather_.setArg(1, cl_uint(volume.resolution));
+  gather_.setArg(2, cl_uint(volume.levels));
+  gather_.setArg(3, grid_);
+  gather_.setArg(4, cl_uint(frame));
+  gather_.setArg(5, cl_uint(cones == Cones::kAll ? 16 : 1));
+  const size_t items = cones == Cones::kAll ? faces : faces / 2;  // one cone: half a frame
+  profiler.enqueue("bounce", gather_, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
+                   ::cl::NDRange(kGroup));
+  valid_ = true;
+}
+
+}  // namespace rp::passes

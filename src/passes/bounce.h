@@ -1,0 +1,48 @@
+// Bounce pass (issue 14: several bounces): gathers, by cone tracing the frame's voxel chain,
+// the irradiance that a coarse grid of cells receives (kernels/bounce.cl; layout and lookup in
+// kernels/common/bounce.h). The voxelizer adds albedo x that light to the voxels' radiance the
+// next time it runs, so every gather adds a bounce and the grid converges to all bounces.
+// The grid is world-space and view-independent: camera cuts keep it, a world reset (R) or a
+// new voxel resolution starts it again. Pass name "bounce".
+#pragma once
+
+#include <cstdint>
+
+#include "cl/profiler.h"
+#include "cl/program_cache.h"
+#include "render/voxel_volume.h"
+
+namespace rp::passes {
+
+class BouncePass {
+ public:
+  // Cones per face and gather: the whole 16-cone set (a face's estimate replaced) or one cone
+  // (blended into the face's running estimate).
+  enum class Cones { kAll, kOne };
+
+  BouncePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+
+  // Gathers into the grid from volume.chain (levels built). frame: the frame index (jitters and
+  // the cone rotation). Enqueues only.
+  void run(rp::cl::Profiler& profiler, const render::VoxelVolume& volume, uint32_t frame,
+           Cones cones);
+
+  // The grid the voxelizer reads (float4 per cell face), sized for the last volume run with;
+  // valid() is false until a gather has run since the last reset.
+  const ::cl::Buffer& grid() const { return grid_; }
+  bool valid() const { return valid_; }
+  // Forgets the gathered light (the next run starts from nothing).
+  void reset() { valid_ = false; }
+
+  // Cells per side for a volume of `resolution` voxels per side (kernels/common/bounce.h).
+  static uint32_t cells(uint32_t resolution) { return resolution < 16 ? resolution : 16; }
+
+ private:
+  const rp::cl::Context* context_;
+  ::cl::Kernel gather_;
+  ::cl::Buffer grid_;
+  uint32_t resolution_ = 0;  // the volume the grid was made for
+  bool valid_ = false;
+};
+
+}  // namespace rp::passes
