@@ -183,7 +183,7 @@ glm::dvec4 trace_coarse(const Chain& c, const glm::dvec3& origin, const glm::dve
     const glm::dvec3 q = origin + dir * (first_distance_in_voxels() * v0 * std::pow(growth, steps));
     const double level = std::floor(steps * std::log2(growth) + march.jitter);
     if (std::abs(q.x) > 1.0 || std::abs(q.y) > 1.0 || std::abs(q.z) > 1.0) {
-      add_exit(c, origin, dir, level, colour, alpha);  // left the box: the wall there
+      if (march.exit_term) add_exit(c, origin, dir, level, colour, alpha);  // the wall there
       break;
     }
     const glm::dvec4 s = quadrilinear(c, dir, q, level, apex, top_level(c));
@@ -212,7 +212,7 @@ glm::dvec4 trace(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir
     double level = k * std::log2(growth(march.fine));
     if (march.jitter >= 0.0) level = std::floor(level + march.jitter);
     if (std::abs(q.x) > 1.0 || std::abs(q.y) > 1.0 || std::abs(q.z) > 1.0) {
-      add_exit(c, origin, dir, level, colour, alpha);  // left the box: the wall there
+      if (march.exit_term) add_exit(c, origin, dir, level, colour, alpha);  // the wall there
       break;
     }
     const glm::dvec4 s = quadrilinear(c, dir, q, level, apex, top_level(c));
@@ -256,16 +256,17 @@ double near_occlusion(const Chain& c, const glm::dvec3& p, const glm::dvec3& n) 
 }
 
 glm::dvec3 diffuse(const Chain& c, const glm::dvec3& p, const glm::dvec3& n, bool skip_behind_apex,
-                   bool near) {
+                   bool issue14) {
   glm::dvec3 dirs[16];
   diffuse_cones(n, dirs);
   const glm::dvec3 origin = p + n * (normal_offset_in_voxels() * 2.0 / c.resolution);
   March march;
   march.fine = true;
   march.skip_behind_apex = skip_behind_apex;
+  march.exit_term = issue14;
   glm::dvec3 sum(0.0);
   for (const glm::dvec3& d : dirs) sum += glm::dvec3(trace(c, origin, d, march));
-  return sum / 16.0 * (near ? 1.0 - near_occlusion(c, p, n) : 1.0);
+  return sum / 16.0 * (issue14 ? 1.0 - near_occlusion(c, p, n) : 1.0);
 }
 
 }  // namespace rp::test::cone

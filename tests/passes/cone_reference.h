@@ -62,6 +62,7 @@ struct March {
   // `levels` samples, stops at opacity 0.9.
   bool coarse = false;
   double position_jitter = 0.0;
+  bool exit_term = true;  // false: a cone leaving the box just stops (before issue 14)
 };
 // What a cone from `origin` along unit `dir` sees where it leaves the box (rp_cone_exit): the
 // face it leaves through is the nearest of the three faces ahead of it (ties: x, then y, then
@@ -82,10 +83,11 @@ glm::dvec4 trace(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir
 constexpr double kNearOcclusion = 0.6;
 double near_occlusion(const Chain& c, const glm::dvec3& p, const glm::dvec3& n);
 // The 16 diffuse cones (quarter-diameter steps, quadrilinear) at surface point p with unit
-// normal n: their mean radiance = irradiance / pi, times 1 - near_occlusion(p, n) (when
-// `near` is true, as in the kernel).
+// normal n: their mean radiance = irradiance / pi, times 1 - near_occlusion(p, n). issue14 =
+// false leaves out the exit term and the near-field occlusion (the tracer before issue 14, for
+// the tests that measure the rows-behind-the-apex rule on its own); the kernel has both.
 glm::dvec3 diffuse(const Chain& c, const glm::dvec3& p, const glm::dvec3& n,
-                   bool skip_behind_apex = true, bool near = true);
+                   bool skip_behind_apex = true, bool issue14 = true);
 // The 16 directions of the diffuse cone set for normal n (equal weights 1/16), in the order of
 // the kernel's table.
 void diffuse_cones(const glm::dvec3& n, glm::dvec3 dirs[16]);
