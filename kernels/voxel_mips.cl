@@ -4,8 +4,12 @@
  *
  * voxel_mips_build runs once per level l = 1 .. levels-1, in order, one work-item per voxel of
  * level l (n = R >> l per side), and writes that voxel in all six directional volumes. Its
- * 2x2x2 children at level l-1 are read from the isotropic level 0 when l = 1, else from the
- * SAME direction's volume at level l-1.
+ * 2x2x2 children at level l-1 are read from the SAME direction's volume at level l-1; for
+ * l = 1 from the isotropic level 0 as a cone travelling along that direction sees it
+ * (mips_facing: the voxelizer's facing coverage, shared/voxel_layout.h, makes each voxel
+ * one-sided: opacity = the coverage of what faces the cone, radiance scaled alike), so a wall
+ * is opaque to cones that look at its front and transparent to cones leaving it (issue 14: a
+ * cone never gathers the light of the surface it starts from).
  *
  * For direction d along axis A, the children form two slabs across A. The FRONT slab is the
  * one a cone travelling along d enters first: the low-A children (index bit 0 along A) for

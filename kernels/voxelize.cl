@@ -51,9 +51,16 @@
  * the whole sphere, its mean over all directions = 1/4 of the light at the point facing the
  * lamp (the mean of max(cos, 0) over a sphere; shadow looked up at that point).
  *
- * Accumulation (order independent, DESIGN.md): per voxel four uint sums, channel c of
- * (L.rgb * a, a) added as round(min(value, RP_VOXEL_MAX_CONTRIB) * 2^RP_VOXEL_FIXED_BITS) with
- * atomic_add; an add that wraps past 2^32 sets bit c of the voxel's overflow word (atomic_or).
+ * Several bounces: with a bounce grid (common/bounce.h, bounce_cells > 0) every radiance
+ * above also reflects the light of earlier bounces, L = albedo * (I * direct(p) + E(p, n)) +
+ * emission, E the grid's irradiance / pi at the shading point (a sphere smaller than half a
+ * voxel: the mean over its cell's six faces).
+ *
+ * Accumulation (order independent, DESIGN.md): per voxel RP_VOXEL_ACCUM_WORDS (8) uints. Words
+ * 0-3: channel c of (L.rgb * a, a) added as round(min(value, RP_VOXEL_MAX_CONTRIB) *
+ * 2^RP_VOXEL_FIXED_BITS) with atomic_add; an add that wraps past 2^32 sets bit c of the voxel's
+ * overflow word (atomic_or). Words 4-6: the facing coverage along x, y, z (vx_add_facing,
+ * vx_add_facing_all; layout in shared/voxel_layout.h), read by the mip builder for level 1.
  * Zero values are not added. Resolve, with S = sums / 2^bits (an overflowed channel reads
  * RP_VOXEL_SATURATED):
  *     level0 = (S.rgb / max(S.a, 1), min(S.a, 1))

@@ -215,6 +215,10 @@ void Renderer::reset_history() {
   if (bounce_) bounce_->reset();
 }
 
+const ::cl::Buffer* Renderer::bounce_grid() const {
+  return bounce_ && bounce_->valid() ? &bounce_->grid() : nullptr;
+}
+
 void Renderer::build_voxels() {
   const auto voxelize = [&](bool with_bounce) {
     voxelize_->run(profiler_, *scene_, shadow_, voxels_, with_bounce ? &bounce_->grid() : nullptr,

@@ -122,9 +122,10 @@ class Renderer {
 
   // Switches post-processing effects between frames (turning TAA on starts a fresh history).
   void set_effects(const Effects& effects);
-  // Forgets the TAA history and the fast mode's accumulated indirect light (the app calls it
-  // when the world is reset; camera cuts, i.e. a frame whose previous camera is not the camera
-  // of the frame before, and resizes reset both automatically).
+  // Forgets the TAA history, the fast mode's accumulated indirect light and the bounce grid
+  // (the app calls it when the world is reset). Camera cuts, i.e. a frame whose previous
+  // camera is not the camera of the frame before, and resizes reset the first two
+  // automatically; they keep the bounce grid, which is world-space and view-independent.
   void reset_history();
 
   // The finished image: width * height * 4 bytes RGBA8, top row first. Blocking.
@@ -137,6 +138,9 @@ class Renderer {
   const GBuffer& gbuffer() const { return gbuffer_; }
   const ::cl::Buffer& hdr() const { return hdr_; }
   const VoxelVolume& voxels() const { return voxels_; }
+  // The bounce grid (passes/bounce.h) the next frame's voxels take their bounce light from;
+  // nullptr with one bounce (settings().bounces < 2) or before the first gather after a reset.
+  const ::cl::Buffer* bounce_grid() const;
 
  private:
   // Gathers of the whole cone set the first frame after a reset iterates (several bounces):

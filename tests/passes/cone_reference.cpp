@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "kernels/shared/voxel_layout.h"
 
@@ -27,7 +28,18 @@ const glm::vec4& Chain::at(uint32_t level, uint32_t dir, uint32_t x, uint32_t y,
   return const_cast<Chain*>(this)->at(level, dir, x, y, z);
 }
 
-void Chain::build_mips() {
+void Chain::build_mips() { build_mips(nullptr); }
+
+void Chain::build_mips(
+    const std::function<double(uint32_t, uint32_t, uint32_t, uint32_t)>& facing) {
+  // Child (x, y, z) of level `level` as direction `dir` sees it.
+  auto child_value = [&](uint32_t level, uint32_t dir, uint32_t x, uint32_t y, uint32_t z) {
+    const glm::dvec4 v(at(level, dir, x, y, z));
+    if (level > 0 || !facing) return v;
+    if (v.w <= 0.0) return glm::dvec4(0.0);
+    const double c = std::min(std::min(facing(x, y, z, dir), 1.0), v.w);
+    return glm::dvec4(glm::dvec3(v) * (c / v.w), c);
+  };
   for (uint32_t level = 1; level < levels; ++level) {
     const uint32_t n = size(level);
     for (uint32_t dir = 0; dir < 6; ++dir) {
@@ -46,7 +58,7 @@ void Chain::build_mips() {
                   child[axis] += k;
                   child[across0] += a;
                   child[across1] += b;
-                  slab[k] = glm::dvec4(at(level - 1, dir, child.x, child.y, child.z));
+                  slab[k] = child_value(level - 1, dir, child.x, child.y, child.z);
                 }
                 const glm::dvec4 front = negative ? slab[1] : slab[0];
                 const glm::dvec4 back = negative ? slab[0] : slab[1];
@@ -130,7 +142,35 @@ glm::dvec4 quadrilinear(const Chain& c, const glm::dvec3& d, const glm::dvec3& p
   return (1.0 - f) * at_level(lo) + f * at_level(lo + 1);
 }
 
+glm::dvec4 exit_sample(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
+                       double level) {
+  const int top = top_level(c);
+  if (top == 0) return glm::dvec4(0.0);
+  double t = std::numeric_limits<double>::infinity();
+  int axis = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (dir[i] == 0.0) continue;
+    const double face = dir[i] >= 0.0 ? 1.0 : -1.0;
+    const double ti = (face - origin[i]) / dir[i];
+    if (ti < t) {  // strictly nearer: ties keep the lower axis
+      t = ti;
+      axis = i;
+    }
+  }
+  const uint32_t volume = uint32_t(2 * axis + (dir[axis] < 0.0 ? 1 : 0));
+  const uint32_t l = uint32_t(std::clamp(std::floor(level), 1.0, double(top)));
+  return trilinear(c, l, volume, origin + dir * t);
+}
+
 namespace {
+
+// Composites the exit sample behind (colour, alpha).
+void add_exit(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir, double level,
+              glm::dvec3& colour, double& alpha) {
+  const glm::dvec4 e = exit_sample(c, origin, dir, level);
+  colour += (1.0 - alpha) * glm::dvec3(e);
+  alpha += (1.0 - alpha) * e.w;
+}
 
 glm::dvec4 trace_coarse(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
                         const March& march) {
@@ -141,8 +181,11 @@ glm::dvec4 trace_coarse(const Chain& c, const glm::dvec3& origin, const glm::dve
   for (int k = 0; k < int(c.levels); ++k) {  // one sample per level at most
     const double steps = k + march.position_jitter;
     const glm::dvec3 q = origin + dir * (first_distance_in_voxels() * v0 * std::pow(growth, steps));
-    if (std::abs(q.x) > 1.0 || std::abs(q.y) > 1.0 || std::abs(q.z) > 1.0) break;
     const double level = std::floor(steps * std::log2(growth) + march.jitter);
+    if (std::abs(q.x) > 1.0 || std::abs(q.y) > 1.0 || std::abs(q.z) > 1.0) {
+      if (march.exit_term) add_exit(c, origin, dir, level, colour, alpha);  // the wall there
+      break;
+    }
     const glm::dvec4 s = quadrilinear(c, dir, q, level, apex, top_level(c));
     colour += (1.0 - alpha) * glm::dvec3(s);  // a full-diameter step: the voxel as it is
     alpha += (1.0 - alpha) * s.w;
@@ -165,10 +208,13 @@ glm::dvec4 trace(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir
   const glm::dvec3* apex = march.skip_behind_apex ? &origin : nullptr;
   for (int k = 0; k < max_steps; ++k) {
     const glm::dvec3 q = origin + dir * t;
-    if (std::abs(q.x) > 1.0 || std::abs(q.y) > 1.0 || std::abs(q.z) > 1.0) break;
     // Sampled voxel = cone diameter 2 t tan_h = v0 * growth^k: level k * log2(growth).
     double level = k * std::log2(growth(march.fine));
     if (march.jitter >= 0.0) level = std::floor(level + march.jitter);
+    if (std::abs(q.x) > 1.0 || std::abs(q.y) > 1.0 || std::abs(q.z) > 1.0) {
+      if (march.exit_term) add_exit(c, origin, dir, level, colour, alpha);  // the wall there
+      break;
+    }
     const glm::dvec4 s = quadrilinear(c, dir, q, level, apex, top_level(c));
     // The step is a fraction `step` of the sampled voxel: opacity of that thickness.
     const double a = std::clamp(s.w, 0.0, 1.0);
@@ -200,16 +246,27 @@ void diffuse_cones(const glm::dvec3& n, glm::dvec3 dirs[16]) {
   for (int k = 0; k < 10; ++k) dirs[6 + k] = cone(11.0 / 16.0, 18.0 + 36.0 * k);
 }
 
-glm::dvec3 diffuse(const Chain& c, const glm::dvec3& p, const glm::dvec3& n, bool skip_behind_apex) {
+double near_occlusion(const Chain& c, const glm::dvec3& p, const glm::dvec3& n) {
+  if (c.levels < 2) return 0.0;
+  const glm::dvec3 apex = p + n * (normal_offset_in_voxels() * 2.0 / c.resolution);
+  double a = 0.0;
+  for (uint32_t axis = 0; axis < 3; ++axis)
+    a += n[axis] * n[axis] * trilinear(c, 1, 2 * axis + (n[axis] < 0.0 ? 1u : 0u), apex).w;
+  return std::clamp(a * kNearOcclusion, 0.0, 1.0);
+}
+
+glm::dvec3 diffuse(const Chain& c, const glm::dvec3& p, const glm::dvec3& n, bool skip_behind_apex,
+                   bool issue14) {
   glm::dvec3 dirs[16];
   diffuse_cones(n, dirs);
   const glm::dvec3 origin = p + n * (normal_offset_in_voxels() * 2.0 / c.resolution);
   March march;
   march.fine = true;
   march.skip_behind_apex = skip_behind_apex;
+  march.exit_term = issue14;
   glm::dvec3 sum(0.0);
   for (const glm::dvec3& d : dirs) sum += glm::dvec3(trace(c, origin, d, march));
-  return sum / 16.0;
+  return sum / 16.0 * (issue14 ? 1.0 - near_occlusion(c, p, n) : 1.0);
 }
 
 }  // namespace rp::test::cone

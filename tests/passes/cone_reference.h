@@ -1,10 +1,13 @@
 // C++ reference of the voxel cone tracer (kernels/common/cone_trace.h), written from the rules in
 // that header, in double precision: quadrilinear sampling of the anisotropic chain, one cone
 // (half- or quarter-diameter steps, quadrilinear or level-jittered samples), the 16-cone diffuse
-// set. Plus helpers that build voxel chains by hand for the tests.
+// set, the exit term (a cone leaving the box takes the wall it leaves through) and the
+// near-field occlusion that scales the diffuse set. Plus helpers that build voxel chains by hand
+// for the tests.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -25,6 +28,11 @@ struct Chain {
   // composited front to back (the one a ray along d meets first in front), then the four
   // composited columns across d are averaged.
   void build_mips();
+  // Like build_mips, but level 1 is built from one-sided level-0 voxels as voxel_mips.cl does
+  // (mips_facing): facing(x, y, z, dir) is the coverage of level-0 voxel (x, y, z) for a cone
+  // travelling along `dir` (RP_DIR_*; what faces -dir), and the voxel enters that direction's
+  // composite with opacity c = min(facing, a) and radiance rgb * c / a.
+  void build_mips(const std::function<double(uint32_t, uint32_t, uint32_t, uint32_t)>& facing);
 };
 
 // The cone's constants from their definitions: half-angle atan 0.4 (21.8 degrees).
@@ -54,14 +62,32 @@ struct March {
   // `levels` samples, stops at opacity 0.9.
   bool coarse = false;
   double position_jitter = 0.0;
+  bool exit_term = true;  // false: a cone leaving the box just stops (before issue 14)
 };
-// One cone from `origin` (its apex) along unit `dir`: (radiance, occlusion).
+// What a cone from `origin` along unit `dir` sees where it leaves the box (rp_cone_exit): the
+// face it leaves through is the nearest of the three faces ahead of it (ties: x, then y, then
+// z); the sample of the volume facing the cone across that face (the one whose axis is the
+// face's), at level clamp(floor(level), 1, top), trilinear at the exit point. Zero when the
+// chain has no directional level to sample (top 0).
+glm::dvec4 exit_sample(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
+                       double level);
+// One cone from `origin` (its apex) along unit `dir`: (radiance, occlusion). When a sample
+// point leaves the box the exit sample at the current level is composited behind what the cone
+// has gathered (rp_cone_march, rp_cone_trace_coarse).
 glm::dvec4 trace(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
                  const March& march = {});
+// Near-field occlusion of surface point p with unit normal n (rp_cone_near_occlusion): the
+// opacity the three level-1 volumes facing n (weights n^2, trilinear, no rows-behind-the-apex
+// rule) show at the cones' apex p + n v0, times kNearOcclusion, clamped to [0, 1]; 0 for a
+// chain without level 1.
+constexpr double kNearOcclusion = 0.6;
+double near_occlusion(const Chain& c, const glm::dvec3& p, const glm::dvec3& n);
 // The 16 diffuse cones (quarter-diameter steps, quadrilinear) at surface point p with unit
-// normal n: their mean radiance = irradiance / pi.
+// normal n: their mean radiance = irradiance / pi, times 1 - near_occlusion(p, n). issue14 =
+// false leaves out the exit term and the near-field occlusion (the tracer before issue 14, for
+// the tests that measure the rows-behind-the-apex rule on its own); the kernel has both.
 glm::dvec3 diffuse(const Chain& c, const glm::dvec3& p, const glm::dvec3& n,
-                   bool skip_behind_apex = true);
+                   bool skip_behind_apex = true, bool issue14 = true);
 // The 16 directions of the diffuse cone set for normal n (equal weights 1/16), in the order of
 // the kernel's table.
 void diffuse_cones(const glm::dvec3& n, glm::dvec3 dirs[16]);

@@ -1,8 +1,9 @@
 // The cone tracing functions of kernels/common/cone_trace.h, run through small test kernels and
 // compared with the double-precision C++ reference (cone_reference.h): quadrilinear sampling at
 // fractional positions and levels, the anisotropic lookup, one cone (half- and quarter-diameter
-// steps, level-jittered samples), the 16-cone diffuse set, and cases with known answers (empty
-// volume, opaque wall, uniform surroundings, level blending).
+// steps, level-jittered samples, the exit term), the 16-cone diffuse set with its near-field
+// occlusion, and cases with known answers (empty volume, opaque wall, a closed box of one-sided
+// walls, level blending).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -482,11 +483,15 @@ TEST(ConeTrace, DiffuseConesMatchReference) {
     normals.push_back(v4(n));
   }
   auto got = run_diffuse(chain, points, normals);
+  int occluded = 0;
   for (size_t i = 0; i < got.size(); ++i) {
     const glm::dvec3 want =
         rp::test::cone::diffuse(chain, glm::dvec3(points[i]), glm::dvec3(normals[i]));
     expect_near4(got[i], glm::dvec4(want, 0.0), 1e-5, "point " + std::to_string(i));
+    occluded += rp::test::cone::near_occlusion(chain, glm::dvec3(points[i]),
+                                               glm::dvec3(normals[i])) > 0.01;
   }
+  EXPECT_GT(occluded, 8);  // the near-field occlusion takes part
 }
 
 // The 16-cone set: unit directions, cone 0 along n, five at sin^2 = 3.5/16 72 degrees apart,
@@ -522,16 +527,74 @@ TEST(ConeTrace, DiffuseConeSetGeometry) {
   }
 }
 
-// Uniform opaque surroundings of radiance L: every cone sees exactly L (its first sample is
-// opaque), so the mean of the 16 equal-weight cones is exactly L (albedo * L reflected).
-TEST(ConeTrace, UniformSurroundingsGiveTheirRadiance) {
-  Chain chain(16, 5);
+// A closed box whose walls radiate L (issue 14). The old premise here, "every voxel opaque L,
+// so every cone sees exactly L", no longer holds: with that chain the level-1 volumes facing n
+// are opaque at the apex, and the near-field occlusion scales the estimate by 1 - 0.6. What is
+// exactly true now, for one-sided walls (the outermost layer of level-0 voxels, opaque, each
+// existing only for cones heading towards it, as the voxelizer's facing coverage makes them):
+//   - everything a cone can composite has radiance L per unit opacity, so a cone's colour is
+//     L times its opacity: the estimate's channels are in L's exact proportions;
+//   - every cone ends on a wall: it either becomes opaque (>= 0.95) inside, or it leaves the
+//     box, where the exit term reads the wall it leaves through as (L, 1). So the estimate is
+//     between 0.95 L and L, for interior points and for points on a wall alike (a wall does
+//     not see its own voxels: they face away from its cones), with no near-field occlusion;
+//   - a point whose normal faces a wall from within a voxel is darkened by the near-field
+//     occlusion, 1 - 0.6 a, a the opacity of the level-1 volume facing n at the apex.
+// Without the exit term, cones at 45 degrees to a wall took about half their light (they read
+// the wall through the d^2-weighted volumes), so the interior estimate fell well below 0.95 L.
+TEST(ConeTrace, ClosedBoxOfOneSidedWallsGivesTheirRadiance) {
+  const uint32_t r = 16;
+  Chain chain(r, 5);
   const glm::vec4 l(0.7f, 0.2f, 1.5f, 1.0f);
-  for (glm::vec4& v : chain.voxels) v = l;
-  std::vector<glm::vec4> points = {v4({0.0, 0.0, 0.0}), v4({0.4, -0.5, 0.2})};
-  std::vector<glm::vec4> normals = {v4({0.0, 1.0, 0.0}), v4(glm::normalize(glm::dvec3(1, -2, 3)))};
-  for (const glm::vec4& v : run_diffuse(chain, points, normals))
-    expect_near4(v, glm::dvec4(0.7, 0.2, 1.5, 0.0), 1e-6, "uniform");
+  auto on_wall = [r](uint32_t x, uint32_t y, uint32_t z) {
+    return x == 0 || y == 0 || z == 0 || x == r - 1 || y == r - 1 || z == r - 1;
+  };
+  for (uint32_t z = 0; z < r; ++z)
+    for (uint32_t y = 0; y < r; ++y)
+      for (uint32_t x = 0; x < r; ++x)
+        if (on_wall(x, y, z)) chain.at(0, 0, x, y, z) = l;
+  // A cone heading along +axis sees the wall at the + end of that axis (it faces -axis).
+  chain.build_mips([r](uint32_t x, uint32_t y, uint32_t z, uint32_t dir) {
+    const uint32_t v[3] = {x, y, z};
+    return v[dir / 2] == (dir % 2 == 0 ? r - 1 : 0u) ? 1.0 : 0.0;
+  });
+  const double v0 = 2.0 / r;
+  std::vector<glm::dvec3> ps = {{0.0, 0.0, 0.0},
+                                {0.4, -0.5, 0.2},
+                                {-0.3, 0.4, -0.3},
+                                {0.1, -1.0 + 0.5 * v0, -0.3},   // on the floor, facing up
+                                {1.0 - 0.5 * v0, 0.2, 0.35}};   // on the +x wall, facing -x
+  std::vector<glm::dvec3> ns = {{0.0, 1.0, 0.0},
+                                glm::normalize(glm::dvec3(1, -2, 3)),
+                                glm::normalize(glm::dvec3(-1, 1, 1)),
+                                {0.0, 1.0, 0.0},
+                                {-1.0, 0.0, 0.0}};
+  const size_t free_points = ps.size();
+  // Facing the ceiling from inside its own voxel's neighbour: near-field occlusion.
+  ps.push_back({-0.2, 1.0 - 1.5 * v0, 0.1});
+  ns.push_back({0.0, 1.0, 0.0});
+  std::vector<glm::vec4> points, normals;
+  for (size_t i = 0; i < ps.size(); ++i) {
+    points.push_back(v4(ps[i]));
+    normals.push_back(v4(ns[i]));
+  }
+  const auto got = run_diffuse(chain, points, normals);
+  for (size_t i = 0; i < got.size(); ++i) {
+    const std::string what = "point " + std::to_string(i);
+    const double near = rp::test::cone::near_occlusion(chain, ps[i], ns[i]);
+    // The share of L the cones gathered, before the near-field occlusion.
+    const double share = got[i].x / (l.x * (1.0 - near));
+    for (int c = 1; c < 3; ++c)
+      EXPECT_NEAR(got[i][c], share * (1.0 - near) * l[c], 1e-5) << what << ": L's hue";
+    EXPECT_GE(share, 0.95 - 1e-5) << what;
+    EXPECT_LE(share, 1.0 + 1e-5) << what;
+    if (i < free_points)
+      EXPECT_EQ(near, 0.0) << what;
+    else
+      EXPECT_GT(near, 0.1) << what << ": the ceiling a voxel away occludes";
+    expect_near4(got[i], glm::dvec4(rp::test::cone::diffuse(chain, ps[i], ns[i]), 0.0), 1e-5,
+                 what + " vs reference");
+  }
 }
 
 }  // namespace

@@ -219,8 +219,8 @@ TEST(Indirect, LayoutIsPaddedAndPlanar) {
 
 // Checks the planes indirect_trace wrote for frame f: per block the sample pixel's geometry,
 // and its radiance against the C++ cone reference (full-diameter steps with the block's two
-// jitters): cone cone_index(i, j, f) of the set, or the mean of all 16 when `whole_set`; the
-// padding stays zero.
+// jitters, the exit term): cone cone_index(i, j, f) of the set, or the mean of all 16 when
+// `whole_set`, times one minus the near-field occlusion; the padding stays zero.
 void expect_traced_blocks(const IndirectFixture& fx, const rp::passes::LowResIndirect& lr,
                           uint32_t f, bool whole_set) {
   const size_t plane = lr.plane;
@@ -247,6 +247,8 @@ void expect_traced_blocks(const IndirectFixture& fx, const rp::passes::LowResInd
         } else {
           want = glm::dvec3(rp::test::cone::trace(fx.chain(), apex, dirs[cone_index(i, j, f)], m));
         }
+        // Scaled by the near-field occlusion at the sample, like the reference mode's set.
+        want *= 1.0 - rp::test::cone::near_occlusion(fx.chain(), p, n);
         ++traced;
         lit += want.x + want.y + want.z > 0.01;
       }

@@ -96,10 +96,21 @@ TEST(VoxelizeDemo, MatchesReferenceAndHoldsTheWalls) {
       reference_voxelize(reference_input(d.assets, d.frame, *d.gpu, d.shadow_depth), R);
   const std::vector<float> want0 = reference_resolve(want);
   const size_t voxels = size_t(R) * R * R;
-  size_t alpha_diff = 0, radiance_diff = 0, occupied = 0;
+  size_t alpha_diff = 0, radiance_diff = 0, occupied = 0, facing_diff = 0, slack = 0,
+         slack_used = 0;
   for (size_t v = 0; v < voxels; ++v) {
-    alpha_diff += got.sums.accum[4 * v + 3] != want.accum[4 * v + 3];
-    occupied += want.accum[4 * v + 3] != 0;
+    alpha_diff += got.sums.accum[kAccumWords * v + 3] != want.accum[kAccumWords * v + 3];
+    occupied += want.accum[kAccumWords * v + 3] != 0;
+    // The facing coverage does not depend on the light: exact up to the reference's slack.
+    for (int h = 0; h < 6; ++h) {
+      const int64_t g = facing_half(got.sums, v, h / 2, h % 2),
+                    r = facing_half(want, v, h / 2, h % 2);
+      const int64_t allowed = want.facing_slack[6 * v + size_t(h)];
+      slack += allowed != 0;
+      slack_used += g != r;
+      facing_diff += g > r + allowed || g < r - allowed;
+    }
+    facing_diff += got.sums.accum[kAccumWords * v + 7] != 0;
     bool differs = false;
     for (int c = 0; c < 3; ++c) {
       const float g = got.level0[4 * v + c], r = want0[4 * v + c];
@@ -107,9 +118,11 @@ TEST(VoxelizeDemo, MatchesReferenceAndHoldsTheWalls) {
     }
     radiance_diff += differs;
   }
-  std::printf("[ stats    ] demo R = %u: %zu occupied voxels, %zu with radiance beyond rounding\n",
-              R, occupied, radiance_diff);
+  std::printf("[ stats    ] demo R = %u: %zu occupied voxels, %zu with radiance beyond rounding, "
+              "%zu facing halves with rounding slack (%zu of them differ)\n",
+              R, occupied, radiance_diff, slack, slack_used);
   EXPECT_EQ(alpha_diff, 0u);
+  EXPECT_EQ(facing_diff, 0u);
   // Lighting agrees to rounding; a shadow-map lookup right at a depth edge may decide the
   // other way, which can flip a handful of voxels.
   EXPECT_LE(radiance_diff, occupied / 200) << radiance_diff << " of " << occupied;
@@ -131,6 +144,21 @@ TEST(VoxelizeDemo, MatchesReferenceAndHoldsTheWalls) {
   EXPECT_EQ(opaque, cells);
   EXPECT_GT(left_red, cells * 9 / 10);
   EXPECT_GT(right_blue, cells * 9 / 10);
+
+  // The walls face the room: the x = 0 wall's voxels are covered in the +x half of their x
+  // word only, the x = R - 1 wall's in the -x half only (corners also hold floor / ceiling /
+  // back wall triangles, hence the interior cells).
+  auto word = [&](uint32_t x, uint32_t y, uint32_t z, size_t w) {
+    return got.sums.accum[kAccumWords * ((size_t(z) * R + y) * R + x) + w];
+  };
+  size_t one_sided = 0;
+  for (uint32_t z = 2; z < R - 2; ++z)
+    for (uint32_t y = 2; y < R - 4; ++y) {
+      const uint32_t l = word(0, y, z, 4), r = word(R - 1, y, z, 4);
+      one_sided += (l & 0xFFFFu) >= 128u && (l >> 16) == 0u && (r >> 16) >= 128u &&
+                   (r & 0xFFFFu) == 0u;
+    }
+  EXPECT_EQ(one_sided, cells);
 }
 
 TEST(VoxelizeDemo, LampCapIsNotVoxelized) {

@@ -180,11 +180,41 @@ void accumulate(VoxelSums& sums, uint32_t voxel, RefF3 radiance, float a) {
   const RefF3 premul = radiance * a;
   const uint32_t q[4] = {fixed(premul.x), fixed(premul.y), fixed(premul.z), fixed(a)};
   for (uint32_t c = 0; c < 4; ++c) {
-    uint32_t& s = sums.accum[4 * size_t(voxel) + c];
+    if (q[c] == 0u) continue;
+    uint32_t& s = sums.accum[kAccumWords * size_t(voxel) + c];
     const uint32_t old = s;
     s = old + q[c];  // wraps like atomic_add
     if (old > 0xFFFFFFFFu - q[c]) sums.overflow[voxel] |= 1u << c;
   }
+}
+
+// ---- facing coverage (vx_add_facing, vx_add_facing_all) ----
+constexpr float kFacingUnit = RP_VOXEL_FACING_UNIT;
+
+// vx_add_facing: per axis i, round(a |n_i| / max|n| * UNIT) into the half of word 4 + i that
+// matches the sign of n_i (low half n_i > 0, high half otherwise), wrapping like atomic_add.
+// `exact`: false where n is the triangle normal (the kernel's comes from rsqrt): contributions
+// whose rounding is within 1e-3 of a tie count as slack (VoxelSums::facing_slack).
+void add_facing(VoxelSums& sums, uint32_t voxel, RefF3 n, float a, bool exact) {
+  const RefF3 an = {std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)};
+  const float scale = a * kFacingUnit / std::fmax(std::fmax(an.x, an.y), an.z);
+  const float c[3] = {an.x * scale, an.y * scale, an.z * scale};
+  const float s[3] = {n.x, n.y, n.z};
+  for (int i = 0; i < 3; ++i) {
+    const float v = std::fmin(c[i], kFacingUnit);
+    const uint32_t q = uint32_t(v + 0.5f);
+    const int half = s[i] > 0.0f ? 0 : 1;
+    if (!exact && std::fabs((v - std::floor(v)) - 0.5f) <= 1e-3f)
+      ++sums.facing_slack[6 * size_t(voxel) + 2 * i + half];
+    if (q == 0u) continue;
+    sums.accum[kAccumWords * size_t(voxel) + 4 + i] += half == 0 ? q : q << 16;
+  }
+}
+
+void add_facing_all(VoxelSums& sums, uint32_t voxel, float a) {
+  const uint32_t q = uint32_t(std::fmin(a, 1.0f) * kFacingUnit + 0.5f);
+  if (q == 0u) return;
+  for (int i = 0; i < 3; ++i) sums.accum[kAccumWords * size_t(voxel) + 4 + i] += q | (q << 16);
 }
 
 RefF3 voxel_centre_world(int x, int y, int z, uint32_t resolution) {
@@ -276,7 +306,9 @@ void voxelize_triangle(const VoxelRefInput& in, const gpu::Instance& inst,
           }
           radiance = shade(b0, b1, b2);
         }
-        accumulate(sums, (uint32_t(z) * R + uint32_t(y)) * R + uint32_t(x), radiance, 1.0f);
+        const uint32_t voxel = (uint32_t(z) * R + uint32_t(y)) * R + uint32_t(x);
+        accumulate(sums, voxel, radiance, 1.0f);
+        add_facing(sums, voxel, nw, 1.0f, false);
       }
 }
 
@@ -326,7 +358,9 @@ void voxelize_sphere(const VoxelRefInput& in, const gpu::Sphere& s, VoxelSums& s
               len2 > 0.0f ? to_voxel * (1.0f / std::sqrt(len2)) : RefF3{0.0f, 1.0f, 0.0f};
           radiance = albedo * direct(in, cw + nrm * rw, nrm) + emission;
         }
-        accumulate(sums, (uint32_t(k) * R + uint32_t(j)) * R + uint32_t(i), radiance, a);
+        const uint32_t voxel = (uint32_t(k) * R + uint32_t(j)) * R + uint32_t(i);
+        accumulate(sums, voxel, radiance, a);
+        add_facing_all(sums, voxel, a);
       }
     }
   }
@@ -363,8 +397,9 @@ VoxelSums reference_voxelize(const VoxelRefInput& in, uint32_t resolution) {
   VoxelSums sums;
   sums.resolution = resolution;
   const size_t voxels = size_t(resolution) * resolution * resolution;
-  sums.accum.assign(voxels * 4, 0u);
+  sums.accum.assign(voxels * kAccumWords, 0u);
   sums.overflow.assign(voxels, 0u);
+  sums.facing_slack.assign(voxels * 6, 0u);
   for (size_t i = 0; i < in.instances.size(); ++i) {
     if (!in.frame->instances[i].voxelize) continue;  // the lamp cap: lit analytically
     const scene::Mesh& mesh = in.assets->meshes.at(in.frame->instances[i].mesh);
@@ -381,7 +416,7 @@ std::vector<float> reference_resolve(const VoxelSums& sums) {
   for (size_t v = 0; v < voxels; ++v) {
     float s[4];
     for (int c = 0; c < 4; ++c) {
-      s[c] = float(sums.accum[4 * v + c]) * (1.0f / render::kVoxelFixedScale);
+      s[c] = float(sums.accum[kAccumWords * v + c]) * (1.0f / render::kVoxelFixedScale);
       if (sums.overflow[v] & (1u << c)) s[c] = render::kVoxelSaturatedSum;
     }
     const float inv = 1.0f / std::fmax(s[3], 1.0f);
@@ -391,6 +426,40 @@ std::vector<float> reference_resolve(const VoxelSums& sums) {
     out[4 * v + 3] = std::fmin(s[3], 1.0f);
   }
   return out;
+}
+
+size_t compare_sums(const VoxelSums& got, const VoxelSums& want, std::vector<std::string>* first,
+                    size_t report) {
+  const size_t voxels = want.overflow.size();
+  if (got.accum.size() != voxels * kAccumWords || want.accum.size() != voxels * kAccumWords ||
+      got.overflow.size() != voxels || want.facing_slack.size() != voxels * 6) {
+    if (first) first->push_back("compare_sums: sizes differ");
+    return voxels + 1;
+  }
+  size_t bad = 0;
+  for (size_t v = 0; v < voxels; ++v) {
+    std::string why;
+    for (size_t w : {0, 1, 2, 3, 7})
+      if (got.accum[kAccumWords * v + w] != want.accum[kAccumWords * v + w])
+        why += " word " + std::to_string(w) + ": " +
+               std::to_string(got.accum[kAccumWords * v + w]) + " vs " +
+               std::to_string(want.accum[kAccumWords * v + w]);
+    if (got.overflow[v] != want.overflow[v])
+      why += " overflow: " + std::to_string(got.overflow[v]) + " vs " +
+             std::to_string(want.overflow[v]);
+    for (int axis = 0; axis < 3; ++axis)
+      for (int half = 0; half < 2; ++half) {
+        const int64_t g = facing_half(got, v, axis, half), r = facing_half(want, v, axis, half);
+        const int64_t slack = want.facing_slack[6 * v + 2 * size_t(axis) + size_t(half)];
+        if (g > r + slack || g < r - slack)
+          why += " facing " + std::string(1, "xyz"[axis]) + (half == 0 ? "+" : "-") + ": " +
+                 std::to_string(g) + " vs " + std::to_string(r) + " (slack " +
+                 std::to_string(slack) + ")";
+      }
+    if (!why.empty() && bad++ < report && first)
+      first->push_back("voxel " + std::to_string(v) + ":" + why);
+  }
+  return bad;
 }
 
 VoxelGpuOutput run_voxelize(render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r) {
@@ -410,7 +479,9 @@ VoxelGpuOutput run_voxelize(passes::VoxelizePass& pass, render::VoxelVolume& vol
   const size_t voxels = size_t(r) * r * r;
   const std::vector<uint32_t> garbage(vol.chain_elements() * 4, 0x7F7F7F7Fu);
   ctx.queue.enqueueWriteBuffer(vol.chain, CL_TRUE, 0, vol.chain_elements() * 16, garbage.data());
-  ctx.queue.enqueueWriteBuffer(vol.accum, CL_TRUE, 0, voxels * 16, garbage.data());
+  const std::vector<uint32_t> accum_garbage(voxels * kAccumWords, 0x7F7F7F7Fu);
+  ctx.queue.enqueueWriteBuffer(vol.accum, CL_TRUE, 0, accum_garbage.size() * 4,
+                               accum_garbage.data());
   ctx.queue.enqueueWriteBuffer(vol.overflow, CL_TRUE, 0, voxels * 4, garbage.data());
 
   render::ShadowMap sm;
@@ -424,10 +495,11 @@ VoxelGpuOutput run_voxelize(passes::VoxelizePass& pass, render::VoxelVolume& vol
   VoxelGpuOutput out;
   out.times = profiler.collect();
   out.sums.resolution = r;
-  out.sums.accum.resize(voxels * 4);
+  out.sums.accum.resize(voxels * kAccumWords);
   out.sums.overflow.resize(voxels);
   out.level0.resize(voxels * 4);
-  ctx.queue.enqueueReadBuffer(vol.accum, CL_TRUE, 0, voxels * 16, out.sums.accum.data());
+  ctx.queue.enqueueReadBuffer(vol.accum, CL_TRUE, 0, out.sums.accum.size() * 4,
+                              out.sums.accum.data());
   ctx.queue.enqueueReadBuffer(vol.overflow, CL_TRUE, 0, voxels * 4, out.sums.overflow.data());
   ctx.queue.enqueueReadBuffer(vol.chain, CL_TRUE, 0, voxels * 16, out.level0.data());
   return out;

@@ -4,17 +4,23 @@
 // order (FP contraction is off in the kernel and the host compiler does not contract), the
 // same fixed-point rounding and wrap-around sums, so the integer sums must agree exactly where
 // the radiance is exact (emission; lighting uses rsqrt/normalize whose rounding differs, so lit
-// values agree to a tolerance).
+// values agree to a tolerance). The facing coverage words (vx_add_facing, vx_add_facing_all)
+// are mirrored operation for operation too: exact for spheres; for triangles exact except
+// where the kernel's rsqrt-normalised normal may round a contribution to the other side of a
+// tie (counted in VoxelSums::facing_slack, compare_sums allows 1 unit per such contribution).
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "cl/profiler.h"
 #include "passes/voxelize.h"
 #include "render/gpu_scene.h"
 #include "render/gpu_types.h"
+#include "render/voxel_volume.h"
 #include "scene/frame_scene.h"
 
 namespace rp::test {
@@ -23,13 +29,36 @@ struct RefF3 {
   float x = 0.0f, y = 0.0f, z = 0.0f;
 };
 
-// The voxelizer's sums for an R^3 volume: accum holds (r*a, g*a, b*a, a) per voxel in
-// fixed point (render/voxel_volume.h), overflow the wrapped-channel bits.
+// The voxelizer's sums for an R^3 volume: accum holds RP_VOXEL_ACCUM_WORDS (8) words per
+// voxel (kernels/shared/voxel_layout.h): (r*a, g*a, b*a, a) in fixed point
+// (render/voxel_volume.h), the facing coverage along x, y, z (low 16 bits: surfaces facing +,
+// high 16 bits: facing -) and an unused word that stays 0; overflow the wrapped-channel bits.
+inline constexpr size_t kAccumWords = RP_VOXEL_ACCUM_WORDS;
 struct VoxelSums {
   uint32_t resolution = 0;
-  std::vector<uint32_t> accum;     // 4 per voxel, x fastest
+  std::vector<uint32_t> accum;     // kAccumWords per voxel, x fastest
   std::vector<uint32_t> overflow;  // 1 per voxel
+  // Reference only (empty in device output): per voxel and facing half (6 per voxel, index
+  // 2 * axis + (0: low half, 1: high half)), the number of triangle contributions whose
+  // rounding the kernel may decide the other way: round(c) with c within 1e-3 of k + 0.5.
+  // The kernel normalises the triangle normal with rsqrt, the reference with 1 / sqrt; the
+  // ratio |n_i| / max|n| is the same to a few ulps, so only such contributions can differ,
+  // each by at most 1 unit.
+  std::vector<uint32_t> facing_slack;
 };
+
+// One facing half of voxel v: axis 0..2 (x, y, z), half 0 (low 16 bits: surfaces whose normal
+// points along +axis) or 1 (high 16 bits: along -axis).
+inline uint32_t facing_half(const VoxelSums& s, size_t v, int axis, int half) {
+  const uint32_t w = s.accum[kAccumWords * v + 4 + size_t(axis)];
+  return half == 0 ? (w & 0xFFFFu) : (w >> 16);
+}
+
+// Compares device sums with the reference: words 0-3 and 7 and the overflow bits exactly, each
+// facing half exactly or within want.facing_slack units. Returns the number of differing
+// voxels; the first `report` are described in `first` (one line each).
+size_t compare_sums(const VoxelSums& got, const VoxelSums& want, std::vector<std::string>* first,
+                    size_t report = 6);
 
 // Inputs as the kernels see them: the frame constants and the instance / sphere arrays of
 // render::GpuScene, the assets' meshes (instance i draws frame.instances[i].mesh), and the

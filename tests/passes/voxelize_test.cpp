@@ -18,6 +18,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cl/error.h"
+#include "passes/voxel_mips.h"
 #include "passes/voxelize.h"
 #include "passes/voxelize_reference.h"
 #include "render/gpu_scene.h"
@@ -116,6 +117,18 @@ size_t count_mismatches(const std::vector<uint32_t>& got, const std::vector<uint
   return bad;
 }
 
+// Device sums against the reference (compare_sums: words 0-3 and the overflow bits exactly,
+// the facing coverage exactly up to the reference's slack); returns the differing voxels.
+size_t sums_mismatches(const VoxelSums& got, const VoxelSums& want, const char* what) {
+  std::vector<std::string> first;
+  const size_t bad = compare_sums(got, want, &first);
+  for (const std::string& line : first) ADD_FAILURE() << what << " " << line;
+  return bad;
+}
+
+// Word w of voxel v.
+uint32_t word(const VoxelSums& s, size_t v, size_t w) { return s.accum[kAccumWords * v + w]; }
+
 // The scene of the exact test: R = 16 (voxel 0.125 wide).
 Scene exact_scene() {
   Scene s;
@@ -163,8 +176,7 @@ TEST(Voxelize, IdenticalSumsToReference) {
   const std::vector<float> shadow = uniform_shadow(1.0f);
   const VoxelGpuOutput got = run_voxelize(*s.gpu, shadow, 16);
   const VoxelSums want = reference_voxelize(reference_input(s.assets, s.frame, *s.gpu, shadow), 16);
-  EXPECT_EQ(count_mismatches(got.sums.accum, want.accum, "accum"), 0u);
-  EXPECT_EQ(count_mismatches(got.sums.overflow, want.overflow, "overflow"), 0u);
+  EXPECT_EQ(sums_mismatches(got.sums, want, "sums"), 0u);
   const std::vector<float> level0 = reference_resolve(want);
   size_t bad = 0;
   for (size_t i = 0; i < level0.size(); ++i)
@@ -175,9 +187,16 @@ TEST(Voxelize, IdenticalSumsToReference) {
 
   // Not vacuous: every primitive left voxels, and the face triangle touches both layers.
   size_t touched = 0;
-  for (size_t v = 0; v < want.overflow.size(); ++v) touched += want.accum[4 * v + 3] != 0;
+  size_t facing[6] = {};  // voxels with coverage in each facing half
+  for (size_t v = 0; v < want.overflow.size(); ++v) {
+    touched += word(want, v, 3) != 0;
+    for (int h = 0; h < 6; ++h) facing[h] += facing_half(got.sums, v, h / 2, h % 2) != 0;
+  }
   EXPECT_GT(touched, 300u);
-  auto alpha = [&](int x, int y, int z) { return got.sums.accum[4 * ((z * 16 + y) * 16 + x) + 3]; };
+  for (int h = 0; h < 6; ++h) EXPECT_GT(facing[h], 20u) << "facing half " << h;
+  auto alpha = [&](int x, int y, int z) {
+    return word(got.sums, size_t((z * 16 + y) * 16 + x), 3);
+  };
   // Columns (x, z) = (8, 7) and (7, 6) lie inside the footprint of the triangle on y = 0.25.
   EXPECT_NE(alpha(8, 9, 7), 0u);
   EXPECT_NE(alpha(8, 10, 7), 0u);
@@ -197,7 +216,7 @@ TEST(Voxelize, LitMatchesReferenceAndShadowedIsEmissionOnly) {
   const std::vector<float> lit_level0 = reference_resolve(lit_ref);
   size_t bad = 0, brighter = 0;
   for (size_t v = 0; v < lit_ref.overflow.size(); ++v) {
-    if (lit.sums.accum[4 * v + 3] != lit_ref.accum[4 * v + 3] && bad++ < 6)
+    if (word(lit.sums, v, 3) != word(lit_ref, v, 3) && bad++ < 6)
       ADD_FAILURE() << "opacity sum differs at voxel " << v;
     for (int c = 0; c < 3; ++c) {
       const float g = lit.level0[4 * v + c], r = lit_level0[4 * v + c];
@@ -212,13 +231,17 @@ TEST(Voxelize, LitMatchesReferenceAndShadowedIsEmissionOnly) {
   const VoxelGpuOutput dark = run_voxelize(*s.gpu, occluded, 16);
   VoxelRefInput dark_in = base;
   dark_in.shadow = occluded;
-  EXPECT_EQ(count_mismatches(dark.sums.accum, reference_voxelize(dark_in, 16).accum, "occluded"),
-            0u);
+  EXPECT_EQ(sums_mismatches(dark.sums, reference_voxelize(dark_in, 16), "occluded"), 0u);
   Scene unlit = exact_scene();  // intensity 0
   const VoxelGpuOutput emission_only = run_voxelize(*unlit.gpu, uniform_shadow(1.0f), 16);
   EXPECT_EQ(count_mismatches(dark.sums.accum, emission_only.sums.accum, "occluded vs unlit"), 0u);
-  for (size_t v = 0; v < lit_ref.overflow.size(); ++v)
-    brighter += lit.sums.accum[4 * v] > dark.sums.accum[4 * v];
+  size_t facing_diff = 0;
+  for (size_t v = 0; v < lit_ref.overflow.size(); ++v) {
+    brighter += word(lit.sums, v, 0) > word(dark.sums, v, 0);
+    for (size_t w = 4; w < kAccumWords; ++w)  // the facing coverage does not see the light
+      facing_diff += word(lit.sums, v, w) != word(dark.sums, v, w);
+  }
+  EXPECT_EQ(facing_diff, 0u);
   EXPECT_GT(brighter, 100u);  // the light does reach the voxels
 }
 
@@ -263,8 +286,7 @@ TEST_P(VoxelizeSpans, SumsMatchTheReference) {
     const VoxelGpuOutput got = run_voxelize(*s.gpu, shadow, 16);
     const VoxelSums want =
         reference_voxelize(reference_input(s.assets, s.frame, *s.gpu, shadow), 16);
-    EXPECT_EQ(count_mismatches(got.sums.accum, want.accum, "accum"), 0u);
-    EXPECT_EQ(count_mismatches(got.sums.overflow, want.overflow, "overflow"), 0u);
+    EXPECT_EQ(sums_mismatches(got.sums, want, "sums"), 0u);
 
     s.frame.light.intensity = glm::vec3(6.0f, 5.0f, 4.0f);
     s.upload();
@@ -308,8 +330,7 @@ TEST(Voxelize, StaticCacheGivesTheSameSumsAsFrameByFrame) {
       if (intensity == 0.0f) {
         const VoxelSums want =
             reference_voxelize(reference_input(s.assets, s.frame, *s.gpu, shadow), step.r);
-        EXPECT_EQ(count_mismatches(got.sums.accum, want.accum, "accum"), 0u);
-        EXPECT_EQ(count_mismatches(got.sums.overflow, want.overflow, "overflow"), 0u);
+        EXPECT_EQ(sums_mismatches(got.sums, want, "sums"), 0u);
       }
       setenv("ROLYPOLY_VOXELIZE_CACHE", "0", 1);
       const VoxelGpuOutput direct = run_voxelize(*s.gpu, shadow, step.r);
@@ -368,7 +389,7 @@ TEST(Voxelize, ThinSlantedStripHasNoGaps) {
   auto index = [&](int x, int y, int z) { return (size_t(z) * R + size_t(y)) * R + size_t(x); };
   std::vector<char> in_set(size_t(R) * R * R, 0);
   size_t count = 0;
-  for (size_t v = 0; v < in_set.size(); ++v) count += in_set[v] = got.sums.accum[4 * v + 3] != 0;
+  for (size_t v = 0; v < in_set.size(); ++v) count += in_set[v] = word(got.sums, v, 3) != 0;
   ASSERT_GT(count, 40u);
 
   // 1. Exactly the voxels the exact test accepts for some triangle (brute force, all voxels).
@@ -485,7 +506,7 @@ TEST(Voxelize, SpheresCoverTheVoxelsTheyIntersect) {
           unsure |= std::fabs(d2 - r2) < 1e-6 * r2;
         }
         const size_t v = (size_t(z) * R + y) * R + x;
-        const bool in = got.sums.accum[4 * v + 3] != 0;
+        const bool in = word(got.sums, v, 3) != 0;
         touched += in;
         if (unsure) {
           ++ambiguous;
@@ -522,14 +543,97 @@ TEST(Voxelize, OverflowSaturatesInsteadOfWrapping) {
   const std::vector<float> shadow = uniform_shadow(1.0f);
   const VoxelGpuOutput got = run_voxelize(*s.gpu, shadow, 16);
   const VoxelSums want = reference_voxelize(reference_input(s.assets, s.frame, *s.gpu, shadow), 16);
-  EXPECT_EQ(count_mismatches(got.sums.accum, want.accum, "accum"), 0u);
-  EXPECT_EQ(count_mismatches(got.sums.overflow, want.overflow, "overflow"), 0u);
+  EXPECT_EQ(sums_mismatches(got.sums, want, "sums"), 0u);
   // The voxel holding the centre: six opaque contributions of red 20000 (sum 120000 > 65536).
   const size_t v = (size_t(8) * 16 + 8) * 16 + 8;  // grid (8.8, 8.8, 8.8)
   EXPECT_EQ(got.sums.overflow[v], 1u);
   EXPECT_FLOAT_EQ(got.level0[4 * v + 0], render::kVoxelSaturatedSum / 6.0f);
   EXPECT_FLOAT_EQ(got.level0[4 * v + 1], 1.0f);
   EXPECT_FLOAT_EQ(got.level0[4 * v + 3], 1.0f);
+}
+
+// ---- facing coverage ----
+
+// A floor quad (two triangles, normal +y, inside voxel layer y = 2 of R = 16) and a large
+// sphere: the floor's voxels have coverage only in the half facing +y (128 per triangle
+// touching the voxel), the sphere's in all six halves alike; both exactly as the reference.
+// Through the mip builder, level 1 over the floor is opaque for cones travelling -y (onto its
+// front), transparent for cones leaving its front (+y) and for cones along x or z (edge-on);
+// the sphere's level-1 voxel at its centre is opaque in all six directions.
+TEST(Voxelize, FacingCoverageOfAWallAndASphere) {
+  const uint32_t R = 16;
+  const float y = -0.7f;  // grid (y + 1) * 8 = 2.4: layer 2
+  Scene s;
+  s.assets = base_assets();
+  const float e = 0.45f;  // grid 4.4 .. 11.6: voxels 4 .. 11 along x and z
+  s.assets.meshes.push_back(make_mesh({{{-e, y, -e}, {-e, y, e}, {e, y, -e}, 2},
+                                       {{-e, y, e}, {e, y, e}, {e, y, -e}, 2}}));
+  add_instance(s, 0, glm::mat4(1.0f));
+  const glm::vec3 centre(0.3f, 0.4f, 0.2f);  // grid (10.4, 11.2, 9.6); radius 2.4 voxels
+  s.frame.spheres.push_back(sphere(centre, 0.3f, {1.0f, 0.5f, 0.25f}));
+  s.frame.light.intensity = glm::vec3(0.0f);
+  s.upload();
+  const std::vector<float> shadow = uniform_shadow(1.0f);
+  passes::VoxelizePass pass(context(), programs());
+  render::VoxelVolume vol;
+  const VoxelGpuOutput got = run_voxelize(pass, vol, *s.gpu, shadow, R);
+  const VoxelSums want = reference_voxelize(reference_input(s.assets, s.frame, *s.gpu, shadow), R);
+  EXPECT_EQ(sums_mismatches(got.sums, want, "sums"), 0u);
+  for (uint32_t slack : want.facing_slack) EXPECT_EQ(slack, 0u);  // axis-aligned: no ties
+
+  auto index = [&](int x, int yy, int z) { return (size_t(z) * R + size_t(yy)) * R + size_t(x); };
+  size_t floor_voxels = 0, sphere_voxels = 0;
+  for (int z = 0; z < int(R); ++z)
+    for (int yy = 0; yy < int(R); ++yy)
+      for (int x = 0; x < int(R); ++x) {
+        const size_t v = index(x, yy, z);
+        const uint32_t opacity = word(got.sums, v, 3);
+        EXPECT_EQ(word(got.sums, v, 7), 0u);
+        if (opacity == 0) {
+          for (size_t w = 4; w < 7; ++w) EXPECT_EQ(word(got.sums, v, w), 0u) << "empty voxel " << v;
+          continue;
+        }
+        if (yy == 2) {  // the floor: one opaque contribution per triangle touching the voxel
+          ++floor_voxels;
+          const uint32_t triangles = opacity >> 16;
+          EXPECT_EQ(opacity & 0xFFFFu, 0u);
+          EXPECT_TRUE(triangles == 1u || triangles == 2u);
+          EXPECT_EQ(word(got.sums, v, 4), 0u) << "x coverage at " << v;
+          EXPECT_EQ(word(got.sums, v, 5), 128u * triangles) << "+y only at " << v;
+          EXPECT_EQ(word(got.sums, v, 6), 0u) << "z coverage at " << v;
+          EXPECT_TRUE(x >= 4 && x <= 11 && z >= 4 && z <= 11) << x << " " << z;
+        } else {  // the sphere: the same coverage in all six halves (0 where a < 1/256)
+          const uint32_t w4 = word(got.sums, v, 4);
+          sphere_voxels += w4 != 0u;
+          EXPECT_EQ(w4 & 0xFFFFu, w4 >> 16);
+          EXPECT_EQ(word(got.sums, v, 5), w4);
+          EXPECT_EQ(word(got.sums, v, 6), w4);
+        }
+      }
+  EXPECT_EQ(floor_voxels, 64u);  // x, z = 4 .. 11
+  EXPECT_GT(sphere_voxels, 100u);
+  // The voxel at the sphere's centre: one full contribution in each half.
+  EXPECT_EQ(word(got.sums, index(10, 11, 9), 4), 128u | (128u << 16));
+
+  // Level 1 from this volume.
+  passes::VoxelMipsPass mips(context(), programs());
+  rp::cl::Profiler profiler(context().queue);
+  mips.run(profiler, vol);
+  std::vector<float> chain(vol.chain_elements() * 4);
+  context().queue.enqueueReadBuffer(vol.chain, CL_TRUE, 0, chain.size() * sizeof(float),
+                                    chain.data());
+  const uint32_t n = R / 2;
+  auto level1_alpha = [&](uint32_t dir, uint32_t x, uint32_t yy, uint32_t z) {
+    return chain[4 * (size_t(rp::gpu::rp_voxel_offset(R, 1, dir)) + (z * n + yy) * n + x) + 3];
+  };
+  for (uint32_t z = 2; z <= 5; ++z)
+    for (uint32_t x = 2; x <= 5; ++x) {  // parents whose children all hold the floor
+      EXPECT_EQ(level1_alpha(RP_DIR_NEG_Y, x, 1, z), 1.0f) << "onto the floor's front";
+      for (uint32_t dir : {RP_DIR_POS_Y, RP_DIR_POS_X, RP_DIR_NEG_X, RP_DIR_POS_Z, RP_DIR_NEG_Z})
+        EXPECT_EQ(level1_alpha(dir, x, 1, z), 0.0f) << "direction " << dir;
+    }
+  for (uint32_t dir = 0; dir < 6; ++dir)
+    EXPECT_EQ(level1_alpha(dir, 5, 5, 4), 1.0f) << "sphere, direction " << dir;
 }
 
 TEST(Voxelize, EmptySceneGivesEmptyVolume) {
