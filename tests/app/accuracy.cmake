@@ -8,17 +8,20 @@
 # ---- The thresholds: change them here and only here. ----------------------------------------
 # Fractions (0.15 = 15 %) as bench --accuracy takes them, PSNR in dB; README "Accuracy against
 # the ground truth" says what each measures.
-# Measured at 128x128, 512 spp on the 2-core PoCL machine by the issue 14 plumbing session
-# (before the multi-bounce kernels landed); set by issue 14. For now they are loose (they pass
-# whatever the kernels do); tighten them from the figures of a run after the kernel work.
+# Measured at 128x128, 512 spp on the 2-core PoCL machine after issue 14's kernels (one-sided
+# voxels, exit term, near-field occlusion, bounce grid): fast/N L1 0.119, bias -0.032, worst
+# region floor_in_shadow +0.377 (at this size the fast mode's 4x4 blocks are 32 across the
+# frame and blur the contact shadows: the 360x360 report has +0.09), fast/1 L1 0.126, PSNR with
+# TAA 32.2 dB, all four wall-hue signs right. The limits leave room for the truths' own noise
+# (about 5 % of the L1 at 512 spp) and for other OpenCL devices; set by issue 14.
 set(RP_ACCURACY_SIZE 128)                 # pixels per side
 set(RP_ACCURACY_SPP 512)                  # the truths' samples per pixel
-set(RP_ACCURACY_MAX_INDIRECT_L1 1.0)      # --max-indirect-l1: fast/N, image
-set(RP_ACCURACY_MAX_INDIRECT_BIAS 1.0)    # --max-indirect-bias: fast/N, image
-set(RP_ACCURACY_MAX_REGION_BIAS 1.0)      # --max-region-bias: fast/N, every named region
-set(RP_ACCURACY_MAX_INDIRECT_L1_SINGLE 1.0)  # --max-indirect-l1-single: fast/1, image
-set(RP_ACCURACY_MIN_PSNR_TAA 0)           # --min-psnr-taa (dB): fast/N with TAA, final image
-set(RP_ACCURACY_REQUIRE_WALL_HUE OFF)     # --require-wall-hue: side-wall sign(R - B) as truth
+set(RP_ACCURACY_MAX_INDIRECT_L1 0.16)     # --max-indirect-l1: fast/N, image
+set(RP_ACCURACY_MAX_INDIRECT_BIAS 0.08)   # --max-indirect-bias: fast/N, image
+set(RP_ACCURACY_MAX_REGION_BIAS 0.45)     # --max-region-bias: fast/N, every named region
+set(RP_ACCURACY_MAX_INDIRECT_L1_SINGLE 0.17)  # --max-indirect-l1-single: fast/1, image
+set(RP_ACCURACY_MIN_PSNR_TAA 30)          # --min-psnr-taa (dB): fast/N with TAA, final image
+set(RP_ACCURACY_REQUIRE_WALL_HUE ON)      # --require-wall-hue: side-wall sign(R - B) as truth
 # ------------------------------------------------------------------------------------------------
 
 set(rp_accuracy_dir ${CMAKE_BINARY_DIR}/tests/accuracy)
