@@ -64,11 +64,6 @@ inline float4 mips_facing(float4 iso, uint4 facing, uint dir) {
   return iso.w > 0.0f ? (float4)(iso.xyz * (c / iso.w), c) : (float4)(0.0f);
 }
 
-/* Level 1 voxel p in all six directions from level 0 (isotropic values and facing coverage;
- * accum: the voxelizer's scratch, RP_VOXEL_ACCUM_WORDS uints per voxel). */
-inline void mips_build_level1(__global float4* chain, __global const uint4* accum,
-                              uint resolution, int3 p);
-
 /* The parent value seen along direction `dir` (see the header). */
 inline float4 mips_composite(const float4 c[8], uint dir) {
   const uint axis = dir >> 1;          /* RP_DIR_POS_X, NEG_X = 0, 1; Y: 2, 3; Z: 4, 5 */
@@ -86,6 +81,8 @@ inline float4 mips_composite(const float4 c[8], uint dir) {
   return ((col[0] + col[1]) + (col[2] + col[3])) * 0.25f;
 }
 
+/* Level 1 voxel p in all six directions from level 0 (isotropic values and facing coverage;
+ * accum: the voxelizer's scratch, RP_VOXEL_ACCUM_WORDS uints per voxel, facing in words 4-6). */
 inline void mips_build_level1(__global float4* chain, __global const uint4* accum,
                               uint resolution, int3 p) {
   const uint n = resolution >> 1, child_n = resolution;
@@ -95,7 +92,7 @@ inline void mips_build_level1(__global float4* chain, __global const uint4* accu
   const uint x0 = 2u * (uint)p.x, y0 = 2u * (uint)p.y, z0 = 2u * (uint)p.z;
   for (uint i = 0; i < 8u; ++i) {
     const uint x = x0 + (i & 1u), y = y0 + ((i >> 1) & 1u), z = z0 + (i >> 2);
-    facing[i] = accum[2u * ((z * child_n + y) * child_n + x) + 1u];
+    facing[i] = accum[(RP_VOXEL_ACCUM_WORDS / 4u) * ((z * child_n + y) * child_n + x) + 1u];
   }
   const uint dst = rp_voxel_index(p, n);
   for (uint dir = 0; dir < 6u; ++dir) {

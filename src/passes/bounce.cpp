@@ -1,7 +1,5 @@
 #include "passes/bounce.h"
 
-#include <vector>
-
 #include "cl/error.h"
 
 namespace rp::passes {
@@ -23,12 +21,9 @@ void BouncePass::run(rp::cl::Profiler& profiler, const render::VoxelVolume& volu
     resolution_ = volume.resolution;
     valid_ = false;
   }
-  if (!valid_) {  // start from nothing: every face age 0
-    const std::vector<float> zeros(faces * 4, 0.0f);
-    context_->queue.enqueueWriteBuffer(grid_, CL_FALSE, 0, zeros.size() * sizeof(float),
-                                       zeros.data());
-    context_->queue.finish();
-  }
+  if (!valid_)  // start from nothing: every face age 0 (in queue order, no host copy)
+    context_->queue.enqueueFillBuffer(grid_, cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}}, 0,
+                                      faces * 4 * sizeof(float));
   gather_.setArg(0, volume.chain);
   gather_.setArg(1, cl_uint(volume.resolution));
   gather_.setArg(2, cl_uint(volume.levels));
