@@ -62,6 +62,20 @@ enum class VisibilityBackend { kRaster, kEmbree };
 //               measured against.
 enum class Quality { kFast, kReference };
 
+// How the lamp's shadow is filtered (issue 15, --shadows). The lamp is a half sphere of radius
+// 0.35, so real shadows are soft: their penumbra widens with the blocker-receiver distance.
+//   kHard: one shadow-map tap per pixel (a point lamp's hard shadow);
+//   kPcf:  percentage-closer filtering over a fixed radius (soft edges of one width);
+//   kPcss: percentage-closer soft shadows: blocker search, then PCF over the penumbra width
+//          the blocker and receiver depths and the lamp size imply;
+//   kVssm: variance soft shadow maps: filtered depth moments, Chebyshev bound.
+enum class ShadowMode { kHard, kPcf, kPcss, kVssm };
+
+// How surface textures are sampled (issue 15, --texture-filter): kBilinear: the base level only
+// (aliases when minified); kTrilinear: mipmaps, level from the pixel's UV footprint;
+// kAnisotropic: several trilinear taps along the footprint's major axis.
+enum class TextureFilter { kBilinear, kTrilinear, kAnisotropic };
+
 // The light pass's linear images read back to the host (Renderer::read_components): RGB, 3
 // floats per pixel, row-major, top row first; background pixels 0. The same meaning as
 // rp::truth::PathTracedImage's fields: combined = the light pass's HDR output (direct + indirect
@@ -84,6 +98,8 @@ struct RenderSettings {
   // receive (passes/bounce.h), which converges to all bounces (the truth at 64).
   uint32_t bounces = kDefaultBounces;
   static constexpr uint32_t kDefaultBounces = 64;
+  ShadowMode shadows = ShadowMode::kPcss;                  // --shadows (issue 15)
+  TextureFilter texture_filter = TextureFilter::kTrilinear;  // --texture-filter (issue 15)
 };
 
 class Renderer {
