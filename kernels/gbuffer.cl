@@ -18,12 +18,14 @@
  * scalars and evaluated for all lanes with vector arithmetic, the lanes showing it keep the
  * result. A span showing one primitive costs one evaluation for RP_SPAN pixels. Velocity and
  * depth are computed once per span from the selected positions. Textures are sampled per lane
- * from linear float4 texels (gbuffer_decode_texels; the same values as the RGBA8 sRGB table
- * decode, so filtering is unchanged).
+ * from linear float4 texels of every mip level (gbuffer_decode_texels; the same values as the
+ * RGBA8 sRGB table decode), filtered as `texture_filter` says (shared/types.h
+ * RP_TEXTURE_FILTER_*): bilinear in level 0; trilinear or anisotropic from the pixel's
+ * analytic footprint ("texture footprint" below).
  *
  * Maths per pixel (unchanged from the per-pixel version): mesh: object-space position, normal
  * and uv interpolated with (b0, b1, b2), position through model and prev_model, normal through
- * normal_matrix and normalised, albedo = material albedo * bilinear texture (wrap), emission =
+ * normal_matrix and normalised, albedo = material albedo * texture (wrap), emission =
  * material emission. Sphere: the camera ray through the pixel centre (unprojected with the
  * jittered inv_view_proj the rasterizer used) hits the sphere, the discriminant clamped at 0 so
  * a rasterized silhouette pixel whose exact ray just misses takes the closest point; the
@@ -64,6 +66,127 @@ __kernel void gbuffer_decode_texels(__global const uint* texels, __global float4
     eb = select(eb, (rp_spanf)(emi_.z), group);              \
   } while (0)
 
+/* ---- texture footprint (filtered modes) ----
+ *
+ * The footprint of a pixel is the texture-coordinate change of one pixel step right and one
+ * down, taken analytically from the primitive (no differences between neighbouring pixels,
+ * which fail at edges): the ray through the pixel, cam + t d with d = f0 + x fx + y fy linear
+ * in the pixel position, meets the triangle's plane n . (p - w0) = 0 at t = n.(w0 - cam) / n.d,
+ * so (ray differentials) dp/dx = t (fx - d (n.fx) / (n.d)), likewise for y; texel coordinates
+ * are linear on the plane, (u W, v H) = grad . p + const, with the gradients of the
+ * barycentrics b1 = ((d11 e1 - d01 e2) . q) / D, b2 = ((d00 e2 - d01 e1) . q) / D (q = p - w0,
+ * e1, e2 the world edges, dij = ei . ej, D = d00 d11 - d01^2). The jittered matrix the
+ * visibility buffer was made with gives the rays; the jitter moves the pixel centre, not its
+ * size, so the footprint stays one pixel. Spheres have no texture (Sphere has no texture
+ * field), so only triangles need it. */
+
+/* Camera position, the far-plane point of lane 0's pixel centre minus the camera, and the
+ * far-plane steps of one pixel right and down. On the far plane (NDC z = 1) the inverse
+ * perspective's w does not depend on x or y (its first two columns have w = 0, jitter
+ * included), so the point is linear in the pixel position. */
+inline void gb_footprint_rays(__global const FrameConstants* frame, uint x0, uint y,
+                              float3* cam, float3* f0, float3* fx, float3* fy) {
+  const rp_mat4 inv = frame->inv_view_proj;
+  const float w = (float)frame->width, h = (float)frame->height;
+  const float ndc_x = ((float)x0 + 0.5f) / w * 2.0f - 1.0f;
+  const float ndc_y = 1.0f - ((float)y + 0.5f) / h * 2.0f;
+  const float4 far = inv.c[0] * ndc_x + inv.c[1] * ndc_y + inv.c[2] + inv.c[3];
+  const float inv_w = 1.0f / far.w;
+  *cam = frame->camera_pos.xyz;
+  *f0 = far.xyz * inv_w - *cam;
+  *fx = inv.c[0].xyz * (2.0f / w * inv_w);
+  *fy = inv.c[1].xyz * (-2.0f / h * inv_w);
+}
+
+/* Texel-coordinate derivatives per pixel (level-0 texels: u * tw, v * th) of the span's lanes
+ * on the triangle (object vertices p0..p2 with u in .w, v0..v2, model matrix m). */
+inline void gb_uv_derivatives(rp_mat4 m, float4 p0, float4 p1, float4 p2, float v0, float v1,
+                              float v2, float tw, float th, float3 cam, float3 f0, float3 fx,
+                              float3 fy, rp_spanf* dudx, rp_spanf* dvdx, rp_spanf* dudy,
+                              rp_spanf* dvdy) {
+  const float3 w0 = m.c[0].xyz * p0.x + m.c[1].xyz * p0.y + m.c[2].xyz * p0.z + m.c[3].xyz;
+  const float3 w1 = m.c[0].xyz * p1.x + m.c[1].xyz * p1.y + m.c[2].xyz * p1.z + m.c[3].xyz;
+  const float3 w2 = m.c[0].xyz * p2.x + m.c[1].xyz * p2.y + m.c[2].xyz * p2.z + m.c[3].xyz;
+  const float3 e1 = w1 - w0, e2 = w2 - w0, nrm = cross(e1, e2);
+  const float d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2);
+  const float inv_den = 1.0f / (d00 * d11 - d01 * d01);
+  const float3 gb1 = (e1 * d11 - e2 * d01) * inv_den, gb2 = (e2 * d00 - e1 * d01) * inv_den;
+  const float3 gu = (gb1 * (p1.w - p0.w) + gb2 * (p2.w - p0.w)) * tw;
+  const float3 gv = (gb1 * (v1 - v0) + gb2 * (v2 - v0)) * th;
+  const float k = dot(nrm, w0 - cam);
+  const float n_fx = dot(nrm, fx), n_fy = dot(nrm, fy);
+  const float u_fx = dot(gu, fx), u_fy = dot(gu, fy), v_fx = dot(gv, fx), v_fy = dot(gv, fy);
+  const rp_spanf nd = dot(nrm, f0) + RP_LANES * n_fx;  /* n . d per lane */
+  const rp_spanf t = k / nd;
+  const rp_spanf ud = dot(gu, f0) + RP_LANES * u_fx, vd = dot(gv, f0) + RP_LANES * v_fx;
+  const rp_spanf sx = n_fx / nd, sy = n_fy / nd;
+  *dudx = t * (u_fx - ud * sx);
+  *dvdx = t * (v_fx - vd * sx);
+  *dudy = t * (u_fy - ud * sy);
+  *dvdy = t * (v_fy - vd * sy);
+}
+
+/* Most taps of the anisotropic filter (the footprint's axis ratio is capped there). */
+#ifndef RP_TEXTURE_MAX_ANISO
+#define RP_TEXTURE_MAX_ANISO 4
+#endif
+
+/* Filtered texture lookup of the textured lanes, multiplied into (r, g, b):
+ *   trilinear:   lod = log2(max(|d/dx|, |d/dy|)) in level-0 texels (the larger axis: no
+ *                aliasing, blurs along the minor axis when the footprint is stretched);
+ *   anisotropic: N taps along the major axis at offsets ((i + 0.5) / N - 0.5) * major, each
+ *                trilinear at lod = log2(max(minor, major / N)), averaged; N is the largest
+ *                ceil(major / minor) of the span's textured lanes, at most RP_TEXTURE_MAX_ANISO
+ *                (one loop for the span: lanes needing fewer taps get overlapping ones). */
+inline void gb_texture_filtered(__global const float4* linear_texels,
+                                __global const TextureInfo* textures, uint filter,
+                                rp_spani textured, rp_spanu index, rp_spani w0, rp_spani h0,
+                                rp_spani levels, rp_spanf u, rp_spanf v, rp_spanf dudx,
+                                rp_spanf dvdx, rp_spanf dudy, rp_spanf dvdy, int n, rp_spanf* r,
+                                rp_spanf* g, rp_spanf* b) {
+  const rp_spanf lx2 = dudx * dudx + dvdx * dvdx, ly2 = dudy * dudy + dvdy * dvdy;
+  const rp_spanf major2 = fmax(lx2, ly2);
+  rp_spanf cr, cg, cb;
+  if (filter != RP_TEXTURE_FILTER_ANISOTROPIC) {
+    rp_span_texture_trilinear(linear_texels, textures, textured, index, w0, h0, levels,
+                              0.5f * log2(major2), u, v, n, &cr, &cg, &cb);
+  } else {
+    const rp_spanf minor2 = fmin(lx2, ly2);
+    /* ceil(major / minor) capped (a zero minor axis or NaN gives the cap) */
+    const rp_spanf want = ceil(fmin(sqrt(major2 / minor2), (float)RP_TEXTURE_MAX_ANISO));
+    float lw[RP_SPAN];
+    int on[RP_SPAN];
+    RP_SPAN_TO_ARRAY(want, lw);
+    RP_SPAN_TO_ARRAY(textured, on);
+    float taps = 1.0f;
+    for (int i = 0; i < n; ++i)
+      if (on[i]) taps = fmax(taps, lw[i]);
+    const rp_spanf lod = 0.5f * log2(fmax(minor2, major2 / (taps * taps)));
+    /* the major axis in uv units (texel derivatives over the level-0 size) */
+    const rp_spani along_y = ly2 > lx2;
+    const rp_spanf au = select(dudx, dudy, along_y) / rp_span_convert_float(w0);
+    const rp_spanf av = select(dvdx, dvdy, along_y) / rp_span_convert_float(h0);
+    cr = cg = cb = 0.0f;
+    const int count = (int)taps;
+    for (int i = 0; i < count; ++i) {
+      const float o = ((float)i + 0.5f) / taps - 0.5f;
+      rp_spanf tr, tg, tb;
+      rp_span_texture_trilinear(linear_texels, textures, textured, index, w0, h0, levels, lod,
+                                u + o * au, v + o * av, n, &tr, &tg, &tb);
+      cr += tr;
+      cg += tg;
+      cb += tb;
+    }
+    const float inv_taps = 1.0f / taps;
+    cr *= inv_taps;
+    cg *= inv_taps;
+    cb *= inv_taps;
+  }
+  *r = select(*r, *r * cr, textured);
+  *g = select(*g, *g * cg, textured);
+  *b = select(*b, *b * cb, textured);
+}
+
 __kernel void gbuffer_resolve(__global const FrameConstants* frame,
                               __global const uint* ids,
                               __global const float* bary,
@@ -78,7 +201,8 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
                               __global float* out_normal_depth,
                               __global float* out_position,
                               __global float* out_emission,
-                              __global float* out_velocity) {
+                              __global float* out_velocity,
+                              uint texture_filter) {
   const uint width = frame->width, height = frame->height;
   /* 1D range over the spans in row-major order, so consecutive work-items read and write
    * consecutive memory. */
@@ -106,7 +230,18 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
   rp_spani textured = (rp_spani)(0);          /* lanes with a texture: its size and offset */
   rp_spanf tex_w = 1.0f, tex_h = 1.0f;
   rp_spanu tex_offset = (rp_spanu)(0u);
+  rp_spanu tex_index = (rp_spanu)(0u);         /* TextureInfo of the lane (mip levels) */
+  rp_spani tex_levels = (rp_spani)(1);
+  /* Texture-coordinate derivatives per pixel step (texels of level 0; "v" texels = v * height):
+   * (du/dx, dv/dx), (du/dy, dv/dy), the pixel's footprint (filtered modes only). */
+  rp_spanf dudx = 0.0f, dvdx = 0.0f, dudy = 0.0f, dvdy = 0.0f;
   bool any_texture = false;
+  const bool mipmapped = texture_filter != RP_TEXTURE_FILTER_BILINEAR;
+  /* Camera rays for the footprint, set up at the span's first textured primitive: the ray
+   * through lane i's pixel centre is cam + t (f0 + i fx) (f0: lane 0's point on the far plane
+   * minus the camera, fx / fy: the far-plane step of one pixel right / down). */
+  bool have_footprint = false;
+  float3 cam = (float3)(0.0f), f0 = cam, fx = cam, fy = cam;
   rp_spani covered = (rp_spani)(0);
 
   /* Camera rays through the lane centres, set up when the span has a sphere. */
@@ -163,8 +298,24 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
         tex_w = select(tex_w, (rp_spanf)((float)info->width), group);
         tex_h = select(tex_h, (rp_spanf)((float)info->height), group);
         tex_offset = select(tex_offset, (rp_spanu)(info->offset), group);
+        tex_index = select(tex_index, (rp_spanu)(texture), group);
+        tex_levels = select(tex_levels, (rp_spani)((int)info->levels), group);
         textured |= group;
         any_texture = true;
+        if (mipmapped) {
+          if (!have_footprint) {
+            gb_footprint_rays(frame, x0, y, &cam, &f0, &fx, &fy);
+            have_footprint = true;
+          }
+          rp_spanf ddx_u, ddx_v, ddy_u, ddy_v;
+          gb_uv_derivatives(m, p0, p1, p2, n0.w, n1.w, n2.w, (float)info->width,
+                            (float)info->height, cam, f0, fx, fy, &ddx_u, &ddx_v, &ddy_u,
+                            &ddy_v);
+          dudx = select(dudx, ddx_u, group);
+          dvdx = select(dvdx, ddx_v, group);
+          dudy = select(dudy, ddy_u, group);
+          dvdy = select(dvdy, ddy_v, group);
+        }
       }
       covered |= group;
     } else if (a != RP_ID_NONE && (a & RP_ID_SPHERE_BIT) != 0u &&
@@ -219,9 +370,15 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
     }
   }
 
-  if (any_texture)
-    rp_span_texture_linear(linear_texels, textured, tex_w, tex_h, tex_offset, tu, tv, n, &ar,
-                           &ag, &ab);
+  if (any_texture) {
+    if (!mipmapped)
+      rp_span_texture_linear(linear_texels, textured, tex_w, tex_h, tex_offset, tu, tv, n, &ar,
+                             &ag, &ab);
+    else
+      gb_texture_filtered(linear_texels, textures, texture_filter, textured, tex_index,
+                          rp_span_convert_int(tex_w), rp_span_convert_int(tex_h), tex_levels,
+                          tu, tv, dudx, dvdx, dudy, dvdy, n, &ar, &ag, &ab);
+  }
 
   /* Velocity and linear depth of the covered lanes. */
   const float fw = (float)width, fh = (float)height;

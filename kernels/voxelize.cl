@@ -29,7 +29,8 @@
  * Triangles with a zero normal (degenerate) are skipped.
  *   Radiance: L = albedo * texture(uv) * I * direct(p) + emission at one surface point p,
  *   direct light with ONE shadow-map lookup (common/direct_light.h), the geometric normal
- *   oriented like the vertex normals, the texture sampled bilinearly at p's interpolated uv.
+ *   oriented like the vertex normals, the texture sampled at p's interpolated uv, trilinear
+ *   in the mip level matching the voxel size (vx_texture_level).
  *   Where p is: a triangle whose bounding box spans at most RP_VOXEL_SMALL_TRIANGLE voxels
  *   along every axis (tumbler triangles up to R = 128) is shaded once at its centroid for all
  *   its voxels (the voxel then averages its triangles, which filters the texture better than
@@ -402,10 +403,45 @@ typedef struct {
   float3 nsum;             /* normal_matrix * (n0 + n1 + n2): orients the geometric normal */
   float2 uv0, uv1, uv2;
   float3 albedo, emission;
-  float tex_w, tex_h;      /* texture size (texels), 0 without a texture */
-  uint tex_offset;
+  float tex_w, tex_h;      /* mip level l0's size (texels), 0 without a texture */
+  uint tex_offset;         /* its first texel */
+  float tex_w1, tex_h1;    /* level l1 = min(l0 + 1, last level) (vx_texture_level) */
+  uint tex_offset1;
+  float tex_frac;          /* weight of level l1 */
   int valid;               /* an existing triangle of an instance that is voxelized */
 } VxTriangle;
+
+/* The mip level matching the voxel (trilinear, per triangle): the footprint of one voxel side
+ * s = 2 / R on the triangle's plane in texels, taken along the plane's direction of largest
+ * texture stretch (the larger-axis rule of the screen's trilinear filter): with gu, gv the
+ * world-space gradients of the texel coordinates (u W, v H) on the plane, the largest squared
+ * stretch is the larger eigenvalue of [[gu.gu, gu.gv], [gu.gv, gv.gv]], and
+ * lod = log2(s * sqrt(that)), clamped to [0, levels - 1]. Fills r's level fields. */
+inline void vx_texture_level(__global const TextureInfo* info, uint resolution, VxTriangle* r) {
+  const float3 e1 = r->w1 - r->w0, e2 = r->w2 - r->w0;
+  const float d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2);
+  const float inv_den = 1.0f / (d00 * d11 - d01 * d01);
+  const float3 gb1 = (e1 * d11 - e2 * d01) * inv_den, gb2 = (e2 * d00 - e1 * d01) * inv_den;
+  const float tw = (float)info->width, th = (float)info->height;
+  const float3 gu = (gb1 * (r->uv1.x - r->uv0.x) + gb2 * (r->uv2.x - r->uv0.x)) * tw;
+  const float3 gv = (gb1 * (r->uv1.y - r->uv0.y) + gb2 * (r->uv2.y - r->uv0.y)) * th;
+  const float a = dot(gu, gu), b = dot(gu, gv), c = dot(gv, gv);
+  const float h = 0.5f * (a - c);
+  const float stretch2 = 0.5f * (a + c) + sqrt(h * h + b * b);
+  const float voxel = 2.0f / (float)resolution;
+  float lod = 0.5f * log2(stretch2 * (voxel * voxel));
+  /* NaN (degenerate triangle) -> 0 */
+  lod = fmin(fmax(lod, 0.0f), (float)(info->levels - 1u));
+  const float l0f = floor(lod);
+  const uint l0 = (uint)l0f, l1 = min(l0 + 1u, info->levels - 1u);
+  r->tex_w = (float)max(info->width >> l0, 1u);
+  r->tex_h = (float)max(info->height >> l0, 1u);
+  r->tex_offset = info->level_offset[l0];
+  r->tex_w1 = (float)max(info->width >> l1, 1u);
+  r->tex_h1 = (float)max(info->height >> l1, 1u);
+  r->tex_offset1 = info->level_offset[l1];
+  r->tex_frac = lod - l0f;
+}
 
 /* Triangle number `flat` in the instance-major order of all instance triangles. `hint`: an
  * instance at or before the triangle's (the walk starts there); receives the triangle's. */
@@ -414,7 +450,7 @@ inline VxTriangle vx_fetch_triangle(__global const Instance* instances, uint ins
                                     __global const Triangle* triangles,
                                     __global const Material* materials,
                                     __global const TextureInfo* textures, uint flat,
-                                    uint* hint_index, uint* hint_start) {
+                                    uint* hint_index, uint* hint_start, uint resolution) {
   VxTriangle r;
   r.valid = 0;
   /* Instances are few (a box, a lamp, the tumblers): a linear walk is cheap. */
@@ -449,14 +485,9 @@ inline VxTriangle vx_fetch_triangle(__global const Instance* instances, uint ins
   __global const Material* mat = materials + tri.w;
   r.albedo = mat->albedo.xyz;
   r.emission = mat->emission.xyz;
-  r.tex_w = r.tex_h = 0.0f;
-  r.tex_offset = 0u;
-  if (mat->texture != RP_TEXTURE_NONE) {
-    __global const TextureInfo* info = textures + mat->texture;
-    r.tex_w = (float)info->width;
-    r.tex_h = (float)info->height;
-    r.tex_offset = info->offset;
-  }
+  r.tex_w = r.tex_h = r.tex_w1 = r.tex_h1 = r.tex_frac = 0.0f;
+  r.tex_offset = r.tex_offset1 = 0u;
+  if (mat->texture != RP_TEXTURE_NONE) vx_texture_level(textures + mat->texture, resolution, &r);
   r.valid = -1;
   return r;
 }
@@ -472,8 +503,8 @@ typedef struct {
   VxVec uv_u, uv_v;         /* (uv0, uv1, uv2) u and v components */
   VxVec albedo, emission;
   rp_spani textured;
-  rp_spanf tex_w, tex_h;
-  rp_spanu tex_offset;
+  rp_spanf tex_w, tex_h, tex_w1, tex_h1, tex_frac;
+  rp_spanu tex_offset, tex_offset1;
   rp_spani origin[3];       /* first voxel of the range per axis */
   VxAxes axes;              /* relative to origin */
   rp_spani dom;             /* dominant axis 0, 1, 2 */
@@ -487,8 +518,8 @@ typedef struct {
   float nsum[3][RP_SPAN];
   float uv[6][RP_SPAN];  /* u0, u1, u2, v0, v1, v2 */
   float albedo[3][RP_SPAN], emission[3][RP_SPAN];
-  float tex_w[RP_SPAN], tex_h[RP_SPAN];
-  uint tex_offset[RP_SPAN];
+  float tex_w[RP_SPAN], tex_h[RP_SPAN], tex_w1[RP_SPAN], tex_h1[RP_SPAN], tex_frac[RP_SPAN];
+  uint tex_offset[RP_SPAN], tex_offset1[RP_SPAN];
   int valid[RP_SPAN];
 } VxLanes;
 
@@ -505,6 +536,10 @@ inline void vx_put_lane(VxLanes* L, int i, const VxTriangle* t) {
   L->tex_w[i] = t->tex_w;
   L->tex_h[i] = t->tex_h;
   L->tex_offset[i] = t->tex_offset;
+  L->tex_w1[i] = t->tex_w1;
+  L->tex_h1[i] = t->tex_h1;
+  L->tex_offset1[i] = t->tex_offset1;
+  L->tex_frac[i] = t->tex_frac;
   L->valid[i] = t->valid;
 }
 
@@ -513,8 +548,8 @@ inline void vx_put_empty_lane(VxLanes* L, int i) {
   VxTriangle t;
   t.w0 = t.w1 = t.w2 = t.nsum = t.albedo = t.emission = (float3)(0.0f);
   t.uv0 = t.uv1 = t.uv2 = (float2)(0.0f);
-  t.tex_w = t.tex_h = 0.0f;
-  t.tex_offset = 0u;
+  t.tex_w = t.tex_h = t.tex_w1 = t.tex_h1 = t.tex_frac = 0.0f;
+  t.tex_offset = t.tex_offset1 = 0u;
   t.valid = 0;
   vx_put_lane(L, i, &t);
 }
@@ -592,6 +627,10 @@ inline void vx_setup(const VxLanes* L, uint resolution, VxSetup* s) {
   s->tex_w = VX_SPAN(L->tex_w);
   s->tex_h = VX_SPAN(L->tex_h);
   s->tex_offset = VX_SPAN(L->tex_offset);
+  s->tex_w1 = VX_SPAN(L->tex_w1);
+  s->tex_h1 = VX_SPAN(L->tex_h1);
+  s->tex_offset1 = VX_SPAN(L->tex_offset1);
+  s->tex_frac = VX_SPAN(L->tex_frac);
   s->textured = s->tex_w > 0.0f;
 
   const VxVec extent = vxv_sub(hi, lo);
@@ -612,8 +651,15 @@ inline VxVec vx_albedo_span(const VxSetup* s, __global const float4* linear_texe
   if (vx_lane_any(textured, n_lanes)) {
     const rp_spanf u = (s->uv_u.x * b0 + s->uv_u.y * b1) + s->uv_u.z * b2;
     const rp_spanf v = (s->uv_v.x * b0 + s->uv_v.y * b1) + s->uv_v.z * b2;
-    rp_span_texture_linear(linear_texels, textured, s->tex_w, s->tex_h, s->tex_offset, u, v,
-                           n_lanes, &r, &g, &b);
+    /* trilinear: levels l0 and l1 of the triangle (vx_texture_level), mixed by tex_frac */
+    rp_spanf r0, g0, b0_, r1, g1, b1_;
+    rp_span_texture_sample(linear_texels, textured, s->tex_w, s->tex_h, s->tex_offset, u, v,
+                           n_lanes, &r0, &g0, &b0_);
+    rp_span_texture_sample(linear_texels, textured, s->tex_w1, s->tex_h1, s->tex_offset1, u, v,
+                           n_lanes, &r1, &g1, &b1_);
+    r = select(r, r * mix(r0, r1, s->tex_frac), textured);
+    g = select(g, g * mix(g0, g1, s->tex_frac), textured);
+    b = select(b, b * mix(b0_, b1_, s->tex_frac), textured);
   }
   return vxv(r, g, b);
 }
@@ -845,7 +891,7 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
     if (i < n) {
       const VxTriangle t = vx_fetch_triangle(instances, instance_count, vertices, triangles,
                                              materials, textures, first + (uint)i, &hint_index,
-                                             &hint_start);
+                                             &hint_start, resolution);
       vx_put_lane(&lanes, i, &t);
     } else {
       vx_put_empty_lane(&lanes, i);
@@ -930,7 +976,8 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
   const int R = (int)resolution;
   uint hint_index = 0, hint_start = 0;
   const VxTriangle t = vx_fetch_triangle(instances, instance_count, vertices, triangles,
-                                         materials, textures, flat, &hint_index, &hint_start);
+                                         materials, textures, flat, &hint_index, &hint_start,
+                                         resolution);
   /* A cached instance's samples are shaded by voxelize_cached; recording passes handle only
    * cached instances. */
   if (hint_index >= instance_count) return;

@@ -1,18 +1,19 @@
-/* Bilinear texture sampling for pixel spans (common/span.h; OpenCL C only), used by gbuffer.cl
- * and voxelize.cl. Textures are read as linear float4 texels (each pass decodes the scene's
- * RGBA8 sRGB texels once with rp_unpack_rgba8_srgb), so a tap is one load and the filtering is
- * vector arithmetic across the span. */
+/* Bilinear and trilinear (mipmapped) texture sampling for pixel spans (common/span.h; OpenCL C
+ * only), used by gbuffer.cl and voxelize.cl; needs shared/types.h (TextureInfo). Textures are
+ * read as linear float4 texels (each pass decodes the scene's RGBA8 sRGB texels, every mip
+ * level, once with rp_unpack_rgba8_srgb), so a tap is one load and the filtering is vector
+ * arithmetic across the span. */
 #ifndef ROLYPOLY_COMMON_SPAN_TEXTURE_H
 #define ROLYPOLY_COMMON_SPAN_TEXTURE_H
 
 #include "common/span.h"
 
-/* Texture sampling of the lanes with `textured` set (bilinear, wrap; the arithmetic of
+/* Bilinear texture sample (wrap) of the lanes with `textured` set (the arithmetic of
  * sampling.h's rp_texture_bilinear on linear texels, so the same values): (w, h) the lane's
- * texture size in texels, offset its first texel in linear_texels (float4 linear rgba per
- * texel, rows top to bottom). Multiplies (r, g, b) of those lanes in place; lanes >= n and
- * untextured lanes read nothing. */
-inline void rp_span_texture_linear(__global const float4* linear_texels, rp_spani textured,
+ * texture (or mip level) size in texels, offset its first texel in linear_texels (float4 linear
+ * rgba per texel, rows top to bottom). Writes the sampled (r, g, b); untextured lanes and lanes
+ * >= n read nothing and get 0. */
+inline void rp_span_texture_sample(__global const float4* linear_texels, rp_spani textured,
                                    rp_spanf w, rp_spanf h, rp_spanu offset, rp_spanf u,
                                    rp_spanf v, int n, rp_spanf* r, rp_spanf* g, rp_spanf* b) {
   /* Untextured lanes sample (0, 0) of a 1x1 texture (ignored below): no NaN reaches the int
@@ -66,13 +67,72 @@ inline void rp_span_texture_linear(__global const float4* linear_texels, rp_span
   rp_span_from_float4s(q10, &r10, &g10, &b10);
   rp_span_from_float4s(q01, &r01, &g01, &b01);
   rp_span_from_float4s(q11, &r11, &g11, &b11);
-  rp_spanf c[3];
-  c[0] = mix(mix(r00, r10, fx), mix(r01, r11, fx), fy);
-  c[1] = mix(mix(g00, g10, fx), mix(g01, g11, fx), fy);
-  c[2] = mix(mix(b00, b10, fx), mix(b01, b11, fx), fy);
-  *r = select(*r, *r * c[0], textured);
-  *g = select(*g, *g * c[1], textured);
-  *b = select(*b, *b * c[2], textured);
+  *r = mix(mix(r00, r10, fx), mix(r01, r11, fx), fy);
+  *g = mix(mix(g00, g10, fx), mix(g01, g11, fx), fy);
+  *b = mix(mix(b00, b10, fx), mix(b01, b11, fx), fy);
+}
+
+/* Bilinear texture sampling of the lanes with `textured` set at level 0 (arguments as
+ * rp_span_texture_sample): multiplies (r, g, b) of those lanes in place. */
+inline void rp_span_texture_linear(__global const float4* linear_texels, rp_spani textured,
+                                   rp_spanf w, rp_spanf h, rp_spanu offset, rp_spanf u,
+                                   rp_spanf v, int n, rp_spanf* r, rp_spanf* g, rp_spanf* b) {
+  rp_spanf cr, cg, cb;
+  rp_span_texture_sample(linear_texels, textured, w, h, offset, u, v, n, &cr, &cg, &cb);
+  *r = select(*r, *r * cr, textured);
+  *g = select(*g, *g * cg, textured);
+  *b = select(*b, *b * cb, textured);
+}
+
+/* Mip level `level` (per lane, 0 .. levels - 1) of the lanes' textures (index into the
+ * TextureInfo table, level-0 size w0 x h0): its size max(1, w0 >> level) x max(1, h0 >> level)
+ * and its first texel from the table (shared/types.h), sampled bilinearly into (r, g, b). */
+inline void rp_span_texture_level(__global const float4* linear_texels,
+                                  __global const TextureInfo* textures, rp_spani textured,
+                                  rp_spanu index, rp_spani w0, rp_spani h0, rp_spani level,
+                                  rp_spanf u, rp_spanf v, int n, rp_spanf* r, rp_spanf* g,
+                                  rp_spanf* b) {
+  rp_spani wl = w0 >> level, hl = h0 >> level;
+  wl = select(wl, (rp_spani)(1), wl < 1);
+  hl = select(hl, (rp_spani)(1), hl < 1);
+  uint idx[RP_SPAN], off[RP_SPAN];
+  int lvl[RP_SPAN], on[RP_SPAN];
+  RP_SPAN_TO_ARRAY(index, idx);
+  RP_SPAN_TO_ARRAY(level, lvl);
+  RP_SPAN_TO_ARRAY(textured, on);
+  for (int i = 0; i < RP_SPAN; ++i)
+    off[i] = (i < n && on[i]) ? textures[idx[i]].level_offset[lvl[i]] : 0u;
+  rp_span_texture_sample(linear_texels, textured, rp_span_convert_float(wl),
+                         rp_span_convert_float(hl), RP_SPAN_FROM_ARRAY(off), u, v, n, r, g, b);
+}
+
+/* Trilinear sample at level of detail `lod` (per lane; clamped to [0, levels - 1]): bilinear
+ * in levels floor(lod) and the next, mixed by the fraction. The second level is read only when
+ * some lane's fraction is not 0 (magnified or clamped lanes need one level). */
+inline void rp_span_texture_trilinear(__global const float4* linear_texels,
+                                      __global const TextureInfo* textures, rp_spani textured,
+                                      rp_spanu index, rp_spani w0, rp_spani h0, rp_spani levels,
+                                      rp_spanf lod, rp_spanf u, rp_spanf v, int n, rp_spanf* r,
+                                      rp_spanf* g, rp_spanf* b) {
+  const rp_spanf top = rp_span_convert_float(levels - 1);
+  lod = fmin(fmax(lod, 0.0f), top); /* NaN (a degenerate footprint) becomes 0 */
+  lod = select((rp_spanf)(0.0f), lod, textured);
+  const rp_spanf l0f = floor(lod);
+  const rp_spanf frac = lod - l0f;
+  const rp_spani l0 = rp_span_convert_int(l0f);
+  rp_span_texture_level(linear_texels, textures, textured, index, w0, h0, l0, u, v, n, r, g, b);
+  const rp_spani blend = textured & (frac > 0.0f);
+  int lb[RP_SPAN];
+  RP_SPAN_TO_ARRAY(blend, lb);
+  bool any_blend = false;
+  for (int i = 0; i < n; ++i) any_blend = any_blend || lb[i] != 0;
+  if (!any_blend) return;
+  rp_spanf r1, g1, b1;
+  rp_span_texture_level(linear_texels, textures, blend, index, w0, h0, l0 + 1, u, v, n, &r1,
+                        &g1, &b1);
+  *r = select(*r, mix(*r, r1, frac), blend);
+  *g = select(*g, mix(*g, g1, frac), blend);
+  *b = select(*b, mix(*b, b1, frac), blend);
 }
 
 #endif

@@ -103,12 +103,25 @@ typedef struct {
   rp_uint pad0, pad1, pad2;
 } Material;
 
-/* Where a texture lives in the shared RGBA8 texel buffer (one uint per texel, R in the low byte,
- * sRGB-encoded; rows top to bottom, u right, v up so texel row = (1 - v) * height). 16 bytes. */
+/* gbuffer_resolve's texture filter (render::TextureFilter, --texture-filter). */
+#define RP_TEXTURE_FILTER_BILINEAR 0u
+#define RP_TEXTURE_FILTER_TRILINEAR 1u
+#define RP_TEXTURE_FILTER_ANISOTROPIC 2u
+
+/* Most mip levels of a texture (up to 32768 texels a side). */
+#define RP_TEXTURE_MAX_LEVELS 16
+
+/* Where a texture and its mip chain live in the shared RGBA8 texel buffer (one uint per texel,
+ * R in the low byte, sRGB-encoded rgb, linear alpha; rows top to bottom, u right, v up so texel
+ * row = (1 - v) * height). Level k is max(1, width >> k) x max(1, height >> k) texels at
+ * level_offset[k] (absolute texel index; the levels of a texture lie back to back, level 0 at
+ * `offset`), k < levels = floor(log2(max(width, height))) + 1; unused entries are 0. Built on
+ * the host (src/render/texture_mips.h). 80 bytes. */
 typedef struct {
-  rp_uint offset; /* first texel */
-  rp_uint width, height;
-  rp_uint pad;
+  rp_uint offset; /* first texel of level 0 (= level_offset[0]) */
+  rp_uint width, height; /* level 0 */
+  rp_uint levels;
+  rp_uint level_offset[RP_TEXTURE_MAX_LEVELS];
 } TextureInfo;
 
 #ifndef __OPENCL_VERSION__

@@ -166,6 +166,17 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
          },
          quality_help)
       ->check(CLI::IsMember(qualities));
+  cmd->add_option_function<std::string>(
+         "--texture-filter",
+         [&common](const std::string& name) {
+           common.texture_filter = name == "bilinear"    ? render::TextureFilter::kBilinear
+                                   : name == "anisotropic" ? render::TextureFilter::kAnisotropic
+                                                           : render::TextureFilter::kTrilinear;
+         },
+         "surface textures: bilinear (level 0 only: aliases in the distance), trilinear "
+         "(default: mipmaps, level from the pixel's footprint) or anisotropic (up to 4 "
+         "trilinear taps along the footprint's long axis: sharper at grazing angles)")
+      ->check(CLI::IsMember({"bilinear", "trilinear", "anisotropic"}));
   auto off = [&](const char* name, bool& flag, const char* what) {
     cmd->add_flag_callback(name, [&flag] { flag = false; }, what);
   };

@@ -102,6 +102,7 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   settings.effects = options.effects;
   settings.visibility = options.visibility;
   settings.quality = options.quality;
+  settings.texture_filter = options.texture_filter;
   settings.bounces = options.bounces;
   // Before any allocation or kernel build: a size the device cannot hold fails at once, with
   // what would fit.

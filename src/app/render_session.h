@@ -27,6 +27,7 @@ struct CommonOptions {
   passes::DebugViewSettings view;  // --view / --level / --dir (render, run): what is shown
   render::VisibilityBackend visibility = render::VisibilityBackend::kRaster;  // --visibility
   render::Quality quality = render::Quality::kFast;                          // --quality
+  render::TextureFilter texture_filter = render::TextureFilter::kTrilinear;  // --texture-filter
   // --quality pathtraced (render, bench): the host path tracer (truth/path_tracer.h) instead of
   // the OpenCL renderer; `quality` is then unused. --spp is its samples per pixel.
   bool pathtraced = false;

@@ -12,8 +12,11 @@ namespace rp::passes {
 class GBufferPass {
  public:
   GBufferPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+  // texture_filter: RP_TEXTURE_FILTER_BILINEAR, _TRILINEAR or _ANISOTROPIC
+  // (kernels/shared/types.h; render::TextureFilter).
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
-           const render::VisibilityBuffer& vis, render::GBuffer& out);
+           const render::VisibilityBuffer& vis, render::GBuffer& out,
+           uint32_t texture_filter);
 
  private:
   // Decodes scene.texels into linear_texels_ when the scene's texel buffer is not the one

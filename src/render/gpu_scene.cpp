@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "cl/error.h"
+#include "render/texture_mips.h"
 
 namespace rp::render {
 namespace {
@@ -19,10 +21,6 @@ template <typename T>
   if (!data.empty())
     queue.enqueueWriteBuffer(buffer, CL_TRUE, 0, data.size() * sizeof(T), data.data());
   return buffer;
-}
-
-uint32_t pack_rgba8(const uint8_t* p) {
-  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
 }
 
 }  // namespace
@@ -94,11 +92,23 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
   std::vector<uint32_t> texel_data;
   std::vector<gpu::TextureInfo> infos;
   for (const scene::Texture& t : assets.textures) {
-    if (t.width <= 0 || t.height <= 0 || t.rgba.size() != size_t(t.width) * t.height * 4)
-      throw rp::cl::Error("texture '" + t.name + "' has inconsistent size");
-    infos.push_back({static_cast<uint32_t>(texel_data.size()), static_cast<uint32_t>(t.width),
-                     static_cast<uint32_t>(t.height), 0});
-    for (size_t i = 0; i < t.rgba.size(); i += 4) texel_data.push_back(pack_rgba8(&t.rgba[i]));
+    // Each texture with its mip chain (render/texture_mips.h), levels back to back.
+    MipChain chain;
+    try {
+      chain = build_mip_chain(t);
+    } catch (const std::invalid_argument& e) {
+      throw rp::cl::Error(e.what());
+    }
+    gpu::TextureInfo info{};
+    const uint32_t base = static_cast<uint32_t>(texel_data.size());
+    info.offset = base;
+    info.width = static_cast<uint32_t>(t.width);
+    info.height = static_cast<uint32_t>(t.height);
+    info.levels = static_cast<uint32_t>(chain.levels.size());
+    for (size_t k = 0; k < chain.levels.size(); ++k)
+      info.level_offset[k] = base + chain.levels[k].offset;
+    infos.push_back(info);
+    texel_data.insert(texel_data.end(), chain.texels.begin(), chain.texels.end());
   }
 
   vertices = upload(context, queue_, verts);

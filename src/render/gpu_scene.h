@@ -55,8 +55,10 @@ class GpuScene {
   ::cl::Buffer vertices;   // gpu::Vertex[vertex_count]
   ::cl::Buffer triangles;  // gpu::Triangle[triangle_count], vertex indices are global
   ::cl::Buffer materials;  // gpu::Material[]
-  ::cl::Buffer texels;     // uint RGBA8 (R in the low byte), all textures back to back
-  ::cl::Buffer textures;   // gpu::TextureInfo[]
+  // uint RGBA8 (R in the low byte, sRGB rgb), all textures back to back, each followed by its
+  // mip levels (render/texture_mips.h; 4/3 of the level-0 texels for square textures).
+  ::cl::Buffer texels;
+  ::cl::Buffer textures;   // gpu::TextureInfo[]: size, level count and level offsets
   uint32_t vertex_count = 0, triangle_count = 0;
   std::vector<MeshRange> meshes;
 

@@ -36,6 +36,16 @@ bool out_of_device_memory(cl_int err) {
                       "shows each device's memory");
 }
 
+// The gbuffer kernel's code for a texture filter (kernels/shared/types.h).
+uint32_t texture_filter_code(TextureFilter filter) {
+  switch (filter) {
+    case TextureFilter::kBilinear: return RP_TEXTURE_FILTER_BILINEAR;
+    case TextureFilter::kTrilinear: return RP_TEXTURE_FILTER_TRILINEAR;
+    case TextureFilter::kAnisotropic: return RP_TEXTURE_FILTER_ANISOTROPIC;
+  }
+  return RP_TEXTURE_FILTER_TRILINEAR;
+}
+
 }  // namespace
 
 Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
@@ -139,7 +149,8 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     else
       visibility_->render(profiler_, *scene_, vis_);
     visibility_->render_shadow(profiler_, *scene_, shadow_);
-    gbuffer_pass_->run(profiler_, *scene_, vis_, gbuffer_);
+    gbuffer_pass_->run(profiler_, *scene_, vis_, gbuffer_,
+                       texture_filter_code(settings_.texture_filter));
     build_voxels();
     const bool split = passes::needs_light_components(view_.view) || keep_components_;
     passes::LowResIndirect low_res;

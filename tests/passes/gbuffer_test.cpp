@@ -221,7 +221,7 @@ void check_resolve(uint32_t W, uint32_t H) {
   gb.resize(ctx.context, W, H);
   rp::cl::Profiler profiler(ctx.queue);
   rp::passes::GBufferPass pass(ctx, rp::test::programs());
-  pass.run(profiler, scene, vis, gb);
+  pass.run(profiler, scene, vis, gb, RP_TEXTURE_FILTER_BILINEAR);
   EXPECT_EQ(profiler.collect().count("gbuffer"), 1u);
 
   auto albedo = read<float>(gb.albedo, n * 4), normal_depth = read<float>(gb.normal_depth, n * 4),
@@ -348,7 +348,7 @@ TEST(GBuffer, VelocityOfKnownMotion) {
   gb.resize(ctx.context, kW, kH);
   rp::cl::Profiler profiler(ctx.queue);
   rp::passes::GBufferPass pass(ctx, rp::test::programs());
-  pass.run(profiler, scene, vis, gb);
+  pass.run(profiler, scene, vis, gb, RP_TEXTURE_FILTER_BILINEAR);
   auto velocity = read<float>(gb.velocity, 2);
   auto position = read<float>(gb.position, 4);
   EXPECT_NEAR(position[0], centre.x, 1e-6);
