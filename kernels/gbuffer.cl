@@ -23,6 +23,10 @@
  * RP_TEXTURE_FILTER_*): bilinear in level 0; trilinear or anisotropic from the pixel's
  * analytic footprint ("texture footprint" below).
  *
+ * Test variant -DRP_GBUFFER_LOD_OUT (tests/passes/texture_filter_test.cpp): position.w =
+ * log2 |dT/dx|, velocity.x = log2 |dT/dy| (T: level-0 texel coordinates, the footprint's two
+ * axes), emission.w = the level of detail the filter used (before clamping); 0 where untextured.
+ *
  * Maths per pixel (unchanged from the per-pixel version): mesh: object-space position, normal
  * and uv interpolated with (b0, b1, b2), position through model and prev_model, normal through
  * normal_matrix and normalised, albedo = material albedo * texture (wrap), emission =
@@ -143,13 +147,14 @@ inline void gb_texture_filtered(__global const float4* linear_texels,
                                 rp_spani textured, rp_spanu index, rp_spani w0, rp_spani h0,
                                 rp_spani levels, rp_spanf u, rp_spanf v, rp_spanf dudx,
                                 rp_spanf dvdx, rp_spanf dudy, rp_spanf dvdy, int n, rp_spanf* r,
-                                rp_spanf* g, rp_spanf* b) {
+                                rp_spanf* g, rp_spanf* b, rp_spanf* lod_used) {
   const rp_spanf lx2 = dudx * dudx + dvdx * dvdx, ly2 = dudy * dudy + dvdy * dvdy;
   const rp_spanf major2 = fmax(lx2, ly2);
   rp_spanf cr, cg, cb;
   if (filter != RP_TEXTURE_FILTER_ANISOTROPIC) {
+    *lod_used = 0.5f * log2(major2);
     rp_span_texture_trilinear(linear_texels, textures, textured, index, w0, h0, levels,
-                              0.5f * log2(major2), u, v, n, &cr, &cg, &cb);
+                              *lod_used, u, v, n, &cr, &cg, &cb);
   } else {
     const rp_spanf minor2 = fmin(lx2, ly2);
     /* ceil(major / minor) capped (a zero minor axis or NaN gives the cap) */
@@ -162,6 +167,7 @@ inline void gb_texture_filtered(__global const float4* linear_texels,
     for (int i = 0; i < n; ++i)
       if (on[i]) taps = fmax(taps, lw[i]);
     const rp_spanf lod = 0.5f * log2(fmax(minor2, major2 / (taps * taps)));
+    *lod_used = lod;
     /* the major axis in uv units (texel derivatives over the level-0 size) */
     const rp_spani along_y = ly2 > lx2;
     const rp_spanf au = select(dudx, dudy, along_y) / rp_span_convert_float(w0);
@@ -370,6 +376,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
     }
   }
 
+  rp_spanf lod_used = 0.0f;
   if (any_texture) {
     if (!mipmapped)
       rp_span_texture_linear(linear_texels, textured, tex_w, tex_h, tex_offset, tu, tv, n, &ar,
@@ -377,8 +384,9 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
     else
       gb_texture_filtered(linear_texels, textures, texture_filter, textured, tex_index,
                           rp_span_convert_int(tex_w), rp_span_convert_int(tex_h), tex_levels,
-                          tu, tv, dudx, dvdx, dudy, dvdy, n, &ar, &ag, &ab);
+                          tu, tv, dudx, dvdx, dudy, dvdy, n, &ar, &ag, &ab, &lod_used);
   }
+
 
   /* Velocity and linear depth of the covered lanes. */
   const float fw = (float)width, fh = (float)height;
@@ -398,7 +406,20 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
 
   rp_store_span_quads_f(ar, ag, ab, one, out_albedo + 4 * pixel, n);
   rp_store_span_quads_f(nx, ny, nz, depth, out_normal_depth + 4 * pixel, n);
+#ifdef RP_GBUFFER_LOD_OUT
+  const rp_spanf log_x = 0.5f * log2(dudx * dudx + dvdx * dvdx);
+  const rp_spanf log_y = 0.5f * log2(dudy * dudy + dvdy * dvdy);
+  rp_store_span_quads_f(px, py, pz, select((rp_spanf)(0.0f), log_x, textured),
+                        out_position + 4 * pixel, n);
+  rp_store_span_quads_f(er, eg, eb, select((rp_spanf)(0.0f), lod_used, textured),
+                        out_emission + 4 * pixel, n);
+  rp_store_span_pairs_f(select((rp_spanf)(0.0f), log_y, textured), vy, out_velocity + 2 * pixel,
+                        n);
+#else
   rp_store_span_quads_f(px, py, pz, one, out_position + 4 * pixel, n);
   rp_store_span_quads_f(er, eg, eb, (rp_spanf)(0.0f), out_emission + 4 * pixel, n);
+#endif
+#ifndef RP_GBUFFER_LOD_OUT
   rp_store_span_pairs_f(vx, vy, out_velocity + 2 * pixel, n);
+#endif
 }

@@ -24,9 +24,11 @@ int choose_span(const rp::cl::Context& context) {
 
 }  // namespace
 
-GBufferPass::GBufferPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
+GBufferPass::GBufferPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+                         const std::string& extra_options)
     : context_(&context), span_(choose_span(context)) {
-  const std::string options = "-DRP_SPAN=" + std::to_string(span_);
+  std::string options = "-DRP_SPAN=" + std::to_string(span_);
+  if (!extra_options.empty()) options += " " + extra_options;
   resolve_ = programs.kernel("gbuffer.cl", "gbuffer_resolve", options);
   decode_ = programs.kernel("gbuffer.cl", "gbuffer_decode_texels", options);
 }

@@ -2,6 +2,8 @@
 // velocity. Pass name "gbuffer".
 #pragma once
 
+#include <string>
+
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
 #include "render/frame_buffers.h"
@@ -11,7 +13,9 @@ namespace rp::passes {
 
 class GBufferPass {
  public:
-  GBufferPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+  // extra_options: further -D options for the kernels (tests: -DRP_GBUFFER_LOD_OUT).
+  GBufferPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+              const std::string& extra_options = "");
   // texture_filter: RP_TEXTURE_FILTER_BILINEAR, _TRILINEAR or _ANISOTROPIC
   // (kernels/shared/types.h; render::TextureFilter).
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,

@@ -6,6 +6,7 @@
 
 #include "passes/voxelize.h"
 #include "render/frame_buffers.h"
+#include "render/texture_mips.h"
 #include "render/voxel_volume.h"
 #include "support/cl_fixture.h"
 
@@ -169,6 +170,27 @@ RefF3 texture_bilinear(const scene::Texture& t, float u, float v) {
   return mix(mix(texel(x0, y0), texel(x1, y0), fx), mix(texel(x0, y1), texel(x1, y1), fx), fy);
 }
 
+// Bilinear in mip level `level` of `chain` (vx_texture_level's level fields + the sample).
+RefF3 level_bilinear(const render::MipChain& chain, uint32_t level, float u, float v) {
+  const render::MipLevel& l = chain.levels.at(level);
+  scene::Texture t{"level", int(l.width), int(l.height), {}};
+  for (uint32_t i = 0; i < l.width * l.height; ++i) {
+    const uint32_t texel = chain.texels[l.offset + i];
+    for (int c = 0; c < 4; ++c) t.rgba.push_back(uint8_t(texel >> (8 * c)));
+  }
+  return texture_bilinear(t, u, v);
+}
+
+// vx_texture_level + the trilinear mix of vx_albedo_span.
+RefF3 texture_trilinear(const render::MipChain& chain, float lod, float u, float v) {
+  const uint32_t levels = uint32_t(chain.levels.size());
+  const float l0f = std::floor(lod);
+  const uint32_t l0 = uint32_t(l0f), l1 = std::min(l0 + 1, levels - 1);
+  const float frac = lod - l0f;
+  const RefF3 a = level_bilinear(chain, l0, u, v), b = level_bilinear(chain, l1, u, v);
+  return a + (b - a) * frac;
+}
+
 // ---- accumulation (vx_fixed, vx_accumulate) ----
 uint32_t fixed(float value) {
   return uint32_t(std::fmin(std::fmax(value, 0.0f), render::kVoxelMaxContribution) *
@@ -265,6 +287,18 @@ void voxelize_triangle(const VoxelRefInput& in, const gpu::Instance& inst,
   const float d00 = dot(e01, e01), d01 = dot(e01, e02), d11 = dot(e02, e02);
   const float inv_denom = 1.0f / (d00 * d11 - d01 * d01);
   const scene::Material& mat = in.assets->materials.at(mesh.materials[t]);
+  render::MipChain chain;
+  float lod = 0.0f;
+  if (mat.texture >= 0) {
+    const scene::Texture& tex = in.assets->textures.at(size_t(mat.texture));
+    chain = render::build_mip_chain(tex);
+    lod = reference_texture_lod({w0, w1, w2},
+                                {RefF3{v[0]->uv.x, v[0]->uv.y, 0.0f},
+                                 RefF3{v[1]->uv.x, v[1]->uv.y, 0.0f},
+                                 RefF3{v[2]->uv.x, v[2]->uv.y, 0.0f}},
+                                uint32_t(tex.width), uint32_t(tex.height),
+                                uint32_t(chain.levels.size()), R);
+  }
   // vx_shade at barycentrics (b0, b1, b2).
   auto shade = [&](float b0, float b1, float b2) {
     const RefF3 p = (w0 + e01 * b1) + e02 * b2;
@@ -272,7 +306,7 @@ void voxelize_triangle(const VoxelRefInput& in, const gpu::Instance& inst,
     if (mat.texture >= 0) {
       const float u = (v[0]->uv.x * b0 + v[1]->uv.x * b1) + v[2]->uv.x * b2;
       const float vv = (v[0]->uv.y * b0 + v[1]->uv.y * b1) + v[2]->uv.y * b2;
-      albedo = albedo * texture_bilinear(in.assets->textures.at(size_t(mat.texture)), u, vv);
+      albedo = albedo * texture_trilinear(chain, lod, u, vv);
     }
     return albedo * direct(in, p, nw) + f3(mat.emission);
   };
@@ -367,6 +401,23 @@ void voxelize_sphere(const VoxelRefInput& in, const gpu::Sphere& s, VoxelSums& s
 }
 
 }  // namespace
+
+float reference_texture_lod(const std::array<RefF3, 3>& world, const std::array<RefF3, 3>& uv,
+                            uint32_t width, uint32_t height, uint32_t levels,
+                            uint32_t resolution) {
+  const RefF3 e1 = world[1] - world[0], e2 = world[2] - world[0];
+  const float d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2);
+  const float inv_den = 1.0f / (d00 * d11 - d01 * d01);
+  const RefF3 gb1 = (e1 * d11 - e2 * d01) * inv_den, gb2 = (e2 * d00 - e1 * d01) * inv_den;
+  const RefF3 gu = (gb1 * (uv[1].x - uv[0].x) + gb2 * (uv[2].x - uv[0].x)) * float(width);
+  const RefF3 gv = (gb1 * (uv[1].y - uv[0].y) + gb2 * (uv[2].y - uv[0].y)) * float(height);
+  const float a = dot(gu, gu), b = dot(gu, gv), c = dot(gv, gv);
+  const float h = 0.5f * (a - c);
+  const float stretch2 = 0.5f * (a + c) + std::sqrt(h * h + b * b);
+  const float voxel = 2.0f / float(resolution);
+  const float lod = 0.5f * std::log2(stretch2 * (voxel * voxel));
+  return std::fmin(std::fmax(lod, 0.0f), float(levels - 1));
+}
 
 std::array<RefF3, 3> reference_grid_triangle(const gpu::rp_mat4& model,
                                              const std::array<RefF3, 3>& object,

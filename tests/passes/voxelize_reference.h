@@ -74,6 +74,12 @@ struct VoxelRefInput {
 
 VoxelSums reference_voxelize(const VoxelRefInput& in, uint32_t resolution);
 
+// vx_texture_level's level of detail of a textured triangle (world vertices, uv in .x / .y, a
+// width x height texture of `levels` mip levels) in an R^3 volume, clamped to the levels.
+float reference_texture_lod(const std::array<RefF3, 3>& world, const std::array<RefF3, 3>& uv,
+                            uint32_t width, uint32_t height, uint32_t levels,
+                            uint32_t resolution);
+
 // Level 0 from the sums (voxelize_resolve): x y z w per voxel.
 std::vector<float> reference_resolve(const VoxelSums& sums);
 
