@@ -69,6 +69,21 @@ TEST(BadInput, ZeroNegativeAndNonNumericSizesSayWhatIsAllowed) {
   }
 }
 
+// --texture-filter (render, run, bench) takes three names; anything else is a usage error that
+// names the option and the choices, before any device work.
+TEST(BadInput, UnknownTextureFilterNamesTheChoices) {
+  for (const char* command : {"render", "run", "bench"}) {
+    for (const char* value : {"nearest", "Trilinear", "''"}) {
+      const std::string out = std::string(command) == "render" ? " --out /nonexistent/x" : "";
+      CommandResult r =
+          run_rolypoly(std::string(command) + " --texture-filter " + value + out);
+      EXPECT_EQ(r.exit_code, 2) << command << " " << value << "\n" << r.err;
+      EXPECT_TRUE(Contains(r.err, "rolypoly: error: --texture-filter")) << command;
+      EXPECT_TRUE(Contains(r.err, "{bilinear,trilinear,anisotropic}")) << command;
+    }
+  }
+}
+
 // The estimate counts the buffers; checked here against sums written out by hand.
 TEST(BadInput, DeviceMemoryEstimateCountsEveryBuffer) {
   // 160x160: 25600 pixels; 10 raster tiles (16 px) per side = 100; 8 blur tiles (20 px) = 64.

@@ -109,6 +109,17 @@ TEST(ParseCli, UsageErrorsAndHelp) {
   EXPECT_NE(help.message.find("--bloom-strength"), std::string::npos);
 }
 
+TEST(ParseCli, TextureFilterReachesTheCommonOptions) {
+  EXPECT_EQ(command({"render"}).common.texture_filter, render::TextureFilter::kTrilinear);
+  EXPECT_EQ(command({"render", "--texture-filter", "bilinear"}).common.texture_filter,
+            render::TextureFilter::kBilinear);
+  EXPECT_EQ(command({"run", "--texture-filter", "anisotropic"}).common.texture_filter,
+            render::TextureFilter::kAnisotropic);
+  EXPECT_EQ(command({"bench", "--texture-filter", "trilinear"}).common.texture_filter,
+            render::TextureFilter::kTrilinear);
+  EXPECT_EQ(exit_of({"bench", "--texture-filter", "box"}).exit_code, 2);
+}
+
 TEST(ParseCli, PathtracedQualityAndItsOptions) {
   const ParsedCommand defaults = command({"render"});
   EXPECT_FALSE(defaults.common.pathtraced);
