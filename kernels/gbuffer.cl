@@ -130,6 +130,14 @@ inline void gb_uv_derivatives(rp_mat4 m, float4 p0, float4 p1, float4 p2, float 
   *dvdy = t * (v_fy - vd * sy);
 }
 
+/* Added to every filtered level of detail: 0 = the standard rule. An experiment knob (-D):
+ * against the path tracer's pixel-averaged albedo (720, demo frame 0, no TAA) a bias of -0.5 to
+ * -1 scores higher (trilinear's kernel, a level's box times the bilinear tent, is about 0.8
+ * levels wider than the pixel's box) at the price of more shimmer; see k15 notes. */
+#ifndef RP_TEXTURE_LOD_BIAS
+#define RP_TEXTURE_LOD_BIAS 0.0f
+#endif
+
 /* Most taps of the anisotropic filter (the footprint's axis ratio is capped there). */
 #ifndef RP_TEXTURE_MAX_ANISO
 #define RP_TEXTURE_MAX_ANISO 4
@@ -152,7 +160,7 @@ inline void gb_texture_filtered(__global const float4* linear_texels,
   const rp_spanf major2 = fmax(lx2, ly2);
   rp_spanf cr, cg, cb;
   if (filter != RP_TEXTURE_FILTER_ANISOTROPIC) {
-    *lod_used = 0.5f * log2(major2);
+    *lod_used = 0.5f * log2(major2) + RP_TEXTURE_LOD_BIAS;
     rp_span_texture_trilinear(linear_texels, textures, textured, index, w0, h0, levels,
                               *lod_used, u, v, n, &cr, &cg, &cb);
   } else {
@@ -166,7 +174,8 @@ inline void gb_texture_filtered(__global const float4* linear_texels,
     float taps = 1.0f;
     for (int i = 0; i < n; ++i)
       if (on[i]) taps = fmax(taps, lw[i]);
-    const rp_spanf lod = 0.5f * log2(fmax(minor2, major2 / (taps * taps)));
+    const rp_spanf lod =
+        0.5f * log2(fmax(minor2, major2 / (taps * taps))) + RP_TEXTURE_LOD_BIAS;
     *lod_used = lod;
     /* the major axis in uv units (texel derivatives over the level-0 size) */
     const rp_spani along_y = ly2 > lx2;
