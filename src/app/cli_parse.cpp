@@ -187,10 +187,16 @@ std::string check_bounces(const CommonOptions& common) {
 }
 
 // --spp (render and bench): the path tracer's samples per pixel (and bench --accuracy's truth).
+// --lamp: the path tracer's lamp model (truth/path_tracer.h).
 void add_spp(CLI::App* cmd, CommonOptions& common) {
   cmd->add_option("--spp", common.spp, "--quality pathtraced: samples per pixel")
       ->capture_default_str()
       ->transform(whole_number(1, 1000000));
+  cmd->add_option_function<std::string>(
+         "--lamp", [&common](const std::string& v) { common.area_lamp = v == "area"; },
+         "--quality pathtraced: point (default: the real-time passes' point light) or area (the "
+         "lamp cap emits: soft shadows)")
+      ->check(CLI::IsMember({"point", "area"}));
 }
 
 // --bounces (render, run and bench): every mode's bounce count, so each can be compared with
@@ -215,6 +221,7 @@ void add_bounces(CLI::App* cmd, CommonOptions& common) {
 std::string check_pathtrace(const CLI::App* cmd, const CommonOptions& common) {
   if (!common.pathtraced) {
     if (cmd->count("--spp")) return "--spp applies to --quality pathtraced";
+    if (cmd->count("--lamp")) return "--lamp applies to --quality pathtraced";
     return check_bounces(common);
   }
   for (const char* name : {"--device", "--visibility", "--shadow-size", "--bloom-strength"})

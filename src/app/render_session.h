@@ -31,6 +31,7 @@ struct CommonOptions {
   // the OpenCL renderer; `quality` is then unused. --spp is its samples per pixel.
   bool pathtraced = false;
   uint32_t spp = 256;  // --spp: samples per pixel, 1..1000000
+  bool area_lamp = false;  // --lamp area (pathtraced): the emitting cap (truth::LampModel::kArea)
   // --bounces (every mode): the path tracer's gathers (0..1000) or the real-time modes'
   // render::RenderSettings::bounces (1..1000: 1 = single bounce, >= 2 = multi-bounce, which
   // converges to all bounces). Default 64, "all bounces", in every mode.
