@@ -36,6 +36,9 @@ struct CommonOptions {
   // render::RenderSettings::bounces (1..1000: 1 = single bounce, >= 2 = multi-bounce, which
   // converges to all bounces). Default 64, "all bounces", in every mode.
   uint32_t bounces = render::RenderSettings::kDefaultBounces;
+  // Issue 15: RenderSettings::shadows and ::texture_filter (bench --accuracy loops over them).
+  render::ShadowMode shadows = render::RenderSettings{}.shadows;
+  render::TextureFilter texture_filter = render::RenderSettings{}.texture_filter;
 };
 
 // Not copyable or movable: the program cache and renderer point at the context.

@@ -283,6 +283,24 @@ void area_lamp_fraction(const TraceScene& scene, const Surface& s, uint32_t stra
 
 }  // namespace
 
+float area_lamp_unshadowed(const scene::PointLight& light, glm::vec3 p, glm::vec3 n,
+                           uint32_t strata) {
+  const LampCap cap = lamp_cap(light);
+  const glm::vec3 to_centre = cap.centre - p;
+  const float dist = glm::length(to_centre);
+  if (dist <= cap.radius * 1.0001f || strata == 0) return 0.0f;
+  const float omc = sphere_cone_omc(cap.radius, dist);
+  double seen = 0.0;
+  for (uint32_t i = 0; i < strata; ++i)
+    for (uint32_t j = 0; j < strata; ++j) {
+      const glm::vec3 wi = sample_cone(to_centre / dist, omc, (float(i) + 0.5f) / float(strata),
+                                       (float(j) + 0.5f) / float(strata));
+      const float c = glm::dot(n, wi);
+      if (c > 0.0f && cap.hit(p, wi) >= 0.0f) seen += c;
+    }
+  return float(seen * 2.0 * double(omc) / (double(strata) * strata) / cap.projected_radius2());
+}
+
 struct PathTracer::Impl {
   explicit Impl(const scene::SceneAssets& a) : assets(a) {}
   TraceAssets assets;

@@ -113,6 +113,14 @@ struct PrimaryHit {
   bool hit() const { return instance != kNone || sphere != kNone; }
 };
 
+// The area lamp's unshadowed light factor at point p with unit normal n, as
+// PrimaryHit::lamp_unshadowed (no shadow casters): the integral of cos over the cap's solid
+// angle / (pi a^2), from strata^2 stratified directions; the area lamp's direct light there is
+// albedo * I * this when nothing blocks it (the point model's counterpart is cos / d^2 *
+// falloff).
+float area_lamp_unshadowed(const scene::PointLight& light, glm::vec3 p, glm::vec3 n,
+                           uint32_t strata = 64);
+
 // Called between rows from the thread that called render(): rows finished so far, rows in all.
 using ProgressFn = std::function<void(uint32_t done, uint32_t total)>;
 
