@@ -469,10 +469,9 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
                 "albedo view (%s, one unjittered frame) against the truth's pixel-averaged "
                 "albedo: %.2f dB image, %.2f dB floor (jittered average: %.2f / %.2f dB)\n",
                 texture_filter_name(common.texture_filter),
-                dm["albedo_psnr_db"]["image"].get<double>(),
-                dm["albedo_psnr_db"]["floor"].get<double>(),
-                dm["albedo_psnr_db_jittered_average"]["image"].get<double>(),
-                dm["albedo_psnr_db_jittered_average"]["floor"].get<double>());
+                dnum(dm["albedo_psnr_db"]["image"]), dnum(dm["albedo_psnr_db"]["floor"]),
+                dnum(dm["albedo_psnr_db_jittered_average"]["image"]),
+                dnum(dm["albedo_psnr_db_jittered_average"]["floor"]));
   table += line;
 
   ensure_directory(o.out_dir);
