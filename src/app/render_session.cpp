@@ -102,7 +102,6 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   settings.effects = options.effects;
   settings.visibility = options.visibility;
   settings.quality = options.quality;
-  settings.texture_filter = options.texture_filter;
   settings.bounces = options.bounces;
   settings.shadows = options.shadows;
   settings.texture_filter = options.texture_filter;

@@ -27,7 +27,6 @@ struct CommonOptions {
   passes::DebugViewSettings view;  // --view / --level / --dir (render, run): what is shown
   render::VisibilityBackend visibility = render::VisibilityBackend::kRaster;  // --visibility
   render::Quality quality = render::Quality::kFast;                          // --quality
-  render::TextureFilter texture_filter = render::TextureFilter::kTrilinear;  // --texture-filter
   // --quality pathtraced (render, bench): the host path tracer (truth/path_tracer.h) instead of
   // the OpenCL renderer; `quality` is then unused. --spp is its samples per pixel.
   bool pathtraced = false;
@@ -37,7 +36,7 @@ struct CommonOptions {
   // render::RenderSettings::bounces (1..1000: 1 = single bounce, >= 2 = multi-bounce, which
   // converges to all bounces). Default 64, "all bounces", in every mode.
   uint32_t bounces = render::RenderSettings::kDefaultBounces;
-  // Issue 15: RenderSettings::shadows and ::texture_filter (bench --accuracy loops over them).
+  // Issue 15: --shadows and --texture-filter (bench --accuracy loops over the shadow modes).
   render::ShadowMode shadows = render::RenderSettings{}.shadows;
   render::TextureFilter texture_filter = render::RenderSettings{}.texture_filter;
 };
