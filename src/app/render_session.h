@@ -35,6 +35,7 @@ struct CommonOptions {
   // render::RenderSettings::bounces (1..1000: 1 = single bounce, >= 2 = multi-bounce, which
   // converges to all bounces). Default 64, "all bounces", in every mode.
   uint32_t bounces = render::RenderSettings::kDefaultBounces;
+  render::ShadowMode shadows = render::RenderSettings{}.shadows;  // --shadows
 };
 
 // Not copyable or movable: the program cache and renderer point at the context.
@@ -60,6 +61,9 @@ class RenderSession {
 
   // Post-processing switches for the next frames (keys T, B, M in the window).
   void set_effects(const render::Effects& effects) { renderer_->set_effects(effects); }
+  // The shadow mode for the next frames (key H in the window).
+  void set_shadows(render::ShadowMode mode) { renderer_->set_shadows(mode); }
+  render::ShadowMode shadows() const { return renderer_->settings().shadows; }
   // Keeps the light pass's direct / indirect terms for read_components whatever the view
   // (`render --exr`); checks the device memory with them counted first (rp::cl::Error).
   void set_keep_components(bool keep);

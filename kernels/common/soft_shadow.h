@@ -1,0 +1,486 @@
+/* The lamp's shadow for eight pixels at once (light.cl's light_direct8), in four modes chosen by
+ * -DRP_SHADOW_MODE (RenderSettings::shadows): 0 hard, 1 pcf, 2 pcss, 3 vssm. OpenCL C only.
+ *
+ * rp_shadow8 returns the visibility in [0, 1] of eight receivers p (unit normals n, cos_theta =
+ * dot(n, l)); 1 outside the shadow frustum. Shadow map: FrameConstants.light_view_proj depth,
+ * z_ndc * 0.5 + 0.5, 1.0 = empty, rows top to bottom; mips: shared/shadow_mips.h (linear depth
+ * z = clip w, the distance from the lamp centre along its axis, world units).
+ *
+ * Receiver: p is pushed RP_SHADOW_NORMAL_OFFSET texels along n (q; a texel is its world size at
+ * the receiver's depth, 2 w / (size P00)), so a surface never compares against its own texels.
+ *   hard: ONE tap, the texel under q, compared with q's depth minus (RP_SHADOW_DEPTH_BIAS + 1 *
+ *     tan(theta)) texels (the nearest texel centre is up to 0.71 texels away): a point lamp's hard
+ *     shadow, no noise.
+ *   pcf, pcss: every tap compares with the RECEIVER PLANE (the plane through q with normal n)
+ *     at the tap's texel instead of q's depth, so a planar receiver never shadows itself however
+ *     wide the filter: for the ray through shadow-map NDC (u, v), D(u, v) = F + u R + v U (F, R,
+ *     U: rows 3, 0, 1 of light_view_proj, R and U divided by their squared lengths, so D has unit
+ *     depth), the plane's inverse depth is 1 / z(u, v) = (n.D(u, v)) / (n.(q - lamp)), affine
+ *     in (u, v): 1/z = (1/z_q) (1 + g . delta), delta the tap's offset from q in texels,
+ *     g = (2 / size) (n.R, -n.U) / n.D(u_q, v_q) (clamped to RP_PLANE_MAX_GRADIENT per texel,
+ *     the factor to [0.5, 2]). A stored texel's inverse depth is affine in the stored d:
+ *     1/z = 1/near - d (far - near) / (near far); it occludes when it is nearer than the plane
+ *     by RP_SHADOW_DEPTH_BIAS texels.
+ *   pcf: RP_PCF_TAPS taps of the 16-point Poisson disk (common/random.h) scaled to
+ *     RP_PCF_RADIUS texels around q, the disk rotated per pixel and frame (one of 16 angles from
+ *     a hash of (x, y, frame_index)) so TAA averages 16 x RP_PCF_TAPS positions: one soft edge
+ *     width everywhere.
+ *
+ * PCSS. The emitter is the lamp cap: the part below the ceiling (y = 1) of a sphere of radius
+ * R = light_pos.w around the lamp centre (light_pos, 0.1 above the ceiling). Seen from below,
+ * its outline is the cut circle: a disk of radius a = sqrt(R^2 - z_e^2) (0.335 for R = 0.35)
+ * at depth z_e = light_pos.y - 1 (0.1) along the lamp's axis (straight down). (From closer than
+ * R^2 / z_e = 1.2 the sphere's own silhouette, angular radius asin(R / L), shows instead; at
+ * L = 0.6 that is 36 degrees against the disk's 34: within a few per cent.) Depths z below are
+ * along the axis from the lamp centre, lateral positions in tan units (world lateral / z):
+ *   the disk lies at depth z_e, centre on the axis; a receiver at depth z_r, lateral u_r; a
+ *   point at depth z (z_e < z < z_r) lies between the receiver and SOME point of the disk iff
+ *   the line from the receiver through it meets the disk plane within radius a, i.e. (similar
+ *   triangles) iff |u - c(z)| < r(z) with
+ *       c(z) = u_r z_r (z - z_e) / (z (z_r - z_e)),     r(z) = a (z_r - z) / (z (z_r - z_e)).
+ *   This is the receiver's light cone at depth z as the shadow map sees it (its centre moves
+ *   towards the axis because the disk's centre, not the projection centre, is what the receiver
+ *   looks at; for z_e = 0 it is the classic centred region). A blocker plane at z_b therefore
+ *   hides the part of the lamp that the shadow map's disk (c(z_b), r(z_b)) covers, and moving
+ *   the receiver across a straight blocker edge sweeps that disk over the edge: with
+ *   dc/du_r = z_r (z_b - z_e) / (z_b (z_r - z_e)) per unit of u_r = x / z_r, the PENUMBRA WIDTH
+ *   on a receiver plane parallel to the disk is (in world units)
+ *       w = 2 r(z_b) z_r / (z_r dc/du_r) = 2 a (z_r - z_b) / (z_b - z_e),
+ *   the textbook w_light (d_receiver - d_blocker) / d_blocker with the distances measured from
+ *   the disk's plane (not the lamp centre) and w_light = 2a. PCF over the disk (c(z_b), r(z_b))
+ *   with uniform taps returns exactly the visible fraction of the lamp's disk for a planar
+ *   blocker parallel to it.
+ *   In texels: u (tan units) -> u P00 size / 2 texels from the map centre, so a -> K = a P00
+ *   size / 2; both c and r are affine in 1/z, so per tap they cost two multiply-adds.
+ * Steps, per receiver:
+ *   1. A conservative test on the MIN mip: the region where any blocker between depths
+ *      RP_PCSS_NEAREST and z_r could lie (the union of the cone's disks, bounded by its box),
+ *      read as a 2x2 footprint at the level whose texels are at least that wide: min z >= z_r
+ *      means nothing in front of the receiver there, so fully lit (exact, and most pixels). Else
+ *      z_min (the nearest thing in the region, at least RP_PCSS_NEAREST) bounds the search.
+ *   2. Blocker search: RP_PCSS_SEARCH_TAPS rotated Poisson taps over the disk covering the
+ *      cone from z_min to z_r (centre halfway between c(z_min) and u_r, radius r(z_min) plus
+ *      half their distance); a tap is a BLOCKER when its texel is in front of the receiver plane
+ *      AND inside the cone at its own depth (|u - c(z)| < max(r(z), RP_PCSS_MIN_RADIUS texels),
+ *      z < z_r), which keeps walls beside a floor point from counting (they are nearer than the
+ *      floor's plane but not between it and the lamp). No blocker: lit; all blockers: umbra.
+ *   3. Average blocker depth z_b = the harmonic mean of the blockers' depths (inverse depths
+ *      average linearly: they are affine in the stored d).
+ *   4. PCF: RP_PCSS_FILTER_TAPS taps over the disk (c(z_b), r(z_b)) (r clamped to
+ *      [RP_PCSS_MIN_RADIUS, RP_PCSS_MAX_RADIUS] texels), the same blocker test; visibility =
+ *      1 - blockers / taps.
+ *   Search and filter disks are rotated by independent angles per pixel and frame; TAA
+ *   averages them.
+ *
+ * VSSM (variance soft shadow maps): step 1 as PCSS; then the mean and mean square of z over
+ *   the search disk from the MEAN / MEAN2 mips (trilinear: a bilinear lookup at the two levels
+ *   around log2 of the disk's diameter, level >= 1), the average blocker depth from them (the
+ *   VSSM paper: with the non-blockers assumed at the receiver's depth t, mu = (1 - a) t + a z_b,
+ *   the fraction 1 - a of non-blockers taken as Chebyshev's one-sided bound
+ *   p = s^2 / (s^2 + (t - mu)^2), s^2 = E[z^2] - mu^2 floored at RP_VSSM_MIN_VARIANCE), then the
+ *   moments over the filter disk (c(z_b), r(z_b)) and visibility = that bound for t > mu (1
+ *   otherwise) with light-bleeding reduction: (p - RP_VSSM_BLEED) / (1 - RP_VSSM_BLEED) clamped
+ *   to [0, 1]. t is the receiver plane's depth at the disk's centre minus the bias and minus
+ *   the plane's own depth spread over the disk.
+ */
+#ifndef ROLYPOLY_COMMON_SOFT_SHADOW_H
+#define ROLYPOLY_COMMON_SOFT_SHADOW_H
+
+#include "shared/types.h"
+#include "shared/shadow_mips.h"
+#include "common/direct_light.h"
+#include "common/random.h"
+#include "common/indirect_simd.h"
+
+#ifndef RP_SHADOW_MODE
+#define RP_SHADOW_MODE 2
+#endif
+#ifndef RP_SHADOW_NORMAL_OFFSET
+#define RP_SHADOW_NORMAL_OFFSET 1.0f
+#endif
+#ifndef RP_SHADOW_DEPTH_BIAS
+#define RP_SHADOW_DEPTH_BIAS 1.0f
+#endif
+#ifndef RP_PCF_RADIUS
+#define RP_PCF_RADIUS 2.5f /* texels */
+#endif
+#ifndef RP_PCF_TAPS
+#define RP_PCF_TAPS 8
+#endif
+#ifndef RP_PCSS_SEARCH_TAPS
+#define RP_PCSS_SEARCH_TAPS 8
+#endif
+#ifndef RP_PCSS_FILTER_TAPS
+#define RP_PCSS_FILTER_TAPS 8
+#endif
+/* Nearest blocker depth the search looks for (world units below the lamp centre: y = 0.25). */
+#ifndef RP_PCSS_NEAREST
+#define RP_PCSS_NEAREST 0.85f
+#endif
+#define RP_PCSS_MIN_RADIUS 0.75f /* texels: a texel's own extent */
+#define RP_PCSS_MAX_RADIUS 63.0f /* texels: the coarsest mip's 2x2 footprint still covers it */
+#define RP_PLANE_MAX_GRADIENT 0.05f /* relative inverse-depth change per texel */
+#ifndef RP_VSSM_BLEED
+#define RP_VSSM_BLEED 0.2f
+#endif
+#define RP_VSSM_MIN_VARIANCE 1.0e-5f /* world^2 */
+/* The ceiling's height: the lamp's emitting disk lies in it (types.h: the box is [-1, 1]^3). */
+#define RP_CEILING_Y 1.0f
+
+/* cos(2 pi k / 16), k = 0..15; sin(2 pi k / 16) = cos(2 pi (k - 4) / 16). */
+#define RP_SOFT_COS16                                                                       \
+  ((float16)(1.0f, 0.923879533f, 0.707106781f, 0.382683432f, 0.0f, -0.382683432f,            \
+             -0.707106781f, -0.923879533f, -1.0f, -0.923879533f, -0.707106781f,              \
+             -0.382683432f, 0.0f, 0.382683432f, 0.707106781f, 0.923879533f))
+
+/* The receivers' lookup state (eight lanes). Offsets below are in texels. */
+typedef struct {
+  float8 sx, sy;      /* q in texel coordinates (top-left origin) */
+  float8 zr;          /* q's linear depth (clip w) */
+  float8 texel;       /* world size of a texel at the receiver */
+  float8 tan_theta;   /* slope of the receiver against the light ray (<= RP_DIRECT_MAX_SLOPE) */
+  float8 inv0;        /* biased inverse plane depth at q: 1 / (zr - bias texels) */
+  float8 gx, gy;      /* relative inverse-depth gradient of the receiver plane per texel */
+  float8 ca, sa;      /* search / hard / pcf rotation */
+  float8 cb, sb;      /* filter rotation */
+  int8 inside;        /* inside the frustum and facing the lamp */
+  float size, near, far, inv_a, inv_b; /* 1/z of a stored d: inv_a - d inv_b */
+  int isize;
+} RpShadow8;
+
+/* Visibility of the texels at (tx, ty) (texel coordinates, clamped to the map): 1 where the
+ * stored depth is not in front of the receiver plane, for pcf. */
+inline float8 rp_soft_plane_lit(__global const float* restrict shadow, const RpShadow8* s,
+                                float8 tx, float8 ty) {
+  const float8 hi = (float8)(s->size - 1.0f), lo = (float8)(0.0f);
+  const int8 idx = convert_int8(fmin(fmax(ty, lo), hi)) * s->isize +
+                   convert_int8(fmin(fmax(tx, lo), hi));
+  const float8 d = (float8)(shadow[idx.s0], shadow[idx.s1], shadow[idx.s2], shadow[idx.s3],
+                            shadow[idx.s4], shadow[idx.s5], shadow[idx.s6], shadow[idx.s7]);
+  const float8 inv_tap = s->inv_a - d * s->inv_b;
+  const float8 ratio = fmin(fmax(1.0f + s->gx * (tx - s->sx) + s->gy * (ty - s->sy),
+                                 (float8)(0.5f)), (float8)(2.0f));
+  return select((float8)(1.0f), (float8)(0.0f), inv_tap > s->inv0 * ratio);
+}
+
+/* Rotated Poisson point k (of 16) for lanes with rotation (c, s). */
+#define RP_SOFT_POINT(k, c, s, OX, OY)                                                      \
+  {                                                                                         \
+    const float2 d_ = RP_POISSON_DISK[(k)];                                                 \
+    OX = (c) * d_.x - (s) * d_.y;                                                           \
+    OY = (s) * d_.x + (c) * d_.y;                                                           \
+  }
+
+inline RpShadow8 rp_shadow8_setup(__global const FrameConstants* restrict frame, float8 px,
+                                  float8 py, float8 pz, float8 nx, float8 ny, float8 nz,
+                                  float8 cos_theta, uint x0, uint y) {
+  RpShadow8 s;
+  const rp_mat4 m = frame->light_view_proj;
+  s.isize = (int)frame->shadow_size;
+  s.size = (float)s.isize;
+  s.near = frame->clip.z;
+  s.far = frame->clip.w;
+  s.inv_a = 1.0f / s.near;
+  s.inv_b = (s.far - s.near) / (s.near * s.far);
+  const float8 w0 = m.c[0].w * px + m.c[1].w * py + m.c[2].w * pz + m.c[3].w;
+  const float r0 = m.c[0].x * m.c[0].x + m.c[1].x * m.c[1].x + m.c[2].x * m.c[2].x;
+  const float r1 = m.c[0].y * m.c[0].y + m.c[1].y * m.c[1].y + m.c[2].y * m.c[2].y;
+  s.texel = fabs(w0) * (2.0f / (s.size * sqrt(r0)));
+  const float8 cc = fmax(cos_theta, 1.0e-4f);
+  s.tan_theta = fmin(sqrt(fmax(1.0f - cc * cc, 0.0f)) / cc, RP_DIRECT_MAX_SLOPE);
+  const float8 off = s.texel * RP_SHADOW_NORMAL_OFFSET;
+  const float8 qx = px + nx * off, qy = py + ny * off, qz = pz + nz * off;
+  const float8 cx = m.c[0].x * qx + m.c[1].x * qy + m.c[2].x * qz + m.c[3].x;
+  const float8 cy = m.c[0].y * qx + m.c[1].y * qy + m.c[2].y * qz + m.c[3].y;
+  const float8 cz = m.c[0].z * qx + m.c[1].z * qy + m.c[2].z * qz + m.c[3].z;
+  const float8 cw = m.c[0].w * qx + m.c[1].w * qy + m.c[2].w * qz + m.c[3].w;
+  const int8 front = cw > 0.0f;
+  const float8 iw = 1.0f / select((float8)(1.0f), cw, front);
+  const float8 ndx = cx * iw, ndy = cy * iw, ndz = cz * iw;
+  s.inside = front & (fabs(ndx) <= 1.0f) & (fabs(ndy) <= 1.0f) & (ndz <= 1.0f) &
+             (cos_theta > 0.0f);
+  s.sx = (ndx * 0.5f + 0.5f) * s.size;
+  s.sy = (0.5f - ndy * 0.5f) * s.size;
+  s.zr = cw;
+  s.inv0 = 1.0f / fmax(cw - s.texel * RP_SHADOW_DEPTH_BIAS, 1.0e-3f);
+  /* receiver plane: n.D(u, v) = n.F + u n.R + v n.U */
+  const float ir0 = 1.0f / r0, ir1 = 1.0f / r1;
+  const float8 n_f = nx * m.c[0].w + ny * m.c[1].w + nz * m.c[2].w;
+  const float8 n_r = (nx * m.c[0].x + ny * m.c[1].x + nz * m.c[2].x) * ir0;
+  const float8 n_u = (nx * m.c[0].y + ny * m.c[1].y + nz * m.c[2].y) * ir1;
+  const float8 n_d = n_f + ndx * n_r + ndy * n_u;
+  const float8 n_d_safe = select(n_d, (float8)(-1.0e-6f), fabs(n_d) < 1.0e-6f);
+  const float8 gscale = (2.0f / s.size) / n_d_safe;
+  s.gx = fmin(fmax(n_r * gscale, (float8)(-RP_PLANE_MAX_GRADIENT)), (float8)(RP_PLANE_MAX_GRADIENT));
+  s.gy = fmin(fmax(-n_u * gscale, (float8)(-RP_PLANE_MAX_GRADIENT)), (float8)(RP_PLANE_MAX_GRADIENT));
+  /* two rotations per pixel and frame: one of 16 angles each (a table, not sin/cos: vectorizes) */
+  const uint8 lane = (uint8)(0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u);
+  const uint8 h = rp_hash8_u32((x0 + lane) ^ rp_hash_u32(y ^ rp_hash_u32(frame->frame_index)));
+  const uint8 a0 = h >> 28, a1 = (h >> 24) & 15u;
+  s.ca = shuffle(RP_SOFT_COS16, a0);
+  s.sa = shuffle(RP_SOFT_COS16, (a0 + 12u) & 15u);
+  s.cb = shuffle(RP_SOFT_COS16, a1);
+  s.sb = shuffle(RP_SOFT_COS16, (a1 + 12u) & 15u);
+  return s;
+}
+
+#if RP_SHADOW_MODE == 2 || RP_SHADOW_MODE == 3
+/* The lamp's disk in texels: K = a P00 size / 2, z_e (shared by PCSS and VSSM). */
+typedef struct {
+  float8 xr, yr;   /* the receiver q relative to the map centre (texels) */
+  float8 k_h;      /* K / (z_r - z_e): r(z) = k_h (z_r / z - 1) */
+  float8 c_h;      /* z_r / (z_r - z_e): c(z) = x_r c_h (1 - z_e / z) */
+  float ze;
+} RpLamp8;
+
+inline RpLamp8 rp_lamp8(__global const FrameConstants* restrict frame, const RpShadow8* s) {
+  RpLamp8 L;
+  const float4 lp = frame->light_pos;
+  const rp_mat4 m = frame->light_view_proj;
+  L.ze = lp.y - RP_CEILING_Y;
+  const float a = sqrt(fmax(lp.w * lp.w - L.ze * L.ze, 0.0f));
+  const float p00 = sqrt(m.c[0].x * m.c[0].x + m.c[1].x * m.c[1].x + m.c[2].x * m.c[2].x);
+  const float k = a * p00 * s->size * 0.5f;
+  const float8 h = 1.0f / fmax(s->zr - L.ze, 1.0e-3f);
+  L.k_h = k * h;
+  L.c_h = s->zr * h;
+  L.xr = s->sx - s->size * 0.5f;
+  L.yr = s->sy - s->size * 0.5f;
+  return L;
+}
+
+/* Step 1 for each lane: the MIN mip over the box of the cone between depths
+ * RP_PCSS_NEAREST and z_r. Returns z_min (0 when the box is too wide to decide). */
+inline float8 rp_pcss_min(__global const float* restrict mips, const RpShadow8* s,
+                          const RpLamp8* L) {
+  const float8 inear = (float8)(1.0f / RP_PCSS_NEAREST);
+  const float8 r = fmin(fmax(L->k_h * (s->zr * inear - 1.0f), (float8)(0.0f)),
+                        (float8)(RP_PCSS_MAX_RADIUS)) + RP_PCSS_MIN_RADIUS;
+  const float8 cf = L->c_h * (1.0f - L->ze * inear);
+  const float8 mid = (float8)(s->size * 0.5f);
+  const float8 cx = L->xr * cf + mid, cy = L->yr * cf + mid;
+  /* clamped to just outside the map before any int conversion (lanes outside the frustum may
+   * hold any value) */
+  const float8 lo = (float8)(-1.0f), hi = (float8)(s->size + 1.0f);
+  float x0[8], x1[8], y0[8], y1[8];
+  vstore8(fmin(fmax(fmin(cx, s->sx) - r, lo), hi), 0, x0);
+  vstore8(fmin(fmax(fmax(cx, s->sx) + r, lo), hi), 0, x1);
+  vstore8(fmin(fmax(fmin(cy, s->sy) - r, lo), hi), 0, y0);
+  vstore8(fmin(fmax(fmax(cy, s->sy) + r, lo), hi), 0, y1);
+  const uint size = (uint)s->isize;
+  const int levels = (int)rp_shadow_mip_levels(size);
+  float out[8];
+  for (int i = 0; i < 8; ++i) {
+    const float extent = fmax(x1[i] - x0[i], y1[i] - y0[i]);
+    int level = 1;
+    while (level < levels && (float)(1 << level) < extent) ++level;
+    if (levels == 0 || (float)(1 << level) < extent) {
+      out[i] = 0.0f;
+      continue;
+    }
+    const int n = (int)rp_shadow_mip_size(size, (uint)level);
+    const __global float* lv = mips + rp_shadow_mip_offset(size, (uint)level);
+    const float scale = 1.0f / (float)(1 << level);
+    const int i0 = clamp((int)floor(x0[i] * scale), 0, n - 1);
+    const int i1 = clamp((int)floor(x1[i] * scale), 0, n - 1);
+    const int j0 = clamp((int)floor(y0[i] * scale), 0, n - 1);
+    const int j1 = clamp((int)floor(y1[i] * scale), 0, n - 1);
+    out[i] = fmin(fmin(lv[j0 * n + i0], lv[j0 * n + i1]), fmin(lv[j1 * n + i0], lv[j1 * n + i1]));
+  }
+  return vload8(0, out);
+}
+#endif
+
+#if RP_SHADOW_MODE == 2
+/* 1 where the texel at (tx, ty) blocks the lamp from the receiver: in front of its plane and
+ * inside its cone at the texel's own depth. *inv gets the texel's inverse depth. */
+inline float8 rp_pcss_blocker(__global const float* restrict shadow, const RpShadow8* s,
+                              const RpLamp8* L, float8 tx, float8 ty, float8* inv) {
+  const float8 hi = (float8)(s->size - 1.0f), lo = (float8)(0.0f);
+  const int8 idx = convert_int8(fmin(fmax(ty, lo), hi)) * s->isize +
+                   convert_int8(fmin(fmax(tx, lo), hi));
+  const float8 d = (float8)(shadow[idx.s0], shadow[idx.s1], shadow[idx.s2], shadow[idx.s3],
+                            shadow[idx.s4], shadow[idx.s5], shadow[idx.s6], shadow[idx.s7]);
+  const float8 raw = s->inv_a - d * s->inv_b;
+  /* anything nearer than RP_PCSS_NEAREST counts as there (the search looks no nearer; nearer
+   * than the lamp's disk the cone formulas would mirror) */
+  const float8 it = fmin(raw, (float8)(1.0f / RP_PCSS_NEAREST));
+  *inv = it;
+  const float8 ratio = fmin(fmax(1.0f + s->gx * (tx - s->sx) + s->gy * (ty - s->sy),
+                                 (float8)(0.5f)), (float8)(2.0f));
+  const float8 cf = L->c_h * (1.0f - L->ze * it);
+  const float8 mid = (float8)(s->size * 0.5f);
+  const float8 dx = tx - mid - L->xr * cf, dy = ty - mid - L->yr * cf;
+  const float8 r = L->k_h * (s->zr * it - 1.0f);
+  const float8 rr = fmax(r, (float8)(RP_PCSS_MIN_RADIUS));
+  const float8 front = select((float8)(0.0f), (float8)(1.0f), raw > s->inv0 * ratio);
+  const float8 cone = select((float8)(0.0f), (float8)(1.0f), dx * dx + dy * dy < rr * rr);
+  const float8 ahead = select((float8)(0.0f), (float8)(1.0f), r > 0.0f);
+  return front * cone * ahead;
+}
+#endif
+
+#if RP_SHADOW_MODE == 3
+/* Trilinear MEAN / MEAN2 lookup at (x, y) (texel coordinates) over a footprint `width` texels
+ * wide, one lane at a time. */
+inline float2 rp_vssm_moments(__global const float* restrict mips, uint size, uint plane,
+                              int levels, float x, float y, float width) {
+  const float lambda = clamp(native_log2(fmax(width, 1.0f)), 1.0f, (float)levels);
+  const int l0 = min((int)lambda, levels);
+  const int l1 = min(l0 + 1, levels);
+  const float t = lambda - (float)l0;
+  float2 m[2];
+  for (int k = 0; k < 2; ++k) {
+    const int level = k == 0 ? l0 : l1;
+    const int n = (int)rp_shadow_mip_size(size, (uint)level);
+    const float scale = 1.0f / (float)(1 << level);
+    const float u = x * scale - 0.5f, v = y * scale - 0.5f;
+    const float fu = floor(u), fv = floor(v);
+    const float au = u - fu, av = v - fv;
+    const int i0 = clamp((int)fu, 0, n - 1), i1 = clamp((int)fu + 1, 0, n - 1);
+    const int j0 = clamp((int)fv, 0, n - 1), j1 = clamp((int)fv + 1, 0, n - 1);
+    const __global float* mean = mips + plane * RP_SHADOW_MIP_MEAN + rp_shadow_mip_offset(size, (uint)level);
+    const __global float* mean2 = mean + plane;
+    const int t00 = j0 * n + i0, t10 = j0 * n + i1, t01 = j1 * n + i0, t11 = j1 * n + i1;
+    const float w00 = (1.0f - au) * (1.0f - av), w10 = au * (1.0f - av);
+    const float w01 = (1.0f - au) * av, w11 = au * av;
+    m[k] = (float2)(w00 * mean[t00] + w10 * mean[t10] + w01 * mean[t01] + w11 * mean[t11],
+                    w00 * mean2[t00] + w10 * mean2[t10] + w01 * mean2[t01] + w11 * mean2[t11]);
+  }
+  return mix(m[0], m[1], t);
+}
+
+/* Chebyshev's one-sided bound P(z >= t) for moments (mu, E[z^2]). */
+inline float8 rp_vssm_chebyshev(float8 mu, float8 m2, float8 t) {
+  const float8 var = fmax(m2 - mu * mu, (float8)(RP_VSSM_MIN_VARIANCE));
+  const float8 d = t - mu;
+  return select(var / (var + d * d), (float8)(1.0f), t <= mu);
+}
+
+/* Moments of every lane over disks centred (cx, cy) with radius r (texels). */
+inline void rp_vssm_lookup8(__global const float* restrict mips, const RpShadow8* s, float8 cx,
+                            float8 cy, float8 r, float8* mu, float8* m2) {
+  const uint size = (uint)s->isize;
+  const int levels = (int)rp_shadow_mip_levels(size);
+  const uint plane = rp_shadow_mip_total(size);
+  float xs[8], ys[8], rs[8], a[8], b[8];
+  const float8 lo = (float8)(-1.0f), hi = (float8)(s->size + 1.0f);
+  vstore8(fmin(fmax(cx, lo), hi), 0, xs); /* clamped before any int conversion */
+  vstore8(fmin(fmax(cy, lo), hi), 0, ys);
+  vstore8(r, 0, rs);
+  for (int i = 0; i < 8; ++i) {
+    const float2 v = levels > 0 ? rp_vssm_moments(mips, size, plane, levels, xs[i], ys[i],
+                                                   2.0f * rs[i])
+                                : (float2)(s->far, s->far * s->far);
+    a[i] = v.x;
+    b[i] = v.y;
+  }
+  *mu = vload8(0, a);
+  *m2 = vload8(0, b);
+}
+#endif
+
+/* Visibility of the lamp from eight receivers (see the header). */
+inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
+                         __global const float* restrict shadow,
+                         __global const float* restrict mips, float8 px, float8 py, float8 pz,
+                         float8 nx, float8 ny, float8 nz, float8 cos_theta, uint x0, uint y) {
+  const RpShadow8 s = rp_shadow8_setup(frame, px, py, pz, nx, ny, nz, cos_theta, x0, y);
+  const float8 one = (float8)(1.0f), zero = (float8)(0.0f);
+  if (!any(s.inside)) return one;
+  const float8 outside = select(one, zero, s.inside);
+#if RP_SHADOW_MODE == 0
+  (void)mips;
+  const float8 receiver = s.zr - s.texel * (RP_SHADOW_DEPTH_BIAS + 1.0f * s.tan_theta);
+  const float8 hi = (float8)(s.size - 1.0f), lo = (float8)(0.0f);
+  const int8 idx = convert_int8(fmin(fmax(s.sy, lo), hi)) * s.isize +
+                   convert_int8(fmin(fmax(s.sx, lo), hi));
+  const float8 d = (float8)(shadow[idx.s0], shadow[idx.s1], shadow[idx.s2], shadow[idx.s3],
+                            shadow[idx.s4], shadow[idx.s5], shadow[idx.s6], shadow[idx.s7]);
+  /* lit iff 1/z_stored <= 1/receiver (both depths positive); an empty texel is lit */
+  const float8 inv_tap = s.inv_a - d * s.inv_b;
+  const int8 shadowed = s.inside & (d < 1.0f) & (inv_tap * receiver > 1.0f);
+  return select(one, zero, shadowed);
+#elif RP_SHADOW_MODE == 1
+  (void)mips;
+  float8 lit = zero;
+  for (int t = 0; t < RP_PCF_TAPS; ++t) {
+    float8 ox, oy;
+    RP_SOFT_POINT((t * 16 / RP_PCF_TAPS) & 15, s.ca, s.sa, ox, oy);
+    lit += rp_soft_plane_lit(shadow, &s, s.sx + ox * RP_PCF_RADIUS, s.sy + oy * RP_PCF_RADIUS);
+  }
+  return fmax(lit * (1.0f / (float)RP_PCF_TAPS), outside);
+#else
+  const RpLamp8 L = rp_lamp8(frame, &s);
+  const float8 zmin = rp_pcss_min(mips, &s, &L);
+  const float8 lit_mip = select(zero, one, zmin >= s.zr);
+  const float8 done = fmax(lit_mip, outside);
+  if (all(done > 0.5f)) return one;
+  /* the cone from the nearest possible blocker to the receiver */
+  const float8 inear = 1.0f / fmax(zmin, (float8)(RP_PCSS_NEAREST));
+  const float8 rb = fmin(fmax(L.k_h * (s.zr * inear - 1.0f), zero), (float8)(RP_PCSS_MAX_RADIUS));
+  const float8 cfb = L.c_h * (1.0f - L.ze * inear);
+  const float8 mid = (float8)(s.size * 0.5f);
+  const float8 bx = L.xr * cfb + mid, by = L.yr * cfb + mid;
+  const float8 mx = (bx + s.sx) * 0.5f, my = (by + s.sy) * 0.5f;
+  const float8 rs = fmin(rb + 0.5f * sqrt((bx - s.sx) * (bx - s.sx) + (by - s.sy) * (by - s.sy)) +
+                             RP_PCSS_MIN_RADIUS,
+                         (float8)(RP_PCSS_MAX_RADIUS));
+#if RP_SHADOW_MODE == 2
+  float8 count = zero, sum_inv = zero;
+  for (int t = 0; t < RP_PCSS_SEARCH_TAPS; ++t) {
+    float8 ox, oy, it;
+    RP_SOFT_POINT((t * 16 / RP_PCSS_SEARCH_TAPS) & 15, s.ca, s.sa, ox, oy);
+    const float8 b = rp_pcss_blocker(shadow, &s, &L, mx + ox * rs, my + oy * rs, &it);
+    count += b;
+    sum_inv += b * it;
+  }
+  const float8 none = select(zero, one, count < 0.5f);
+  const float8 umbra = select(zero, one, count > (float)RP_PCSS_SEARCH_TAPS - 0.5f);
+  if (all(fmax(fmax(done, none), umbra) > 0.5f)) return fmax(fmax(done, none), zero);
+  const float8 iavg = select(inear, sum_inv / fmax(count, one), count > 0.5f);
+  const float8 rf = fmin(fmax(L.k_h * (s.zr * iavg - 1.0f), (float8)(RP_PCSS_MIN_RADIUS)),
+                         (float8)(RP_PCSS_MAX_RADIUS));
+  const float8 cff = L.c_h * (1.0f - L.ze * iavg);
+  const float8 fx = L.xr * cff + mid, fy = L.yr * cff + mid;
+  float8 occ = zero;
+  for (int t = 0; t < RP_PCSS_FILTER_TAPS; ++t) {
+    float8 ox, oy, it;
+    RP_SOFT_POINT((t * 16 / RP_PCSS_FILTER_TAPS + 16 / (2 * RP_PCSS_FILTER_TAPS)) & 15, s.cb,
+                  s.sb, ox, oy);
+    occ += rp_pcss_blocker(shadow, &s, &L, fx + ox * rf, fy + oy * rf, &it);
+  }
+  const float8 vis = 1.0f - occ * (1.0f / (float)RP_PCSS_FILTER_TAPS);
+  /* decided lanes: lit (mip, outside, no blocker found) or umbra (every search tap blocked) */
+  return select(select(vis, zero, umbra > 0.5f), one, fmax(done, none) > 0.5f);
+#else /* VSSM */
+  /* the receiver plane's depth at a disk's centre, less its own spread over the disk */
+  float8 mu, m2;
+  rp_vssm_lookup8(mips, &s, mx, my, rs, &mu, &m2);
+  const float8 slope = fabs(s.gx) + fabs(s.gy);
+  const float8 ts = 1.0f / (s.inv0 * fmin(fmax(1.0f + s.gx * (mx - s.sx) + s.gy * (my - s.sy),
+                                               (float8)(0.5f)), (float8)(2.0f)) *
+                            (1.0f + slope * rs));
+  const float8 p = rp_vssm_chebyshev(mu, m2, ts);
+  const float8 blockers = 1.0f - p;
+  const float8 zb = fmin(fmax((mu - p * ts) / fmax(blockers, (float8)(1.0e-4f)),
+                              fmax(zmin, (float8)(RP_PCSS_NEAREST))), ts);
+  const float8 none = select(zero, one, blockers < 1.0e-3f);
+  if (all(fmax(done, none) > 0.5f)) return one;
+  const float8 ib = 1.0f / zb;
+  const float8 rf = fmin(fmax(L.k_h * (s.zr * ib - 1.0f), (float8)(RP_PCSS_MIN_RADIUS)),
+                         (float8)(RP_PCSS_MAX_RADIUS));
+  const float8 cff = L.c_h * (1.0f - L.ze * ib);
+  const float8 fx = L.xr * cff + mid, fy = L.yr * cff + mid;
+  rp_vssm_lookup8(mips, &s, fx, fy, rf, &mu, &m2);
+  const float8 tf = 1.0f / (s.inv0 * fmin(fmax(1.0f + s.gx * (fx - s.sx) + s.gy * (fy - s.sy),
+                                               (float8)(0.5f)), (float8)(2.0f)) *
+                            (1.0f + slope * rf));
+  const float8 pv = rp_vssm_chebyshev(mu, m2, tf);
+  const float8 vis = clamp((pv - RP_VSSM_BLEED) * (1.0f / (1.0f - RP_VSSM_BLEED)), zero, one);
+  return select(vis, one, fmax(done, none) > 0.5f);
+#endif
+#endif
+}
+
+#endif
