@@ -165,6 +165,88 @@ double rgba8_psnr(const std::vector<uint8_t>& rgba, const std::vector<float>& ra
   return 10.0 * std::log10(1.0 / (sum / double(radiance.size())));
 }
 
+namespace {
+double nan_value() { return std::numeric_limits<double>::quiet_NaN(); }
+double srgb_encode(double v) {
+  v = std::clamp(v, 0.0, 1.0);
+  return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+}
+template <class Value>
+double psnr_over(const std::vector<float>& a, const std::vector<float>& truth,
+                 const std::vector<uint8_t>& mask, Value value) {
+  if (a.size() != truth.size() || a.size() != 3 * mask.size())
+    throw std::invalid_argument("accuracy: images and mask differ in size");
+  double sum = 0.0;
+  uint64_t n = 0;
+  for (size_t i = 0; i < mask.size(); ++i) {
+    if (!mask[i]) continue;
+    for (size_t c = 0; c < 3; ++c) {
+      const double d = value(a[3 * i + c]) - value(truth[3 * i + c]);
+      sum += d * d;
+    }
+    n += 3;
+  }
+  if (n == 0) return nan_value();
+  if (sum == 0.0) return std::numeric_limits<double>::infinity();
+  return 10.0 * std::log10(double(n) / sum);
+}
+}  // namespace
+
+double masked_psnr(const std::vector<float>& a, const std::vector<float>& truth,
+                   const std::vector<uint8_t>& mask, double scale) {
+  return psnr_over(a, truth, mask, [scale](float v) { return double(v) * scale; });
+}
+
+double srgb_psnr(const std::vector<float>& a, const std::vector<float>& truth,
+                 const std::vector<uint8_t>& mask) {
+  return psnr_over(a, truth, mask, [](float v) { return srgb_encode(v); });
+}
+
+std::vector<uint8_t> dilate(const std::vector<uint8_t>& mask, uint32_t width, uint32_t height,
+                            int radius) {
+  if (mask.size() != size_t(width) * height)
+    throw std::invalid_argument("accuracy: mask does not match the image size");
+  std::vector<uint8_t> out(mask.size(), 0);
+  for (int y = 0; y < int(height); ++y)
+    for (int x = 0; x < int(width); ++x) {
+      if (!mask[size_t(y) * width + size_t(x)]) continue;
+      for (int dy = -radius; dy <= radius; ++dy)
+        for (int dx = -radius; dx <= radius; ++dx) {
+          const int u = x + dx, v = y + dy;
+          if (u >= 0 && v >= 0 && u < int(width) && v < int(height))
+            out[size_t(v) * width + size_t(u)] = 1;
+        }
+    }
+  return out;
+}
+
+double bilinear_luma(const std::vector<float>& rgb, uint32_t width, uint32_t height, double x,
+                     double y) {
+  const double fx = std::clamp(x - 0.5, 0.0, double(width - 1));
+  const double fy = std::clamp(y - 0.5, 0.0, double(height - 1));
+  const auto x0 = uint32_t(fx), y0 = uint32_t(fy);
+  const uint32_t x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
+  const double tx = fx - x0, ty = fy - y0;
+  auto at = [&](uint32_t u, uint32_t v) { return luma(rgb, size_t(v) * width + u); };
+  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x1, y0)) +
+         ty * ((1 - tx) * at(x0, y1) + tx * at(x1, y1));
+}
+
+double transition_width(const std::vector<ProfileSample>& p, double lo, double hi) {
+  auto cross = [&](size_t i, double level) {  // between samples i - 1 and i
+    const double dv = p[i].v - p[i - 1].v;
+    const double t = dv != 0.0 ? (level - p[i - 1].v) / dv : 1.0;
+    return p[i - 1].s + std::clamp(t, 0.0, 1.0) * (p[i].s - p[i - 1].s);
+  };
+  size_t i90 = 0;
+  while (i90 < p.size() && !(p[i90].v >= hi)) ++i90;
+  if (i90 == 0 || i90 == p.size()) return nan_value();
+  size_t i10 = i90;  // the last sample at or below lo before i90
+  while (i10 > 0 && !(p[i10 - 1].v <= lo)) --i10;
+  if (i10 == 0) return nan_value();
+  return cross(i90, hi) - cross(i10, lo);
+}
+
 void signed_heat_map(const std::vector<float>& a, const std::vector<float>& truth,
                      const std::vector<uint16_t>& labels, double eps, std::vector<uint8_t>& rgba) {
   check_sizes(a, truth, labels);

@@ -76,6 +76,40 @@ double tone_mapped_psnr(const std::vector<float>& a, const std::vector<float>& b
 // final image after TAA, which the renderer hands out only as RGBA8.
 double rgba8_psnr(const std::vector<uint8_t>& rgba, const std::vector<float>& radiance);
 
+// ---- The direct-light section (issue 15) ----
+
+// PSNR (dB, peak 1) of `a` against `truth` after multiplying both by `scale`, over the RGB
+// channels of the pixels where mask != 0 (1 byte per pixel); +inf when equal there, NaN when the
+// mask is empty. The report takes it on the direct component with scale = 1 / (the truth's mean
+// lit floor luminance), so 1 is the lit floor's level.
+double masked_psnr(const std::vector<float>& a, const std::vector<float>& truth,
+                   const std::vector<uint8_t>& mask, double scale);
+// PSNR (dB, peak 1) of two albedo images (linear, 3 floats per pixel) after the exact sRGB encode
+// of each channel clamped to [0, 1] (the albedo view's encode without its quantisation), over
+// the pixels where mask != 0.
+double srgb_psnr(const std::vector<float>& a, const std::vector<float>& truth,
+                 const std::vector<uint8_t>& mask);
+// The mask grown by `radius` pixels (a (2 radius + 1)^2 square), width x height, 1 byte each.
+std::vector<uint8_t> dilate(const std::vector<uint8_t>& mask, uint32_t width, uint32_t height,
+                            int radius);
+// One channel-plane value at fractional pixel coordinates (x right, y down, pixel centres at
+// +0.5), bilinear between the four nearest centres (clamped to the image): `rgb` 3 floats per
+// pixel, returns luminance (0.2126, 0.7152, 0.0722).
+double bilinear_luma(const std::vector<float>& rgb, uint32_t width, uint32_t height, double x,
+                     double y);
+
+// A visibility profile across a shadow edge: s (world units along the line) ascending, v the
+// lamp's visible fraction there (0 umbra, 1 lit).
+struct ProfileSample {
+  double s = 0.0, v = 0.0;
+};
+// 10-90 % transition width of a profile that rises from shadow to light: s90 = where v first
+// reaches `hi` (interpolated linearly between samples), s10 = where v last rises through `lo`
+// before s90; s90 - s10 (world units). NaN when the profile never reaches `hi` or does not start
+// at or below `lo`.
+double transition_width(const std::vector<ProfileSample>& profile, double lo = 0.1,
+                        double hi = 0.9);
+
 // Signed relative difference of indirect luminance, (a - t) / (t + eps), drawn as RGBA8: blue
 // where a is too dark (-1 or less: full blue), white where equal, red where too bright (+1 or
 // more); background black.

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/accuracy_direct.h"
 #include "app/accuracy_metrics.h"
 #include "app/commands.h"
 #include "app/host_tone_map.h"
@@ -142,7 +143,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   truth::PathTracer tracer(assets);
   const std::vector<uint16_t> labels = classify_regions(tracer.primary_hits(frame, w, h), w, h);
   nlohmann::json j;
-  j["schema"] = "rolypoly-accuracy/2";
+  j["schema"] = "rolypoly-accuracy/3";
   j["command"] = options.command_line;
   j["scene"] = "demo frame at rest (scene::make_demo_frame)";
   j["width"] = w;
@@ -272,6 +273,18 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
                            "mode's finished frame with TAA (" + n + " bounces, no bloom or "
                            "motion blur)"}};
 
+  // The direct-light section (issue 15), on its own frame with marbles.
+  DirectOptions dopt;
+  dopt.width = w;
+  dopt.height = h;
+  dopt.spp = options.spp * options.direct_spp_factor;
+  dopt.seed = options.seed;
+  dopt.jitter_frames = options.direct_jitter_frames;
+  dopt.cache_dir = cache;
+  dopt.out_dir = options.out_dir;
+  const DirectResult direct = measure_direct(common, assets, tracer, dopt);
+  j["direct"] = direct.json;
+
   // Thresholds, each on the fast mode (the default) against the truth at its bounce count.
   AccuracyResult result;
   std::ostringstream checks;
@@ -335,6 +348,29 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
       }
     check("require_wall_hue", 4, matched, matched == 4,
           "side-wall sign(R - B) as the truth's (of 4)", {{"walls", walls}});
+  }
+  {  // the direct section's, on the default shadow mode
+    const nlohmann::json& dm = j["direct"]["modes"][j["direct"]["default_shadows"].get<std::string>()];
+    const std::string mode = "fast, shadows " + j["direct"]["default_shadows"].get<std::string>();
+    if (options.min_direct_psnr_floor) {
+      const double v = number(dm["direct_psnr_db"]["floor"]);
+      check("min_direct_psnr_floor", *options.min_direct_psnr_floor, v,
+            v >= *options.min_direct_psnr_floor, "direct PSNR on the floor (dB)",
+            {{"shadows", mode}});
+    }
+    if (options.max_penumbra_error) {
+      const double a = number(dm["penumbra"]["tumbler"]["error"]);
+      const double b = number(dm["penumbra"]["marble"]["error"]);
+      const double v = std::isfinite(a) && std::isfinite(b) ? std::max(a, b) : NAN;
+      check("max_penumbra_error", *options.max_penumbra_error, v,
+            v <= *options.max_penumbra_error, "penumbra width |rt / truth - 1|, worst",
+            {{"shadows", mode}, {"tumbler", a}, {"marble", b}});
+    }
+    if (options.min_albedo_psnr) {
+      const double v = number(dm["albedo_psnr_db"]["image"]);
+      check("min_albedo_psnr", *options.min_albedo_psnr, v, v >= *options.min_albedo_psnr,
+            "albedo view PSNR (dB), image", {{"texture_filter", j["direct"]["texture_filter"]}});
+    }
   }
   j["passed"] = result.passed;
 
@@ -417,7 +453,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
     t << line;
   }
   t << "wrote " << side.string() << ", " << heat.string() << " and " << taa_png.string() << "\n"
-    << checks.str();
+    << direct.table << checks.str();
   result.table = t.str();
   result.json = j;
   if (!options.json_path.empty()) write_text_atomic(options.json_path, j.dump(2) + "\n");
@@ -440,6 +476,9 @@ int accuracy_command(const CommonOptions& common, const BenchOptions& options) {
   o.max_indirect_l1_single = options.max_indirect_l1_single;
   o.min_psnr_taa = options.min_psnr_taa;
   o.require_wall_hue = options.require_wall_hue;
+  o.min_direct_psnr_floor = options.min_direct_psnr_floor;
+  o.max_penumbra_error = options.max_penumbra_error;
+  o.min_albedo_psnr = options.min_albedo_psnr;
   o.command_line = options.command_line;
   AccuracyResult r;
   try {

@@ -14,7 +14,9 @@
 // many-bounce truth (final PSNR only). For each of the four: the final image's PSNR after the
 // tone map, the direct component's error, the indirect component's relative L1 and bias over the
 // image and per named region (app/accuracy_metrics.h), the hue of the indirect light arriving on
-// each side wall, and the leak / missing pixel counts. Writes a JSON (schema rolypoly-accuracy/2,
+// each side wall, and the leak / missing pixel counts. Then the direct-light section (issue 15,
+// app/accuracy_direct.h): every shadow mode's direct component against the area-lamp truth,
+// penumbra widths, the albedo view. Writes a JSON (schema rolypoly-accuracy/3: /2 plus "direct";
 // README "Accuracy against the ground truth"), side-by-side PNGs and signed difference heat maps.
 #pragma once
 
@@ -52,11 +54,19 @@ struct AccuracyOptions {
   std::optional<double> max_indirect_l1_single;  // fast_one: indirect relative L1, image
   std::optional<double> min_psnr_taa;            // fast_many_taa: final PSNR (dB)
   bool require_wall_hue = false;  // both walls: sign(R - B) of fast_many and fast_one as truth's
+  // The direct section (accuracy_direct.h): its truth's samples per pixel are direct_spp_factor
+  // x spp (a 0-bounce sample costs about a quarter of a 64-bounce one); its thresholds are on
+  // the default shadow mode (RenderSettings::shadows) and texture filter.
+  uint32_t direct_spp_factor = 4;
+  uint32_t direct_jitter_frames = 16;
+  std::optional<double> min_direct_psnr_floor;   // direct PSNR (dB) on the floor
+  std::optional<double> max_penumbra_error;      // |width / truth's - 1|, tumbler and marble
+  std::optional<double> min_albedo_psnr;         // albedo view PSNR (dB), image
   std::string command_line;
 };
 
 struct AccuracyResult {
-  nlohmann::json json;   // the whole report (schema rolypoly-accuracy/2)
+  nlohmann::json json;   // the whole report (schema rolypoly-accuracy/3)
   std::string table;     // what is printed, thresholds included
   bool passed = true;    // every given threshold met
 };

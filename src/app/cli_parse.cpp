@@ -197,10 +197,16 @@ std::string check_bounces(const CommonOptions& common) {
 }
 
 // --spp (render and bench): the path tracer's samples per pixel (and bench --accuracy's truth).
+// --lamp: the path tracer's lamp model (truth/path_tracer.h).
 void add_spp(CLI::App* cmd, CommonOptions& common) {
   cmd->add_option("--spp", common.spp, "--quality pathtraced: samples per pixel")
       ->capture_default_str()
       ->transform(whole_number(1, 1000000));
+  cmd->add_option_function<std::string>(
+         "--lamp", [&common](const std::string& v) { common.area_lamp = v == "area"; },
+         "--quality pathtraced: point (default: the real-time passes' point light) or area (the "
+         "lamp cap emits: soft shadows)")
+      ->check(CLI::IsMember({"point", "area"}));
 }
 
 // --bounces (render, run and bench): every mode's bounce count, so each can be compared with
@@ -225,6 +231,7 @@ void add_bounces(CLI::App* cmd, CommonOptions& common) {
 std::string check_pathtrace(const CLI::App* cmd, const CommonOptions& common) {
   if (!common.pathtraced) {
     if (cmd->count("--spp")) return "--spp applies to --quality pathtraced";
+    if (cmd->count("--lamp")) return "--lamp applies to --quality pathtraced";
     return check_bounces(common);
   }
   for (const char* name :
@@ -410,6 +417,14 @@ CliParse parse_cli(int argc, const char* const* argv) {
   threshold("--min-psnr-taa", bench_opts.min_psnr_taa,
             "the PSNR (dB) of the fast mode's final image with TAA (no bloom or motion blur, "
             "64 bounces) against the 64-bounce truth is below this (e.g. 30)");
+  threshold("--min-direct-psnr-floor", bench_opts.min_direct_psnr_floor,
+            "the default shadow mode's direct PSNR (dB) on the floor against the area-lamp truth "
+            "is below this (e.g. 35)");
+  threshold("--max-penumbra-error", bench_opts.max_penumbra_error,
+            "the default shadow mode's penumbra width under the tumbler or the marble differs "
+            "from the area-lamp truth's by more than this fraction (e.g. 0.25)");
+  threshold("--min-albedo-psnr", bench_opts.min_albedo_psnr,
+            "the albedo view's PSNR (dB) against the truth's pixel-averaged albedo is below this");
   bench->add_flag("--require-wall-hue", bench_opts.require_wall_hue,
                   "--accuracy: exit 3 unless on each side wall the incoming indirect light's "
                   "sign of R - B is the truth's: fast at 64 bounces as the 64-bounce truth, fast "
@@ -524,12 +539,18 @@ CliParse parse_cli(int argc, const char* const* argv) {
              (bench->count("--out") || bench->count("--truth-cache") ||
               bench->count("--max-indirect-l1") || bench->count("--max-indirect-bias") ||
               bench->count("--max-region-bias") || bench->count("--max-indirect-l1-single") ||
-              bench->count("--min-psnr-taa") || bench_opts.require_wall_hue))
+              bench->count("--min-psnr-taa") || bench_opts.require_wall_hue ||
+              bench->count("--min-direct-psnr-floor") || bench->count("--max-penumbra-error") ||
+              bench->count("--min-albedo-psnr")))
       why = "--out, --truth-cache and the thresholds (--max-indirect-l1, --max-indirect-bias, "
-            "--max-region-bias, --max-indirect-l1-single, --min-psnr-taa, --require-wall-hue) "
-            "belong to --accuracy";
+            "--max-region-bias, --max-indirect-l1-single, --min-psnr-taa, --require-wall-hue, "
+            "--min-direct-psnr-floor, --max-penumbra-error, --min-albedo-psnr) belong to "
+            "--accuracy";
     if (why) return usage("rolypoly bench", why);
     if (bench_opts.accuracy) {
+      if (bench->count("--lamp"))
+        return usage("rolypoly bench", "--lamp applies to --quality pathtraced (--accuracy uses "
+                                       "both lamp models)");
       if (bench->count("--spp")) bench_opts.accuracy_spp = common.spp;
     } else if (std::string pt = check_pathtrace(bench, common); !pt.empty()) {
       return usage("rolypoly bench", pt);

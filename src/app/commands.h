@@ -62,6 +62,7 @@ struct BenchOptions {
   // Thresholds (exit 3 when missed; app/accuracy_report.h): fractions, PSNR in dB.
   std::optional<double> max_indirect_l1, max_indirect_bias, max_region_bias;
   std::optional<double> max_indirect_l1_single, min_psnr_taa;
+  std::optional<double> min_direct_psnr_floor, max_penumbra_error, min_albedo_psnr;  // issue 15
   bool require_wall_hue = false;
   // The matrix (issue 7): every device x size x voxel resolution.
   std::string devices;           // --devices all|LIST ("" = the one --device, or the default)

@@ -36,6 +36,7 @@ rp::truth::PathTraceSettings settings_for(const CommonOptions& common, uint32_t 
   s.bounces = common.bounces;
   s.seed = seed;  // the same streams every frame: a still scene gives the same image
   s.threads = 0;  // every hardware thread
+  s.lamp = common.area_lamp ? rp::truth::LampModel::kArea : rp::truth::LampModel::kPoint;
   return s;
 }
 
@@ -47,11 +48,12 @@ scene::SceneAssets load_assets(const CommonOptions& common) {
                                                           : common.asset_dir);
 }
 
-// "360x360, 1024 spp, 1 bounce"
+// "360x360, 1024 spp, 1 bounce" (+ ", area lamp")
 std::string describe_settings(const rp::truth::PathTraceSettings& s) {
-  char text[96];
-  std::snprintf(text, sizeof text, "%ux%u, %u spp, %u bounce%s", s.width, s.height, s.spp,
-                s.bounces, s.bounces == 1 ? "" : "s");
+  char text[112];
+  std::snprintf(text, sizeof text, "%ux%u, %u spp, %u bounce%s%s", s.width, s.height, s.spp,
+                s.bounces, s.bounces == 1 ? "" : "s",
+                s.lamp == rp::truth::LampModel::kArea ? ", area lamp" : "");
   return text;
 }
 
@@ -183,6 +185,7 @@ int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& opt
     j["size"] = {w, h};
     j["spp"] = settings.spp;
     j["bounces"] = settings.bounces;
+    j["lamp"] = settings.lamp == rp::truth::LampModel::kArea ? "area" : "point";
     j["seed"] = options.sim.seed;
     j["threads"] = hardware_threads();
     j["warmup"] = options.warmup;

@@ -104,6 +104,7 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   settings.quality = options.quality;
   settings.bounces = options.bounces;
   settings.shadows = options.shadows;
+  settings.texture_filter = options.texture_filter;
   // Before any allocation or kernel build: a size the device cannot hold fails at once, with
   // what would fit.
   check_device_memory(context_.info, width, height, settings.shadow_size,

@@ -31,11 +31,14 @@ struct CommonOptions {
   // the OpenCL renderer; `quality` is then unused. --spp is its samples per pixel.
   bool pathtraced = false;
   uint32_t spp = 256;  // --spp: samples per pixel, 1..1000000
+  bool area_lamp = false;  // --lamp area (pathtraced): the emitting cap (truth::LampModel::kArea)
   // --bounces (every mode): the path tracer's gathers (0..1000) or the real-time modes'
   // render::RenderSettings::bounces (1..1000: 1 = single bounce, >= 2 = multi-bounce, which
   // converges to all bounces). Default 64, "all bounces", in every mode.
   uint32_t bounces = render::RenderSettings::kDefaultBounces;
-  render::ShadowMode shadows = render::RenderSettings{}.shadows;  // --shadows
+  // Issue 15: RenderSettings::shadows and ::texture_filter (bench --accuracy loops over them).
+  render::ShadowMode shadows = render::RenderSettings{}.shadows;
+  render::TextureFilter texture_filter = render::RenderSettings{}.texture_filter;
 };
 
 // Not copyable or movable: the program cache and renderer point at the context.

@@ -79,6 +79,8 @@ std::string truth_key(const scene::SceneAssets& assets, const scene::FrameScene&
   h.value(settings.spp);
   h.value(settings.bounces);
   h.value(settings.seed);
+  // Only the area lamp adds to the key, so the point-lamp truths keep their keys (and caches).
+  if (settings.lamp == truth::LampModel::kArea) h.text("lamp=area");
   for (const scene::Mesh& m : assets.meshes) {
     h.text(m.name);
     for (const scene::Vertex& v : m.vertices) {
@@ -161,6 +163,7 @@ CachedTruth cached_path_trace(truth::PathTracer& tracer, const scene::SceneAsset
     j["height"] = settings.height;
     j["spp"] = settings.spp;
     j["bounces"] = settings.bounces;
+    j["lamp"] = settings.lamp == truth::LampModel::kArea ? "area" : "point";
     j["seed"] = settings.seed;
     j["seconds"] = out.image.seconds;
     j["rays"] = out.image.rays;

@@ -1,7 +1,8 @@
 // The path-traced truth of `bench --accuracy`, cached on disk: a 360x360 truth at 1024 samples
 // per pixel takes minutes, a re-run of the report should take seconds. An entry is keyed by a
 // hash of everything the image depends on (assets: meshes, materials, texels; the frame:
-// camera, light, instances, spheres; the settings: size, spp, bounces, seed; and the path
+// camera, light, instances, spheres; the settings: size, spp, bounces, seed, lamp model (only
+// kArea adds to the key, so point-lamp keys are unchanged); and the path
 // tracer's version), so a change to any of them renders anew.
 //
 // Files in the cache folder: truth-<key>.exr (the components as layers, truth/exr_io.h) and

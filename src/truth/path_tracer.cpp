@@ -19,6 +19,11 @@ namespace {
 constexpr float kRayOffset = 1.0e-4f;   // world units (the box is 2 across)
 constexpr float kFar = 1.0e30f;
 constexpr uint32_t kRouletteAfter = 3;  // gathers before Russian roulette may end a path
+constexpr float kCeilingY = 1.0f;       // the box's ceiling, where the lamp cap is cut
+
+LampCap lamp_cap(const scene::PointLight& light) {
+  return {light.position, light.lamp_radius, kCeilingY};
+}
 
 // Emissive spheres for next-event estimation, chosen in proportion to luminance x r^2 (their
 // power up to a constant).
@@ -60,13 +65,21 @@ struct SampleResult {
 
 class Integrator {
  public:
-  Integrator(const TraceScene& scene, const SphereLights& lights, uint32_t bounces)
-      : scene_(scene), lights_(lights), bounces_(bounces), light_(scene.frame().light) {}
+  Integrator(const TraceScene& scene, const SphereLights& lights, uint32_t bounces,
+             LampModel model)
+      : scene_(scene),
+        lights_(lights),
+        bounces_(bounces),
+        light_(scene.frame().light),
+        model_(model),
+        cap_(lamp_cap(light_)),
+        cap_radiance_(light_.intensity / cap_.projected_radius2()) {}
 
   uint64_t rays = 0;
 
   // The lamp's direct light leaving `s` towards any direction (Lambertian, rolypoly's units).
-  glm::vec3 lamp(const Surface& s) {
+  glm::vec3 lamp(const Surface& s, Pcg32& rng) {
+    if (model_ == LampModel::kArea) return area_lamp(s, rng);
     if (light_.intensity == glm::vec3(0.0f)) return glm::vec3(0.0f);
     const glm::vec3 to_light = light_.position - s.p;
     const float d2 = glm::dot(to_light, to_light);
@@ -79,6 +92,26 @@ class Integrator {
     const float e = std::clamp(l.y, 0.0f, 1.0f);
     const float falloff = 0.35f + e * (0.446f + 0.204f * e);  // direct_light.h rp_lamp_falloff
     return s.albedo * light_.intensity * (c / d2 * falloff);
+  }
+
+  // The area lamp's direct light leaving `s` (path_tracer.h "lamp, area"): one direction
+  // uniform in the cone the lamp's sphere subtends, kept when it meets the cap.
+  glm::vec3 area_lamp(const Surface& s, Pcg32& rng) {
+    const float u1 = rng.uniform(), u2 = rng.uniform();  // always drawn: streams stay aligned
+    if (light_.intensity == glm::vec3(0.0f)) return glm::vec3(0.0f);
+    const glm::vec3 to_centre = cap_.centre - s.p;
+    const float dist = glm::length(to_centre);
+    if (dist <= cap_.radius * 1.0001f) return glm::vec3(0.0f);  // on the lamp itself
+    const float omc = sphere_cone_omc(cap_.radius, dist);
+    const glm::vec3 wi = sample_cone(to_centre / dist, omc, u1, u2);
+    const float c = glm::dot(s.ns, wi);
+    if (c <= 0.0f || glm::dot(s.ng, wi) <= 0.0f) return glm::vec3(0.0f);
+    const float t = cap_.hit(s.p, wi);
+    if (t < 0.0f) return glm::vec3(0.0f);  // the sphere above the ceiling: no lamp there
+    ++rays;
+    if (scene_.shadowed(s.p + s.ng * kRayOffset, wi, t)) return glm::vec3(0.0f);
+    // albedo / pi * L_e * cos / pdf, pdf = 1 / (2 pi omc)
+    return s.albedo * cap_radiance_ * (2.0f * c * omc);
   }
 
   // Light from the emissive spheres reflected by `s`, sampled by the spheres (MIS weighted).
@@ -121,7 +154,7 @@ class Integrator {
     if (!scene_.intersect(org, dir, kFar, s)) return r;
     r.emission = s.emission;
     r.albedo = s.albedo;
-    r.direct = lamp(s);
+    r.direct = lamp(s, rng);
     glm::vec3 beta(1.0f);  // throughput from the camera to s, albedos of the gathers so far
     for (uint32_t gather = 1; gather <= bounces_; ++gather) {
       if (s.albedo == glm::vec3(0.0f)) break;
@@ -144,7 +177,7 @@ class Integrator {
         r.indirect += beta * next.emission * w;
       }
       s = next;
-      r.indirect += beta * lamp(s);
+      r.indirect += beta * lamp(s, rng);
     }
     return r;
   }
@@ -154,6 +187,9 @@ class Integrator {
   const SphereLights& lights_;
   uint32_t bounces_;
   scene::PointLight light_;
+  LampModel model_;
+  LampCap cap_;
+  glm::vec3 cap_radiance_;  // L_e = I / a^2 (path_tracer.h)
 };
 
 // Camera rays: pixel coordinates (x right, y down, pixel centres at +0.5) -> world direction.
@@ -217,7 +253,53 @@ void run_rows(uint32_t rows, unsigned threads, RowFn row_fn, const ProgressFn& p
   if (progress) progress(rows, rows);
 }
 
+// PrimaryHit::lamp_unshadowed and lamp_fraction at `s` from strata x strata stratified
+// directions (stratum centres) of the cone area_lamp samples.
+void area_lamp_fraction(const TraceScene& scene, const Surface& s, uint32_t strata,
+                        PrimaryHit& hit) {
+  const LampCap cap = lamp_cap(scene.frame().light);
+  const glm::vec3 to_centre = cap.centre - s.p;
+  const float dist = glm::length(to_centre);
+  if (dist <= cap.radius * 1.0001f) return;
+  const float omc = sphere_cone_omc(cap.radius, dist);
+  double seen = 0.0, lit = 0.0;
+  for (uint32_t i = 0; i < strata; ++i)
+    for (uint32_t j = 0; j < strata; ++j) {
+      const glm::vec3 wi = sample_cone(to_centre / dist, omc, (float(i) + 0.5f) / float(strata),
+                                       (float(j) + 0.5f) / float(strata));
+      const float c = glm::dot(s.ns, wi);
+      if (c <= 0.0f || glm::dot(s.ng, wi) <= 0.0f) continue;
+      const float t = cap.hit(s.p, wi);
+      if (t < 0.0f) continue;
+      seen += c;
+      if (!scene.shadowed(s.p + s.ng * kRayOffset, wi, t)) lit += c;
+    }
+  if (!(seen > 0.0)) return;
+  // sum c * (2 pi omc / n) / pi / a^2 over the n directions
+  hit.lamp_unshadowed =
+      float(seen * 2.0 * double(omc) / (double(strata) * strata) / cap.projected_radius2());
+  hit.lamp_fraction = float(lit / seen);
+}
+
 }  // namespace
+
+float area_lamp_unshadowed(const scene::PointLight& light, glm::vec3 p, glm::vec3 n,
+                           uint32_t strata) {
+  const LampCap cap = lamp_cap(light);
+  const glm::vec3 to_centre = cap.centre - p;
+  const float dist = glm::length(to_centre);
+  if (dist <= cap.radius * 1.0001f || strata == 0) return 0.0f;
+  const float omc = sphere_cone_omc(cap.radius, dist);
+  double seen = 0.0;
+  for (uint32_t i = 0; i < strata; ++i)
+    for (uint32_t j = 0; j < strata; ++j) {
+      const glm::vec3 wi = sample_cone(to_centre / dist, omc, (float(i) + 0.5f) / float(strata),
+                                       (float(j) + 0.5f) / float(strata));
+      const float c = glm::dot(n, wi);
+      if (c > 0.0f && cap.hit(p, wi) >= 0.0f) seen += c;
+    }
+  return float(seen * 2.0 * double(omc) / (double(strata) * strata) / cap.projected_radius2());
+}
 
 struct PathTracer::Impl {
   explicit Impl(const scene::SceneAssets& a) : assets(a) {}
@@ -248,7 +330,7 @@ PathTracedImage PathTracer::render(const scene::FrameScene& frame,
   std::atomic<uint64_t> rays{0};
 
   auto row = [&](uint32_t y) {
-    Integrator integrator(scene, lights, settings.bounces);
+    Integrator integrator(scene, lights, settings.bounces, settings.lamp);
     for (uint32_t x = 0; x < w; ++x) {
       const uint64_t pixel = uint64_t(y) * w + x;
       Pcg32 rng(settings.seed, pixel);
@@ -281,7 +363,7 @@ PathTracedImage PathTracer::render(const scene::FrameScene& frame,
 }
 
 std::vector<PrimaryHit> PathTracer::primary_hits(const scene::FrameScene& frame, uint32_t width,
-                                                 uint32_t height) {
+                                                 uint32_t height, uint32_t lamp_strata) {
   const TraceScene scene(impl_->assets, frame);
   const CameraRays camera(frame.camera, width, height);
   std::vector<PrimaryHit> hits(size_t(width) * height);
@@ -297,6 +379,7 @@ std::vector<PrimaryHit> PathTracer::primary_hits(const scene::FrameScene& frame,
       const float d = glm::length(to_light);
       hit.lamp_cos = glm::dot(s.ns, to_light / d);
       hit.lamp_visible = !scene.shadowed(s.p + s.ng * kRayOffset, to_light / d, d);
+      if (lamp_strata > 0) area_lamp_fraction(scene, s, lamp_strata, hit);
     }
   return hits;
 }

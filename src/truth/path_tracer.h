@@ -11,11 +11,32 @@
 //             emission (meshes) or Sphere::emission. Shading normal: mesh vertex normals
 //             interpolated and transformed by the inverse transpose of the model matrix; spheres
 //             analytic.
-//   lamp      the point light of kernels/common/direct_light.h: at a point p with normal n,
+//   lamp      (LampModel::kPoint, the default) the point light of kernels/common/direct_light.h:
+//             at a point p with normal n,
 //             L_direct = albedo * I * max(n.l, 0) / d^2 * falloff(l.y) * V, falloff(s) = 0.35 +
 //             s (0.446 + 0.204 s) for s = clamp(l.y, 0, 1), V = 1 unless a shadow caster (an
 //             instance or sphere with casts_shadow) lies between p and the lamp centre. I is pi
 //             times a physical radiant intensity, so no 1/pi appears (DESIGN.md "Light units").
+//   lamp, area  (PathTraceSettings::lamp = LampModel::kArea, issue 15, the truth for soft
+//             shadows) the lamp cap itself emits: the part below the ceiling y = 1 of the sphere
+//             of radius r = light.lamp_radius around light.position (truth::LampCap), a
+//             Lambertian emitter of constant radiance L_e = I / a^2, a^2 = r^2 - h^2 = 0.1125 for
+//             r = 0.35 and the centre h = 0.1 above the ceiling. Why: a surface reflects
+//             albedo / pi * integral of L_e cos over the cap's solid angle; far away that solid
+//             angle is A(w) / d^2 with A(w) the cap's projected area seen from direction w, and
+//             from straight below A = pi a^2 (the cut circle is the outline), so the light is
+//             albedo * L_e * a^2 * cos / d^2 = albedo * I * cos / d^2: the point model with
+//             falloff(1) = 1 (falloff(s) is the point model's fit of A(w) / (pi a^2)). Nearer
+//             the lamp the area model is brighter, since the emitting surface lies 0.1 to 0.35
+//             below the centre: at the floor centre albedo * L_e * a^2 / (2^2 + a^2) = I / 4.11
+//             against the point model's I / 2.1^2 = I / 4.41, +7.2 %. Next-event estimation:
+//             one direction per lit surface, uniform in the cone the whole sphere subtends (pdf
+//             1 / (2 pi (1 - cos))), kept when it meets the cap below the ceiling, then a shadow
+//             ray to that point against the shadow casters (as the point model: the box and the
+//             cap never occlude): albedo * L_e * cos * 2 (1 - cos_max). Gather rays that hit the
+//             cap add nothing (voxelize == false), so the cap's light is counted once, by
+//             next-event estimation only (one strategy, no MIS); the camera still sees the cap's
+//             material emission (the emission component, as the real-time GBuffer shows it).
 //   emitters  mesh emission is counted where a path hits it, except on instances that are not
 //             part of the GI volume (MeshInstance::voxelize == false: the lamp cap), which the
 //             camera sees but whose light is already the point light; emissive spheres (fireball,
@@ -52,12 +73,17 @@
 
 namespace rp::truth {
 
+// How the lamp lights surfaces (see the header): kPoint, the real-time passes' model (the
+// default), or kArea, the emitting cap (soft shadows).
+enum class LampModel { kPoint, kArea };
+
 struct PathTraceSettings {
   uint32_t width = 720, height = 720;
   uint32_t spp = 64;      // samples per pixel (>= 1)
   uint32_t bounces = 1;   // gathers, see the header (0 = direct only)
   uint64_t seed = 1;      // random streams (per pixel)
   unsigned threads = 0;   // 0 = every hardware thread
+  LampModel lamp = LampModel::kPoint;
 };
 
 // Linear float RGB images: 3 floats per pixel, row-major, top row first (index 3 (y w + x) + c).
@@ -77,8 +103,23 @@ struct PrimaryHit {
   uint32_t material = kNone;  // SceneAssets::materials index of a mesh hit, or kNone
   float lamp_cos = 0.0f;      // dot(shading normal, direction to the lamp centre)
   bool lamp_visible = false;  // no shadow caster between the point and the lamp centre
+  // Only when primary_hits was given lamp_strata > 0, for the area lamp (LampModel::kArea):
+  // lamp_unshadowed = the integral of cos over the cap's solid angle / (pi a^2), so that the
+  // area lamp's unshadowed direct light is albedo * I * lamp_unshadowed (-> cos / d^2 far
+  // away); lamp_fraction = the part of that integral no shadow caster blocks (1 lit, 0 umbra,
+  // between: penumbra), -1 where the cap is not seen at all. Deterministic (stratified).
+  float lamp_unshadowed = 0.0f;
+  float lamp_fraction = -1.0f;
   bool hit() const { return instance != kNone || sphere != kNone; }
 };
+
+// The area lamp's unshadowed light factor at point p with unit normal n, as
+// PrimaryHit::lamp_unshadowed (no shadow casters): the integral of cos over the cap's solid
+// angle / (pi a^2), from strata^2 stratified directions; the area lamp's direct light there is
+// albedo * I * this when nothing blocks it (the point model's counterpart is cos / d^2 *
+// falloff).
+float area_lamp_unshadowed(const scene::PointLight& light, glm::vec3 p, glm::vec3 n,
+                           uint32_t strata = 64);
 
 // Called between rows from the thread that called render(): rows finished so far, rows in all.
 using ProgressFn = std::function<void(uint32_t done, uint32_t total)>;
@@ -101,9 +142,11 @@ class PathTracer {
                          const std::atomic<bool>* cancel = nullptr);
 
   // The surface at each pixel centre (width * height entries, row-major) with the lamp's
-  // visibility there: the regions of the accuracy report.
+  // visibility there: the regions of the accuracy report. lamp_strata > 0: also the area
+  // lamp's lamp_unshadowed and lamp_fraction, from lamp_strata^2 stratified directions of the
+  // cone that next-event estimation samples.
   std::vector<PrimaryHit> primary_hits(const scene::FrameScene& frame, uint32_t width,
-                                       uint32_t height);
+                                       uint32_t height, uint32_t lamp_strata = 0);
 
   struct Cancelled : std::runtime_error {
     Cancelled() : std::runtime_error("path tracing cancelled") {}

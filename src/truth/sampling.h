@@ -83,6 +83,39 @@ inline float sphere_cone_omc(float r, float d) {
   return s2 / (1.0f + std::sqrt(std::max(0.0f, 1.0f - s2)));
 }
 
+// The lamp as an area light (PathTraceSettings::lamp == LampModel::kArea): the part below the
+// ceiling plane y = ceiling of the sphere (centre, radius) the lamp cap is cut from
+// (scene::make_lamp_cap), emitting with constant radiance (Lambertian). Its light reaches a point
+// along the directions whose first meeting with the sphere lies below the ceiling: a ray from
+// below the ceiling that met the sphere above it would have passed the ceiling outside the cut
+// disc (the box itself never occludes the lamp, as in the point model).
+struct LampCap {
+  glm::vec3 centre{0.0f};
+  float radius = 0.0f;
+  float ceiling = 1.0f;
+
+  // Distance t > 0 along unit `dir` from `org` to the cap, or -1 when the ray misses the sphere,
+  // meets it first above the ceiling or starts inside it.
+  float hit(glm::vec3 org, glm::vec3 dir) const {
+    const glm::vec3 oc = centre - org;
+    const float c = glm::dot(oc, oc) - radius * radius;
+    const float b = glm::dot(oc, dir);
+    if (c <= 0.0f || b <= 0.0f) return -1.0f;  // inside, or the sphere is behind
+    const float disc = b * b - c;
+    if (disc < 0.0f) return -1.0f;
+    const float t = c / (b + std::sqrt(disc));  // = b - sqrt(disc), without the cancellation
+    return org.y + t * dir.y < ceiling ? t : -1.0f;
+  }
+  // The cap's area projected on a horizontal plane, over pi: the squared radius of its outline
+  // seen from far below. With the centre h above the ceiling (0 < h < radius) the outline is the
+  // cut circle, radius^2 - h^2 (the sphere's own silhouette lies above the ceiling); with the
+  // centre at or below the ceiling it is the equator, radius^2.
+  float projected_radius2() const {
+    const float h = centre.y - ceiling;
+    return h > 0.0f ? radius * radius - h * h : radius * radius;
+  }
+};
+
 // Power heuristic (beta = 2) weight of a sample drawn with density pa, the other strategy pb.
 inline float power_heuristic(float pa, float pb) {
   const float a = pa * pa, b = pb * pb;

@@ -38,7 +38,7 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
 
   std::ifstream in(dir / "acc.json");
   const nlohmann::json j = nlohmann::json::parse(in);
-  EXPECT_EQ(j["schema"], "rolypoly-accuracy/2");
+  EXPECT_EQ(j["schema"], "rolypoly-accuracy/3");
   EXPECT_EQ(j["width"], 24);
   EXPECT_FALSE(j.contains("thresholds"));
   EXPECT_TRUE(j["passed"].get<bool>());
@@ -113,7 +113,10 @@ TEST(AccuracyCli, UsageErrors) {
         "bench --require-wall-hue", "bench --accuracy --sizes 16,32",
         "bench --accuracy --quality-report", "bench --accuracy --bounces 3",
         "bench --accuracy --max-indirect-bias nan", "bench --accuracy --min-psnr-taa -1",
-        "bench --accuracy --max-region-bias x", "bench --accuracy --quality pathtraced"}) {
+        "bench --accuracy --max-region-bias x", "bench --accuracy --quality pathtraced",
+        "bench --min-direct-psnr-floor 35", "bench --max-penumbra-error 0.25",
+        "bench --min-albedo-psnr 20", "bench --accuracy --lamp area",
+        "bench --accuracy --max-penumbra-error -1"}) {
     const rp::test::CommandResult r = run_rolypoly(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
   }
@@ -140,6 +143,9 @@ TEST(TruthCache, KeyFollowsEverythingTheImageDependsOn) {
   scene::SceneAssets recoloured = assets;
   recoloured.textures[0].rgba[0] ^= 1;
   EXPECT_NE(key, truth_key(recoloured, frame, s));
+  more = s;
+  more.lamp = truth::LampModel::kArea;
+  EXPECT_NE(key, truth_key(assets, frame, more));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // are worked out by hand.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -124,6 +125,82 @@ TEST(AccuracyMetrics, HeatMapSigns) {
   EXPECT_EQ(rgba[4], 255); EXPECT_EQ(rgba[5], 0); EXPECT_EQ(rgba[6], 0);      // too bright: red
   EXPECT_EQ(rgba[8], 0); EXPECT_EQ(rgba[9], 0); EXPECT_EQ(rgba[10], 255);     // too dark: blue
   EXPECT_EQ(rgba[12], 0); EXPECT_EQ(rgba[13], 0); EXPECT_EQ(rgba[14], 0);     // background
+}
+
+
+// ---- The direct section's measures (issue 15) ----
+
+// A linear ramp from 0 at s = a to 1 at s = b (flat outside), sampled every `step`: its 10-90 %
+// width is 0.8 (b - a) wherever the samples fall, since the crossings are interpolated linearly.
+std::vector<ProfileSample> ramp(double a, double b, double step, double end) {
+  std::vector<ProfileSample> p;
+  for (double s = 0.0; s <= end; s += step) p.push_back({s, std::clamp((s - a) / (b - a), 0.0, 1.0)});
+  return p;
+}
+
+TEST(AccuracyMetrics, TransitionWidthOfARamp) {
+  EXPECT_NEAR(transition_width(ramp(0.1, 0.3, 0.01, 0.5)), 0.16, 1e-9);
+  EXPECT_NEAR(transition_width(ramp(0.1037, 0.2291, 0.0013, 0.5)), 0.8 * (0.2291 - 0.1037), 1e-9);
+  // A step (hard shadow) sampled every 0.01 reads 0.8 of a sample spacing.
+  EXPECT_NEAR(transition_width(ramp(0.2, 0.2000001, 0.01, 0.5)), 0.008, 1e-4);
+  // A dip back into shadow before the edge does not count: the last rise through 10 % does.
+  std::vector<ProfileSample> p = ramp(0.3, 0.4, 0.01, 0.6);
+  p[5].v = 0.5;  // s = 0.05: a lit speck inside the umbra
+  EXPECT_NEAR(transition_width(p), 0.08, 1e-9);
+  // Undefined: never lit enough, or lit from the start.
+  EXPECT_TRUE(std::isnan(transition_width(ramp(0.1, 0.3, 0.01, 0.2))));
+  EXPECT_TRUE(std::isnan(transition_width(ramp(-0.3, -0.1, 0.01, 0.2))));
+  // Wider transition in the other sense of the words: 5-95 %.
+  EXPECT_NEAR(transition_width(ramp(0.1, 0.3, 0.01, 0.5), 0.05, 0.95), 0.18, 1e-9);
+}
+
+TEST(AccuracyMetrics, MaskedPsnrOfKnownImages) {
+  // Two pixels in the mask, one out: differences 0.1 in every channel of the first, 0 in the
+  // second: MSE = 0.01 * 3 / 6 = 0.005 -> 23.01 dB; scaled by 2 the MSE is 4x: 16.99 dB.
+  const std::vector<float> t = {1, 1, 1, 0.5f, 0.5f, 0.5f, 9, 9, 9};
+  const std::vector<float> a = {1.1f, 1.1f, 1.1f, 0.5f, 0.5f, 0.5f, 0, 0, 0};
+  const std::vector<uint8_t> mask = {1, 1, 0};
+  EXPECT_NEAR(masked_psnr(a, t, mask, 1.0), 10.0 * std::log10(1.0 / 0.005), 1e-4);
+  EXPECT_NEAR(masked_psnr(a, t, mask, 2.0), 10.0 * std::log10(1.0 / 0.02), 1e-4);
+  EXPECT_TRUE(std::isinf(masked_psnr(t, t, mask, 1.0)));
+  EXPECT_TRUE(std::isnan(masked_psnr(a, t, {0, 0, 0}, 1.0)));
+  EXPECT_THROW(masked_psnr(a, t, {1, 1}, 1.0), std::invalid_argument);
+}
+
+TEST(AccuracyMetrics, SrgbPsnrEncodesEachChannel) {
+  // Linear 0.5 -> sRGB 0.735357; linear 0.2 -> 0.484529; one pixel, three equal channels.
+  const std::vector<float> a = {0.5f, 0.5f, 0.5f}, t = {0.2f, 0.2f, 0.2f};
+  const double d = 0.735357 - 0.484529;
+  EXPECT_NEAR(srgb_psnr(a, t, {1}), 10.0 * std::log10(1.0 / (d * d)), 1e-3);
+  // Clamped to [0, 1] before the encode.
+  EXPECT_TRUE(std::isinf(srgb_psnr({2, 2, 2}, {1, 1, 1}, {1})));
+}
+
+TEST(AccuracyMetrics, DilateGrowsBySquare) {
+  std::vector<uint8_t> m(25, 0);
+  m[2 * 5 + 2] = 1;
+  const std::vector<uint8_t> d = dilate(m, 5, 5, 1);
+  int n = 0;
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 5; ++x) {
+      const bool inside = std::abs(x - 2) <= 1 && std::abs(y - 2) <= 1;
+      EXPECT_EQ(d[size_t(y) * 5 + size_t(x)], inside ? 1 : 0) << x << "," << y;
+      n += d[size_t(y) * 5 + size_t(x)];
+    }
+  EXPECT_EQ(n, 9);
+  m.assign(25, 0);
+  m[0] = 1;  // at the corner: clipped
+  EXPECT_EQ(dilate(m, 5, 5, 1)[6], 1);
+  EXPECT_EQ(dilate(m, 5, 5, 1)[2], 0);
+}
+
+TEST(AccuracyMetrics, BilinearLumaBetweenPixelCentres) {
+  // 2x1 image, luminance 0 and 1 (grey): centres at x = 0.5 and 1.5.
+  const std::vector<float> img = {0, 0, 0, 1, 1, 1};
+  EXPECT_NEAR(bilinear_luma(img, 2, 1, 0.5, 0.5), 0.0, 1e-12);
+  EXPECT_NEAR(bilinear_luma(img, 2, 1, 1.0, 0.5), 0.5, 1e-12);
+  EXPECT_NEAR(bilinear_luma(img, 2, 1, 1.25, 0.5), 0.75, 1e-12);
+  EXPECT_NEAR(bilinear_luma(img, 2, 1, 7.0, 0.5), 1.0, 1e-12);  // clamped at the edge
 }
 
 }  // namespace

@@ -121,6 +121,11 @@ TEST(PathtraceCli, UsageErrors) {
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
     EXPECT_TRUE(Contains(r.err, "--spp applies to --quality pathtraced")) << args;
   }
+  CommandResult lamp = run_rolypoly("render --lamp area");
+  EXPECT_EQ(lamp.exit_code, 2);
+  EXPECT_TRUE(Contains(lamp.err, "--lamp applies to --quality pathtraced")) << lamp.err;
+  CommandResult bad_lamp = run_rolypoly("render --quality pathtraced --lamp disc");
+  EXPECT_EQ(bad_lamp.exit_code, 2) << bad_lamp.err;
   CommandResult zero = run_rolypoly("render --bounces 0");
   EXPECT_EQ(zero.exit_code, 2);
   EXPECT_TRUE(Contains(zero.err, "--bounces 0 applies to --quality pathtraced")) << zero.err;

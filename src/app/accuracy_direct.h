@@ -1,0 +1,61 @@
+// The direct-light section of `rolypoly bench --accuracy` (issue 15): how close each shadow mode
+// (RenderSettings::shadows) and the texture filter come to the area-lamp truth.
+//
+// Scene: the demo frame at rest plus two marbles at rest on the floor in front of the tumblers
+// (direct_frame), so there is a penumbra under a tumbler and under a marble; the indirect
+// section keeps the plain demo frame (issue 14's figures stay comparable).
+// Truth: the path tracer with LampModel::kArea at 0 bounces (direct light + seen emission), at
+// the report's size, cached like the other truths; its own noise is stated (PSNR of two seeds).
+// Real time: per shadow mode, the fast mode at 1 bounce (the direct term does not depend on the
+// bounces), one unjittered frame (the albedo view), then `jitter_frames` frames with TAA's
+// camera jitter on whose direct components (and albedo) are averaged on the host: what TAA
+// converges to without its history clamp, so a per-frame rotated filter and texture aliasing
+// resolve as on screen. Measures (app/accuracy_metrics.h):
+//   direct PSNR   masked_psnr of the direct component scaled by 1 / the truth's mean lit-floor
+//                 luminance (peak 1 = the lit floor), on the floor, on the truth's penumbra
+//                 pixels (lamp_fraction in (0.05, 0.95) at the pixel centre, dilated by one
+//                 pixel) and over every covered pixel but the ceiling (which the area
+//                 lamp lights beside the cap and the point model cannot);
+//   penumbra      10-90 % widths (world units along the floor) of the lamp's visible fraction
+//                 along a line from a tumbler's and a marble's contact point directly away from
+//                 the lamp's foot (0, -1, 0): direct / (albedo * I * unshadowed light of the
+//                 image's own lamp model), bilinear in each image; error = |rt / truth - 1|;
+//   albedo        srgb_psnr of the unjittered frame's albedo against the truth's pixel-averaged
+//                 albedo (texture filtering), image and floor.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/render_session.h"
+#include "truth/path_tracer.h"
+
+namespace rp::app {
+
+struct DirectOptions {
+  uint32_t width = 360, height = 360;
+  uint32_t spp = 4096;          // the area truth's samples per pixel
+  uint64_t seed = 1;
+  uint32_t jitter_frames = 16;  // one full cycle of TAA's 16-sample Halton jitter
+  std::filesystem::path cache_dir;
+  std::filesystem::path out_dir;  // accuracy_direct_{side_by_side,heat}.png
+};
+
+struct DirectResult {
+  nlohmann::json json;  // the report's "direct" object (schema rolypoly-accuracy/3)
+  std::string table;    // printed lines
+};
+
+// The demo frame `frame_index` at rest plus two marbles resting on the floor.
+scene::FrameScene direct_frame(const scene::SceneAssets& assets, uint32_t frame_index);
+
+// Renders the truth (or takes it from the cache) and every shadow mode, measures, writes the
+// PNGs. Throws truth::PathTracer::Cancelled on Ctrl-C (as measure_accuracy).
+DirectResult measure_direct(const CommonOptions& common, const scene::SceneAssets& assets,
+                            truth::PathTracer& tracer, const DirectOptions& options);
+
+}  // namespace rp::app
