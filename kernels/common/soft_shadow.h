@@ -17,8 +17,9 @@
  *     U: rows 3, 0, 1 of light_view_proj, R and U divided by their squared lengths, so D has unit
  *     depth), the plane's inverse depth is 1 / z(u, v) = (n.D(u, v)) / (n.(q - lamp)), affine
  *     in (u, v): 1/z = (1/z_q) (1 + g . delta), delta the tap's offset from q in texels,
- *     g = (2 / size) (n.R, -n.U) / n.D(u_q, v_q) (clamped to RP_PLANE_MAX_GRADIENT per texel,
- *     the factor to [0.5, 2]). A stored texel's inverse depth is affine in the stored d:
+ *     g = (2 / size) (n.R, -n.U) / n.D(u_q, v_q) (clamped to RP_PLANE_MAX_GRADIENT per texel
+ *     where n.D nears 0). Where the factor is <= 0 the tap's ray never meets the plane (it
+ *     passes beyond the receiver's horizon) and anything stored there counts as in front. A stored texel's inverse depth is affine in the stored d:
  *     1/z = 1/near - d (far - near) / (near far); it occludes when it is nearer than the plane
  *     by RP_SHADOW_DEPTH_BIAS texels.
  *   pcf: RP_PCF_TAPS taps of the 16-point Poisson disk (common/random.h) scaled to
@@ -58,9 +59,11 @@
  *      read as a 2x2 footprint at the level whose texels are at least that wide: min z >= z_r
  *      means nothing in front of the receiver there, so fully lit (exact, and most pixels). Else
  *      z_min (the nearest thing in the region, at least RP_PCSS_NEAREST) bounds the search.
- *   2. Blocker search: RP_PCSS_SEARCH_TAPS rotated Poisson taps over the disk covering the
- *      cone from z_min to z_r (centre halfway between c(z_min) and u_r, radius r(z_min) plus
- *      half their distance); a tap is a BLOCKER when its texel is in front of the receiver plane
+ *   2. Blocker search: RP_PCSS_SEARCH_TAPS rotated Poisson taps through the cone between z_min
+ *      and z_r: tap t at the cone's disk (c, r) for inverse depth lerp(1/z_min, 1/z_r,
+ *      t / (N - 1)), so blockers near the receiver (small disks near u_r: contact shadows)
+ *      are found as well as high ones; a tap is a BLOCKER when its texel is in front of the
+ *      receiver plane
  *      AND inside the cone at its own depth (|u - c(z)| < max(r(z), RP_PCSS_MIN_RADIUS texels),
  *      z < z_r), which keeps walls beside a floor point from counting (they are nearer than the
  *      floor's plane but not between it and the lamp). No blocker: lit; all blockers: umbra.
@@ -119,7 +122,7 @@
 #endif
 #define RP_PCSS_MIN_RADIUS 0.75f /* texels: a texel's own extent */
 #define RP_PCSS_MAX_RADIUS 63.0f /* texels: the coarsest mip's 2x2 footprint still covers it */
-#define RP_PLANE_MAX_GRADIENT 0.05f /* relative inverse-depth change per texel */
+#define RP_PLANE_MAX_GRADIENT 0.5f /* relative inverse-depth change per texel */
 #ifndef RP_VSSM_BLEED
 #define RP_VSSM_BLEED 0.2f
 #endif
@@ -158,8 +161,7 @@ inline float8 rp_soft_plane_lit(__global const float* restrict shadow, const RpS
   const float8 d = (float8)(shadow[idx.s0], shadow[idx.s1], shadow[idx.s2], shadow[idx.s3],
                             shadow[idx.s4], shadow[idx.s5], shadow[idx.s6], shadow[idx.s7]);
   const float8 inv_tap = s->inv_a - d * s->inv_b;
-  const float8 ratio = fmin(fmax(1.0f + s->gx * (tx - s->sx) + s->gy * (ty - s->sy),
-                                 (float8)(0.5f)), (float8)(2.0f));
+  const float8 ratio = 1.0f + s->gx * (tx - s->sx) + s->gy * (ty - s->sy);
   return select((float8)(1.0f), (float8)(0.0f), inv_tap > s->inv0 * ratio);
 }
 
@@ -259,9 +261,9 @@ inline float8 rp_pcss_min(__global const float* restrict mips, const RpShadow8* 
   const float8 cf = L->c_h * (1.0f - L->ze * inear);
   const float8 mid = (float8)(s->size * 0.5f);
   const float8 cx = L->xr * cf + mid, cy = L->yr * cf + mid;
-  /* clamped to just outside the map before any int conversion (lanes outside the frustum may
-   * hold any value) */
-  const float8 lo = (float8)(-1.0f), hi = (float8)(s->size + 1.0f);
+  /* clamped to the map (the taps clamp their addresses to it too) before any int conversion
+   * (lanes outside the frustum may hold any value) */
+  const float8 lo = (float8)(0.0f), hi = (float8)(s->size - 1.0f);
   float x0[8], x1[8], y0[8], y1[8];
   vstore8(fmin(fmax(fmin(cx, s->sx) - r, lo), hi), 0, x0);
   vstore8(fmin(fmax(fmax(cx, s->sx) + r, lo), hi), 0, x1);
@@ -306,8 +308,7 @@ inline float8 rp_pcss_blocker(__global const float* restrict shadow, const RpSha
    * than the lamp's disk the cone formulas would mirror) */
   const float8 it = fmin(raw, (float8)(1.0f / RP_PCSS_NEAREST));
   *inv = it;
-  const float8 ratio = fmin(fmax(1.0f + s->gx * (tx - s->sx) + s->gy * (ty - s->sy),
-                                 (float8)(0.5f)), (float8)(2.0f));
+  const float8 ratio = 1.0f + s->gx * (tx - s->sx) + s->gy * (ty - s->sy);
   const float8 cf = L->c_h * (1.0f - L->ze * it);
   const float8 mid = (float8)(s->size * 0.5f);
   const float8 dx = tx - mid - L->xr * cf, dy = ty - mid - L->yr * cf;
@@ -418,20 +419,39 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
   if (all(done > 0.5f)) return one;
   /* the cone from the nearest possible blocker to the receiver */
   const float8 inear = 1.0f / fmax(zmin, (float8)(RP_PCSS_NEAREST));
+  const float8 mid = (float8)(s.size * 0.5f);
+#if RP_SHADOW_MODE == 2
+  /* Even taps: uniform over the disk holding the cone's disks at every depth from z_min to
+   * z_r (centre halfway between c(z_min) and the receiver, radius r(z_min) plus half their
+   * distance). Odd taps: tap 2j + 1 on the cone's disk at inverse depth lerp(1 / z_min, 1 / z_r,
+   * j / (N / 2 - 1)): blockers near the receiver have small disks that uniform taps would
+   * rarely hit; the last lies within RP_PCSS_MIN_RADIUS of the receiver (contact shadows). */
   const float8 rb = fmin(fmax(L.k_h * (s.zr * inear - 1.0f), zero), (float8)(RP_PCSS_MAX_RADIUS));
   const float8 cfb = L.c_h * (1.0f - L.ze * inear);
-  const float8 mid = (float8)(s.size * 0.5f);
   const float8 bx = L.xr * cfb + mid, by = L.yr * cfb + mid;
   const float8 mx = (bx + s.sx) * 0.5f, my = (by + s.sy) * 0.5f;
   const float8 rs = fmin(rb + 0.5f * sqrt((bx - s.sx) * (bx - s.sx) + (by - s.sy) * (by - s.sy)) +
                              RP_PCSS_MIN_RADIUS,
                          (float8)(RP_PCSS_MAX_RADIUS));
-#if RP_SHADOW_MODE == 2
   float8 count = zero, sum_inv = zero;
+  const float8 ir = 1.0f / s.zr;
   for (int t = 0; t < RP_PCSS_SEARCH_TAPS; ++t) {
-    float8 ox, oy, it;
+    float8 ox, oy, it, cx, cy, rk;
     RP_SOFT_POINT((t * 16 / RP_PCSS_SEARCH_TAPS) & 15, s.ca, s.sa, ox, oy);
-    const float8 b = rp_pcss_blocker(shadow, &s, &L, mx + ox * rs, my + oy * rs, &it);
+    if ((t & 1) == 0) {
+      cx = mx;
+      cy = my;
+      rk = rs;
+    } else {
+      const float f = (float)(t / 2) * (1.0f / (float)(RP_PCSS_SEARCH_TAPS / 2 - 1));
+      const float8 ik = inear + (ir - inear) * f;
+      rk = fmin(fmax(L.k_h * (s.zr * ik - 1.0f), (float8)(RP_PCSS_MIN_RADIUS)),
+                (float8)(RP_PCSS_MAX_RADIUS));
+      const float8 ck = L.c_h * (1.0f - L.ze * ik);
+      cx = L.xr * ck + mid;
+      cy = L.yr * ck + mid;
+    }
+    const float8 b = rp_pcss_blocker(shadow, &s, &L, cx + ox * rk, cy + oy * rk, &it);
     count += b;
     sum_inv += b * it;
   }
@@ -454,6 +474,15 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
   /* decided lanes: lit (mip, outside, no blocker found) or umbra (every search tap blocked) */
   return select(select(vis, zero, umbra > 0.5f), one, fmax(done, none) > 0.5f);
 #else /* VSSM */
+  /* the search disk: centre halfway between c(z_min) and the receiver, radius r(z_min) plus half
+   * their distance (it holds the cone's disks at every depth from z_min to z_r) */
+  const float8 rb = fmin(fmax(L.k_h * (s.zr * inear - 1.0f), zero), (float8)(RP_PCSS_MAX_RADIUS));
+  const float8 cfb = L.c_h * (1.0f - L.ze * inear);
+  const float8 bx = L.xr * cfb + mid, by = L.yr * cfb + mid;
+  const float8 mx = (bx + s.sx) * 0.5f, my = (by + s.sy) * 0.5f;
+  const float8 rs = fmin(rb + 0.5f * sqrt((bx - s.sx) * (bx - s.sx) + (by - s.sy) * (by - s.sy)) +
+                             RP_PCSS_MIN_RADIUS,
+                         (float8)(RP_PCSS_MAX_RADIUS));
   /* the receiver plane's depth at a disk's centre, less its own spread over the disk */
   float8 mu, m2;
   rp_vssm_lookup8(mips, &s, mx, my, rs, &mu, &m2);

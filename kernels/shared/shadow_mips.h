@@ -17,9 +17,9 @@
 #ifndef ROLYPOLY_SHARED_SHADOW_MIPS_H
 #define ROLYPOLY_SHARED_SHADOW_MIPS_H
 
-/* Coarsest level: 2^7 = 128 level-0 texels per texel (a 2x2 footprint there covers any region
- * up to 128 texels wide). */
-#define RP_SHADOW_MIP_LEVELS 7
+/* Most levels: a 1024^2 map goes down to 1x1 (a 2x2 footprint at some level covers any
+ * region). */
+#define RP_SHADOW_MIP_LEVELS 10
 #define RP_SHADOW_MIP_MIN 0
 #define RP_SHADOW_MIP_MEAN 1
 #define RP_SHADOW_MIP_MEAN2 2
