@@ -18,10 +18,13 @@
  *     depth), the plane's inverse depth is 1 / z(u, v) = (n.D(u, v)) / (n.(q - lamp)), affine
  *     in (u, v): 1/z = (1/z_q) (1 + g . delta), delta the tap's offset from q in texels,
  *     g = (2 / size) (n.R, -n.U) / n.D(u_q, v_q) (clamped to RP_PLANE_MAX_GRADIENT per texel
- *     where n.D nears 0). Where the factor is <= 0 the tap's ray never meets the plane (it
- *     passes beyond the receiver's horizon) and anything stored there counts as in front. A stored texel's inverse depth is affine in the stored d:
- *     1/z = 1/near - d (far - near) / (near far); it occludes when it is nearer than the plane
- *     by RP_SHADOW_DEPTH_BIAS texels.
+ *     where n.D nears 0). A texel occludes when it is nearer than BOTH the plane there and the
+ *     receiver itself (the factor taken as max(1 + g . delta, 1)) by RP_SHADOW_DEPTH_BIAS
+ *     texels: a point between the receiver and the lamp's disk is always nearer than the
+ *     receiver, and this keeps the floor beside a wall point (a concave corner, where the
+ *     wall's plane extended lies beyond the floor or is never met by the tap's ray) from
+ *     shadowing it. An empty texel (d = 1) never occludes. A stored texel's inverse depth is
+ *     affine in the stored d: 1/z = 1/near - d (far - near) / (near far).
  *   pcf: RP_PCF_TAPS taps of the 16-point Poisson disk (common/random.h) scaled to
  *     RP_PCF_RADIUS texels around q, the disk rotated per pixel and frame (one of 16 angles from
  *     a hash of (x, y, frame_index)) so TAA averages 16 x RP_PCF_TAPS positions: one soft edge
@@ -55,15 +58,18 @@
  *   size / 2; both c and r are affine in 1/z, so per tap they cost two multiply-adds.
  * Steps, per receiver:
  *   1. A conservative test on the MIN mip: the region where any blocker between depths
- *      RP_PCSS_NEAREST and z_r could lie (the union of the cone's disks, bounded by its box),
+ *      z_n = min(RP_PCSS_NEAREST, (z_r + z_e) / 2) and z_r could lie (the union of the cone's
+ *      disks, bounded by its box),
  *      read as a 2x2 footprint at the level whose texels are at least that wide: min z >= z_r
  *      means nothing in front of the receiver there, so fully lit (exact, and most pixels). Else
- *      z_min (the nearest thing in the region, at least RP_PCSS_NEAREST) bounds the search.
+ *      z_min (the nearest thing in the region, at least z_n) bounds the search; a texel nearer
+ *      than z_n counts as at z_n.
  *   2. Blocker search: RP_PCSS_SEARCH_TAPS rotated Poisson taps through the cone between z_min
- *      and z_r: tap t at the cone's disk (c, r) for inverse depth lerp(1/z_min, 1/z_r,
- *      t / (N - 1)), so blockers near the receiver (small disks near u_r: contact shadows)
- *      are found as well as high ones; a tap is a BLOCKER when its texel is in front of the
- *      receiver plane
+ *      and z_r: the even ones uniform over the disk holding all its disks (centre halfway
+ *      between c(z_min) and u_r, radius r(z_min) plus half their distance), the odd ones on the
+ *      cone's disk at inverse depths from 1/z_min to 1/z_r in equal steps, the last within a
+ *      texel of the receiver, so blockers near it (small disks: contact shadows) are found as
+ *      well as high ones; a tap is a BLOCKER when its texel is in front of the receiver plane
  *      AND inside the cone at its own depth (|u - c(z)| < max(r(z), RP_PCSS_MIN_RADIUS texels),
  *      z < z_r), which keeps walls beside a floor point from counting (they are nearer than the
  *      floor's plane but not between it and the lamp). No blocker: lit; all blockers: umbra.
@@ -161,8 +167,8 @@ inline float8 rp_soft_plane_lit(__global const float* restrict shadow, const RpS
   const float8 d = (float8)(shadow[idx.s0], shadow[idx.s1], shadow[idx.s2], shadow[idx.s3],
                             shadow[idx.s4], shadow[idx.s5], shadow[idx.s6], shadow[idx.s7]);
   const float8 inv_tap = s->inv_a - d * s->inv_b;
-  const float8 ratio = 1.0f + s->gx * (tx - s->sx) + s->gy * (ty - s->sy);
-  return select((float8)(1.0f), (float8)(0.0f), inv_tap > s->inv0 * ratio);
+  const float8 ratio = fmax(1.0f + s->gx * (tx - s->sx) + s->gy * (ty - s->sy), 1.0f);
+  return select((float8)(1.0f), (float8)(0.0f), (inv_tap > s->inv0 * ratio) & (d < 1.0f));
 }
 
 /* Rotated Poisson point k (of 16) for lanes with rotation (c, s). */
@@ -232,6 +238,8 @@ typedef struct {
   float8 xr, yr;   /* the receiver q relative to the map centre (texels) */
   float8 k_h;      /* K / (z_r - z_e): r(z) = k_h (z_r / z - 1) */
   float8 c_h;      /* z_r / (z_r - z_e): c(z) = x_r c_h (1 - z_e / z) */
+  float8 i_near;   /* 1 / the nearest blocker depth searched: min(RP_PCSS_NEAREST,
+                      (z_r + z_e) / 2) (a receiver above RP_PCSS_NEAREST still has room) */
   float ze;
 } RpLamp8;
 
@@ -248,14 +256,15 @@ inline RpLamp8 rp_lamp8(__global const FrameConstants* restrict frame, const RpS
   L.c_h = s->zr * h;
   L.xr = s->sx - s->size * 0.5f;
   L.yr = s->sy - s->size * 0.5f;
+  L.i_near = 1.0f / fmin((float8)(RP_PCSS_NEAREST), fmax((s->zr + L.ze) * 0.5f, 1.0e-3f));
   return L;
 }
 
 /* Step 1 for each lane: the MIN mip over the box of the cone between depths
- * RP_PCSS_NEAREST and z_r. Returns z_min (0 when the box is too wide to decide). */
+ * z_n and z_r. Returns z_min (0 when the box is too wide to decide). */
 inline float8 rp_pcss_min(__global const float* restrict mips, const RpShadow8* s,
                           const RpLamp8* L) {
-  const float8 inear = (float8)(1.0f / RP_PCSS_NEAREST);
+  const float8 inear = L->i_near;
   const float8 r = fmin(fmax(L->k_h * (s->zr * inear - 1.0f), (float8)(0.0f)),
                         (float8)(RP_PCSS_MAX_RADIUS)) + RP_PCSS_MIN_RADIUS;
   const float8 cf = L->c_h * (1.0f - L->ze * inear);
@@ -304,17 +313,17 @@ inline float8 rp_pcss_blocker(__global const float* restrict shadow, const RpSha
   const float8 d = (float8)(shadow[idx.s0], shadow[idx.s1], shadow[idx.s2], shadow[idx.s3],
                             shadow[idx.s4], shadow[idx.s5], shadow[idx.s6], shadow[idx.s7]);
   const float8 raw = s->inv_a - d * s->inv_b;
-  /* anything nearer than RP_PCSS_NEAREST counts as there (the search looks no nearer; nearer
+  /* anything nearer than the search's nearest depth counts as there (nearer
    * than the lamp's disk the cone formulas would mirror) */
-  const float8 it = fmin(raw, (float8)(1.0f / RP_PCSS_NEAREST));
+  const float8 it = fmin(raw, L->i_near);
   *inv = it;
-  const float8 ratio = 1.0f + s->gx * (tx - s->sx) + s->gy * (ty - s->sy);
+  const float8 ratio = fmax(1.0f + s->gx * (tx - s->sx) + s->gy * (ty - s->sy), 1.0f);
   const float8 cf = L->c_h * (1.0f - L->ze * it);
   const float8 mid = (float8)(s->size * 0.5f);
   const float8 dx = tx - mid - L->xr * cf, dy = ty - mid - L->yr * cf;
   const float8 r = L->k_h * (s->zr * it - 1.0f);
   const float8 rr = fmax(r, (float8)(RP_PCSS_MIN_RADIUS));
-  const float8 front = select((float8)(0.0f), (float8)(1.0f), raw > s->inv0 * ratio);
+  const float8 front = select((float8)(0.0f), (float8)(1.0f), (raw > s->inv0 * ratio) & (d < 1.0f));
   const float8 cone = select((float8)(0.0f), (float8)(1.0f), dx * dx + dy * dy < rr * rr);
   const float8 ahead = select((float8)(0.0f), (float8)(1.0f), r > 0.0f);
   return front * cone * ahead;
@@ -418,7 +427,7 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
   const float8 done = fmax(lit_mip, outside);
   if (all(done > 0.5f)) return one;
   /* the cone from the nearest possible blocker to the receiver */
-  const float8 inear = 1.0f / fmax(zmin, (float8)(RP_PCSS_NEAREST));
+  const float8 inear = fmin(1.0f / zmin, L.i_near);
   const float8 mid = (float8)(s.size * 0.5f);
 #if RP_SHADOW_MODE == 2
   /* Even taps: uniform over the disk holding the cone's disks at every depth from z_min to
@@ -493,7 +502,7 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
   const float8 p = rp_vssm_chebyshev(mu, m2, ts);
   const float8 blockers = 1.0f - p;
   const float8 zb = fmin(fmax((mu - p * ts) / fmax(blockers, (float8)(1.0e-4f)),
-                              fmax(zmin, (float8)(RP_PCSS_NEAREST))), ts);
+                              1.0f / inear), ts);
   const float8 none = select(zero, one, blockers < 1.0e-3f);
   if (all(fmax(done, none) > 0.5f)) return one;
   const float8 ib = 1.0f / zb;

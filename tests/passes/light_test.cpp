@@ -19,12 +19,16 @@
 #include "cone_reference.h"
 #include "kernels/shared/voxel_layout.h"
 #include "passes/light.h"
+#include "passes/shadow_filter.h"
 #include "render/gpu_scene.h"
 #include "support/cl_fixture.h"
 
 namespace {
 
 using rp::passes::ShadowFilter;
+
+constexpr ShadowFilter kAllFilters[] = {ShadowFilter::kHard, ShadowFilter::kPcf,
+                                        ShadowFilter::kPcss, ShadowFilter::kVssm};
 
 struct Point {
   glm::vec3 p, n, albedo, emission{0.0f};
@@ -131,6 +135,9 @@ class LightFixture {
                                  chain.voxels.data());
     ::cl::Buffer hdr(ctx.context, CL_MEM_READ_WRITE, n * 16);
     rp::cl::Profiler profiler(ctx.queue);
+    if (const uint32_t planes = rp::passes::shadow_mip_planes(filter); planes > 0)
+      rp::passes::ShadowFilterPass(ctx, rp::test::programs()).run(profiler, *scene_, sm,
+                                                                  planes > 1);
     rp::passes::LightPass pass(ctx, rp::test::programs(), filter);
     rp::passes::LightComponents components{::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16),
                                            ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16)};
@@ -230,7 +237,7 @@ double floor_and_occluder_hit(glm::dvec3 o, glm::dvec3 d) {
 TEST(Light, UnshadowedMatchesReference) {
   LightFixture fx(32);
   auto pts = box_points(fx.light().position);
-  for (ShadowFilter filter : {ShadowFilter::kHard, ShadowFilter::kPcf}) {
+  for (ShadowFilter filter : kAllFilters) {
     auto hdr = fx.run(pts, std::vector<float>(32 * 32, 1.0f), filter);
     for (size_t i = 0; i < pts.size(); ++i)
       expect_radiance(hdr, i, radiance_ref(pts[i], fx.light().position, 1.0), "lit");
@@ -242,7 +249,7 @@ TEST(Light, UnshadowedMatchesReference) {
 TEST(Light, FullyOccludedMapShadowsOnlyInsideTheFrustum) {
   LightFixture fx(32);
   auto pts = box_points(fx.light().position);
-  for (ShadowFilter filter : {ShadowFilter::kHard, ShadowFilter::kPcf}) {
+  for (ShadowFilter filter : kAllFilters) {
     auto hdr = fx.run(pts, std::vector<float>(32 * 32, 0.0f), filter);
     ASSERT_TRUE(outside_shadow_frustum(fx.light(), pts[kOutside].p));
     int inside = 0;
@@ -275,7 +282,7 @@ TEST(Light, BoxDepthMapHasNoAcne) {
     }
   }
   int checked = 0;
-  for (ShadowFilter filter : {ShadowFilter::kHard, ShadowFilter::kPcf}) {
+  for (ShadowFilter filter : kAllFilters) {
     for (uint32_t frame = 0; frame < 3; ++frame) {
       auto hdr = fx.run(pts, map, filter, frame, 16);
       for (size_t i = 0; i < pts.size(); ++i) {
@@ -439,7 +446,7 @@ TEST(Light, RejectsAVoxelChainThatDoesNotFit) {
   const size_t total16 = rp::gpu::rp_voxel_total(16, 5);
   ::cl::Buffer voxels(ctx.context, CL_MEM_READ_ONLY, total16 * 16);
   rp::cl::Profiler profiler(ctx.queue);
-  rp::passes::LightPass pass(ctx, rp::test::programs());
+  rp::passes::LightPass pass(ctx, rp::test::programs(), ShadowFilter::kHard);
   auto message = [&](uint32_t resolution, uint32_t levels, const ::cl::Buffer& buffer) {
     try {
       pass.run(profiler, fx.scene(), gb, sm, buffer, resolution, levels, hdr);

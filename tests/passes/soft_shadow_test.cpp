@@ -354,8 +354,9 @@ double pcf_ref(const rp::scene::PointLight& light, const std::vector<float>& map
     const double* dp = kDisk[2 * t];
     const double tx = r.sx + (ca * dp[0] - sa * dp[1]) * 2.5;
     const double ty = r.sy + (sa * dp[0] + ca * dp[1]) * 2.5;
-    const double ratio = 1.0 + r.gx * (tx - r.sx) + r.gy * (ty - r.sy);
-    lit += !(inverse_depth(light, stored(map, size, tx, ty)) > r.inv0 * ratio);
+    const double ratio = std::max(1.0 + r.gx * (tx - r.sx) + r.gy * (ty - r.sy), 1.0);
+    const double d = stored(map, size, tx, ty);
+    lit += !(inverse_depth(light, d) > r.inv0 * ratio && d < 1.0);
   }
   return lit / 8.0;
 }
