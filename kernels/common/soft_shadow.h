@@ -70,14 +70,20 @@
  *      cone's disk at inverse depths from 1/z_min to 1/z_r in equal steps, the last within a
  *      texel of the receiver, so blockers near it (small disks: contact shadows) are found as
  *      well as high ones; a tap is a BLOCKER when its texel is in front of the receiver plane
- *      AND inside the cone at its own depth (|u - c(z)| < max(r(z), RP_PCSS_MIN_RADIUS texels),
- *      z < z_r), which keeps walls beside a floor point from counting (they are nearer than the
- *      floor's plane but not between it and the lamp). No blocker: lit; all blockers: umbra.
+ * *      AND inside the cone at some depth between its own and the receiver's (|u - c(z)| <
+ *      max(r(z), RP_PCSS_MIN_RADIUS texels) for some z in [z_texel, z_r): the shadow map's
+ *      occluders are solid behind their front faces; in (u, 1/z) the cone is linear, so that is
+ *      the convex hull of the texel depth's disk and the apex u_r), which keeps walls beside
+ *      a floor point from counting (they are nearer than the floor's plane but not between it
+ *      and the lamp). No blocker: lit; all blockers: umbra.
  *   3. Average blocker depth z_b = the harmonic mean of the blockers' depths (inverse depths
  *      average linearly: they are affine in the stored d).
  *   4. PCF: RP_PCSS_FILTER_TAPS taps over the disk (c(z_b), r(z_b)) (r clamped to
- *      [RP_PCSS_MIN_RADIUS, RP_PCSS_MAX_RADIUS] texels), the same blocker test; visibility =
- *      1 - blockers / taps.
+ *      [RP_PCSS_MIN_RADIUS, RP_PCSS_MAX_RADIUS] texels), each the plain receiver-plane test of
+ *      pcf: visibility = lit taps / taps. (Not the cone test: the disk already is the cone at
+ *      z_b, and a lamp ray crosses texels diagonally, so a thick blocker, e.g. a ball over its
+ *      own contact, hides the lamp through texels whose own front faces lie outside the cone;
+ *      a ball's umbra came out 25 % lit with it.)
  *   Search and filter disks are rotated by independent angles per pixel and frame; TAA
  *   averages them.
  *
@@ -324,7 +330,19 @@ inline float8 rp_pcss_blocker(__global const float* restrict shadow, const RpSha
   const float8 r = L->k_h * (s->zr * it - 1.0f);
   const float8 rr = fmax(r, (float8)(RP_PCSS_MIN_RADIUS));
   const float8 front = select((float8)(0.0f), (float8)(1.0f), (raw > s->inv0 * ratio) & (d < 1.0f));
-  const float8 cone = select((float8)(0.0f), (float8)(1.0f), dx * dx + dy * dy < rr * rr);
+  /* inside the cone anywhere between the texel's depth and the receiver (a shadow map's
+   * occluder is solid behind its front face): the convex hull of the disk (c, rr) and the apex
+   * u_r, i.e. the disk or the sector of radius T = sqrt(L^2 - rr^2) (the tangent length; that
+   * circle meets the disk's at right angles, so its arc lies inside the disk) around the apex
+   * within the tangents' angle */
+  const float8 vx = tx - s->sx, vy = ty - s->sy;     /* tap - apex */
+  const float8 wx = vx - dx, wy = vy - dy;           /* disk centre - apex */
+  const float8 vw = vx * wx + vy * wy, vv = vx * vx + vy * vy;
+  const float8 t2 = wx * wx + wy * wy - rr * rr;
+  const float8 in_disk = select((float8)(0.0f), (float8)(1.0f), dx * dx + dy * dy < rr * rr);
+  const float8 in_sector =
+      select((float8)(0.0f), (float8)(1.0f), (vw > 0.0f) & (vw * vw > vv * t2) & (vv < t2));
+  const float8 cone = fmax(in_disk, in_sector);
   const float8 ahead = select((float8)(0.0f), (float8)(1.0f), r > 0.0f);
   return front * cone * ahead;
 }
@@ -474,10 +492,10 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
   const float8 fx = L.xr * cff + mid, fy = L.yr * cff + mid;
   float8 occ = zero;
   for (int t = 0; t < RP_PCSS_FILTER_TAPS; ++t) {
-    float8 ox, oy, it;
+    float8 ox, oy;
     RP_SOFT_POINT((t * 16 / RP_PCSS_FILTER_TAPS + 16 / (2 * RP_PCSS_FILTER_TAPS)) & 15, s.cb,
                   s.sb, ox, oy);
-    occ += rp_pcss_blocker(shadow, &s, &L, fx + ox * rf, fy + oy * rf, &it);
+    occ += 1.0f - rp_soft_plane_lit(shadow, &s, fx + ox * rf, fy + oy * rf);
   }
   const float8 vis = 1.0f - occ * (1.0f / (float)RP_PCSS_FILTER_TAPS);
   /* decided lanes: lit (mip, outside, no blocker found) or umbra (every search tap blocked) */

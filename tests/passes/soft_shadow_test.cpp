@@ -521,4 +521,59 @@ TEST(SoftShadow, ContactStaysShadowed) {
   }
 }
 
+// A ball resting on the floor (a tumbler's body): floor points around it against the lamp
+// disk's visible fraction past the ball (ray-sphere tests from the disk samples).
+TEST(SoftShadow, BallOnTheFloorMatchesTheLampDisk) {
+  Shadows s(1024);
+  const glm::dvec3 centre(0.3, -0.75, 0.4);
+  const double radius = 0.25;
+  auto ball = [&](glm::dvec3 o, glm::dvec3 d) {
+    const glm::dvec3 oc = o - centre;
+    const double b = glm::dot(oc, d), disc = b * b - (glm::dot(oc, oc) - radius * radius);
+    const double t = disc > 0 ? -b - std::sqrt(disc) : -1.0;
+    return t > 0 ? t : floor_hit(o, d);
+  };
+  const auto map = s.map(ball);
+  const double a = lamp_disk_radius(s.light());
+  auto truth = [&](glm::dvec3 p) {
+    int seen = 0, total = 0;
+    for (int j = -40; j <= 40; ++j)
+      for (int i = -40; i <= 40; ++i) {
+        const double u = i / 40.0, v = j / 40.0;
+        if (u * u + v * v > 1.0) continue;
+        ++total;
+        const glm::dvec3 d = glm::normalize(glm::dvec3(a * u, 1.0, a * v) - p);
+        const glm::dvec3 oc = p - centre;
+        const double b = glm::dot(oc, d), disc = b * b - (glm::dot(oc, oc) - radius * radius);
+        seen += !(disc > 0 && -b - std::sqrt(disc) > 0);
+      }
+    return double(seen) / total;
+  };
+  // a row along the line from the lamp's foot through the ball's contact point, beyond it
+  std::vector<Point> pts;
+  std::vector<double> want;
+  const glm::dvec3 dir = glm::normalize(glm::dvec3(centre.x, 0.0, centre.z));
+  for (int i = 0; i < 32; ++i) {
+    const glm::dvec3 p = glm::dvec3(centre.x, -1.0, centre.z) + dir * (0.2 + 0.6 * i / 31.0);
+    pts.push_back({glm::vec3(p), {0, 1, 0}});
+    want.push_back(truth(p));
+  }
+  std::vector<double> xs;
+  for (int i = 0; i < 32; ++i) xs.push_back(0.2 + 0.6 * i / 31.0);
+  const double want_width = crossing(xs, want, 0.9) - crossing(xs, want, 0.1);
+  for (ShadowFilter f : {ShadowFilter::kPcss, ShadowFilter::kVssm}) {
+    const bool pcss = f == ShadowFilter::kPcss;
+    const auto vis = s.mean_visibility(pts, map, f, 32);
+    double sum = 0.0;
+    for (size_t i = 0; i < pts.size(); ++i) sum += std::abs(vis[i] - want[i]);
+    const double width = crossing(xs, vis, 0.9) - crossing(xs, vis, 0.1);
+    std::printf("%s ball: mean |error| %.4f, 10-90 %% width %.4f (reference %.4f)\n",
+                pcss ? "pcss" : "vssm", sum / double(pts.size()), width, want_width);
+    EXPECT_LT(sum / double(pts.size()), pcss ? 0.04 : 0.08);
+    // PCSS assumes one blocker depth: a ball's rim and top widen its penumbra a little
+    EXPECT_NEAR(width, want_width, (pcss ? 0.35 : 1.2) * want_width);
+    EXPECT_LT(vis[0], 0.01);  // the umbra under the ball
+  }
+}
+
 }  // namespace
