@@ -185,9 +185,10 @@ inline float8 rp_soft_plane_lit(__global const float* restrict shadow, const RpS
     OY = (s) * d_.x + (c) * d_.y;                                                           \
   }
 
-inline RpShadow8 rp_shadow8_setup(__global const FrameConstants* restrict frame, float8 px,
-                                  float8 py, float8 pz, float8 nx, float8 ny, float8 nz,
-                                  float8 cos_theta, uint x0, uint y) {
+/* Fills *out (PoCL does not inline helpers that return structs: an out-pointer). */
+inline void rp_shadow8_setup(RpShadow8* out, __global const FrameConstants* restrict frame,
+                             float8 px, float8 py, float8 pz, float8 nx, float8 ny, float8 nz,
+                             float8 cos_theta, uint x0, uint y) {
   RpShadow8 s;
   const rp_mat4 m = frame->light_view_proj;
   s.isize = (int)frame->shadow_size;
@@ -235,7 +236,7 @@ inline RpShadow8 rp_shadow8_setup(__global const FrameConstants* restrict frame,
   s.sa = shuffle(RP_SOFT_COS16, (a0 + 12u) & 15u);
   s.cb = shuffle(RP_SOFT_COS16, a1);
   s.sb = shuffle(RP_SOFT_COS16, (a1 + 12u) & 15u);
-  return s;
+  *out = s;
 }
 
 #if RP_SHADOW_MODE == 2 || RP_SHADOW_MODE == 3
@@ -249,7 +250,8 @@ typedef struct {
   float ze;
 } RpLamp8;
 
-inline RpLamp8 rp_lamp8(__global const FrameConstants* restrict frame, const RpShadow8* s) {
+inline void rp_lamp8(RpLamp8* out, __global const FrameConstants* restrict frame,
+                     const RpShadow8* s) {
   RpLamp8 L;
   const float4 lp = frame->light_pos;
   const rp_mat4 m = frame->light_view_proj;
@@ -263,7 +265,7 @@ inline RpLamp8 rp_lamp8(__global const FrameConstants* restrict frame, const RpS
   L.xr = s->sx - s->size * 0.5f;
   L.yr = s->sy - s->size * 0.5f;
   L.i_near = 1.0f / fmin((float8)(RP_PCSS_NEAREST), fmax((s->zr + L.ze) * 0.5f, 1.0e-3f));
-  return L;
+  *out = L;
 }
 
 /* Step 1 for each lane: the MIN mip over the box of the cone between depths
@@ -413,7 +415,8 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
                          __global const float* restrict shadow,
                          __global const float* restrict mips, float8 px, float8 py, float8 pz,
                          float8 nx, float8 ny, float8 nz, float8 cos_theta, uint x0, uint y) {
-  const RpShadow8 s = rp_shadow8_setup(frame, px, py, pz, nx, ny, nz, cos_theta, x0, y);
+  RpShadow8 s;
+  rp_shadow8_setup(&s, frame, px, py, pz, nx, ny, nz, cos_theta, x0, y);
   const float8 one = (float8)(1.0f), zero = (float8)(0.0f);
   if (!any(s.inside)) return one;
   const float8 outside = select(one, zero, s.inside);
@@ -439,7 +442,8 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
   }
   return fmax(lit * (1.0f / (float)RP_PCF_TAPS), outside);
 #else
-  const RpLamp8 L = rp_lamp8(frame, &s);
+  RpLamp8 L;
+  rp_lamp8(&L, frame, &s);
   const float8 zmin = rp_pcss_min(mips, &s, &L);
   const float8 lit_mip = select(zero, one, zmin >= s.zr);
   const float8 done = fmax(lit_mip, outside);
