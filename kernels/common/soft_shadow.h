@@ -57,13 +57,15 @@
  *   In texels: u (tan units) -> u P00 size / 2 texels from the map centre, so a -> K = a P00
  *   size / 2; both c and r are affine in 1/z, so per tap they cost two multiply-adds.
  * Steps, per receiver:
- *   1. A conservative test on the MIN mip: the region where any blocker between depths
- *      z_n = min(RP_PCSS_NEAREST, (z_r + z_e) / 2) and z_r could lie (the union of the cone's
- *      disks, bounded by its box),
- *      read as a 2x2 footprint at the level whose texels are at least that wide: min z >= z_r
- *      means nothing in front of the receiver there, so fully lit (exact, and most pixels). Else
- *      z_min (the nearest thing in the region, at least z_n) bounds the search; a texel nearer
- *      than z_n counts as at z_n.
+ *   1. A conservative test on the MIN mip, per chunk of eight pixels: the union of the boxes
+ *      holding each receiver's cone between depths z_n = min(RP_PCSS_NEAREST, (z_r + z_e) / 2)
+ *      and z_r (its disks' union), read as a footprint of at most 4x4 texels at the first
+ *      level whose texels are a third of the union's extent: min z >= every lane's z_r means
+ *      nothing in front of any receiver there, so the chunk is fully lit (exact). Else that
+ *      min z_min (at least z_n) bounds the search (RP_PCSS_MIN_PASSES > 1 repeats the lookup
+ *      over the narrower box for z_min: a blocker at depth z lies in the box for z, which
+ *      shrinks as z grows; on the busy scene it cost more than it saved). A texel nearer than
+ *      z_n counts as at z_n.
  *   2. Blocker search: RP_PCSS_SEARCH_TAPS rotated Poisson taps through the cone between z_min
  *      and z_r: the even ones uniform over the disk holding all its disks (centre halfway
  *      between c(z_min) and u_r, radius r(z_min) plus half their distance), the odd ones on the
@@ -133,6 +135,9 @@
 #define RP_PCSS_NEAREST 0.85f
 #endif
 #define RP_PCSS_MIN_RADIUS 0.75f /* texels: a texel's own extent */
+#ifndef RP_PCSS_MIN_PASSES
+#define RP_PCSS_MIN_PASSES 1 /* step 1's lookups */
+#endif
 #define RP_PCSS_MAX_RADIUS 63.0f /* texels: the coarsest mip's 2x2 footprint still covers it */
 #define RP_PLANE_MAX_GRADIENT 0.5f /* relative inverse-depth change per texel */
 #ifndef RP_VSSM_BLEED
@@ -268,45 +273,64 @@ inline void rp_lamp8(RpLamp8* out, __global const FrameConstants* restrict frame
   *out = L;
 }
 
-/* Step 1 for each lane: the MIN mip over the box of the cone between depths
- * z_n and z_r. Returns z_min (0 when the box is too wide to decide). */
-inline float8 rp_pcss_min(__global const float* restrict mips, const RpShadow8* s,
-                          const RpLamp8* L) {
-  const float8 inear = L->i_near;
+/* Sizes and offsets of the mip levels (shared/shadow_mips.h), computed once per work-item. */
+typedef struct {
+  int n[RP_SHADOW_MIP_LEVELS + 1];    /* texels per side of level l (l >= 1) */
+  int off[RP_SHADOW_MIP_LEVELS + 1];  /* first texel of level l in the MIN plane */
+  int levels;
+} RpMipTable;
+
+inline void rp_mip_table(RpMipTable* t, int size) {
+  t->levels = (int)rp_shadow_mip_levels((uint)size);
+  int n = size, off = 0;
+  for (int l = 1; l <= RP_SHADOW_MIP_LEVELS; ++l) {
+    n = (n + 1) / 2;
+    t->n[l] = n;
+    t->off[l] = off;
+    off += n * n;
+  }
+}
+
+/* Step 1 for the chunk: the MIN mip over the union of the lanes' boxes of the cone between
+ * depths 1 / inear and z_r (lanes in `skip` left out), read as a footprint of at most 4x4
+ * texels at the first level whose texels are at least a third of the union's extent wide.
+ * Returns that min (a lower bound of every lane's own; 0 when the map has no mips, +inf
+ * when every lane is skipped). */
+inline float rp_pcss_min(__global const float* restrict mips, const RpShadow8* s,
+                         const RpLamp8* L, const RpMipTable* t, float8 inear, float8 skip) {
   const float8 r = fmin(fmax(L->k_h * (s->zr * inear - 1.0f), (float8)(0.0f)),
                         (float8)(RP_PCSS_MAX_RADIUS)) + RP_PCSS_MIN_RADIUS;
   const float8 cf = L->c_h * (1.0f - L->ze * inear);
   const float8 mid = (float8)(s->size * 0.5f);
   const float8 cx = L->xr * cf + mid, cy = L->yr * cf + mid;
-  /* clamped to the map (the taps clamp their addresses to it too) before any int conversion
-   * (lanes outside the frustum may hold any value) */
+  /* skipped lanes: an empty box; the rest clamped to the map (the taps clamp their addresses
+   * to it too) before any int conversion (lanes outside the frustum may hold any value) */
   const float8 lo = (float8)(0.0f), hi = (float8)(s->size - 1.0f);
-  float x0[8], x1[8], y0[8], y1[8];
-  vstore8(fmin(fmax(fmin(cx, s->sx) - r, lo), hi), 0, x0);
-  vstore8(fmin(fmax(fmax(cx, s->sx) + r, lo), hi), 0, x1);
-  vstore8(fmin(fmax(fmin(cy, s->sy) - r, lo), hi), 0, y0);
-  vstore8(fmin(fmax(fmax(cy, s->sy) + r, lo), hi), 0, y1);
-  const uint size = (uint)s->isize;
-  const int levels = (int)rp_shadow_mip_levels(size);
-  float out[8];
-  for (int i = 0; i < 8; ++i) {
-    const float extent = fmax(x1[i] - x0[i], y1[i] - y0[i]);
-    int level = 1;
-    while (level < levels && (float)(1 << level) < extent) ++level;
-    if (levels == 0 || (float)(1 << level) < extent) {
-      out[i] = 0.0f;
-      continue;
-    }
-    const int n = (int)rp_shadow_mip_size(size, (uint)level);
-    const __global float* lv = mips + rp_shadow_mip_offset(size, (uint)level);
-    const float scale = 1.0f / (float)(1 << level);
-    const int i0 = clamp((int)floor(x0[i] * scale), 0, n - 1);
-    const int i1 = clamp((int)floor(x1[i] * scale), 0, n - 1);
-    const int j0 = clamp((int)floor(y0[i] * scale), 0, n - 1);
-    const int j1 = clamp((int)floor(y1[i] * scale), 0, n - 1);
-    out[i] = fmin(fmin(lv[j0 * n + i0], lv[j0 * n + i1]), fmin(lv[j1 * n + i0], lv[j1 * n + i1]));
-  }
-  return vload8(0, out);
+  const int8 off = skip > 0.5f;
+  const float8 x0 = select(fmin(fmax(fmin(cx, s->sx) - r, lo), hi), hi, off);
+  const float8 x1 = select(fmin(fmax(fmax(cx, s->sx) + r, lo), hi), lo, off);
+  const float8 y0 = select(fmin(fmax(fmin(cy, s->sy) - r, lo), hi), hi, off);
+  const float8 y1 = select(fmin(fmax(fmax(cy, s->sy) + r, lo), hi), lo, off);
+  const float4 a0 = fmin(x0.lo, x0.hi), a1 = fmax(x1.lo, x1.hi);
+  const float4 b0 = fmin(y0.lo, y0.hi), b1 = fmax(y1.lo, y1.hi);
+  const float ux0 = fmin(fmin(a0.x, a0.y), fmin(a0.z, a0.w));
+  const float ux1 = fmax(fmax(a1.x, a1.y), fmax(a1.z, a1.w));
+  const float uy0 = fmin(fmin(b0.x, b0.y), fmin(b0.z, b0.w));
+  const float uy1 = fmax(fmax(b1.x, b1.y), fmax(b1.z, b1.w));
+  if (ux1 < ux0 || uy1 < uy0) return 3.0e38f;
+  if (t->levels == 0) return 0.0f;
+  const float extent = fmax(fmax(ux1 - ux0, uy1 - uy0), 1.0f);
+  int level = 1;
+  while (level < t->levels && (float)(3 << level) < extent) ++level;
+  const float scale = 1.0f / (float)(1 << level);
+  const int n = t->n[level];
+  const __global float* m = mips + t->off[level];
+  const int i0 = min((int)(ux0 * scale), n - 1), i1 = min((int)(ux1 * scale), n - 1);
+  const int j0 = min((int)(uy0 * scale), n - 1), j1 = min((int)(uy1 * scale), n - 1);
+  float z = 3.0e38f;
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) z = fmin(z, m[j * n + i]);
+  return z;
 }
 #endif
 
@@ -444,12 +468,20 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
 #else
   RpLamp8 L;
   rp_lamp8(&L, frame, &s);
-  const float8 zmin = rp_pcss_min(mips, &s, &L);
-  const float8 lit_mip = select(zero, one, zmin >= s.zr);
-  const float8 done = fmax(lit_mip, outside);
-  if (all(done > 0.5f)) return one;
-  /* the cone from the nearest possible blocker to the receiver */
-  const float8 inear = fmin(1.0f / zmin, L.i_near);
+  /* Step 1, narrowed RP_PCSS_MIN_PASSES times: a blocker at depth z lies in the region for z,
+   * which shrinks as z grows, so nothing nearer than the min m over one region means the
+   * region for m holds every blocker; its min is then read at a finer level. */
+  RpMipTable table;
+  rp_mip_table(&table, s.isize);
+  float zm = 0.0f;
+  float8 inear = L.i_near;
+  for (int pass = 0; pass < RP_PCSS_MIN_PASSES; ++pass) {
+    zm = fmax(zm, rp_pcss_min(mips, &s, &L, &table, inear, outside));
+    if (all((zm >= s.zr) | (s.inside == 0))) return one;
+    inear = fmin((float8)(1.0f / zm), L.i_near);
+  }
+  const float8 zmin = (float8)(zm);
+  const float8 done = fmax(outside, select(zero, one, zmin >= s.zr));
   const float8 mid = (float8)(s.size * 0.5f);
 #if RP_SHADOW_MODE == 2
   /* Even taps: uniform over the disk holding the cone's disks at every depth from z_min to
