@@ -278,6 +278,7 @@ typedef struct {
   int n[RP_SHADOW_MIP_LEVELS + 1];    /* texels per side of level l (l >= 1) */
   int off[RP_SHADOW_MIP_LEVELS + 1];  /* first texel of level l in the MIN plane */
   int levels;
+  int plane;                          /* texels per plane (all levels) */
 } RpMipTable;
 
 inline void rp_mip_table(RpMipTable* t, int size) {
@@ -287,8 +288,9 @@ inline void rp_mip_table(RpMipTable* t, int size) {
     n = (n + 1) / 2;
     t->n[l] = n;
     t->off[l] = off;
-    off += n * n;
+    if (l <= t->levels) off += n * n;
   }
+  t->plane = off;
 }
 
 /* Step 1 for the chunk: the MIN mip over the union of the lanes' boxes of the cone between
@@ -377,8 +379,9 @@ inline float8 rp_pcss_blocker(__global const float* restrict shadow, const RpSha
 #if RP_SHADOW_MODE == 3
 /* Trilinear MEAN / MEAN2 lookup at (x, y) (texel coordinates) over a footprint `width` texels
  * wide, one lane at a time. */
-inline float2 rp_vssm_moments(__global const float* restrict mips, uint size, uint plane,
-                              int levels, float x, float y, float width) {
+inline float2 rp_vssm_moments(__global const float* restrict mips, const RpMipTable* tb,
+                              float x, float y, float width) {
+  const int levels = tb->levels;
   const float lambda = clamp(native_log2(fmax(width, 1.0f)), 1.0f, (float)levels);
   const int l0 = min((int)lambda, levels);
   const int l1 = min(l0 + 1, levels);
@@ -386,15 +389,15 @@ inline float2 rp_vssm_moments(__global const float* restrict mips, uint size, ui
   float2 m[2];
   for (int k = 0; k < 2; ++k) {
     const int level = k == 0 ? l0 : l1;
-    const int n = (int)rp_shadow_mip_size(size, (uint)level);
+    const int n = tb->n[level];
     const float scale = 1.0f / (float)(1 << level);
     const float u = x * scale - 0.5f, v = y * scale - 0.5f;
     const float fu = floor(u), fv = floor(v);
     const float au = u - fu, av = v - fv;
     const int i0 = clamp((int)fu, 0, n - 1), i1 = clamp((int)fu + 1, 0, n - 1);
     const int j0 = clamp((int)fv, 0, n - 1), j1 = clamp((int)fv + 1, 0, n - 1);
-    const __global float* mean = mips + plane * RP_SHADOW_MIP_MEAN + rp_shadow_mip_offset(size, (uint)level);
-    const __global float* mean2 = mean + plane;
+    const __global float* mean = mips + tb->plane * RP_SHADOW_MIP_MEAN + tb->off[level];
+    const __global float* mean2 = mean + tb->plane;
     const int t00 = j0 * n + i0, t10 = j0 * n + i1, t01 = j1 * n + i0, t11 = j1 * n + i1;
     const float w00 = (1.0f - au) * (1.0f - av), w10 = au * (1.0f - av);
     const float w01 = (1.0f - au) * av, w11 = au * av;
@@ -412,20 +415,17 @@ inline float8 rp_vssm_chebyshev(float8 mu, float8 m2, float8 t) {
 }
 
 /* Moments of every lane over disks centred (cx, cy) with radius r (texels). */
-inline void rp_vssm_lookup8(__global const float* restrict mips, const RpShadow8* s, float8 cx,
-                            float8 cy, float8 r, float8* mu, float8* m2) {
-  const uint size = (uint)s->isize;
-  const int levels = (int)rp_shadow_mip_levels(size);
-  const uint plane = rp_shadow_mip_total(size);
+inline void rp_vssm_lookup8(__global const float* restrict mips, const RpShadow8* s,
+                            const RpMipTable* tb, float8 cx, float8 cy, float8 r, float8* mu,
+                            float8* m2) {
   float xs[8], ys[8], rs[8], a[8], b[8];
   const float8 lo = (float8)(-1.0f), hi = (float8)(s->size + 1.0f);
   vstore8(fmin(fmax(cx, lo), hi), 0, xs); /* clamped before any int conversion */
   vstore8(fmin(fmax(cy, lo), hi), 0, ys);
   vstore8(r, 0, rs);
   for (int i = 0; i < 8; ++i) {
-    const float2 v = levels > 0 ? rp_vssm_moments(mips, size, plane, levels, xs[i], ys[i],
-                                                   2.0f * rs[i])
-                                : (float2)(s->far, s->far * s->far);
+    const float2 v = tb->levels > 0 ? rp_vssm_moments(mips, tb, xs[i], ys[i], 2.0f * rs[i])
+                                    : (float2)(s->far, s->far * s->far);
     a[i] = v.x;
     b[i] = v.y;
   }
@@ -548,7 +548,7 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
                          (float8)(RP_PCSS_MAX_RADIUS));
   /* the receiver plane's depth at a disk's centre, less its own spread over the disk */
   float8 mu, m2;
-  rp_vssm_lookup8(mips, &s, mx, my, rs, &mu, &m2);
+  rp_vssm_lookup8(mips, &s, &table, mx, my, rs, &mu, &m2);
   const float8 slope = fabs(s.gx) + fabs(s.gy);
   const float8 ts = 1.0f / (s.inv0 * fmin(fmax(1.0f + s.gx * (mx - s.sx) + s.gy * (my - s.sy),
                                                (float8)(0.5f)), (float8)(2.0f)) *
@@ -564,7 +564,7 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
                          (float8)(RP_PCSS_MAX_RADIUS));
   const float8 cff = L.c_h * (1.0f - L.ze * ib);
   const float8 fx = L.xr * cff + mid, fy = L.yr * cff + mid;
-  rp_vssm_lookup8(mips, &s, fx, fy, rf, &mu, &m2);
+  rp_vssm_lookup8(mips, &s, &table, fx, fy, rf, &mu, &m2);
   const float8 tf = 1.0f / (s.inv0 * fmin(fmax(1.0f + s.gx * (fx - s.sx) + s.gy * (fy - s.sy),
                                                (float8)(0.5f)), (float8)(2.0f)) *
                             (1.0f + slope * rf));
