@@ -161,6 +161,7 @@ typedef struct {
   float8 tan_theta;   /* slope of the receiver against the light ray (<= RP_DIRECT_MAX_SLOPE) */
   float8 inv0;        /* biased inverse plane depth at q: 1 / (zr - bias texels) */
   float8 gx, gy;      /* relative inverse-depth gradient of the receiver plane per texel */
+  float8 gx0, gy0;    /* inv0 gx, inv0 gy */
   float8 ca, sa;      /* search / hard / pcf rotation */
   float8 cb, sb;      /* filter rotation */
   int8 inside;        /* inside the frustum and facing the lamp */
@@ -178,8 +179,8 @@ inline float8 rp_soft_plane_lit(__global const float* restrict shadow, const RpS
   const float8 d = (float8)(shadow[idx.s0], shadow[idx.s1], shadow[idx.s2], shadow[idx.s3],
                             shadow[idx.s4], shadow[idx.s5], shadow[idx.s6], shadow[idx.s7]);
   const float8 inv_tap = s->inv_a - d * s->inv_b;
-  const float8 ratio = fmax(1.0f + s->gx * (tx - s->sx) + s->gy * (ty - s->sy), 1.0f);
-  return select((float8)(1.0f), (float8)(0.0f), (inv_tap > s->inv0 * ratio) & (d < 1.0f));
+  const float8 thr = fmax(s->inv0 + s->gx0 * (tx - s->sx) + s->gy0 * (ty - s->sy), s->inv0);
+  return select((float8)(1.0f), (float8)(0.0f), (inv_tap > thr) & (d < 1.0f));
 }
 
 /* Rotated Poisson point k (of 16) for lanes with rotation (c, s). */
@@ -233,6 +234,8 @@ inline void rp_shadow8_setup(RpShadow8* out, __global const FrameConstants* rest
   const float8 gscale = (2.0f / s.size) / n_d_safe;
   s.gx = fmin(fmax(n_r * gscale, (float8)(-RP_PLANE_MAX_GRADIENT)), (float8)(RP_PLANE_MAX_GRADIENT));
   s.gy = fmin(fmax(-n_u * gscale, (float8)(-RP_PLANE_MAX_GRADIENT)), (float8)(RP_PLANE_MAX_GRADIENT));
+  s.gx0 = s.inv0 * s.gx;
+  s.gy0 = s.inv0 * s.gy;
   /* two rotations per pixel and frame: one of 16 angles each (a table, not sin/cos: vectorizes) */
   const uint8 lane = (uint8)(0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u);
   const uint8 h = rp_hash8_u32((x0 + lane) ^ rp_hash_u32(y ^ rp_hash_u32(frame->frame_index)));
@@ -250,6 +253,8 @@ typedef struct {
   float8 xr, yr;   /* the receiver q relative to the map centre (texels) */
   float8 k_h;      /* K / (z_r - z_e): r(z) = k_h (z_r / z - 1) */
   float8 c_h;      /* z_r / (z_r - z_e): c(z) = x_r c_h (1 - z_e / z) */
+  float8 g0, g1;   /* c(z) / u_r - 1 = g0 - g1 / z */
+  float8 kz;       /* k_h z_r: r(z) = kz / z - k_h */
   float8 i_near;   /* 1 / the nearest blocker depth searched: min(RP_PCSS_NEAREST,
                       (z_r + z_e) / 2) (a receiver above RP_PCSS_NEAREST still has room) */
   float ze;
@@ -270,6 +275,9 @@ inline void rp_lamp8(RpLamp8* out, __global const FrameConstants* restrict frame
   L.xr = s->sx - s->size * 0.5f;
   L.yr = s->sy - s->size * 0.5f;
   L.i_near = 1.0f / fmin((float8)(RP_PCSS_NEAREST), fmax((s->zr + L.ze) * 0.5f, 1.0e-3f));
+  L.g0 = L.c_h - 1.0f;
+  L.g1 = L.c_h * L.ze;
+  L.kz = L.k_h * s->zr;
   *out = L;
 }
 
@@ -351,28 +359,28 @@ inline float8 rp_pcss_blocker(__global const float* restrict shadow, const RpSha
    * than the lamp's disk the cone formulas would mirror) */
   const float8 it = fmin(raw, L->i_near);
   *inv = it;
-  const float8 ratio = fmax(1.0f + s->gx * (tx - s->sx) + s->gy * (ty - s->sy), 1.0f);
-  const float8 cf = L->c_h * (1.0f - L->ze * it);
-  const float8 mid = (float8)(s->size * 0.5f);
-  const float8 dx = tx - mid - L->xr * cf, dy = ty - mid - L->yr * cf;
-  const float8 r = L->k_h * (s->zr * it - 1.0f);
+  const float8 vx = tx - s->sx, vy = ty - s->sy; /* tap - apex (the receiver) */
+  /* in front of the receiver plane and of the receiver: 1/z > (1/z_q) max(1 + g . v, 1) */
+  const float8 thr = fmax(s->inv0 + s->gx0 * vx + s->gy0 * vy, s->inv0);
+  /* the cone's disk at the texel's depth: centre - apex = x_r (c(z) / u_r - 1), radius r */
+  const float8 cf1 = L->g0 - L->g1 * it;
+  const float8 wx = L->xr * cf1, wy = L->yr * cf1;
+  const float8 dx = vx - wx, dy = vy - wy;     /* tap - disk centre */
+  const float8 r = L->kz * it - L->k_h;
   const float8 rr = fmax(r, (float8)(RP_PCSS_MIN_RADIUS));
-  const float8 front = select((float8)(0.0f), (float8)(1.0f), (raw > s->inv0 * ratio) & (d < 1.0f));
+  const float8 front =
+      select((float8)(0.0f), (float8)(1.0f), (raw > thr) & (d < 1.0f) & (r > 0.0f));
   /* inside the cone anywhere between the texel's depth and the receiver (a shadow map's
    * occluder is solid behind its front face): the convex hull of the disk (c, rr) and the apex
    * u_r, i.e. the disk or the sector of radius T = sqrt(L^2 - rr^2) (the tangent length; that
    * circle meets the disk's at right angles, so its arc lies inside the disk) around the apex
    * within the tangents' angle */
-  const float8 vx = tx - s->sx, vy = ty - s->sy;     /* tap - apex */
-  const float8 wx = vx - dx, wy = vy - dy;           /* disk centre - apex */
   const float8 vw = vx * wx + vy * wy, vv = vx * vx + vy * vy;
   const float8 t2 = wx * wx + wy * wy - rr * rr;
   const float8 in_disk = select((float8)(0.0f), (float8)(1.0f), dx * dx + dy * dy < rr * rr);
   const float8 in_sector =
       select((float8)(0.0f), (float8)(1.0f), (vw > 0.0f) & (vw * vw > vv * t2) & (vv < t2));
-  const float8 cone = fmax(in_disk, in_sector);
-  const float8 ahead = select((float8)(0.0f), (float8)(1.0f), r > 0.0f);
-  return front * cone * ahead;
+  return front * fmax(in_disk, in_sector);
 }
 #endif
 
