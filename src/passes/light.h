@@ -1,5 +1,5 @@
-// Light pass: direct light from the lamp (Lambert, directional falloff, Poisson-disk shadow
-// lookup rotated per pixel) + indirect diffuse light + emission -> HDR float4 per pixel. The
+// Light pass: direct light from the lamp (Lambert, directional falloff, the shadow filtered as
+// ShadowFilter says) + indirect diffuse light + emission -> HDR float4 per pixel. The
 // indirect light is either the 16-cone set traced per pixel through the voxel radiance chain
 // (kernels/common/cone_trace.h; the reference quality mode) or the indirect pass's accumulated
 // low-resolution result upsampled with depth- and normal-aware weights (passes/indirect.h; the
