@@ -390,7 +390,9 @@ inline float8 rp_pcss_blocker(__global const float* restrict shadow, const RpSha
 inline float2 rp_vssm_moments(__global const float* restrict mips, const RpMipTable* tb,
                               float x, float y, float width) {
   const int levels = tb->levels;
-  const float lambda = clamp(native_log2(fmax(width, 1.0f)), 1.0f, (float)levels);
+  /* a bilinear lookup at level l averages over about 2^(l+1) texels (one level coarser, as
+   * first written, blurred the tumblers away: no floor shadows in the demo at all) */
+  const float lambda = clamp(native_log2(fmax(width, 1.0f)) - 1.0f, 1.0f, (float)levels);
   const int l0 = min((int)lambda, levels);
   const int l1 = min(l0 + 1, levels);
   const float t = lambda - (float)l0;
