@@ -4,9 +4,10 @@
  * blocker, which bounds the blocker search), VSSM the MEAN / MEAN2 planes (depth moments).
  *
  * Kernels, one work-item per texel of the level written:
- *   shadow_filter_first  the shadow map (z_ndc * 0.5 + 0.5) -> level 1: each texel converts its
- *                        2x2 depths to linear z = 2 n f / ((f + n) - z_ndc (f - n)) (an empty
- *                        texel, 1.0, counts as z = f) and writes their min (and mean z, z^2)
+ *   shadow_filter_first  the shadow map (z_ndc * 0.5 + 0.5) -> level 1: the min of each 2x2
+ *                        converted to linear z = 2 n f / ((f + n) - z_ndc (f - n)) (an empty
+ *                        texel, 1.0, counts as z = f; z grows with the stored depth), and with
+ *                        the moments the mean of the 4 converted z and of their squares
  *   shadow_filter_next   level l - 1 -> level l: min of the 4 mins, mean of the 4 means
  * Reads past the right / bottom edge of an odd-sized level repeat its last column / row.
  *
@@ -39,13 +40,14 @@ __kernel void shadow_filter_first(__global const FrameConstants* restrict frame,
   const float near = frame->clip.z, far = frame->clip.w;
   const uint x0 = 2u * i, y0 = 2u * j;
   const uint x1 = min(x0 + 1u, size - 1u), y1 = min(y0 + 1u, size - 1u);
-  const float a = shadow_filter_linear(depth[y0 * size + x0], near, far);
-  const float b = shadow_filter_linear(depth[y0 * size + x1], near, far);
-  const float c = shadow_filter_linear(depth[y1 * size + x0], near, far);
-  const float d = shadow_filter_linear(depth[y1 * size + x1], near, far);
+  const float da = depth[y0 * size + x0], db = depth[y0 * size + x1];
+  const float dc = depth[y1 * size + x0], dd = depth[y1 * size + x1];
   const uint out = j * n1 + i;
-  mips[out] = fmin(fmin(a, b), fmin(c, d));
+  /* linear depth grows with d: the min converts once */
+  mips[out] = shadow_filter_linear(fmin(fmin(da, db), fmin(dc, dd)), near, far);
 #if RP_SHADOW_MOMENTS
+  const float a = shadow_filter_linear(da, near, far), b = shadow_filter_linear(db, near, far);
+  const float c = shadow_filter_linear(dc, near, far), d = shadow_filter_linear(dd, near, far);
   mips[plane * RP_SHADOW_MIP_MEAN + out] = ((a + b) + (c + d)) * 0.25f;
   mips[plane * RP_SHADOW_MIP_MEAN2 + out] = ((a * a + b * b) + (c * c + d * d)) * 0.25f;
 #else

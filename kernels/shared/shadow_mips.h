@@ -17,9 +17,11 @@
 #ifndef ROLYPOLY_SHARED_SHADOW_MIPS_H
 #define ROLYPOLY_SHARED_SHADOW_MIPS_H
 
-/* Most levels: a 1024^2 map goes down to 1x1 (a 2x2 footprint at some level covers any
- * region). */
-#define RP_SHADOW_MIP_LEVELS 10
+/* Most levels: 2^7 = 128 level-0 texels per texel. The light pass's lookups stay below: PCSS
+ * reads at most 4x4 texels at the first level a third of its box wide (boxes <= 2 x 64 texels
+ * plus the 8 lanes' spread), VSSM a level under its disk's width (<= 128 texels). Each level
+ * is a launch (~20-30 us on PoCL), so the chain stops there rather than at 1x1. */
+#define RP_SHADOW_MIP_LEVELS 7
 #define RP_SHADOW_MIP_MIN 0
 #define RP_SHADOW_MIP_MEAN 1
 #define RP_SHADOW_MIP_MEAN2 2

@@ -1,6 +1,6 @@
 // Shadow filter pass: the shadow map's mip chain of linear light depth (min, and for VSSM the
 // depth moments; layout kernels/shared/shadow_mips.h, kernels/shadow_filter.cl), which the light
-// pass's soft shadows read. One launch per level (10 for a 1024^2 map, down to 1x1). Pass name
+// pass's soft shadows read. One launch per level (7 for a 1024^2 map). Pass name
 // "shadow_filter".
 #pragma once
 
