@@ -192,6 +192,14 @@ double bias(const std::vector<float>& a, const std::vector<float>& t,
 }
 
 nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+// [[s, v], ...] with 4 decimals (world units, visible fraction).
+nlohmann::json profile_json(const std::vector<ProfileSample>& p) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const ProfileSample& q : p)
+    a.push_back({std::round(q.s * 1e4) / 1e4, std::round(q.v * 1e4) / 1e4});
+  return a;
+}
+double dnum(const nlohmann::json& v) { return v.is_number() ? v.get<double>() : kNan; }
 
 }  // namespace
 
@@ -216,17 +224,23 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
   j["scene"] = "demo frame at rest + 2 marbles (r 0.04) resting on the floor at (0.25, 0.72) and "
                "(-0.30, 0.70) (app/accuracy_direct.h)";
 
-  // The truth (two seeds: the second only to state the first's noise).
+  const auto start = std::chrono::steady_clock::now();
+  // The truth (two seeds: the second only to state the first's noise), then the point lamp's
+  // truth at a quarter of the samples (its only noise is the pixel filter's): what a perfect
+  // shadow of the point model would score, the ceiling of the real-time light model.
   std::vector<truth::PathTracedImage> truths;
-  for (uint64_t seed : {o.seed, o.seed + 1}) {
+  for (int k = 0; k < 3; ++k) {
     truth::PathTraceSettings s;
     s.width = w;
     s.height = h;
-    s.spp = o.spp;
+    s.spp = k < 2 ? o.spp : std::max(1u, o.spp / 4);
     s.bounces = 0;
-    s.seed = seed;
-    s.lamp = truth::LampModel::kArea;
-    ProgressBar bar("path tracing (area lamp, direct, seed " + std::to_string(seed) + ")", h);
+    s.seed = k == 1 ? o.seed + 1 : o.seed;
+    s.lamp = k < 2 ? truth::LampModel::kArea : truth::LampModel::kPoint;
+    const uint64_t seed = s.seed;
+    ProgressBar bar(std::string("path tracing (") + (k < 2 ? "area" : "point") +
+                        " lamp, direct, seed " + std::to_string(seed) + ")",
+                    h);
     std::atomic<bool> cancel{false};
     CachedTruth t = cached_path_trace(
         tracer, assets, frame, s, o.cache_dir,
@@ -252,12 +266,18 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
   const uint16_t floor_bits =
       uint16_t((1u << unsigned(Region::kFloorLit)) | (1u << unsigned(Region::kFloorShadow)));
   std::vector<uint8_t> floor(labels.size()), image(labels.size()), penumbra(labels.size());
+  // "image": every covered pixel but the ceiling, the lamp cap and the pixels beside them: the
+  // area lamp lights the ceiling (brightly beside the cap, whose side it sees from close by),
+  // the point model cannot (its centre is above the ceiling), and pixels that straddle the
+  // ceiling's edge or the cap's rim would swamp every other difference.
+  std::vector<uint8_t> ceiling(labels.size());
+  for (size_t i = 0; i < labels.size(); ++i)
+    ceiling[i] = hits[i].material == scene::demo::kCeilingMaterial ||
+                 hits[i].material == scene::demo::kLampMaterial;
+  ceiling = dilate(ceiling, w, h, 1);
   for (size_t i = 0; i < labels.size(); ++i) {
     floor[i] = (labels[i] & floor_bits) ? 1 : 0;
-    // Every covered pixel but the ceiling: the area lamp lights the ceiling beside the cap
-    // (brightly: it sees the cap's side from close by), the point model cannot (its centre is
-    // above the ceiling), and that ring would swamp every other difference.
-    image[i] = labels[i] && hits[i].material != scene::demo::kCeilingMaterial ? 1 : 0;
+    image[i] = labels[i] && !ceiling[i] ? 1 : 0;
     penumbra[i] = hits[i].lamp_fraction > 0.05f && hits[i].lamp_fraction < 0.95f;
   }
   penumbra = dilate(penumbra, w, h, 1);
@@ -275,18 +295,38 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
     }
   }
   const double scale = lit_n ? double(lit_n) / lit_sum : 1.0;
-  j["normalisation"] = {
-      {"lit_floor_luminance", lit_n ? lit_sum / double(lit_n) : kNan},
-      {"definition", "direct PSNR = 10 log10(1 / MSE) over RGB of the direct component divided by "
-                     "the truth's mean direct luminance on the fully lit floor (peak 1 = the lit "
-                     "floor's level)"}};
+  j["psnr_definition"] = {
+      {"direct_psnr_db",
+       "10 log10(1 / MSE) over RGB of the direct component after the renderer's tone map x/(1+x) "
+       "and the exact sRGB encode (peak 1), the jittered average against the truth"},
+      {"direct_psnr_db_lit_floor_scale",
+       "the same on the linear direct component divided by the truth's mean direct luminance "
+       "on the fully lit floor (peak 1 = the lit floor's level)"},
+      {"lit_floor_luminance", lit_n ? lit_sum / double(lit_n) : kNan}};
   j["pixels"] = {{"floor", floor_n}, {"penumbra", penumbra_n}, {"lit_floor", lit_n}};
+  // The truth's own noise: the two seeds' PSNR, both scales (its error against the exact image
+  // is 3 dB better than this).
   j["truth"]["noise_psnr_db"] = {
+      {"floor", num(masked_tone_mapped_psnr(truths[1].direct, truth.direct, floor))},
+      {"penumbra", num(masked_tone_mapped_psnr(truths[1].direct, truth.direct, penumbra))},
+      {"image", num(masked_tone_mapped_psnr(truths[1].direct, truth.direct, image))}};
+  j["truth"]["noise_psnr_db_lit_floor_scale"] = {
       {"floor", num(masked_psnr(truths[1].direct, truth.direct, floor, scale))},
       {"penumbra", num(masked_psnr(truths[1].direct, truth.direct, penumbra, scale))},
-      {"image", num(masked_psnr(truths[1].direct, truth.direct, image, scale))},
-      {"note", "PSNR between the truths of seeds " + std::to_string(o.seed) + " and " +
-                   std::to_string(o.seed + 1) + "; the truth's own error is 3 dB better"}};
+      {"image", num(masked_psnr(truths[1].direct, truth.direct, image, scale))}};
+  {
+    const truth::PathTracedImage& point = truths[2];
+    nlohmann::json pj = {{"lamp", "point"}, {"bounces", 0}, {"spp", std::max(1u, o.spp / 4)}};
+    pj["direct_psnr_db"] = {
+        {"floor", num(masked_tone_mapped_psnr(point.direct, truth.direct, floor))},
+        {"penumbra", num(masked_tone_mapped_psnr(point.direct, truth.direct, penumbra))},
+        {"image", num(masked_tone_mapped_psnr(point.direct, truth.direct, image))}};
+    pj["direct_bias_floor"] = num(bias(point.direct, truth.direct, floor));
+    j["point_lamp_truth"] = pj;
+  }
+  j["truth"]["noise_note"] = "PSNR between the truths of seeds " + std::to_string(o.seed) +
+                             " and " + std::to_string(o.seed + 1) +
+                             "; the truth's own error is 3 dB better";
 
   // Measurement lines.
   const auto placements = scene::demo_tumbler_placements();
@@ -295,12 +335,21 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
   double truth_width[2];
   for (int k = 0; k < 2; ++k) {
     const EdgeLine& l = lines[k];
-    truth_width[k] = transition_width(
-        profile(l, truth.direct, truth.albedo, true, frame, hits, w, h));
+    const std::vector<ProfileSample> tp =
+        profile(l, truth.direct, truth.albedo, true, frame, hits, w, h);
+    truth_width[k] = transition_width(tp);
+    j["profiles"][l.name]["truth"] = profile_json(tp);
+    // World size of a pixel at the line's start, along the line: the widths' resolution.
+    const double pixel = 0.01 / glm::length(project(frame.camera, w, h, l.start + 0.01f * l.dir) -
+                                            project(frame.camera, w, h, l.start));
     j["lines"][l.name] = {{"start", {l.start.x, l.start.y, l.start.z}},
                           {"direction", {l.dir.x, l.dir.y, l.dir.z}},
                           {"length", l.length},
-                          {"truth_width", num(truth_width[k])}};
+                          {"pixel_world_size", pixel},
+                          {"truth_width", num(truth_width[k])},
+                          {"point_lamp_truth_width",
+                           num(transition_width(profile(l, truths[2].direct, truths[2].albedo,
+                                                        false, frame, hits, w, h)))}};
   }
   j["setup_seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -342,7 +391,8 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
   std::string table;
   std::snprintf(line, sizeof line,
                 "\ndirect light against the area-lamp truth (%u spp, 0 bounces; demo + 2 marbles; "
-                "real time: %u jittered frames averaged)\n",
+                "real time: %u jittered frames averaged); PSNR of the direct component after the "
+                "tone map, widths in world units (10-90 %%)\n",
                 o.spp, o.jitter_frames);
   table += line;
   std::snprintf(line, sizeof line, "%-8s %9s %9s %9s %9s %9s %9s %9s %9s\n", "shadows",
@@ -350,13 +400,19 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
                 "marble w", "ratio");
   table += line;
   std::snprintf(line, sizeof line, "%-8s %9.2f %9.2f %9.2f %9s %9.4f %9s %9.4f %9s\n",
-                "(truth noise)", j["truth"]["noise_psnr_db"]["floor"].get<double>(),
-                j["truth"]["noise_psnr_db"]["penumbra"].is_number()
-                    ? j["truth"]["noise_psnr_db"]["penumbra"].get<double>()
-                    : kNan,
-                j["truth"]["noise_psnr_db"]["image"].get<double>(), "", truth_width[0], "",
+                "(truth noise)", dnum(j["truth"]["noise_psnr_db"]["floor"]),
+                dnum(j["truth"]["noise_psnr_db"]["penumbra"]),
+                dnum(j["truth"]["noise_psnr_db"]["image"]), "", truth_width[0], "",
                 truth_width[1], "");
   table += line;
+  {
+    const nlohmann::json& pj = j["point_lamp_truth"];
+    std::snprintf(line, sizeof line, "%-8s %9.2f %9.2f %9.2f %+8.1f%%   (the point lamp's perfect "
+                  "hard shadow)\n", "(point)", dnum(pj["direct_psnr_db"]["floor"]),
+                  dnum(pj["direct_psnr_db"]["penumbra"]), dnum(pj["direct_psnr_db"]["image"]),
+                  100.0 * dnum(pj["direct_bias_floor"]));
+    table += line;
+  }
   for (const ShadowName& m : kShadowModes) {
     if (m.mode == default_mode) default_name = m.name;
     const RealTime rt = render_real_time(common, m.mode, w, h, o.jitter_frames,
@@ -364,18 +420,24 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
     nlohmann::json mj;
     mj["frames"] = o.jitter_frames;
     mj["median_frame_ms"] = rt.median_frame_ms;
-    mj["direct_psnr_db"] = {{"floor", num(masked_psnr(rt.direct_avg, truth.direct, floor, scale))},
-                            {"penumbra", num(masked_psnr(rt.direct_avg, truth.direct, penumbra, scale))},
-                            {"image", num(masked_psnr(rt.direct_avg, truth.direct, image, scale))}};
-    mj["direct_psnr_db_unjittered"] = {
-        {"floor", num(masked_psnr(rt.direct_one, truth.direct, floor, scale))},
-        {"penumbra", num(masked_psnr(rt.direct_one, truth.direct, penumbra, scale))},
-        {"image", num(masked_psnr(rt.direct_one, truth.direct, image, scale))}};
+    auto psnrs = [&](const std::vector<float>& a, bool tone_mapped) {
+      nlohmann::json p;
+      for (const auto& [name, mask] : {std::pair{"floor", &floor}, std::pair{"penumbra", &penumbra},
+                                       std::pair{"image", &image}})
+        p[name] = num(tone_mapped ? masked_tone_mapped_psnr(a, truth.direct, *mask)
+                                  : masked_psnr(a, truth.direct, *mask, scale));
+      return p;
+    };
+    mj["direct_psnr_db"] = psnrs(rt.direct_avg, true);
+    mj["direct_psnr_db_unjittered"] = psnrs(rt.direct_one, true);
+    mj["direct_psnr_db_lit_floor_scale"] = psnrs(rt.direct_avg, false);
     mj["direct_bias_floor"] = num(bias(rt.direct_avg, truth.direct, floor));
     double ratio[2];
     for (int k = 0; k < 2; ++k) {
-      const double width = transition_width(
-          profile(lines[k], rt.direct_avg, rt.albedo_avg, false, frame, hits, w, h));
+      const std::vector<ProfileSample> p =
+          profile(lines[k], rt.direct_avg, rt.albedo_avg, false, frame, hits, w, h);
+      const double width = transition_width(p);
+      j["profiles"][lines[k].name][m.name] = profile_json(p);
       ratio[k] = width / truth_width[k];
       mj["penumbra"][lines[k].name] = {{"width", num(width)},
                                        {"ratio_to_truth", num(ratio[k])},
@@ -386,7 +448,7 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
     mj["albedo_psnr_db_jittered_average"] = {
         {"image", num(srgb_psnr(rt.albedo_avg, truth.albedo, image))},
         {"floor", num(srgb_psnr(rt.albedo_avg, truth.albedo, floor))}};
-    auto d = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : kNan; };
+    const auto& d = dnum;
     std::snprintf(line, sizeof line, "%-8s %9.2f %9.2f %9.2f %+8.1f%% %9.4f %9.2f %9.4f %9.2f\n",
                   m.name, d(mj["direct_psnr_db"]["floor"]), d(mj["direct_psnr_db"]["penumbra"]),
                   d(mj["direct_psnr_db"]["image"]), 100.0 * d(mj["direct_bias_floor"]),
@@ -400,16 +462,16 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
     signed_heat_map(rt.direct_avg, truth.direct, labels, heat_eps, bottom.back());
   }
   j["default_shadows"] = default_name;
+  j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   j["texture_filter"] = texture_filter_name(common.texture_filter);
   const nlohmann::json& dm = j["modes"][default_name];
   std::snprintf(line, sizeof line,
                 "albedo view (%s, one unjittered frame) against the truth's pixel-averaged "
                 "albedo: %.2f dB image, %.2f dB floor (jittered average: %.2f / %.2f dB)\n",
                 texture_filter_name(common.texture_filter),
-                dm["albedo_psnr_db"]["image"].get<double>(),
-                dm["albedo_psnr_db"]["floor"].get<double>(),
-                dm["albedo_psnr_db_jittered_average"]["image"].get<double>(),
-                dm["albedo_psnr_db_jittered_average"]["floor"].get<double>());
+                dnum(dm["albedo_psnr_db"]["image"]), dnum(dm["albedo_psnr_db"]["floor"]),
+                dnum(dm["albedo_psnr_db_jittered_average"]["image"]),
+                dnum(dm["albedo_psnr_db_jittered_average"]["floor"]));
   table += line;
 
   ensure_directory(o.out_dir);

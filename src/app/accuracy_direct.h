@@ -11,11 +11,14 @@
 // camera jitter on whose direct components (and albedo) are averaged on the host: what TAA
 // converges to without its history clamp, so a per-frame rotated filter and texture aliasing
 // resolve as on screen. Measures (app/accuracy_metrics.h):
-//   direct PSNR   masked_psnr of the direct component scaled by 1 / the truth's mean lit-floor
-//                 luminance (peak 1 = the lit floor), on the floor, on the truth's penumbra
+//   direct PSNR   masked_tone_mapped_psnr of the direct component (after the renderer's tone
+//                 map and sRGB encode, peak 1, the scale of the report's final PSNR; also
+//                 masked_psnr of it divided by the truth's mean lit-floor luminance, JSON
+//                 direct_psnr_db_lit_floor_scale), on the floor, on the truth's penumbra
 //                 pixels (lamp_fraction in (0.05, 0.95) at the pixel centre, dilated by one
-//                 pixel) and over every covered pixel but the ceiling (which the area
-//                 lamp lights beside the cap and the point model cannot);
+//                 pixel) and over every covered pixel but the ceiling and the lamp cap (and
+//                 the pixels beside them): the area lamp lights the ceiling, the point model
+//                 cannot;
 //   penumbra      10-90 % widths (world units along the floor) of the lamp's visible fraction
 //                 along a line from a tumbler's and a marble's contact point directly away from
 //                 the lamp's foot (0, -1, 0): direct / (albedo * I * unshadowed light of the

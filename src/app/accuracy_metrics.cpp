@@ -197,6 +197,11 @@ double masked_psnr(const std::vector<float>& a, const std::vector<float>& truth,
   return psnr_over(a, truth, mask, [scale](float v) { return double(v) * scale; });
 }
 
+double masked_tone_mapped_psnr(const std::vector<float>& a, const std::vector<float>& truth,
+                               const std::vector<uint8_t>& mask) {
+  return psnr_over(a, truth, mask, [](float v) { return tone_map_srgb(v); });
+}
+
 double srgb_psnr(const std::vector<float>& a, const std::vector<float>& truth,
                  const std::vector<uint8_t>& mask) {
   return psnr_over(a, truth, mask, [](float v) { return srgb_encode(v); });

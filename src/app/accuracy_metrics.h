@@ -84,6 +84,10 @@ double rgba8_psnr(const std::vector<uint8_t>& rgba, const std::vector<float>& ra
 // lit floor luminance), so 1 is the lit floor's level.
 double masked_psnr(const std::vector<float>& a, const std::vector<float>& truth,
                    const std::vector<uint8_t>& mask, double scale);
+// The same after the renderer's tone map x / (1 + x) and the exact sRGB encode (as
+// tone_mapped_psnr), over the pixels where mask != 0.
+double masked_tone_mapped_psnr(const std::vector<float>& a, const std::vector<float>& truth,
+                               const std::vector<uint8_t>& mask);
 // PSNR (dB, peak 1) of two albedo images (linear, 3 floats per pixel) after the exact sRGB encode
 // of each channel clamped to [0, 1] (the albedo view's encode without its quantisation), over
 // the pixels where mask != 0.

@@ -253,31 +253,38 @@ void run_rows(uint32_t rows, unsigned threads, RowFn row_fn, const ProgressFn& p
   if (progress) progress(rows, rows);
 }
 
-// PrimaryHit::lamp_unshadowed and lamp_fraction at `s` from strata x strata stratified
-// directions (stratum centres) of the cone area_lamp samples.
-void area_lamp_fraction(const TraceScene& scene, const Surface& s, uint32_t strata,
-                        PrimaryHit& hit) {
-  const LampCap cap = lamp_cap(scene.frame().light);
-  const glm::vec3 to_centre = cap.centre - s.p;
+// Calls fn(wi, t) for each of the strata x strata stratum-centre directions of the cone
+// area_lamp samples from p that meet the cap (t: the distance to it), and returns the solid angle
+// each direction stands for, 2 pi omc / strata^2 (0 when p is on the lamp: nothing is called).
+template <class Fn>
+double for_cap_directions(const LampCap& cap, glm::vec3 p, uint32_t strata, Fn fn) {
+  const glm::vec3 to_centre = cap.centre - p;
   const float dist = glm::length(to_centre);
-  if (dist <= cap.radius * 1.0001f) return;
+  if (dist <= cap.radius * 1.0001f || strata == 0) return 0.0;
   const float omc = sphere_cone_omc(cap.radius, dist);
-  double seen = 0.0, lit = 0.0;
   for (uint32_t i = 0; i < strata; ++i)
     for (uint32_t j = 0; j < strata; ++j) {
       const glm::vec3 wi = sample_cone(to_centre / dist, omc, (float(i) + 0.5f) / float(strata),
                                        (float(j) + 0.5f) / float(strata));
-      const float c = glm::dot(s.ns, wi);
-      if (c <= 0.0f || glm::dot(s.ng, wi) <= 0.0f) continue;
-      const float t = cap.hit(s.p, wi);
-      if (t < 0.0f) continue;
-      seen += c;
-      if (!scene.shadowed(s.p + s.ng * kRayOffset, wi, t)) lit += c;
+      const float t = cap.hit(p, wi);
+      if (t >= 0.0f) fn(wi, t);
     }
+  return 2.0 * double(kPi) * double(omc) / (double(strata) * strata);
+}
+
+// PrimaryHit::lamp_unshadowed and lamp_fraction at `s` (path_tracer.h).
+void area_lamp_fraction(const TraceScene& scene, const Surface& s, uint32_t strata,
+                        PrimaryHit& hit) {
+  const LampCap cap = lamp_cap(scene.frame().light);
+  double seen = 0.0, lit = 0.0;  // sums of cos
+  const double dw = for_cap_directions(cap, s.p, strata, [&](glm::vec3 wi, float t) {
+    const float c = glm::dot(s.ns, wi);
+    if (c <= 0.0f || glm::dot(s.ng, wi) <= 0.0f) return;
+    seen += c;
+    if (!scene.shadowed(s.p + s.ng * kRayOffset, wi, t)) lit += c;
+  });
   if (!(seen > 0.0)) return;
-  // sum c * (2 pi omc / n) / pi / a^2 over the n directions
-  hit.lamp_unshadowed =
-      float(seen * 2.0 * double(omc) / (double(strata) * strata) / cap.projected_radius2());
+  hit.lamp_unshadowed = float(seen * dw / double(kPi) / cap.projected_radius2());
   hit.lamp_fraction = float(lit / seen);
 }
 
@@ -286,19 +293,11 @@ void area_lamp_fraction(const TraceScene& scene, const Surface& s, uint32_t stra
 float area_lamp_unshadowed(const scene::PointLight& light, glm::vec3 p, glm::vec3 n,
                            uint32_t strata) {
   const LampCap cap = lamp_cap(light);
-  const glm::vec3 to_centre = cap.centre - p;
-  const float dist = glm::length(to_centre);
-  if (dist <= cap.radius * 1.0001f || strata == 0) return 0.0f;
-  const float omc = sphere_cone_omc(cap.radius, dist);
-  double seen = 0.0;
-  for (uint32_t i = 0; i < strata; ++i)
-    for (uint32_t j = 0; j < strata; ++j) {
-      const glm::vec3 wi = sample_cone(to_centre / dist, omc, (float(i) + 0.5f) / float(strata),
-                                       (float(j) + 0.5f) / float(strata));
-      const float c = glm::dot(n, wi);
-      if (c > 0.0f && cap.hit(p, wi) >= 0.0f) seen += c;
-    }
-  return float(seen * 2.0 * double(omc) / (double(strata) * strata) / cap.projected_radius2());
+  double seen = 0.0;  // sum of cos
+  const double dw = for_cap_directions(cap, p, strata, [&](glm::vec3 wi, float) {
+    seen += std::max(0.0f, glm::dot(n, wi));
+  });
+  return float(seen * dw / double(kPi) / cap.projected_radius2());
 }
 
 struct PathTracer::Impl {

@@ -34,7 +34,12 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
   for (const char* png : {"accuracy_side_by_side.png", "accuracy_indirect_heat.png",
                           "accuracy_final_taa.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / png)) << png;
-  EXPECT_EQ(rp::test::files_with_suffix(dir / "cache", ".exr").size(), 2u);  // 1 and 64 bounces
+  // 1 and 64 bounces; the direct section's area lamp (two seeds) and point lamp at 0 bounces.
+  EXPECT_EQ(rp::test::files_with_suffix(dir / "cache", ".exr").size(), 5u);
+  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "accuracy_direct_side_by_side.png"));
+  for (const char* text : {"direct light against the area-lamp truth", "(truth noise)", "hard ",
+                           "vssm ", "albedo view ("})
+    EXPECT_NE(first.out.find(text), std::string::npos) << text << "\n" << first.out;
 
   std::ifstream in(dir / "acc.json");
   const nlohmann::json j = nlohmann::json::parse(in);
@@ -70,11 +75,26 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
   EXPECT_GT(j["truth"]["many"]["incoming_indirect"]["right_wall"]["rgb"][0].get<double>(),
             j["truth"]["one"]["incoming_indirect"]["right_wall"]["rgb"][0].get<double>());
   EXPECT_LT(j["truth"]["one"]["indirect_vs_many"]["bias"].get<double>(), -0.1);
+  // The direct section: every shadow mode, the truth's lamp model, its noise, both lines.
+  const nlohmann::json& direct = j["direct"];
+  EXPECT_EQ(direct["truth"]["lamp"], "area");
+  EXPECT_EQ(direct["truth"]["bounces"], 0);
+  EXPECT_EQ(direct["truth"]["spp"], 16);  // 4 x --spp
+  EXPECT_TRUE(direct["truth"]["noise_psnr_db"]["floor"].is_number());
+  for (const char* mode : {"hard", "pcf", "pcss", "vssm"}) {
+    EXPECT_TRUE(direct["modes"][mode]["direct_psnr_db"]["image"].is_number()) << mode;
+    EXPECT_TRUE(direct["modes"][mode]["albedo_psnr_db"]["image"].is_number()) << mode;
+    EXPECT_TRUE(direct["modes"][mode]["penumbra"].contains("tumbler")) << mode;
+    EXPECT_TRUE(direct["modes"][mode]["penumbra"].contains("marble")) << mode;
+  }
+  EXPECT_TRUE(direct["lines"]["tumbler"]["length"].is_number());
+  EXPECT_TRUE(direct["default_shadows"].is_string());
 
   // Every threshold, two missed on purpose; the truths come from the cache.
   const rp::test::CommandResult second = run_rolypoly(
       args + " --max-indirect-l1 0.0001 --max-indirect-bias 1000 --max-region-bias 1000 "
-             "--max-indirect-l1-single 1000 --min-psnr-taa 1000 --require-wall-hue");
+             "--max-indirect-l1-single 1000 --min-psnr-taa 1000 --require-wall-hue "
+             "--min-direct-psnr-floor 1000 --max-penumbra-error 1000 --min-albedo-psnr 0");
   EXPECT_EQ(second.exit_code, 3) << second.out << second.err;
   EXPECT_NE(second.out.find("(from the cache)"), std::string::npos) << second.out;
   EXPECT_NE(second.out.find("threshold max_indirect_l1 "), std::string::npos) << second.out;
@@ -98,6 +118,13 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
   EXPECT_EQ(j2["thresholds"]["min_psnr_taa"]["value"].get<double>(),
             j2["configurations"]["fast_many_taa"]["final_psnr_db"].get<double>());
   EXPECT_TRUE(j2["thresholds"]["require_wall_hue"]["walls"]["left_wall"].contains("fast_one"));
+  EXPECT_FALSE(j2["thresholds"]["min_direct_psnr_floor"]["passed"].get<bool>());
+  EXPECT_EQ(j2["thresholds"]["min_direct_psnr_floor"]["value"].get<double>(),
+            j2["direct"]["modes"][j2["direct"]["default_shadows"].get<std::string>()]
+              ["direct_psnr_db"]["floor"].get<double>());
+  EXPECT_TRUE(j2["thresholds"]["min_albedo_psnr"]["passed"].get<bool>());
+  // At 24x24 a penumbra width may have no figure (null, a miss) or one (met under 1000).
+  EXPECT_TRUE(j2["thresholds"].contains("max_penumbra_error"));
 
   const rp::test::CommandResult third = run_rolypoly(
       args + " --max-indirect-l1 1000 --max-indirect-l1-single 1000 --min-psnr-taa 0");

@@ -111,6 +111,12 @@ TEST(AreaLamp, FloorCentreIsTheDiscClosedForm) {
     EXPECT_NEAR(mean_direct(area, c), expected, 0.003 * expected) << "channel " << c;
     EXPECT_NEAR(mean_direct(area, c) / mean_direct(point, c), 4.41 / 4.1125, 0.004);
   }
+  // The report's deterministic factor (albedo x I x it): the same closed form, and far below
+  // the lamp cos / d^2.
+  EXPECT_NEAR(area_lamp_unshadowed(light, {0, -1, 0}, {0, 1, 0}), 1.0 / (h * h + a2),
+              0.002 / (h * h + a2));
+  EXPECT_NEAR(area_lamp_unshadowed(light, {0, -38.9f, 0}, {0, 1, 0}) * 40.0 * 40.0, 1.0, 0.01);
+  EXPECT_EQ(area_lamp_unshadowed(light, {0, -1, 0}, {0, -1, 0}), 0.0f);  // facing away
 }
 
 // Uniform directions about +z in the cone with 1 - cos = omc: the density 1 / (2 pi omc)

@@ -302,6 +302,16 @@ TEST(PathTracer, BitIdenticalForAnyThreadCount) {
   s.seed = 2;
   EXPECT_NE(0, std::memcmp(one.combined.data(), tracer.render(frame, s).combined.data(),
                            one.combined.size() * 4));
+  // The area lamp (issue 15) draws from the same per-pixel streams.
+  s.seed = 1;
+  s.lamp = LampModel::kArea;
+  s.threads = 1;
+  const PathTracedImage area_one = tracer.render(frame, s);
+  s.threads = 3;
+  const PathTracedImage area_three = tracer.render(frame, s);
+  EXPECT_EQ(0, std::memcmp(area_one.combined.data(), area_three.combined.data(),
+                           area_one.combined.size() * 4));
+  EXPECT_NE(0, std::memcmp(one.direct.data(), area_one.direct.data(), one.direct.size() * 4));
 }
 
 }  // namespace
