@@ -81,11 +81,15 @@
  *   3. Average blocker depth z_b = the harmonic mean of the blockers' depths (inverse depths
  *      average linearly: they are affine in the stored d).
  *   4. PCF: RP_PCSS_FILTER_TAPS taps over the disk (c(z_b), r(z_b)) (r clamped to
- *      [RP_PCSS_MIN_RADIUS, RP_PCSS_MAX_RADIUS] texels), each the plain receiver-plane test of
- *      pcf: visibility = lit taps / taps. (Not the cone test: the disk already is the cone at
- *      z_b, and a lamp ray crosses texels diagonally, so a thick blocker, e.g. a ball over its
- *      own contact, hides the lamp through texels whose own front faces lie outside the cone;
- *      a ball's umbra came out 25 % lit with it.)
+ *      [RP_PCSS_MIN_RADIUS, RP_PCSS_MAX_RADIUS] texels); a tap's lamp ray is blocked when the
+ *      texel under the tap fails pcf's receiver-plane test, OR when the ray's point halfway (in
+ *      1/z, so halfway in texels) from the tap to the receiver lies behind the stored front
+ *      face there by less than RP_PCSS_THICKNESS (0.2): a thick blocker's body, e.g. a tumbler's
+ *      belly over the floor beside it, which a single depth cannot show (without it the inner
+ *      penumbra of the demo's tumblers came out far too light: floor PSNR 22.6 dB against
+ *      28.9 with it, bench --accuracy; a plate thinner than that is unaffected). Visibility =
+ *      1 - blocked taps / taps. (Not the search's cone test: the disk already is the cone at
+ *      z_b, and the lamp rays cross texels diagonally: a ball's umbra came out 25 % lit.)
  *   Search and filter disks are rotated by independent angles per pixel and frame; TAA
  *   averages them.
  *
@@ -139,6 +143,7 @@
 #define RP_PCSS_MIN_PASSES 1 /* step 1's lookups */
 #endif
 #define RP_PCSS_MAX_RADIUS 63.0f /* texels: the coarsest mip's 2x2 footprint still covers it */
+#define RP_PCSS_THICKNESS 0.2f /* world units: how deep a blocker is assumed solid */
 #define RP_PLANE_MAX_GRADIENT 0.5f /* relative inverse-depth change per texel */
 #ifndef RP_VSSM_BLEED
 #define RP_VSSM_BLEED 0.2f
@@ -232,8 +237,9 @@ inline void rp_shadow8_setup(RpShadow8* out, __global const FrameConstants* rest
   const float8 n_d = n_f + ndx * n_r + ndy * n_u;
   const float8 n_d_safe = select(n_d, (float8)(-1.0e-6f), fabs(n_d) < 1.0e-6f);
   const float8 gscale = (2.0f / s.size) / n_d_safe;
-  s.gx = fmin(fmax(n_r * gscale, (float8)(-RP_PLANE_MAX_GRADIENT)), (float8)(RP_PLANE_MAX_GRADIENT));
-  s.gy = fmin(fmax(-n_u * gscale, (float8)(-RP_PLANE_MAX_GRADIENT)), (float8)(RP_PLANE_MAX_GRADIENT));
+  const float8 gmax = (float8)(RP_PLANE_MAX_GRADIENT);
+  s.gx = fmin(fmax(n_r * gscale, -gmax), gmax);
+  s.gy = fmin(fmax(-n_u * gscale, -gmax), gmax);
   s.gx0 = s.inv0 * s.gx;
   s.gy0 = s.inv0 * s.gy;
   /* two rotations per pixel and frame: one of 16 angles each (a table, not sin/cos: vectorizes) */
@@ -541,7 +547,21 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
     float8 ox, oy;
     RP_SOFT_POINT((t * 16 / RP_PCSS_FILTER_TAPS + 16 / (2 * RP_PCSS_FILTER_TAPS)) & 15, s.cb,
                   s.sb, ox, oy);
-    occ += 1.0f - rp_soft_plane_lit(shadow, &s, fx + ox * rf, fy + oy * rf);
+    const float8 tx = fx + ox * rf, ty = fy + oy * rf;
+    /* the tap's lamp ray also at its midpoint (in 1/z) to the receiver, halfway in texels:
+     * blocked when that point lies behind a stored front face by less than
+     * RP_PCSS_THICKNESS (a thick blocker's body, which the front face alone does not show) */
+    const float8 mx2 = 0.5f * (tx + s.sx), my2 = 0.5f * (ty + s.sy);
+    const float8 hi = (float8)(s.size - 1.0f);
+    const int8 idx2 = convert_int8(fmin(fmax(my2, zero), hi)) * s.isize +
+                      convert_int8(fmin(fmax(mx2, zero), hi));
+    const float8 d2 = (float8)(shadow[idx2.s0], shadow[idx2.s1], shadow[idx2.s2], shadow[idx2.s3],
+                               shadow[idx2.s4], shadow[idx2.s5], shadow[idx2.s6], shadow[idx2.s7]);
+    const float8 i2 = 0.5f * (iavg + 1.0f / s.zr);  /* the ray point's inverse depth */
+    const float8 inv2 = s.inv_a - d2 * s.inv_b;     /* the stored face's */
+    const int8 behind = (inv2 > i2) & (1.0f / i2 - 1.0f / inv2 < RP_PCSS_THICKNESS);
+    const float8 thick = select(zero, one, behind & (inv2 > s.inv0) & (d2 < 1.0f));
+    occ += fmax(1.0f - rp_soft_plane_lit(shadow, &s, tx, ty), thick);
   }
   const float8 vis = 1.0f - occ * (1.0f / (float)RP_PCSS_FILTER_TAPS);
   /* decided lanes: lit (mip, outside, no blocker found) or umbra (every search tap blocked) */
