@@ -262,8 +262,7 @@ void expect_plate_penumbra(ShadowFilter filter, double max_mean_error, double wi
   std::printf("%s: mean |error| %.4f, 10-90 %% width %.4f (reference %.4f), full width %.4f "
               "(formula %.4f)\n",
               filter == ShadowFilter::kPcss ? "pcss" : "vssm", sum_error / double(vis.size()), got,
-              want,
-              full, formula);
+              want, full, formula);
 }
 
 TEST(SoftShadow, PcssPenumbraMatchesTheLampDisk) {
