@@ -94,8 +94,9 @@
  *   averages them.
  *
  * VSSM (variance soft shadow maps): step 1 as PCSS; then the mean and mean square of z over
- *   the search disk from the MEAN / MEAN2 mips (trilinear: a bilinear lookup at the two levels
- *   around log2 of the disk's diameter, level >= 1), the average blocker depth from them (the
+ *   the search disk from the MEAN / MEAN2 mips (trilinear: bilinear lookups at the two levels
+ *   around log2(diameter) - 1, level >= 1, as a bilinear lookup at level l spans about
+ *   2^(l+1) texels), the average blocker depth from them (the
  *   VSSM paper: with the non-blockers assumed at the receiver's depth t, mu = (1 - a) t + a z_b,
  *   the fraction 1 - a of non-blockers taken as Chebyshev's one-sided bound
  *   p = s^2 / (s^2 + (t - mu)^2), s^2 = E[z^2] - mu^2 floored at RP_VSSM_MIN_VARIANCE), then the
