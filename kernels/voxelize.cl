@@ -90,11 +90,15 @@
 #endif
 #define RP_VOXEL_FIXED_SCALE ((float)(1u << RP_VOXEL_FIXED_BITS))
 
-/* Shadow lookup for voxels: one tap at the receiver, pushed 1 texel along the normal, 1 texel of
- * depth bias plus 1 texel of slope bias (the tap's texel may be ~0.7 texels away). */
+/* Shadow lookup for voxels (a cheap soft shadow): the receiver pushed 1 texel along the normal,
+ * 4 taps at (+-RP_VOXEL_SHADOW_SPREAD, +-RP_VOXEL_SHADOW_SPREAD) texels around it (visibility
+ * 0, 1/4 .. 1: a penumbra about a voxel wide, 3 texels of a 1024 map at the floor against a
+ * voxel of 4.4), compared with 1 texel of depth bias plus a slope bias over the taps' reach
+ * (the farthest tap's texel lies up to 1.5 sqrt(2) + 0.7 = 2.8 texels away). */
 #define RP_VOXEL_SHADOW_NORMAL_OFFSET 1.0f
 #define RP_VOXEL_SHADOW_DEPTH_BIAS 1.0f
-#define RP_VOXEL_SHADOW_REACH 1.0f
+#define RP_VOXEL_SHADOW_SPREAD 1.5f
+#define RP_VOXEL_SHADOW_REACH 2.8f
 /* Triangles whose bounding box spans at most this many voxels along every axis are shaded once,
  * at their centroid (most tumbler triangles); larger ones per voxel. */
 #define RP_VOXEL_SMALL_TRIANGLE 2.0f
@@ -161,7 +165,7 @@ inline void vx_accumulate(volatile __global uint* accum, volatile __global uint*
                (uint4)(vx_fixed(premul.x), vx_fixed(premul.y), vx_fixed(premul.z), vx_fixed(a)));
 }
 
-/* Direct light at p (normal n) with one shadow tap; rgb radiance before albedo. */
+/* Direct light at p (normal n) with the 4 shadow taps; rgb radiance before albedo. */
 inline float3 vx_direct(__global const FrameConstants* frame, __global const float* shadow,
                         float3 p, float3 n) {
   float cos_theta;
@@ -170,7 +174,12 @@ inline float3 vx_direct(__global const FrameConstants* frame, __global const flo
   const RpShadowLookup s =
       rp_shadow_lookup(frame, p, n, cos_theta, RP_VOXEL_SHADOW_NORMAL_OFFSET,
                        RP_VOXEL_SHADOW_DEPTH_BIAS, RP_VOXEL_SHADOW_REACH);
-  return frame->light_intensity.xyz * (scale * rp_shadow_tap(shadow, &s, (float2)(0.0f)));
+  const float o = RP_VOXEL_SHADOW_SPREAD;
+  const float lit = ((rp_shadow_tap(shadow, &s, (float2)(-o, -o)) +
+                      rp_shadow_tap(shadow, &s, (float2)(o, -o))) +
+                     (rp_shadow_tap(shadow, &s, (float2)(-o, o)) +
+                      rp_shadow_tap(shadow, &s, (float2)(o, o)))) * 0.25f;
+  return frame->light_intensity.xyz * (scale * lit);
 }
 
 /* ---- span arithmetic: one lane per triangle (voxelize_triangles) or per voxel column
@@ -340,7 +349,7 @@ inline VxLight vx_light(__global const FrameConstants* frame, __global const flo
   ((((m).c[0].row * (p).x + (m).c[1].row * (p).y) + (m).c[2].row * (p).z) + (m).c[3].row)
 
 /* Direct light (rgb, before albedo) at p with unit normal n for lanes in `active` (< n_lanes),
- * 0 elsewhere: rp_direct_unshadowed, rp_shadow_lookup and one rp_shadow_tap. */
+ * 0 elsewhere: rp_direct_unshadowed, rp_shadow_lookup and vx_direct's 4 rp_shadow_taps. */
 inline VxVec vx_direct_span(const VxLight* L, __global const float* shadow, const VxVec* pp,
                             const VxVec* np, rp_spani active, int n_lanes) {
   const VxVec p = *pp, n = *np;
@@ -374,23 +383,28 @@ inline VxVec vx_direct_span(const VxLight* L, __global const float* shadow, cons
    * clamp with span bounds, not scalar ones: oclgrind 21.10 computes garbage for the
    * (vector, scalar, scalar) integer forms of clamp, min and max. */
   const rp_spani last = (rp_spani)(L->size - 1);
-  const rp_spani tx =
-      clamp(rp_span_convert_int(floor(clamp(sx, -1.0f, L->size_f))), (rp_spani)(0), last);
-  const rp_spani ty =
-      clamp(rp_span_convert_int(floor(clamp(sy, -1.0f, L->size_f))), (rp_spani)(0), last);
   int index[RP_SPAN], tap[RP_SPAN];
   float depth[RP_SPAN];
-  RP_SPAN_TO_ARRAY(ty * L->size + tx, index);
   RP_SPAN_TO_ARRAY(lit & inside, tap);
-  for (int i = 0; i < RP_SPAN; ++i) depth[i] = (i < n_lanes && tap[i]) ? shadow[index[i]] : 1.0f;
-  const rp_spanf d = RP_SPAN_FROM_ARRAY(depth);
-  const rp_spanf z_ndc = d * 2.0f - 1.0f;
-  const rp_spanf lin =
-      select(2.0f * L->near * L->far / ((L->far + L->near) - z_ndc * (L->far - L->near)),
-             (rp_spanf)(3.0e38f), d >= 1.0f);
-  const rp_spanf unshadowed = select((rp_spanf)(1.0f),
-                                     select((rp_spanf)(0.0f), (rp_spanf)(1.0f), receiver <= lin),
-                                     inside);
+  rp_spanf lit_taps = (rp_spanf)(0.0f);
+  for (int k = 0; k < 4; ++k) { /* vx_direct's taps, in its order */
+    const float ox = (k & 1) ? RP_VOXEL_SHADOW_SPREAD : -RP_VOXEL_SHADOW_SPREAD;
+    const float oy = (k & 2) ? RP_VOXEL_SHADOW_SPREAD : -RP_VOXEL_SHADOW_SPREAD;
+    const rp_spani tx = clamp(rp_span_convert_int(floor(clamp(sx + ox, -1.0f, L->size_f))),
+                              (rp_spani)(0), last);
+    const rp_spani ty = clamp(rp_span_convert_int(floor(clamp(sy + oy, -1.0f, L->size_f))),
+                              (rp_spani)(0), last);
+    RP_SPAN_TO_ARRAY(ty * L->size + tx, index);
+    for (int i = 0; i < RP_SPAN; ++i)
+      depth[i] = (i < n_lanes && tap[i]) ? shadow[index[i]] : 1.0f;
+    const rp_spanf d = RP_SPAN_FROM_ARRAY(depth);
+    const rp_spanf z_ndc = d * 2.0f - 1.0f;
+    const rp_spanf lin =
+        select(2.0f * L->near * L->far / ((L->far + L->near) - z_ndc * (L->far - L->near)),
+               (rp_spanf)(3.0e38f), d >= 1.0f);
+    lit_taps += select((rp_spanf)(0.0f), (rp_spanf)(1.0f), receiver <= lin);
+  }
+  const rp_spanf unshadowed = select((rp_spanf)(1.0f), lit_taps * 0.25f, inside);
   const rp_spanf k = select((rp_spanf)(0.0f), scale * unshadowed, lit);
   return vxv(L->intensity.x * k, L->intensity.y * k, L->intensity.z * k);
 }

@@ -20,11 +20,9 @@
  * w) with a bias of (depth_bias + filter_reach * tan(theta)) texels, where one texel is its
  * world size at the receiver's distance and filter_reach is how far (texels) the caller's taps
  * reach from the receiver. rp_shadow_tap then reads the texel under the receiver plus an
- * offset in texels (one call per tap: one tap for the voxelizer, a rotated Poisson tap or 5x5
- * PCF in the light pass). Points outside the shadow frustum are lit.
- *
- * These functions repeat light.cl's formulas operation for operation, so the light pass can
- * call them without changing its output.
+ * offset in texels (one call per tap: the voxelizer's 4 taps). Points outside the shadow
+ * frustum are lit. The light pass's shadow modes (hard, pcf, pcss, vssm) live in
+ * common/soft_shadow.h (eight pixels at once, receiver-plane bias).
  */
 #ifndef ROLYPOLY_COMMON_DIRECT_LIGHT_H
 #define ROLYPOLY_COMMON_DIRECT_LIGHT_H

@@ -338,9 +338,9 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
   for (uint32_t v : plan.voxels) matrix.voxels.push_back(voxels_or_default(v));
 
   std::printf("bench: %zu device(s) x %zu size(s) x %zu voxel resolution(s), scene %s, "
-              "%u warm-up + %u measured frames each\n",
+              "shadows %s, %u warm-up + %u measured frames each\n",
               plan.devices.size(), plan.sizes.size(), plan.voxels.size(), options.scene.c_str(),
-              options.warmup, options.frames);
+              render::shadow_mode_name(common.shadows), options.warmup, options.frames);
   std::fflush(stdout);
   MeasureRun measure_cell = [&](const rp::cl::DeviceInfo& d, uint32_t w, uint32_t h,
                                 uint32_t v) { return measure_run(common, options, d, w, h, v); };

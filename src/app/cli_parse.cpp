@@ -177,6 +177,16 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
          "(default: mipmaps, level from the pixel's footprint) or anisotropic (up to 4 "
          "trilinear taps along the footprint's long axis: sharper at grazing angles)")
       ->check(CLI::IsMember({"bilinear", "trilinear", "anisotropic"}));
+  // --shadows (issue 15): the light pass's shadow filter; key H cycles it in the window.
+  cmd->add_option_function<std::string>(
+         "--shadows",
+         [&common](const std::string& name) {
+           common.shadows = *render::parse_shadow_mode(name);  // IsMember checked the name
+         },
+         "how the lamp's shadow is filtered: hard (one tap: a point lamp's hard edge), pcf "
+         "(fixed-width soft edge), pcss (penumbra from the lamp's size and the blocker and "
+         "receiver depths; default) or vssm (the same from filtered depth moments)")
+      ->check(CLI::IsMember({"hard", "pcf", "pcss", "vssm"}));
   auto off = [&](const char* name, bool& flag, const char* what) {
     cmd->add_flag_callback(name, [&flag] { flag = false; }, what);
   };
@@ -235,7 +245,8 @@ std::string check_pathtrace(const CLI::App* cmd, const CommonOptions& common) {
     if (cmd->count("--lamp")) return "--lamp applies to --quality pathtraced";
     return check_bounces(common);
   }
-  for (const char* name : {"--device", "--visibility", "--shadow-size", "--bloom-strength"})
+  for (const char* name : {"--device", "--visibility", "--shadow-size", "--shadows",
+                           "--texture-filter", "--bloom-strength"})
     if (cmd->count(name))
       return std::string(name) + " does not apply to --quality pathtraced (the path tracer "
                                  "runs on the host's cores, without post-processing)";

@@ -64,6 +64,9 @@ class RenderSession {
 
   // Post-processing switches for the next frames (keys T, B, M in the window).
   void set_effects(const render::Effects& effects) { renderer_->set_effects(effects); }
+  // The shadow mode for the next frames (key H in the window).
+  void set_shadows(render::ShadowMode mode) { renderer_->set_shadows(mode); }
+  render::ShadowMode shadows() const { return renderer_->settings().shadows; }
   // Keeps the light pass's direct / indirect terms for read_components whatever the view
   // (`render --exr`); checks the device memory with them counted first (rp::cl::Error).
   void set_keep_components(bool keep);

@@ -19,14 +19,16 @@ namespace rp::app {
 namespace {
 
 constexpr double kTitleIntervalMs = 500.0;  // window title refresh: about twice per second
+constexpr char kShadowsKey = 'H';  // cycles --shadows: hard, pcf, pcss, vssm (not recorded)
 
-// "rolypoly | 4.1 fps | visibility 3.20 ms, gbuffer 1.10 ms, ..." (means over the interval);
-// a debug view is named after the fps: "rolypoly | 4.1 fps | view voxels 2 +x | ...".
+// "rolypoly | 4.1 fps | shadows pcss | visibility 3.20 ms, gbuffer 1.10 ms, ..." (means over
+// the interval); a debug view is named after the shadows: "... | view voxels 2 +x | ...".
 std::string title_text(const PassStats& interval, double elapsed_ms,
-                       const passes::DebugViewSettings& view) {
-  char head[64];
-  std::snprintf(head, sizeof head, "rolypoly | %.1f fps |",
-                elapsed_ms > 0.0 ? 1000.0 * double(interval.frames()) / elapsed_ms : 0.0);
+                       const passes::DebugViewSettings& view, render::ShadowMode shadows) {
+  char head[96];
+  std::snprintf(head, sizeof head, "rolypoly | %.1f fps | shadows %s |",
+                elapsed_ms > 0.0 ? 1000.0 * double(interval.frames()) / elapsed_ms : 0.0,
+                render::shadow_mode_name(shadows));
   std::string title = head;
   if (view.view != passes::DebugView::kFinal) {
     title += " view ";
@@ -101,6 +103,12 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
   window->poll_events();
   while (!window->should_close() && (options.frames == 0 || presented < options.frames)) {
     for (const display::WindowEvent& e : window->take_events()) {
+      if (e.type == display::WindowEvent::Type::Key && e.key == kShadowsKey) {
+        session.set_shadows(render::next_shadow_mode(session.shadows()));
+        std::printf("shadows %s\n", render::shadow_mode_name(session.shadows()));
+        std::fflush(stdout);
+        continue;
+      }
       // Number keys switch the view (not simulation input, so not recorded).
       if (auto view = e.type == display::WindowEvent::Type::Key
                           ? passes::debug_view_for_key(e.key)
@@ -132,7 +140,7 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
     interval.add(times, frame_ms);
     window->poll_events();
     if (double elapsed = ms_since(interval_start); elapsed >= kTitleIntervalMs) {
-      window->set_title(title_text(interval, elapsed, session.view()));
+      window->set_title(title_text(interval, elapsed, session.view(), session.shadows()));
       interval.clear();
       interval_start = std::chrono::steady_clock::now();
     }

@@ -31,6 +31,8 @@ cl_uint bind_common(::cl::Kernel& kernel, const render::GpuScene& scene,
   kernel.setArg(arg++, gbuffer.position);
   kernel.setArg(arg++, gbuffer.emission);
   kernel.setArg(arg++, shadow.depth);
+  // hard and pcf never read the mips: any buffer will do
+  kernel.setArg(arg++, shadow.mip_planes > 0 ? shadow.mips : shadow.depth);
   return arg;
 }
 
@@ -63,13 +65,12 @@ void check_voxel_chain(const char* pass, const ::cl::Buffer& voxels, uint32_t vo
 
 LightPass::LightPass(const rp::cl::Context& /*context*/, rp::cl::ProgramCache& programs,
                      ShadowFilter filter)
-    : programs_(&programs),
-      filter_options_(filter == ShadowFilter::kPcf5x5 ? "-DRP_SHADOW_PCF5=1" : "") {}
+    : programs_(&programs), filter_(filter) {}
 
 ::cl::Kernel& LightPass::variant(bool upsample, bool split) {
-  std::optional<::cl::Kernel>& k = kernels_[upsample][split];
+  std::optional<::cl::Kernel>& k = kernels_[int(filter_)][upsample][split];
   if (!k) {
-    std::string options = filter_options_;
+    std::string options = "-DRP_SHADOW_MODE=" + std::to_string(int(filter_));
     if (split) options += " -DRP_LIGHT_SPLIT=1";
     k = programs_->kernel("light.cl", upsample ? "light_compose" : "light_shade", options);
   }
@@ -87,6 +88,10 @@ void LightPass::check_sizes(const render::GpuScene& scene, const render::GBuffer
     throw rp::cl::Error("light pass: shadow map is " + std::to_string(shadow.size) +
                         " texels wide but the frame constants say " +
                         std::to_string(scene.constants.shadow_size));
+  if (shadow_mip_planes(filter_) > 0 &&
+      (shadow.mip_planes < shadow_mip_planes(filter_) || shadow.mips() == nullptr))
+    throw rp::cl::Error("light pass: the soft shadows need the shadow map's mips (run the "
+                          "shadow filter pass first)");
 }
 
 void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,

@@ -1,5 +1,5 @@
-// Light pass: direct light from the lamp (Lambert, directional falloff, Poisson-disk shadow
-// lookup rotated per pixel) + indirect diffuse light + emission -> HDR float4 per pixel. The
+// Light pass: direct light from the lamp (Lambert, directional falloff, the shadow filtered as
+// ShadowFilter says) + indirect diffuse light + emission -> HDR float4 per pixel. The
 // indirect light is either the 16-cone set traced per pixel through the voxel radiance chain
 // (kernels/common/cone_trace.h; the reference quality mode) or the indirect pass's accumulated
 // low-resolution result upsampled with depth- and normal-aware weights (passes/indirect.h; the
@@ -17,9 +17,15 @@
 
 namespace rp::passes {
 
-// How the shadow map is filtered: one Poisson-disk tap rotated per pixel and frame (the default,
-// SPEC 6.5: enough under GI + TAA), or the 5x5 PCF reference (25 taps, -DRP_SHADOW_PCF5=1).
-enum class ShadowFilter { kPoissonOneTap, kPcf5x5 };
+// How the shadow map is filtered (render::ShadowMode's values, kernels/common/soft_shadow.h):
+// hard (one tap at the receiver), pcf (fixed-radius rotated Poisson disk), pcss (blocker search,
+// penumbra from the lamp cap's size, PCF over it; reads ShadowMap::mips' MIN plane) and vssm
+// (depth moments from ShadowMap::mips' MEAN / MEAN2 planes, Chebyshev bound).
+enum class ShadowFilter { kHard, kPcf, kPcss, kVssm };
+// Mip planes the shadow filter pass must build for `filter` (0: none).
+inline uint32_t shadow_mip_planes(ShadowFilter filter) {
+  return filter == ShadowFilter::kPcss ? 1u : filter == ShadowFilter::kVssm ? 3u : 0u;
+}
 
 // Extra outputs for the direct / indirect debug views, width x height float4 each (16 bytes per
 // pixel): direct = albedo * lamp light (shadowed), indirect = albedo * irradiance/pi;
@@ -33,7 +39,11 @@ class LightPass {
  public:
   // Kernel variants (hdr only or split; per-pixel cones or upsampling) build on first use.
   LightPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
-            ShadowFilter filter = ShadowFilter::kPoissonOneTap);
+            ShadowFilter filter = ShadowFilter::kPcss);
+
+  // Switches the shadow filter for the next run (its kernels build on first use).
+  void set_filter(ShadowFilter filter) { filter_ = filter; }
+  ShadowFilter filter() const { return filter_; }
 
   // hdr: float4 per pixel (rgb linear radiance, a = 1 covered / 0 background), gbuffer.width x
   // gbuffer.height. voxels: the radiance chain of kernels/shared/voxel_layout.h,
@@ -44,6 +54,7 @@ class LightPass {
   // kernel variant; the default path writes hdr only).
   // indirect: when given, the indirect light is upsampled from it (the fast mode; the voxel
   // chain is then only checked, not read); else the 16 cones are traced per pixel.
+  // shadow.mips must hold at least shadow_mip_planes(filter()) planes (the shadow filter pass).
   // Builds the hdr-only kernel of one variant now (the renderer builds its kernels up front).
   void prepare(bool upsample) { variant(upsample, false); }
 
@@ -57,12 +68,12 @@ class LightPass {
   void check_sizes(const render::GpuScene& scene, const render::GBuffer& gbuffer,
                    const render::ShadowMap& shadow) const;
 
-  // Kernel variant [upsample][split], built on first use.
+  // Kernel variant [filter][upsample][split], built on first use.
   ::cl::Kernel& variant(bool upsample, bool split);
 
   rp::cl::ProgramCache* programs_;
-  std::string filter_options_;
-  std::optional<::cl::Kernel> kernels_[2][2];
+  ShadowFilter filter_;
+  std::optional<::cl::Kernel> kernels_[4][2][2];
 };
 
 // Throws rp::cl::Error (naming `pass`) unless `voxels` holds a chain of voxel_resolution^3 at

@@ -30,6 +30,10 @@ struct VisibilityBuffer {
 struct ShadowMap {
   uint32_t size = 0;   // size x size texels
   ::cl::Buffer depth;  // float: z_ndc * 0.5 + 0.5 of the nearest occluder, 1.0 where none
+  // The shadow filter pass's mip chain of linear depth (kernels/shared/shadow_mips.h):
+  // mip_planes planes (1: MIN, for PCSS; 3: MIN, MEAN, MEAN2, for VSSM; 0: not built).
+  ::cl::Buffer mips;
+  uint32_t mip_planes = 0;
 
   void resize(const ::cl::Context& context, uint32_t s) {
     size = s;

@@ -11,6 +11,7 @@
 #include "passes/indirect.h"
 #include "passes/light.h"
 #include "passes/motion_blur.h"
+#include "passes/shadow_filter.h"
 #include "passes/taa.h"
 #include "passes/tone_map.h"
 #include "passes/visibility.h"
@@ -46,6 +47,16 @@ uint32_t texture_filter_code(TextureFilter filter) {
   return RP_TEXTURE_FILTER_TRILINEAR;
 }
 
+passes::ShadowFilter shadow_filter_for(ShadowMode mode) {
+  switch (mode) {
+    case ShadowMode::kHard: return passes::ShadowFilter::kHard;
+    case ShadowMode::kPcf: return passes::ShadowFilter::kPcf;
+    case ShadowMode::kPcss: return passes::ShadowFilter::kPcss;
+    case ShadowMode::kVssm: return passes::ShadowFilter::kVssm;
+  }
+  return passes::ShadowFilter::kPcss;
+}
+
 }  // namespace
 
 Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
@@ -63,8 +74,10 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   if (settings_.bounces >= 2) bounce_ = std::make_unique<passes::BouncePass>(context, programs);
   if (settings_.quality == Quality::kFast)
     indirect_ = std::make_unique<passes::IndirectPass>(context, programs);
-  light_ = std::make_unique<passes::LightPass>(context, programs);
+  light_ = std::make_unique<passes::LightPass>(context, programs,
+                                               shadow_filter_for(settings_.shadows));
   light_->prepare(indirect_ != nullptr);
+  shadow_filter_ = std::make_unique<passes::ShadowFilterPass>(context, programs);
   tone_map_ = std::make_unique<passes::ToneMapPass>(context, programs);
   taa_ = std::make_unique<passes::TaaPass>(context, programs);
   bloom_ = std::make_unique<passes::BloomPass>(context, programs);
@@ -149,6 +162,8 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     else
       visibility_->render(profiler_, *scene_, vis_);
     visibility_->render_shadow(profiler_, *scene_, shadow_);
+    if (const uint32_t planes = passes::shadow_mip_planes(light_->filter()); planes > 0)
+      shadow_filter_->run(profiler_, *scene_, shadow_, planes > 1);
     gbuffer_pass_->run(profiler_, *scene_, vis_, gbuffer_,
                        texture_filter_code(settings_.texture_filter));
     build_voxels();
@@ -214,6 +229,11 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
 void Renderer::set_effects(const Effects& effects) {
   if (effects.taa && !settings_.effects.taa) taa_->reset_history();
   settings_.effects = effects;
+}
+
+void Renderer::set_shadows(ShadowMode mode) {
+  settings_.shadows = mode;
+  light_->set_filter(shadow_filter_for(mode));
 }
 
 void Renderer::reset_view_history() {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "cl/context.h"
@@ -21,6 +22,7 @@ class VisibilityPass;
 class EmbreeVisibilityPass;
 class GBufferPass;
 class LightPass;
+class ShadowFilterPass;
 class IndirectPass;
 class ToneMapPass;
 class DebugViewPass;
@@ -70,6 +72,11 @@ enum class Quality { kFast, kReference };
 //          the blocker and receiver depths and the lamp size imply;
 //   kVssm: variance soft shadow maps: filtered depth moments, Chebyshev bound.
 enum class ShadowMode { kHard, kPcf, kPcss, kVssm };
+// Command-line names "hard", "pcf", "pcss", "vssm" (render/shadow_mode.cpp); nullopt for others.
+const char* shadow_mode_name(ShadowMode mode);
+std::optional<ShadowMode> parse_shadow_mode(std::string_view name);
+// The next mode in the order above, wrapping (key H).
+ShadowMode next_shadow_mode(ShadowMode mode);
 
 // How surface textures are sampled (issue 15, --texture-filter): kBilinear: the base level only
 // (aliases when minified); kTrilinear: mipmaps, level from the pixel's UV footprint;
@@ -138,6 +145,9 @@ class Renderer {
 
   // Switches post-processing effects between frames (turning TAA on starts a fresh history).
   void set_effects(const Effects& effects);
+  // Switches the shadow mode between frames (key H in the window; its kernels build on first
+  // use).
+  void set_shadows(ShadowMode mode);
   // Forgets the TAA history, the fast mode's accumulated indirect light and the bounce grid
   // (the app calls it when the world is reset). Camera cuts, i.e. a frame whose previous
   // camera is not the camera of the frame before, and resizes reset the first two
@@ -181,6 +191,7 @@ class Renderer {
   std::unique_ptr<passes::BouncePass> bounce_;  // only with settings_.bounces >= 2
   std::unique_ptr<passes::IndirectPass> indirect_;  // set with Quality::kFast
   std::unique_ptr<passes::LightPass> light_;
+  std::unique_ptr<passes::ShadowFilterPass> shadow_filter_;  // the mips pcss / vssm read
   std::unique_ptr<passes::ToneMapPass> tone_map_;
   std::unique_ptr<passes::TaaPass> taa_;
   std::unique_ptr<passes::BloomPass> bloom_;

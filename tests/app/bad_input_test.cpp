@@ -84,6 +84,22 @@ TEST(BadInput, UnknownTextureFilterNamesTheChoices) {
   }
 }
 
+// --shadows takes hard, pcf, pcss or vssm in render, run and bench; anything else is one usage
+// message naming the option and the choices (before any device or window is opened).
+TEST(BadInput, UnknownShadowModeSaysWhichExist) {
+  for (const char* sub : {"render --out /nonexistent/x", "run", "bench"})
+    for (const char* bad : {"soft", "PCSS", "\"\""}) {
+      CommandResult r = run_rolypoly(std::string(sub) + " --shadows " + bad);
+      EXPECT_EQ(r.exit_code, 2) << sub << " " << bad << "\n" << r.err;
+      EXPECT_TRUE(Contains(r.err, "rolypoly: error: --shadows: "));
+      EXPECT_TRUE(Contains(r.err, "not in {hard,pcf,pcss,vssm}")) << sub << " " << bad;
+      EXPECT_TRUE(r.out.empty()) << r.out;
+    }
+  CommandResult pt = run_rolypoly("render --quality pathtraced --shadows pcf --out /nonexistent/x");
+  EXPECT_EQ(pt.exit_code, 2) << pt.err;
+  EXPECT_TRUE(Contains(pt.err, "--shadows does not apply to --quality pathtraced"));
+}
+
 // The estimate counts the buffers; checked here against sums written out by hand.
 TEST(BadInput, DeviceMemoryEstimateCountsEveryBuffer) {
   // 160x160: 25600 pixels; 10 raster tiles (16 px) per side = 100; 8 blur tiles (20 px) = 64.

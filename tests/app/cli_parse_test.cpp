@@ -193,6 +193,22 @@ TEST(ParseCli, PathtracedQualityAndItsOptions) {
   EXPECT_NE(exit_of({"render", "--help"}).message.find("--exr"), std::string::npos);
 }
 
+// --shadows (render, run, bench): each name parses to its mode; the default is the renderer's.
+TEST(ParseCli, ShadowsInEveryRealTimeCommand) {
+  for (const char* sub : {"render", "run", "bench"}) {
+    EXPECT_EQ(command({sub}).common.shadows, render::RenderSettings{}.shadows) << sub;
+    for (render::ShadowMode m : {render::ShadowMode::kHard, render::ShadowMode::kPcf,
+                                 render::ShadowMode::kPcss, render::ShadowMode::kVssm}) {
+      EXPECT_EQ(command({sub, "--shadows", render::shadow_mode_name(m)}).common.shadows, m)
+          << sub;
+      EXPECT_EQ(render::parse_shadow_mode(render::shadow_mode_name(m)), m);
+    }
+    EXPECT_EQ(exit_of({sub, "--shadows", "soft"}).exit_code, 2) << sub;
+  }
+  EXPECT_EQ(render::next_shadow_mode(render::ShadowMode::kVssm), render::ShadowMode::kHard);
+  EXPECT_EQ(render::next_shadow_mode(render::ShadowMode::kHard), render::ShadowMode::kPcf);
+}
+
 // --bounces applies to every mode of render, run and bench: 1 = single bounce, >= 2 =
 // multi-bounce in the real-time modes; 0 only for the path tracer.
 TEST(ParseCli, BouncesInEveryMode) {

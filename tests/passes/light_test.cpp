@@ -19,12 +19,16 @@
 #include "cone_reference.h"
 #include "kernels/shared/voxel_layout.h"
 #include "passes/light.h"
+#include "passes/shadow_filter.h"
 #include "render/gpu_scene.h"
 #include "support/cl_fixture.h"
 
 namespace {
 
 using rp::passes::ShadowFilter;
+
+constexpr ShadowFilter kAllFilters[] = {ShadowFilter::kHard, ShadowFilter::kPcf,
+                                        ShadowFilter::kPcss, ShadowFilter::kVssm};
 
 struct Point {
   glm::vec3 p, n, albedo, emission{0.0f};
@@ -131,6 +135,9 @@ class LightFixture {
                                  chain.voxels.data());
     ::cl::Buffer hdr(ctx.context, CL_MEM_READ_WRITE, n * 16);
     rp::cl::Profiler profiler(ctx.queue);
+    if (const uint32_t planes = rp::passes::shadow_mip_planes(filter); planes > 0)
+      rp::passes::ShadowFilterPass(ctx, rp::test::programs()).run(profiler, *scene_, sm,
+                                                                  planes > 1);
     rp::passes::LightPass pass(ctx, rp::test::programs(), filter);
     rp::passes::LightComponents components{::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16),
                                            ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16)};
@@ -230,7 +237,7 @@ double floor_and_occluder_hit(glm::dvec3 o, glm::dvec3 d) {
 TEST(Light, UnshadowedMatchesReference) {
   LightFixture fx(32);
   auto pts = box_points(fx.light().position);
-  for (ShadowFilter filter : {ShadowFilter::kPoissonOneTap, ShadowFilter::kPcf5x5}) {
+  for (ShadowFilter filter : kAllFilters) {
     auto hdr = fx.run(pts, std::vector<float>(32 * 32, 1.0f), filter);
     for (size_t i = 0; i < pts.size(); ++i)
       expect_radiance(hdr, i, radiance_ref(pts[i], fx.light().position, 1.0), "lit");
@@ -242,7 +249,7 @@ TEST(Light, UnshadowedMatchesReference) {
 TEST(Light, FullyOccludedMapShadowsOnlyInsideTheFrustum) {
   LightFixture fx(32);
   auto pts = box_points(fx.light().position);
-  for (ShadowFilter filter : {ShadowFilter::kPoissonOneTap, ShadowFilter::kPcf5x5}) {
+  for (ShadowFilter filter : kAllFilters) {
     auto hdr = fx.run(pts, std::vector<float>(32 * 32, 0.0f), filter);
     ASSERT_TRUE(outside_shadow_frustum(fx.light(), pts[kOutside].p));
     int inside = 0;
@@ -275,7 +282,7 @@ TEST(Light, BoxDepthMapHasNoAcne) {
     }
   }
   int checked = 0;
-  for (ShadowFilter filter : {ShadowFilter::kPoissonOneTap, ShadowFilter::kPcf5x5}) {
+  for (ShadowFilter filter : kAllFilters) {
     for (uint32_t frame = 0; frame < 3; ++frame) {
       auto hdr = fx.run(pts, map, filter, frame, 16);
       for (size_t i = 0; i < pts.size(); ++i) {
@@ -304,28 +311,25 @@ TEST(Light, SquareOccluderCastsShadow) {
     row.push_back({{0.95f * float(i) / 63.0f, -1.0f, -0.55f}, {0, 1, 0}, {0.5f, 0.5f, 0.5f}});
   const glm::vec3 light = fx.light().position;
 
-  auto poisson = fx.run(row, map, ShadowFilter::kPoissonOneTap, 0, 16);
-  auto pcf = fx.run(row, map, ShadowFilter::kPcf5x5, 0, 16);
+  auto hard = fx.run(row, map, ShadowFilter::kHard, 0, 16);
+  auto pcf = fx.run(row, map, ShadowFilter::kPcf, 0, 16);
   int pcf_partial = 0;
-  double previous = 0.0;
   for (size_t i = 0; i < row.size(); ++i) {
     const double x = row[i].p.x;
-    const double v1 = visibility_of(poisson, i, row[i], light);
-    const double v25 = visibility_of(pcf, i, row[i], light);
+    const double v1 = visibility_of(hard, i, row[i], light);
+    const double v8 = visibility_of(pcf, i, row[i], light);
     // One tap: all or nothing.
     EXPECT_TRUE(std::abs(v1) < 1e-4 || std::abs(v1 - 1.0) < 1e-4) << "x " << x << " vis " << v1;
-    // PCF: multiples of 1/25, non-decreasing away from the occluder.
-    EXPECT_NEAR(v25 * 25.0, std::round(v25 * 25.0), 1e-3) << "x " << x;
-    EXPECT_GE(v25, previous - 1e-4) << "x " << x;
-    previous = v25;
-    pcf_partial += v25 > 0.01 && v25 < 0.99;
+    // PCF: multiples of 1/8 (8 taps).
+    EXPECT_NEAR(v8 * 8.0, std::round(v8 * 8.0), 1e-3) << "x " << x;
+    pcf_partial += v8 > 0.01 && v8 < 0.99;
     if (x < 0.4) {  // well inside the umbra
       EXPECT_NEAR(v1, 0.0, 1e-4) << "x " << x;
-      EXPECT_NEAR(v25, 0.0, 1e-4) << "x " << x;
+      EXPECT_NEAR(v8, 0.0, 1e-4) << "x " << x;
     }
     if (x > 0.78) {  // well outside
       EXPECT_NEAR(v1, 1.0, 1e-4) << "x " << x;
-      EXPECT_NEAR(v25, 1.0, 1e-4) << "x " << x;
+      EXPECT_NEAR(v8, 1.0, 1e-4) << "x " << x;
     }
   }
   EXPECT_GE(pcf_partial, 2);  // a soft edge, not a hard step
@@ -340,9 +344,9 @@ TEST(Light, DeterministicPerFrameNoise) {
       band.push_back({{0.45f + 0.25f * float(i) / 15.0f, -1.0f, -0.7f + 0.05f * float(j)},
                       {0, 1, 0},
                       {0.5f, 0.5f, 0.5f}});
-  auto a = fx.run(band, map, ShadowFilter::kPoissonOneTap, 5, 16);
-  auto b = fx.run(band, map, ShadowFilter::kPoissonOneTap, 5, 16);
-  auto c = fx.run(band, map, ShadowFilter::kPoissonOneTap, 6, 16);
+  auto a = fx.run(band, map, ShadowFilter::kPcf, 5, 16);
+  auto b = fx.run(band, map, ShadowFilter::kPcf, 5, 16);
+  auto c = fx.run(band, map, ShadowFilter::kPcf, 6, 16);
   EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(float)));  // bit-identical
   int lit = 0, differs = 0;
   for (size_t i = 0; i < band.size(); ++i) {
@@ -382,7 +386,7 @@ TEST(Light, ConeTracedIndirectMatchesReference) {
   pts.push_back({{0.2f, -0.3f, 0.1f}, glm::normalize(glm::vec3(0.3f, 0.8f, -0.5f)), {0.7f, 0.6f, 0.5f}});
   pts.push_back({{-0.5f, 0.4f, -0.2f}, glm::normalize(glm::vec3(-0.6f, -0.2f, 0.7f)), {0.3f, 0.9f, 0.4f}});
   const rp::test::cone::Chain chain = random_chain(16, 77);
-  auto hdr = fx.run(pts, std::vector<float>(32 * 32, 1.0f), ShadowFilter::kPoissonOneTap, 0, 8,
+  auto hdr = fx.run(pts, std::vector<float>(32 * 32, 1.0f), ShadowFilter::kHard, 0, 8,
                     chain);
   int lit = 0;
   for (size_t i = 0; i < pts.size(); ++i) {
@@ -405,8 +409,8 @@ TEST(Light, SplitVariantWritesTheComponents) {
   const rp::test::cone::Chain chain = random_chain(16, 5);
   const std::vector<float> map(32 * 32, 1.0f);
   std::vector<float> direct, indirect;
-  auto lean = fx.run(pts, map, ShadowFilter::kPoissonOneTap, 0, 8, chain);
-  auto split = fx.run(pts, map, ShadowFilter::kPoissonOneTap, 0, 8, chain,
+  auto lean = fx.run(pts, map, ShadowFilter::kHard, 0, 8, chain);
+  auto split = fx.run(pts, map, ShadowFilter::kHard, 0, 8, chain,
                       LightFixture::Mode::kConesSplit, &direct, &indirect);
   EXPECT_EQ(0, std::memcmp(lean.data(), split.data(), lean.size() * sizeof(float)));
   for (size_t i = 0; i < pts.size(); ++i) {
@@ -433,7 +437,7 @@ TEST(Light, RejectsAVoxelChainThatDoesNotFit) {
   auto& ctx = rp::test::context();
   LightFixture fx(32);
   fx.run(box_points(fx.light().position), std::vector<float>(32 * 32, 1.0f),
-         ShadowFilter::kPoissonOneTap);  // sets up the scene for an 8x2 frame
+         ShadowFilter::kHard);  // sets up the scene for an 8x2 frame
   rp::render::GBuffer gb;
   gb.resize(ctx.context, 8, 2);
   rp::render::ShadowMap sm;
@@ -442,7 +446,7 @@ TEST(Light, RejectsAVoxelChainThatDoesNotFit) {
   const size_t total16 = rp::gpu::rp_voxel_total(16, 5);
   ::cl::Buffer voxels(ctx.context, CL_MEM_READ_ONLY, total16 * 16);
   rp::cl::Profiler profiler(ctx.queue);
-  rp::passes::LightPass pass(ctx, rp::test::programs());
+  rp::passes::LightPass pass(ctx, rp::test::programs(), ShadowFilter::kHard);
   auto message = [&](uint32_t resolution, uint32_t levels, const ::cl::Buffer& buffer) {
     try {
       pass.run(profiler, fx.scene(), gb, sm, buffer, resolution, levels, hdr);

@@ -111,7 +111,8 @@ float shadow_linear_depth(float d, float near, float far) {
   return d >= 1.0f ? 3.0e38f : lin;
 }
 
-// vx_direct: light (rgb, before albedo) at p with normal n, one shadow tap.
+// vx_direct: light (rgb, before albedo) at p with normal n, 4 shadow taps at (+-1.5, +-1.5)
+// texels (RP_VOXEL_SHADOW_SPREAD), slope bias over a reach of 2.8 texels.
 RefF3 direct(const VoxelRefInput& in, RefF3 p, RefF3 n) {
   const gpu::FrameConstants& k = in.constants;
   const RefF3 to_light = f3(k.light_pos) - p;
@@ -134,14 +135,20 @@ RefF3 direct(const VoxelRefInput& in, RefF3 p, RefF3 n) {
   const RefF3 ndc = {clip.x / clip.w, clip.y / clip.w, clip.z / clip.w};
   float lit = 1.0f;
   if (!(clip.w <= 0.0f || std::fabs(ndc.x) > 1.0f || std::fabs(ndc.y) > 1.0f || ndc.z > 1.0f)) {
-    const float receiver = clip.w - texel * (1.0f + 1.0f * tan_theta);
+    const float receiver = clip.w - texel * (1.0f + 2.8f * tan_theta);
     const float sx = (ndc.x * 0.5f + 0.5f) * float(size);
     const float sy = (0.5f - ndc.y * 0.5f) * float(size);
-    const int tx = std::clamp(int(std::floor(sx)), 0, size - 1);
-    const int ty = std::clamp(int(std::floor(sy)), 0, size - 1);
-    lit = receiver <= shadow_linear_depth(in.shadow.at(size_t(ty) * size + tx), k.clip.z, k.clip.w)
-              ? 1.0f
-              : 0.0f;
+    float taps = 0.0f;
+    for (int t = 0; t < 4; ++t) {
+      const float ox = (t & 1) ? 1.5f : -1.5f, oy = (t & 2) ? 1.5f : -1.5f;
+      const int tx = std::clamp(int(std::floor(sx + ox)), 0, size - 1);
+      const int ty = std::clamp(int(std::floor(sy + oy)), 0, size - 1);
+      taps += receiver <= shadow_linear_depth(in.shadow.at(size_t(ty) * size + tx), k.clip.z,
+                                              k.clip.w)
+                  ? 1.0f
+                  : 0.0f;
+    }
+    lit = taps * 0.25f;
   }
   return f3(k.light_intensity) * (scale * lit);
 }

@@ -1,0 +1,67 @@
+#include "passes/shadow_filter.h"
+
+#include <algorithm>
+#include <string>
+
+#include "cl/error.h"
+#include "kernels/shared/shadow_mips.h"
+
+namespace rp::passes {
+namespace {
+
+constexpr size_t kGroup = 8;  // 8x8 work-groups
+
+::cl::NDRange square(uint32_t n) {
+  const size_t g = rp::cl::round_up(n, kGroup);
+  return ::cl::NDRange(g, g);
+}
+
+}  // namespace
+
+ShadowFilterPass::ShadowFilterPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
+    : context_(&context), programs_(&programs) {}
+
+void ShadowFilterPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                           render::ShadowMap& shadow, bool moments) {
+  if (shadow.size != scene.constants.shadow_size)
+    throw rp::cl::Error("shadow filter pass: shadow map is " + std::to_string(shadow.size) +
+                        " texels wide but the frame constants say " +
+                        std::to_string(scene.constants.shadow_size));
+  const uint32_t size = shadow.size, levels = gpu::rp_shadow_mip_levels(size);
+  const uint32_t planes = moments ? 3u : 1u;
+  const uint32_t plane = gpu::rp_shadow_mip_total(size);
+  if (allocated_size_ != size || shadow.mip_planes != planes || shadow.mips() == nullptr) {
+    shadow.mips = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
+                               std::max<size_t>(size_t(plane) * planes, 1) * sizeof(float));
+    shadow.mip_planes = planes;
+    allocated_size_ = size;
+  }
+  if (levels == 0) return;
+  std::optional<::cl::Kernel>& first = first_[moments];
+  std::optional<::cl::Kernel>& next = next_[moments];
+  if (!first) {
+    const std::string options = moments ? "-DRP_SHADOW_MOMENTS=1" : "";
+    first = programs_->kernel("shadow_filter.cl", "shadow_filter_first", options);
+    next = programs_->kernel("shadow_filter.cl", "shadow_filter_next", options);
+  }
+  const uint32_t n1 = gpu::rp_shadow_mip_size(size, 1);
+  first->setArg(0, scene.frame);
+  first->setArg(1, shadow.depth);
+  first->setArg(2, cl_uint(size));
+  first->setArg(3, shadow.mips);
+  first->setArg(4, cl_uint(n1));
+  first->setArg(5, cl_uint(plane));
+  profiler.enqueue("shadow_filter", *first, square(n1), ::cl::NDRange(kGroup, kGroup));
+  for (uint32_t l = 2; l <= levels; ++l) {
+    const uint32_t m = gpu::rp_shadow_mip_size(size, l - 1), n = gpu::rp_shadow_mip_size(size, l);
+    next->setArg(0, shadow.mips);
+    next->setArg(1, cl_uint(gpu::rp_shadow_mip_offset(size, l - 1)));
+    next->setArg(2, cl_uint(m));
+    next->setArg(3, cl_uint(gpu::rp_shadow_mip_offset(size, l)));
+    next->setArg(4, cl_uint(n));
+    next->setArg(5, cl_uint(plane));
+    profiler.enqueue("shadow_filter", *next, square(n), ::cl::NDRange(kGroup, kGroup));
+  }
+}
+
+}  // namespace rp::passes
