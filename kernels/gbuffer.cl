@@ -130,13 +130,12 @@ inline void gb_uv_derivatives(rp_mat4 m, float4 p0, float4 p1, float4 p2, float 
   *dvdy = t * (v_fy - vd * sy);
 }
 
-/* Added to every filtered level of detail: 0 = the standard rule. An experiment knob (-D):
- * against the path tracer's pixel-averaged albedo (720, demo frame 0, no TAA) a bias of -0.5 to
- * -1 scores higher (trilinear's kernel, a level's box times the bilinear tent, is about 0.8
- * levels wider than the pixel's box) at the price of more shimmer; see k15 notes. */
-#ifndef RP_TEXTURE_LOD_BIAS
-#define RP_TEXTURE_LOD_BIAS 0.0f
-#endif
+/* lod_bias (kernel argument, levels) is added to every filtered level of detail: 0 = the
+ * standard rule. The renderer passes -1 while TAA jitters the camera (Renderer::render): TAA
+ * then averages frames whose sample points move over the whole pixel, so each frame's texture
+ * footprint should be narrower than the pixel or the average blurs twice. Measured against the
+ * path tracer's pixel-averaged albedo (360, demo frame, anisotropic, 16 jittered frames
+ * averaged): floor 36.7 dB at bias 0, 46.2 dB at -1 (bench --accuracy, issue 15 note). */
 
 /* Most taps of the anisotropic filter (the footprint's axis ratio is capped there). */
 #ifndef RP_TEXTURE_MAX_ANISO
@@ -151,7 +150,7 @@ inline void gb_uv_derivatives(rp_mat4 m, float4 p0, float4 p1, float4 p2, float 
  *                ceil(major / minor) of the span's textured lanes, at most RP_TEXTURE_MAX_ANISO
  *                (one loop for the span: lanes needing fewer taps get overlapping ones). */
 inline void gb_texture_filtered(__global const float4* linear_texels,
-                                __global const TextureInfo* textures, uint filter,
+                                __global const TextureInfo* textures, uint filter, float lod_bias,
                                 rp_spani textured, rp_spanu index, rp_spani w0, rp_spani h0,
                                 rp_spani levels, rp_spanf u, rp_spanf v, rp_spanf dudx,
                                 rp_spanf dvdx, rp_spanf dudy, rp_spanf dvdy, int n, rp_spanf* r,
@@ -160,7 +159,7 @@ inline void gb_texture_filtered(__global const float4* linear_texels,
   const rp_spanf major2 = fmax(lx2, ly2);
   rp_spanf cr, cg, cb;
   if (filter != RP_TEXTURE_FILTER_ANISOTROPIC) {
-    *lod_used = 0.5f * log2(major2) + RP_TEXTURE_LOD_BIAS;
+    *lod_used = 0.5f * log2(major2) + lod_bias;
     rp_span_texture_trilinear(linear_texels, textures, textured, index, w0, h0, levels,
                               *lod_used, u, v, n, &cr, &cg, &cb);
   } else {
@@ -175,7 +174,7 @@ inline void gb_texture_filtered(__global const float4* linear_texels,
     for (int i = 0; i < n; ++i)
       if (on[i]) taps = fmax(taps, lw[i]);
     const rp_spanf lod =
-        0.5f * log2(fmax(minor2, major2 / (taps * taps))) + RP_TEXTURE_LOD_BIAS;
+        0.5f * log2(fmax(minor2, major2 / (taps * taps))) + lod_bias;
     *lod_used = lod;
     /* the major axis in uv units (texel derivatives over the level-0 size) */
     const rp_spani along_y = ly2 > lx2;
@@ -217,7 +216,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
                               __global float* out_position,
                               __global float* out_emission,
                               __global float* out_velocity,
-                              uint texture_filter) {
+                              uint texture_filter, float lod_bias) {
   const uint width = frame->width, height = frame->height;
   /* 1D range over the spans in row-major order, so consecutive work-items read and write
    * consecutive memory. */
@@ -391,7 +390,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
       rp_span_texture_linear(linear_texels, textured, tex_w, tex_h, tex_offset, tu, tv, n, &ar,
                              &ag, &ab);
     else
-      gb_texture_filtered(linear_texels, textures, texture_filter, textured, tex_index,
+      gb_texture_filtered(linear_texels, textures, texture_filter, lod_bias, textured, tex_index,
                           rp_span_convert_int(tex_w), rp_span_convert_int(tex_h), tex_levels,
                           tu, tv, dudx, dvdx, dudy, dvdy, n, &ar, &ag, &ab, &lod_used);
   }

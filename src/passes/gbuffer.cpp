@@ -50,7 +50,7 @@ void GBufferPass::update_linear_texels(rp::cl::Profiler& profiler,
 
 void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                       const render::VisibilityBuffer& vis, render::GBuffer& out,
-                      uint32_t texture_filter) {
+                      uint32_t texture_filter, float lod_bias) {
   if (texture_filter > RP_TEXTURE_FILTER_ANISOTROPIC)
     throw rp::cl::Error("gbuffer pass: unknown texture filter " + std::to_string(texture_filter));
   const uint32_t w = scene.constants.width, h = scene.constants.height;
@@ -78,6 +78,7 @@ void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   resolve_.setArg(arg++, out.emission);
   resolve_.setArg(arg++, out.velocity);
   resolve_.setArg(arg++, cl_uint(texture_filter));
+  resolve_.setArg(arg++, cl_float(lod_bias));
   // One work-item per span of span_ pixels of a row, a 1D range in row-major order.
   const size_t span = static_cast<size_t>(span_);
   const size_t spans = (w + span - 1) / span * h;

@@ -17,10 +17,13 @@ class GBufferPass {
   GBufferPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
               const std::string& extra_options = "");
   // texture_filter: RP_TEXTURE_FILTER_BILINEAR, _TRILINEAR or _ANISOTROPIC
-  // (kernels/shared/types.h; render::TextureFilter).
+  // (kernels/shared/types.h; render::TextureFilter). lod_bias: levels added to every filtered
+  // level of detail (0 = the standard rule; the renderer passes kTaaTextureLodBias under TAA).
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
            const render::VisibilityBuffer& vis, render::GBuffer& out,
-           uint32_t texture_filter);
+           uint32_t texture_filter, float lod_bias = 0.0f);
+  // Texture level-of-detail bias while TAA jitters the camera (kernels/gbuffer.cl: why -1).
+  static constexpr float kTaaTextureLodBias = -1.0f;
 
  private:
   // Decodes scene.texels into linear_texels_ when the scene's texel buffer is not the one

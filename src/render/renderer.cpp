@@ -164,8 +164,9 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     visibility_->render_shadow(profiler_, *scene_, shadow_);
     if (const uint32_t planes = passes::shadow_mip_planes(light_->filter()); planes > 0)
       shadow_filter_->run(profiler_, *scene_, shadow_, planes > 1);
-    gbuffer_pass_->run(profiler_, *scene_, vis_, gbuffer_,
-                       texture_filter_code(settings_.texture_filter));
+    gbuffer_pass_->run(
+        profiler_, *scene_, vis_, gbuffer_, texture_filter_code(settings_.texture_filter),
+        settings_.effects.taa ? passes::GBufferPass::kTaaTextureLodBias : 0.0f);
     build_voxels();
     const bool split = passes::needs_light_components(view_.view) || keep_components_;
     passes::LowResIndirect low_res;
