@@ -40,6 +40,7 @@
 #include "common/colour.h"
 #include "common/span.h"
 #include "common/span_texture.h"
+#include "common/random.h"
 
 /* Linear float4 copy of the RGBA8 sRGB texel buffer (one work-item per texel): rgb through the
  * exact sRGB table, alpha linear (code / 255), as common/colour.h's rp_unpack_rgba8_srgb. */
@@ -151,6 +152,7 @@ inline void gb_uv_derivatives(rp_mat4 m, float4 p0, float4 p1, float4 p2, float 
  *                (one loop for the span: lanes needing fewer taps get overlapping ones). */
 inline void gb_texture_filtered(__global const float4* linear_texels,
                                 __global const TextureInfo* textures, uint filter, float lod_bias,
+                                int stochastic, rp_spanf pick,
                                 rp_spani textured, rp_spanu index, rp_spani w0, rp_spani h0,
                                 rp_spani levels, rp_spanf u, rp_spanf v, rp_spanf dudx,
                                 rp_spanf dvdx, rp_spanf dudy, rp_spanf dvdy, int n, rp_spanf* r,
@@ -161,7 +163,7 @@ inline void gb_texture_filtered(__global const float4* linear_texels,
   if (filter != RP_TEXTURE_FILTER_ANISOTROPIC) {
     *lod_used = 0.5f * log2(major2) + lod_bias;
     rp_span_texture_trilinear(linear_texels, textures, textured, index, w0, h0, levels,
-                              *lod_used, u, v, n, &cr, &cg, &cb);
+                              *lod_used, u, v, n, stochastic, pick, &cr, &cg, &cb);
   } else {
     const rp_spanf minor2 = fmin(lx2, ly2);
     /* ceil(major / minor) capped (a zero minor axis or NaN gives the cap) */
@@ -181,17 +183,23 @@ inline void gb_texture_filtered(__global const float4* linear_texels,
     const rp_spanf au = select(dudx, dudy, along_y) / rp_span_convert_float(w0);
     const rp_spanf av = select(dvdx, dvdy, along_y) / rp_span_convert_float(h0);
     cr = cg = cb = 0.0f;
-    const int count = (int)taps;
+    /* Stochastic (under TAA): half the taps (rounded up), each jittered within its stratum of
+     * the major axis per pixel and frame: the same box along the axis in expectation. */
+    const int count = stochastic ? (int)ceil(0.5f * taps) : (int)taps;
+    const rp_spanf jitter = stochastic ? pick * 16.0f - floor(pick * 16.0f) : (rp_spanf)(0.5f);
     for (int i = 0; i < count; ++i) {
-      const float o = ((float)i + 0.5f) / taps - 0.5f;
+      const rp_spanf o = ((float)i + jitter) / (float)count - 0.5f;
       rp_spanf tr, tg, tb;
+      /* each tap its own level pick (golden-ratio steps from the pixel's) */
+      const rp_spanf tap_pick = pick + 0.618034f * (float)i;
       rp_span_texture_trilinear(linear_texels, textures, textured, index, w0, h0, levels, lod,
-                                u + o * au, v + o * av, n, &tr, &tg, &tb);
+                                u + o * au, v + o * av, n, stochastic,
+                                tap_pick - floor(tap_pick), &tr, &tg, &tb);
       cr += tr;
       cg += tg;
       cb += tb;
     }
-    const float inv_taps = 1.0f / taps;
+    const float inv_taps = 1.0f / (float)count;
     cr *= inv_taps;
     cg *= inv_taps;
     cb *= inv_taps;
@@ -216,7 +224,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
                               __global float* out_position,
                               __global float* out_emission,
                               __global float* out_velocity,
-                              uint texture_filter, float lod_bias) {
+                              uint texture_filter, float lod_bias, uint stochastic_levels) {
   const uint width = frame->width, height = frame->height;
   /* 1D range over the spans in row-major order, so consecutive work-items read and write
    * consecutive memory. */
@@ -250,6 +258,12 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
    * (du/dx, dv/dx), (du/dy, dv/dy), the pixel's footprint (filtered modes only). */
   rp_spanf dudx = 0.0f, dvdx = 0.0f, dudy = 0.0f, dvdy = 0.0f;
   bool any_texture = false;
+#ifdef RP_TEXTURE_FILTER_FIXED
+  /* The host builds one program per filter (passes/gbuffer.cpp): with the filter a constant the
+   * compiler drops the other paths; one kernel holding all three measured 5.0 against 3.0 ms
+   * for bilinear at 720 busy (register pressure of the unused footprint state). */
+  texture_filter = RP_TEXTURE_FILTER_FIXED;
+#endif
   const bool mipmapped = texture_filter != RP_TEXTURE_FILTER_BILINEAR;
   /* Camera rays for the footprint, set up at the span's first textured primitive: the ray
    * through lane i's pixel centre is cam + t (f0 + i fx) (f0: lane 0's point on the far plane
@@ -389,10 +403,16 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
     if (!mipmapped)
       rp_span_texture_linear(linear_texels, textured, tex_w, tex_h, tex_offset, tu, tv, n, &ar,
                              &ag, &ab);
-    else
-      gb_texture_filtered(linear_texels, textures, texture_filter, lod_bias, textured, tex_index,
+    else {
+      /* per-lane level picks for stochastic trilinear (pixel and frame hashed) */
+      float pk[RP_SPAN];
+      for (int i = 0; i < RP_SPAN; ++i)
+        pk[i] = rp_hash_to_unit(rp_hash_pixel(x0 + (uint)i, y, frame->frame_index));
+      gb_texture_filtered(linear_texels, textures, texture_filter, lod_bias,
+                          (int)stochastic_levels, RP_SPAN_FROM_ARRAY(pk), textured, tex_index,
                           rp_span_convert_int(tex_w), rp_span_convert_int(tex_h), tex_levels,
                           tu, tv, dudx, dvdx, dudy, dvdy, n, &ar, &ag, &ab, &lod_used);
+    }
   }
 
 

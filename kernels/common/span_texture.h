@@ -109,17 +109,28 @@ inline void rp_span_texture_level(__global const float4* linear_texels,
 /* Trilinear sample at level of detail `lod` (per lane; clamped to [0, levels - 1]): bilinear
  * in levels floor(lod) and the next, mixed by the fraction. The second level is read only when
  * some lane's fraction is not 0 (magnified or clamped lanes need one level). */
+/* stochastic != 0: each lane reads ONE level, floor(lod) + 1
+ * with probability frac(lod) (pick: per-lane random numbers in [0, 1)), else floor(lod): the
+ * trilinear result in expectation at half the taps (the renderer does this under TAA, which
+ * averages the frames; kernels/gbuffer.cl). stochastic == 0: the deterministic blend. */
 inline void rp_span_texture_trilinear(__global const float4* linear_texels,
                                       __global const TextureInfo* textures, rp_spani textured,
                                       rp_spanu index, rp_spani w0, rp_spani h0, rp_spani levels,
-                                      rp_spanf lod, rp_spanf u, rp_spanf v, int n, rp_spanf* r,
-                                      rp_spanf* g, rp_spanf* b) {
+                                      rp_spanf lod, rp_spanf u, rp_spanf v, int n,
+                                      int stochastic, rp_spanf pick, rp_spanf* r, rp_spanf* g,
+                                      rp_spanf* b) {
   const rp_spanf top = rp_span_convert_float(levels - 1);
   lod = fmin(fmax(lod, 0.0f), top); /* NaN (a degenerate footprint) becomes 0 */
   lod = select((rp_spanf)(0.0f), lod, textured);
   const rp_spanf l0f = floor(lod);
   const rp_spanf frac = lod - l0f;
   const rp_spani l0 = rp_span_convert_int(l0f);
+  if (stochastic) {
+    const rp_spani up = textured & (pick < frac);
+    rp_span_texture_level(linear_texels, textures, textured, index, w0, h0,
+                          select(l0, l0 + 1, up), u, v, n, r, g, b);
+    return;
+  }
   rp_span_texture_level(linear_texels, textures, textured, index, w0, h0, l0, u, v, n, r, g, b);
   const rp_spani blend = textured & (frac > 0.0f);
   int lb[RP_SPAN];

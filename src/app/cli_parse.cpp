@@ -174,7 +174,7 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
                                                            : render::TextureFilter::kTrilinear;
          },
          "surface textures: bilinear (level 0 only: aliases in the distance), trilinear "
-         "(mipmaps, level from the pixel's footprint) or anisotropic (default: up to 4 "
+         "(default: mipmaps, level from the pixel's footprint) or anisotropic (up to 4 "
          "trilinear taps along the footprint's long axis: sharper at grazing angles)")
       ->check(CLI::IsMember({"bilinear", "trilinear", "anisotropic"}));
   // --shadows (issue 15): the light pass's shadow filter; key H cycles it in the window.

@@ -26,11 +26,10 @@ int choose_span(const rp::cl::Context& context) {
 
 GBufferPass::GBufferPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
                          const std::string& extra_options)
-    : context_(&context), span_(choose_span(context)) {
-  std::string options = "-DRP_SPAN=" + std::to_string(span_);
-  if (!extra_options.empty()) options += " " + extra_options;
-  resolve_ = programs.kernel("gbuffer.cl", "gbuffer_resolve", options);
-  decode_ = programs.kernel("gbuffer.cl", "gbuffer_decode_texels", options);
+    : context_(&context), span_(choose_span(context)), programs_(&programs) {
+  options_ = "-DRP_SPAN=" + std::to_string(span_);
+  if (!extra_options.empty()) options_ += " " + extra_options;
+  decode_ = programs.kernel("gbuffer.cl", "gbuffer_decode_texels", options_);
 }
 
 void GBufferPass::update_linear_texels(rp::cl::Profiler& profiler,
@@ -50,7 +49,7 @@ void GBufferPass::update_linear_texels(rp::cl::Profiler& profiler,
 
 void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                       const render::VisibilityBuffer& vis, render::GBuffer& out,
-                      uint32_t texture_filter, float lod_bias) {
+                      uint32_t texture_filter, float lod_bias, bool stochastic_levels) {
   if (texture_filter > RP_TEXTURE_FILTER_ANISOTROPIC)
     throw rp::cl::Error("gbuffer pass: unknown texture filter " + std::to_string(texture_filter));
   const uint32_t w = scene.constants.width, h = scene.constants.height;
@@ -62,27 +61,33 @@ void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   if (w == 0 || h == 0) return;
   update_linear_texels(profiler, scene);
   cl_uint arg = 0;
-  resolve_.setArg(arg++, scene.frame);
-  resolve_.setArg(arg++, vis.ids);
-  resolve_.setArg(arg++, vis.bary);
-  resolve_.setArg(arg++, scene.instances);
-  resolve_.setArg(arg++, scene.spheres);
-  resolve_.setArg(arg++, scene.vertices);
-  resolve_.setArg(arg++, scene.triangles);
-  resolve_.setArg(arg++, scene.materials);
-  resolve_.setArg(arg++, scene.textures);
-  resolve_.setArg(arg++, linear_texels_);
-  resolve_.setArg(arg++, out.albedo);
-  resolve_.setArg(arg++, out.normal_depth);
-  resolve_.setArg(arg++, out.position);
-  resolve_.setArg(arg++, out.emission);
-  resolve_.setArg(arg++, out.velocity);
-  resolve_.setArg(arg++, cl_uint(texture_filter));
-  resolve_.setArg(arg++, cl_float(lod_bias));
+  ::cl::Kernel& resolve = resolve_[texture_filter];
+  if (!resolve())
+    resolve = programs_->kernel("gbuffer.cl", "gbuffer_resolve",
+                                options_ + " -DRP_TEXTURE_FILTER_FIXED=" +
+                                    std::to_string(texture_filter) + "u");
+  resolve.setArg(arg++, scene.frame);
+  resolve.setArg(arg++, vis.ids);
+  resolve.setArg(arg++, vis.bary);
+  resolve.setArg(arg++, scene.instances);
+  resolve.setArg(arg++, scene.spheres);
+  resolve.setArg(arg++, scene.vertices);
+  resolve.setArg(arg++, scene.triangles);
+  resolve.setArg(arg++, scene.materials);
+  resolve.setArg(arg++, scene.textures);
+  resolve.setArg(arg++, linear_texels_);
+  resolve.setArg(arg++, out.albedo);
+  resolve.setArg(arg++, out.normal_depth);
+  resolve.setArg(arg++, out.position);
+  resolve.setArg(arg++, out.emission);
+  resolve.setArg(arg++, out.velocity);
+  resolve.setArg(arg++, cl_uint(texture_filter));
+  resolve.setArg(arg++, cl_float(lod_bias));
+  resolve.setArg(arg++, cl_uint(stochastic_levels ? 1 : 0));
   // One work-item per span of span_ pixels of a row, a 1D range in row-major order.
   const size_t span = static_cast<size_t>(span_);
   const size_t spans = (w + span - 1) / span * h;
-  profiler.enqueue("gbuffer", resolve_, ::cl::NDRange(rp::cl::round_up(spans, kGroup)),
+  profiler.enqueue("gbuffer", resolve, ::cl::NDRange(rp::cl::round_up(spans, kGroup)),
                    ::cl::NDRange(kGroup));
 }
 

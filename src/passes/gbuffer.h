@@ -2,6 +2,7 @@
 // velocity. Pass name "gbuffer".
 #pragma once
 
+#include <array>
 #include <string>
 
 #include "cl/profiler.h"
@@ -19,9 +20,11 @@ class GBufferPass {
   // texture_filter: RP_TEXTURE_FILTER_BILINEAR, _TRILINEAR or _ANISOTROPIC
   // (kernels/shared/types.h; render::TextureFilter). lod_bias: levels added to every filtered
   // level of detail (0 = the standard rule; the renderer passes kTaaTextureLodBias under TAA).
+  // stochastic_levels: trilinear reads one of the two levels per tap, chosen at random per
+  // pixel and frame with the blend's weight (the same mean at half the taps; under TAA only).
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
            const render::VisibilityBuffer& vis, render::GBuffer& out,
-           uint32_t texture_filter, float lod_bias = 0.0f);
+           uint32_t texture_filter, float lod_bias = 0.0f, bool stochastic_levels = false);
   // Texture level-of-detail bias while TAA jitters the camera (kernels/gbuffer.cl: why -1).
   static constexpr float kTaaTextureLodBias = -1.0f;
 
@@ -32,7 +35,12 @@ class GBufferPass {
 
   const rp::cl::Context* context_;
   int span_ = 1;  // pixels per work-item along x (kernels/common/span.h)
-  ::cl::Kernel resolve_, decode_;
+  // resolve_[filter]: gbuffer_resolve built with -DRP_TEXTURE_FILTER_FIXED=filter on first use
+  // (a constant filter lets the compiler drop the other paths: kernels/gbuffer.cl).
+  std::array<::cl::Kernel, 3> resolve_;
+  rp::cl::ProgramCache* programs_;
+  std::string options_;
+  ::cl::Kernel decode_;
   ::cl::Buffer linear_texels_;  // float4 per texel: linear rgba of scene.texels
   ::cl::Buffer decoded_from_;   // the texel buffer linear_texels_ was decoded from
 };

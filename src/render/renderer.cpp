@@ -166,7 +166,8 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
       shadow_filter_->run(profiler_, *scene_, shadow_, planes > 1);
     gbuffer_pass_->run(
         profiler_, *scene_, vis_, gbuffer_, texture_filter_code(settings_.texture_filter),
-        settings_.effects.taa ? passes::GBufferPass::kTaaTextureLodBias : 0.0f);
+        settings_.effects.taa ? passes::GBufferPass::kTaaTextureLodBias : 0.0f,
+        settings_.effects.taa);
     build_voxels();
     const bool split = passes::needs_light_components(view_.view) || keep_components_;
     passes::LowResIndirect low_res;

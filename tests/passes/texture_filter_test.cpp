@@ -236,7 +236,8 @@ struct GBufferOut {
 
 // Hand-written visibility buffer of the quad (ray cast at the jittered pixel centres in double)
 // resolved by the pass with `filter`; extra_options picks the kernel variant.
-GBufferOut resolve(const QuadScene& s, uint32_t filter, const std::string& extra_options) {
+GBufferOut resolve(const QuadScene& s, uint32_t filter, const std::string& extra_options,
+                   bool stochastic_levels = false) {
   auto& ctx = rp::test::context();
   rp::render::GpuScene scene(ctx.context, ctx.queue, s.assets);
   scene.update(s.frame, s.size, s.size, 64, 64, s.jitter_frames);
@@ -271,7 +272,7 @@ GBufferOut resolve(const QuadScene& s, uint32_t filter, const std::string& extra
   gb.resize(ctx.context, s.size, s.size);
   rp::cl::Profiler profiler(ctx.queue);
   rp::passes::GBufferPass pass(ctx, rp::test::programs(), extra_options);
-  pass.run(profiler, scene, vis, gb, filter);
+  pass.run(profiler, scene, vis, gb, filter, 0.0f, stochastic_levels);
   auto read = [&](const ::cl::Buffer& b, size_t count) {
     std::vector<float> v(count);
     ctx.queue.enqueueReadBuffer(b, CL_TRUE, 0, count * 4, v.data());
@@ -442,6 +443,45 @@ TEST(TextureFilter, AnisotropicMatchesReferenceSampler) {
   check_filtered(RP_TEXTURE_FILTER_ANISOTROPIC, "1", 60.0, 32);
   check_filtered(RP_TEXTURE_FILTER_ANISOTROPIC, "8", 60.0, 32);
   check_filtered(RP_TEXTURE_FILTER_ANISOTROPIC, "8", 80.0, 48);  // ratios past the cap
+}
+
+// Stochastic trilinear (the renderer's mode under TAA): every pixel holds ONE of the two
+// levels' bilinear samples, the upper one about as often as the blend weights say (the same
+// mean as trilinear), at the GPU layout and 8-pixel spans.
+TEST(TextureFilter, StochasticTrilinearPicksOneLevelWithTheBlendWeight) {
+  for (const char* span : {"1", "8"}) {
+    setenv("ROLYPOLY_GBUFFER_SPAN", span, 1);
+    QuadScene s(60.0, 48, 16);
+    const GBufferOut g = resolve(s, RP_TEXTURE_FILTER_TRILINEAR, "", true);
+    unsetenv("ROLYPOLY_GBUFFER_SPAN");
+    const LinearLevels tex = linear_levels(s.assets.textures[0]);
+    size_t bad = 0, told_apart = 0, upper = 0;
+    double expected = 0.0, variance = 0.0;
+    for (size_t i = 0; i < g.ref.size(); ++i) {
+      const Footprint& f = g.ref[i];
+      if (!f.hit) continue;
+      const double lod = std::clamp(std::log2(std::max(glm::length(f.ddx), glm::length(f.ddy))),
+                                    0.0, double(tex.levels.size() - 1));
+      const int l0 = int(std::floor(lod));
+      const double frac = lod - l0;
+      const glm::dvec3 lo = bilinear(tex, l0, f.uv);
+      const glm::dvec3 hi = l0 + 1 < int(tex.levels.size()) ? bilinear(tex, l0 + 1, f.uv) : lo;
+      const glm::dvec3 got(g.albedo[i * 4], g.albedo[i * 4 + 1], g.albedo[i * 4 + 2]);
+      const double d_lo = glm::length(got - lo), d_hi = glm::length(got - hi);
+      if (!(std::min(d_lo, d_hi) <= 7e-3) && bad++ < 8)
+        ADD_FAILURE() << "span " << span << " pixel " << i << ": neither level";
+      if (glm::length(hi - lo) > 0.05) {  // the two levels can be told apart
+        ++told_apart;
+        upper += d_hi < d_lo;
+        expected += frac;
+        variance += frac * (1.0 - frac);
+      }
+    }
+    EXPECT_EQ(bad, 0u) << span;
+    ASSERT_GT(told_apart, 200u) << span;
+    EXPECT_LE(std::fabs(double(upper) - expected), 4.0 * std::sqrt(variance) + 1.0)
+        << "span " << span << ": " << upper << " upper picks, " << expected << " expected";
+  }
 }
 
 }  // namespace
