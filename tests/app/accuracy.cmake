@@ -20,20 +20,20 @@ set(RP_ACCURACY_MAX_INDIRECT_L1 0.16)     # --max-indirect-l1: fast/N, image
 set(RP_ACCURACY_MAX_INDIRECT_BIAS 0.08)   # --max-indirect-bias: fast/N, image
 set(RP_ACCURACY_MAX_REGION_BIAS 0.45)     # --max-region-bias: fast/N, every named region
 set(RP_ACCURACY_MAX_INDIRECT_L1_SINGLE 0.17)  # --max-indirect-l1-single: fast/1, image
-set(RP_ACCURACY_MIN_PSNR_TAA 30)          # --min-psnr-taa (dB): fast/N with TAA, final image
+# TAA's final PSNR: 32.2 dB before issue 15, 30.7 dB after: the soft PCSS shadows differ from
+# the point-lamp truth's hard ones (the indirect section keeps the point lamp).
+set(RP_ACCURACY_MIN_PSNR_TAA 29)          # --min-psnr-taa (dB): fast/N with TAA, final image
 set(RP_ACCURACY_REQUIRE_WALL_HUE ON)      # --require-wall-hue: side-wall sign(R - B) as truth
 # The direct-light section (issue 15; its truth: the area lamp at 0 bounces, 4 x 512 spp, two
 # seeds, plus the point lamp's at 512; about 19 s of the test's time from an empty cache on the
-# 2-core machine). Measured at 128x128 on the k15-truth branch, where every --shadows mode still
-# renders the one-tap hard shadow: direct PSNR on the floor 29.2 dB (the point lamp's perfect
-# hard shadow: 29.3), tumbler penumbra error 0.82 (0.030 against the truth's 0.167 world
-# units), marble 0.04 (at 128 pixels the marble's 0.02-wide penumbra is under a pixel: that
-# figure measures the pixel), albedo view 26.3 dB. The limits guard that baseline; tighten them
-# when the soft shadows and filtered textures land (issue 15's targets are 35 dB and 0.25 at
-# 360x360).
-set(RP_ACCURACY_MIN_DIRECT_PSNR_FLOOR 28)  # --min-direct-psnr-floor (dB): default shadows
-set(RP_ACCURACY_MAX_PENUMBRA_ERROR 0.9)    # --max-penumbra-error: tumbler and marble, worst
-set(RP_ACCURACY_MIN_ALBEDO_PSNR 25)        # --min-albedo-psnr (dB): albedo view, image
+# 2-core machine). Measured at 128x128 with issue 15's defaults (pcss, trilinear): direct PSNR
+# on the floor 28.4 dB (the hard mode 28.3: at 128 pixels the floor's error is the tumblers'
+# inner penumbra and the texture, not the edge), penumbra width error 0.07 (hard: 0.83, so this
+# limit is what fails when the soft shadows break), albedo view 28.8 dB (before the mipmaps:
+# 26.3). Issue 15's targets (35 dB, 0.25) are for 360x360 (bench --accuracy's default).
+set(RP_ACCURACY_MIN_DIRECT_PSNR_FLOOR 27.5)  # --min-direct-psnr-floor (dB): default shadows
+set(RP_ACCURACY_MAX_PENUMBRA_ERROR 0.25)     # --max-penumbra-error: tumbler and marble, worst
+set(RP_ACCURACY_MIN_ALBEDO_PSNR 27.5)        # --min-albedo-psnr (dB): albedo view, image
 # ------------------------------------------------------------------------------------------------
 
 set(rp_accuracy_dir ${CMAKE_BINARY_DIR}/tests/accuracy)
