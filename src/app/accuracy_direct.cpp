@@ -168,19 +168,6 @@ RealTime render_real_time(const CommonOptions& common, render::ShadowMode mode, 
   return rt;
 }
 
-// Tiles of w x h RGBA8 images, `columns` per row.
-std::vector<uint8_t> tile(const std::vector<std::vector<uint8_t>>& images, uint32_t w, uint32_t h,
-                          uint32_t columns) {
-  const uint32_t rows = uint32_t((images.size() + columns - 1) / columns);
-  std::vector<uint8_t> out(size_t(w) * columns * h * rows * 4, 0);
-  for (size_t k = 0; k < images.size(); ++k) {
-    const size_t ox = (k % columns) * w, oy = (k / columns) * h;
-    for (uint32_t y = 0; y < h; ++y)
-      std::copy_n(&images[k][size_t(y) * w * 4], size_t(w) * 4,
-                  &out[((oy + y) * size_t(w) * columns + ox) * 4]);
-  }
-  return out;
-}
 
 double bias(const std::vector<float>& a, const std::vector<float>& t,
             const std::vector<uint8_t>& mask) {
@@ -478,7 +465,7 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
   std::vector<std::vector<uint8_t>> tiles = top;
   tiles.insert(tiles.end(), bottom.begin(), bottom.end());
   const std::filesystem::path side = o.out_dir / "accuracy_direct_side_by_side.png";
-  write_png_atomic(side, int(w * 5), int(h * 2), tile(tiles, w, h, 5));
+  write_png_atomic(side, int(w * 5), int(h * 2), tile_rgba8(tiles, w, h, 5));
   j["images"] = {
       {"side_by_side", side.string()},
       {"side_by_side_layout",

@@ -269,4 +269,17 @@ void signed_heat_map(const std::vector<float>& a, const std::vector<float>& trut
   }
 }
 
+std::vector<uint8_t> tile_rgba8(const std::vector<std::vector<uint8_t>>& images, uint32_t w,
+                                uint32_t h, uint32_t columns) {
+  const uint32_t rows = uint32_t((images.size() + columns - 1) / columns);
+  std::vector<uint8_t> out(size_t(w) * columns * h * rows * 4, 0);
+  for (size_t k = 0; k < images.size(); ++k) {
+    const size_t ox = (k % columns) * w, oy = (k / columns) * h;
+    for (uint32_t y = 0; y < h; ++y)
+      std::copy_n(&images[k][size_t(y) * w * 4], size_t(w) * 4,
+                  &out[((oy + y) * size_t(w) * columns + ox) * 4]);
+  }
+  return out;
+}
+
 }  // namespace rp::app

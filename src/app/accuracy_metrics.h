@@ -114,6 +114,11 @@ struct ProfileSample {
 double transition_width(const std::vector<ProfileSample>& profile, double lo = 0.1,
                         double hi = 0.9);
 
+// Tiles of w x h RGBA8 images (4 bytes per pixel, top row first), `columns` per row, in the
+// order given; missing tiles of the last row stay black. The report's side-by-side PNGs.
+std::vector<uint8_t> tile_rgba8(const std::vector<std::vector<uint8_t>>& images, uint32_t w,
+                                uint32_t h, uint32_t columns);
+
 // Signed relative difference of indirect luminance, (a - t) / (t + eps), drawn as RGBA8: blue
 // where a is too dark (-1 or less: full blue), white where equal, red where too bright (+1 or
 // more); background black.

@@ -107,19 +107,6 @@ nlohmann::json compare(const Images& rp, const Images& truth, const std::vector<
   return j;
 }
 
-// Tiles of w x h RGBA8 images, `columns` per row, in the order given.
-std::vector<uint8_t> tile(const std::vector<std::vector<uint8_t>>& images, uint32_t w, uint32_t h,
-                          uint32_t columns) {
-  const uint32_t rows = uint32_t((images.size() + columns - 1) / columns);
-  std::vector<uint8_t> out(size_t(w) * columns * h * rows * 4, 0);
-  for (size_t k = 0; k < images.size(); ++k) {
-    const size_t ox = (k % columns) * w, oy = (k / columns) * h;
-    for (uint32_t y = 0; y < h; ++y)
-      std::copy_n(&images[k][size_t(y) * w * 4], size_t(w) * 4,
-                  &out[((oy + y) * size_t(w) * columns + ox) * 4]);
-  }
-  return out;
-}
 
 // "+12.3%" (signed: a bias) or "12.3%" (a magnitude), right-aligned in 8 characters.
 std::string pct(double v, bool sign) {
@@ -240,7 +227,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
       encode_rgba8(row == 0 ? img->combined : img->indirect, true, tiles.back());
     }
   const std::filesystem::path side = options.out_dir / "accuracy_side_by_side.png";
-  write_png_atomic(side, int(w * 6), int(h * 2), tile(tiles, w, h, 6));
+  write_png_atomic(side, int(w * 6), int(h * 2), tile_rgba8(tiles, w, h, 6));
   tiles.clear();
   for (const auto& [mode, t] : {std::pair{&fast_one, &truth_one}, std::pair{&ref_one, &truth_one},
                                 std::pair{&fast_many, &truth_many},
@@ -250,12 +237,12 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
     signed_heat_map(mode->indirect, t->indirect, labels, eps, tiles.back());
   }
   const std::filesystem::path heat = options.out_dir / "accuracy_indirect_heat.png";
-  write_png_atomic(heat, int(w * 2), int(h * 2), tile(tiles, w, h, 2));
+  write_png_atomic(heat, int(w * 2), int(h * 2), tile_rgba8(tiles, w, h, 2));
   tiles.assign(1, {});
   encode_rgba8(truth_many.combined, true, tiles.back());
   tiles.push_back(taa_rgba);
   const std::filesystem::path taa_png = options.out_dir / "accuracy_final_taa.png";
-  write_png_atomic(taa_png, int(w * 2), int(h), tile(tiles, w, h, 2));
+  write_png_atomic(taa_png, int(w * 2), int(h), tile_rgba8(tiles, w, h, 2));
   const std::string n = std::to_string(options.many_bounces);
   j["images"] = {
       {"side_by_side", side.string()},

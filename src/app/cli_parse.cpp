@@ -35,7 +35,9 @@ bool read_decimal(const std::string& text, long long& value) {
   long long v = 0;
   for (; i < text.size(); ++i) {
     if (text[i] < '0' || text[i] > '9') return false;
-    v = v >= kSaturate ? kSaturate : v * 10 + (text[i] - '0');
+    // v >= 10^17 would reach 10^18 with this digit (and v * 10 overflows from 9.3 10^17 on,
+    // which the CLI fuzzer found): saturate before multiplying.
+    v = v >= kSaturate / 10 ? kSaturate : v * 10 + (text[i] - '0');
   }
   value = negative ? -v : v;
   return true;

@@ -22,6 +22,7 @@
 #include "passes/shadow_filter.h"
 #include "render/gpu_scene.h"
 #include "support/cl_fixture.h"
+#include "support/direct_light_ref.h"
 
 namespace {
 
@@ -36,19 +37,9 @@ struct Point {
 
 const glm::vec3 kIntensity(6.0f, 5.0f, 4.0f);
 
-// The documented falloff: visible projected area of the lamp cap, s = l.y.
-double falloff_ref(double s) {
-  s = std::clamp(s, 0.0, 1.0);
-  return 0.35 + s * (0.446 + 0.204 * s);
-}
-
-// Direct light factor (without albedo, intensity and shadow): cos / d^2 * falloff.
+// cos / d^2 * falloff: the unshadowed direct factor (support/direct_light_ref.h).
 double direct_ref(const Point& pt, const glm::vec3& light) {
-  glm::dvec3 to = glm::dvec3(light) - glm::dvec3(pt.p);
-  double d2 = glm::dot(to, to);
-  glm::dvec3 l = to / std::sqrt(d2);
-  double c = glm::dot(glm::dvec3(pt.n), l);
-  return c <= 0.0 ? 0.0 : c / d2 * falloff_ref(l.y);
+  return rp::test::direct_factor_ref(pt.p, pt.n, light);
 }
 
 // Expected radiance for a given shadow visibility, without indirect light (empty voxel chain).

@@ -31,6 +31,7 @@
 #include "passes/shadow_filter.h"
 #include "render/gpu_scene.h"
 #include "support/cl_fixture.h"
+#include "support/direct_light_ref.h"
 
 namespace {
 
@@ -40,18 +41,9 @@ struct Point {
   glm::vec3 p, n;
 };
 
-double falloff_ref(double s) {
-  s = std::clamp(s, 0.0, 1.0);
-  return 0.35 + s * (0.446 + 0.204 * s);
-}
-
-// cos / d^2 * falloff: the unshadowed direct factor (light_test.cpp's reference).
+// cos / d^2 * falloff: the unshadowed direct factor (support/direct_light_ref.h).
 double direct_ref(const Point& pt, const glm::vec3& light) {
-  glm::dvec3 to = glm::dvec3(light) - glm::dvec3(pt.p);
-  double d2 = glm::dot(to, to);
-  glm::dvec3 l = to / std::sqrt(d2);
-  double c = glm::dot(glm::dvec3(pt.n), l);
-  return c <= 0.0 ? 0.0 : c / d2 * falloff_ref(l.y);
+  return rp::test::direct_factor_ref(pt.p, pt.n, light);
 }
 
 class Shadows {
