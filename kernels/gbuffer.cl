@@ -405,9 +405,10 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
                              &ag, &ab);
     else {
       /* per-lane level picks for stochastic trilinear (pixel and frame hashed) */
-      float pk[RP_SPAN];
-      for (int i = 0; i < RP_SPAN; ++i)
-        pk[i] = rp_hash_to_unit(rp_hash_pixel(x0 + (uint)i, y, frame->frame_index));
+      float pk[RP_SPAN] = {0.0f};
+      if (stochastic_levels)  /* under TAA only: no hashing otherwise */
+        for (int i = 0; i < RP_SPAN; ++i)
+          pk[i] = rp_hash_to_unit(rp_hash_pixel(x0 + (uint)i, y, frame->frame_index));
       gb_texture_filtered(linear_texels, textures, texture_filter, lod_bias,
                           (int)stochastic_levels, RP_SPAN_FROM_ARRAY(pk), textured, tex_index,
                           rp_span_convert_int(tex_w), rp_span_convert_int(tex_h), tex_levels,

@@ -178,6 +178,12 @@ typedef struct {
   int isize;
 } RpShadow8;
 
+/* The eight stored depths at texel indices idx (one per lane; a gather). */
+inline float8 rp_shadow_gather8(__global const float* restrict shadow, int8 idx) {
+  return (float8)(shadow[idx.s0], shadow[idx.s1], shadow[idx.s2], shadow[idx.s3], shadow[idx.s4],
+                  shadow[idx.s5], shadow[idx.s6], shadow[idx.s7]);
+}
+
 /* Visibility of the texels at (tx, ty) (texel coordinates, clamped to the map): 1 where the
  * stored depth is not in front of the receiver plane, for pcf. */
 inline float8 rp_soft_plane_lit(__global const float* restrict shadow, const RpShadow8* s,
@@ -185,8 +191,7 @@ inline float8 rp_soft_plane_lit(__global const float* restrict shadow, const RpS
   const float8 hi = (float8)(s->size - 1.0f), lo = (float8)(0.0f);
   const int8 idx = convert_int8(fmin(fmax(ty, lo), hi)) * s->isize +
                    convert_int8(fmin(fmax(tx, lo), hi));
-  const float8 d = (float8)(shadow[idx.s0], shadow[idx.s1], shadow[idx.s2], shadow[idx.s3],
-                            shadow[idx.s4], shadow[idx.s5], shadow[idx.s6], shadow[idx.s7]);
+  const float8 d = rp_shadow_gather8(shadow, idx);
   const float8 inv_tap = s->inv_a - d * s->inv_b;
   const float8 thr = fmax(s->inv0 + s->gx0 * (tx - s->sx) + s->gy0 * (ty - s->sy), s->inv0);
   return select((float8)(1.0f), (float8)(0.0f), (inv_tap > thr) & (d < 1.0f));
@@ -362,8 +367,7 @@ inline float8 rp_pcss_blocker(__global const float* restrict shadow, const RpSha
   const float8 hi = (float8)(s->size - 1.0f), lo = (float8)(0.0f);
   const int8 idx = convert_int8(fmin(fmax(ty, lo), hi)) * s->isize +
                    convert_int8(fmin(fmax(tx, lo), hi));
-  const float8 d = (float8)(shadow[idx.s0], shadow[idx.s1], shadow[idx.s2], shadow[idx.s3],
-                            shadow[idx.s4], shadow[idx.s5], shadow[idx.s6], shadow[idx.s7]);
+  const float8 d = rp_shadow_gather8(shadow, idx);
   const float8 raw = s->inv_a - d * s->inv_b;
   /* anything nearer than the search's nearest depth counts as there (nearer
    * than the lamp's disk the cone formulas would mirror) */
@@ -470,8 +474,7 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
   const float8 hi = (float8)(s.size - 1.0f), lo = (float8)(0.0f);
   const int8 idx = convert_int8(fmin(fmax(s.sy, lo), hi)) * s.isize +
                    convert_int8(fmin(fmax(s.sx, lo), hi));
-  const float8 d = (float8)(shadow[idx.s0], shadow[idx.s1], shadow[idx.s2], shadow[idx.s3],
-                            shadow[idx.s4], shadow[idx.s5], shadow[idx.s6], shadow[idx.s7]);
+  const float8 d = rp_shadow_gather8(shadow, idx);
   /* lit iff 1/z_stored <= 1/receiver (both depths positive); an empty texel is lit */
   const float8 inv_tap = s.inv_a - d * s.inv_b;
   const int8 shadowed = s.inside & (d < 1.0f) & (inv_tap * receiver > 1.0f);
@@ -503,12 +506,9 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
   const float8 zmin = (float8)(zm);
   const float8 done = fmax(outside, select(zero, one, zmin >= s.zr));
   const float8 mid = (float8)(s.size * 0.5f);
-#if RP_SHADOW_MODE == 2
-  /* Even taps: uniform over the disk holding the cone's disks at every depth from z_min to
-   * z_r (centre halfway between c(z_min) and the receiver, radius r(z_min) plus half their
-   * distance). Odd taps: tap 2j + 1 on the cone's disk at inverse depth lerp(1 / z_min, 1 / z_r,
-   * j / (N / 2 - 1)): blockers near the receiver have small disks that uniform taps would
-   * rarely hit; the last lies within RP_PCSS_MIN_RADIUS of the receiver (contact shadows). */
+  /* The search disk (both modes): centre (mx, my) halfway between c(z_min) and the receiver,
+   * radius rs = r(z_min) plus half their distance: it holds the cone's disks at every depth
+   * from z_min to z_r. */
   const float8 rb = fmin(fmax(L.k_h * (s.zr * inear - 1.0f), zero), (float8)(RP_PCSS_MAX_RADIUS));
   const float8 cfb = L.c_h * (1.0f - L.ze * inear);
   const float8 bx = L.xr * cfb + mid, by = L.yr * cfb + mid;
@@ -516,6 +516,11 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
   const float8 rs = fmin(rb + 0.5f * sqrt((bx - s.sx) * (bx - s.sx) + (by - s.sy) * (by - s.sy)) +
                              RP_PCSS_MIN_RADIUS,
                          (float8)(RP_PCSS_MAX_RADIUS));
+#if RP_SHADOW_MODE == 2
+  /* Even taps: uniform over the search disk. Odd taps: tap 2j + 1 on the cone's disk at inverse
+   * depth lerp(1 / z_min, 1 / z_r, j / (N / 2 - 1)): blockers near the receiver have small
+   * disks that uniform taps would rarely hit; the last lies within RP_PCSS_MIN_RADIUS of the
+   * receiver (contact shadows). */
   float8 count = zero, sum_inv = zero;
   const float8 ir = 1.0f / s.zr;
   for (int t = 0; t < RP_PCSS_SEARCH_TAPS; ++t) {
@@ -559,8 +564,7 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
     const float8 hi = (float8)(s.size - 1.0f);
     const int8 idx2 = convert_int8(fmin(fmax(my2, zero), hi)) * s.isize +
                       convert_int8(fmin(fmax(mx2, zero), hi));
-    const float8 d2 = (float8)(shadow[idx2.s0], shadow[idx2.s1], shadow[idx2.s2], shadow[idx2.s3],
-                               shadow[idx2.s4], shadow[idx2.s5], shadow[idx2.s6], shadow[idx2.s7]);
+    const float8 d2 = rp_shadow_gather8(shadow, idx2);
     const float8 i2 = 0.5f * (iavg + 1.0f / s.zr);  /* the ray point's inverse depth */
     const float8 inv2 = s.inv_a - d2 * s.inv_b;     /* the stored face's */
     const int8 behind = (inv2 > i2) & (1.0f / i2 - 1.0f / inv2 < RP_PCSS_THICKNESS);
@@ -570,16 +574,7 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
   const float8 vis = 1.0f - occ * (1.0f / (float)RP_PCSS_FILTER_TAPS);
   /* decided lanes: lit (mip, outside, no blocker found) or umbra (every search tap blocked) */
   return select(select(vis, zero, umbra > 0.5f), one, fmax(done, none) > 0.5f);
-#else /* VSSM */
-  /* the search disk: centre halfway between c(z_min) and the receiver, radius r(z_min) plus half
-   * their distance (it holds the cone's disks at every depth from z_min to z_r) */
-  const float8 rb = fmin(fmax(L.k_h * (s.zr * inear - 1.0f), zero), (float8)(RP_PCSS_MAX_RADIUS));
-  const float8 cfb = L.c_h * (1.0f - L.ze * inear);
-  const float8 bx = L.xr * cfb + mid, by = L.yr * cfb + mid;
-  const float8 mx = (bx + s.sx) * 0.5f, my = (by + s.sy) * 0.5f;
-  const float8 rs = fmin(rb + 0.5f * sqrt((bx - s.sx) * (bx - s.sx) + (by - s.sy) * (by - s.sy)) +
-                             RP_PCSS_MIN_RADIUS,
-                         (float8)(RP_PCSS_MAX_RADIUS));
+#else /* VSSM: over the search disk above */
   /* the receiver plane's depth at a disk's centre, less its own spread over the disk */
   float8 mu, m2;
   rp_vssm_lookup8(mips, &s, &table, mx, my, rs, &mu, &m2);

@@ -68,22 +68,7 @@ class LightFixture {
   // Shadow map whose texel (tx, ty) holds the depth of the first surface hit by the lamp ray
   // through its centre; `hit(origin, dir)` returns the distance or a negative value for none.
   std::vector<float> shadow_map(const std::function<double(glm::dvec3, glm::dvec3)>& hit) const {
-    const glm::dmat4 vp(frame_.light.view_proj());
-    const glm::dmat4 inv = glm::inverse(vp);
-    const glm::dvec3 origin(frame_.light.position);
-    std::vector<float> map(size_t(shadow_size_) * shadow_size_, 1.0f);
-    for (uint32_t ty = 0; ty < shadow_size_; ++ty) {
-      for (uint32_t tx = 0; tx < shadow_size_; ++tx) {
-        double nx = (tx + 0.5) / shadow_size_ * 2.0 - 1.0, ny = 1.0 - (ty + 0.5) / shadow_size_ * 2.0;
-        glm::dvec4 f = inv * glm::dvec4(nx, ny, 1.0, 1.0);
-        glm::dvec3 dir = glm::normalize(glm::dvec3(f) / f.w - origin);
-        double t = hit(origin, dir);
-        if (t < 0) continue;
-        glm::dvec4 c = vp * glm::dvec4(origin + dir * t, 1.0);
-        map[size_t(ty) * shadow_size_ + tx] = float(c.z / c.w * 0.5 + 0.5);
-      }
-    }
-    return map;
+    return rp::test::shadow_map_ref(frame_.light, shadow_size_, hit);
   }
 
   // Runs the pass over `points` (one pixel each, in a row-major frame `width` wide; pixels past

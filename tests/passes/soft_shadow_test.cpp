@@ -58,21 +58,7 @@ class Shadows {
 
   // Texel (tx, ty) holds the depth of the first hit of the lamp ray through its centre.
   std::vector<float> map(const std::function<double(glm::dvec3, glm::dvec3)>& hit) const {
-    const glm::dmat4 vp(frame_.light.view_proj());
-    const glm::dmat4 inv = glm::inverse(vp);
-    const glm::dvec3 origin(frame_.light.position);
-    std::vector<float> out(size_t(size_) * size_, 1.0f);
-    for (uint32_t ty = 0; ty < size_; ++ty)
-      for (uint32_t tx = 0; tx < size_; ++tx) {
-        double nx = (tx + 0.5) / size_ * 2.0 - 1.0, ny = 1.0 - (ty + 0.5) / size_ * 2.0;
-        glm::dvec4 f = inv * glm::dvec4(nx, ny, 1.0, 1.0);
-        glm::dvec3 dir = glm::normalize(glm::dvec3(f) / f.w - origin);
-        double t = hit(origin, dir);
-        if (t < 0) continue;
-        glm::dvec4 c = vp * glm::dvec4(origin + dir * t, 1.0);
-        out[size_t(ty) * size_ + tx] = float(c.z / c.w * 0.5 + 0.5);
-      }
-    return out;
+    return rp::test::shadow_map_ref(frame_.light, size_, hit);
   }
 
   // Builds the mips of `map` (moments too) and reads them back (3 planes).
