@@ -121,11 +121,13 @@ inline float8 light_direct8(__global const FrameConstants* restrict frame,
                             float8 pz, float8 nx, float8 ny, float8 nz, uint x0, uint y) {
   const float4 lp = frame->light_pos;
   const float8 lx = lp.x - px, ly = lp.y - py, lz = lp.z - pz;
+  const float8 dy = RP_CEILING_Y - py;
+  const float8 d2 = lx * lx + dy * dy + lz * lz;
   const float8 inv_d = rsqrt(lx * lx + ly * ly + lz * lz);
   const float8 c = (nx * lx + ny * ly + nz * lz) * inv_d;
   const float8 s = fmin(fmax(ly * inv_d, (float8)(0.0f)), (float8)(1.0f));
   const float8 falloff = mad(s, mad(s, 0.204f, 0.446f), 0.35f); /* rp_lamp_falloff */
-  const float8 k = select((float8)(0.0f), c * (inv_d * inv_d) * falloff, c > 0.0f);
+  const float8 k = select((float8)(0.0f), c * falloff / (d2 + rp_lamp_disk_a2(lp)), c > 0.0f);
   return k * rp_shadow8(frame, shadow, shadow_mips, px, py, pz, nx, ny, nz, c, x0, y);
 }
 

@@ -521,7 +521,9 @@ void visibility_bin(const RasterView view, __global const int4* bounds_in,
 typedef struct {
   rp_spanf z;
   rp_spanu key;
-#if !RP_DEPTH_ONLY
+#if RP_DEPTH_ONLY
+  rp_spanf z_back; /* the farthest caster surface (z_ndc), -1 where none */
+#else
   rp_spanu instance, primitive;
   rp_spanf e1, e2, sum;
 #endif
@@ -531,7 +533,9 @@ inline RasterBest rp_best_init(void) {
   RasterBest b;
   b.z = (rp_spanf)(1.0f);
   b.key = (rp_spanu)(RP_ID_NONE);
-#if !RP_DEPTH_ONLY
+#if RP_DEPTH_ONLY
+  b.z_back = (rp_spanf)(-1.0f);
+#else
   b.instance = b.primitive = (rp_spanu)(RP_ID_NONE);
   b.e1 = b.e2 = (rp_spanf)(0.0f);
   b.sum = (rp_spanf)(1.0f);
@@ -590,8 +594,11 @@ inline void rp_best_triangle(RasterBest* b, const RasterItem* it, rp_spanf dx, f
   rp_spanf f2 = e2.x * dx + (e2.y * dy + e2.z);
   rp_spanf z = RP_RASTER_DEPTH(f0, f1, f2, it->z, it->w);
   rp_spani in = ((f0 > 0.0f) | ((f0 == 0.0f) & tl0)) & ((f1 > 0.0f) | ((f1 == 0.0f) & tl1)) &
-                ((f2 > 0.0f) | ((f2 == 0.0f) & tl2)) & (z >= -1.0f) &
-                ((z < b->z) | ((z == b->z) & (key < b->key)));
+                ((f2 > 0.0f) | ((f2 == 0.0f) & tl2)) & (z >= -1.0f);
+#if RP_DEPTH_ONLY
+  b->z_back = select(b->z_back, fmax(b->z_back, fmin(z, 1.0f)), in);
+#endif
+  in &= (z < b->z) | ((z == b->z) & (key < b->key));
   b->z = select(b->z, z, in);
   b->key = select(b->key, (rp_spanu)(key), in);
 #if !RP_DEPTH_ONLY
@@ -648,6 +655,13 @@ inline void rp_best_sphere(RasterBest* b, const RasterItem* it, const RasterRays
   rp_spanf t0 = -bq - root;
   rp_spanf t = select(-bq + root, t0, t0 >= 0.0f);
   rp_spanf z = (r->z_o + t * r->z_d) / (r->w_o + t * r->w_d);
+#if RP_DEPTH_ONLY
+  /* the far side: the sphere's back (or the near plane's z when the origin is inside) */
+  const rp_spanf t1 = -bq + root;
+  const rp_spanf z1 = (r->z_o + t1 * r->z_d) / (r->w_o + t1 * r->w_d);
+  b->z_back = select(b->z_back, fmax(b->z_back, fmin(z1, 1.0f)),
+                     (disc >= 0.0f) & (t1 >= 0.0f) & (z1 >= -1.0f));
+#endif
   rp_spani in = (disc >= 0.0f) & (t >= 0.0f) & (z >= -1.0f) &
                 ((z < b->z) | ((z == b->z) & (key < b->key)));
   b->z = select(b->z, z, in);
@@ -673,8 +687,11 @@ inline void rp_best_store(const RasterView* view, const RasterBest* b, int x0, i
   rp_store_span_pairs_u(b->instance, b->primitive, ids_out + 2 * row, valid);
   rp_store_span_pairs_f(b->e1 / b->sum, b->e2 / b->sum, bary_out + 2 * row, valid);
 #else
+  /* depth-only: the back plane follows the depth plane in the same buffer (ShadowMap::depth) */
   (void)ids_out;
   (void)bary_out;
+  rp_store_span_f(b->z_back * 0.5f + 0.5f,
+                  depth_out + (size_t)view->width * view->height + row, valid);
 #endif
 }
 

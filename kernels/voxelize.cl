@@ -169,7 +169,7 @@ inline void vx_accumulate(volatile __global uint* accum, volatile __global uint*
 inline float3 vx_direct(__global const FrameConstants* frame, __global const float* shadow,
                         float3 p, float3 n) {
   float cos_theta;
-  const float scale = rp_direct_unshadowed(frame->light_pos.xyz, p, n, &cos_theta);
+  const float scale = rp_direct_unshadowed(frame->light_pos, p, n, &cos_theta);
   if (scale <= 0.0f) return (float3)(0.0f);
   const RpShadowLookup s =
       rp_shadow_lookup(frame, p, n, cos_theta, RP_VOXEL_SHADOW_NORMAL_OFFSET,
@@ -318,7 +318,8 @@ inline rp_spani vx_triangle_box_span(const VxAxes* t, const VxVec* cp) {
 
 /* The frame's lamp and shadow-map constants. */
 typedef struct {
-  float3 light_pos, intensity;
+  float3 light_pos, intensity; /* light_pos: the lamp disk's centre */
+  float disk_a2, disk_ze;
   rp_mat4 lvp;      /* light_view_proj */
   float size_f;     /* shadow map texels per side */
   int size;
@@ -333,7 +334,10 @@ inline VxLight vx_light(__global const FrameConstants* frame, __global const flo
   VxLight L;
   L.bounce = bounce;
   L.bounce_cells = bounce_cells;
+  /* the lamp disk's centre and a^2 (common/direct_light.h, rp_direct_unshadowed) */
   L.light_pos = frame->light_pos.xyz;
+  L.disk_a2 = rp_lamp_disk_a2(frame->light_pos);
+  L.disk_ze = frame->light_pos.y - RP_CEILING_Y;
   L.intensity = frame->light_intensity.xyz;
   L.lvp = frame->light_view_proj;
   L.size = (int)frame->shadow_size;
@@ -354,14 +358,15 @@ inline VxVec vx_direct_span(const VxLight* L, __global const float* shadow, cons
                             const VxVec* np, rp_spani active, int n_lanes) {
   const VxVec p = *pp, n = *np;
   const VxVec to_light = vxv(L->light_pos.x - p.x, L->light_pos.y - p.y, L->light_pos.z - p.z);
-  const rp_spanf d2 = vxv_dot(to_light, to_light);
-  const rp_spanf inv_d = rsqrt(d2);
+  const rp_spanf dyd = to_light.y - L->disk_ze;
+  const rp_spanf d2 = to_light.x * to_light.x + dyd * dyd + to_light.z * to_light.z;
+  const rp_spanf inv_d = rsqrt(vxv_dot(to_light, to_light));
   const VxVec l = vxv_scale(to_light, inv_d);
   const rp_spanf c = vxv_dot(n, l);
   const rp_spanf s = clamp(l.y, 0.0f, 1.0f);
   const rp_spanf falloff =
       mad(s, mad(s, (rp_spanf)(0.204f), (rp_spanf)(0.446f)), (rp_spanf)(0.35f));
-  const rp_spanf scale = select((rp_spanf)(0.0f), c * (inv_d * inv_d) * falloff, c > 0.0f);
+  const rp_spanf scale = select((rp_spanf)(0.0f), c * falloff / (d2 + L->disk_a2), c > 0.0f);
   const rp_spani lit = active & (scale > 0.0f);
 
   /* Shadow: receiver pushed one texel along n, compared in linear light depth. */

@@ -29,7 +29,11 @@ struct VisibilityBuffer {
 // Depth seen from the lamp centre through FrameConstants.light_view_proj.
 struct ShadowMap {
   uint32_t size = 0;   // size x size texels
-  ::cl::Buffer depth;  // float: z_ndc * 0.5 + 0.5 of the nearest occluder, 1.0 where none
+  // Two planes of size x size floats, z_ndc * 0.5 + 0.5: [0, size^2) the NEAREST occluder
+  // surface on each texel's ray (1.0 where none), then [size^2, 2 size^2) the FARTHEST (0.0
+  // where none). Together they bracket the casters' solid (exact for one closed convex caster
+  // per texel ray): PCSS's thick-blocker test reads both.
+  ::cl::Buffer depth;
   // The shadow filter pass's mip chain of linear depth (kernels/shared/shadow_mips.h):
   // mip_planes planes (1: MIN, for PCSS; 3: MIN, MEAN, MEAN2, for VSSM; 0: not built).
   ::cl::Buffer mips;
@@ -37,7 +41,7 @@ struct ShadowMap {
 
   void resize(const ::cl::Context& context, uint32_t s) {
     size = s;
-    depth = ::cl::Buffer(context, CL_MEM_READ_WRITE, size_t(s) * s * sizeof(float));
+    depth = ::cl::Buffer(context, CL_MEM_READ_WRITE, 2 * size_t(s) * s * sizeof(float));
   }
 };
 

@@ -82,6 +82,7 @@ RefImage reference_raster(const scene::SceneAssets& assets, const scene::FrameSc
   img.height = H;
   const size_t n = size_t(W) * H;
   img.depth.assign(n, 1.0f);
+  if (view.depth_only) img.back.assign(n, 0.0f);
   img.ids.assign(n, glm::uvec2(RP_ID_NONE, RP_ID_NONE));
   img.bary.assign(n, glm::vec2(0.0f));
   img.hits_positive.assign(n, 0);
@@ -108,7 +109,7 @@ RefImage reference_raster(const scene::SceneAssets& assets, const scene::FrameSc
   }
   const uint32_t tri_count = static_cast<uint32_t>(tris.size());
 
-  std::vector<float> best_z(n, 1.0f);
+  std::vector<float> best_z(n, 1.0f), back_z(n, -1.0f);
   std::vector<uint32_t> best_key(n, RP_ID_NONE);
   std::vector<Edges> edges(tris.size());
   for (uint32_t oy = 0; oy < H; oy += kTile) {
@@ -132,6 +133,7 @@ RefImage reference_raster(const scene::SceneAssets& assets, const scene::FrameSc
                       ((f[0] * e.w[0] + f[1] * e.w[1]) + f[2] * e.w[2]);
             if (!in || !(z >= -1.0f)) continue;
             if (z <= 1.0f) ++(e.sign > 0.0f ? img.hits_positive[p] : img.hits_negative[p]);
+            back_z[p] = std::max(back_z[p], std::min(z, 1.0f));
             if (z < best_z[p] || (z == best_z[p] && t < best_key[p])) {
               best_z[p] = z;
               best_key[p] = t;
@@ -177,6 +179,10 @@ RefImage reference_raster(const scene::SceneAssets& assets, const scene::FrameSc
         const float t = t0 >= 0.0f ? t0 : -b + root;
         const float z = (z_o + t * z_d) / (w_o + t * w_d);
         const size_t p = img.index(x, y);
+        const float t1 = -b + root;
+        const float z1 = (z_o + t1 * z_d) / (w_o + t1 * w_d);
+        if (disc >= 0.0f && t1 >= 0.0f && z1 >= -1.0f)
+          back_z[p] = std::max(back_z[p], std::min(z1, 1.0f));
         if (disc >= 0.0f && t >= 0.0f && z >= -1.0f &&
             (z < best_z[p] || (z == best_z[p] && key < best_key[p]))) {
           best_z[p] = z;
@@ -191,6 +197,7 @@ RefImage reference_raster(const scene::SceneAssets& assets, const scene::FrameSc
     for (uint32_t x = 0; x < W; ++x) {
       const size_t p = img.index(x, y);
       img.depth[p] = best_z[p] * 0.5f + 0.5f;
+      if (view.depth_only) img.back[p] = back_z[p] * 0.5f + 0.5f;
       const uint32_t key = best_key[p];
       if (view.depth_only || key == RP_ID_NONE) continue;
       if (key >= tri_count) {

@@ -23,6 +23,7 @@ struct RefView {
 struct RefImage {
   uint32_t width = 0, height = 0;
   std::vector<float> depth;           // z_ndc * 0.5 + 0.5 of the nearest surface, 1 where none
+  std::vector<float> back;            // depth_only views: of the farthest surface, 0 where none
   std::vector<glm::uvec2> ids;        // (instance, primitive), RP_ID_* conventions
   std::vector<glm::vec2> bary;        // perspective-correct (b1, b2); 0 for spheres / none
   // Triangles whose inside test passes at the pixel centre with z_ndc in [-1, 1], split by the

@@ -42,7 +42,7 @@ struct Point {
 };
 
 // cos / d^2 * falloff: the unshadowed direct factor (support/direct_light_ref.h).
-double direct_ref(const Point& pt, const glm::vec3& light) {
+double direct_ref(const Point& pt, const rp::scene::PointLight& light) {
   return rp::test::direct_factor_ref(pt.p, pt.n, light);
 }
 
@@ -56,9 +56,12 @@ class Shadows {
   const rp::scene::PointLight& light() const { return frame_.light; }
   uint32_t size() const { return size_; }
 
-  // Texel (tx, ty) holds the depth of the first hit of the lamp ray through its centre.
-  std::vector<float> map(const std::function<double(glm::dvec3, glm::dvec3)>& hit) const {
-    return rp::test::shadow_map_ref(frame_.light, size_, hit);
+  // Texel (tx, ty) holds the depth of the first hit of the lamp ray through its centre, and in
+  // the second plane of its last exit (`exit`; without it the occluders are sheets).
+  std::vector<float> map(const std::function<double(glm::dvec3, glm::dvec3)>& hit,
+                         const std::function<double(glm::dvec3, glm::dvec3)>& exit =
+                             nullptr) const {
+    return rp::test::shadow_map_ref(frame_.light, size_, hit, exit);
   }
 
   // Builds the mips of `map` (moments too) and reads them back (3 planes).
@@ -122,7 +125,7 @@ class Shadows {
     ctx.queue.enqueueReadBuffer(hdr, CL_TRUE, 0, n * 16, out.data());
     std::vector<double> vis(points.size());
     for (size_t i = 0; i < points.size(); ++i) {
-      const double k = direct_ref(points[i], frame_.light.position) * frame_.light.intensity.x;
+      const double k = direct_ref(points[i], frame_.light) * frame_.light.intensity.x;
       vis[i] = k > 0.0 ? out[i * 4] / k : 1.0;
     }
     return vis;
@@ -478,7 +481,7 @@ TEST(SoftShadow, TiltedPlanesStayLit) {
                            ShadowFilter::kVssm}) {
       const auto vis = s.visibility(pts, map, f, 1);
       for (size_t i = 0; i < pts.size(); ++i) {
-        if (direct_ref(pts[i], s.light().position) <= 0.0) continue;
+        if (direct_ref(pts[i], s.light()) <= 0.0) continue;
         EXPECT_GT(vis[i], f == ShadowFilter::kVssm ? 0.95 : 0.999)
             << "tilt " << deg << " mode " << int(f) << " point " << i;
       }
@@ -518,7 +521,12 @@ TEST(SoftShadow, BallOnTheFloorMatchesTheLampDisk) {
     const double t = disc > 0 ? -b - std::sqrt(disc) : -1.0;
     return t > 0 ? t : floor_hit(o, d);
   };
-  const auto map = s.map(ball);
+  auto ball_exit = [&](glm::dvec3 o, glm::dvec3 d) {
+    const glm::dvec3 oc = o - centre;
+    const double b = glm::dot(oc, d), disc = b * b - (glm::dot(oc, oc) - radius * radius);
+    return disc > 0 && -b - std::sqrt(disc) > 0 ? -b + std::sqrt(disc) : floor_hit(o, d);
+  };
+  const auto map = s.map(ball, ball_exit);
   const double a = lamp_disk_radius(s.light());
   auto truth = [&](glm::dvec3 p) {
     int seen = 0, total = 0;
@@ -566,7 +574,8 @@ TEST(SoftShadow, BallOnTheFloorMatchesTheLampDisk) {
 TEST(SoftShadow, ColumnOnTheFloorMatchesTheLampDisk) {
   Shadows s(1024);
   const glm::dvec3 lo(0.3, -1.0, 0.3), hi(0.5, -0.4, 0.5);
-  auto box_t = [&](glm::dvec3 o, glm::dvec3 d) {
+  // entry (or, with `exit`, exit) distance along the ray; -1 when it misses
+  auto box_t = [&](glm::dvec3 o, glm::dvec3 d, bool exit = false) {
     double t0 = 0.0, t1 = 1e30;
     for (int k = 0; k < 3; ++k) {
       if (std::abs(d[k]) < 1e-12) {
@@ -578,12 +587,17 @@ TEST(SoftShadow, ColumnOnTheFloorMatchesTheLampDisk) {
       t0 = std::max(t0, a);
       t1 = std::min(t1, b);
     }
-    return t0 <= t1 && t0 > 1e-9 ? t0 : -1.0;
+    return t0 <= t1 && t0 > 1e-9 ? (exit ? t1 : t0) : -1.0;
   };
-  const auto map = s.map([&](glm::dvec3 o, glm::dvec3 d) {
-    const double t = box_t(o, d);
-    return t > 0 ? t : floor_hit(o, d);
-  });
+  const auto map = s.map(
+      [&](glm::dvec3 o, glm::dvec3 d) {
+        const double t = box_t(o, d);
+        return t > 0 ? t : floor_hit(o, d);
+      },
+      [&](glm::dvec3 o, glm::dvec3 d) {
+        const double t = box_t(o, d, true);
+        return t > 0 ? t : floor_hit(o, d);
+      });
   const double a = lamp_disk_radius(s.light());
   auto truth = [&](glm::dvec3 p) {
     int seen = 0, total = 0;

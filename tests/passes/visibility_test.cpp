@@ -96,7 +96,7 @@ class Harness {
     if (sm_.size != size) sm_.resize(context().context, size);
     pass_.render_shadow(profiler_, scene_, sm_);
     times_ = profiler_.collect();
-    std::vector<float> depth(size_t(size) * size);
+    std::vector<float> depth(2 * size_t(size) * size);  // nearest, then farthest plane
     context().queue.enqueueReadBuffer(sm_.depth, CL_TRUE, 0, depth.size() * sizeof(float),
                                       depth.data());
     return depth;
@@ -443,16 +443,27 @@ TEST(Visibility, ShadowMapMatchesReference) {
   all_cast.instances[2].casts_shadow = true;
   all_cast.spheres[1].casts_shadow = true;
   RefImage r_all = reference_raster(assets, all_cast, view);
-  int errors = 0, differs = 0, on_ball = 0;
-  for (size_t i = 0; i < depth.size(); ++i) {
+  int errors = 0, differs = 0, on_ball = 0, thick = 0;
+  const size_t plane = r.depth.size();
+  ASSERT_EQ(depth.size(), 2 * plane);
+  for (size_t i = 0; i < plane; ++i) {
     if (!(std::abs(depth[i] - r.depth[i]) <= 1e-5f * r.depth[i]) && ++errors <= 5)
       ADD_FAILURE() << "texel " << i << ": " << depth[i] << " vs " << r.depth[i];
+    // the farthest plane: the ball's and marble's far sides, the floor's own depth below them
+    const float back = depth[plane + i];
+    if (!(std::abs(back - r.back[i]) <= 1e-5f * std::max(r.back[i], 1e-3f)) && ++errors <= 5)
+      ADD_FAILURE() << "texel " << i << " (farthest): " << back << " vs " << r.back[i];
+    if (depth[i] < 1.0f) {
+      EXPECT_GE(back, depth[i]) << "texel " << i;
+    }
     differs += depth[i] != r_all.depth[i];
     on_ball += depth[i] < 0.99f;
+    thick += back > depth[i];
   }
   EXPECT_EQ(errors, 0);
   EXPECT_GT(differs, 20);
   EXPECT_GT(on_ball, 25);
+  EXPECT_GT(thick, 25);
 }
 
 TEST(Visibility, EqualDepthsResolveByIds) {

@@ -115,13 +115,16 @@ float shadow_linear_depth(float d, float near, float far) {
 // texels (RP_VOXEL_SHADOW_SPREAD), slope bias over a reach of 2.8 texels.
 RefF3 direct(const VoxelRefInput& in, RefF3 p, RefF3 n) {
   const gpu::FrameConstants& k = in.constants;
+  // direction to the lamp centre, distance to its disk's centre in the ceiling, plus a^2
   const RefF3 to_light = f3(k.light_pos) - p;
-  const float d2 = dot(to_light, to_light);
-  const float inv_d = 1.0f / std::sqrt(d2);
+  const float ze = k.light_pos.y - 1.0f;
+  const RefF3 to_disk = RefF3{to_light.x, to_light.y - ze, to_light.z};
+  const float a2 = std::fmax(k.light_pos.w * k.light_pos.w - ze * ze, 0.0f);
+  const float inv_d = 1.0f / std::sqrt(dot(to_light, to_light));
   const RefF3 l = to_light * inv_d;
   const float cos_theta = dot(n, l);
   if (!(cos_theta > 0.0f)) return {};
-  const float scale = cos_theta * (inv_d * inv_d) * lamp_falloff(l.y);
+  const float scale = cos_theta * lamp_falloff(l.y) / (dot(to_disk, to_disk) + a2);
 
   const gpu::rp_mat4& lvp = k.light_view_proj;
   const int size = int(k.shadow_size);
