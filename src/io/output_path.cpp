@@ -91,8 +91,9 @@ void check_output_file(const std::filesystem::path& path, const std::string& wha
       if (::access(target.path.c_str(), W_OK) != 0) throw cannot_write(path, std::strerror(errno));
       return;
     }
-    if (const std::filesystem::path dir = target.path.parent_path(); !dir.empty())
-      ensure_directory(dir);
+    const std::filesystem::path dir = target.path.parent_path();
+    // A bare "out.json" goes to the current folder, named in full should it refuse files.
+    ensure_directory(dir.empty() ? std::filesystem::current_path() : dir);
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(prefix + e.what());
   }

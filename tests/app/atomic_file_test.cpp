@@ -246,6 +246,12 @@ TEST(AtomicFile, CheckOutputFileCreatesTheFolderAndRefusesUnwritableOnes) {
   EXPECT_TRUE(entries(dir / "a" / "b").empty()) << "the probe file is removed";
   EXPECT_TRUE(contains(error_of([] { check_output_file("/proc/rolypoly/out.md", "--markdown"); }),
                        "--markdown: cannot create output folder /proc/rolypoly"));
+  // A bare file name goes to the current folder, which is checked too.
+  const std::filesystem::path here = std::filesystem::current_path();
+  std::filesystem::current_path("/proc");
+  const std::string bare = error_of([] { check_output_file("out.json"); });
+  std::filesystem::current_path(here);
+  EXPECT_TRUE(contains(bare, "cannot write into output folder /proc: ")) << bare;
 }
 
 }  // namespace
