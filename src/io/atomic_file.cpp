@@ -134,7 +134,9 @@ void write_in_place(const std::filesystem::path& shown, const OutputTarget& targ
                     std::string_view bytes) {
   // Our own buffered stdout first, in case the target is our stdout (/dev/stdout).
   std::fflush(nullptr);
-  const int fd = ::open(target.path.c_str(), O_WRONLY | O_APPEND | O_NOCTTY | O_CLOEXEC);
+  const int fd = target.fd >= 0
+                     ? ::fcntl(target.fd, F_DUPFD_CLOEXEC, 0)
+                     : ::open(target.path.c_str(), O_WRONLY | O_APPEND | O_NOCTTY | O_CLOEXEC);
   if (fd < 0) throw failure(shown, errno);
   int err = 0;
   {

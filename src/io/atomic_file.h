@@ -13,8 +13,9 @@ namespace rp::io {
 //  - a regular file (or none yet, or a symlink to one): a temporary beside the real file,
 //    write loop, fsync, close, rename over it (then the folder is fsynced); readers see the old
 //    file or the whole new one, and an existing file keeps its permission bits;
-//  - a character device or FIFO (or /dev/stdout and the like): opened and written in place
-//    (appending), with SIGPIPE turned into an EPIPE error for this write.
+//  - a character device or FIFO: opened and written in place (appending); /dev/stdout,
+//    /dev/fd/N: written through a dup of our descriptor N, at its offset (our stdout is flushed
+//    first). SIGPIPE is turned into an EPIPE error for this write.
 // On failure no temporary remains and the target is untouched (replace) or holds what was
 // written before the error (in place). Throws io::WriteError "cannot write PATH: REASON"
 // with the system's reason (strerror), or resolve_output's refusal for a directory, socket or

@@ -23,11 +23,19 @@ WriteError cannot_write(const std::filesystem::path& path, const std::string& wh
 
 // The files of /proc/<pid>/fd are "magic" links: they name an open file description (a pipe,
 // a terminal, a file opened by the shell's redirection) rather than a path, so they are opened,
-// never resolved and replaced.
-bool is_open_file_link(const std::filesystem::path& p) {
+// never resolved and replaced. Returns whether `p` is one, and sets `own_fd` to N when it is
+// this process's descriptor N.
+bool is_open_file_link(const std::filesystem::path& p, int& own_fd) {
   std::error_code ec;
   const std::filesystem::path dir = std::filesystem::canonical(p.parent_path(), ec);
-  return !ec && dir.filename() == "fd" && dir.string().rfind("/proc/", 0) == 0;
+  if (ec || dir.filename() != "fd" || dir.string().rfind("/proc/", 0) != 0) return false;
+  const std::string ours = "/proc/" + std::to_string(::getpid()) + "/";
+  const std::string name = p.filename().string();
+  own_fd = -1;
+  if (dir.string().rfind(ours, 0) == 0 && !name.empty() && name.size() < 10 &&
+      name.find_first_not_of("0123456789") == std::string::npos)
+    own_fd = std::stoi(name);
+  return true;
 }
 
 const char* kind_name(mode_t mode) {
@@ -43,7 +51,7 @@ OutputTarget resolve_output(const std::filesystem::path& path) {
   if (path.empty()) throw std::runtime_error("cannot write a file with an empty name");
   std::filesystem::path p = path;
   for (int links = 0;; ++links) {
-    if (is_open_file_link(p)) return {OutputTarget::Kind::kInPlace, path, true};
+    if (int fd = -1; is_open_file_link(p, fd)) return {OutputTarget::Kind::kInPlace, path, true, fd};
     struct stat st {};
     if (::lstat(p.c_str(), &st) != 0) {
       const int err = errno;
@@ -88,7 +96,13 @@ void check_output_file(const std::filesystem::path& path, const std::string& wha
   try {
     const OutputTarget target = resolve_output(path);
     if (target.kind == OutputTarget::Kind::kInPlace) {
-      if (::access(target.path.c_str(), W_OK) != 0) throw cannot_write(path, std::strerror(errno));
+      if (target.fd >= 0) {
+        const int flags = ::fcntl(target.fd, F_GETFL);
+        if (flags < 0) throw cannot_write(path, std::strerror(errno));
+        if ((flags & O_ACCMODE) == O_RDONLY) throw cannot_write(path, "it is open for reading only");
+      } else if (::access(target.path.c_str(), W_OK) != 0) {
+        throw cannot_write(path, std::strerror(errno));
+      }
       return;
     }
     const std::filesystem::path dir = target.path.parent_path();

@@ -6,9 +6,9 @@
 //                                  link stays a link); a dangling link creates its target
 //   character device, FIFO         written in place (/dev/null, /dev/full, /dev/tty, a pipe
 //                                  whose reader waits): renaming over it would destroy it
-//   /dev/stdout, /dev/fd/N, ...    a link in /proc/<pid>/fd names a file already open for us
-//                                  (a pipe, a terminal, the shell's `> file`): written in
-//                                  place, appended, whatever it is
+//   /dev/stdout, /dev/fd/N, ...    a link in /proc/<pid>/fd names a file already open (a
+//                                  pipe, a terminal, the shell's `> file`): written in place,
+//                                  whatever it is; our own descriptors through a dup of them
 //   directory, socket, block dev   refused: "cannot write PATH: it is a directory"
 #pragma once
 
@@ -36,6 +36,10 @@ struct OutputTarget {
   // the real file); kInPlace: the path to open for writing.
   std::filesystem::path path;
   bool exists = false;  // kReplace: a regular file is there now
+  // kInPlace through /proc/self/fd/N (/dev/stdout, /dev/fd/N): our own descriptor N, written
+  // through a dup so the write continues at its offset (reopening would start elsewhere, and
+  // our later stdout lines would overwrite the file's); -1 otherwise.
+  int fd = -1;
 };
 
 // Classifies `path` (see the table above). Throws WriteError "cannot write PATH: it is
@@ -48,7 +52,8 @@ OutputTarget resolve_output(const std::filesystem::path& path);
 void ensure_directory(const std::filesystem::path& dir);
 
 // Before any work: resolve_output(path), then for kReplace ensure_directory on the folder the
-// file goes to, for kInPlace access(W_OK). Throws std::runtime_error naming `path` and why.
+// file goes to, for kInPlace access(W_OK) (or, for our own descriptor, that it is open for
+// writing). Throws std::runtime_error naming `path` and why.
 // `what` names the option in the message ("--json"); empty for none.
 void check_output_file(const std::filesystem::path& path, const std::string& what = "");
 

@@ -173,7 +173,7 @@ TEST(AtomicFile, FifoWhoseReaderLeavesIsAnErrorNotSigpipe) {
   EXPECT_EQ(error, "cannot write " + fifo.string() + ": Broken pipe");
 }
 
-TEST(AtomicFile, AnOpenFileInProcFdIsAppendedInPlace) {
+TEST(AtomicFile, AnOpenFileInProcFdIsWrittenInPlace) {
   // /dev/stdout and /dev/fd/N lead here: the file the shell opened for us, not a path to replace.
   TempDir dir;
   const auto path = dir / "stdout.txt";
@@ -184,9 +184,11 @@ TEST(AtomicFile, AnOpenFileInProcFdIsAppendedInPlace) {
   ::fstat(fd, &before);
   const std::string proc = "/proc/self/fd/" + std::to_string(fd);
   EXPECT_EQ(resolve_output(proc).kind, OutputTarget::Kind::kInPlace);
+  EXPECT_EQ(resolve_output(proc).fd, fd) << "our own descriptor is written through a dup";
   write_file(proc, "body\n");
+  ASSERT_EQ(::write(fd, "tail\n", 5), 5) << "the descriptor goes on after what write_file wrote";
   ::close(fd);
-  EXPECT_EQ(read_all(path), "head\nbody\n");
+  EXPECT_EQ(read_all(path), "head\nbody\ntail\n");
   struct stat after {};
   ::stat(path.c_str(), &after);
   EXPECT_EQ(before.st_ino, after.st_ino) << "the open file must not be replaced";

@@ -212,6 +212,20 @@ TEST(OutputIntegrityCli, BenchWritesIntoFifosDevicesAndThroughSymlinks) {
   EXPECT_EQ(entries(dir / "real"), std::vector<std::string>{"chart.svg"});
 }
 
+TEST(OutputIntegrityCli, BenchJsonToStdoutKeepsItsPlaceInTheOutput) {
+  // run_rolypoly sends stdout to a file, as `> file` does: the JSON comes between the bench's
+  // lines and "wrote /dev/stdout", neither overwriting them nor overwritten.
+  CommandResult r = run_rolypoly(std::string(kTinyBench) + " --json /dev/stdout");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("bench: ", 0), 0u) << r.out;
+  const size_t open = r.out.find("\n{\n"), close = r.out.rfind("\n}\n");
+  ASSERT_NE(open, std::string::npos) << r.out;
+  ASSERT_NE(close, std::string::npos) << r.out;
+  EXPECT_EQ(nlohmann::json::parse(r.out.substr(open + 1, close + 2 - open)).at("schema"),
+            "rolypoly-bench/2");
+  EXPECT_EQ(r.out.substr(close + 3), "wrote /dev/stdout\n");
+}
+
 TEST(OutputIntegrityCli, BenchJsonToDevFullFailsAndKeepsTheDevice) {
   TempDir dir;
   // Through a link of ours: were the device ever replaced again, the damage would show here.
