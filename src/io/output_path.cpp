@@ -17,10 +17,6 @@ namespace {
 // Linux gives up after 40 links in one path; so do we (a loop would never end).
 constexpr int kMaxLinks = 40;
 
-WriteError cannot_write(const std::filesystem::path& path, const std::string& why) {
-  return WriteError(path, why);
-}
-
 // The files of /proc/<pid>/fd are "magic" links: they name an open file description (a pipe,
 // a terminal, a file opened by the shell's redirection) rather than a path, so they are opened,
 // never resolved and replaced. Returns whether `p` is one, and sets `own_fd` to N when it is
@@ -51,22 +47,24 @@ OutputTarget resolve_output(const std::filesystem::path& path) {
   if (path.empty()) throw std::runtime_error("cannot write a file with an empty name");
   std::filesystem::path p = path;
   for (int links = 0;; ++links) {
-    if (int fd = -1; is_open_file_link(p, fd)) return {OutputTarget::Kind::kInPlace, path, true, fd};
+    if (int fd = -1; is_open_file_link(p, fd))
+      return {OutputTarget::Kind::kInPlace, path, true, fd};
     struct stat st {};
     if (::lstat(p.c_str(), &st) != 0) {
       const int err = errno;
       // Nothing there (also at the end of a dangling link): the file will be created, and a
       // missing folder (or a file where a folder should be) is reported by whoever creates it.
       if (err == ENOENT || err == ENOTDIR) return {OutputTarget::Kind::kReplace, p, false};
-      throw cannot_write(path, std::strerror(err));
+      throw WriteError(path, std::strerror(err));
     }
     if (S_ISREG(st.st_mode)) return {OutputTarget::Kind::kReplace, p, true};
-    if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) return {OutputTarget::Kind::kInPlace, p, true};
-    if (!S_ISLNK(st.st_mode)) throw cannot_write(path, std::string("it is ") + kind_name(st.st_mode));
-    if (links == kMaxLinks) throw cannot_write(path, std::strerror(ELOOP));
+    if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode))
+      return {OutputTarget::Kind::kInPlace, p, true};
+    if (!S_ISLNK(st.st_mode)) throw WriteError(path, std::string("it is ") + kind_name(st.st_mode));
+    if (links == kMaxLinks) throw WriteError(path, std::strerror(ELOOP));
     std::error_code ec;
     const std::filesystem::path target = std::filesystem::read_symlink(p, ec);
-    if (ec) throw cannot_write(path, ec.message());
+    if (ec) throw WriteError(path, ec.message());
     // A relative link is relative to the folder holding the link, not to ours.
     p = target.is_absolute() ? target : p.parent_path() / target;
   }
@@ -98,10 +96,10 @@ void check_output_file(const std::filesystem::path& path, const std::string& wha
     if (target.kind == OutputTarget::Kind::kInPlace) {
       if (target.fd >= 0) {
         const int flags = ::fcntl(target.fd, F_GETFL);
-        if (flags < 0) throw cannot_write(path, std::strerror(errno));
-        if ((flags & O_ACCMODE) == O_RDONLY) throw cannot_write(path, "it is open for reading only");
+        if (flags < 0) throw WriteError(path, std::strerror(errno));
+        if ((flags & O_ACCMODE) == O_RDONLY) throw WriteError(path, "it is open for reading only");
       } else if (::access(target.path.c_str(), W_OK) != 0) {
-        throw cannot_write(path, std::strerror(errno));
+        throw WriteError(path, std::strerror(errno));
       }
       return;
     }

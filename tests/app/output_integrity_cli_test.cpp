@@ -98,7 +98,8 @@ class FifoReader {
 TEST(OutputIntegrityCli, RenderStopsAtAFullDiskKeepingCompleteFrames) {
   TempDir dir;
   const auto good = dir / "good", full = dir / "full";
-  CommandResult ok = run_rolypoly("render --size 32 --frames 2 --out " + shell_quote(good.string()));
+  CommandResult ok =
+      run_rolypoly("render --size 32 --frames 2 --out " + shell_quote(good.string()));
   ASSERT_EQ(ok.exit_code, 0) << ok.err;
   const std::string frame0 = read_all(good / "frame_0000.png");
   // The disk fills 100 bytes into the second frame, whose older version must survive.
