@@ -189,6 +189,20 @@ TEST(OutputIntegrityCli, BenchChecksItsOutputsBeforeMeasuring) {
   }
 }
 
+TEST(OutputIntegrityCli, RunChecksRecordAndCaptureBeforeOpeningTheWindow) {
+  // No display on purpose: the path is refused before the window (and its error) is reached.
+  TempDir dir;
+  for (const std::string option : {"--record", "--capture"}) {
+    CommandResult r =
+        run_rolypoly("run --size 32 " + option + " " + shell_quote(dir.path().string()),
+                     "env -u DISPLAY -u WAYLAND_DISPLAY");
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_TRUE(contains(r.err, option + ": cannot write " + dir.path().string() +
+                                    ": it is a directory"))
+        << r.err;
+  }
+}
+
 TEST(OutputIntegrityCli, BenchWritesIntoFifosDevicesAndThroughSymlinks) {
   TempDir dir;
   const auto fifo = dir / "json.fifo", link = dir / "chart.svg", null_link = dir / "null";
