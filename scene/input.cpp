@@ -7,6 +7,9 @@
 #include <ostream>
 #include <sstream>
 
+#include "io/atomic_file.h"
+#include "io/output_path.h"
+
 namespace rp::scene {
 
 namespace {
@@ -229,11 +232,15 @@ std::vector<InputEvent> parse_input_log(std::istream& in, const std::string& nam
 }
 
 void write_input_log_file(const std::string& path, const std::vector<InputEvent>& events) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw InputLogError(path, 0, "cannot open for writing");
+  // Whole in memory first, then one checked write (io::write_file): a full disk is an error
+  // with the system's reason, and the log is complete or absent.
+  std::ostringstream out;
   write_input_log(out, events);
-  out.flush();
-  if (!out) throw InputLogError(path, 0, "write failed");
+  try {
+    io::write_file(path, out.str());
+  } catch (const io::WriteError& e) {
+    throw InputLogError(path, 0, "cannot write: " + e.reason());
+  }
 }
 
 std::vector<InputEvent> read_input_log_file(const std::string& path) {

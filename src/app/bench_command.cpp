@@ -12,6 +12,7 @@
 #include "app/progress.h"
 #include "app/quality_report.h"
 #include "app/simulation_source.h"
+#include "io/output_path.h"
 #include "scene/particles.h"
 #include "scene/world.h"
 
@@ -223,18 +224,29 @@ void add_efficiency(const CommonOptions& common, const rp::cl::DeviceInfo& info,
 }
 #endif
 
-void write_outputs(const BenchOptions& given, const BenchMatrix& matrix) {
-  // A device sweep (--devices) always leaves its JSON and chart behind: out/bench.json and
-  // out/bench.svg unless --json / --chart name other files.
+// A device sweep (--devices) always leaves its JSON and chart behind: out/bench.json and
+// out/bench.svg unless --json / --chart name other files.
+BenchOptions with_default_outputs(const BenchOptions& given) {
   BenchOptions options = given;
   if (!options.devices.empty()) {
     if (options.json.empty()) options.json = "out/bench.json";
     if (options.chart.empty()) options.chart = "out/bench.svg";
   }
-  for (const std::string* file : {&options.json, &options.markdown, &options.chart})
-    if (std::filesystem::path dir = std::filesystem::path(*file).parent_path();
-        !file->empty() && !dir.empty())
-      ensure_directory(dir);
+  return options;
+}
+
+// Every file and folder the bench will write, checked before minutes of measuring: a folder
+// that cannot be created or written, or a path that is a directory, socket or block device.
+void check_outputs(const BenchOptions& given) {
+  const BenchOptions options = with_default_outputs(given);
+  if (!options.json.empty()) io::check_output_file(options.json, "--json");
+  if (!options.markdown.empty()) io::check_output_file(options.markdown, "--markdown");
+  if (!options.chart.empty()) io::check_output_file(options.chart, "--chart");
+  if (options.accuracy) ensure_directory(options.out_dir);
+}
+
+void write_outputs(const BenchOptions& given, const BenchMatrix& matrix) {
+  const BenchOptions options = with_default_outputs(given);
   if (!options.json.empty()) {
     write_text_atomic(options.json, matrix_json(matrix));
     std::printf("wrote %s\n", options.json.c_str());
@@ -299,6 +311,7 @@ int quality_report(const CommonOptions& common, const BenchOptions& options) {
 }  // namespace
 
 int bench_command(const CommonOptions& common, const BenchOptions& options) {
+  check_outputs(options);
   if (common.pathtraced) return pathtrace_bench_command(common, options);
   if (options.accuracy) {
     CommonOptions c = common;

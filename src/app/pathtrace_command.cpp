@@ -137,9 +137,7 @@ int pathtrace_render_command(const CommonOptions& common, const RenderOptions& o
 
 int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& options) {
   SimulationFrameSource source(make_simulation_options(options.sim, common.effects));
-  if (const auto dir = std::filesystem::path(options.json).parent_path();
-      !options.json.empty() && !dir.empty())
-    ensure_directory(dir);  // before the (long) renders
+  // --json was checked by bench_command before this (the long renders).
   const uint32_t w = options.size.width, h = options.size.height;
   const scene::SceneAssets assets = load_assets(common);
   rp::truth::PathTracer tracer(assets);

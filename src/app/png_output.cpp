@@ -1,29 +1,20 @@
 #include "app/png_output.h"
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <stdexcept>
-#include <system_error>
-
-#include <fcntl.h>
-#include <unistd.h>
+#include <string_view>
 
 #include <stb/stb_image_write.h>
 
-#include "io/temporary_file.h"
+#include "io/atomic_file.h"
+#include "io/output_path.h"
 
 namespace rp::app {
 namespace {
 
-void commit(const std::filesystem::path& tmp, const std::filesystem::path& path) {
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw std::runtime_error("cannot write " + path.string() + ": rename failed");
-  }
+// stbi_write_png_to_func's sink: appends each encoded piece to a std::string.
+void append_to_string(void* context, void* data, int size) {
+  static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
 }
 
 }  // namespace
@@ -38,49 +29,18 @@ void write_png_atomic(const std::filesystem::path& path, int width, int height,
                       const std::vector<uint8_t>& rgba) {
   if (width <= 0 || height <= 0 || rgba.size() != size_t(width) * size_t(height) * 4)
     throw std::runtime_error("cannot write " + path.string() + ": image size mismatch");
-  std::filesystem::path tmp = io::temporary_for(path);
-  if (!stbi_write_png(tmp.c_str(), width, height, 4, rgba.data(), width * 4)) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw std::runtime_error("cannot write " + path.string() +
-                             " (is the folder writable and the disk not full?)");
-  }
-  commit(tmp, path);
+  // Encoding to memory, not to the file: stbi_write_png reports only a failed open, so a full
+  // disk would pass unnoticed; io::write_file checks every write.
+  std::string png;
+  if (!stbi_write_png_to_func(append_to_string, &png, width, height, 4, rgba.data(), width * 4))
+    throw std::runtime_error("cannot write " + path.string() + ": PNG encoding failed");
+  io::write_file(path, png);
 }
 
 void write_text_atomic(const std::filesystem::path& path, const std::string& text) {
-  std::filesystem::path tmp = io::temporary_for(path);
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      out.close();
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw std::runtime_error("cannot write " + path.string());
-    }
-  }
-  commit(tmp, path);
+  io::write_file(path, text);
 }
 
-void ensure_directory(const std::filesystem::path& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir))
-    throw std::runtime_error("cannot create output folder " + dir.string() +
-                             (ec ? ": " + ec.message() : ": a file of that name exists"));
-  // An existing folder may still refuse new files (read-only mount, /proc, no permission):
-  // find out now by creating and removing an empty probe file, not after the first frame.
-  std::filesystem::path probe = io::temporary_for(dir / ".rolypoly-write-test");
-  int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
-  if (fd < 0) {
-    const int err = errno;
-    throw std::runtime_error("cannot write into output folder " + dir.string() + ": " +
-                             std::strerror(err));
-  }
-  ::close(fd);
-  std::filesystem::remove(probe, ec);
-}
+void ensure_directory(const std::filesystem::path& dir) { io::ensure_directory(dir); }
 
 }  // namespace rp::app

@@ -14,6 +14,7 @@
 #include "app/png_output.h"
 #include "app/simulation_source.h"
 #include "display/window.h"
+#include "io/output_path.h"
 
 namespace rp::app {
 namespace {
@@ -84,10 +85,9 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
   SimulationOptions sim = make_simulation_options(options.sim, common.effects);
   sim.record = !options.record.empty();
   SimulationFrameSource source(std::move(sim));
-  for (const std::string& file : {options.record, options.capture})
-    if (std::filesystem::path dir = std::filesystem::path(file).parent_path();
-        !file.empty() && !dir.empty())
-      ensure_directory(dir);  // fail now, not after the session, if the file cannot be written
+  // Fail now, not after the session, if a file cannot be written.
+  if (!options.record.empty()) io::check_output_file(options.record, "--record");
+  if (!options.capture.empty()) io::check_output_file(options.capture, "--capture");
   // The window first: without a display, fail at once rather than after the kernel builds.
   std::unique_ptr<display::Window> window = open_window(options.size);
   RenderSession session(common, options.size.width, options.size.height);

@@ -1,6 +1,6 @@
-// Files that are complete or absent: every writer (PNG, EXR, JSON, logs) writes to a hidden
-// temporary name next to the target and renames it over the target when complete. Header-only
-// so both the app and the path tracer's EXR writer (which knows nothing of the app) share it.
+// Files that are complete or absent: io::write_file (atomic_file.h) writes every output (PNG,
+// EXR, JSON, logs) to a hidden temporary name next to the target and renames it over the target
+// when complete; the output folder checks (output_path.h) probe with the same kind of name.
 #pragma once
 
 #include <filesystem>

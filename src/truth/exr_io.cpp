@@ -5,15 +5,16 @@
 #include <stdexcept>
 #include <system_error>
 
-
 #include <Iex.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStdIO.h>
 
-#include "io/temporary_file.h"
+#include "io/atomic_file.h"
+#include "io/output_path.h"
 
 namespace rp::truth {
 namespace {
@@ -63,10 +64,12 @@ void insert_slices(Imf::FrameBuffer& frame, const std::string& layer, float* dat
                  Imf::Slice(Imf::FLOAT, origin - shift + c * sizeof(float), x_stride, y_stride));
 }
 
-// Re-opens a written file and checks that its size and every expected channel are there.
-std::string check_written(const std::filesystem::path& tmp, uint32_t width, uint32_t height,
+// Reads the encoded file back and checks that its size and every expected channel are there.
+std::string check_written(const std::string& bytes, uint32_t width, uint32_t height,
                           const std::vector<ExrLayer>& layers) {
-  Imf::InputFile in(tmp.c_str());
+  Imf::StdISStream stream;
+  stream.str(bytes);
+  Imf::InputFile in(stream);
   const Imath::Box2i window = in.header().dataWindow();
   if (window.max.x - window.min.x + 1 != int(width) ||
       window.max.y - window.min.y + 1 != int(height))
@@ -101,8 +104,9 @@ void write_exr_atomic(const std::filesystem::path& path, uint32_t width, uint32_
                  "x" + std::to_string(height) + " RGB pixels");
   }
 
-  const std::filesystem::path tmp = rp::io::temporary_for(path);
-  std::string reason;
+  // Encoded in memory, then written by io::write_file: OpenEXR's own file output buffers in a
+  // std::ofstream whose last flush (in its destructor) can fail unseen on a full disk.
+  std::string reason, bytes;
   try {
     Imf::Header header{int(width), int(height)};
     header.compression() = Imf::ZIP_COMPRESSION;  // lossless: floats read back bit-exact
@@ -114,23 +118,23 @@ void write_exr_atomic(const std::filesystem::path& path, uint32_t width, uint32_
       // OpenEXR's Slice takes a char* for reading and writing alike; writing only reads it.
       insert_slices(frame, layer.name, const_cast<float*>(layer.rgb->data()),
                     header.dataWindow());
+    Imf::StdOSStream stream;
     {
-      Imf::OutputFile out(tmp.c_str(), header);  // closed (and flushed) by its destructor
+      Imf::OutputFile out(stream, header);  // completes the file in its destructor
       out.setFrameBuffer(frame);
       out.writePixels(int(height));
     }
-    reason = check_written(tmp, width, height, layers);
+    bytes = stream.str();
+    reason = check_written(bytes, width, height, layers);
   } catch (...) {
     reason = reason_of(std::current_exception());
   }
-  std::error_code ec;
-  if (reason.empty()) {
-    std::filesystem::rename(tmp, path, ec);
-    if (!ec) return;
-    reason = "rename failed: " + ec.message();
+  if (!reason.empty()) throw fail(reason);
+  try {
+    rp::io::write_file(path, bytes);
+  } catch (const rp::io::WriteError& e) {
+    throw fail(e.reason());
   }
-  std::filesystem::remove(tmp, ec);
-  throw fail(reason);
 }
 
 std::vector<float> read_exr_layer(const std::filesystem::path& path, const std::string& layer,

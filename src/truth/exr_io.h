@@ -17,9 +17,10 @@ struct ExrLayer {
   const std::vector<float>* rgb = nullptr;
 };
 
-// Writes the layers (each width * height * 3 floats) to a temporary file next to `path`, checks
-// it, and renames it over `path`: readers see the whole file or none. Throws std::runtime_error
-// naming the file (and the library's reason) on failure; no temporary file remains.
+// Encodes the layers (each width * height * 3 floats) in memory, reads them back to check, and
+// writes the file with io::write_file (src/io/atomic_file.h: checked writes, temporary + rename):
+// readers see the whole file or none. Throws std::runtime_error "cannot write EXR PATH: REASON"
+// (the library's or the system's reason, e.g. "No space left on device"); no temporary remains.
 void write_exr_atomic(const std::filesystem::path& path, uint32_t width, uint32_t height,
                       const std::vector<ExrLayer>& layers);
 
