@@ -22,7 +22,7 @@ PACKAGES=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers clinfo oclgrind
   libglm-dev libglfw3-dev libgl-dev libstb-dev libembree-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev libopenexr-dev
-  xvfb xauth libgl1-mesa-dri xdotool
+  xvfb xauth libgl1-mesa-dri xdotool ffmpeg
   clang libclang-rt-14-dev
 )
 
