@@ -81,9 +81,16 @@ std::vector<DeviceInfo> list_devices() {
       out.push_back(std::move(d));
     }
   }
-  if (out.empty())
+  remove_pocl_probe_files();  // PoCL initialised its devices above
+  if (out.empty()) {
+    // PoCL also reports no device when its cache folder is unusable (ensure_pocl_cache_dir
+    // falls back to a temporary one, but that can fail too).
+    const char* cache = std::getenv("POCL_CACHE_DIR");
     throw Error("OpenCL platforms were found but none has a device. Install a driver, e.g. "
-                "apt-get install pocl-opencl-icd");
+                "apt-get install pocl-opencl-icd; with PoCL, check that its kernel cache "
+                "folder (POCL_CACHE_DIR=" + std::string(cache ? cache : "") +
+                ") can be written");
+  }
   return out;
 }
 
@@ -110,23 +117,6 @@ DeviceInfo choose_device(const std::string& spec) {
         lower(d.platform_name).find(needle) != std::string::npos)
       return d;
   throw Error("no OpenCL device matches '" + spec + "'; the devices are:\n" + device_table(devices));
-}
-
-std::string ensure_pocl_cache_dir() {
-  if (const char* set = std::getenv("POCL_CACHE_DIR"); set && *set) return set;
-  std::filesystem::path base;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
-    base = xdg;
-  else if (const char* home = std::getenv("HOME"); home && *home)
-    base = std::filesystem::path(home) / ".cache";
-  else
-    return "";
-  std::filesystem::path dir = base / "rolypoly" / "pocl";
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) return "";  // PoCL falls back to its own default; not worth failing for
-  setenv("POCL_CACHE_DIR", dir.c_str(), 0);
-  return dir.string();
 }
 
 Context Context::create(const std::string& device_spec) {
