@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -106,8 +107,12 @@ DeviceInfo choose_device(const std::string& spec) {
   bool numeric = std::all_of(spec.begin(), spec.end(),
                              [](unsigned char c) { return std::isdigit(c) != 0; });
   if (numeric) {
-    size_t index = std::stoul(spec);
-    if (index < devices.size()) return devices[index];
+    // from_chars, not std::stoul: an index beyond size_t is just another missing device
+    // (stoul threw std::out_of_range, whose message is "stoul").
+    size_t index = 0;
+    const auto [end, ec] = std::from_chars(spec.data(), spec.data() + spec.size(), index);
+    if (ec == std::errc() && end == spec.data() + spec.size() && index < devices.size())
+      return devices[index];
     throw Error("no OpenCL device with index " + spec + "; the devices are:\n" +
                 device_table(devices));
   }
