@@ -3,10 +3,16 @@
 // that cannot encode the container, and an ffmpeg that quits while frames are still coming.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include "cli_runner.h"
 
@@ -114,6 +120,35 @@ TEST(VideoCli, FfmpegQuittingMidStreamIsAnErrorNotSigpipe) {
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("ffmpeg exited with status 3: gave up early"), std::string::npos)
       << r.err;
+  EXPECT_FALSE(fs::exists(dir / "v.mp4"));
+  EXPECT_TRUE(partial_files(dir.path()).empty());
+}
+
+// Ctrl-C while encoding: the frames written so far stay, the unfinished video goes (ffmpeg runs
+// in its own process group, so the terminal's Ctrl-C reaches rolypoly alone, which ends it).
+TEST(VideoCli, InterruptRemovesTheUnfinishedVideo) {
+  if (!have_program("ffmpeg")) GTEST_SKIP() << "no ffmpeg";
+  TempDir dir;
+  const fs::path out = dir / "f";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    if (!std::freopen((dir / "err.txt").c_str(), "w", stderr) ||
+        !std::freopen("/dev/null", "w", stdout))
+      _exit(99);
+    execl(ROLYPOLY_BINARY, ROLYPOLY_BINARY, "render", "--size", "32", "--frames", "100000",
+          "--video", (dir / "v.mp4").c_str(), "--out", out.c_str(), static_cast<char*>(nullptr));
+    _exit(98);
+  }
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (files_with_suffix(out, ".png").size() < 5 && std::chrono::steady_clock::now() < end)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_GE(files_with_suffix(out, ".png").size(), 5u);
   EXPECT_FALSE(fs::exists(dir / "v.mp4"));
   EXPECT_TRUE(partial_files(dir.path()).empty());
 }
