@@ -116,9 +116,11 @@ VideoPipe::VideoPipe(const std::string& path, uint32_t width, uint32_t height, u
     // yuv420p needs even sizes: pad by one pixel where necessary.
     const std::string size = std::to_string(width) + "x" + std::to_string(height);
     const std::string rate = std::to_string(fps);
-    std::vector<std::string> args = {"ffmpeg", "-hide_banner", "-loglevel", "error", "-y",
-                                     "-f", "rawvideo", "-pix_fmt", "rgba", "-s", size,
-                                     "-r", rate, "-i", "-", "-vf",
+    // -xerror: ffmpeg 5 exits 0 after "Error writing trailer ...: No space left on device"
+    // (a truncated video) unless told to treat errors as fatal.
+    std::vector<std::string> args = {"ffmpeg", "-hide_banner", "-loglevel", "error",
+                                     "-xerror", "-y", "-f", "rawvideo", "-pix_fmt", "rgba",
+                                     "-s", size, "-r", rate, "-i", "-", "-vf",
                                      "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-pix_fmt", "yuv420p",
                                      temp_path_};
     std::vector<char*> argv;
@@ -197,12 +199,15 @@ std::string VideoPipe::wait_for_ffmpeg() {
   }
   pid_ = -1;
   if (done < 0) return "waiting for ffmpeg failed: " + errno_text(errno);
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
+  const std::string said = tail_lines(read_all(log_fd_), 3);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+    // At -loglevel error anything it printed is an error, even with exit status 0.
+    return said.empty() ? "" : "ffmpeg exited with status 0 but reported: " + said;
+  }
   std::string how = WIFEXITED(status)
                         ? "ffmpeg exited with status " + std::to_string(WEXITSTATUS(status))
                         : "ffmpeg was killed by signal " + std::to_string(WTERMSIG(status)) +
                               " (" + strsignal(WTERMSIG(status)) + ")";
-  const std::string said = tail_lines(read_all(log_fd_), 3);
   return said.empty() ? how : how + ": " + said;
 }
 

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -122,6 +123,28 @@ TEST(VideoCli, FfmpegQuittingMidStreamIsAnErrorNotSigpipe) {
       << r.err;
   EXPECT_FALSE(fs::exists(dir / "v.mp4"));
   EXPECT_TRUE(partial_files(dir.path()).empty());
+}
+
+// A full disk: ffmpeg 5 prints "Error writing trailer ...: No space left on device" and still
+// exits 0, which used to leave a truncated video and "wrote v.mp4". Needs a tiny tmpfs (root
+// with mount rights; skipped elsewhere).
+TEST(VideoCli, FullDiskIsAnErrorAndLeavesNoFile) {
+  if (!have_program("ffmpeg")) GTEST_SKIP() << "no ffmpeg";
+  TempDir dir;
+  const fs::path tiny = dir / "tiny";
+  fs::create_directories(tiny);
+  if (std::system(("mount -t tmpfs -o size=4k tmpfs " + shell_quote(tiny.string()) +
+                   " 2>/dev/null").c_str()) != 0)
+    GTEST_SKIP() << "cannot mount a tmpfs here";
+  CommandResult r = run_rolypoly("render --size 128 --frames 20 --marbles --video " +
+                                 shell_quote((tiny / "v.mp4").string()) + " --out " +
+                                 shell_quote((dir / "f").string()));
+  const bool left = !fs::is_empty(tiny);
+  std::system(("umount " + shell_quote(tiny.string())).c_str());
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no video was written"), std::string::npos) << r.err;
+  EXPECT_FALSE(left) << "the full file system must hold no (partial) video";
 }
 
 // Ctrl-C while encoding: the frames written so far stay, the unfinished video goes (ffmpeg runs
