@@ -70,9 +70,12 @@ class LineParser {
     uint64_t value = 0;
     const char* end = word.data() + word.size();
     const auto r = std::from_chars(word.data(), end, value);
-    if (r.ec != std::errc() || r.ptr != end) {
-      fail("step number must be a non-negative integer, got '" + word + "'");
-    }
+    const bool digits =
+        r.ptr == end && (r.ec == std::errc() || r.ec == std::errc::result_out_of_range);
+    if (!digits) fail("step number must be a non-negative integer, got '" + word + "'");
+    if (r.ec == std::errc::result_out_of_range || value > kMaxInputStep)
+      fail("step " + word + " is out of range: steps go up to " + std::to_string(kMaxInputStep) +
+           " (about 103 days at 240 steps per second)");
     return value;
   }
 
@@ -182,6 +185,9 @@ void write_input_log(std::ostream& out, const std::vector<InputEvent>& events) {
     const std::string where = "event " + std::to_string(i);
     if (!problem.empty()) throw InputLogError("<output>", 0, where + ": " + problem);
     if (e.step < last_step) throw InputLogError("<output>", 0, where + ": step goes backwards");
+    if (e.step > kMaxInputStep)
+      throw InputLogError("<output>", 0, where + ": step " + std::to_string(e.step) +
+                                             " is above " + std::to_string(kMaxInputStep));
     last_step = e.step;
     out << "step " << e.step << ' ' << type_word(e.type);
     if (e.type == InputEventType::Key) {

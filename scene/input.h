@@ -79,11 +79,17 @@ class InputLogError : public std::runtime_error {
 
 inline constexpr int kInputLogVersion = 1;
 
+// The largest step a log may name: 2^31 - 1, about 103 days of simulation at 240 steps per
+// second. Larger steps are errors when read, not truncated (the world advances by int counts:
+// step 4294967300 used to replay as step 4).
+inline constexpr uint64_t kMaxInputStep = (uint64_t(1) << 31) - 1;
+
 // Writes the header and one line per event. Throws InputLogError (line 0, name "<stream>") for an
 // event that could not be read back: invalid key, non-finite or non-positive viewport, steps
 // going backwards.
 void write_input_log(std::ostream& out, const std::vector<InputEvent>& events);
-// Parses a whole log; `name` is used in error messages (the file name).
+// Parses a whole log; `name` is used in error messages (the file name). Steps above
+// kMaxInputStep are errors.
 std::vector<InputEvent> parse_input_log(std::istream& in, const std::string& name);
 
 // File versions of the two above (errors name the path).

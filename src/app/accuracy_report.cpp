@@ -474,7 +474,7 @@ int accuracy_command(const CommonOptions& common, const BenchOptions& options) {
     std::fprintf(stderr,
                  "rolypoly: error: interrupted; no report was written (finished truths stay in "
                  "the cache)\n");
-    return kInterruptedExitCode;
+    return interrupted_exit_code();
   }
   std::fputs(r.table.c_str(), stdout);
   if (!options.json.empty()) std::printf("wrote %s\n", options.json.c_str());

@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "app/commands.h"
+#include "app/interrupt.h"
 #include "cl/context.h"
 #include "cl/error.h"
 
@@ -18,6 +19,18 @@ int report(const std::string& message) {
   std::fflush(stdout);
   std::fprintf(stderr, "rolypoly: error: %s\n", message.c_str());
   return 1;
+}
+
+// An OpenCL failure after SIGINT / SIGTERM is most likely the signal's consequence: LLVM inside
+// PoCL deletes its temporary files on the signal, so the kernel build in progress fails with
+// "failed to build kernels/...cl". Name the interruption, with its exit code (130 / 143),
+// instead. Other errors (a file that cannot be written) are reported as they are.
+int report_opencl(const std::string& message) {
+  if (!InterruptGuard::interrupted()) return report(message);
+  std::fflush(stdout);
+  std::fprintf(stderr, "rolypoly: error: interrupted by %s while starting up; nothing was "
+               "written\n", interrupt_signal_name());
+  return interrupted_exit_code();
 }
 
 int execute(const ParsedCommand& command) {
@@ -45,8 +58,10 @@ int run_cli(int argc, char** argv) {
     return execute(std::get<ParsedCommand>(parsed));
   } catch (const ::cl::Error& e) {
     // An OpenCL call that the code did not wrap in an rp::cl::Error.
-    return report(std::string("OpenCL call ") + e.what() + " failed with " +
-                  rp::cl::error_name(e.err()));
+    return report_opencl(std::string("OpenCL call ") + e.what() + " failed with " +
+                         rp::cl::error_name(e.err()));
+  } catch (const rp::cl::Error& e) {
+    return report_opencl(e.what());
   } catch (const std::exception& e) {
     return report(e.what());
   }

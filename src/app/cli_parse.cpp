@@ -325,6 +325,47 @@ CliExit usage(const std::string& who, const std::string& why) {
   return {2, who + ": " + why + "\n" + kMoreHelp};
 }
 
+// The first option of `cmd` given an empty value ("--voxels ''", "--json=", "--sizes 256,,512"),
+// or nullptr. CLI11 takes "" as a value: numbers became 0 or their default, paths the current
+// folder or nothing, so `--record ""` silently recorded nothing. Flags (no value) are skipped.
+const CLI::Option* option_with_empty_value(const CLI::App* cmd) {
+  for (const CLI::Option* opt : cmd->get_options()) {
+    if (opt->get_type_size_max() == 0 || opt->count() == 0) continue;
+    for (const std::string& value : opt->results())
+      if (value.empty()) return opt;
+  }
+  return nullptr;
+}
+
+// A comma-separated list with an empty entry ("256,,512", ",32"): CLI11 drops the entry, so
+// such a list used to run with fewer items than written. "" when fine.
+std::string check_list_entries(int argc, const char* const* argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    for (const std::string name : {"--sizes", "--voxels"}) {
+      std::string list;
+      if (word == name && i + 1 < argc)
+        list = argv[i + 1];
+      else if (word.rfind(name + "=", 0) == 0)
+        list = word.substr(name.size() + 1);
+      else
+        continue;
+      if (!list.empty() && (list.front() == ',' || list.back() == ',' ||
+                            list.find(",,") != std::string::npos))
+        return name + ": empty entry in '" + list + "'";
+    }
+  }
+  return "";
+}
+
+// --device is an index from `rolypoly devices` or part of a name: an index too large for any
+// device list used to reach std::stoul and fail with its bare message "stoul".
+std::string check_device_index(const std::string& spec) {
+  if (spec.empty() || spec.find_first_not_of("0123456789") != std::string::npos) return "";
+  if (spec.size() <= 9) return "";  // up to 999999999: "no such device" lists the devices
+  return "--device: " + spec + " is not a device index (`rolypoly devices` lists them, from 0)";
+}
+
 }  // namespace
 
 CliParse parse_cli(int argc, const char* const* argv) {
@@ -489,6 +530,16 @@ CliParse parse_cli(int argc, const char* const* argv) {
     return CliExit{0, app.help("", CLI::AppFormatMode::All)};
   } catch (const CLI::ParseError& e) {
     return usage("rolypoly: error", e.what());
+  }
+  if (std::string why = check_list_entries(argc, argv); !why.empty())
+    return usage("rolypoly: error", why);
+  for (const CLI::App* cmd : {render, run, bench}) {
+    if (!cmd->parsed()) continue;
+    if (const CLI::Option* empty = option_with_empty_value(cmd))
+      return usage("rolypoly " + cmd->get_name(),
+                   empty->get_name() + " needs a value; an empty one is not allowed");
+    if (std::string why = check_device_index(common.device); !why.empty())
+      return usage("rolypoly " + cmd->get_name(), why);
   }
   for (const auto& [cmd, args] : {std::pair{render, &render_view}, std::pair{run, &run_view}}) {
     if (!cmd->parsed()) continue;

@@ -7,11 +7,11 @@
 namespace rp::app {
 namespace {
 
-// Set by SIGINT / SIGTERM. A signal handler can only talk to the program through a variable
-// like this, hence the one file-local global; the handler does nothing else.
+// The signal number, set by SIGINT / SIGTERM. A signal handler can only talk to the program
+// through a variable like this, hence the one file-local global; the handler does nothing else.
 volatile std::sig_atomic_t g_interrupted = 0;
 
-extern "C" void on_interrupt(int) { g_interrupted = 1; }
+extern "C" void on_interrupt(int signal) { g_interrupted = signal; }
 
 }  // namespace
 
@@ -31,6 +31,21 @@ InterruptGuard::~InterruptGuard() {
 }
 
 bool InterruptGuard::interrupted() { return g_interrupted != 0; }
+
+int InterruptGuard::signal_number() { return g_interrupted; }
+
+int interrupted_exit_code() {
+  const int signal = InterruptGuard::signal_number();
+  return signal > 0 ? 128 + signal : kInterruptedExitCode;
+}
+
+const char* interrupt_signal_name() {
+  switch (InterruptGuard::signal_number()) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+    default: return "a signal";
+  }
+}
 
 int report_interrupted(uint32_t frames_written, const std::filesystem::path& out_dir,
                        const std::string& also) {
@@ -52,7 +67,7 @@ int report_interrupted(uint32_t frames_written, const std::filesystem::path& out
   }
   std::fprintf(stderr, "rolypoly: error: interrupted after %u frame%s (%s)\n", i,
                i == 1 ? "" : "s", done.c_str());
-  return kInterruptedExitCode;
+  return interrupted_exit_code();
 }
 
 }  // namespace rp::app

@@ -1,4 +1,6 @@
+#include <chrono>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <memory>
 
@@ -14,21 +16,31 @@
 #include "app/video_output.h"
 
 namespace rp::app {
+namespace {
 
-int render_command(const CommonOptions& common, const RenderOptions& options) {
-  if (common.pathtraced) return pathtrace_render_command(common, options);
-  InterruptGuard interrupt;
-  std::filesystem::path out_dir(options.out_dir);
-  ensure_directory(out_dir);  // fail before the (slow) kernel builds if the folder is unusable
-  // Cheap checks first: a malformed replay log or a missing ffmpeg fail before kernel builds.
-  SimulationFrameSource source(make_simulation_options(options.sim, common.effects));
-  uint32_t frames = options.frames;
-  if (!options.frames_given && source.replay_frames() > 0) frames = source.replay_frames();
-  std::unique_ptr<VideoPipe> video;
-  if (!options.video.empty())
-    video = std::make_unique<VideoPipe>(options.video, options.size.width, options.size.height,
-                                        60);
+// A replayed frame mark far ahead (`step 100000000 frame`) is minutes of simulation for one
+// frame: say how far it got on stderr, at most once a second, and stop on SIGINT / SIGTERM
+// (next_frame throws SimulationStopped; render_command reports the interruption).
+void show_long_steps(SimulationFrameSource& source) {
+  using Clock = std::chrono::steady_clock;
+  source.set_step_progress([&source, last = Clock::now()](uint64_t done,
+                                                          uint64_t total) mutable {
+    if (InterruptGuard::interrupted()) return false;
+    if (const auto now = Clock::now(); now - last >= std::chrono::seconds(1)) {
+      last = now;
+      std::fprintf(stderr, "rolypoly: replay: frame %u: %llu of %llu steps simulated (%.1f %%)\n",
+                   source.frames_produced(), static_cast<unsigned long long>(done),
+                   static_cast<unsigned long long>(total), 100.0 * double(done) / double(total));
+    }
+    return true;
+  });
+}
 
+// The device, the kernels and the frames; `written` counts the complete PNGs as they appear.
+int render_frames(const CommonOptions& common, const RenderOptions& options,
+                  SimulationFrameSource& source, uint32_t frames, VideoPipe* video,
+                  uint32_t& written) {
+  const std::filesystem::path out_dir(options.out_dir);
   RenderSession session(common, options.size.width, options.size.height, options.exr);
   std::printf("device %s\n", describe_device(session.device()).c_str());
   std::fflush(stdout);
@@ -41,7 +53,7 @@ int render_command(const CommonOptions& common, const RenderOptions& options) {
   for (uint32_t i = 0; i < frames; ++i) {
     // Between frames only: every frame before i is a complete PNG (written to a temporary name
     // and renamed), and no temporary file is open. The unfinished video is removed by ~VideoPipe.
-    if (interrupt.interrupted()) {
+    if (InterruptGuard::interrupted()) {
       progress.finish();
       return report_interrupted(i, out_dir, options.exr ? ", each with its .exr" : "");
     }
@@ -56,6 +68,7 @@ int render_command(const CommonOptions& common, const RenderOptions& options) {
     }
     write_png_atomic(out_dir / frame_file_name(i), int(session.width()), int(session.height()),
                      rgba);
+    written = i + 1;
     if (video) video->write(rgba);
     progress.update(i + 1);
   }
@@ -69,6 +82,34 @@ int render_command(const CommonOptions& common, const RenderOptions& options) {
   std::printf("per-pass median: %s; frame %.2f ms\n", median_line(stats).c_str(),
               stats.frame().median_ms);
   return 0;
+}
+
+}  // namespace
+
+int render_command(const CommonOptions& common, const RenderOptions& options) {
+  if (common.pathtraced) return pathtrace_render_command(common, options);
+  InterruptGuard interrupt;
+  std::filesystem::path out_dir(options.out_dir);
+  ensure_directory(out_dir);  // fail before the (slow) kernel builds if the folder is unusable
+  // Cheap checks first: a malformed replay log or a missing ffmpeg fail before kernel builds.
+  SimulationFrameSource source(make_simulation_options(options.sim, common.effects));
+  uint32_t frames = options.frames;
+  if (!options.frames_given && source.replay_frames() > 0) frames = source.replay_frames();
+  show_long_steps(source);
+  std::unique_ptr<VideoPipe> video;
+  if (!options.video.empty())
+    video = std::make_unique<VideoPipe>(options.video, options.size.width, options.size.height,
+                                        60);
+  uint32_t written = 0;
+  try {
+    return render_frames(common, options, source, frames, video.get(), written);
+  } catch (const std::exception&) {
+    // A signal can make the work fail before the loop sees it (LLVM deletes its temporary
+    // files on SIGINT / SIGTERM, so a kernel build in progress fails; a long replay stops):
+    // report the interruption, not its consequence. ~VideoPipe removes the unfinished video.
+    if (!interrupt.interrupted()) throw;
+    return report_interrupted(written, out_dir, options.exr ? ", each with its .exr" : "");
+  }
 }
 
 }  // namespace rp::app

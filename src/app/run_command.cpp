@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -10,9 +11,11 @@
 #include "app/bench_report.h"
 #include "app/commands.h"
 #include "app/frame_source.h"
+#include "app/interrupt.h"
 #include "app/pass_stats.h"
 #include "app/png_output.h"
 #include "app/simulation_source.h"
+#include "display/display_lost.h"
 #include "display/window.h"
 #include "io/output_path.h"
 
@@ -79,9 +82,32 @@ scene::InputEvent to_input(const display::WindowEvent& e, glm::vec2 viewport) {
   return scene::InputEvent::mouse(0, scene::InputEventType::MouseMove, {e.x, e.y}, viewport);
 }
 
+// --record's log: every input event and frame mark so far.
+void write_recording(const RunOptions& options, const SimulationFrameSource& source) {
+  if (options.record.empty()) return;
+  std::ostringstream log;
+  source.recording().write(log);
+  write_text_atomic(options.record, log.str());
+  std::printf("recorded %zu input events and frames to %s\n", source.recording().events().size(),
+              options.record.c_str());
+  std::fflush(stdout);
+}
+
+// Keeps the display-lost handler (which refers to this run's locals) for one run only.
+struct DisplayLostScope {
+  explicit DisplayLostScope(std::function<void()> save) {
+    display::on_display_lost(std::move(save));
+  }
+  ~DisplayLostScope() { display::on_display_lost({}); }
+  DisplayLostScope(const DisplayLostScope&) = delete;
+  DisplayLostScope& operator=(const DisplayLostScope&) = delete;
+};
+
 }  // namespace
 
 int run_command(const CommonOptions& common, const RunOptions& options) {
+  // SIGINT / SIGTERM end the loop like closing the window, so --record's log is written.
+  InterruptGuard interrupt;
   SimulationOptions sim = make_simulation_options(options.sim, common.effects);
   sim.record = !options.record.empty();
   SimulationFrameSource source(std::move(sim));
@@ -97,11 +123,23 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
   PassStats all, interval;
   std::vector<uint8_t> rgba;
   uint32_t presented = 0;
+  // A lost X connection ends the process inside Xlib (exit 1): save the log first.
+  DisplayLostScope lost([&] {
+    std::fflush(stdout);
+    std::fprintf(stderr, "rolypoly: error: lost the connection to the display after %u frames%s\n",
+                 presented, options.record.empty() ? "" : "; writing the --record log");
+    try {
+      write_recording(options, source);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "rolypoly: error: %s\n", e.what());
+    }
+  });
   auto interval_start = std::chrono::steady_clock::now();
   const glm::vec2 viewport(float(session.width()), float(session.height()));
   auto last_frame = std::chrono::steady_clock::now();
   window->poll_events();
-  while (!window->should_close() && (options.frames == 0 || presented < options.frames)) {
+  while (!window->should_close() && !interrupt.interrupted() &&
+         (options.frames == 0 || presented < options.frames)) {
     for (const display::WindowEvent& e : window->take_events()) {
       if (e.type == display::WindowEvent::Type::Key && e.key == kShadowsKey) {
         session.set_shadows(render::next_shadow_mode(session.shadows()));
@@ -147,17 +185,19 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
   }
 
   // Closing the window (its close button or Esc) is the normal end of `run --frames 0` and an
-  // early end otherwise: not an error, and --capture / --record below still happen.
-  const bool closed_early =
-      window->should_close() && (options.frames == 0 || presented < options.frames);
+  // early end otherwise: not an error, and --capture / --record below still happen. SIGINT and
+  // SIGTERM end it the same way, then exit 130 / 143.
+  const bool closed_early = !interrupt.interrupted() && window->should_close() &&
+                            (options.frames == 0 || presented < options.frames);
   if (closed_early) std::printf("window closed after %u frames\n", presented);
   // The log first: it is wanted even when --capture fails below (no frame shown).
-  if (!options.record.empty()) {
-    std::ostringstream log;
-    source.recording().write(log);
-    write_text_atomic(options.record, log.str());
-    std::printf("recorded %zu input events and frames to %s\n",
-                source.recording().events().size(), options.record.c_str());
+  write_recording(options, source);
+  if (interrupt.interrupted()) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "rolypoly: error: interrupted by %s after %u frames%s\n",
+                 interrupt_signal_name(), presented,
+                 options.record.empty() ? "" : " (the --record log is complete)");
+    return interrupted_exit_code();
   }
   if (!options.capture.empty()) {
     if (presented == 0) throw std::runtime_error("--capture: the window closed before any frame");

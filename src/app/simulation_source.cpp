@@ -126,9 +126,16 @@ int SimulationFrameSource::steps_for_this_frame() {
   return n;
 }
 
-void SimulationFrameSource::advance(int steps) {
-  world_.advance(steps);
-  session_step_ += static_cast<uint64_t>(steps);
+void SimulationFrameSource::advance(uint64_t steps) {
+  // World::advance takes an int: chunks keep every count in range (replay steps are below 2^31
+  // too, scene/input.h) and give the progress callback its chances to run.
+  for (uint64_t done = 0; done < steps;) {
+    const uint64_t chunk = std::min(steps - done, kStepChunk);
+    world_.advance(static_cast<int>(chunk));
+    session_step_ += chunk;
+    done += chunk;
+    if (steps > kStepChunk && progress_ && !progress_(done, steps)) throw SimulationStopped();
+  }
 }
 
 const scene::FrameScene& SimulationFrameSource::next_frame() {
@@ -147,9 +154,9 @@ const scene::FrameScene& SimulationFrameSource::next_frame() {
         target = e.step;
         break;
       }
-    advance(static_cast<int>(target - std::min(target, session_step_)));
+    advance(target - std::min(target, session_step_));
   } else {
-    advance(steps_for_this_frame());
+    advance(static_cast<uint64_t>(steps_for_this_frame()));
   }
   if (options_.record) recorder_.record(scene::InputEvent::frame(session_step_));
 

@@ -11,6 +11,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -54,9 +56,26 @@ SimulationOptions make_simulation_options(const SimulationArgs& args,
 render::Effects effects_with(const render::Effects& base, const ViewToggles& toggles);
 
 
+// Thrown by next_frame() when its step progress callback asked to stop.
+class SimulationStopped : public std::runtime_error {
+ public:
+  SimulationStopped() : std::runtime_error("the simulation was stopped") {}
+};
+
 class SimulationFrameSource final : public FrameSource {
  public:
+  // Steps per call of the step progress callback (about 10-20 ms of simulation here).
+  static constexpr uint64_t kStepChunk = 4096;
+  // (steps done, steps this frame takes); false stops the frame (next_frame throws
+  // SimulationStopped).
+  using StepProgress = std::function<bool(uint64_t done, uint64_t total)>;
+
   explicit SimulationFrameSource(SimulationOptions options);
+
+  // A replayed frame mark may lie millions of steps ahead (minutes of simulation for one
+  // frame): frames of more than kStepChunk steps advance in chunks and call `progress` after
+  // each, so the caller can show progress and stop on Ctrl-C.
+  void set_step_progress(StepProgress progress) { progress_ = std::move(progress); }
 
   // Interactive input: applied now (before the next frame's steps), stamped and recorded.
   void input(scene::InputEvent event);
@@ -87,9 +106,10 @@ class SimulationFrameSource final : public FrameSource {
  private:
   void apply(const scene::InputEvent& event);
   int steps_for_this_frame();
-  void advance(int steps);
+  void advance(uint64_t steps);
 
   SimulationOptions options_;
+  StepProgress progress_;
   scene::World world_;
   scene::InputReplayer replayer_;
   scene::InputRecorder recorder_;

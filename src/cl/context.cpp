@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -81,9 +82,16 @@ std::vector<DeviceInfo> list_devices() {
       out.push_back(std::move(d));
     }
   }
-  if (out.empty())
+  remove_pocl_probe_files();  // PoCL initialised its devices above
+  if (out.empty()) {
+    // PoCL also reports no device when its cache folder is unusable (ensure_pocl_cache_dir
+    // falls back to a temporary one, but that can fail too).
+    const char* cache = std::getenv("POCL_CACHE_DIR");
     throw Error("OpenCL platforms were found but none has a device. Install a driver, e.g. "
-                "apt-get install pocl-opencl-icd");
+                "apt-get install pocl-opencl-icd; with PoCL, check that its kernel cache "
+                "folder (POCL_CACHE_DIR=" + std::string(cache ? cache : "") +
+                ") can be written");
+  }
   return out;
 }
 
@@ -99,8 +107,12 @@ DeviceInfo choose_device(const std::string& spec) {
   bool numeric = std::all_of(spec.begin(), spec.end(),
                              [](unsigned char c) { return std::isdigit(c) != 0; });
   if (numeric) {
-    size_t index = std::stoul(spec);
-    if (index < devices.size()) return devices[index];
+    // from_chars, not std::stoul: an index beyond size_t is just another missing device
+    // (stoul threw std::out_of_range, whose message is "stoul").
+    size_t index = 0;
+    const auto [end, ec] = std::from_chars(spec.data(), spec.data() + spec.size(), index);
+    if (ec == std::errc() && end == spec.data() + spec.size() && index < devices.size())
+      return devices[index];
     throw Error("no OpenCL device with index " + spec + "; the devices are:\n" +
                 device_table(devices));
   }
@@ -110,23 +122,6 @@ DeviceInfo choose_device(const std::string& spec) {
         lower(d.platform_name).find(needle) != std::string::npos)
       return d;
   throw Error("no OpenCL device matches '" + spec + "'; the devices are:\n" + device_table(devices));
-}
-
-std::string ensure_pocl_cache_dir() {
-  if (const char* set = std::getenv("POCL_CACHE_DIR"); set && *set) return set;
-  std::filesystem::path base;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
-    base = xdg;
-  else if (const char* home = std::getenv("HOME"); home && *home)
-    base = std::filesystem::path(home) / ".cache";
-  else
-    return "";
-  std::filesystem::path dir = base / "rolypoly" / "pocl";
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) return "";  // PoCL falls back to its own default; not worth failing for
-  setenv("POCL_CACHE_DIR", dir.c_str(), 0);
-  return dir.string();
 }
 
 Context Context::create(const std::string& device_spec) {

@@ -7,6 +7,8 @@
 
 #include <CL/opencl.hpp>
 
+#include "cl/pocl_cache.h"  // ensure_pocl_cache_dir: before the first OpenCL call
+
 namespace rp::cl {
 
 struct DeviceInfo {
@@ -36,11 +38,6 @@ std::vector<DeviceInfo> list_devices();
 // list_devices(); anything else = first device whose name (or platform name) contains spec,
 // case-insensitively. Throws rp::cl::Error listing the devices when nothing matches.
 DeviceInfo choose_device(const std::string& spec);
-
-// Unless the user set POCL_CACHE_DIR, point it at a persistent per-user folder
-// ($XDG_CACHE_HOME/rolypoly/pocl or ~/.cache/rolypoly/pocl) so PoCL's compiled kernels survive
-// between runs. Must run before the first OpenCL call. Returns the folder in use ("" if none).
-std::string ensure_pocl_cache_dir();
 
 // Context and one in-order queue with profiling enabled, on one device.
 struct Context {

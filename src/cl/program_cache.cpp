@@ -1,5 +1,8 @@
 #include "cl/program_cache.h"
 
+#include <unistd.h>
+
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -56,6 +59,47 @@ void expand(const std::string& file, std::set<std::string>& seen, std::string& o
   }
 }
 
+// Clang inside PoCL prints its diagnostics' summary ("1 error generated.") on the process's
+// stderr, besides the build log that BuildError carries. A build that fails because SIGINT
+// made LLVM delete its temporary files would otherwise leave that line above the one-line
+// "interrupted" message. Held for the build only: a successful build's output is passed on
+// unchanged; a failed build's is dropped (the build log has it).
+class StderrHold {
+ public:
+  StderrHold() {
+    std::fflush(stderr);
+    file_ = std::tmpfile();
+    saved_ = file_ ? ::dup(STDERR_FILENO) : -1;
+    if (saved_ < 0 || ::dup2(::fileno(file_), STDERR_FILENO) < 0) release(false);
+  }
+  ~StderrHold() { release(false); }
+  StderrHold(const StderrHold&) = delete;
+  StderrHold& operator=(const StderrHold&) = delete;
+
+  // Puts stderr back; `pass_on`: copy what was printed meanwhile to it.
+  void release(bool pass_on) {
+    if (saved_ >= 0) {
+      std::fflush(stderr);
+      ::dup2(saved_, STDERR_FILENO);
+      ::close(saved_);
+      saved_ = -1;
+      if (pass_on && std::fseek(file_, 0, SEEK_SET) == 0) {
+        char buffer[4096];
+        for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, file_)) > 0;)
+          std::fwrite(buffer, 1, n, stderr);
+      }
+    }
+    if (file_) {
+      std::fclose(file_);
+      file_ = nullptr;
+    }
+  }
+
+ private:
+  std::FILE* file_ = nullptr;
+  int saved_ = -1;
+};
+
 }  // namespace
 
 std::string kernel_source(const std::string& file) {
@@ -72,9 +116,12 @@ const ::cl::Program& ProgramCache::program(const std::string& file, const std::s
 
   std::string source = kernel_source(file);
   ::cl::Program program(context_->context, source);
+  StderrHold hold;
   try {
     program.build(std::vector<::cl::Device>{context_->info.device}, all_options.c_str());
+    hold.release(true);
   } catch (const ::cl::Error&) {
+    hold.release(false);
     std::string log;
     try {
       log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(context_->info.device);

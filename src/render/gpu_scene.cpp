@@ -23,7 +23,53 @@ template <typename T>
   return buffer;
 }
 
+std::string mib(uint64_t bytes) {
+  return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
+}
+
+// Texels of `texture`'s mip chain (every level).
+uint64_t chain_texels(const scene::Texture& texture) {
+  uint64_t texels = 0;
+  const uint32_t w = uint32_t(std::max(texture.width, 1));
+  const uint32_t h = uint32_t(std::max(texture.height, 1));
+  for (uint32_t k = 0; k < mip_level_count(w, h); ++k)
+    texels += uint64_t(std::max(1u, w >> k)) * std::max(1u, h >> k);
+  return texels;
+}
+
 }  // namespace
+
+// On the device every texel of every mip level takes 4 bytes here (packed sRGB, one buffer
+// for all textures) and 16 in the gbuffer pass's linear float4 copy (passes/gbuffer.cpp, also
+// one buffer). A texture too large for that (a 16384^2 one needs 5.3 GiB in one buffer) failed
+// only at clCreateBuffer, after 45 s and 12 GiB of host memory spent on mip chains, and the
+// renderer's out-of-memory message then named the frame size ("a 16x16 image").
+void check_texture_memory(const std::vector<scene::Texture>& textures, uint64_t max_alloc,
+                          uint64_t global) {
+  constexpr uint64_t kPacked = 4, kLinear = 16;  // bytes per texel
+  uint64_t texels = 0;
+  const scene::Texture* largest = nullptr;
+  for (const scene::Texture& t : textures) {
+    texels += chain_texels(t);
+    if (!largest || chain_texels(t) > chain_texels(*largest)) largest = &t;
+  }
+  if (!largest) return;
+  const uint64_t need = texels * (kPacked + kLinear);
+  const bool buffer_too_big = max_alloc > 0 && texels * kLinear > max_alloc;
+  if (!buffer_too_big && (global == 0 || need <= global)) return;  // 0: the driver did not say
+  std::string message = "the textures need " + mib(need) +
+                        " of device memory with their mipmaps (texture '" + largest->name +
+                        "' is " + std::to_string(largest->width) + "x" +
+                        std::to_string(largest->height) + " texels; " +
+                        std::to_string(kPacked + kLinear) + " bytes per texel: packed and as "
+                        "linear float4), ";
+  if (buffer_too_big)
+    message += "one buffer of " + mib(texels * kLinear) + ", but the device allows at most " +
+               mib(max_alloc) + " per buffer";
+  else
+    message += "but the device has " + mib(global);
+  throw rp::cl::Error(message + "; use smaller textures");
+}
 
 float halton(uint32_t index, uint32_t base) {
   // Exact in double for the indices used (< 2^20), one rounding to float at the end.
@@ -89,6 +135,11 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
     mats.push_back(g);
   }
 
+  {  // before the mip chains: they cost seconds and gigabytes for a texture that cannot fit
+    const ::cl::Device device = context.getInfo<CL_CONTEXT_DEVICES>().front();
+    check_texture_memory(assets.textures, device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>(),
+                         device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>());
+  }
   std::vector<uint32_t> texel_data;
   std::vector<gpu::TextureInfo> infos;
   for (const scene::Texture& t : assets.textures) {

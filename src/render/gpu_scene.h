@@ -33,6 +33,13 @@ struct MeshRange {
   uint32_t triangle_count = 0;
 };
 
+// Throws rp::cl::Error naming the largest texture, the need and the limit when the textures
+// with their mip chains do not fit the device: 4 bytes per texel here (packed sRGB) and 16 in
+// the gbuffer pass's linear copy (one buffer each, so the copy must fit `max_alloc_bytes`).
+// GpuScene checks this before building the chains; 0 = the driver did not say.
+void check_texture_memory(const std::vector<scene::Texture>& textures, uint64_t max_alloc_bytes,
+                          uint64_t global_mem_bytes);
+
 class GpuScene {
  public:
   // Converts and uploads meshes (all into one vertex and one triangle buffer), materials and

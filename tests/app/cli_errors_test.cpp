@@ -65,6 +65,31 @@ TEST(CliErrors, UnknownDeviceListsTheDevices) {
   EXPECT_TRUE(files_with_suffix(dir / "out", ".png").empty());
 }
 
+// Issue 18: an index too large for size_t printed "stoul" (exit 1); a large index that fits
+// is an unknown device like any other.
+TEST(CliErrors, HugeDeviceIndexNamesTheOption) {
+  TempDir dir;
+  CommandResult r = run_rolypoly("render --device 99999999999999999999 --size 8 --out " +
+                                 shell_quote((dir / "out").string()));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(Contains(r.err, "--device: 99999999999999999999 is not a device index"));
+  EXPECT_FALSE(Contains(r.err, "stoul"));
+  CommandResult big = run_rolypoly("render --device 123456789 --size 8 --frames 1 --out " +
+                                   shell_quote((dir / "out").string()));
+  EXPECT_EQ(big.exit_code, 1) << big.err;
+  EXPECT_TRUE(Contains(big.err, "no OpenCL device with index 123456789"));
+}
+
+// Issue 18: empty values were accepted silently (--record "" recorded nothing).
+TEST(CliErrors, EmptyValuesAreUsageErrors) {
+  for (const char* args : {"render --voxels ''", "bench --json ''", "run --record ''",
+                           "render --video ''", "render --out ''"}) {
+    CommandResult r = run_rolypoly(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_TRUE(Contains(r.err, "needs a value; an empty one is not allowed")) << args;
+  }
+}
+
 TEST(CliErrors, RunWithoutDisplaySaysSoAndPointsToRender) {
   CommandResult r = run_rolypoly("run --size 16 --frames 1", "env -u DISPLAY -u WAYLAND_DISPLAY");
   EXPECT_NE(r.exit_code, 0);

@@ -5,109 +5,18 @@
 // the same pictures (the replay's last frame equals the window's --capture).
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <chrono>
-#include <cstdio>
-#include <fstream>
 #include <regex>
 #include <sstream>
 #include <string>
-#include <thread>
 
 #include "cli_runner.h"
 #include "support/image_metrics.h"
 #include "x11_close.h"
+#include "xvfb_server.h"
 
 namespace rp::test {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// A private X server (Xvfb, 24-bit screen: GLFW needs an RGBA8 visual). -displayfd lets Xvfb
-// pick a free display and say which once it accepts connections.
-class XvfbServer {
- public:
-  XvfbServer() {
-    int fds[2];
-    if (pipe(fds) != 0) return;
-    pid_ = fork();
-    if (pid_ == 0) {
-      close(fds[0]);
-      const int null_fd = open("/dev/null", O_WRONLY);
-      dup2(null_fd, STDOUT_FILENO);
-      dup2(null_fd, STDERR_FILENO);
-      const std::string fd = std::to_string(fds[1]);
-      execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "640x480x24", "-nolisten",
-             "tcp", static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    close(fds[1]);
-    std::string number;
-    char c = 0;
-    while (pid_ > 0 && read(fds[0], &c, 1) == 1 && c != '\n') number += c;
-    close(fds[0]);
-    if (!number.empty()) display_ = ":" + number;
-  }
-  ~XvfbServer() {
-    if (pid_ <= 0) return;
-    kill(pid_, SIGTERM);
-    waitpid(pid_, nullptr, 0);
-  }
-  XvfbServer(const XvfbServer&) = delete;
-  XvfbServer& operator=(const XvfbServer&) = delete;
-  const std::string& display() const { return display_; }  // "" when it did not start
-
- private:
-  pid_t pid_ = -1;
-  std::string display_;
-};
-
-// `command` through /bin/sh in the background; returns its pid.
-pid_t spawn(const std::string& command) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  return pid;
-}
-
-// The exit status of `pid`, waiting at most `limit`; kills it and returns -1 after that.
-int wait_exit(pid_t pid, std::chrono::seconds limit) {
-  const auto end = Clock::now() + limit;
-  int status = 0;
-  while (waitpid(pid, &status, WNOHANG) == 0) {
-    if (Clock::now() > end) {
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      return -1;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-// stdout of a short shell command.
-std::string output_of(const std::string& command) {
-  std::string out;
-  if (std::FILE* pipe = popen(command.c_str(), "r")) {
-    char buffer[512];
-    while (std::fgets(buffer, sizeof buffer, pipe)) out += buffer;
-    pclose(pipe);
-  }
-  return out;
-}
-
-std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 TEST(WindowClose, ClosedMidRunExitsCleanlyAndTheRecordingReplays) {
   for (const char* program : {"Xvfb", "xdotool"})
@@ -119,23 +28,16 @@ TEST(WindowClose, ClosedMidRunExitsCleanlyAndTheRecordingReplays) {
   TempDir dir;
   const std::string log = (dir / "session.log").string();
   const std::string args = " --size 64 --marbles --fireball --seed 5";
-  const pid_t app = spawn(env + shell_quote(ROLYPOLY_BINARY) + " run --frames 0" + args +
-                          " --record " + shell_quote(log) + " --capture " +
-                          shell_quote((dir / "window.png").string()) + " >" +
-                          shell_quote((dir / "out.txt").string()) + " 2>" +
-                          shell_quote((dir / "err.txt").string()));
+  const pid_t app = spawn_shell(env + shell_quote(ROLYPOLY_BINARY) + " run --frames 0" + args +
+                                " --record " + shell_quote(log) + " --capture " +
+                                shell_quote((dir / "window.png").string()) + " >" +
+                                shell_quote((dir / "out.txt").string()) + " 2>" +
+                                shell_quote((dir / "err.txt").string()));
 
   // The window, then its title's frame rate: it has been showing frames for >= 0.5 s.
-  const std::string id = output_of(env + "timeout 60 xdotool search --sync --name '^rolypoly'");
-  ASSERT_FALSE(id.empty()) << "no rolypoly window appeared: " << read_text(dir / "err.txt");
-  const unsigned long window = std::stoul(id);  // the first id (one window)
-  std::string title;
-  for (const auto end = Clock::now() + std::chrono::seconds(120);
-       title.find("fps") == std::string::npos && Clock::now() < end;
-       std::this_thread::sleep_for(std::chrono::milliseconds(100)))
-    title = output_of(env + "xdotool getwindowname " + std::to_string(window) + " 2>/dev/null");
-  ASSERT_NE(title.find("fps"), std::string::npos)
-      << "the window never showed its frame rate; stderr: " << read_text(dir / "err.txt");
+  const unsigned long window = wait_for_rolypoly_window(x.display());
+  ASSERT_NE(window, 0ul) << "no rolypoly window showed its frame rate; stderr: "
+                         << read_text(dir / "err.txt");
 
   ASSERT_EQ(send_wm_delete_window(x.display(), window), "");
   const int exit_code = wait_exit(app, std::chrono::seconds(60));

@@ -99,7 +99,7 @@ TEST(InputLog, RoundTripIsBitExact) {
     events.push_back(InputEvent::mouse(step, type, {v[0], v[1]}, {std::abs(v[2]) + 1.0f, std::abs(v[3]) + 1.0f}));
     step += rng.next_u32() % 3;
   }
-  events.push_back(InputEvent::key_press(std::numeric_limits<uint64_t>::max(), 'R'));
+  events.push_back(InputEvent::key_press(rp::scene::kMaxInputStep, 'R'));  // the largest step
 
   const std::string text = to_text(events);
   const std::vector<InputEvent> back = from_text(text);
@@ -147,7 +147,11 @@ TEST(InputLog, EachMalformedLineNamesFileLineAndProblem) {
       {"step x key S\n", 2, "step number"},
       {"step -1 key S\n", 2, "step number"},
       {"step 1.5 key S\n", 2, "step number"},
-      {"step 99999999999999999999 key S\n", 2, "step number"},
+      {"step 99999999999999999999 key S\n", 2, "step 99999999999999999999 is out of range"},
+      // Issue 18: steps the world cannot count to (int) are errors, not truncated (this one
+      // used to replay as step 4).
+      {"step 4294967300 frame\n", 2, "step 4294967300 is out of range: steps go up to 2147483647"},
+      {"step 2147483648 key S\n", 2, "out of range"},
       {"step 1 key s\n", 2, "invalid key 's'"},
       {"step 1 key Enter\n", 2, "invalid key 'Enter'"},
       {"step 1 mouse_down 1 2 720\n", 2, "missing fields"},
@@ -191,6 +195,7 @@ TEST(InputLog, WriterRejectsEventsItCouldNotReadBack) {
   EXPECT_THROW(to_text({InputEvent::mouse(1, InputEventType::MouseMove, {NAN, 2.0f}, {720.0f, 720.0f})}),
                InputLogError);
   EXPECT_THROW(to_text({InputEvent::key_press(2, 'S'), InputEvent::key_press(1, 'S')}), InputLogError);
+  EXPECT_THROW(to_text({InputEvent::frame(rp::scene::kMaxInputStep + 1)}), InputLogError);
 }
 
 TEST(InputLog, FilesRoundTripAndMissingFilesAreNamed) {
