@@ -594,7 +594,9 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
     }
     occ += fmax(1.0f - rp_soft_plane_lit(shadow, &s, tx, ty), thick);
   }
-  const float8 vis = 1.0f - occ * (1.0f / (float)RP_PCSS_FILTER_TAPS);
+  /* (N - occ) / N, not 1 - occ / N: with a tap count that is no power of two, a contracted
+   * fma(-occ, 1 / N, 1) gives -3e-8 for occ = N */
+  const float8 vis = ((float)RP_PCSS_FILTER_TAPS - occ) * (1.0f / (float)RP_PCSS_FILTER_TAPS);
   /* decided lanes: lit (mip, outside, no blocker found) or umbra (every search tap blocked) */
   return select(select(vis, zero, umbra > 0.5f), one, fmax(done, none) > 0.5f);
 #else /* VSSM: over the search disk above */

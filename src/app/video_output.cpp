@@ -12,6 +12,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/output_path.h"
+
 extern char** environ;
 
 namespace rp::app {
@@ -85,7 +87,16 @@ VideoPipe::VideoPipe(const std::string& path, uint32_t width, uint32_t height, u
   if (!on_path("ffmpeg"))
     throw std::runtime_error("--video needs ffmpeg, which is not installed (apt-get install "
                              "ffmpeg), or leave out --video: the PNG frames are written anyway");
-  const std::filesystem::path p(path);
+  // The output path rules of io/output_path.h: a symlink is followed (the file it points to is
+  // replaced, the link stays); a device or FIFO is refused: ffmpeg finishes a video with seeks
+  // back to its header, which a pipe cannot take.
+  const io::OutputTarget target = io::resolve_output(path);
+  if (target.kind != io::OutputTarget::Kind::kReplace)
+    throw std::runtime_error("--video: cannot write " + path +
+                             ": a video is finished with seeks back to its start, so it must "
+                             "go to a regular file (not a device, FIFO or pipe)");
+  path_ = target.path.string();
+  const std::filesystem::path p(path_);
   // Unique per process (two renders may encode into one folder); the extension stays last.
   temp_path_ = (p.parent_path() / (p.stem().string() + ".partial-" + std::to_string(::getpid()) +
                                    p.extension().string()))

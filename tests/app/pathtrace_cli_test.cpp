@@ -60,8 +60,11 @@ void expect_layers_add_up(const Layers& l, double relative, double absolute) {
   for (size_t i = 0; i < n; ++i) {
     const double c = l.combined[i];
     const double sum = double(l.direct[i]) + l.indirect[i] + l.emission[i];
-    for (float v : {l.combined[i], l.direct[i], l.indirect[i], l.emission[i], l.albedo[i]})
-      ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << "value " << v << " at float " << i;
+    for (auto [name, v] : {std::pair{"combined", l.combined[i]}, std::pair{"direct", l.direct[i]},
+                           std::pair{"indirect", l.indirect[i]},
+                           std::pair{"emission", l.emission[i]}, std::pair{"albedo", l.albedo[i]}})
+      ASSERT_TRUE(std::isfinite(v) && v >= 0.0f)
+          << name << " value " << v << " at float " << i;
     EXPECT_LE(l.albedo[i], 1.0f);
     if (std::abs(c - sum) > relative * std::max(std::abs(c), std::abs(sum)) + absolute && ++bad < 5)
       ADD_FAILURE() << "float " << i << ": combined " << c << " but direct + indirect + emission "

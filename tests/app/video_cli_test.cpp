@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -89,6 +90,32 @@ TEST(VideoCli, UnwritableFolderFailsBeforeRenderingAndLeavesNoFile) {
   EXPECT_NE(r.err.find("Not a directory"), std::string::npos) << r.err;
   EXPECT_EQ(r.out.find("device"), std::string::npos) << "failed only after opening the device";
   EXPECT_TRUE(files_with_suffix(dir / "f", ".png").empty());
+}
+
+// The output path rules (io/output_path.h): a symlink is followed, the link stays a link; a
+// FIFO (or device) is refused before rendering: ffmpeg finishes an mp4 with seeks.
+TEST(VideoCli, SymlinksAreFollowedAndFifosRefused) {
+  if (!have_program("ffmpeg")) GTEST_SKIP() << "no ffmpeg";
+  TempDir dir;
+  fs::create_directories(dir / "real");
+  fs::create_symlink(dir / "real" / "v.mp4", dir / "link.mp4");
+  CommandResult r = run_rolypoly("render --size 32 --frames 2 --video " +
+                                 shell_quote((dir / "link.mp4").string()) + " --out " +
+                                 shell_quote((dir / "f").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(dir / "link.mp4"));
+  EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(dir / "real" / "v.mp4")));
+  EXPECT_GT(fs::file_size(dir / "real" / "v.mp4"), 0u);
+  EXPECT_TRUE(partial_files(dir / "real").empty());
+
+  const fs::path fifo = dir / "pipe.mp4";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0644), 0);
+  r = run_rolypoly("render --size 32 --frames 2 --video " + shell_quote(fifo.string()) +
+                   " --out " + shell_quote((dir / "g").string()));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("must go to a regular file"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_TRUE(partial_files(dir.path()).empty());
 }
 
 TEST(VideoCli, FfmpegThatCannotEncodeIsNamedAndLeavesNoFile) {
