@@ -31,7 +31,10 @@ set(RP_ACCURACY_REQUIRE_WALL_HUE ON)      # --require-wall-hue: side-wall sign(R
 # inner penumbra and the texture, not the edge), penumbra width error 0.07 (hard: 0.83, so this
 # limit is what fails when the soft shadows break), albedo view 28.8 dB (before the mipmaps:
 # 26.3). Issue 15's targets (35 dB, 0.25) are for 360x360 (bench --accuracy's default).
-set(RP_ACCURACY_MIN_DIRECT_PSNR_FLOOR 27.5)  # --min-direct-psnr-floor (dB): default shadows
+# After PCSS learned thick blockers (the shadow map's farthest plane) and the lamp's disk model:
+# floor 34.4 dB (hard 28.4), penumbra width error 0.19 (tumbler 0.81 x, marble 0.91 x), so the
+# floor limit rises to 32 dB (the previous PCSS, 28.4 dB here, would fail it).
+set(RP_ACCURACY_MIN_DIRECT_PSNR_FLOOR 32)    # --min-direct-psnr-floor (dB): default shadows
 set(RP_ACCURACY_MAX_PENUMBRA_ERROR 0.25)     # --max-penumbra-error: tumbler and marble, worst
 set(RP_ACCURACY_MIN_ALBEDO_PSNR 27.5)        # --min-albedo-psnr (dB): albedo view, image
 # ------------------------------------------------------------------------------------------------
