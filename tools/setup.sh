@@ -93,7 +93,7 @@ case "$mode" in
     # dlopen()s leaks 240 bytes that LSan can only attribute to "<unknown module>".
     export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
     export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-    window_tests='WindowUnderXvfb|RecordedWindowSession|WindowClose|RunRecordEnd'
+    window_tests='WindowUnderXvfb|RecordedWindowSession|WindowClose|RunRecordEnd|ShadowKey|OutputIntegrityCli.RunRecord'
     ASAN_OPTIONS="detect_leaks=1" \
       ctest --test-dir build-asan --output-on-failure -j2 -LE 'oclgrind|soak' -E "$window_tests"
     ASAN_OPTIONS="detect_leaks=0" \
