@@ -121,6 +121,7 @@ class LightFixture {
                                                                   planes > 1);
     rp::passes::LightPass pass(ctx, rp::test::programs(), filter);
     rp::passes::LightComponents components{::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16),
+                                           ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16),
                                            ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16)};
     switch (mode) {
       case Mode::kCones:
