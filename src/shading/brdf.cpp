@@ -139,6 +139,27 @@ BrdfValue eval_brdf(const SurfaceBsdf& s, glm::vec3 n, glm::vec3 wo, glm::vec3 w
   return out;
 }
 
+LampShading shade_lamp(const SurfaceBsdf& s, glm::vec3 n, glm::vec3 wo, glm::vec3 wi,
+                       float widen, const BrdfTables& tables) {
+  LampShading out;
+  if (!s.coated()) return out;
+  const float mo = std::max(glm::dot(n, wo), kMinCos), mi = std::max(glm::dot(n, wi), kMinCos);
+  const glm::vec3 f0 = s.spec_f0();
+  const TableEntry to = tables.lookup(mo, s.roughness), ti = tables.lookup(mi, s.roughness);
+  const glm::vec3 f_add = ms_factor(f0, to.e_avg);
+  const float aw = std::min(ggx_alpha(s.roughness) + widen, 1.0f);
+  const glm::vec3 h = glm::normalize(wo + wi);
+  const float v_dot_h = std::clamp(glm::dot(wo, h), 0.0f, 1.0f);
+  const glm::vec3 fresnel = f0 + (1.0f - f0) * schlick_weight(v_dot_h);
+  out.specular = kPi * ggx_d(std::max(glm::dot(n, h), 0.0f), aw) * smith_vis(mo, mi, aw) * fresnel +
+                 (1.0f - to.e) * (1.0f - ti.e) / std::max(1.0f - to.e_avg, 1.0e-4f) * f_add;
+  const glm::vec3 eo = coat_albedo(f0, to, f_add), ei = coat_albedo(f0, ti, f_add);
+  out.diffuse_weight =
+      s.metal ? glm::vec3(0.0f) : (1.0f - eo) * (1.0f - ei) / (1.0f - coat_albedo_avg(f0, to, f_add));
+  out.view_albedo = eo;
+  return out;
+}
+
 glm::vec3 coat_albedo_at(const SurfaceBsdf& s, float mu_o, const BrdfTables& tables) {
   if (!s.coated()) return glm::vec3(0.0f);
   const glm::vec3 f0 = s.spec_f0();

@@ -149,6 +149,19 @@ inline float vndf_reflect_pdf(float mu_o, float n_dot_h, float alpha) {
   return smith_g1(mu_o, alpha) * ggx_d(n_dot_h, alpha) / (4.0f * std::max(mu_o, kMinCos));
 }
 
+// The light pass's lamp shading (kernels/common/brdf.h rp_brdf_lamp8), rolypoly's units: the
+// lamp's radiance toward wo is (albedo * diffuse_weight + specular) * I * cos / (d^2 + a^2) *
+// falloff * shadow. `widen` (a / 2d of the lamp disk) widens the single-scattering lobe:
+// D and Vis take alpha' = min(alpha + widen, 1). With widen = 0, albedo * diffuse_weight +
+// specular = pi * eval_brdf(...).total().
+struct LampShading {
+  glm::vec3 diffuse_weight{1.0f};  // w_d (1 without a coat, 0 for a metal)
+  glm::vec3 specular{0.0f};        // pi (f_ss + f_ms)
+  glm::vec3 view_albedo{0.0f};     // E_spec(mu_o)
+};
+LampShading shade_lamp(const SurfaceBsdf& s, glm::vec3 n, glm::vec3 wo, glm::vec3 wi,
+                       float widen, const BrdfTables& tables);
+
 // scene::Specular -> SurfaceBsdf at a point with diffuse colour `albedo`.
 inline SurfaceBsdf make_bsdf(const scene::Specular& spec, glm::vec3 albedo) {
   SurfaceBsdf s;

@@ -161,6 +161,25 @@ TEST(Brdf, SamplerMatchesItsDensity) {
   }
 }
 
+TEST(Brdf, LampShadingWithoutWideningIsPiTimesTheBrdf) {
+  truth::Pcg32 rng(17, 2);
+  const glm::vec3 n(0.0f, 0.0f, 1.0f);
+  for (int k = 0; k < 500; ++k) {
+    SurfaceBsdf s;
+    s.roughness = 0.05f + 0.95f * rng.uniform();
+    s.metal = k % 4 == 0;
+    s.f0 = s.metal ? 0.0f : 0.02f + 0.1f * rng.uniform();
+    s.albedo = glm::vec3(rng.uniform(), rng.uniform(), rng.uniform());
+    const glm::vec3 wo = dir_at(0.05f + 0.95f * rng.uniform(), 6.2832f * rng.uniform());
+    const glm::vec3 wi = dir_at(0.05f + 0.95f * rng.uniform(), 6.2832f * rng.uniform());
+    const LampShading l = shade_lamp(s, n, wo, wi, 0.0f, tables());
+    const glm::vec3 want = kPi * eval_brdf(s, n, wo, wi, tables()).total();
+    const glm::vec3 got = s.albedo * l.diffuse_weight + l.specular;
+    for (int c = 0; c < 3; ++c) ASSERT_NEAR(got[c], want[c], 1.0e-4f * std::max(1.0f, want[c]));
+    EXPECT_EQ(l.view_albedo, coat_albedo_at(s, wo.z, tables()));
+  }
+}
+
 TEST(BrdfTables, EMatchesAnIndependentMonteCarloEstimate) {
   // E(mu) = int D Vis cos dw (F = 1) by GGX normal-distribution sampling (pdf of h:
   // D (n.h); not the visible-normal grid the table uses), random, 200k samples per point.
