@@ -147,11 +147,14 @@ LampShading shade_lamp(const SurfaceBsdf& s, glm::vec3 n, glm::vec3 wo, glm::vec
   const glm::vec3 f0 = s.spec_f0();
   const TableEntry to = tables.lookup(mo, s.roughness), ti = tables.lookup(mi, s.roughness);
   const glm::vec3 f_add = ms_factor(f0, to.e_avg);
-  const float aw = std::min(ggx_alpha(s.roughness) + widen, 1.0f);
+  const float alpha = ggx_alpha(s.roughness);
+  const float aw = std::min(std::sqrt(alpha * alpha + widen * widen), 1.0f);
   const glm::vec3 h = glm::normalize(wo + wi);
   const float v_dot_h = std::clamp(glm::dot(wo, h), 0.0f, 1.0f);
   const glm::vec3 fresnel = f0 + (1.0f - f0) * schlick_weight(v_dot_h);
-  out.specular = kPi * ggx_d(std::max(glm::dot(n, h), 0.0f), aw) * smith_vis(mo, mi, aw) * fresnel +
+  const float n_dot_h = std::max(glm::dot(n, h), 0.0f);
+  const float d = std::min(ggx_d(n_dot_h, alpha), ggx_d(n_dot_h, aw));
+  out.specular = kPi * d * smith_vis(mo, mi, aw) * fresnel +
                  (1.0f - to.e) * (1.0f - ti.e) / std::max(1.0f - to.e_avg, 1.0e-4f) * f_add;
   const glm::vec3 eo = coat_albedo(f0, to, f_add), ei = coat_albedo(f0, ti, f_add);
   out.diffuse_weight =

@@ -151,9 +151,10 @@ inline float vndf_reflect_pdf(float mu_o, float n_dot_h, float alpha) {
 
 // The light pass's lamp shading (kernels/common/brdf.h rp_brdf_lamp8), rolypoly's units: the
 // lamp's radiance toward wo is (albedo * diffuse_weight + specular) * I * cos / (d^2 + a^2) *
-// falloff * shadow. `widen` (a / 2d of the lamp disk) widens the single-scattering lobe:
-// D and Vis take alpha' = min(alpha + widen, 1). With widen = 0, albedo * diffuse_weight +
-// specular = pi * eval_brdf(...).total().
+// falloff * shadow. `widen` (a / 2d of the lamp disk) widens the single-scattering lobe toward
+// the lamp's image: alpha' = min(sqrt(alpha^2 + widen^2), 1), D = min(D_alpha, D_alpha') (the
+// widened peak, the surface's own tails), Vis with alpha'. With widen = 0, albedo *
+// diffuse_weight + specular = pi * eval_brdf(...).total().
 struct LampShading {
   glm::vec3 diffuse_weight{1.0f};  // w_d (1 without a coat, 0 for a metal)
   glm::vec3 specular{0.0f};        // pi (f_ss + f_ms)
