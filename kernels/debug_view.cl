@@ -13,7 +13,8 @@
  *               the top), grey q((linear light depth - near) / (far - near)) over the light's
  *               clip range, no sRGB; empty texels (1.0) white
  *   radiance    q(srgb(T(rgb))) with T(x) = x / (1 + x): the final image's tone map and encode,
- *               for the light pass's direct and indirect components (HDR float4 input)
+ *               for the light pass's direct, indirect and specular components (HDR float4
+ *               input)
  *   voxels      camera rays through one volume of the voxel chain (level, direction), every
  *               voxel a ray crosses composited front to back once (3D DDA, voxel values as
  *               stored), then tone mapped like radiance; rays missing the box are black

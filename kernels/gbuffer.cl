@@ -7,7 +7,8 @@
  *   albedo   float4 linear rgb, a = 1 covered / 0 background
  *   normal_depth float4 world unit normal, w linear view depth (-z_view; far plane if background)
  *   position float4 world position, w = 1 covered / 0 background
- *   emission float4 rgb emitted radiance
+ *   emission float4 rgb emitted radiance, w the surface's gloss code (shared/brdf_layout.h; 0 =
+ *            matte), copied from Material.emission.w / Sphere.emission.w
  *   velocity float2 pixels, this frame minus previous, unjittered, +y down; 0 for background
  *
  * gbuffer_resolve: one work-item per span of RP_SPAN pixels of a row (common/span.h: 8 on
@@ -59,7 +60,8 @@ __kernel void gbuffer_decode_texels(__global const uint* texels, __global float4
 /* Clip coordinates -> pixel coordinates (rp_clip_to_screen), per lane. */
 #define GB_SCREEN_X(cx, inv_w, size_x) (((cx) * (inv_w) * 0.5f + 0.5f) * (size_x))
 #define GB_SCREEN_Y(cy, inv_w, size_y) ((0.5f - (cy) * (inv_w) * 0.5f) * (size_y))
-/* Albedo and emission (float4 rgb) into the span's ar..ab / er..eb lanes selected by `group`. */
+/* Albedo and emission (float4: rgb, emission.w the gloss code) into the span's ar..ab / er..ew
+ * lanes selected by `group`. */
 #define GB_SELECT_ALBEDO_EMISSION(alb4, emi4, group)         \
   do {                                                       \
     const float4 alb_ = (alb4), emi_ = (emi4);               \
@@ -69,6 +71,7 @@ __kernel void gbuffer_decode_texels(__global const uint* texels, __global float4
     er = select(er, (rp_spanf)(emi_.x), group);              \
     eg = select(eg, (rp_spanf)(emi_.y), group);              \
     eb = select(eb, (rp_spanf)(emi_.z), group);              \
+    ew = select(ew, (rp_spanf)(emi_.w), group);              \
   } while (0)
 
 /* ---- texture footprint (filtered modes) ----
@@ -248,6 +251,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
   rp_spanf nx = 0.0f, ny = 0.0f, nz = 0.0f;    /* world normal */
   rp_spanf ar = 0.0f, ag = 0.0f, ab = 0.0f;    /* albedo before texture */
   rp_spanf er = 0.0f, eg = 0.0f, eb = 0.0f;    /* emission */
+  rp_spanf ew = 0.0f;                          /* gloss code (0: matte, background) */
   rp_spanf tu = 0.0f, tv = 0.0f;               /* texture coordinates */
   rp_spani textured = (rp_spani)(0);          /* lanes with a texture: its size and offset */
   rp_spanf tex_w = 1.0f, tex_h = 1.0f;
@@ -446,7 +450,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
                         n);
 #else
   rp_store_span_quads_f(px, py, pz, one, out_position + 4 * pixel, n);
-  rp_store_span_quads_f(er, eg, eb, (rp_spanf)(0.0f), out_emission + 4 * pixel, n);
+  rp_store_span_quads_f(er, eg, eb, ew, out_emission + 4 * pixel, n);
 #endif
 #ifndef RP_GBUFFER_LOD_OUT
   rp_store_span_pairs_f(vx, vy, out_velocity + 2 * pixel, n);

@@ -1,9 +1,18 @@
 /* Light pass (SPEC 6.5): GBuffer + shadow map + voxel radiance chain -> HDR radiance (float4 per
  * pixel, rgb linear, a = 1 covered / 0 background).
  *
- *   L_out = albedo * I * cos(theta) / d^2 * falloff(l.y) * shadow      (direct, point lamp)
- *         + albedo * D(p, n)                                             (indirect, cone traced)
+ *   L_out = (albedo * w_d + spec) * I * cos(theta) / d^2 * falloff(l.y) * shadow   (direct)
+ *         + (albedo * w_i + E_spec(mu_o)) * D(p, n)                       (indirect, cone traced)
  *         + emission
+ *
+ * The surface model (issue 16, common/brdf.h; the GBuffer's emission.w carries the gloss code):
+ * w_d the lamp's diffuse weight, spec = pi f_spec toward the view (lamp-widened GGX + Kulla-
+ * Conty), E_spec(mu_o) the coat's albedo toward the view and w_i = 1 - E_spec(mu_o) (0 for a
+ * metal). Matte pixels (code 0): w_d = w_i = 1, spec = E_spec = 0, the Lambertian pass as it
+ * was. The indirect specular term E_spec(mu_o) * D treats the gathered light as uniform over
+ * the hemisphere (what a rough coat sees); issue 16 part 2 replaces it by a reflection cone
+ * and screen-space reflections. Pixels whose eight-pixel chunk has no coated surface skip the
+ * surface model entirely.
  *
  * I = FrameConstants.light_intensity.rgb (radiant intensity), l = unit vector from the surface to
  * the lamp centre, d its distance. Background pixels: 0.
@@ -23,9 +32,10 @@
  * 8-wide on PoCL; light_shade is per-pixel code (its cost is the cones).
  *
  * Variants (-D):
- *   RP_LIGHT_SPLIT=1: also writes the direct lamp term (rgb, a = covered) and the indirect term
- *     (rgb, a = covered) into two extra float4 buffers, for the debug views; emission is in
- *     neither. The default build writes only hdr.
+ *   RP_LIGHT_SPLIT=1: also writes the direct lamp term (rgb, a = covered), the indirect term
+ *     (rgb, a = covered) and the specular part of both (rgb, a = covered) into three extra
+ *     float4 buffers, for the debug views and the accuracy report; emission is in none. The
+ *     default build writes only hdr.
  *
  * The direct term (lamp falloff from l.y, shadow-map projection, bias and taps) is
  * common/direct_light.h, shared with the voxelizer; the formulas are documented there.
@@ -47,6 +57,7 @@
 #include "common/indirect_simd.h"
 
 #include "common/soft_shadow.h"
+#include "common/brdf.h"
 
 #ifndef RP_LIGHT_SPLIT
 #define RP_LIGHT_SPLIT 0
@@ -69,6 +80,44 @@ inline float light_direct(__global const FrameConstants* restrict frame,
   return k.s0;
 }
 
+/* Surface-model weights of eight lanes (common/brdf.h) for the lamp at frame->light_pos seen
+ * from camera_pos: w* lamp diffuse weight, s* lamp specular (pi f), e* coat albedo toward the
+ * view, i* indirect diffuse weight. Chunks without a coated lane skip the model (w = i = 1,
+ * s = e = 0). */
+inline void light_surface8(__global const FrameConstants* restrict frame,
+                           __global const float4* restrict brdf_table, float8 code, float8 ar,
+                           float8 ag, float8 ab, float8 px, float8 py, float8 pz, float8 nx,
+                           float8 ny, float8 nz, float8* wr, float8* wg, float8* wb, float8* sr,
+                           float8* sg, float8* sb, float8* er, float8* eg, float8* eb,
+                           float8* ir, float8* ig, float8* ib) {
+  const float8 zero = 0.0f, one = 1.0f;
+  if (!any(code != 0.0f)) {
+    *wr = *wg = *wb = *ir = *ig = *ib = one;
+    *sr = *sg = *sb = *er = *eg = *eb = zero;
+    return;
+  }
+  const float4 lp = frame->light_pos, cam = frame->camera_pos;
+  float8 lx = lp.x - px, ly = lp.y - py, lz = lp.z - pz;
+  const float8 inv_l = rsqrt(lx * lx + ly * ly + lz * lz);
+  lx *= inv_l;
+  ly *= inv_l;
+  lz *= inv_l;
+  float8 vx = cam.x - px, vy = cam.y - py, vz = cam.z - pz;
+  const float8 inv_v = rsqrt(vx * vx + vy * vy + vz * vz);
+  vx *= inv_v;
+  vy *= inv_v;
+  vz *= inv_v;
+  /* the lamp disk's radius over twice its distance (common/direct_light.h's disk model) */
+  const float8 dy = RP_CEILING_Y - py, dx = lp.x - px, dz = lp.z - pz;
+  const float8 widen = 0.5f * sqrt(rp_lamp_disk_a2(lp)) * rsqrt(dx * dx + dy * dy + dz * dz);
+  rp_brdf_lamp8(brdf_table, code, ar, ag, ab, nx, ny, nz, vx, vy, vz, lx, ly, lz, widen, wr, wg,
+                wb, sr, sg, sb, er, eg, eb);
+  const int8 metal = convert_int8(code) >= RP_GLOSS_METAL;
+  *ir = select(1.0f - *er, zero, metal);
+  *ig = select(1.0f - *eg, zero, metal);
+  *ib = select(1.0f - *eb, zero, metal);
+}
+
 /* Default: voxels, the radiance chain (shared/voxel_layout.h) of voxel_resolution^3 at level 0
  * with voxel_levels levels. */
 __kernel void light_shade(__global const FrameConstants* restrict frame,
@@ -78,12 +127,14 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
                           __global const float4* restrict emission_plane,
                           __global const float* restrict shadow,
                           __global const float* restrict shadow_mips,
+                          __global const float4* restrict brdf_table,
                           __global const float4* restrict voxels,
                           const uint voxel_resolution,
                           const uint voxel_levels,
 #if RP_LIGHT_SPLIT
                           __global float4* restrict direct_out,
                           __global float4* restrict indirect_out,
+                          __global float4* restrict specular_out,
 #endif
                           __global float4* restrict hdr) {
   const uint x = (uint)get_global_id(0), y = (uint)get_global_id(1);
@@ -97,19 +148,32 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
 #if RP_LIGHT_SPLIT
     direct_out[pixel] = (float4)(0.0f);
     indirect_out[pixel] = (float4)(0.0f);
+    specular_out[pixel] = (float4)(0.0f);
 #endif
     return;
   }
   const float3 albedo = albedo_plane[pixel].xyz;
   const float3 n = normal_depth_plane[pixel].xyz;
   const float3 p = pos.xyz;
+  const float4 emission = emission_plane[pixel];
   const float k = light_direct(frame, shadow, shadow_mips, p.x, p.y, p.z, n.x, n.y, n.z, x, y);
-  const float3 direct = albedo * (frame->light_intensity.xyz * k);
-  const float3 indirect = albedo * rp_cone_diffuse16(voxels, voxel_resolution, voxel_levels, p, n);
-  hdr[pixel] = (float4)(direct + indirect + emission_plane[pixel].xyz, 1.0f);
+  /* the surface model with the pixel in every lane; lane 0 kept */
+  float8 w[3], sp[3], e[3], iw[3];
+  light_surface8(frame, brdf_table, (float8)(emission.w), (float8)(albedo.x), (float8)(albedo.y),
+                 (float8)(albedo.z), (float8)(p.x), (float8)(p.y), (float8)(p.z), (float8)(n.x),
+                 (float8)(n.y), (float8)(n.z), &w[0], &w[1], &w[2], &sp[0], &sp[1], &sp[2],
+                 &e[0], &e[1], &e[2], &iw[0], &iw[1], &iw[2]);
+  const float3 lamp = frame->light_intensity.xyz * k;
+  const float3 spec_direct = (float3)(sp[0].s0, sp[1].s0, sp[2].s0) * lamp;
+  const float3 direct = albedo * (float3)(w[0].s0, w[1].s0, w[2].s0) * lamp + spec_direct;
+  const float3 irr = rp_cone_diffuse16(voxels, voxel_resolution, voxel_levels, p, n);
+  const float3 spec_indirect = (float3)(e[0].s0, e[1].s0, e[2].s0) * irr;
+  const float3 indirect = albedo * (float3)(iw[0].s0, iw[1].s0, iw[2].s0) * irr + spec_indirect;
+  hdr[pixel] = (float4)(direct + indirect + emission.xyz, 1.0f);
 #if RP_LIGHT_SPLIT
   direct_out[pixel] = (float4)(direct, 1.0f);
   indirect_out[pixel] = (float4)(indirect, 1.0f);
+  specular_out[pixel] = (float4)(spec_direct + spec_indirect, 1.0f);
 #endif
 }
 
@@ -144,6 +208,7 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
                             __global const float* restrict emission,
                             __global const float* restrict shadow,
                             __global const float* restrict shadow_mips,
+                            __global const float4* restrict brdf_table,
                             __global const float* restrict lr_irradiance,
                             __global const float* restrict lr_geom,
                             const uint lr_width,
@@ -154,6 +219,7 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
 #if RP_LIGHT_SPLIT
                             __global float* restrict direct_out,
                             __global float* restrict indirect_out,
+                            __global float* restrict specular_out,
 #endif
                             __global float* restrict hdr) {
   const uint x0 = 8u * (uint)get_global_id(0), y = (uint)get_global_id(1);
@@ -231,9 +297,17 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
   float8 ar, ag, ab, aw, er, eg, eb, ew;
   rp_load8_float4(albedo, row, x0, lanes, &ar, &ag, &ab, &aw);
   rp_load8_float4(emission, row, x0, lanes, &er, &eg, &eb, &ew);
+  float8 wr, wg, wb, sr, sg, sb, vr, vg, vb, ir, ig, ib; /* the surface model (see top) */
+  light_surface8(frame, brdf_table, ew, ar, ag, ab, px, py, pz, nx, ny, nz, &wr, &wg, &wb, &sr,
+                 &sg, &sb, &vr, &vg, &vb, &ir, &ig, &ib);
   const float4 li = frame->light_intensity;
-  const float8 dr = ar * (li.x * k), dg = ag * (li.y * k), db = ab * (li.z * k);
-  const float8 jr = ar * irr[0], jg = ag * irr[1], jb = ab * irr[2];
+  const float8 lr = li.x * k, lg = li.y * k, lb = li.z * k;
+  const float8 spr = sr * lr + vr * irr[0], spg = sg * lg + vg * irr[1],
+               spb = sb * lb + vb * irr[2]; /* specular: direct + indirect */
+  const float8 dr = ar * wr * lr + sr * lr, dg = ag * wg * lg + sg * lg,
+               db = ab * wb * lb + sb * lb;
+  const float8 jr = ar * ir * irr[0] + vr * irr[0], jg = ag * ig * irr[1] + vg * irr[1],
+               jb = ab * ib * irr[2] + vb * irr[2];
   const float8 cv = select(zero, one, covered);
   rp_store8_float4(hdr, row, x0, lanes, select(zero, dr + jr + er, covered),
                    select(zero, dg + jg + eg, covered), select(zero, db + jb + eb, covered), cv);
@@ -242,5 +316,7 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
                    select(zero, db, covered), cv);
   rp_store8_float4(indirect_out, row, x0, lanes, select(zero, jr, covered),
                    select(zero, jg, covered), select(zero, jb, covered), cv);
+  rp_store8_float4(specular_out, row, x0, lanes, select(zero, spr, covered),
+                   select(zero, spg, covered), select(zero, spb, covered), cv);
 #endif
 }

@@ -56,14 +56,16 @@ SceneAssets make_demo_assets(const std::string& asset_dir) {
   assets.textures.push_back(load_texture(asset_dir + "/tumbler_face.png", "tumbler_face"));
 
   assets.materials = {
-      {"floor_wood", box_colors::kFloorTint, glm::vec3(0.0f), static_cast<int>(demo::kWoodTexture)},
+      {"floor_wood", box_colors::kFloorTint, glm::vec3(0.0f), static_cast<int>(demo::kWoodTexture),
+       demo::kFloorSpecular},
       {"ceiling", box_colors::kWhite, glm::vec3(0.0f), -1},
       {"back_wall", box_colors::kWhite, glm::vec3(0.0f), -1},
       {"left_wall_orange", box_colors::kOrange, glm::vec3(0.0f), -1},
       {"right_wall_sky_blue", box_colors::kSkyBlue, glm::vec3(0.0f), -1},
       {"lamp", glm::vec3(0.0f), box_colors::kLampEmission, -1},
       // The painted texture carries the colour; albedo 1 keeps it as painted.
-      {"tumbler", glm::vec3(1.0f), glm::vec3(0.0f), static_cast<int>(demo::kTumblerTexture)},
+      {"tumbler", glm::vec3(1.0f), glm::vec3(0.0f), static_cast<int>(demo::kTumblerTexture),
+       demo::kTumblerSpecular},
   };
 
   BoxMaterialIds box_ids;

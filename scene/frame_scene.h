@@ -50,11 +50,21 @@ struct Mesh {
   std::vector<uint32_t> materials;     // per triangle, index into SceneAssets::materials
 };
 
+// The specular coat over a surface's Lambertian base (issue 16; the model and its formulas are
+// src/shading/brdf.h). The default is no coat: plain Lambert.
+struct Specular {
+  float roughness = 1.0f;  // perceptual roughness in [0, 1]; GGX alpha = roughness^2
+  float f0 = 0.0f;         // dielectric coat's reflectance at normal incidence, ((n-1)/(n+1))^2
+                           // (0.04 for n = 1.5; at most 0.249); 0 and not metal = no coat
+  bool metal = false;      // true: a metal, F0 = the albedo colour, no diffuse base
+};
+
 struct Material {
   std::string name;
   glm::vec3 albedo{0.8f};
   glm::vec3 emission{0.0f};
   int texture = -1;                    // index into SceneAssets::textures, or -1
+  Specular specular{};                 // default: matte (no coat)
 };
 
 // RGBA8 texture, sRGB encoded, rows top to bottom.
@@ -88,6 +98,7 @@ struct Sphere {
   float radius = 0.05f;
   glm::vec3 albedo{0.8f};
   glm::vec3 emission{0.0f};
+  Specular specular{};                 // marbles: demo::kMarbleSpecular; others matte
   bool casts_shadow = true;            // marbles occlude; fireballs and particles only emit
 };
 

@@ -390,8 +390,10 @@ void World::fill_frame(FrameScene& out) const {
     out.instances.push_back(t);
   }
 
-  auto add = [&out](const Ball& b, bool casts_shadow) {
+  auto add = [&out](const Ball& b, bool marble) {
+    const bool casts_shadow = marble;
     Sphere s;
+    if (marble) s.specular = demo::kMarbleSpecular;  // fireballs and particles: matte
     s.center = b.sphere.body.p;
     s.prev_center = b.prev_center;
     s.radius = b.sphere.radius;

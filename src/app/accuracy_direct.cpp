@@ -197,6 +197,7 @@ scene::FrameScene direct_frame(const scene::SceneAssets& assets, uint32_t frame_
     s.center = s.prev_center = glm::vec3(m.xz.x, -1.0f + kMarbleRadius, m.xz.y);
     s.radius = kMarbleRadius;
     s.albedo = m.albedo;
+    s.specular = scene::demo::kMarbleSpecular;  // as the simulated world's marbles
     s.casts_shadow = true;
     frame.spheres.push_back(s);
   }

@@ -31,7 +31,7 @@ DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_
                                         uint32_t voxel_resolution, bool light_components) {
   const uint64_t n = uint64_t(width) * height;
   uint64_t per_pixel_x3 = 3 * (20 + 72 + 16 + 32 + 4 + 32 + 4) + 32;  // bloom's 32/3 exactly
-  if (light_components) per_pixel_x3 += 3 * 32;
+  if (light_components) per_pixel_x3 += 3 * 48;  // direct, indirect, specular float4
   const auto tiles = [&](uint64_t side) {
     return ((width + side - 1) / side) * ((height + side - 1) / side);
   };

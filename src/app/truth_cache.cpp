@@ -91,10 +91,20 @@ std::string truth_key(const scene::SceneAssets& assets, const scene::FrameScene&
     h.bytes(m.triangles.data(), m.triangles.size() * sizeof(glm::uvec3));
     h.bytes(m.materials.data(), m.materials.size() * sizeof(uint32_t));
   }
+  // The surface model (issue 16): a coated surface adds its coat and the model's name, so a
+  // scene of matte surfaces keeps its key; a change to the model's formulas must rename it.
+  auto coat = [&h](const scene::Specular& sp) {
+    if (!sp.metal && !(sp.f0 > 0.0f)) return;
+    h.text(kSurfaceModel);
+    h.value(sp.roughness);
+    h.value(sp.f0);
+    h.value(uint8_t(sp.metal));
+  };
   for (const scene::Material& m : assets.materials) {
     h.vec(m.albedo);
     h.vec(m.emission);
     h.value(m.texture);
+    coat(m.specular);
   }
   for (const scene::Texture& t : assets.textures) {
     h.value(t.width);
@@ -122,6 +132,7 @@ std::string truth_key(const scene::SceneAssets& assets, const scene::FrameScene&
     h.value(s.radius);
     h.vec(s.albedo);
     h.vec(s.emission);
+    coat(s.specular);
     h.value(uint8_t(s.casts_shadow));
   }
   char hex[17];

@@ -1,6 +1,7 @@
 // The path-traced truth of `bench --accuracy`, cached on disk: a 360x360 truth at 1024 samples
 // per pixel takes minutes, a re-run of the report should take seconds. An entry is keyed by a
-// hash of everything the image depends on (assets: meshes, materials, texels; the frame:
+// hash of everything the image depends on (assets: meshes, materials with their specular coats
+// and the surface model's name, texels; the frame:
 // camera, light, instances, spheres; the settings: size, spp, bounces, seed, lamp model (only
 // kArea adds to the key, so point-lamp keys are unchanged); and the path
 // tracer's version), so a change to any of them renders anew.
@@ -23,6 +24,9 @@ namespace rp::app {
 
 // Bump when the path tracer's output changes for the same inputs (a fix, a new convention).
 inline constexpr const char* kPathTracerVersion = "rolypoly-pathtracer/1";
+// The surface model of src/shading/brdf.h, part of the key of every frame with a coated
+// surface (rename when its formulas or tables change).
+inline constexpr const char* kSurfaceModel = "ggx-smith-hc-schlick-kulla-conty/1";
 
 // 64-bit FNV-1a of the inputs above, as 16 hex digits.
 std::string truth_key(const scene::SceneAssets& assets, const scene::FrameScene& frame,

@@ -11,8 +11,9 @@ namespace {
 
 constexpr size_t kGroup = 16;  // 16x16 work-groups, like the other per-pixel passes
 
-constexpr std::array<const char*, 9> kViewNames = {
-    "final", "albedo", "normal", "depth", "velocity", "shadow-map", "direct", "indirect", "voxels"};
+constexpr std::array<const char*, 10> kViewNames = {
+    "final", "albedo", "normal", "depth", "velocity", "shadow-map", "direct", "indirect", "voxels",
+    "specular"};
 constexpr std::array<const char*, 6> kDirNames = {"+x", "-x", "+y", "-y", "+z", "-z"};
 
 std::string frame_size(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
@@ -50,6 +51,7 @@ std::optional<uint32_t> parse_voxel_dir(std::string_view name) {
 }
 
 std::optional<DebugView> debug_view_for_key(char key) {
+  if (key == '0') return DebugView::kSpecular;
   if (key < '1' || key > '9') return std::nullopt;
   return DebugView(key - '1');
 }
@@ -120,10 +122,12 @@ void DebugViewPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scen
       k->setArg(arg++, in.shadow->depth);
       break;
     case DebugView::kDirect:
-    case DebugView::kIndirect: {
+    case DebugView::kIndirect:
+    case DebugView::kSpecular: {
       require(in.light != nullptr, "view '" + view + "' needs the light pass's components");
-      const ::cl::Buffer& buffer =
-          settings.view == DebugView::kDirect ? in.light->direct : in.light->indirect;
+      const ::cl::Buffer& buffer = settings.view == DebugView::kDirect     ? in.light->direct
+                                   : settings.view == DebugView::kIndirect ? in.light->indirect
+                                                                           : in.light->specular;
       require(holds(buffer, pixels * 16),
               "the " + view + " buffer is smaller than " + frame_size(w, h) + " float4 pixels");
       k = &kernel("radiance");

@@ -19,7 +19,7 @@
 namespace rp::passes {
 
 enum class DebugView { kFinal, kAlbedo, kNormal, kDepth, kVelocity, kShadowMap, kDirect, kIndirect,
-                       kVoxels };
+                       kVoxels, kSpecular };
 
 // What to show. level / dir: the voxel volume of the voxels view (dir = RP_DIR_*, ignored at
 // level 0).
@@ -30,7 +30,7 @@ struct DebugViewSettings {
 };
 
 // Command-line names: "final", "albedo", "normal", "depth", "velocity", "shadow-map", "direct",
-// "indirect", "voxels" (in DebugView order).
+// "indirect", "voxels", "specular" (in DebugView order).
 const char* debug_view_name(DebugView view);
 std::optional<DebugView> parse_debug_view(std::string_view name);
 const std::vector<std::string>& debug_view_names();
@@ -38,19 +38,19 @@ const std::vector<std::string>& debug_view_names();
 const char* voxel_dir_name(uint32_t dir);
 std::optional<uint32_t> parse_voxel_dir(std::string_view name);
 // Window keys: '1' final, '2' albedo, '3' normal, '4' depth, '5' velocity, '6' shadow-map,
-// '7' direct, '8' indirect, '9' voxels; anything else: nullopt.
+// '7' direct, '8' indirect, '9' voxels, '0' specular; anything else: nullopt.
 std::optional<DebugView> debug_view_for_key(char key);
-// The direct and indirect views need the light pass's components (LightPass::run with a
-// LightComponents target).
+// The direct, indirect and specular views need the light pass's components (LightPass::run
+// with a LightComponents target).
 inline bool needs_light_components(DebugView v) {
-  return v == DebugView::kDirect || v == DebugView::kIndirect;
+  return v == DebugView::kDirect || v == DebugView::kIndirect || v == DebugView::kSpecular;
 }
 
 // The buffers a view reads; only those of the selected view must be set.
 struct DebugViewInputs {
   const render::GBuffer* gbuffer = nullptr;      // albedo, normal, depth, velocity
   const render::ShadowMap* shadow = nullptr;     // shadow-map
-  const LightComponents* light = nullptr;        // direct, indirect
+  const LightComponents* light = nullptr;        // direct, indirect, specular
   const ::cl::Buffer* voxels = nullptr;          // voxels: the chain (shared/voxel_layout.h)
   uint32_t voxel_resolution = 0, voxel_levels = 0;
 };

@@ -33,6 +33,7 @@ cl_uint bind_common(::cl::Kernel& kernel, const render::GpuScene& scene,
   kernel.setArg(arg++, shadow.depth);
   // hard and pcf never read the mips: any buffer will do
   kernel.setArg(arg++, shadow.mip_planes > 0 ? shadow.mips : shadow.depth);
+  kernel.setArg(arg++, scene.brdf_table);
   return arg;
 }
 
@@ -114,9 +115,12 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                         " frame");
   if (components != nullptr) {
     const size_t plane = size_t(w) * h * 16;
-    if (components->direct.getInfo<CL_MEM_SIZE>() < plane ||
-        components->indirect.getInfo<CL_MEM_SIZE>() < plane)
-      throw rp::cl::Error("light pass: the direct/indirect buffers must hold " +
+    if (components->direct() == nullptr || components->indirect() == nullptr ||
+        components->specular() == nullptr ||
+        components->direct.getInfo<CL_MEM_SIZE>() < plane ||
+        components->indirect.getInfo<CL_MEM_SIZE>() < plane ||
+        components->specular.getInfo<CL_MEM_SIZE>() < plane)
+      throw rp::cl::Error("light pass: the direct/indirect/specular buffers must hold " +
                           std::to_string(plane) + " bytes (" + std::to_string(w) + "x" +
                           std::to_string(h) + " float4)");
   }
@@ -138,6 +142,7 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   if (components != nullptr) {
     k.setArg(arg++, components->direct);
     k.setArg(arg++, components->indirect);
+    k.setArg(arg++, components->specular);
   }
   k.setArg(arg, hdr);
   if (indirect != nullptr) {

@@ -1,5 +1,5 @@
-// Light pass: direct light from the lamp (Lambert, directional falloff, the shadow filtered as
-// ShadowFilter says) + indirect diffuse light + emission -> HDR float4 per pixel. The
+// Light pass: direct light from the lamp (the surface model of kernels/common/brdf.h: GGX coat
+// over Lambert; directional falloff, the shadow filtered as ShadowFilter says) + indirect diffuse light + emission -> HDR float4 per pixel. The
 // indirect light is either the 16-cone set traced per pixel through the voxel radiance chain
 // (kernels/common/cone_trace.h; the reference quality mode) or the indirect pass's accumulated
 // low-resolution result upsampled with depth- and normal-aware weights (passes/indirect.h; the
@@ -27,12 +27,15 @@ inline uint32_t shadow_mip_planes(ShadowFilter filter) {
   return filter == ShadowFilter::kPcss ? 1u : filter == ShadowFilter::kVssm ? 3u : 0u;
 }
 
-// Extra outputs for the direct / indirect debug views, width x height float4 each (16 bytes per
-// pixel): direct = albedo * lamp light (shadowed), indirect = albedo * irradiance/pi;
-// rgb linear radiance, a = 1 covered / 0 background; emission is in neither.
+// Extra outputs for the direct / indirect / specular debug views and the accuracy report,
+// width x height float4 each (16 bytes per pixel): direct = the lamp's light (shadowed; diffuse
+// + specular), indirect = the gathered light (diffuse + the coat's share), specular = the
+// specular part of both (kernels/light.cl); rgb linear radiance, a = 1 covered / 0
+// background; emission is in none.
 struct LightComponents {
   ::cl::Buffer direct;
   ::cl::Buffer indirect;
+  ::cl::Buffer specular;
 };
 
 class LightPass {

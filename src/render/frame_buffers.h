@@ -53,7 +53,9 @@ struct GBuffer {
   ::cl::Buffer normal_depth;  // float4: xyz world-space unit normal, w linear view depth
                               //         (distance along the view axis; far plane for background)
   ::cl::Buffer position;      // float4: xyz world position, w = 1 covered, 0 background
-  ::cl::Buffer emission;      // float4: rgb emitted radiance, w unused
+  ::cl::Buffer emission;      // float4: rgb emitted radiance, w the surface's gloss code
+                              //         (kernels/shared/brdf_layout.h: roughness, F0 or metal;
+                              //         0 = matte and background)
   ::cl::Buffer velocity;      // float2: screen motion in pixels, this frame minus previous
                               //         (unjittered; +x right, +y down); 0 for background
 

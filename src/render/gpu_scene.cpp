@@ -1,5 +1,7 @@
 #include "render/gpu_scene.h"
 
+#include "shading/brdf_tables.h"
+
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
@@ -130,7 +132,7 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
       throw rp::cl::Error("material '" + m.name + "' refers to a texture that does not exist");
     gpu::Material g{};
     g.albedo = gpu::to_gpu(m.albedo, 1.0f);
-    g.emission = gpu::to_gpu(m.emission, 0.0f);
+    g.emission = gpu::to_gpu(m.emission, shading::gloss_code(m.specular));  // w: brdf_layout.h
     g.texture = m.texture < 0 ? RP_TEXTURE_NONE : static_cast<uint32_t>(m.texture);
     mats.push_back(g);
   }
@@ -167,6 +169,12 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
   materials = upload(context, queue_, mats);
   texels = upload(context, queue_, texel_data);
   textures = upload(context, queue_, infos);
+  {  // the surface model's tables (shared/brdf_layout.h), integrated once per process
+    const auto& cells = shading::BrdfTables::get().cells();
+    std::vector<gpu::rp_float4> table;
+    for (const glm::vec4& c : cells) table.push_back(gpu::to_gpu(c));
+    brdf_table = upload(context, queue_, table);
+  }
   frame = ::cl::Buffer(context, CL_MEM_READ_ONLY, sizeof(gpu::FrameConstants));
 }
 
@@ -226,7 +234,7 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
     g.center_radius = gpu::to_gpu(s.center, s.radius);
     g.prev_center = gpu::to_gpu(s.prev_center, s.casts_shadow ? 1.0f : 0.0f);
     g.albedo = gpu::to_gpu(s.albedo, 0.0f);
-    g.emission = gpu::to_gpu(s.emission, 0.0f);
+    g.emission = gpu::to_gpu(s.emission, shading::gloss_code(s.specular));
     host_spheres.push_back(g);
   }
   instance_count = static_cast<uint32_t>(host_instances.size());

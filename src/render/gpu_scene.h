@@ -66,6 +66,9 @@ class GpuScene {
   // mip levels (render/texture_mips.h; 4/3 of the level-0 texels for square textures).
   ::cl::Buffer texels;
   ::cl::Buffer textures;   // gpu::TextureInfo[]: size, level count and level offsets
+  // float4[RP_BRDF_TABLE_SIZE^2]: the surface model's Kulla-Conty tables
+  // (kernels/shared/brdf_layout.h, shading::BrdfTables), read by the light pass.
+  ::cl::Buffer brdf_table;
   uint32_t vertex_count = 0, triangle_count = 0;
   std::vector<MeshRange> meshes;
 

@@ -136,6 +136,7 @@ void Renderer::update_light_components() {
   try {
     light_components_.direct = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
     light_components_.indirect = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
+    light_components_.specular = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
     components_pixels_ = n;
   } catch (const ::cl::Error& e) {
     light_components_ = {};

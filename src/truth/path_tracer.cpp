@@ -10,6 +10,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "shading/brdf.h"
+#include "shading/brdf_tables.h"
 #include "truth/sampling.h"
 #include "truth/trace_scene.h"
 
@@ -58,6 +60,9 @@ struct SphereLights {
   }
 };
 
+shading::SurfaceBsdf bsdf_of(const Surface& s) { return shading::make_bsdf(s.specular, s.albedo); }
+bool coated(const Surface& s) { return bsdf_of(s).coated(); }
+
 // Radiance of one camera sample, split into the components of path_tracer.h.
 struct SampleResult {
   glm::vec3 direct{0.0f}, indirect{0.0f}, emission{0.0f}, albedo{0.0f};
@@ -77,9 +82,16 @@ class Integrator {
 
   uint64_t rays = 0;
 
-  // The lamp's direct light leaving `s` towards any direction (Lambertian, rolypoly's units).
-  glm::vec3 lamp(const Surface& s, Pcg32& rng) {
-    if (model_ == LampModel::kArea) return area_lamp(s, rng);
+  // pi * f(wo, wi): the BRDF in rolypoly's light units (albedo for a Lambertian surface;
+  // DESIGN.md "Light units", src/shading/brdf.h).
+  glm::vec3 pi_f(const Surface& s, glm::vec3 wo, glm::vec3 wi) const {
+    return shading::kPi * shading::eval_brdf(bsdf_of(s), s.ns, wo, wi, tables_).total();
+  }
+
+  // The lamp's direct light leaving `s` towards wo (unit, towards the previous vertex),
+  // rolypoly's units.
+  glm::vec3 lamp(const Surface& s, glm::vec3 wo, Pcg32& rng) {
+    if (model_ == LampModel::kArea) return area_lamp(s, wo, rng);
     if (light_.intensity == glm::vec3(0.0f)) return glm::vec3(0.0f);
     const glm::vec3 to_light = light_.position - s.p;
     const float d2 = glm::dot(to_light, to_light);
@@ -91,12 +103,13 @@ class Integrator {
     if (scene_.shadowed(s.p + s.ng * kRayOffset, l, d)) return glm::vec3(0.0f);
     const float e = std::clamp(l.y, 0.0f, 1.0f);
     const float falloff = 0.35f + e * (0.446f + 0.204f * e);  // direct_light.h rp_lamp_falloff
-    return s.albedo * light_.intensity * (c / d2 * falloff);
+    const glm::vec3 f = coated(s) ? pi_f(s, wo, l) : s.albedo;  // uncoated: as before issue 16
+    return f * light_.intensity * (c / d2 * falloff);
   }
 
   // The area lamp's direct light leaving `s` (path_tracer.h "lamp, area"): one direction
   // uniform in the cone the lamp's sphere subtends, kept when it meets the cap.
-  glm::vec3 area_lamp(const Surface& s, Pcg32& rng) {
+  glm::vec3 area_lamp(const Surface& s, glm::vec3 wo, Pcg32& rng) {
     const float u1 = rng.uniform(), u2 = rng.uniform();  // always drawn: streams stay aligned
     if (light_.intensity == glm::vec3(0.0f)) return glm::vec3(0.0f);
     const glm::vec3 to_centre = cap_.centre - s.p;
@@ -110,12 +123,13 @@ class Integrator {
     if (t < 0.0f) return glm::vec3(0.0f);  // the sphere above the ceiling: no lamp there
     ++rays;
     if (scene_.shadowed(s.p + s.ng * kRayOffset, wi, t)) return glm::vec3(0.0f);
-    // albedo / pi * L_e * cos / pdf, pdf = 1 / (2 pi omc)
-    return s.albedo * cap_radiance_ * (2.0f * c * omc);
+    // f * L_e * cos / pdf, pdf = 1 / (2 pi omc); pi f = albedo for a Lambertian surface
+    const glm::vec3 f = coated(s) ? pi_f(s, wo, wi) : s.albedo;
+    return f * cap_radiance_ * (2.0f * c * omc);
   }
 
   // Light from the emissive spheres reflected by `s`, sampled by the spheres (MIS weighted).
-  glm::vec3 sphere_light(const Surface& s, Pcg32& rng) {
+  glm::vec3 sphere_light(const Surface& s, glm::vec3 wo, Pcg32& rng) {
     const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     if (lights_.empty()) return glm::vec3(0.0f);
     const size_t k = lights_.choose(u0);
@@ -133,6 +147,11 @@ class Integrator {
         hit.sphere != lights_.sphere[k])
       return glm::vec3(0.0f);  // something else is in front (or the tangent ray missed)
     const float light_pdf = lights_.pick[k] * cone_pdf(omc);
+    if (coated(s)) {
+      const float bsdf_pdf = shading::brdf_pdf(bsdf_of(s), s.ns, wo, wi, tables_);
+      return pi_f(s, wo, wi) * hit.emission *
+             (c / kPi / light_pdf * power_heuristic(light_pdf, bsdf_pdf));
+    }
     const float bsdf_pdf = c / kPi;
     return s.albedo * hit.emission * (c / kPi / light_pdf * power_heuristic(light_pdf, bsdf_pdf));
   }
@@ -154,30 +173,47 @@ class Integrator {
     if (!scene_.intersect(org, dir, kFar, s)) return r;
     r.emission = s.emission;
     r.albedo = s.albedo;
-    r.direct = lamp(s, rng);
-    glm::vec3 beta(1.0f);  // throughput from the camera to s, albedos of the gathers so far
+    glm::vec3 wo = -dir;  // towards the previous vertex
+    r.direct = lamp(s, wo, rng);
+    glm::vec3 beta(1.0f);  // throughput from the camera to s: f cos / pdf of the gathers so far
     for (uint32_t gather = 1; gather <= bounces_; ++gather) {
-      if (s.albedo == glm::vec3(0.0f)) break;
-      r.indirect += beta * sphere_light(s, rng);
+      const bool glossy = coated(s);
+      if (s.albedo == glm::vec3(0.0f) && !glossy) break;
+      r.indirect += beta * sphere_light(s, wo, rng);
       const float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
       if (gather > kRouletteAfter) {
         const float q = std::min(0.95f, std::max({beta.x, beta.y, beta.z}));
         if (!(u3 < q)) break;
         beta /= q;
       }
-      const glm::vec3 wi = sample_cosine_hemisphere(s.ns, u1, u2);
+      glm::vec3 wi;
+      float pdf;
+      if (glossy) {
+        // the BRDF's own sampler (brdf.h: GGX visible normals or cosine, by the coat's share);
+        // the lobe choice draws one more number, so matte paths keep their streams
+        const shading::BsdfSample bs =
+            shading::sample_brdf(bsdf_of(s), s.ns, wo, rng.uniform(), u1, u2, tables_);
+        if (!(bs.pdf > 0.0f)) break;
+        wi = bs.wi;
+        pdf = bs.pdf;
+      } else {
+        wi = sample_cosine_hemisphere(s.ns, u1, u2);
+        pdf = glm::dot(s.ns, wi) / kPi;
+      }
       const float c = glm::dot(s.ns, wi);
       if (c <= 0.0f || glm::dot(s.ng, wi) <= 0.0f) break;  // below the true surface
-      beta *= s.albedo;
+      // f cos / pdf: albedo for the cosine-sampled Lambertian surface
+      beta *= glossy ? pi_f(s, wo, wi) * (c / (kPi * pdf)) : s.albedo;
       Surface next;
       ++rays;
       if (!scene_.intersect(s.p + s.ng * kRayOffset, wi, kFar, next)) break;
       if (next.lights_scene && next.emission != glm::vec3(0.0f)) {
-        const float w = next.sphere != 0xFFFFFFFFu ? hit_weight(s, next, c / kPi) : 1.0f;
+        const float w = next.sphere != 0xFFFFFFFFu ? hit_weight(s, next, pdf) : 1.0f;
         r.indirect += beta * next.emission * w;
       }
       s = next;
-      r.indirect += beta * lamp(s, rng);
+      wo = -wi;
+      r.indirect += beta * lamp(s, wo, rng);
     }
     return r;
   }
@@ -190,6 +226,7 @@ class Integrator {
   LampModel model_;
   LampCap cap_;
   glm::vec3 cap_radiance_;  // L_e = I / a^2 (path_tracer.h)
+  const shading::BrdfTables& tables_ = shading::BrdfTables::get();
 };
 
 // Camera rays: pixel coordinates (x right, y down, pixel centres at +0.5) -> world direction.

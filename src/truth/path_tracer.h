@@ -8,7 +8,11 @@
 //             unjittered inverse view-projection of Camera::view() / projection(width / height).
 //   surfaces  Lambertian, albedo = material albedo x bilinear texture (wrap, texel centres at
 //             +0.5, rows top to bottom, v up; sRGB decoded exactly), emission = material
-//             emission (meshes) or Sphere::emission. Shading normal: mesh vertex normals
+//             emission (meshes) or Sphere::emission. With a specular coat (Material::specular,
+//             Sphere::specular; issue 16) the BRDF of src/shading/brdf.h (GGX + Kulla-Conty over
+//             the weighted Lambertian base): the lamp and the sphere lights evaluate it
+//             (pi f in place of albedo below), gathers sample it (GGX visible normals or cosine,
+//             chosen by the coat's share of the reflected energy; MIS with the mixture's pdf). Shading normal: mesh vertex normals
 //             interpolated and transformed by the inverse transpose of the model matrix; spheres
 //             analytic.
 //   lamp      (LampModel::kPoint, the default) the point light of kernels/common/direct_light.h:

@@ -233,6 +233,7 @@ bool TraceScene::intersect(glm::vec3 org, glm::vec3 dir, float t_max, Surface& o
       out.albedo *= assets_->textures()[size_t(mat.texture)].sample(
           b0 * m.uvs[i0] + b1 * m.uvs[i1] + b2 * m.uvs[i2]);
     out.emission = mat.emission;
+    out.specular = mat.specular;
     out.lights_scene = inst.voxelize;
     out.instance = i;
     out.sphere = 0xFFFFFFFFu;
@@ -248,6 +249,7 @@ bool TraceScene::intersect(glm::vec3 org, glm::vec3 dir, float t_max, Surface& o
     out.ng = out.ns = n;
     out.albedo = s.albedo;
     out.emission = s.emission;
+    out.specular = s.specular;
     out.lights_scene = true;
     out.instance = 0xFFFFFFFFu;
     out.sphere = k;

@@ -47,6 +47,7 @@ struct Surface {
   glm::vec3 ns{0.0f};       // unit shading normal, on ng's side
   glm::vec3 albedo{0.0f};
   glm::vec3 emission{0.0f};
+  scene::Specular specular{};  // the coat over albedo (src/shading/brdf.h); default none
   bool lights_scene = true;  // false: emission seen by the camera only (voxelize == false)
   uint32_t instance = 0xFFFFFFFFu, sphere = 0xFFFFFFFFu, material = 0xFFFFFFFFu;
 };

@@ -113,9 +113,9 @@ TEST(BadInput, DeviceMemoryEstimateCountsEveryBuffer) {
                             64 * 64 * 4 + chain * 16 + voxels * 20 + (uint64_t(64) << 20);
   EXPECT_EQ(need.total_bytes, expected);
   EXPECT_EQ(need.largest_buffer_bytes, pixels * 16);
-  // The direct / indirect views add two float4 per pixel.
+  // The direct / indirect / specular views add three float4 per pixel.
   EXPECT_EQ(app::estimate_device_memory(160, 160, 64, 32, true).total_bytes,
-            expected + pixels * 32);
+            expected + pixels * 48);
 }
 
 TEST(BadInput, LargestSquareThatFitsIsTheBoundary) {

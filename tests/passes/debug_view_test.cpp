@@ -172,22 +172,27 @@ TEST(DebugView, ShadowMapIsStretchedOverTheImage) {
     }
 }
 
-TEST(DebugView, DirectAndIndirectAreToneMapped) {
+TEST(DebugView, DirectIndirectAndSpecularAreToneMapped) {
   DebugFixture fx;
   auto& ctx = rp::test::context();
-  std::vector<glm::vec4> direct(kW * kH), indirect(kW * kH);
+  std::vector<glm::vec4> direct(kW * kH), indirect(kW * kH), specular(kW * kH);
   for (uint32_t i = 0; i < kW * kH; ++i) {
     direct[i] = glm::vec4(0.01f * float(i), 3.0f - 0.01f * float(i), 0.5f, 1.0f);
     indirect[i] = glm::vec4(0.002f * float(i), 0.0f, 0.3f, 1.0f);
+    specular[i] = glm::vec4(0.2f, 0.004f * float(i), 0.0f, 1.0f);
   }
   rp::passes::LightComponents components{::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, kW * kH * 16),
+                                         ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, kW * kH * 16),
                                          ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, kW * kH * 16)};
   fx.write(components.direct, direct);
   fx.write(components.indirect, indirect);
+  fx.write(components.specular, specular);
   rp::passes::DebugViewInputs in;
   in.light = &components;
-  for (DebugView view : {DebugView::kDirect, DebugView::kIndirect}) {
-    const auto& src = view == DebugView::kDirect ? direct : indirect;
+  for (DebugView view : {DebugView::kDirect, DebugView::kIndirect, DebugView::kSpecular}) {
+    const auto& src = view == DebugView::kDirect     ? direct
+                      : view == DebugView::kIndirect ? indirect
+                                                     : specular;
     auto got = fx.run({view}, in);
     for (uint32_t i = 0; i < kW * kH; ++i) {
       const glm::dvec4 c(src[i]);
@@ -289,7 +294,7 @@ TEST(DebugView, NamesKeysAndErrors) {
   EXPECT_EQ(rp::passes::debug_view_for_key('1'), DebugView::kFinal);
   EXPECT_EQ(rp::passes::debug_view_for_key('6'), DebugView::kShadowMap);
   EXPECT_EQ(rp::passes::debug_view_for_key('9'), DebugView::kVoxels);
-  EXPECT_FALSE(rp::passes::debug_view_for_key('0'));
+  EXPECT_EQ(rp::passes::debug_view_for_key('0'), DebugView::kSpecular);
   EXPECT_FALSE(rp::passes::debug_view_for_key('M'));
 
   DebugFixture fx;

@@ -164,6 +164,7 @@ class IndirectFixture {
     const size_t n = size_t(kW) * kH;
     ::cl::Buffer out(ctx.context, CL_MEM_READ_WRITE, n * 16);
     rp::passes::LightComponents parts{::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16),
+                                      ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16),
                                       ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16)};
     rp::cl::Profiler profiler(ctx.queue);
     rp::passes::LightPass pass(ctx, rp::test::programs(), rp::passes::ShadowFilter::kHard);

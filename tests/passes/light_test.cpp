@@ -21,6 +21,9 @@
 #include "passes/light.h"
 #include "passes/shadow_filter.h"
 #include "render/gpu_scene.h"
+#include "scene/demo_scene.h"
+#include "shading/brdf.h"
+#include "shading/brdf_tables.h"
 #include "support/cl_fixture.h"
 #include "support/direct_light_ref.h"
 
@@ -33,6 +36,7 @@ constexpr ShadowFilter kAllFilters[] = {ShadowFilter::kHard, ShadowFilter::kPcf,
 
 struct Point {
   glm::vec3 p, n, albedo, emission{0.0f};
+  float gloss{0.0f};  // GBuffer emission.w: the gloss code (kernels/shared/brdf_layout.h)
 };
 
 const glm::vec3 kIntensity(6.0f, 5.0f, 4.0f);
@@ -79,7 +83,8 @@ class LightFixture {
                          ShadowFilter filter, uint32_t frame_index = 0, uint32_t width = 8,
                          const rp::test::cone::Chain& chain = empty_chain(),
                          Mode mode = Mode::kCones, std::vector<float>* direct = nullptr,
-                         std::vector<float>* indirect = nullptr) {
+                         std::vector<float>* indirect = nullptr,
+                         std::vector<float>* specular = nullptr) {
     auto& ctx = rp::test::context();
     const uint32_t height = uint32_t((points.size() + width) / width);  // >= 1 background pixel
     frame_.frame_index = frame_index;
@@ -96,6 +101,7 @@ class LightFixture {
       std::memcpy(&position[i * 4], &pt.p, 12);
       position[i * 4 + 3] = 1.0f;
       std::memcpy(&emission[i * 4], &pt.emission, 12);
+      emission[i * 4 + 3] = pt.gloss;
     }
     rp::render::GBuffer gb;
     gb.resize(ctx.context, width, height);
@@ -121,6 +127,7 @@ class LightFixture {
                                                                   planes > 1);
     rp::passes::LightPass pass(ctx, rp::test::programs(), filter);
     rp::passes::LightComponents components{::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16),
+                                           ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16),
                                            ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16)};
     switch (mode) {
       case Mode::kCones:
@@ -141,6 +148,10 @@ class LightFixture {
     if (indirect) {
       indirect->resize(n * 4);
       ctx.queue.enqueueReadBuffer(components.indirect, CL_TRUE, 0, n * 16, indirect->data());
+    }
+    if (specular) {
+      specular->resize(n * 4);
+      ctx.queue.enqueueReadBuffer(components.specular, CL_TRUE, 0, n * 16, specular->data());
     }
     return out;
   }
@@ -412,6 +423,68 @@ TEST(Light, SplitVariantWritesTheComponents) {
       EXPECT_EQ(direct[i * 4 + c], 0.0f) << "background " << i;
       EXPECT_EQ(indirect[i * 4 + c], 0.0f) << "background " << i;
     }
+}
+
+// The surface model in the light pass (kernels/common/brdf.h) against its C++ reference
+// (shading::shade_lamp) on hand-made glossy GBuffer points, lit through an empty shadow map:
+// direct = (albedo * w_d + pi f_spec) * I * cos / (d^2 + a^2) * falloff, the specular buffer its
+// specular part (no indirect light: empty voxel chain).
+TEST(Light, GlossySurfacesMatchTheBrdfReference) {
+  using rp::shading::gloss_code;
+  LightFixture fx(32);
+  const glm::vec3 cam = rp::scene::Camera{}.position, lamp = fx.light().position;
+  const float floor = gloss_code(rp::scene::demo::kFloorSpecular);
+  const float lacquer = gloss_code(rp::scene::demo::kTumblerSpecular);
+  const float marble = gloss_code(rp::scene::demo::kMarbleSpecular);
+  const float gold = gloss_code(rp::scene::Specular{0.3f, 0.0f, true});
+  // a point turned so the lamp's mirror image lies on its normal: the highlight's peak
+  auto mirror = [&](glm::vec3 p, glm::vec3 albedo, float gloss) {
+    const glm::vec3 h = glm::normalize(glm::normalize(cam - p) + glm::normalize(lamp - p));
+    return Point{p, h, albedo, glm::vec3(0.0f), gloss};
+  };
+  std::vector<Point> pts = {
+      {{0.0f, -1.0f, 0.0f}, {0, 1, 0}, {0.6f, 0.5f, 0.4f}, {}, floor},
+      {{0.7f, -1.0f, 0.8f}, {0, 1, 0}, {0.6f, 0.5f, 0.4f}, {}, floor},
+      {{-0.4f, -0.8f, 0.3f}, glm::normalize(glm::vec3(-0.5f, 0.6f, 0.6f)), {0.8f, 0.1f, 0.1f}, {}, lacquer},
+      mirror({0.2f, -0.7f, 0.1f}, {0.8f, 0.1f, 0.1f}, lacquer),
+      mirror({-0.3f, -0.9f, 0.5f}, {0.3f, 0.6f, 0.9f}, marble),
+      mirror({0.5f, -0.5f, -0.2f}, {1.0f, 0.78f, 0.34f}, gold),
+      {{0.5f, -0.5f, -0.2f}, glm::normalize(glm::vec3(0.3f, 0.2f, 1.0f)), {1.0f, 0.78f, 0.34f}, {}, gold},
+      {{-1.0f, 0.0f, 0.0f}, {1, 0, 0}, {0.9f, 0.5f, 0.1f}},  // matte in the same chunk
+      {{0.1f, -0.6f, 0.0f}, glm::normalize(glm::vec3(0.0f, -0.3f, 1.0f)), glm::vec3(0.5f), {}, lacquer},
+  };
+  const std::vector<float> map(32 * 32, 1.0f);
+  std::vector<float> direct, indirect, specular;
+  auto hdr = fx.run(pts, map, ShadowFilter::kHard, 0, 8, empty_chain(),
+                    LightFixture::Mode::kConesSplit, &direct, &indirect, &specular);
+  const rp::shading::BrdfTables& tables = rp::shading::BrdfTables::get();
+  const rp::scene::PointLight& light = fx.light();
+  const double ze = double(light.position.y) - 1.0;
+  const double a = std::sqrt(double(light.lamp_radius) * light.lamp_radius - ze * ze);
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const Point& pt = pts[i];
+    const rp::shading::SurfaceBsdf bsdf =
+        rp::shading::make_bsdf(rp::shading::decode_gloss(pt.gloss), pt.albedo);
+    const glm::vec3 wo = glm::normalize(cam - pt.p), wi = glm::normalize(lamp - pt.p);
+    const glm::dvec3 disk(light.position.x, 1.0, light.position.z);
+    const float widen = float(0.5 * a / glm::length(disk - glm::dvec3(pt.p)));
+    const rp::shading::LampShading l = rp::shading::shade_lamp(bsdf, pt.n, wo, wi, widen, tables);
+    const double k = direct_ref(pt, light);
+    const glm::dvec3 spec = glm::dvec3(l.specular) * glm::dvec3(kIntensity) * k;
+    const glm::dvec3 want = glm::dvec3(pt.albedo * l.diffuse_weight) * glm::dvec3(kIntensity) * k + spec;
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(direct[i * 4 + c], want[c], 2e-3 * std::abs(want[c]) + 1e-6)
+          << "direct, point " << i << " channel " << c;
+      EXPECT_NEAR(specular[i * 4 + c], spec[c], 2e-3 * std::abs(spec[c]) + 1e-6)
+          << "specular, point " << i << " channel " << c;
+      EXPECT_NEAR(hdr[i * 4 + c], want[c], 2e-3 * std::abs(want[c]) + 1e-6) << "hdr, point " << i;
+    }
+    if (pt.gloss != 0.0f && k > 0.0) {
+      EXPECT_GT(spec.x, 0.0) << "point " << i;
+    }
+  }
+  // the mirror points' highlights: the lacquer's peak outshines its diffuse light
+  EXPECT_GT(specular[3 * 4 + 1], direct[3 * 4 + 1] * 0.5f);
 }
 
 TEST(Light, RejectsAVoxelChainThatDoesNotFit) {
