@@ -29,22 +29,6 @@ GBufferPass::GBufferPass(const rp::cl::Context& context, rp::cl::ProgramCache& p
     : context_(&context), span_(choose_span(context)), programs_(&programs) {
   options_ = "-DRP_SPAN=" + std::to_string(span_);
   if (!extra_options.empty()) options_ += " " + extra_options;
-  decode_ = programs.kernel("gbuffer.cl", "gbuffer_decode_texels", options_);
-}
-
-void GBufferPass::update_linear_texels(rp::cl::Profiler& profiler,
-                                       const render::GpuScene& scene) {
-  if (decoded_from_() != nullptr && decoded_from_() == scene.texels()) return;
-  const size_t texels = scene.texels() ? scene.texels.getInfo<CL_MEM_SIZE>() / sizeof(cl_uint) : 0;
-  linear_texels_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
-                                (texels > 0 ? texels : 1) * 4 * sizeof(float));
-  decoded_from_ = scene.texels;
-  if (texels == 0) return;
-  decode_.setArg(0, scene.texels);
-  decode_.setArg(1, linear_texels_);
-  decode_.setArg(2, cl_uint(texels));
-  profiler.enqueue("gbuffer", decode_, ::cl::NDRange(rp::cl::round_up(texels, kGroup)),
-                   ::cl::NDRange(kGroup));
 }
 
 void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
@@ -59,7 +43,8 @@ void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                         "x" + std::to_string(vis.height) + ") or the GBuffer (" +
                         std::to_string(out.width) + "x" + std::to_string(out.height) + ")");
   if (w == 0 || h == 0) return;
-  update_linear_texels(profiler, scene);
+  if (!scene.texels() && !no_texels_())
+    no_texels_ = ::cl::Buffer(context_->context, CL_MEM_READ_ONLY, sizeof(cl_uint));
   cl_uint arg = 0;
   ::cl::Kernel& resolve = resolve_[texture_filter];
   if (!resolve())
@@ -75,7 +60,8 @@ void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   resolve.setArg(arg++, scene.triangles);
   resolve.setArg(arg++, scene.materials);
   resolve.setArg(arg++, scene.textures);
-  resolve.setArg(arg++, linear_texels_);
+  // The packed RGBA8 sRGB texels, decoded per tap (kernels/common/span_texture.h).
+  resolve.setArg(arg++, scene.texels() ? scene.texels : no_texels_);
   resolve.setArg(arg++, out.albedo);
   resolve.setArg(arg++, out.normal_depth);
   resolve.setArg(arg++, out.position);
