@@ -10,7 +10,7 @@
  *   emission float4 rgb emitted radiance
  *   velocity float2 pixels, this frame minus previous, unjittered, +y down; 0 for background
  *
- * gbuffer_resolve: one work-item per span of RP_SPAN pixels of a row (common/span.h: 8 on
+ * gbuffer_resolve: one work-item per span of RP_SPAN pixels of a row (common/span.h: 16 on
  * CPUs, 1 on GPUs), a 1D range over the spans in row-major order. Neighbouring pixels mostly
  * show the same primitive (a Cornell box wall quad is 45 pixels wide at 720x720), so a span is
  * resolved per distinct (instance, primitive) in it: the
