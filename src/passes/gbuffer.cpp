@@ -8,7 +8,10 @@
 namespace rp::passes {
 namespace {
 
-constexpr size_t kGroup = 16;  // work-items per work-group (1D) for both kernels
+// Work-items per work-group (1D). With 16-pixel spans on PoCL (busy 720, CPU ms a frame): 4
+// and 16 cost the same (9.2), 64 twice as much (17.8: PoCL keeps every work-item's private
+// arrays side by side, and 64 of them no longer stay in cache).
+constexpr size_t kGroup = 16;
 
 // Pixels per work-item: 16 on CPUs (float16 spans map onto PoCL's SIMD code), 1 on GPUs.
 // Measured on the 2-core AVX-512 EPYC, busy 720: before the texture footprint (issue 15) 8 was
