@@ -11,7 +11,7 @@
  *            matte), copied from Material.emission.w / Sphere.emission.w
  *   velocity float2 pixels, this frame minus previous, unjittered, +y down; 0 for background
  *
- * gbuffer_resolve: one work-item per span of RP_SPAN pixels of a row (common/span.h: 8 on
+ * gbuffer_resolve: one work-item per span of RP_SPAN pixels of a row (common/span.h: 16 on
  * CPUs, 1 on GPUs), a 1D range over the spans in row-major order. Neighbouring pixels mostly
  * show the same primitive (a Cornell box wall quad is 45 pixels wide at 720x720), so a span is
  * resolved per distinct (instance, primitive) in it: the
@@ -19,8 +19,8 @@
  * scalars and evaluated for all lanes with vector arithmetic, the lanes showing it keep the
  * result. A span showing one primitive costs one evaluation for RP_SPAN pixels. Velocity and
  * depth are computed once per span from the selected positions. Textures are sampled per lane
- * from linear float4 texels of every mip level (gbuffer_decode_texels; the same values as the
- * RGBA8 sRGB table decode), filtered as `texture_filter` says (shared/types.h
+ * from the packed RGBA8 sRGB texels of every mip level, each tap decoded through the exact
+ * sRGB table (common/span_texture.h), filtered as `texture_filter` says (shared/types.h
  * RP_TEXTURE_FILTER_*): bilinear in level 0; trilinear or anisotropic from the pixel's
  * analytic footprint ("texture footprint" below).
  *
@@ -42,15 +42,6 @@
 #include "common/span.h"
 #include "common/span_texture.h"
 #include "common/random.h"
-
-/* Linear float4 copy of the RGBA8 sRGB texel buffer (one work-item per texel): rgb through the
- * exact sRGB table, alpha linear (code / 255), as common/colour.h's rp_unpack_rgba8_srgb. */
-__kernel void gbuffer_decode_texels(__global const uint* texels, __global float4* linear_out,
-                                    uint count) {
-  const uint i = (uint)get_global_id(0);
-  if (i >= count) return;
-  linear_out[i] = rp_unpack_rgba8_srgb(texels[i]);
-}
 
 /* M * (x, y, z, 1), one row: ((c0 x + c1 y) + c2 z) + c3. */
 #define GB_ROW_POINT(m, row, x, y, z) \
@@ -153,7 +144,7 @@ inline void gb_uv_derivatives(rp_mat4 m, float4 p0, float4 p1, float4 p2, float 
  *                trilinear at lod = log2(max(minor, major / N)), averaged; N is the largest
  *                ceil(major / minor) of the span's textured lanes, at most RP_TEXTURE_MAX_ANISO
  *                (one loop for the span: lanes needing fewer taps get overlapping ones). */
-inline void gb_texture_filtered(__global const float4* linear_texels,
+inline void gb_texture_filtered(__global const uint* texels,
                                 __global const TextureInfo* textures, uint filter, float lod_bias,
                                 int stochastic, rp_spanf pick,
                                 rp_spani textured, rp_spanu index, rp_spani w0, rp_spani h0,
@@ -165,7 +156,7 @@ inline void gb_texture_filtered(__global const float4* linear_texels,
   rp_spanf cr, cg, cb;
   if (filter != RP_TEXTURE_FILTER_ANISOTROPIC) {
     *lod_used = 0.5f * log2(major2) + lod_bias;
-    rp_span_texture_trilinear(linear_texels, textures, textured, index, w0, h0, levels,
+    rp_span_texture_trilinear(texels, textures, textured, index, w0, h0, levels,
                               *lod_used, u, v, n, stochastic, pick, &cr, &cg, &cb);
   } else {
     const rp_spanf minor2 = fmin(lx2, ly2);
@@ -195,7 +186,7 @@ inline void gb_texture_filtered(__global const float4* linear_texels,
       rp_spanf tr, tg, tb;
       /* each tap its own level pick (golden-ratio steps from the pixel's) */
       const rp_spanf tap_pick = pick + 0.618034f * (float)i;
-      rp_span_texture_trilinear(linear_texels, textures, textured, index, w0, h0, levels, lod,
+      rp_span_texture_trilinear(texels, textures, textured, index, w0, h0, levels, lod,
                                 u + o * au, v + o * av, n, stochastic,
                                 tap_pick - floor(tap_pick), &tr, &tg, &tb);
       cr += tr;
@@ -221,7 +212,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
                               __global const Triangle* triangles,
                               __global const Material* materials,
                               __global const TextureInfo* textures,
-                              __global const float4* linear_texels,
+                              __global const uint* texels,
                               __global float* out_albedo,
                               __global float* out_normal_depth,
                               __global float* out_position,
@@ -405,7 +396,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
   rp_spanf lod_used = 0.0f;
   if (any_texture) {
     if (!mipmapped)
-      rp_span_texture_linear(linear_texels, textured, tex_w, tex_h, tex_offset, tu, tv, n, &ar,
+      rp_span_texture_linear(texels, textured, tex_w, tex_h, tex_offset, tu, tv, n, &ar,
                              &ag, &ab);
     else {
       /* per-lane level picks for stochastic trilinear (pixel and frame hashed) */
@@ -413,7 +404,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
       if (stochastic_levels)  /* under TAA only: no hashing otherwise */
         for (int i = 0; i < RP_SPAN; ++i)
           pk[i] = rp_hash_to_unit(rp_hash_pixel(x0 + (uint)i, y, frame->frame_index));
-      gb_texture_filtered(linear_texels, textures, texture_filter, lod_bias,
+      gb_texture_filtered(texels, textures, texture_filter, lod_bias,
                           (int)stochastic_levels, RP_SPAN_FROM_ARRAY(pk), textured, tex_index,
                           rp_span_convert_int(tex_w), rp_span_convert_int(tex_h), tex_levels,
                           tu, tv, dudx, dvdx, dudy, dvdy, n, &ar, &ag, &ab, &lod_used);

@@ -13,7 +13,8 @@
  *                       voxel columns of one row of its candidate rectangle
  *   voxelize_spheres    one work-item per sphere: every voxel it overlaps
  *   voxelize_resolve    sums -> level-0 float4 (one work-item per voxel)
- *   (voxelize_decode_texels runs once per texel buffer: RGBA8 sRGB -> linear float4 texels)
+ *   (textures are read as the scene's packed RGBA8 sRGB texels, decoded per tap:
+ *   common/span_texture.h)
  * The resolution R is a kernel argument (the host checks it against FrameConstants). Which
  * lane or work-item handles which triangle or voxel changes nothing: the sums are integers.
  *
@@ -663,7 +664,7 @@ inline void vx_setup(const VxLanes* L, uint resolution, VxSetup* s) {
  * coordinates) of the lanes in `active`: albedo * texture(uv) * direct light + emission. */
 /* Albedo (material albedo times the texture at barycentrics (b0, b1, b2)) of the lanes in
  * `active`; the material albedo elsewhere. */
-inline VxVec vx_albedo_span(const VxSetup* s, __global const float4* linear_texels, rp_spanf b0,
+inline VxVec vx_albedo_span(const VxSetup* s, __global const uint* texels, rp_spanf b0,
                             rp_spanf b1, rp_spanf b2, rp_spani active, int n_lanes) {
   rp_spanf r = s->albedo.x, g = s->albedo.y, b = s->albedo.z;
   const rp_spani textured = s->textured & active;
@@ -672,9 +673,9 @@ inline VxVec vx_albedo_span(const VxSetup* s, __global const float4* linear_texe
     const rp_spanf v = (s->uv_v.x * b0 + s->uv_v.y * b1) + s->uv_v.z * b2;
     /* trilinear: levels l0 and l1 of the triangle (vx_texture_level), mixed by tex_frac */
     rp_spanf r0, g0, b0_, r1, g1, b1_;
-    rp_span_texture_sample(linear_texels, textured, s->tex_w, s->tex_h, s->tex_offset, u, v,
+    rp_span_texture_sample(texels, textured, s->tex_w, s->tex_h, s->tex_offset, u, v,
                            n_lanes, &r0, &g0, &b0_);
-    rp_span_texture_sample(linear_texels, textured, s->tex_w1, s->tex_h1, s->tex_offset1, u, v,
+    rp_span_texture_sample(texels, textured, s->tex_w1, s->tex_h1, s->tex_offset1, u, v,
                            n_lanes, &r1, &g1, &b1_);
     r = select(r, r * mix(r0, r1, s->tex_frac), textured);
     g = select(g, g * mix(g0, g1, s->tex_frac), textured);
@@ -718,9 +719,9 @@ inline VxVec vx_radiance_span(const VxLight* L, __global const float* shadow,
 /* Outgoing radiance of surface points p (barycentrics b0, b1, b2 for the texture coordinates)
  * of the lanes in `active`: albedo * texture(uv) * direct light + emission. */
 inline VxVec vx_shade_span(const VxSetup* s, const VxLight* L, __global const float* shadow,
-                           __global const float4* linear_texels, const VxVec* p, rp_spanf b0,
+                           __global const uint* texels, const VxVec* p, rp_spanf b0,
                            rp_spanf b1, rp_spanf b2, rp_spani active, int n_lanes) {
-  const VxVec albedo = vx_albedo_span(s, linear_texels, b0, b1, b2, active, n_lanes);
+  const VxVec albedo = vx_albedo_span(s, texels, b0, b1, b2, active, n_lanes);
   return vx_radiance_span(L, shadow, &albedo, p, &s->nw, &s->emission, active, n_lanes);
 }
 
@@ -803,11 +804,11 @@ inline VxVec vx_voxel_point(const VxSetup* s, uint resolution, rp_spani x, rp_sp
 /* Radiance of the voxels (x, y, z) of the lanes in `hit` for triangles shaded per voxel. */
 inline VxVec vx_voxel_radiance(const VxSetup* s, const VxLight* light,
                                __global const float* shadow,
-                               __global const float4* linear_texels, uint resolution,
+                               __global const uint* texels, uint resolution,
                                rp_spani x, rp_spani y, rp_spani z, rp_spani hit, int n_lanes) {
   rp_spanf b0, b1, b2;
   const VxVec p = vx_voxel_point(s, resolution, x, y, z, &b0, &b1, &b2);
-  return vx_shade_span(s, light, shadow, linear_texels, &p, b0, b1, b2, hit, n_lanes);
+  return vx_shade_span(s, light, shadow, texels, &p, b0, b1, b2, hit, n_lanes);
 }
 
 /* ---- the static surface cache (voxelize_cached; host side in src/passes/voxelize.cpp) ----
@@ -822,7 +823,7 @@ inline VxVec vx_voxel_radiance(const VxSetup* s, const VxLight* light,
 #define VX_COUNT 1u      /* count the samples of cached instances */
 #define VX_RECORD 2u     /* write them (cache_count restarts at 0) */
 
-inline void vx_record_samples(const VxSetup* s, __global const float4* linear_texels,
+inline void vx_record_samples(const VxSetup* s, __global const uint* texels,
                               uint resolution, rp_spani x, rp_spani y, rp_spani z,
                               rp_spanu voxel, rp_spani hit, uint record,
                               volatile __global uint* cache_count, __global float4* cache,
@@ -837,7 +838,7 @@ inline void vx_record_samples(const VxSetup* s, __global const float4* linear_te
   }
   rp_spanf b0, b1, b2;
   const VxVec p = vx_voxel_point(s, resolution, x, y, z, &b0, &b1, &b2);
-  const VxVec albedo = vx_albedo_span(s, linear_texels, b0, b1, b2, hit, RP_SPAN);
+  const VxVec albedo = vx_albedo_span(s, texels, b0, b1, b2, hit, RP_SPAN);
   float v[12][RP_SPAN];
   uint lv[RP_SPAN];
   RP_SPAN_TO_ARRAY(p.x, v[0]);
@@ -867,13 +868,6 @@ inline void vx_record_samples(const VxSetup* s, __global const float4* linear_te
 
 /* ---- kernels ---- */
 
-__kernel void voxelize_decode_texels(__global const uint* texels, __global float4* linear_out,
-                                     uint count) {
-  const uint i = (uint)get_global_id(0);
-  if (i >= count) return;
-  linear_out[i] = rp_unpack_rgba8_srgb(texels[i]);
-}
-
 __kernel void voxelize_clear(__global uint4* accum, __global uint* overflow, uint voxel_count,
                              __global uint* large_count) {
   const uint i = (uint)get_global_id(0);
@@ -891,7 +885,7 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
                                  __global const Triangle* triangles,
                                  __global const Material* materials,
                                  __global const TextureInfo* textures,
-                                 __global const float4* linear_texels,
+                                 __global const uint* texels,
                                  __global const float* shadow,
                                  uint resolution,
                                  volatile __global uint* accum,
@@ -941,7 +935,7 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
   const VxLight light = vx_light(frame, bounce, bounce_cells);
   const float third = 1.0f / 3.0f;
   const VxVec centroid = vxv_add(vxv_add(s.w0, vxv_scale(s.e01, third)), vxv_scale(s.e02, third));
-  const VxVec radiance = vx_shade_span(&s, &light, shadow, linear_texels, &centroid, third,
+  const VxVec radiance = vx_shade_span(&s, &light, shadow, texels, &centroid, third,
                                        third, third, small, n);
 
   /* Every column (iu, iv) of the lanes' candidate rectangles, one or two voxels along d each. */
@@ -966,7 +960,7 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
         VxVec value = radiance;
         if (any_per_voxel && vx_lane_any(hit & per_voxel, n))
           value = vxv_select(radiance,
-                             vx_voxel_radiance(&s, &light, shadow, linear_texels, resolution, x,
+                             vx_voxel_radiance(&s, &light, shadow, texels, resolution, x,
                                                y, z, hit & per_voxel, n),
                              per_voxel);
         vx_accumulate_span(accum, overflow, voxel, &value, &s.nw, hit, n);
@@ -985,7 +979,7 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
                               __global const Triangle* triangles,
                               __global const Material* materials,
                               __global const TextureInfo* textures,
-                              __global const float4* linear_texels,
+                              __global const uint* texels,
                               __global const float* shadow, uint resolution,
                               volatile __global uint* accum, volatile __global uint* overflow,
                               uint flat, __global const uint* cached_instances, uint record,
@@ -1042,11 +1036,11 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
 
         const rp_spanu voxel = rp_span_convert_uint((z * R + y) * R + x);
         if (record == VX_ACCUMULATE) {
-          const VxVec radiance = vx_voxel_radiance(&s, &light, shadow, linear_texels,
+          const VxVec radiance = vx_voxel_radiance(&s, &light, shadow, texels,
                                                    resolution, x, y, z, hit, RP_SPAN);
           vx_accumulate_span(accum, overflow, voxel, &radiance, &s.nw, hit, RP_SPAN);
         } else {
-          vx_record_samples(&s, linear_texels, resolution, x, y, z, voxel, hit, record,
+          vx_record_samples(&s, texels, resolution, x, y, z, voxel, hit, record,
                             cache_count, cache, cache_capacity);
         }
       }
@@ -1063,7 +1057,7 @@ __kernel void voxelize_large(__global const FrameConstants* frame,
                              __global const Triangle* triangles,
                              __global const Material* materials,
                              __global const TextureInfo* textures,
-                             __global const float4* linear_texels,
+                             __global const uint* texels,
                              __global const float* shadow,
                              uint resolution,
                              volatile __global uint* accum,
@@ -1079,7 +1073,7 @@ __kernel void voxelize_large(__global const FrameConstants* frame,
   const uint count = large_count[0];
   for (uint entry = (uint)get_global_id(0); entry < count; entry += (uint)get_global_size(0))
     vx_large_triangle(frame, instances, instance_count, vertices, triangles, materials, textures,
-                      linear_texels, shadow, resolution, accum, overflow, large_list[entry],
+                      texels, shadow, resolution, accum, overflow, large_list[entry],
                       cached_instances, record, cache_count, cache, cache_capacity, bounce,
                       bounce_cells);
 }

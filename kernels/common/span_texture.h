@@ -1,19 +1,24 @@
 /* Bilinear and trilinear (mipmapped) texture sampling for pixel spans (common/span.h; OpenCL C
  * only), used by gbuffer.cl and voxelize.cl; needs shared/types.h (TextureInfo). Textures are
- * read as linear float4 texels (each pass decodes the scene's RGBA8 sRGB texels, every mip
- * level, once with rp_unpack_rgba8_srgb), so a tap is one load and the filtering is vector
- * arithmetic across the span. */
+ * read straight from the scene's packed texel buffer (RGBA8, sRGB-encoded rgb, every mip
+ * level; render/texture_mips.h): a tap is one 4-byte load and its rgb goes through the exact
+ * 256-entry sRGB table (common/colour.h RP_SRGB8_TO_LINEAR), so the values are those of
+ * rp_unpack_rgba8_srgb, bit for bit, and the filtering is vector arithmetic across the span.
+ * (Until issue 15's budget work each pass kept a linear float4 copy, decoded once: 16 bytes a
+ * texel, 8 MiB per pass for the demo's textures. Per-tap decoding measured the same time on
+ * the busy 720 frame and saves that memory and the decode kernels.) */
 #ifndef ROLYPOLY_COMMON_SPAN_TEXTURE_H
 #define ROLYPOLY_COMMON_SPAN_TEXTURE_H
 
+#include "common/colour.h"
 #include "common/span.h"
 
 /* Bilinear texture sample (wrap) of the lanes with `textured` set (the arithmetic of
- * sampling.h's rp_texture_bilinear on linear texels, so the same values): (w, h) the lane's
- * texture (or mip level) size in texels, offset its first texel in linear_texels (float4 linear
- * rgba per texel, rows top to bottom). Writes the sampled (r, g, b); untextured lanes and lanes
+ * sampling.h's rp_texture_bilinear on decoded texels, so the same values): (w, h) the lane's
+ * texture (or mip level) size in texels, offset its first texel in texels (packed RGBA8 sRGB
+ * per texel, rows top to bottom). Writes the sampled (r, g, b); untextured lanes and lanes
  * >= n read nothing and get 0. */
-inline void rp_span_texture_sample(__global const float4* linear_texels, rp_spani textured,
+inline void rp_span_texture_sample(__global const uint* texels, rp_spani textured,
                                    rp_spanf w, rp_spanf h, rp_spanu offset, rp_spanf u,
                                    rp_spanf v, int n, rp_spanf* r, rp_spanf* g, rp_spanf* b) {
   /* Untextured lanes sample (0, 0) of a 1x1 texture (ignored below): no NaN reaches the int
@@ -47,26 +52,35 @@ inline void rp_span_texture_sample(__global const float4* linear_texels, rp_span
   RP_SPAN_TO_ARRAY(row1 + rp_span_convert_uint(x0), i01);
   RP_SPAN_TO_ARRAY(row1 + rp_span_convert_uint(x1), i11);
   RP_SPAN_TO_ARRAY(textured, on);
-  /* The four taps per lane (untextured lanes keep 0). */
-  float4 q00[RP_SPAN], q10[RP_SPAN], q01[RP_SPAN], q11[RP_SPAN];
+  /* The four taps per lane, decoded (untextured lanes keep code 0, which decodes to 0). */
+  float r00a[RP_SPAN], g00a[RP_SPAN], b00a[RP_SPAN], r10a[RP_SPAN], g10a[RP_SPAN], b10a[RP_SPAN];
+  float r01a[RP_SPAN], g01a[RP_SPAN], b01a[RP_SPAN], r11a[RP_SPAN], g11a[RP_SPAN], b11a[RP_SPAN];
   for (int i = 0; i < RP_SPAN; ++i) {
-    float4 t00 = (float4)(0.0f), t10 = t00, t01 = t00, t11 = t00;
+    uint t00 = 0u, t10 = 0u, t01 = 0u, t11 = 0u;
     if (i < n && on[i]) {
-      t00 = linear_texels[i00[i]];
-      t10 = linear_texels[i10[i]];
-      t01 = linear_texels[i01[i]];
-      t11 = linear_texels[i11[i]];
+      t00 = texels[i00[i]];
+      t10 = texels[i10[i]];
+      t01 = texels[i01[i]];
+      t11 = texels[i11[i]];
     }
-    q00[i] = t00;
-    q10[i] = t10;
-    q01[i] = t01;
-    q11[i] = t11;
+#define RP_TAP_DECODE_(t, rr, gg, bb)                     \
+  rr[i] = RP_SRGB8_TO_LINEAR[(t) & 0xFFu];                \
+  gg[i] = RP_SRGB8_TO_LINEAR[((t) >> 8) & 0xFFu];         \
+  bb[i] = RP_SRGB8_TO_LINEAR[((t) >> 16) & 0xFFu]
+    RP_TAP_DECODE_(t00, r00a, g00a, b00a);
+    RP_TAP_DECODE_(t10, r10a, g10a, b10a);
+    RP_TAP_DECODE_(t01, r01a, g01a, b01a);
+    RP_TAP_DECODE_(t11, r11a, g11a, b11a);
+#undef RP_TAP_DECODE_
   }
-  rp_spanf r00, g00, b00, r10, g10, b10, r01, g01, b01, r11, g11, b11;
-  rp_span_from_float4s(q00, &r00, &g00, &b00);
-  rp_span_from_float4s(q10, &r10, &g10, &b10);
-  rp_span_from_float4s(q01, &r01, &g01, &b01);
-  rp_span_from_float4s(q11, &r11, &g11, &b11);
+  const rp_spanf r00 = RP_SPAN_FROM_ARRAY(r00a), g00 = RP_SPAN_FROM_ARRAY(g00a),
+                 b00 = RP_SPAN_FROM_ARRAY(b00a);
+  const rp_spanf r10 = RP_SPAN_FROM_ARRAY(r10a), g10 = RP_SPAN_FROM_ARRAY(g10a),
+                 b10 = RP_SPAN_FROM_ARRAY(b10a);
+  const rp_spanf r01 = RP_SPAN_FROM_ARRAY(r01a), g01 = RP_SPAN_FROM_ARRAY(g01a),
+                 b01 = RP_SPAN_FROM_ARRAY(b01a);
+  const rp_spanf r11 = RP_SPAN_FROM_ARRAY(r11a), g11 = RP_SPAN_FROM_ARRAY(g11a),
+                 b11 = RP_SPAN_FROM_ARRAY(b11a);
   *r = mix(mix(r00, r10, fx), mix(r01, r11, fx), fy);
   *g = mix(mix(g00, g10, fx), mix(g01, g11, fx), fy);
   *b = mix(mix(b00, b10, fx), mix(b01, b11, fx), fy);
@@ -74,11 +88,11 @@ inline void rp_span_texture_sample(__global const float4* linear_texels, rp_span
 
 /* Bilinear texture sampling of the lanes with `textured` set at level 0 (arguments as
  * rp_span_texture_sample): multiplies (r, g, b) of those lanes in place. */
-inline void rp_span_texture_linear(__global const float4* linear_texels, rp_spani textured,
+inline void rp_span_texture_linear(__global const uint* texels, rp_spani textured,
                                    rp_spanf w, rp_spanf h, rp_spanu offset, rp_spanf u,
                                    rp_spanf v, int n, rp_spanf* r, rp_spanf* g, rp_spanf* b) {
   rp_spanf cr, cg, cb;
-  rp_span_texture_sample(linear_texels, textured, w, h, offset, u, v, n, &cr, &cg, &cb);
+  rp_span_texture_sample(texels, textured, w, h, offset, u, v, n, &cr, &cg, &cb);
   *r = select(*r, *r * cr, textured);
   *g = select(*g, *g * cg, textured);
   *b = select(*b, *b * cb, textured);
@@ -87,7 +101,7 @@ inline void rp_span_texture_linear(__global const float4* linear_texels, rp_span
 /* Mip level `level` (per lane, 0 .. levels - 1) of the lanes' textures (index into the
  * TextureInfo table, level-0 size w0 x h0): its size max(1, w0 >> level) x max(1, h0 >> level)
  * and its first texel from the table (shared/types.h), sampled bilinearly into (r, g, b). */
-inline void rp_span_texture_level(__global const float4* linear_texels,
+inline void rp_span_texture_level(__global const uint* texels,
                                   __global const TextureInfo* textures, rp_spani textured,
                                   rp_spanu index, rp_spani w0, rp_spani h0, rp_spani level,
                                   rp_spanf u, rp_spanf v, int n, rp_spanf* r, rp_spanf* g,
@@ -102,7 +116,7 @@ inline void rp_span_texture_level(__global const float4* linear_texels,
   RP_SPAN_TO_ARRAY(textured, on);
   for (int i = 0; i < RP_SPAN; ++i)
     off[i] = (i < n && on[i]) ? textures[idx[i]].level_offset[lvl[i]] : 0u;
-  rp_span_texture_sample(linear_texels, textured, rp_span_convert_float(wl),
+  rp_span_texture_sample(texels, textured, rp_span_convert_float(wl),
                          rp_span_convert_float(hl), RP_SPAN_FROM_ARRAY(off), u, v, n, r, g, b);
 }
 
@@ -113,7 +127,7 @@ inline void rp_span_texture_level(__global const float4* linear_texels,
  * with probability frac(lod) (pick: per-lane random numbers in [0, 1)), else floor(lod): the
  * trilinear result in expectation at half the taps (the renderer does this under TAA, which
  * averages the frames; kernels/gbuffer.cl). stochastic == 0: the deterministic blend. */
-inline void rp_span_texture_trilinear(__global const float4* linear_texels,
+inline void rp_span_texture_trilinear(__global const uint* texels,
                                       __global const TextureInfo* textures, rp_spani textured,
                                       rp_spanu index, rp_spani w0, rp_spani h0, rp_spani levels,
                                       rp_spanf lod, rp_spanf u, rp_spanf v, int n,
@@ -127,11 +141,11 @@ inline void rp_span_texture_trilinear(__global const float4* linear_texels,
   const rp_spani l0 = rp_span_convert_int(l0f);
   if (stochastic) {
     const rp_spani up = textured & (pick < frac);
-    rp_span_texture_level(linear_texels, textures, textured, index, w0, h0,
+    rp_span_texture_level(texels, textures, textured, index, w0, h0,
                           select(l0, l0 + 1, up), u, v, n, r, g, b);
     return;
   }
-  rp_span_texture_level(linear_texels, textures, textured, index, w0, h0, l0, u, v, n, r, g, b);
+  rp_span_texture_level(texels, textures, textured, index, w0, h0, l0, u, v, n, r, g, b);
   const rp_spani blend = textured & (frac > 0.0f);
   int lb[RP_SPAN];
   RP_SPAN_TO_ARRAY(blend, lb);
@@ -139,7 +153,7 @@ inline void rp_span_texture_trilinear(__global const float4* linear_texels,
   for (int i = 0; i < n; ++i) any_blend = any_blend || lb[i] != 0;
   if (!any_blend) return;
   rp_spanf r1, g1, b1;
-  rp_span_texture_level(linear_texels, textures, blend, index, w0, h0, l0 + 1, u, v, n, &r1,
+  rp_span_texture_level(texels, textures, blend, index, w0, h0, l0 + 1, u, v, n, &r1,
                         &g1, &b1);
   *r = select(*r, mix(*r, r1, frac), blend);
   *g = select(*g, mix(*g, g1, frac), blend);

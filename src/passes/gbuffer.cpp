@@ -8,10 +8,16 @@
 namespace rp::passes {
 namespace {
 
-constexpr size_t kGroup = 16;  // work-items per work-group (1D) for both kernels
+// Work-items per work-group (1D). With 16-pixel spans on PoCL (busy 720, CPU ms a frame): 4
+// and 16 cost the same (9.2), 64 twice as much (17.8: PoCL keeps every work-item's private
+// arrays side by side, and 64 of them no longer stay in cache).
+constexpr size_t kGroup = 16;
 
-// Pixels per work-item: 8 on CPUs (float8 spans map onto PoCL's SIMD code; measured at 720x720
-// on the 2-core AVX-512 EPYC: 3.6 ms against 4.2 ms with 16, 6.5 ms with 4), 1 on GPUs.
+// Pixels per work-item: 16 on CPUs (float16 spans map onto PoCL's SIMD code), 1 on GPUs.
+// Measured on the 2-core AVX-512 EPYC, busy 720: before the texture footprint (issue 15) 8 was
+// best (3.6 ms against 4.2 ms with 16, 6.5 ms with 4); the footprint's per-primitive set-up
+// (gb_uv_derivatives) and the trilinear taps made 16 the better choice: 8.9 against 11.0 CPU ms
+// a frame (perf cpu-clock samples, both threads; 15.0 with 4), about 1 ms of the pass's wall time.
 // ROLYPOLY_GBUFFER_SPAN (1, 4, 8 or 16) overrides the choice (tests compare the variants).
 int choose_span(const rp::cl::Context& context) {
   if (const char* env = std::getenv("ROLYPOLY_GBUFFER_SPAN"); env && *env) {
@@ -19,7 +25,7 @@ int choose_span(const rp::cl::Context& context) {
     if (s == "1" || s == "4" || s == "8" || s == "16") return std::stoi(s);
     throw rp::cl::Error("ROLYPOLY_GBUFFER_SPAN must be 1, 4, 8 or 16, not '" + s + "'");
   }
-  return context.info.is_cpu ? 8 : 1;
+  return context.info.is_cpu ? 16 : 1;
 }
 
 }  // namespace
@@ -29,22 +35,6 @@ GBufferPass::GBufferPass(const rp::cl::Context& context, rp::cl::ProgramCache& p
     : context_(&context), span_(choose_span(context)), programs_(&programs) {
   options_ = "-DRP_SPAN=" + std::to_string(span_);
   if (!extra_options.empty()) options_ += " " + extra_options;
-  decode_ = programs.kernel("gbuffer.cl", "gbuffer_decode_texels", options_);
-}
-
-void GBufferPass::update_linear_texels(rp::cl::Profiler& profiler,
-                                       const render::GpuScene& scene) {
-  if (decoded_from_() != nullptr && decoded_from_() == scene.texels()) return;
-  const size_t texels = scene.texels() ? scene.texels.getInfo<CL_MEM_SIZE>() / sizeof(cl_uint) : 0;
-  linear_texels_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
-                                (texels > 0 ? texels : 1) * 4 * sizeof(float));
-  decoded_from_ = scene.texels;
-  if (texels == 0) return;
-  decode_.setArg(0, scene.texels);
-  decode_.setArg(1, linear_texels_);
-  decode_.setArg(2, cl_uint(texels));
-  profiler.enqueue("gbuffer", decode_, ::cl::NDRange(rp::cl::round_up(texels, kGroup)),
-                   ::cl::NDRange(kGroup));
 }
 
 void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
@@ -59,7 +49,8 @@ void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                         "x" + std::to_string(vis.height) + ") or the GBuffer (" +
                         std::to_string(out.width) + "x" + std::to_string(out.height) + ")");
   if (w == 0 || h == 0) return;
-  update_linear_texels(profiler, scene);
+  if (!scene.texels() && !no_texels_())
+    no_texels_ = ::cl::Buffer(context_->context, CL_MEM_READ_ONLY, sizeof(cl_uint));
   cl_uint arg = 0;
   ::cl::Kernel& resolve = resolve_[texture_filter];
   if (!resolve())
@@ -75,7 +66,8 @@ void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   resolve.setArg(arg++, scene.triangles);
   resolve.setArg(arg++, scene.materials);
   resolve.setArg(arg++, scene.textures);
-  resolve.setArg(arg++, linear_texels_);
+  // The packed RGBA8 sRGB texels, decoded per tap (kernels/common/span_texture.h).
+  resolve.setArg(arg++, scene.texels() ? scene.texels : no_texels_);
   resolve.setArg(arg++, out.albedo);
   resolve.setArg(arg++, out.normal_depth);
   resolve.setArg(arg++, out.position);

@@ -29,10 +29,6 @@ class GBufferPass {
   static constexpr float kTaaTextureLodBias = -1.0f;
 
  private:
-  // Decodes scene.texels into linear_texels_ when the scene's texel buffer is not the one
-  // decoded last (held in decoded_from_, so its handle cannot be reused by another buffer).
-  void update_linear_texels(rp::cl::Profiler& profiler, const render::GpuScene& scene);
-
   const rp::cl::Context* context_;
   int span_ = 1;  // pixels per work-item along x (kernels/common/span.h)
   // resolve_[filter]: gbuffer_resolve built with -DRP_TEXTURE_FILTER_FIXED=filter on first use
@@ -40,9 +36,7 @@ class GBufferPass {
   std::array<::cl::Kernel, 3> resolve_;
   rp::cl::ProgramCache* programs_;
   std::string options_;
-  ::cl::Kernel decode_;
-  ::cl::Buffer linear_texels_;  // float4 per texel: linear rgba of scene.texels
-  ::cl::Buffer decoded_from_;   // the texel buffer linear_texels_ was decoded from
+  ::cl::Buffer no_texels_;  // one texel, bound when the scene has no texel buffer
 };
 
 }  // namespace rp::passes

@@ -48,7 +48,6 @@ bool same_geometry(const gpu::Instance& a, const gpu::Instance& b) {
 VoxelizePass::VoxelizePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
     : context_(&context), span_(choose_span(context)) {
   const std::string options = fixed_point_options() + " -DRP_SPAN=" + std::to_string(span_);
-  decode_ = programs.kernel("voxelize.cl", "voxelize_decode_texels", options);
   clear_ = programs.kernel("voxelize.cl", "voxelize_clear", options);
   triangles_ = programs.kernel("voxelize.cl", "voxelize_triangles", options);
   large_ = programs.kernel("voxelize.cl", "voxelize_large", options);
@@ -61,19 +60,12 @@ VoxelizePass::VoxelizePass(const rp::cl::Context& context, rp::cl::ProgramCache&
     cache_enabled_ = false;
 }
 
-bool VoxelizePass::update_linear_texels(rp::cl::Profiler& profiler,
-                                        const render::GpuScene& scene) {
-  if (decoded_from_() != nullptr && decoded_from_() == scene.texels()) return false;
-  const size_t texels = scene.texels() ? scene.texels.getInfo<CL_MEM_SIZE>() / sizeof(cl_uint) : 0;
-  linear_texels_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
-                                (texels > 0 ? texels : 1) * 4 * sizeof(float));
-  decoded_from_ = scene.texels;
-  if (texels == 0) return true;
-  decode_.setArg(0, scene.texels);
-  decode_.setArg(1, linear_texels_);
-  decode_.setArg(2, cl_uint(texels));
-  profiler.enqueue("voxelize", decode_, ::cl::NDRange(rp::cl::round_up(texels, kGroup)),
-                   ::cl::NDRange(kGroup));
+bool VoxelizePass::update_texels(const render::GpuScene& scene) {
+  if (!scene.texels() && !no_texels_())
+    no_texels_ = ::cl::Buffer(context_->context, CL_MEM_READ_ONLY, sizeof(cl_uint));
+  texels_ = scene.texels() ? scene.texels : no_texels_;
+  if (seen_texels_() != nullptr && seen_texels_() == scene.texels()) return false;
+  seen_texels_ = scene.texels;
   return true;
 }
 
@@ -133,7 +125,7 @@ void VoxelizePass::set_large_args(const render::GpuScene& scene, const render::S
   large_.setArg(arg++, scene.triangles);
   large_.setArg(arg++, scene.materials);
   large_.setArg(arg++, scene.textures);
-  large_.setArg(arg++, linear_texels_);
+  large_.setArg(arg++, texels_);
   large_.setArg(arg++, shadow.depth);
   large_.setArg(arg++, volume.resolution);
   large_.setArg(arg++, volume.accum);
@@ -200,7 +192,7 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
     large_list_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
                                large_capacity_ * sizeof(cl_uint));
   }
-  const bool scene_changed = update_linear_texels(profiler, scene);
+  const bool scene_changed = update_texels(scene);
   const bool rebuild = update_cache_plan(scene, r, scene_changed);
   large_items_ = std::min(rp::cl::round_up(std::max<size_t>(triangles, 1), kSpanGroup),
                           context_->info.is_cpu ? size_t(128) : size_t(8192));
@@ -222,7 +214,7 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
     triangles_.setArg(arg++, scene.triangles);
     triangles_.setArg(arg++, scene.materials);
     triangles_.setArg(arg++, scene.textures);
-    triangles_.setArg(arg++, linear_texels_);
+    triangles_.setArg(arg++, texels_);
     triangles_.setArg(arg++, shadow.depth);
     triangles_.setArg(arg++, r);
     triangles_.setArg(arg++, volume.accum);

@@ -32,10 +32,10 @@ class VoxelizePass {
            const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0);
 
  private:
-  // Decodes scene.texels into linear_texels_ when the scene's texel buffer is not the one
-  // decoded last (held in decoded_from_, so its handle cannot be reused by another buffer).
-  // Returns true when it decoded (the scene changed).
-  bool update_linear_texels(rp::cl::Profiler& profiler, const render::GpuScene& scene);
+  // Binds scene.texels (packed RGBA8 sRGB, decoded per tap by the kernels) as texels_ and
+  // returns true when it is not the texel buffer of the last run (held in seen_texels_, so its
+  // handle cannot be reused by another buffer): the scene changed.
+  bool update_texels(const render::GpuScene& scene);
   // Follows which instances have not changed since tracking began (still_) and decides the
   // instances of the static surface cache; returns true when the cache must be rebuilt.
   bool update_cache_plan(const render::GpuScene& scene, uint32_t resolution, bool scene_changed);
@@ -50,9 +50,10 @@ class VoxelizePass {
   cl_uint bounce_cells_ = 0;
   ::cl::Buffer no_bounce_;
   int span_ = 1;  // triangles (voxelize_triangles) or voxel columns (voxelize_large) a work-item
-  ::cl::Kernel decode_, clear_, triangles_, large_, cached_, spheres_, resolve_;
-  ::cl::Buffer linear_texels_;  // float4 per texel: linear rgba of scene.texels
-  ::cl::Buffer decoded_from_;   // the texel buffer linear_texels_ was decoded from
+  ::cl::Kernel clear_, triangles_, large_, cached_, spheres_, resolve_;
+  ::cl::Buffer texels_;       // scene.texels, or no_texels_ when the scene has none
+  ::cl::Buffer no_texels_;    // one texel
+  ::cl::Buffer seen_texels_;  // the texel buffer of the last run
   // Large triangles of the frame (flat instance-triangle indices, in no particular order) and
   // their count, written by voxelize_triangles, read by voxelize_large. Grows with the
   // scene's instance triangle count, never per frame otherwise.

@@ -41,14 +41,15 @@ uint64_t chain_texels(const scene::Texture& texture) {
 
 }  // namespace
 
-// On the device every texel of every mip level takes 4 bytes here (packed sRGB, one buffer
-// for all textures) and 16 in the gbuffer pass's linear float4 copy (passes/gbuffer.cpp, also
-// one buffer). A texture too large for that (a 16384^2 one needs 5.3 GiB in one buffer) failed
-// only at clCreateBuffer, after 45 s and 12 GiB of host memory spent on mip chains, and the
-// renderer's out-of-memory message then named the frame size ("a 16x16 image").
+// On the device every texel of every mip level takes 4 bytes (packed sRGB, one buffer for all
+// textures, which the gbuffer and voxelize kernels read directly, decoding per tap). A texture
+// too large for that failed only at clCreateBuffer, after 45 s and 12 GiB of host memory spent
+// on mip chains, and the renderer's out-of-memory message then named the frame size ("a 16x16
+// image"). (Until issue 15's budget work both passes also kept a linear float4 copy, 16 bytes a
+// texel each.)
 void check_texture_memory(const std::vector<scene::Texture>& textures, uint64_t max_alloc,
                           uint64_t global) {
-  constexpr uint64_t kPacked = 4, kLinear = 16;  // bytes per texel
+  constexpr uint64_t kPacked = 4;  // bytes per texel
   uint64_t texels = 0;
   const scene::Texture* largest = nullptr;
   for (const scene::Texture& t : textures) {
@@ -56,17 +57,16 @@ void check_texture_memory(const std::vector<scene::Texture>& textures, uint64_t 
     if (!largest || chain_texels(t) > chain_texels(*largest)) largest = &t;
   }
   if (!largest) return;
-  const uint64_t need = texels * (kPacked + kLinear);
-  const bool buffer_too_big = max_alloc > 0 && texels * kLinear > max_alloc;
+  const uint64_t need = texels * kPacked;
+  const bool buffer_too_big = max_alloc > 0 && need > max_alloc;
   if (!buffer_too_big && (global == 0 || need <= global)) return;  // 0: the driver did not say
   std::string message = "the textures need " + mib(need) +
                         " of device memory with their mipmaps (texture '" + largest->name +
                         "' is " + std::to_string(largest->width) + "x" +
                         std::to_string(largest->height) + " texels; " +
-                        std::to_string(kPacked + kLinear) + " bytes per texel: packed and as "
-                        "linear float4), ";
+                        std::to_string(kPacked) + " bytes per texel), ";
   if (buffer_too_big)
-    message += "one buffer of " + mib(texels * kLinear) + ", but the device allows at most " +
+    message += "one buffer of " + mib(need) + ", but the device allows at most " +
                mib(max_alloc) + " per buffer";
   else
     message += "but the device has " + mib(global);

@@ -34,8 +34,8 @@ struct MeshRange {
 };
 
 // Throws rp::cl::Error naming the largest texture, the need and the limit when the textures
-// with their mip chains do not fit the device: 4 bytes per texel here (packed sRGB) and 16 in
-// the gbuffer pass's linear copy (one buffer each, so the copy must fit `max_alloc_bytes`).
+// with their mip chains do not fit the device: 4 bytes per texel (packed sRGB, in one buffer,
+// so all of them must fit `max_alloc_bytes`).
 // GpuScene checks this before building the chains; 0 = the driver did not say.
 void check_texture_memory(const std::vector<scene::Texture>& textures, uint64_t max_alloc_bytes,
                           uint64_t global_mem_bytes);

@@ -308,7 +308,7 @@ TEST(TextureFootprint, FacingQuadHasTheClosedFormLevel) {
 // derivatives of the exact mapping; the y axis (along the tilt) is the longer one, and the
 // level of detail rises with distance (towards the top of the image).
 TEST(TextureFootprint, TiltedQuadMatchesNumericalDerivatives) {
-  for (const char* span : {"1", "8"}) {
+  for (const char* span : {"1", "8", "16"}) {
     setenv("ROLYPOLY_GBUFFER_SPAN", span, 1);
     QuadScene s(60.0, 32, 16);
     ASSERT_NE(s.jitter(), glm::dvec2(0.0));
@@ -437,19 +437,21 @@ void check_filtered(uint32_t filter, const char* span, double tilt, uint32_t siz
 TEST(TextureFilter, TrilinearMatchesReferenceSampler) {
   check_filtered(RP_TEXTURE_FILTER_TRILINEAR, "1", 60.0, 32);
   check_filtered(RP_TEXTURE_FILTER_TRILINEAR, "8", 60.0, 32);
+  check_filtered(RP_TEXTURE_FILTER_TRILINEAR, "16", 60.0, 32);  // the CPU layout
 }
 
 TEST(TextureFilter, AnisotropicMatchesReferenceSampler) {
   check_filtered(RP_TEXTURE_FILTER_ANISOTROPIC, "1", 60.0, 32);
   check_filtered(RP_TEXTURE_FILTER_ANISOTROPIC, "8", 60.0, 32);
   check_filtered(RP_TEXTURE_FILTER_ANISOTROPIC, "8", 80.0, 48);  // ratios past the cap
+  check_filtered(RP_TEXTURE_FILTER_ANISOTROPIC, "16", 80.0, 48);
 }
 
 // Stochastic trilinear (the renderer's mode under TAA): every pixel holds ONE of the two
 // levels' bilinear samples, the upper one about as often as the blend weights say (the same
 // mean as trilinear), at the GPU layout and 8-pixel spans.
 TEST(TextureFilter, StochasticTrilinearPicksOneLevelWithTheBlendWeight) {
-  for (const char* span : {"1", "8"}) {
+  for (const char* span : {"1", "8", "16"}) {
     setenv("ROLYPOLY_GBUFFER_SPAN", span, 1);
     QuadScene s(60.0, 48, 16);
     const GBufferOut g = resolve(s, RP_TEXTURE_FILTER_TRILINEAR, "", true);
