@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cli_runner.h"
+#include "xvfb_server.h"  // wait_exit, read_text
 
 namespace rp::test {
 namespace {
@@ -25,12 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // rolypoly with `args`, stdout and stderr into files in `dir`; returns its pid.
 pid_t start(const std::vector<std::string>& args, const TempDir& dir) {
@@ -46,26 +41,6 @@ pid_t start(const std::vector<std::string>& args, const TempDir& dir) {
     _exit(98);
   }
   return pid;
-}
-
-// Exit code, or -1 (and a failure) when it ended by a signal or outlived `limit`.
-int wait_exit(pid_t pid, std::chrono::seconds limit) {
-  const auto end = Clock::now() + limit;
-  int status = 0;
-  while (waitpid(pid, &status, WNOHANG) == 0) {
-    if (Clock::now() > end) {
-      kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
-      ADD_FAILURE() << "still running after " << limit.count() << " s";
-      return -1;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  if (!WIFEXITED(status)) {
-    ADD_FAILURE() << "ended by signal " << WTERMSIG(status) << ", not by its handler";
-    return -1;
-  }
-  return WEXITSTATUS(status);
 }
 
 std::vector<std::string> lines_of(const std::string& text) {
