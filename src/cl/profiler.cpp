@@ -39,25 +39,62 @@ double& PassTimes::at(std::string_view pass) {
 
 double PassTimes::at(std::string_view pass) const { return const_cast<PassTimes*>(this)->at(pass); }
 
+const char* timing_name(Timing timing) { return timing == Timing::kHost ? "host" : "device"; }
+
+bool timestamps_usable(const std::vector<EventTimes>& in_order, uint64_t min_ns) {
+  if (in_order.empty()) return false;
+  uint64_t previous_end = 0;
+  for (const EventTimes& t : in_order) {
+    if (t.start == 0 || t.end == 0 || t.end < t.start || t.end - t.start < min_ns) return false;
+    if (t.start < previous_end) return false;
+    previous_end = t.end;
+  }
+  return true;
+}
+
 void Profiler::enqueue(const std::string& pass, const ::cl::Kernel& kernel,
                        const ::cl::NDRange& global, const ::cl::NDRange& local) {
   ::cl::Event event;
+  const bool host = timing_ == Timing::kHost;
+  Clock::time_point t0;
+  if (host) {
+    queue_.finish();  // earlier work (uploads not recorded) is not this pass's
+    t0 = Clock::now();
+  }
   try {
-    queue_.enqueueNDRangeKernel(kernel, ::cl::NullRange, global, local, nullptr, &event);
+    queue_.enqueueNDRangeKernel(kernel, ::cl::NullRange, global, local, nullptr,
+                                host ? nullptr : &event);
   } catch (const ::cl::Error& e) {
     std::string name = kernel.getInfo<CL_KERNEL_FUNCTION_NAME>();
     while (!name.empty() && name.back() == '\0') name.pop_back();
     throw Error("pass '" + pass + "': launching kernel '" + name + "' failed: " +
                 error_name(e.err()));
   }
+  if (host) {
+    queue_.finish();
+    host_times_[pass] += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    return;
+  }
   events_.emplace_back(pass, std::move(event));
 }
 
 void Profiler::record(const std::string& pass, const ::cl::Event& event) {
+  if (timing_ == Timing::kHost) {
+    const Clock::time_point t0 = Clock::now();
+    event.wait();
+    host_times_[pass] += std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    return;
+  }
   events_.emplace_back(pass, event);
 }
 
 PassTimes Profiler::collect() {
+  if (timing_ == Timing::kHost) {
+    queue_.finish();
+    PassTimes times = host_times_;
+    host_times_.clear();
+    return times;
+  }
   PassTimes times;
   if (events_.empty()) return times;
   events_.back().second.wait();
