@@ -9,6 +9,7 @@
 //          count 8 bytes per 4-byte word. The small per-frame constant structs are not counted.
 //   flops: float add, sub, mul, div, sqrt = 1; mad/fma = 2; mix = 3; min/max/clamp/compare and
 //          integer index arithmetic = 0. Order of magnitude, not an instruction count.
+//   footprint: unique bytes touched (see PassWork), <= bytes.
 //   Data-dependent passes are modelled as stated upper bounds (light: every pixel covered, every
 //   cone takes all its steps) or stated typical cases (visibility: tiles per draw item).
 #pragma once
@@ -33,7 +34,48 @@ struct WorkParams {
 
 struct PassWork {
   double bytes = 0, flops = 0;  // per frame
+  // Unique bytes the pass touches per frame (each buffer byte once, however often it is
+  // requested): the per-pixel / per-voxel planes it reads and writes and its per-item records.
+  // Small shared tables (vertices, instances, materials, textures) are left out, so this is a
+  // lower bound; it picks the cache level of the pass's bandwidth ceiling (peak_probe.h).
+  double footprint = 0;
 };
+
+// Copy bandwidth measured with a working set (source + destination bytes) of
+// `working_set_bytes` (src/app/peak_probe.h).
+struct BandwidthLevel {
+  double working_set_bytes = 0;
+  double gbps = 0;
+};
+
+// Work done and the share of the ceiling it reached (issue 7 item 3, issue 19). Fractions:
+// 0 = not counted (pass not modelled, no time, or the device's peak not measured); NaN = the
+// model would put the pass above its ceiling (a work bound too loose or bytes served from a
+// closer level than the footprint implies): the model cannot be right there, so no figure is
+// shown (JSON null). Never above 1.
+struct PassEfficiency {
+  double bytes = 0.0;             // bytes requested per frame (pass_work's formulas)
+  double flops = 0.0;             // arithmetic operations per frame
+  double footprint = 0.0;         // unique bytes per frame (PassWork::footprint)
+  double gbytes_per_s = 0.0;      // bytes / median time, 1e9 bytes per second
+  double gflops_per_s = 0.0;      // flops / median time
+  double ceiling_gbps = 0.0;      // bandwidth_ceiling_gbps for this pass (0 = not measured)
+  double bandwidth_fraction = 0.0;  // gbytes_per_s / ceiling_gbps
+  double compute_fraction = 0.0;    // gflops_per_s / device peak compute
+};
+
+// Cache-aware roofline ceiling (GB/s) for a pass that requests `bytes` per frame over a unique
+// footprint of `footprint` bytes: the shortest time the measured levels allow is
+//   max(bytes / fastest level, footprint / fastest level whose working set holds the footprint
+//       (the last, DRAM-sized level when none does)),
+// and the ceiling is bytes / that time. 0 when `levels` is empty or bytes <= 0.
+double bandwidth_ceiling_gbps(const std::vector<BandwidthLevel>& levels, double bytes,
+                              double footprint);
+
+// The efficiency of a pass doing `work` in `median_ms` on a device with the measured `levels`
+// (empty = bandwidth not measured) and `peak_gflops` (0 = not measured).
+PassEfficiency pass_efficiency(const PassWork& work, double median_ms,
+                               const std::vector<BandwidthLevel>& levels, double peak_gflops);
 
 // The work of one pass per frame; zeros for a pass name not modelled here.
 PassWork pass_work(const std::string& pass, const WorkParams& p);
