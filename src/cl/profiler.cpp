@@ -43,7 +43,8 @@ double PassTimes::at(std::string_view pass) const { return const_cast<PassTimes*
 namespace {
 
 // Waits until every command enqueued so far on `queue` has finished, sleeping between polls of
-// a marker's status instead of clFinish: Mesa rusticl's clFinish spins a core while it waits
+// a marker's status (host timing is therefore good to about 1 ms on long passes) instead of
+// clFinish: Mesa rusticl's clFinish spins a core while it waits
 // (measured: the waiting thread at ~90 % CPU through a 10-minute kernel build), which on a
 // 2-core machine halves the build's speed and starves the other tests.
 void wait_idle(::cl::CommandQueue& queue) {
@@ -57,8 +58,10 @@ void wait_idle(::cl::CommandQueue& queue) {
       queue.finish();
       return;
     }
-    // A few immediate polls (a pass that just finished), then 0.1 ms naps.
-    if (polls >= 8) std::this_thread::sleep_for(std::chrono::microseconds(100));
+    // A few immediate polls (a pass that just finished), then naps growing from 20 us to 1 ms
+    // (a status query is not free on every implementation: rusticl's takes its queue's lock).
+    if (polls >= 8)
+      std::this_thread::sleep_for(std::chrono::microseconds(std::min(1000, 20 << std::min(polls - 8, 6))));
   }
 }
 
