@@ -1,5 +1,5 @@
-/* Device peak probe (src/app/peak_probe.cpp), in the spirit of clpeak: the bench divides each
- * pass's modelled bytes and flops (src/app/pass_work.cpp) by these measured peaks.
+/* Device peak probe (bench/src/peak_probe.cpp), in the spirit of clpeak: the bench divides each
+ * pass's modelled bytes and flops (bench/src/pass_work.cpp) by these measured peaks.
  *
  * probe_fill: src[i] = (i & 0xFFFFFF, 1, 2, 3) as floats (exact), the copy's known input.
  * probe_copy: dst[i] = src[i], one float4 per work-item: 32 B of global traffic per item

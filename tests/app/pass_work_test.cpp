@@ -1,10 +1,10 @@
-// The per-pass work model (src/app/pass_work.cpp): scaling properties that follow from the
+// The per-pass work model (bench/src/pass_work.cpp): scaling properties that follow from the
 // kernels' structure, and one pass computed by hand.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "app/pass_work.h"
+#include "bench/src/pass_work.h"
 
 namespace rp::app {
 namespace {

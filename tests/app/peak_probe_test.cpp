@@ -1,10 +1,10 @@
-// The device peak probe (kernels/probe.cl, src/app/peak_probe.cpp) on the test device.
+// The device peak probe (kernels/probe.cl, bench/src/peak_probe.cpp) on the test device.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
-#include "app/peak_probe.h"
+#include "bench/src/peak_probe.h"
 #include "cl/error.h"
 #include "support/cl_fixture.h"
 

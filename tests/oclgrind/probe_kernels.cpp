@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "app/peak_probe.h"
+#include "bench/src/peak_probe.h"
 #include "cl/context.h"
 #include "cl/program_cache.h"
 

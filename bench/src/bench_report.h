@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <string>
 
-#include "app/bench_matrix.h"
-#include "app/pass_stats.h"
+#include "bench/src/bench_matrix.h"
+#include "bench/src/pass_stats.h"
 
 namespace rp::app {
 

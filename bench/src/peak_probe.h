@@ -1,5 +1,5 @@
 // Measured peak memory bandwidth and arithmetic rate of one OpenCL device (kernels/probe.cl),
-// the ceilings of the bench's efficiency columns (src/app/pass_work.h). Each kernel runs a few
+// the ceilings of the bench's efficiency columns (bench/src/pass_work.h). Each kernel runs a few
 // times and the best launch counts (device time from profiling events, or the host's clock
 // around a finished launch where the device's timestamps are unusable: Context::timing); the
 // outputs are checked on the host so a launch that did not do its work throws instead of
@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "app/pass_work.h"  // BandwidthLevel
+#include "bench/src/pass_work.h"  // BandwidthLevel
 #include "cl/context.h"
 #include "cl/error.h"
 #include "cl/program_cache.h"

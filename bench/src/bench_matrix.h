@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "app/pass_stats.h"
-#include "app/pass_work.h"  // PassEfficiency, BandwidthLevel
+#include "bench/src/pass_stats.h"
+#include "bench/src/pass_work.h"  // PassEfficiency, BandwidthLevel
 #include "cl/context.h"
 
 namespace rp::app {

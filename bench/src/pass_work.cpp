@@ -2,7 +2,7 @@
 // pass_work.h; every constant below names the kernel lines it stands for. Symbols:
 //   N = width * height pixels, S = shadow_size^2 texels, R = voxel_resolution,
 //   T = instance_triangles (drawn), P = spheres, items = T + P (rasterizer draw items).
-#include "app/pass_work.h"
+#include "bench/src/pass_work.h"
 
 #include <algorithm>
 #include <cmath>

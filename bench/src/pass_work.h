@@ -1,6 +1,6 @@
 // Work model of the hot passes: bytes moved and arithmetic done per frame, counted from each
 // kernel's own structure (kernels/*.cl), so the bench can divide by the device's measured peak
-// (src/app/peak_probe.h) and show how close a pass runs to the device's limit.
+// (bench/src/peak_probe.h) and show how close a pass runs to the device's limit.
 //
 // Conventions (the formulas and their assumptions are next to each pass in pass_work.cpp and
 // summarised in README, "Efficiency: bytes and arithmetic per pass"):
@@ -42,7 +42,7 @@ struct PassWork {
 };
 
 // Copy bandwidth measured with a working set (source + destination bytes) of
-// `working_set_bytes` (src/app/peak_probe.h).
+// `working_set_bytes` (bench/src/peak_probe.h).
 struct BandwidthLevel {
   double working_set_bytes = 0;
   double gbps = 0;

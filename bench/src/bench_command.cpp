@@ -2,15 +2,15 @@
 #include <filesystem>
 #include <memory>
 
-#include "app/bench_chart.h"
-#include "app/bench_matrix.h"
-#include "app/bench_report.h"
+#include "bench/src/bench_chart.h"
+#include "bench/src/bench_matrix.h"
+#include "bench/src/bench_report.h"
 #include "app/commands.h"
 #include "app/frame_source.h"
-#include "app/pass_stats.h"
+#include "bench/src/pass_stats.h"
 #include "app/png_output.h"
 #include "app/progress.h"
-#include "app/quality_report.h"
+#include "bench/src/quality_report.h"
 #include "app/simulation_source.h"
 #include "io/output_path.h"
 #include "scene/particles.h"
@@ -18,9 +18,9 @@
 
 // The efficiency columns (issue 7 item 3) need the work counts and the peak probe; built without
 // them the bench reports times only.
-#if __has_include("app/pass_work.h") && __has_include("app/peak_probe.h")
-#include "app/pass_work.h"
-#include "app/peak_probe.h"
+#if __has_include("bench/src/pass_work.h") && __has_include("bench/src/peak_probe.h")
+#include "bench/src/pass_work.h"
+#include "bench/src/peak_probe.h"
 #define RP_BENCH_EFFICIENCY 1
 #else
 #define RP_BENCH_EFFICIENCY 0

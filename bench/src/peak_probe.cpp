@@ -1,4 +1,4 @@
-#include "app/peak_probe.h"
+#include "bench/src/peak_probe.h"
 
 #include <algorithm>
 #include <cstdio>
