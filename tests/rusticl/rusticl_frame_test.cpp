@@ -5,9 +5,10 @@
 // installs it there), where a missing rusticl device fails.
 //
 // rusticl compiles every kernel for minutes on first use (clang to SPIR-V to NIR to llvmpipe's
-// LLVM); Mesa's shader cache (MESA_SHADER_CACHE_DIR, set by CMake to a folder under the build
-// tree) keeps llvmpipe's compiled shaders, so the kernel tests that run on rusticl after this
-// frame (label rusticl too) and later runs on the same build tree skip that part.
+// LLVM, the slow part: at each kernel's first launch); Mesa's shader cache
+// (~/.cache/mesa_shader_cache, or MESA_SHADER_CACHE_DIR) keeps the builds, so the kernel tests
+// that run on rusticl after this frame (rusticl.kernel_tests) and later runs on a machine whose
+// home folder persists skip them (measured: 6.4 s for a 128x128 frame with a warm cache).
 #include <gtest/gtest.h>
 
 #include <chrono>
