@@ -44,9 +44,10 @@ namespace {
 
 // Waits until every command enqueued so far on `queue` has finished, sleeping between polls of
 // a marker's status (host timing is therefore good to about 1 ms on long passes) instead of
-// clFinish: Mesa rusticl's clFinish spins a core while it waits
-// (measured: the waiting thread at ~90 % CPU through a 10-minute kernel build), which on a
-// 2-core machine halves the build's speed and starves the other tests.
+// clFinish, so the waiting thread stays idle whatever the implementation's wait does. (Under
+// rusticl, gdb caught the waiting thread in clFinish's timed condition-variable loop while
+// top showed it near a full core; perf later showed most of that thread's CPU was its own
+// clBuildProgram work, so how much clFinish itself costs there is not established.)
 void wait_idle(::cl::CommandQueue& queue) {
   ::cl::Event marker;
   queue.enqueueMarkerWithWaitList(nullptr, &marker);
