@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "app/bench_matrix.h"
+#include "bench/src/bench_matrix.h"
 #include "cl/error.h"
 
 namespace {

@@ -1,9 +1,13 @@
-/* Device peak probe (src/app/peak_probe.cpp), in the spirit of clpeak: the bench divides each
- * pass's modelled bytes and flops (src/app/pass_work.cpp) by these measured peaks.
+/* Device peak probe (bench/src/peak_probe.cpp), in the spirit of clpeak: the bench divides each
+ * pass's modelled bytes and flops (bench/src/pass_work.cpp) by these measured peaks.
  *
  * probe_fill: src[i] = (i & 0xFFFFFF, 1, 2, 3) as floats (exact), the copy's known input.
  * probe_copy: dst[i] = src[i], one float4 per work-item: 32 B of global traffic per item
  *   (16 read + 16 written), unit stride, the streaming bandwidth a well-behaved pass can reach.
+ * probe_copy_wrap: dst[i & mask] = src[i & mask] for i over many times the buffer's length:
+ *   the same 32 B per work-item, but the working set (src + dst = 32 * (mask + 1) bytes) stays
+ *   small enough to live in one cache level while a launch is long enough to time (the
+ *   cache-aware ceilings of the bench's efficiency columns). mask + 1 is a power of two.
  * probe_compute: 8 independent chains of float8 mads per work-item (64 lanes, enough
  *   independent work to hide mad latency on CPUs and GPUs), RP_PROBE_UNROLL mads per chain per
  *   loop iteration. With a = 1 and b = 1 from the host (unknown to the compiler, so nothing
@@ -22,6 +26,12 @@ __kernel void probe_fill(__global float4* restrict src, uint n) {
 
 __kernel void probe_copy(__global const float4* restrict src, __global float4* restrict dst) {
   const size_t i = get_global_id(0);
+  dst[i] = src[i];
+}
+
+__kernel void probe_copy_wrap(__global const float4* restrict src, __global float4* restrict dst,
+                              uint mask) {
+  const uint i = (uint)get_global_id(0) & mask;
   dst[i] = src[i];
 }
 

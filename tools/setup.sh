@@ -16,10 +16,13 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 # Build tools, OpenCL (PoCL CPU driver, headers, ICD loader, oclgrind for the kernel checks),
 # libraries, a virtual X server with software OpenGL for the window tests, and xdotool to close
-# a window from outside (the window-closed-mid-run test).
+# a window from outside (the window-closed-mid-run test). mesa-opencl-icd is the second OpenCL
+# implementation (Mesa rusticl on llvmpipe, devices with RUSTICL_ENABLE=llvmpipe): the
+# `rusticl` test label renders on it.
 PACKAGES=(
   cmake make g++ pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers clinfo oclgrind
+  mesa-opencl-icd
   libglm-dev libglfw3-dev libgl-dev libstb-dev libembree-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev libopenexr-dev
   xvfb xauth libgl1-mesa-dri xdotool ffmpeg
@@ -95,8 +98,8 @@ case "$mode" in
     export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
     window_tests='WindowUnderXvfb|RecordedWindowSession|WindowClose|RunRecordEnd|ShadowKey|OutputIntegrityCli.RunRecord'
     ASAN_OPTIONS="detect_leaks=1" \
-      ctest --test-dir build-asan --output-on-failure -j2 -LE 'oclgrind|soak' -E "$window_tests"
+      ctest --test-dir build-asan --output-on-failure -j2 -LE 'oclgrind|soak|rusticl' -E "$window_tests"
     ASAN_OPTIONS="detect_leaks=0" \
-      ctest --test-dir build-asan --output-on-failure -j2 -LE 'oclgrind|soak' -R "$window_tests"
+      ctest --test-dir build-asan --output-on-failure -j2 -LE 'oclgrind|soak|rusticl' -R "$window_tests"
     ;;
 esac

@@ -50,16 +50,16 @@ struct BenchOptions {
   uint32_t warmup = 3;   // frames rendered first and not measured
   std::string json;      // "" = no JSON file
   bool compare_visibility = false;  // --compare-visibility: raster and Embree on the same frames
-  // --quality-report: fast vs reference quality mode at the bench size (app/quality_report.h)
+  // --quality-report: fast vs reference quality mode at the bench size (bench/src/quality_report.h)
   bool quality_report = false;
-  // --accuracy: every real-time mode against the path-traced truth (app/accuracy_report.h);
+  // --accuracy: every real-time mode against the path-traced truth (bench/src/accuracy_report.h);
   // its size defaults to 360 (size_given: --size/--width/--height on the command line).
   bool accuracy = false;
   bool size_given = false;
   uint32_t accuracy_spp = 1024;         // --spp with --accuracy: the truth's samples per pixel
   std::string out_dir = "out/accuracy";  // --out: the report's PNGs
   std::string truth_cache;              // --truth-cache DIR ("" = the default cache folder)
-  // Thresholds (exit 3 when missed; app/accuracy_report.h): fractions, PSNR in dB.
+  // Thresholds (exit 3 when missed; bench/src/accuracy_report.h): fractions, PSNR in dB.
   std::optional<double> max_indirect_l1, max_indirect_bias, max_region_bias;
   std::optional<double> max_indirect_l1_single, min_psnr_taa;
   std::optional<double> min_direct_psnr_floor, max_penumbra_error, min_albedo_psnr;  // issue 15
@@ -86,7 +86,7 @@ int run_command(const CommonOptions& common, const RunOptions& options);
 // Timing tables per device and run, optional JSON, chart and Markdown. Exit code 0 when at
 // least one device completed, 1 when every device was skipped.
 int bench_command(const CommonOptions& common, const BenchOptions& options);
-// bench --accuracy: the real-time modes against the path-traced truth (app/accuracy_report.h);
+// bench --accuracy: the real-time modes against the path-traced truth (bench/src/accuracy_report.h);
 // exit 3 when a threshold (--max-indirect-l1 ... --require-wall-hue) is missed, 130 when
 // interrupted.
 int accuracy_command(const CommonOptions& common, const BenchOptions& options);

@@ -14,7 +14,7 @@
 #include "app/frame_output.h"
 #include "app/host_tone_map.h"
 #include "app/interrupt.h"
-#include "app/pass_stats.h"
+#include "bench/src/pass_stats.h"
 #include "app/png_output.h"
 #include "app/progress.h"
 #include "app/simulation_source.h"

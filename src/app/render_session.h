@@ -75,6 +75,8 @@ class RenderSession {
   void reset_history() { renderer_->reset_history(); }
 
   const rp::cl::DeviceInfo& device() const { return context_.info; }
+  // How pass times are taken on this device (host timing where its timestamps are unusable).
+  rp::cl::Timing timing() const { return context_.timing; }
   const scene::SceneAssets& assets() const { return assets_; }
   uint32_t width() const { return renderer_->settings().width; }
   uint32_t height() const { return renderer_->settings().height; }

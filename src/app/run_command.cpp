@@ -8,11 +8,11 @@
 #include <sstream>
 #include <utility>
 
-#include "app/bench_report.h"
+#include "bench/src/bench_report.h"
 #include "app/commands.h"
 #include "app/frame_source.h"
 #include "app/interrupt.h"
-#include "app/pass_stats.h"
+#include "bench/src/pass_stats.h"
 #include "app/png_output.h"
 #include "app/simulation_source.h"
 #include "display/display_lost.h"

@@ -138,7 +138,34 @@ Context Context::create(const DeviceInfo& info) {
     throw Error("cannot create an OpenCL context and queue on '" + info.name + "': " +
                 e.what() + " (" + error_name(e.err()) + ")");
   }
+  const char* forced = std::getenv("ROLYPOLY_TIMING");
+  if (forced != nullptr && std::string(forced) == "host")
+    c.timing = Timing::kHost;
+  else if (forced != nullptr && std::string(forced) == "device")
+    c.timing = Timing::kDevice;
+  else
+    c.timing = detect_timing(c.context, c.queue);
   return c;
+}
+
+Timing detect_timing(const ::cl::Context& context, const ::cl::CommandQueue& queue) {
+  constexpr size_t kBytes = 4u << 20;
+  try {
+    ::cl::Buffer buffer(context, CL_MEM_READ_WRITE, kBytes);
+    std::vector<::cl::Event> events(2);
+    for (size_t i = 0; i < events.size(); ++i)
+      queue.enqueueFillBuffer(buffer, cl_float(i), 0, kBytes, nullptr, &events[i]);
+    queue.finish();
+    std::vector<EventTimes> times;
+    for (const ::cl::Event& e : events)
+      times.push_back({e.getProfilingInfo<CL_PROFILING_COMMAND_QUEUED>(),
+                       e.getProfilingInfo<CL_PROFILING_COMMAND_SUBMIT>(),
+                       e.getProfilingInfo<CL_PROFILING_COMMAND_START>(),
+                       e.getProfilingInfo<CL_PROFILING_COMMAND_END>()});
+    return timestamps_usable(times, 100) ? Timing::kDevice : Timing::kHost;
+  } catch (const ::cl::Error&) {
+    return Timing::kHost;
+  }
 }
 
 }  // namespace rp::cl

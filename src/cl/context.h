@@ -8,6 +8,7 @@
 #include <CL/opencl.hpp>
 
 #include "cl/pocl_cache.h"  // ensure_pocl_cache_dir: before the first OpenCL call
+#include "cl/profiler.h"
 
 namespace rp::cl {
 
@@ -44,9 +45,18 @@ struct Context {
   DeviceInfo info;
   ::cl::Context context;
   ::cl::CommandQueue queue;
+  // How passes are timed on this device: kDevice when two 4 MiB buffer fills report usable
+  // profiling timestamps (timestamps_usable), else kHost. ROLYPOLY_TIMING=host or =device in
+  // the environment overrides the check (tests and diagnosis).
+  Timing timing = Timing::kDevice;
 
   static Context create(const std::string& device_spec);
   static Context create(const DeviceInfo& info);
 };
+
+// Runs the timestamp check of Context::create on `queue` (no override): two back-to-back fills
+// of a 4 MiB buffer, their events' timestamps judged by timestamps_usable (each must take
+// >= 100 ns). Any OpenCL error reading the timestamps counts as unusable.
+Timing detect_timing(const ::cl::Context& context, const ::cl::CommandQueue& queue);
 
 }  // namespace rp::cl

@@ -1,10 +1,14 @@
 // The one place kernels are enqueued: each launch records a profiling event under its pass name,
-// so the app, the tests and the bench all read the same per-pass times.
+// so the app, the tests and the bench all read the same per-pass times. On a device whose
+// profiling timestamps cannot be trusted (Mesa rusticl returns zeros) the profiler times on the
+// host instead: a finish after each launch, wall clock around it (Timing::kHost).
 #pragma once
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <initializer_list>
 #include <string>
 #include <string_view>
@@ -64,28 +68,56 @@ class PassTimes {
   size_t size_ = 0;
 };
 
+// How pass times are taken. kDevice: CL_PROFILING_COMMAND_START..END of each command's event
+// (launches stay asynchronous). kHost: the queue is finished before and after every launch and
+// the host's steady clock measured around it (launch overhead included, the device idles
+// between passes): for devices whose timestamps are missing, zero or not monotonic.
+enum class Timing { kDevice, kHost };
+
+// "device" or "host" (tables and JSON).
+const char* timing_name(Timing timing);
+
+// The four profiling timestamps of one command (nanoseconds, CL_PROFILING_COMMAND_*).
+struct EventTimes {
+  uint64_t queued = 0, submit = 0, start = 0, end = 0;
+};
+
+// Whether the timestamps of commands run one after another on an in-order queue can be used:
+// every start and end non-zero, end >= start, each command taking at least `min_ns` (the
+// commands must be big enough that a real clock sees them take time), and each command
+// starting no earlier than the previous one ended. Empty: false.
+bool timestamps_usable(const std::vector<EventTimes>& in_order, uint64_t min_ns);
+
 class Profiler {
  public:
-  explicit Profiler(::cl::CommandQueue queue) : queue_(std::move(queue)) {}
+  explicit Profiler(::cl::CommandQueue queue, Timing timing = Timing::kDevice)
+      : queue_(std::move(queue)), timing_(timing) {}
 
   // Enqueues `kernel` on the queue; `local` may be ::cl::NullRange. Throws rp::cl::Error naming
   // the pass and kernel when the launch fails.
   void enqueue(const std::string& pass, const ::cl::Kernel& kernel, const ::cl::NDRange& global,
                const ::cl::NDRange& local = ::cl::NullRange);
 
-  // Records an already enqueued command (a buffer write or copy) under `pass`.
+  // Records an already enqueued command (a buffer write or copy) under `pass`. Host timing:
+  // waits for it and counts the wait (a lower bound: an implementation that copies during the
+  // enqueue shows ~0).
   void record(const std::string& pass, const ::cl::Event& event);
 
   // Waits for everything recorded since the last call and returns the per-pass times (device
-  // execution time, CL_PROFILING_COMMAND_START..END). Clears the recorded events; the event
-  // list keeps its capacity, so steady-state frames allocate nothing here.
+  // execution time, CL_PROFILING_COMMAND_START..END, or host wall clock with Timing::kHost).
+  // Clears the recorded events; the event list keeps its capacity, so steady-state frames
+  // allocate nothing here.
   PassTimes collect();
 
   ::cl::CommandQueue& queue() { return queue_; }
+  Timing timing() const { return timing_; }
 
  private:
+  using Clock = std::chrono::steady_clock;
   ::cl::CommandQueue queue_;
+  Timing timing_ = Timing::kDevice;
   std::vector<std::pair<std::string, ::cl::Event>> events_;
+  PassTimes host_times_;  // Timing::kHost: accumulated since the last collect()
 };
 
 }  // namespace rp::cl

@@ -61,7 +61,7 @@ passes::ShadowFilter shadow_filter_for(ShadowMode mode) {
 
 Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
                    const scene::SceneAssets& assets, RenderSettings settings)
-    : context_(context), settings_(settings), profiler_(context.queue) {
+    : context_(context), settings_(settings), profiler_(context.queue, context.timing) {
   if (settings_.width == 0 || settings_.height == 0 || settings_.shadow_size == 0)
     throw rp::cl::Error("render size must be at least 1x1 pixels");
   scene_ = std::make_unique<GpuScene>(context.context, context.queue, assets);

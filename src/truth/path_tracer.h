@@ -1,6 +1,6 @@
 // Ground truth (issue 13): an unbiased Monte Carlo path tracer of a scene::FrameScene on the
 // host's cores with Embree, with exactly rolypoly's conventions, so that every real-time mode can
-// be held against it pixel by pixel (app/accuracy_report.h).
+// be held against it pixel by pixel (bench/src/accuracy_report.h).
 //
 // Conventions (the same as the real-time passes; DESIGN.md "Ground truth is part of the product"):
 //   camera    pinhole at Camera::position; pixel (x, y), (0, 0) top-left, is box filtered: each

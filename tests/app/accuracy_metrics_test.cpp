@@ -1,4 +1,4 @@
-// The accuracy report's measures (src/app/accuracy_metrics.h) on synthetic images whose answers
+// The accuracy report's measures (bench/src/accuracy_metrics.h) on synthetic images whose answers
 // are worked out by hand.
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "app/accuracy_metrics.h"
+#include "bench/src/accuracy_metrics.h"
 #include "scene/demo_scene.h"
 
 namespace rp::app {

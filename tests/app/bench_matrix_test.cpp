@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "app/bench_chart.h"
-#include "app/bench_matrix.h"
-#include "app/bench_report.h"
+#include "bench/src/bench_chart.h"
+#include "bench/src/bench_matrix.h"
+#include "bench/src/bench_report.h"
 #include "cl/error.h"
 
 namespace rp::app {

@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/bench_report.h"
+#include "bench/src/bench_report.h"
 #include "app/png_output.h"
 #include "cli_runner.h"
 #include "support/image_metrics.h"

@@ -219,7 +219,7 @@ TEST(OutputIntegrityCli, BenchWritesIntoFifosDevicesAndThroughSymlinks) {
   const std::string json = reader.finish();
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_FALSE(json.empty()) << "the FIFO's reader got nothing";
-  EXPECT_EQ(nlohmann::json::parse(json).at("schema"), "rolypoly-bench/2");
+  EXPECT_EQ(nlohmann::json::parse(json).at("schema"), "rolypoly-bench/3");
   EXPECT_EQ(file_type(fifo), mode_t(S_IFIFO));
   EXPECT_EQ(file_type(link), mode_t(S_IFLNK));
   EXPECT_EQ(read_all(dir / "real" / "chart.svg").rfind("<?xml", 0), 0u);
@@ -238,7 +238,7 @@ TEST(OutputIntegrityCli, BenchJsonToStdoutKeepsItsPlaceInTheOutput) {
   ASSERT_NE(open, std::string::npos) << r.out;
   ASSERT_NE(close, std::string::npos) << r.out;
   EXPECT_EQ(nlohmann::json::parse(r.out.substr(open + 1, close + 2 - open)).at("schema"),
-            "rolypoly-bench/2");
+            "rolypoly-bench/3");
   EXPECT_EQ(r.out.substr(close + 3), "wrote /dev/stdout\n");
 }
 

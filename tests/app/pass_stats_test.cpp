@@ -3,8 +3,8 @@
 
 #include <stdexcept>
 
-#include "app/bench_report.h"
-#include "app/pass_stats.h"
+#include "bench/src/bench_report.h"
+#include "bench/src/pass_stats.h"
 #include "app/progress.h"
 
 namespace rp::app {

@@ -1,10 +1,10 @@
-// The per-pass work model (src/app/pass_work.cpp): scaling properties that follow from the
+// The per-pass work model (bench/src/pass_work.cpp): scaling properties that follow from the
 // kernels' structure, and one pass computed by hand.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "app/pass_work.h"
+#include "bench/src/pass_work.h"
 
 namespace rp::app {
 namespace {
@@ -28,8 +28,60 @@ TEST(PassWork, EveryModelledPassIsPositiveAndFinite) {
     EXPECT_GT(w.bytes, 0.0) << pass;
     EXPECT_GT(w.flops, 0.0) << pass;
     EXPECT_TRUE(std::isfinite(w.bytes) && std::isfinite(w.flops)) << pass;
+    EXPECT_GT(w.footprint, 0.0) << pass;
+    EXPECT_LE(w.footprint, w.bytes) << pass << ": unique bytes cannot exceed requested bytes";
   }
   EXPECT_EQ(modelled_passes().size(), 10u);
+}
+
+// ---- cache-aware roofline (issue 19) -------------------------------------------------------
+const std::vector<BandwidthLevel> kLevels = {
+    {32 << 10, 200.0}, {2 << 20, 150.0}, {16 << 20, 100.0}, {512 << 20, 30.0}};
+
+TEST(Roofline, SmallFootprintGetsTheFastestLevel) {
+  EXPECT_DOUBLE_EQ(bandwidth_ceiling_gbps(kLevels, 1e6, 16 << 10), 200.0);
+}
+
+TEST(Roofline, StreamingPassGetsTheLevelItsFootprintFitsIn) {
+  // Every byte requested once (bytes == footprint): the footprint's level limits.
+  EXPECT_DOUBLE_EQ(bandwidth_ceiling_gbps(kLevels, 1 << 20, 1 << 20), 150.0);
+  EXPECT_DOUBLE_EQ(bandwidth_ceiling_gbps(kLevels, 8 << 20, 8 << 20), 100.0);
+  EXPECT_DOUBLE_EQ(bandwidth_ceiling_gbps(kLevels, 64e6, 64e6), 30.0);
+  // Larger than every level: the DRAM stream (the last level).
+  EXPECT_DOUBLE_EQ(bandwidth_ceiling_gbps(kLevels, 4e9, 4e9), 30.0);
+}
+
+TEST(Roofline, GatherWithReuseCanExceedTheDramStreamButNotTheFastestLevel) {
+  // 10x reuse of a DRAM-sized footprint: footprint / 30 GB/s vs bytes / 200 GB/s.
+  const double c = bandwidth_ceiling_gbps(kLevels, 10 * 64e6, 64e6);
+  EXPECT_DOUBLE_EQ(c, 200.0);  // 640e6/200 = 3.2 ms > 64e6/30 = 2.13 ms
+  const double d = bandwidth_ceiling_gbps(kLevels, 2 * 64e6, 64e6);
+  EXPECT_NEAR(d, 60.0, 1e-9);  // 2x reuse: the DRAM footprint limits, 128e6 B / 2.13 ms
+  EXPECT_EQ(bandwidth_ceiling_gbps({}, 1e6, 1e6), 0.0);
+  EXPECT_EQ(bandwidth_ceiling_gbps(kLevels, 0, 0), 0.0);
+}
+
+TEST(Roofline, EfficiencyIsNeverAboveOne) {
+  PassWork w{1e9, 1e9, 1e8};  // 1 GB requested over 100 MB (DRAM-sized), 1 GFLOP
+  // 100 ms: 10 GB/s against a ceiling of min(200, 1e9 B / (1e8 / 30 GB/s)) = 200 GB/s.
+  PassEfficiency e = pass_efficiency(w, 100.0, kLevels, 50.0);
+  EXPECT_DOUBLE_EQ(e.gbytes_per_s, 10.0);
+  EXPECT_DOUBLE_EQ(e.ceiling_gbps, 200.0);
+  EXPECT_DOUBLE_EQ(e.bandwidth_fraction, 0.05);
+  EXPECT_DOUBLE_EQ(e.compute_fraction, 10.0 / 50.0);
+  // 1 ms: 1000 GB/s, 1000 GFLOP/s: the model cannot be right there: NaN (not shown), never > 1.
+  e = pass_efficiency(w, 1.0, kLevels, 50.0);
+  EXPECT_TRUE(std::isnan(e.bandwidth_fraction));
+  EXPECT_TRUE(std::isnan(e.compute_fraction));
+  // Not measured: 0.
+  e = pass_efficiency(w, 100.0, {}, 0.0);
+  EXPECT_EQ(e.bandwidth_fraction, 0.0);
+  EXPECT_EQ(e.compute_fraction, 0.0);
+  EXPECT_DOUBLE_EQ(e.gbytes_per_s, 10.0);
+  // No time: nothing divided.
+  e = pass_efficiency(w, 0.0, kLevels, 50.0);
+  EXPECT_EQ(e.gbytes_per_s, 0.0);
+  EXPECT_EQ(e.bandwidth_fraction, 0.0);
 }
 
 TEST(PassWork, UnknownPassIsZero) {

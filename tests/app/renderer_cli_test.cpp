@@ -79,7 +79,7 @@ TEST(RendererCli, BenchWritesJsonWithTheSchemaFields) {
   std::ifstream in(json_path);
   ASSERT_TRUE(in.good()) << "no JSON file written";
   nlohmann::json j = nlohmann::json::parse(in);  // throws (fails the test) on invalid JSON
-  EXPECT_EQ(j.at("schema"), "rolypoly-bench/2");
+  EXPECT_EQ(j.at("schema"), "rolypoly-bench/3");
   EXPECT_EQ(j.at("frames"), 3);
   EXPECT_EQ(j.at("warmup"), 1);
   ASSERT_EQ(j.at("devices").size(), 1u);

@@ -134,4 +134,60 @@ TEST(Profiler, RecordsTimePerPassName) {
   EXPECT_THROW(profiler.enqueue("bad", kernel, cl::NDRange(1000), cl::NDRange(3000)), rp::cl::Error);
 }
 
+TEST(Profiler, TimestampCheckRejectsZeroShortAndOverlappingTimes) {
+  using rp::cl::EventTimes;
+  using rp::cl::timestamps_usable;
+  const EventTimes a{10, 20, 1000, 5000}, b{11, 21, 5000, 9000};
+  EXPECT_TRUE(timestamps_usable({a, b}, 100));
+  EXPECT_FALSE(timestamps_usable({}, 100));
+  EXPECT_FALSE(timestamps_usable({{0, 0, 0, 0}, {0, 0, 0, 0}}, 100)) << "rusticl: all zero";
+  EXPECT_FALSE(timestamps_usable({{0, 0, 0, 1}}, 100)) << "zero start";
+  EXPECT_FALSE(timestamps_usable({{1, 1, 7, 8}}, 100)) << "1 ns for 4 MiB: not a clock";
+  EXPECT_FALSE(timestamps_usable({{1, 1, 9000, 5000}}, 100)) << "end before start";
+  EXPECT_FALSE(timestamps_usable({b, a}, 100)) << "the second starts before the first ended";
+}
+
+TEST(Profiler, TimestampCheckKnowsPoclAndRusticl) {
+  // PoCL's timestamps are usable; Mesa rusticl's (22.3) are zero: its passes are host-timed.
+  const rp::cl::Context& c = rp::test::context();
+  const rp::cl::Timing t = rp::cl::detect_timing(c.context, c.queue);
+  if (c.info.platform_name.find("Portable Computing Language") != std::string::npos)
+    EXPECT_EQ(t, rp::cl::Timing::kDevice);
+  else if (c.info.platform_name.find("rusticl") != std::string::npos)
+    EXPECT_EQ(t, rp::cl::Timing::kHost);
+  else
+    GTEST_SKIP() << "no expectation for " << c.info.platform_name << " ("
+                 << rp::cl::timing_name(t) << " timing)";
+}
+
+TEST(Profiler, HostTimingFinishesEachLaunchAndTimesIt) {
+  TempKernelDir k;
+  k.write("spin.cl",
+          "kernel void spin(global float* x, int n) { float v = x[get_global_id(0)];\n"
+          "  for (int i = 0; i < n; ++i) v = v * 0.999f + 1.0f; x[get_global_id(0)] = v; }\n");
+  rp::cl::ProgramCache cache(rp::test::context());
+  cl::Kernel kernel = cache.kernel("spin.cl", "spin");
+  cl::Buffer buf(rp::test::context().context, CL_MEM_READ_WRITE, 4096 * sizeof(float));
+  rp::test::context().queue.enqueueFillBuffer(buf, 0.0f, 0, 4096 * sizeof(float));
+  kernel.setArg(0, buf);
+  kernel.setArg(1, 2000);
+  rp::cl::Profiler profiler(rp::test::context().queue, rp::cl::Timing::kHost);
+  EXPECT_EQ(profiler.timing(), rp::cl::Timing::kHost);
+  profiler.enqueue("a", kernel, cl::NDRange(4096));
+  profiler.enqueue("b", kernel, cl::NDRange(4096));
+  profiler.enqueue("b", kernel, cl::NDRange(4096));
+  cl::Event copy;
+  cl::Buffer other(rp::test::context().context, CL_MEM_READ_WRITE, 4096 * sizeof(float));
+  rp::test::context().queue.enqueueCopyBuffer(buf, other, 0, 0, 4096 * sizeof(float), nullptr,
+                                              &copy);
+  profiler.record("c", copy);
+  rp::cl::PassTimes times = profiler.collect();
+  ASSERT_EQ(times.size(), 3u);
+  EXPECT_GT(times["a"], 0.0);
+  EXPECT_GT(times["b"], 0.0);
+  EXPECT_GE(times["c"], 0.0);
+  EXPECT_TRUE(profiler.collect().empty());
+  EXPECT_THROW(profiler.enqueue("bad", kernel, cl::NDRange(1000), cl::NDRange(3000)), rp::cl::Error);
+}
+
 }  // namespace

@@ -14,7 +14,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/quality_report.h"
+#include "bench/src/quality_report.h"
 #include "support/image_metrics.h"
 
 namespace {

@@ -1,5 +1,5 @@
 // The direct-light section of `bench --accuracy` (see accuracy_direct.h).
-#include "app/accuracy_direct.h"
+#include "bench/src/accuracy_direct.h"
 
 #include <algorithm>
 #include <atomic>
@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "app/accuracy_metrics.h"
+#include "bench/src/accuracy_metrics.h"
 #include "app/host_tone_map.h"
 #include "app/interrupt.h"
 #include "app/png_output.h"

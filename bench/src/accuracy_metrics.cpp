@@ -1,5 +1,5 @@
 // Measures of the accuracy report (see accuracy_metrics.h).
-#include "app/accuracy_metrics.h"
+#include "bench/src/accuracy_metrics.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,7 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "app/pass_stats.h"
+#include "bench/src/pass_stats.h"
+#include "bench/src/pass_work.h"  // PassEfficiency, BandwidthLevel
 #include "cl/context.h"
 
 namespace rp::app {
@@ -25,17 +26,6 @@ std::string str_cat(const Parts&... parts) {
   return out;
 }
 
-// Work done and the share of the device's measured peak it reached (issue 7 item 3). All zero
-// when the work of that pass is not counted or the device's peak was not measured.
-struct PassEfficiency {
-  double bytes = 0.0;            // bytes moved per frame (pass_work's formulas)
-  double flops = 0.0;            // arithmetic operations per frame
-  double gbytes_per_s = 0.0;     // bytes / median time, 1e9 bytes per second
-  double gflops_per_s = 0.0;     // flops / median time
-  double bandwidth_fraction = 0.0;  // gbytes_per_s / device peak bandwidth (0..~1)
-  double compute_fraction = 0.0;    // gflops_per_s / device peak compute
-};
-
 struct PassResult {
   std::string name;
   TimeSummary ms;
@@ -47,6 +37,7 @@ struct RunResult {
   uint32_t width = 0, height = 0;
   uint32_t voxels = 0;           // voxel volume resolution per side
   uint32_t frames = 0;           // measured frames
+  std::string timing = "device";  // "device" or "host": how its pass times were taken
   std::vector<PassResult> passes;  // pipeline order (pipeline_rank)
   TimeSummary frame;             // wall clock of Renderer::render per frame
   // What the measured frames drew (the last one; every device draws the same frames).
@@ -89,8 +80,13 @@ struct DeviceResult {
   std::string name, type, platform;
   uint32_t compute_units = 0;
   std::string skipped;       // "" = ran; else the error that stopped this device
-  double peak_bandwidth_gbps = 0.0;  // measured peak (0 = not measured)
-  double peak_gflops = 0.0;
+  // How pass times were taken: "device" (profiling events) or "host" (finish after each pass,
+  // wall clock: the device's timestamps were unusable; rp::cl::Timing).
+  std::string timing = "device";
+  double peak_bandwidth_gbps = 0.0;  // measured peak, DRAM-sized stream (0 = not measured)
+  double peak_gflops = 0.0;          // (0 = not measured)
+  std::vector<BandwidthLevel> bandwidth_levels;  // by working set, ascending; last = DRAM
+  std::string bandwidth_note, compute_note;      // why a peak was not measured ("" = it was)
   std::vector<RunResult> runs;       // voxels outer, sizes inner, as planned
   std::vector<PixelScaling> pixel_scaling;  // one per voxel resolution with >= 2 sizes
   std::vector<VoxelScaling> voxel_scaling;  // one per size with >= 2 voxel resolutions

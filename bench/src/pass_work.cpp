@@ -2,7 +2,7 @@
 // pass_work.h; every constant below names the kernel lines it stands for. Symbols:
 //   N = width * height pixels, S = shadow_size^2 texels, R = voxel_resolution,
 //   T = instance_triangles (drawn), P = spheres, items = T + P (rasterizer draw items).
-#include "app/pass_work.h"
+#include "bench/src/pass_work.h"
 
 #include <algorithm>
 #include <cmath>
@@ -41,6 +41,9 @@ PassWork raster_view(double pixels, double tiles, double items, double out_bytes
             + pairs * kPairBytes + pixels * out_bytes_per_pixel;         // raster
   w.flops = 2 * items * kItemFlops + pairs * kTile * kTile * kPixelTestFlops +
             pixels * resolve_flops_per_pixel;
+  // Tile counts, the setup records and bounds, one list entry per pair, the output planes.
+  w.footprint = tiles * 2 * kFloat + items * kSetupWriteBytes + pairs * 4 +
+                pixels * out_bytes_per_pixel;
   return w;
 }
 
@@ -71,7 +74,9 @@ constexpr double kGBufferFlops = 220;
 
 PassWork gbuffer(const WorkParams& p) {
   const double n = double(p.width) * p.height;
-  return {n * kGBufferBytes, n * kGBufferFlops};
+  // Footprint: ids and barycentrics read, the five planes written (the gathered mesh records
+  // and texels are shared by many pixels).
+  return {n * kGBufferBytes, n * kGBufferFlops, n * (8 + 8 + 4 * 16 + 8)};
 }
 
 // ---- voxelize (kernels/voxelize.cl) ---------------------------------------------------------
@@ -110,6 +115,9 @@ PassWork voxelize(const WorkParams& p) {
             s * (64 + 4 + kSphereVoxels * kVoxelAtomicBytes);
   w.flops = v * kVoxelResolveFlops + t * (kVoxelTriangleFlops + kVoxelCandidates * kSatFlops) +
             walls * (kSatFlops + 150) + s * (100 + kSphereVoxels * 40);
+  // The sums and overflow word (20 B) and the resolved float4 (16 B) per voxel, each triangle
+  // and sphere record once.
+  w.footprint = v * (20 + 16) + t * 16 + s * 64;
   return w;
 }
 
@@ -125,6 +133,7 @@ PassWork voxel_mips(const WorkParams& p) {
     w.bytes += voxels * (level == 1 ? 8 * kFloat4 + 6 * kFloat4 : 6 * (8 * kFloat4 + kFloat4));
     w.flops += voxels * 6 * 52;
   }
+  w.footprint = w.bytes;  // every child is read by exactly one parent per direction
   return w;
 }
 
@@ -139,7 +148,10 @@ PassWork voxel_mips(const WorkParams& p) {
 PassWork light(const WorkParams& p) {
   if (p.reference_quality) return {};
   const double n = double(p.width) * p.height;
-  return {n * (4 * kFloat4 + kFloat + kFloat4 + 4 * 7 * kFloat), n * 150};
+  // Footprint: the four GBuffer planes and hdr once, the low-resolution taps once per
+  // low-resolution pixel (a quarter of N).
+  return {n * (4 * kFloat4 + kFloat + kFloat4 + 4 * 7 * kFloat), n * 150,
+          n * (4 * kFloat4 + kFloat4) + n / 4 * 7 * kFloat};
 }
 
 // ---- taa (kernels/taa.cl): exact per pixel -----------------------------------------------------
@@ -150,7 +162,9 @@ PassWork light(const WorkParams& p) {
 PassWork taa(const WorkParams& p) {
   if (!p.taa) return {};
   const double n = double(p.width) * p.height;
-  return {n * (5 * kFloat4 + 5 * kFloat + kFloat2 + 4 * kFloat4 + 2 * kFloat4), n * 217};
+  // Footprint: hdr_in, depths, velocity and history once each, the two outputs.
+  return {n * (5 * kFloat4 + 5 * kFloat + kFloat2 + 4 * kFloat4 + 2 * kFloat4), n * 217,
+          n * (kFloat4 + kFloat + kFloat2 + kFloat4 + 2 * kFloat4)};
 }
 
 // ---- bloom (kernels/bloom.cl, src/passes/bloom.cpp): exact -------------------------------------
@@ -187,6 +201,10 @@ PassWork bloom(const WorkParams& p) {
   const double floats = 4.0 * p.width * p.height;
   out.bytes += floats * 11 * kFloat;
   out.flops += floats * 23;
+  // Footprint: the input and the mixed output once, each level's downsample and upsample
+  // planes once.
+  out.footprint = 2 * floats * kFloat;
+  for (double t : texels) out.footprint += 2 * t * kFloat4;
   return out;
 }
 
@@ -206,6 +224,8 @@ PassWork motion_blur(const WorkParams& p) {
   w.bytes = n * kFloat2 + tiles * (kFloat2 + 300) + n * (4 + 4 + 8 + 4) +
             n * (8 + 4 + 16 + 14 * (4 + 16) + 16);
   w.flops = n * 4 + n * 8 + n * (25 + 14 * 50);
+  // Footprint: velocity, depth, hdr read once, depth_speed written, hdr_out written.
+  w.footprint = n * (kFloat2 + kFloat + kFloat4 + 4 + kFloat4);
   return w;
 }
 
@@ -215,7 +235,7 @@ PassWork motion_blur(const WorkParams& p) {
 // v * 255 + d 2: 17 flops (the alpha item computes and discards it too): 68 per pixel.
 PassWork tone_map(const WorkParams& p) {
   const double n = double(p.width) * p.height;
-  return {n * (4 * kFloat + 4), n * 4 * 17};
+  return {n * (4 * kFloat + 4), n * 4 * 17, n * (4 * kFloat + 4)};
 }
 
 using Model = std::function<PassWork(const WorkParams&)>;
@@ -230,6 +250,43 @@ const std::vector<std::pair<std::string, Model>>& models() {
 }
 
 }  // namespace
+
+double bandwidth_ceiling_gbps(const std::vector<BandwidthLevel>& levels, double bytes,
+                              double footprint) {
+  if (levels.empty() || bytes <= 0) return 0;
+  double fastest = 0, holding = 0;
+  for (const BandwidthLevel& l : levels) {
+    fastest = std::max(fastest, l.gbps);
+    if (l.working_set_bytes >= footprint) holding = std::max(holding, l.gbps);
+  }
+  if (holding <= 0) holding = levels.back().gbps;
+  if (fastest <= 0 || holding <= 0) return 0;
+  const double seconds = std::max(bytes / fastest, std::max(footprint, 0.0) / holding);
+  return bytes / seconds;
+}
+
+PassEfficiency pass_efficiency(const PassWork& work, double median_ms,
+                               const std::vector<BandwidthLevel>& levels, double peak_gflops) {
+  PassEfficiency e;
+  e.bytes = work.bytes;
+  e.flops = work.flops;
+  e.footprint = work.footprint;
+  const double seconds = median_ms * 1e-3;
+  if (!(seconds > 0.0)) return e;
+  e.gbytes_per_s = work.bytes / seconds * 1e-9;
+  e.gflops_per_s = work.flops / seconds * 1e-9;
+  e.ceiling_gbps = bandwidth_ceiling_gbps(levels, work.bytes, work.footprint);
+  // A fraction above 1 cannot be true: the model (a bound, or bytes served from a closer cache
+  // than its footprint says) is wrong for this pass here, so it shows nothing (NaN).
+  auto fraction = [](double achieved, double ceiling) {
+    if (!(ceiling > 0.0) || !(achieved > 0.0)) return 0.0;
+    const double f = achieved / ceiling;
+    return f <= 1.0 ? f : std::nan("");
+  };
+  e.bandwidth_fraction = fraction(e.gbytes_per_s, e.ceiling_gbps);
+  e.compute_fraction = fraction(e.gflops_per_s, peak_gflops);
+  return e;
+}
 
 PassWork pass_work(const std::string& pass, const WorkParams& p) {
   for (const auto& [name, model] : models())

@@ -10,7 +10,7 @@
 // bounces), one unjittered frame (the albedo view), then `jitter_frames` frames with TAA's
 // camera jitter on whose direct components (and albedo) are averaged on the host: what TAA
 // converges to without its history clamp, so a per-frame rotated filter and texture aliasing
-// resolve as on screen. Measures (app/accuracy_metrics.h):
+// resolve as on screen. Measures (bench/src/accuracy_metrics.h):
 //   direct PSNR   masked_tone_mapped_psnr of the direct component (after the renderer's tone
 //                 map and sRGB encode, peak 1, the scale of the report's final PSNR; also
 //                 masked_psnr of it divided by the truth's mean lit-floor luminance, JSON

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "app/bench_matrix.h"
+#include "bench/src/bench_matrix.h"
 
 namespace rp::app {
 

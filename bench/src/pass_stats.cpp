@@ -1,4 +1,4 @@
-#include "app/pass_stats.h"
+#include "bench/src/pass_stats.h"
 
 #include <algorithm>
 #include <array>

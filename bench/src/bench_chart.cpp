@@ -1,4 +1,4 @@
-#include "app/bench_chart.h"
+#include "bench/src/bench_chart.h"
 
 #include <algorithm>
 #include <cmath>

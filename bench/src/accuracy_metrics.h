@@ -1,4 +1,4 @@
-// The measures of `rolypoly bench --accuracy` (app/accuracy_report.h): how a real-time frame's
+// The measures of `rolypoly bench --accuracy` (bench/src/accuracy_report.h): how a real-time frame's
 // linear components differ from the path-traced truth of the same frame, over the image and per
 // named region of the demo scene. Pure functions on host images (3 floats per pixel, RGB,
 // row-major), so they are tested on synthetic images.

@@ -1,4 +1,4 @@
-#include "app/quality_report.h"
+#include "bench/src/quality_report.h"
 
 #include <algorithm>
 #include <cmath>

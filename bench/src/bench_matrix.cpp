@@ -1,4 +1,4 @@
-#include "app/bench_matrix.h"
+#include "bench/src/bench_matrix.h"
 
 #include <algorithm>
 #include <cctype>

@@ -13,9 +13,9 @@
 // blur off) for `converge_frames` frames, whose finished 8-bit image is held against the
 // many-bounce truth (final PSNR only). For each of the four: the final image's PSNR after the
 // tone map, the direct component's error, the indirect component's relative L1 and bias over the
-// image and per named region (app/accuracy_metrics.h), the hue of the indirect light arriving on
+// image and per named region (bench/src/accuracy_metrics.h), the hue of the indirect light arriving on
 // each side wall, and the leak / missing pixel counts. Then the direct-light section (issue 15,
-// app/accuracy_direct.h): every shadow mode's direct component against the area-lamp truth,
+// bench/src/accuracy_direct.h): every shadow mode's direct component against the area-lamp truth,
 // penumbra widths, the albedo view. Writes a JSON (schema rolypoly-accuracy/3: /2 plus "direct";
 // README "Accuracy against the ground truth"), side-by-side PNGs and signed difference heat maps.
 #pragma once

@@ -2,15 +2,15 @@
 #include <filesystem>
 #include <memory>
 
-#include "app/bench_chart.h"
-#include "app/bench_matrix.h"
-#include "app/bench_report.h"
+#include "bench/src/bench_chart.h"
+#include "bench/src/bench_matrix.h"
+#include "bench/src/bench_report.h"
 #include "app/commands.h"
 #include "app/frame_source.h"
-#include "app/pass_stats.h"
+#include "bench/src/pass_stats.h"
 #include "app/png_output.h"
 #include "app/progress.h"
-#include "app/quality_report.h"
+#include "bench/src/quality_report.h"
 #include "app/simulation_source.h"
 #include "io/output_path.h"
 #include "scene/particles.h"
@@ -18,9 +18,9 @@
 
 // The efficiency columns (issue 7 item 3) need the work counts and the peak probe; built without
 // them the bench reports times only.
-#if __has_include("app/pass_work.h") && __has_include("app/peak_probe.h")
-#include "app/pass_work.h"
-#include "app/peak_probe.h"
+#if __has_include("bench/src/pass_work.h") && __has_include("bench/src/peak_probe.h")
+#include "bench/src/pass_work.h"
+#include "bench/src/peak_probe.h"
 #define RP_BENCH_EFFICIENCY 1
 #else
 #define RP_BENCH_EFFICIENCY 0
@@ -172,6 +172,7 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
   progress.finish();
 
   RunResult run = make_run_result(width, height, voxels_or_default(voxels), stats);
+  run.timing = rp::cl::timing_name(session.timing());
   if (sim) sim->world().fill_frame(last);  // what the last frame showed (same world state)
   run.spheres = static_cast<uint32_t>(last.spheres.size());
   run.instances = static_cast<uint32_t>(last.instances.size());
@@ -189,8 +190,12 @@ void add_efficiency(const CommonOptions& common, const rp::cl::DeviceInfo& info,
   rp::cl::Context context = rp::cl::Context::create(info);
   rp::cl::ProgramCache programs(context);
   DevicePeak peak = measure_peak(context, programs);
+  result.timing = rp::cl::timing_name(peak.timing);
   result.peak_bandwidth_gbps = peak.bandwidth_gbps;
   result.peak_gflops = peak.gflops;
+  result.bandwidth_levels = peak.levels;
+  result.bandwidth_note = peak.bandwidth_note;
+  result.compute_note = peak.compute_note;
   const scene::SceneAssets assets = scene::make_demo_assets(
       common.asset_dir.empty() ? scene::default_asset_dir() : common.asset_dir);
   uint32_t triangles = 0;
@@ -208,18 +213,9 @@ void add_efficiency(const CommonOptions& common, const rp::cl::DeviceInfo& info,
     p.bloom = common.effects.bloom;
     p.motion_blur = common.effects.motion_blur;
     p.reference_quality = common.quality == render::Quality::kReference;
-    for (PassResult& pass : run.passes) {
-      PassWork work = pass_work(pass.name, p);
-      PassEfficiency& e = pass.efficiency;
-      e.bytes = work.bytes;
-      e.flops = work.flops;
-      double seconds = pass.ms.median_ms * 1e-3;
-      if (seconds <= 0.0) continue;
-      e.gbytes_per_s = work.bytes / seconds * 1e-9;
-      e.gflops_per_s = work.flops / seconds * 1e-9;
-      if (peak.bandwidth_gbps > 0.0) e.bandwidth_fraction = e.gbytes_per_s / peak.bandwidth_gbps;
-      if (peak.gflops > 0.0) e.compute_fraction = e.gflops_per_s / peak.gflops;
-    }
+    for (PassResult& pass : run.passes)
+      pass.efficiency =
+          pass_efficiency(pass_work(pass.name, p), pass.ms.median_ms, peak.levels, peak.gflops);
   }
 }
 #endif
@@ -362,10 +358,14 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
   finish = [&](const rp::cl::DeviceInfo& d, DeviceResult& r) { add_efficiency(common, d, r); };
 #endif
   run_matrix(plan, measure_cell, finish, matrix, stderr);
+  for (DeviceResult& d : matrix.devices)
+    for (const RunResult& r : d.runs)
+      if (r.timing == "host") d.timing = "host";
 
   std::printf("%s", matrix_table(matrix).c_str());
-  std::printf("(passes: device time from OpenCL profiling events; frame: wall clock of one "
-              "Renderer::render call)\n");
+  std::printf("(passes: device time from OpenCL profiling events, or host wall clock with a "
+              "finish after each pass where a device says \"host timing\"; frame: wall clock "
+              "of one Renderer::render call)\n");
   write_outputs(options, matrix);
   if (matrix.devices_ok() == 0) {
     std::fflush(stdout);

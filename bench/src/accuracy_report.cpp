@@ -1,5 +1,5 @@
 // `bench --accuracy` (see accuracy_report.h).
-#include "app/accuracy_report.h"
+#include "bench/src/accuracy_report.h"
 
 #include <atomic>
 #include <cmath>
@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "app/accuracy_direct.h"
-#include "app/accuracy_metrics.h"
+#include "bench/src/accuracy_direct.h"
+#include "bench/src/accuracy_metrics.h"
 #include "app/commands.h"
 #include "app/host_tone_map.h"
 #include "app/interrupt.h"

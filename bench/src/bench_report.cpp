@@ -1,6 +1,7 @@
-#include "app/bench_report.h"
+#include "bench/src/bench_report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <set>
 #include <stdexcept>
@@ -33,6 +34,9 @@ PowerFit parse_fit(const Json& j) {
   return f;
 }
 
+// A number, or NaN for null (a fraction not shown).
+double number_or_nan(const Json& j) { return j.is_null() ? std::nan("") : j.get<double>(); }
+
 TimeSummary parse_summary(const Json& j) {
   return {j.at("median_ms").get<double>(), j.at("min_ms").get<double>(),
           j.at("max_ms").get<double>()};
@@ -43,6 +47,7 @@ Json run_json(const RunResult& r) {
   j["size"] = {r.width, r.height};
   j["voxels"] = r.voxels;
   j["frames"] = r.frames;
+  j["timing"] = r.timing;
   j["scene"] = {{"spheres", r.spheres},
                 {"instances", r.instances},
                 {"instance_triangles", r.instance_triangles}};
@@ -51,8 +56,11 @@ Json run_json(const RunResult& r) {
     Json e = summary_json(p.ms);
     e["bytes"] = p.efficiency.bytes;
     e["flops"] = p.efficiency.flops;
+    e["footprint_bytes"] = p.efficiency.footprint;
     e["gbytes_per_s"] = p.efficiency.gbytes_per_s;
     e["gflops_per_s"] = p.efficiency.gflops_per_s;
+    e["bandwidth_ceiling_gbps"] = p.efficiency.ceiling_gbps;
+    // NaN (the model would exceed the ceiling) is written as null.
     e["bandwidth_fraction"] = p.efficiency.bandwidth_fraction;
     e["compute_fraction"] = p.efficiency.compute_fraction;
     passes[p.name] = e;
@@ -70,6 +78,7 @@ RunResult parse_run(const Json& j) {
   r.height = j.at("size").at(1);
   r.voxels = j.at("voxels");
   r.frames = j.at("frames");
+  r.timing = j.value("timing", std::string("device"));
   r.spheres = j.at("scene").at("spheres");
   r.instances = j.at("scene").at("instances");
   r.instance_triangles = j.at("scene").at("instance_triangles");
@@ -79,8 +88,10 @@ RunResult parse_run(const Json& j) {
     p.efficiency.flops = e.at("flops");
     p.efficiency.gbytes_per_s = e.at("gbytes_per_s");
     p.efficiency.gflops_per_s = e.at("gflops_per_s");
-    p.efficiency.bandwidth_fraction = e.at("bandwidth_fraction");
-    p.efficiency.compute_fraction = e.at("compute_fraction");
+    p.efficiency.footprint = e.value("footprint_bytes", 0.0);
+    p.efficiency.ceiling_gbps = e.value("bandwidth_ceiling_gbps", 0.0);
+    p.efficiency.bandwidth_fraction = number_or_nan(e.at("bandwidth_fraction"));
+    p.efficiency.compute_fraction = number_or_nan(e.at("compute_fraction"));
     r.passes.push_back(p);
   }
   r.frame = parse_summary(j.at("frame"));
@@ -109,6 +120,19 @@ std::vector<std::string> all_pass_names(const BenchMatrix& m) {
     return pipeline_rank(a) < pipeline_rank(b);
   });
   return names;
+}
+
+// "12.3%"; "-" for NaN (the model would exceed its ceiling: not shown); "" for 0 (not
+// measured).
+std::string percent_text(double fraction) {
+  if (std::isnan(fraction)) return "-";
+  if (fraction <= 0.0) return "";
+  return format("%.1f%%", 100.0 * fraction);
+}
+
+std::string bytes_text(double bytes) {
+  if (bytes >= double(1 << 20)) return format("%.0f MiB", bytes / double(1 << 20));
+  return format("%.0f KiB", bytes / 1024.0);
 }
 
 std::string scaling_text(const DeviceResult& d) {
@@ -149,7 +173,15 @@ std::string matrix_json(const BenchMatrix& m) {
     dj["platform"] = d.platform;
     dj["compute_units"] = d.compute_units;
     dj["skipped"] = d.ok() ? Json(nullptr) : Json(d.skipped);
-    dj["peak"] = {{"bandwidth_gbps", d.peak_bandwidth_gbps}, {"gflops", d.peak_gflops}};
+    dj["timing"] = d.timing;
+    Json levels = Json::array();
+    for (const BandwidthLevel& l : d.bandwidth_levels)
+      levels.push_back({{"working_set_bytes", l.working_set_bytes}, {"gbps", l.gbps}});
+    dj["peak"] = {{"bandwidth_gbps", d.peak_bandwidth_gbps},
+                  {"gflops", d.peak_gflops},
+                  {"bandwidth_levels", levels},
+                  {"bandwidth_note", d.bandwidth_note.empty() ? Json(nullptr) : Json(d.bandwidth_note)},
+                  {"compute_note", d.compute_note.empty() ? Json(nullptr) : Json(d.compute_note)}};
     Json runs = Json::array();
     for (const RunResult& r : d.runs) runs.push_back(run_json(r));
     dj["runs"] = runs;
@@ -173,7 +205,7 @@ std::string matrix_json(const BenchMatrix& m) {
 
 BenchMatrix parse_matrix_json(const std::string& text) {
   Json j = Json::parse(text);
-  if (j.at("schema") != kBenchMatrixSchema)
+  if (j.at("schema") != kBenchMatrixSchema && j.at("schema") != kBenchMatrixSchemaV2)
     throw std::runtime_error(str_cat("not a ", kBenchMatrixSchema, " document (schema ",
                                      j.at("schema").dump(), ")"));
   BenchMatrix m;
@@ -193,8 +225,17 @@ BenchMatrix parse_matrix_json(const std::string& text) {
     d.platform = dj.at("platform");
     d.compute_units = dj.at("compute_units");
     if (!dj.at("skipped").is_null()) d.skipped = dj.at("skipped");
-    d.peak_bandwidth_gbps = dj.at("peak").at("bandwidth_gbps");
-    d.peak_gflops = dj.at("peak").at("gflops");
+    d.timing = dj.value("timing", std::string("device"));
+    const Json& peak = dj.at("peak");
+    d.peak_bandwidth_gbps = peak.at("bandwidth_gbps");
+    d.peak_gflops = peak.at("gflops");
+    if (peak.contains("bandwidth_levels"))
+      for (const Json& l : peak.at("bandwidth_levels"))
+        d.bandwidth_levels.push_back({l.at("working_set_bytes"), l.at("gbps")});
+    if (peak.contains("bandwidth_note") && !peak.at("bandwidth_note").is_null())
+      d.bandwidth_note = peak.at("bandwidth_note");
+    if (peak.contains("compute_note") && !peak.at("compute_note").is_null())
+      d.compute_note = peak.at("compute_note");
     for (const Json& r : dj.at("runs")) d.runs.push_back(parse_run(r));
     for (const Json& e : dj.at("scaling").at("pixels"))
       d.pixel_scaling.push_back({e.at("voxels").get<uint32_t>(), parse_fit(e)});
@@ -215,16 +256,36 @@ std::string matrix_table(const BenchMatrix& m) {
       continue;
     }
     out += "\n";
-    if (d.peak_bandwidth_gbps > 0.0 || d.peak_gflops > 0.0)
-      out += str_cat("  measured peak: ", format("%.1f", d.peak_bandwidth_gbps), " GB/s, ",
-                     format("%.1f", d.peak_gflops), " GFLOP/s\n");
+    if (d.timing == "host")
+      out += "  host timing: this device's profiling timestamps are unusable; each pass is timed "
+             "on the host with a finish after it (launch overhead included)\n";
+    if (d.peak_bandwidth_gbps > 0.0 || d.peak_gflops > 0.0 || !d.bandwidth_note.empty() ||
+        !d.compute_note.empty()) {
+      out += "  measured peak: ";
+      out += d.peak_bandwidth_gbps > 0.0 ? str_cat(format("%.1f", d.peak_bandwidth_gbps), " GB/s")
+                                          : std::string("bandwidth not measured");
+      out += ", ";
+      out += d.peak_gflops > 0.0 ? str_cat(format("%.1f", d.peak_gflops), " GFLOP/s")
+                                  : std::string("compute not measured");
+      out += "\n";
+      if (d.bandwidth_levels.size() > 1) {
+        out += "  copy bandwidth by working set:";
+        for (const BandwidthLevel& l : d.bandwidth_levels)
+          out += str_cat(" ", bytes_text(l.working_set_bytes), " ", format("%.1f", l.gbps),
+                         " GB/s;");
+        out.back() = '\n';
+      }
+      if (!d.bandwidth_note.empty()) out += str_cat("  (", d.bandwidth_note, ")\n");
+      if (!d.compute_note.empty()) out += str_cat("  (", d.compute_note, ")\n");
+    }
     for (const RunResult& r : d.runs) {
       char line[200];
       std::snprintf(line, sizeof line,
                     "  %s, %u^3 voxels, %u frames: frame %.2f ms median (min %.2f, max %.2f), "
-                    "%.2f fps\n",
+                    "%.2f fps%s\n",
                     size_text(r.width, r.height).c_str(), r.voxels, r.frames, r.frame.median_ms,
-                    r.frame.min_ms, r.frame.max_ms, r.fps());
+                    r.frame.min_ms, r.frame.max_ms, r.fps(),
+                    r.timing == "host" ? ", passes host-timed" : "");
       out += line;
       bool eff = false;
       for (const PassResult& p : r.passes)
@@ -233,7 +294,8 @@ std::string matrix_table(const BenchMatrix& m) {
                     "max ms");
       out += line;
       if (eff) {
-        std::snprintf(line, sizeof line, " %9s %6s %9s %6s", "GB/s", "%bw", "GFLOP/s", "%flop");
+        std::snprintf(line, sizeof line, " %9s %9s %6s %9s %6s", "GB/s", "ceil GB/s", "%bw",
+                      "GFLOP/s", "%flop");
         out += line;
       }
       out += "\n";
@@ -243,8 +305,9 @@ std::string matrix_table(const BenchMatrix& m) {
         out += line;
         const PassEfficiency& e = p.efficiency;
         if (eff && (e.bytes > 0.0 || e.flops > 0.0)) {
-          std::snprintf(line, sizeof line, " %9.2f %5.1f%% %9.2f %5.1f%%", e.gbytes_per_s,
-                        100.0 * e.bandwidth_fraction, e.gflops_per_s, 100.0 * e.compute_fraction);
+          std::snprintf(line, sizeof line, " %9.2f %9.1f %6s %9.2f %6s", e.gbytes_per_s,
+                        e.ceiling_gbps, percent_text(e.bandwidth_fraction).c_str(),
+                        e.gflops_per_s, percent_text(e.compute_fraction).c_str());
           out += line;
         }
         out += "\n";
@@ -252,6 +315,8 @@ std::string matrix_table(const BenchMatrix& m) {
     }
     out += scaling_text(d);
   }
+  out += "(%bw: achieved GB/s over the pass's cache-aware ceiling, %flop: over the measured "
+         "GFLOP/s; \"-\": the work model would put the pass above its ceiling, so no figure)\n";
   return out;
 }
 
@@ -283,7 +348,12 @@ std::string matrix_markdown(const BenchMatrix& m) {
                      " |\n");
     }
   }
-  out += "\nMilliseconds (medians per pass: OpenCL device time; frame: wall clock).\n\n";
+  out += "\nMilliseconds (medians per pass: OpenCL device time; frame: wall clock).";
+  for (const DeviceResult& d : m.devices)
+    if (d.timing == "host")
+      out += str_cat(" ", d.label(), ": passes timed on the host (finish after each pass; the "
+                                     "device's profiling timestamps are unusable).");
+  out += "\n\n";
   out += "| device | scaling | at | exponent k | r2 | points |\n|---|---|---|---:|---:|---:|\n";
   for (const DeviceResult& d : m.devices) {
     for (const PixelScaling& s : d.pixel_scaling)
