@@ -28,18 +28,9 @@
 namespace rp::io {
 namespace {
 
+using rp::test::read_all;
 using rp::test::TempDir;
-
-std::string read_all(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void write_plain(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
+using rp::test::write_plain;
 
 // The message of what `f` throws ("" when it throws nothing).
 template <typename F>

@@ -50,6 +50,17 @@ CommandResult run_rolypoly(const std::string& args, const std::string& env_prefi
   return r;
 }
 
+std::string read_all(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_plain(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
 bool have_program(const std::string& program) {
   std::string cmd = "command -v " + shell_quote(program) + " >/dev/null 2>&1";
   return std::system(cmd.c_str()) == 0;

@@ -24,6 +24,11 @@ CommandResult run_rolypoly(const std::string& args, const std::string& env_prefi
 // True when `program` is found on PATH.
 bool have_program(const std::string& program);
 
+// The bytes of a file ("" when it cannot be read), and a plain (unchecked) write of some: for
+// setting up and inspecting test files, never for the output under test.
+std::string read_all(const std::filesystem::path& path);
+void write_plain(const std::filesystem::path& path, const std::string& text);
+
 // A fresh empty folder under the system temp dir, removed with everything in it on destruction.
 class TempDir {
  public:
