@@ -1,6 +1,8 @@
 // The surface model's evaluation, sampling and tables (src/shading/brdf.h, brdf_tables.h).
 #include "shading/brdf.h"
 
+#include "shading/basis.h"
+
 #include <cmath>
 
 #include "shading/brdf_tables.h"
@@ -16,19 +18,6 @@ float smith_lambda(float mu, float alpha) {
   return 0.5f * (-1.0f + std::sqrt(1.0f + alpha * alpha * (1.0f - m2) / m2));
 }
 
-// Orthonormal basis with n as z (Duff et al. 2017).
-struct Basis {
-  glm::vec3 t, b, n;
-  explicit Basis(glm::vec3 normal) : n(normal) {
-    const float sign = std::copysign(1.0f, n.z);
-    const float a = -1.0f / (sign + n.z);
-    const float bb = n.x * n.y * a;
-    t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * bb, -sign * n.x);
-    b = glm::vec3(bb, sign + n.y * n.y * a, -n.y);
-  }
-  glm::vec3 to_local(glm::vec3 v) const { return {glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)}; }
-  glm::vec3 to_world(glm::vec3 v) const { return v.x * t + v.y * b + v.z * n; }
-};
 
 // Linear interpolation coordinate on an N-entry axis (kernels/shared/brdf_layout.h): entry i0
 // and the weight of i0 + 1. mu: cell centres (i + 0.5) / N, clamped; roughness: nodes

@@ -8,6 +8,8 @@
 
 #include <glm/glm.hpp>
 
+#include "shading/basis.h"
+
 namespace rp::truth {
 
 inline constexpr float kPi = 3.14159265358979323846f;
@@ -43,18 +45,8 @@ class Pcg32 {
   uint64_t state_ = 0, inc_;
 };
 
-// An orthonormal basis (t, b, n) around unit n (Duff et al. 2017, branchless).
-struct Frame {
-  glm::vec3 t, b, n;
-  explicit Frame(glm::vec3 normal) : n(normal) {
-    const float sign = std::copysign(1.0f, n.z);
-    const float a = -1.0f / (sign + n.z);
-    const float bb = n.x * n.y * a;
-    t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * bb, -sign * n.x);
-    b = glm::vec3(bb, sign + n.y * n.y * a, -n.y);
-  }
-  glm::vec3 to_world(glm::vec3 local) const { return local.x * t + local.y * b + local.z * n; }
-};
+// The orthonormal basis around a unit normal (shared with the BRDF).
+using Frame = shading::Basis;
 
 // Cosine-weighted direction about n from (u1, u2) in [0,1)^2; density cos(theta) / pi per
 // steradian.

@@ -28,6 +28,7 @@
 namespace rp::io {
 namespace {
 
+using rp::test::entries;
 using rp::test::read_all;
 using rp::test::TempDir;
 using rp::test::write_plain;
@@ -45,15 +46,6 @@ std::string error_of(F f) {
 
 bool contains(const std::string& s, const std::string& part) {
   return s.find(part) != std::string::npos;
-}
-
-// Every entry of `dir` (hidden temporaries included), sorted.
-std::vector<std::string> entries(const std::filesystem::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(dir))
-    names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
 }
 
 bool is_char_device(const char* path) {

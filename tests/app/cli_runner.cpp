@@ -61,6 +61,14 @@ void write_plain(const std::filesystem::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
 }
 
+std::vector<std::string> entries(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 bool have_program(const std::string& program) {
   std::string cmd = "command -v " + shell_quote(program) + " >/dev/null 2>&1";
   return std::system(cmd.c_str()) == 0;

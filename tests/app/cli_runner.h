@@ -29,6 +29,9 @@ bool have_program(const std::string& program);
 std::string read_all(const std::filesystem::path& path);
 void write_plain(const std::filesystem::path& path, const std::string& text);
 
+// Every entry of `dir` (not recursive), hidden temporaries included, sorted by name.
+std::vector<std::string> entries(const std::filesystem::path& dir);
+
 // A fresh empty folder under the system temp dir, removed with everything in it on destruction.
 class TempDir {
  public:

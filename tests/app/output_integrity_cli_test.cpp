@@ -38,15 +38,6 @@ std::string fail_after(size_t bytes) {
   return "ROLYPOLY_FAIL_WRITE_AFTER=" + std::to_string(bytes);
 }
 
-// Every entry of `dir`, hidden temporaries included, sorted.
-std::vector<std::string> entries(const std::filesystem::path& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(dir))
-    names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 mode_t file_type(const std::filesystem::path& path) {
   struct stat st {};
   return ::lstat(path.c_str(), &st) == 0 ? (st.st_mode & S_IFMT) : 0;
