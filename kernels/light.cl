@@ -40,13 +40,12 @@
  * The direct term (lamp falloff from l.y, shadow-map projection, bias and taps) is
  * common/direct_light.h, shared with the voxelizer; the formulas are documented there.
  *
- * Shadow: common/soft_shadow.h, in the mode -DRP_SHADOW_MODE picks (RenderSettings::shadows:
- * 0 hard, 1 pcf, 2 pcss, 3 vssm; the formulas, the PCSS penumbra derivation for the lamp cap and
- * the biases are documented there). Both kernels take `shadow_mips`, the shadow filter pass's
- * mip chain (shared/shadow_mips.h): read by pcss and vssm only (hard and pcf may pass any
- * buffer). Both compute the direct term with the same code (light_direct8; light_shade calls
- * it with its pixel in every lane and keeps lane 0), so the quality modes differ only in their
- * indirect light.
+ * Shadow: `visibility`, one float per pixel, written just before by the light pass's first
+ * kernel (kernels/shadow_visibility.cl: common/soft_shadow.h in the mode RenderSettings::shadows
+ * picks; the formulas, the PCSS penumbra derivation for the lamp cap and the biases are
+ * documented there). Both kernels compute the unshadowed direct term with the same code
+ * (light_direct8; light_shade calls it with its pixel in every lane and keeps lane 0) and
+ * multiply it by the visibility, so the quality modes differ only in their indirect light.
  */
 #include "shared/types.h"
 #include "common/math.h"
@@ -55,30 +54,14 @@
 #include "common/cone_trace.h"
 #include "common/indirect.h"
 #include "common/indirect_simd.h"
-
-#include "common/soft_shadow.h"
 #include "common/brdf.h"
 
 #ifndef RP_LIGHT_SPLIT
 #define RP_LIGHT_SPLIT 0
 #endif
 
-inline float8 light_direct8(__global const FrameConstants* restrict frame,
-                            __global const float* restrict shadow,
-                            __global const float* restrict shadow_mips, float8 px, float8 py,
-                            float8 pz, float8 nx, float8 ny, float8 nz, uint x0, uint y);
-
-/* Direct lamp factor cos(theta) / d^2 * falloff(l.y) * shadow at point p with unit normal n,
- * pixel (x, y): lane 0 of light_direct8 with the pixel in every lane (the same formulas and
- * noise as light_compose's). Multiply by albedo * light_intensity. */
-inline float light_direct(__global const FrameConstants* restrict frame,
-                          __global const float* restrict shadow,
-                          __global const float* restrict shadow_mips, float px, float py,
-                          float pz, float nx, float ny, float nz, uint x, uint y) {
-  const float8 k = light_direct8(frame, shadow, shadow_mips, (float8)(px), (float8)(py),
-                                 (float8)(pz), (float8)(nx), (float8)(ny), (float8)(nz), x, y);
-  return k.s0;
-}
+inline float8 light_direct8(__global const FrameConstants* restrict frame, float8 px, float8 py,
+                            float8 pz, float8 nx, float8 ny, float8 nz);
 
 /* Surface-model weights of eight lanes (common/brdf.h) for the lamp at frame->light_pos seen
  * from camera_pos: w* lamp diffuse weight, s* lamp specular (pi f), e* coat albedo toward the
@@ -125,8 +108,7 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
                           __global const float4* restrict normal_depth_plane,
                           __global const float4* restrict position_plane,
                           __global const float4* restrict emission_plane,
-                          __global const float* restrict shadow,
-                          __global const float* restrict shadow_mips,
+                          __global const float* restrict visibility,
                           __global const float4* restrict brdf_table,
                           __global const float4* restrict voxels,
                           const uint voxel_resolution,
@@ -156,7 +138,11 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
   const float3 n = normal_depth_plane[pixel].xyz;
   const float3 p = pos.xyz;
   const float4 emission = emission_plane[pixel];
-  const float k = light_direct(frame, shadow, shadow_mips, p.x, p.y, p.z, n.x, n.y, n.z, x, y);
+  /* the unshadowed lamp factor with the pixel in every lane (light_compose's formulas), lane 0
+   * kept, times the pixel's visibility */
+  const float k = light_direct8(frame, (float8)(p.x), (float8)(p.y), (float8)(p.z),
+                                (float8)(n.x), (float8)(n.y), (float8)(n.z)).s0 *
+                  visibility[pixel];
   /* the surface model with the pixel in every lane; lane 0 kept */
   float8 w[3], sp[3], e[3], iw[3];
   light_surface8(frame, brdf_table, (float8)(emission.w), (float8)(albedo.x), (float8)(albedo.y),
@@ -177,12 +163,11 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
 #endif
 }
 
-/* Direct lamp factor on eight pixels (x0 + k, y): rp_lamp_falloff's formulas lane by lane
- * times the visibility of common/soft_shadow.h (pixel x0 + k hashes the rotation of lane k). */
-inline float8 light_direct8(__global const FrameConstants* restrict frame,
-                            __global const float* restrict shadow,
-                            __global const float* restrict shadow_mips, float8 px, float8 py,
-                            float8 pz, float8 nx, float8 ny, float8 nz, uint x0, uint y) {
+/* Unshadowed direct lamp factor on eight points: cos(theta) / (d_disk^2 + a^2) * falloff(l.y)
+ * (common/direct_light.h's disk model, rp_lamp_falloff's formulas lane by lane); 0 where the
+ * surface faces away. The shadow pass's visibility multiplies it. */
+inline float8 light_direct8(__global const FrameConstants* restrict frame, float8 px, float8 py,
+                            float8 pz, float8 nx, float8 ny, float8 nz) {
   const float4 lp = frame->light_pos;
   const float8 lx = lp.x - px, ly = lp.y - py, lz = lp.z - pz;
   const float8 dy = RP_CEILING_Y - py;
@@ -191,8 +176,7 @@ inline float8 light_direct8(__global const FrameConstants* restrict frame,
   const float8 c = (nx * lx + ny * ly + nz * lz) * inv_d;
   const float8 s = fmin(fmax(ly * inv_d, (float8)(0.0f)), (float8)(1.0f));
   const float8 falloff = mad(s, mad(s, 0.204f, 0.446f), 0.35f); /* rp_lamp_falloff */
-  const float8 k = select((float8)(0.0f), c * falloff / (d2 + rp_lamp_disk_a2(lp)), c > 0.0f);
-  return k * rp_shadow8(frame, shadow, shadow_mips, px, py, pz, nx, ny, nz, c, x0, y);
+  return select((float8)(0.0f), c * falloff / (d2 + rp_lamp_disk_a2(lp)), c > 0.0f);
 }
 
 /* lr_irradiance (history: r, g, b, age planes) and lr_geom (normal x, y, z, plane offset): the
@@ -206,8 +190,7 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
                             __global const float* restrict normal_depth,
                             __global const float* restrict position,
                             __global const float* restrict emission,
-                            __global const float* restrict shadow,
-                            __global const float* restrict shadow_mips,
+                            __global const float* restrict visibility,
                             __global const float4* restrict brdf_table,
                             __global const float* restrict lr_irradiance,
                             __global const float* restrict lr_geom,
@@ -231,7 +214,15 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
   rp_load8_float4(position, row, x0, lanes, &px, &py, &pz, &cov);
   rp_load8_float4(normal_depth, row, x0, lanes, &nx, &ny, &nz, &depth);
   const int8 covered = cov != 0.0f;
-  const float8 k = light_direct8(frame, shadow, shadow_mips, px, py, pz, nx, ny, nz, x0, y);
+  float8 vis;
+  if (lanes == 8u) {
+    vis = vload8(0, visibility + y * width + x0);
+  } else {
+    float v[8];
+    for (uint q = 0; q < 8u; ++q) v[q] = visibility[y * width + x0 + min(q, lanes - 1u)];
+    vis = vload8(0, v);
+  }
+  const float8 k = light_direct8(frame, px, py, pz, nx, ny, nz) * vis;
 
   /* Joint-bilateral upsample from the block centres (4 i + 2 in pixels: where the accumulated
    * history lives, kernels/indirect.cl): pixel x + 0.5 lies at u = (x - 1.5) / 4. The 8 pixels'

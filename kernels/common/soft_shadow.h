@@ -145,10 +145,16 @@
 #ifndef RP_PCSS_SEARCH_TAPS
 #define RP_PCSS_SEARCH_TAPS 12
 #endif
+#if RP_PCSS_SEARCH_TAPS % 4 != 0
+#error "RP_PCSS_SEARCH_TAPS must be a multiple of 4 (soft_shadow.h pools 2x2 quads)"
+#endif
 #ifndef RP_PCSS_FILTER_TAPS
 #define RP_PCSS_FILTER_TAPS 6
 #endif
 /* Nearest blocker depth the search looks for (world units below the lamp centre: y = 0.25). */
+#ifndef RP_PCSS_PAIR_TEXELS
+#define RP_PCSS_PAIR_TEXELS 3.0f /* pooled searches: receivers at most this far apart */
+#endif
 #ifndef RP_PCSS_NEAREST
 #define RP_PCSS_NEAREST 0.85f
 #endif
@@ -221,7 +227,7 @@ inline float8 rp_soft_plane_lit(__global const float* restrict shadow, const RpS
 /* Fills *out (PoCL does not inline helpers that return structs: an out-pointer). */
 inline void rp_shadow8_setup(RpShadow8* out, __global const FrameConstants* restrict frame,
                              float8 px, float8 py, float8 pz, float8 nx, float8 ny, float8 nz,
-                             float8 cos_theta, uint x0, uint y) {
+                             float8 cos_theta, uint8 xs, uint8 ys) {
   RpShadow8 s;
   const rp_mat4 m = frame->light_view_proj;
   s.isize = (int)frame->shadow_size;
@@ -265,8 +271,7 @@ inline void rp_shadow8_setup(RpShadow8* out, __global const FrameConstants* rest
   s.gx0 = s.inv0 * s.gx;
   s.gy0 = s.inv0 * s.gy;
   /* two rotations per pixel and frame: one of 16 angles each (a table, not sin/cos: vectorizes) */
-  const uint8 lane = (uint8)(0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u);
-  const uint8 h = rp_hash8_u32((x0 + lane) ^ rp_hash_u32(y ^ rp_hash_u32(frame->frame_index)));
+  const uint8 h = rp_hash8_u32(xs ^ rp_hash8_u32(ys ^ rp_hash_u32(frame->frame_index)));
   const uint8 a0 = h >> 28, a1 = (h >> 24) & 15u;
   s.ca = shuffle(RP_SOFT_COS16, a0);
   s.sa = shuffle(RP_SOFT_COS16, (a0 + 12u) & 15u);
@@ -373,6 +378,27 @@ inline float rp_pcss_min(__global const float* restrict mips, const RpShadow8* s
 #endif
 
 #if RP_SHADOW_MODE == 2
+/* The lanes of rp_shadow8 are a 4x2 block of pixels (lane k at column k & 3, row k >> 2):
+ * RP_SHADOW_SWAP_H / _V / _D give each lane its neighbour in the same row, the same column and
+ * the diagonal one, within its 2x2 quad. */
+#define RP_SHADOW_SWAP_H ((uint8)(1u, 0u, 3u, 2u, 5u, 4u, 7u, 6u))
+#define RP_SHADOW_SWAP_V ((uint8)(4u, 5u, 6u, 7u, 0u, 1u, 2u, 3u))
+#define RP_SHADOW_SWAP_D ((uint8)(5u, 4u, 7u, 6u, 1u, 0u, 3u, 2u))
+
+/* 1 where a lane and its partner under `swap` see the same surface, so that their blocker
+ * searches may be pooled: both inside, receivers within RP_PCSS_PAIR_TEXELS texels of each
+ * other in the map and in depth, normals within acos(0.9). Symmetric: both lanes agree. */
+inline float8 rp_pcss_same(const RpShadow8* s, float8 nx, float8 ny, float8 nz, uint8 swap) {
+  const float8 lim = (float8)(RP_PCSS_PAIR_TEXELS);
+  const float8 texel = fmax(s->texel, shuffle(s->texel, swap));
+  const int8 near = (fabs(s->sx - shuffle(s->sx, swap)) < lim) &
+                    (fabs(s->sy - shuffle(s->sy, swap)) < lim) &
+                    (fabs(s->zr - shuffle(s->zr, swap)) < lim * texel);
+  const float8 cosn = nx * shuffle(nx, swap) + ny * shuffle(ny, swap) + nz * shuffle(nz, swap);
+  const int8 both = s->inside & shuffle(s->inside, swap);
+  return select((float8)(0.0f), (float8)(1.0f), near & both & (cosn > 0.9f));
+}
+
 /* 1 where the texel at (tx, ty) blocks the lamp from the receiver: in front of its plane and
  * inside its cone at the texel's own depth. *inv gets the texel's inverse depth. */
 inline float8 rp_pcss_blocker(__global const float* restrict shadow, const RpShadow8* s,
@@ -408,6 +434,40 @@ inline float8 rp_pcss_blocker(__global const float* restrict shadow, const RpSha
   const float8 in_sector =
       select((float8)(0.0f), (float8)(1.0f), (vw > 0.0f) & (vw * vw > vv * t2) & (vv < t2));
   return front * fmax(in_disk, in_sector);
+}
+
+/* Search tap te (of RP_PCSS_SEARCH_TAPS, one value per lane) of the receivers, as in the full
+ * set: even te uniform over the search disk (centre (mx, my), radius rs), odd te on the cone's
+ * disk at inverse depth lerp(1 / z_min, 1 / z_r, j / (N / 2 - 1)), j = te / 2. Poisson point
+ * (te 16 / N) & 15 rotated by (s->ca, s->sa). Adds the blockers found to the sums. */
+inline void rp_pcss_search_tap(__global const float* restrict shadow, const RpShadow8* s,
+                               const RpLamp8* L, int8 te, float8 inear, float8 mx, float8 my,
+                               float8 rs, float8* count, float8* sum_inv, float8* imax) {
+  const float8 mid = (float8)(s->size * 0.5f);
+  /* the lane's Poisson point: one of the four candidates 4 (te / 4) + 0..3 is the lane's (te
+   * is 4 t + a permutation of 0..3 over the lanes, t the same in every lane) */
+  const int base = te.s0 & ~3;
+  float8 ox = 0.0f, oy = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    float8 px, py;
+    RP_SOFT_POINT(((base + k) * 16 / RP_PCSS_SEARCH_TAPS) & 15, s->ca, s->sa, px, py);
+    const int8 mine = te == base + k;
+    ox = select(ox, px, mine);
+    oy = select(oy, py, mine);
+  }
+  const float8 f = convert_float8(te >> 1) * (1.0f / (float)(RP_PCSS_SEARCH_TAPS / 2 - 1));
+  const float8 ik = inear + (1.0f / s->zr - inear) * f;
+  const float8 rk = fmin(fmax(L->k_h * (s->zr * ik - 1.0f), (float8)(RP_PCSS_MIN_RADIUS)),
+                         (float8)(RP_PCSS_MAX_RADIUS));
+  const float8 ck = L->c_h * (1.0f - L->ze * ik);
+  const int8 ladder = (te & 1) != 0;
+  const float8 cx = select(mx, L->xr * ck + mid, ladder), cy = select(my, L->yr * ck + mid, ladder);
+  const float8 r = select(rs, rk, ladder);
+  float8 it;
+  const float8 b = rp_pcss_blocker(shadow, s, L, cx + ox * r, cy + oy * r, &it);
+  *count += b;
+  *sum_inv += b * it;
+  *imax = fmax(*imax, b * it);
 }
 #endif
 
@@ -475,9 +535,9 @@ inline void rp_vssm_lookup8(__global const float* restrict mips, const RpShadow8
 inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
                          __global const float* restrict shadow,
                          __global const float* restrict mips, float8 px, float8 py, float8 pz,
-                         float8 nx, float8 ny, float8 nz, float8 cos_theta, uint x0, uint y) {
+                         float8 nx, float8 ny, float8 nz, float8 cos_theta, uint8 xs, uint8 ys) {
   RpShadow8 s;
-  rp_shadow8_setup(&s, frame, px, py, pz, nx, ny, nz, cos_theta, x0, y);
+  rp_shadow8_setup(&s, frame, px, py, pz, nx, ny, nz, cos_theta, xs, ys);
   const float8 one = (float8)(1.0f), zero = (float8)(0.0f);
   if (!any(s.inside)) return one;
   const float8 outside = select(one, zero, s.inside);
@@ -530,35 +590,51 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
                              RP_PCSS_MIN_RADIUS,
                          (float8)(RP_PCSS_MAX_RADIUS));
 #if RP_SHADOW_MODE == 2
-  /* Even taps: uniform over the search disk. Odd taps: tap 2j + 1 on the cone's disk at inverse
-   * depth lerp(1 / z_min, 1 / z_r, j / (N / 2 - 1)): blockers near the receiver have small
-   * disks that uniform taps would rarely hit; the last lies within RP_PCSS_MIN_RADIUS of the
-   * receiver (contact shadows). */
+  /* Blocker search (rp_pcss_search_tap: even taps uniform over the search disk, odd taps on
+   * the cone's disk at depths from z_min to the receiver, the last within RP_PCSS_MIN_RADIUS
+   * of it: contact shadows). Pooled over each 2x2 quad of the block: lane class c (column
+   * parity + 2 row parity) traces the N / 4 taps 4 t + ((c + t) & 3), t = 0 .. N / 4 - 1, so
+   * a quad's four lanes trace the whole set once, each with its own rotation; a lane then adds
+   * the blockers of every quad neighbour that sees the same surface (rp_pcss_same). When some
+   * undecided lane of the block pools with fewer than three neighbours (a silhouette, an
+   * isolated point), every lane traces another N / 4 (class c + 2's), so that no lane relies
+   * on fewer than N / 2 taps and a lane pooled with one neighbour sees the whole set. */
+  const int8 ci = (int8)(0, 1, 0, 1, 2, 3, 2, 3);
+  {
+    /* one search rotation per quad (its top-left pixel's), so that a quad's taps together are
+     * the rotated Poisson set, evenly spread, rather than four independently rotated parts */
+    const uint8 hq = rp_hash8_u32((xs & ~1u) ^
+                                  rp_hash8_u32((ys & ~1u) ^ rp_hash_u32(frame->frame_index)));
+    const uint8 aq = hq >> 28;
+    s.ca = shuffle(RP_SOFT_COS16, aq);
+    s.sa = shuffle(RP_SOFT_COS16, (aq + 12u) & 15u);
+  }
   float8 count = zero, sum_inv = zero, imax = zero;
-  const float8 ir = 1.0f / s.zr;
-  for (int t = 0; t < RP_PCSS_SEARCH_TAPS; ++t) {
-    float8 ox, oy, it, cx, cy, rk;
-    RP_SOFT_POINT((t * 16 / RP_PCSS_SEARCH_TAPS) & 15, s.ca, s.sa, ox, oy);
-    if ((t & 1) == 0) {
-      cx = mx;
-      cy = my;
-      rk = rs;
-    } else {
-      const float f = (float)(t / 2) * (1.0f / (float)(RP_PCSS_SEARCH_TAPS / 2 - 1));
-      const float8 ik = inear + (ir - inear) * f;
-      rk = fmin(fmax(L.k_h * (s.zr * ik - 1.0f), (float8)(RP_PCSS_MIN_RADIUS)),
-                (float8)(RP_PCSS_MAX_RADIUS));
-      const float8 ck = L.c_h * (1.0f - L.ze * ik);
-      cx = L.xr * ck + mid;
-      cy = L.yr * ck + mid;
-    }
-    const float8 b = rp_pcss_blocker(shadow, &s, &L, cx + ox * rk, cy + oy * rk, &it);
-    count += b;
-    sum_inv += b * it;
-    imax = fmax(imax, b * it);
+  for (int t = 0; t < RP_PCSS_SEARCH_TAPS / 4; ++t)
+    rp_pcss_search_tap(shadow, &s, &L, 4 * t + ((ci + t) & 3), inear, mx, my, rs, &count,
+                       &sum_inv, &imax);
+  const float8 gh = rp_pcss_same(&s, nx, ny, nz, RP_SHADOW_SWAP_H);
+  const float8 gv = rp_pcss_same(&s, nx, ny, nz, RP_SHADOW_SWAP_V);
+  const float8 gd = rp_pcss_same(&s, nx, ny, nz, RP_SHADOW_SWAP_D);
+  float own_taps = (float)(RP_PCSS_SEARCH_TAPS / 4);
+  if (any((gh + gv + gd < 2.5f) & (done < 0.5f))) {
+    for (int t = 0; t < RP_PCSS_SEARCH_TAPS / 4; ++t)
+      rp_pcss_search_tap(shadow, &s, &L, 4 * t + ((ci + 2 + t) & 3), inear, mx, my, rs,
+                         &count, &sum_inv, &imax);
+    own_taps *= 2.0f;
+  }
+  const float8 taps = own_taps * (1.0f + gh + gv + gd);
+  {
+    const float8 c0 = count, s0 = sum_inv, m0 = imax;
+    count += gh * shuffle(c0, RP_SHADOW_SWAP_H) + gv * shuffle(c0, RP_SHADOW_SWAP_V) +
+             gd * shuffle(c0, RP_SHADOW_SWAP_D);
+    sum_inv += gh * shuffle(s0, RP_SHADOW_SWAP_H) + gv * shuffle(s0, RP_SHADOW_SWAP_V) +
+               gd * shuffle(s0, RP_SHADOW_SWAP_D);
+    imax = fmax(fmax(imax, gh * shuffle(m0, RP_SHADOW_SWAP_H)),
+                fmax(gv * shuffle(m0, RP_SHADOW_SWAP_V), gd * shuffle(m0, RP_SHADOW_SWAP_D)));
   }
   const float8 none = select(zero, one, count < 0.5f);
-  const float8 umbra = select(zero, one, count > (float)RP_PCSS_SEARCH_TAPS - 0.5f);
+  const float8 umbra = select(zero, one, count > taps - 0.5f);
   if (all(fmax(fmax(done, none), umbra) > 0.5f)) return fmax(fmax(done, none), zero);
   /* step 3: halfway between the mean and the nearest blocker, in 1/z */
   const float8 iavg = select(inear, 0.5f * (sum_inv / fmax(count, one) + imax), count > 0.5f);

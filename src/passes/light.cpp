@@ -21,18 +21,16 @@ uint32_t log2_exact(uint32_t v) {
   return l;
 }
 
-// Binds the GBuffer and shadow arguments every variant starts with; returns the next index.
+// Binds the GBuffer and visibility arguments every variant starts with; returns the next index.
 cl_uint bind_common(::cl::Kernel& kernel, const render::GpuScene& scene,
-                    const render::GBuffer& gbuffer, const render::ShadowMap& shadow) {
+                    const render::GBuffer& gbuffer, const ::cl::Buffer& visibility) {
   cl_uint arg = 0;
   kernel.setArg(arg++, scene.frame);
   kernel.setArg(arg++, gbuffer.albedo);
   kernel.setArg(arg++, gbuffer.normal_depth);
   kernel.setArg(arg++, gbuffer.position);
   kernel.setArg(arg++, gbuffer.emission);
-  kernel.setArg(arg++, shadow.depth);
-  // hard and pcf never read the mips: any buffer will do
-  kernel.setArg(arg++, shadow.mip_planes > 0 ? shadow.mips : shadow.depth);
+  kernel.setArg(arg++, visibility);
   kernel.setArg(arg++, scene.brdf_table);
   return arg;
 }
@@ -64,18 +62,48 @@ void check_voxel_chain(const char* pass, const ::cl::Buffer& voxels, uint32_t vo
                         std::to_string(voxel_levels) + " levels needs " + std::to_string(needed));
 }
 
-LightPass::LightPass(const rp::cl::Context& /*context*/, rp::cl::ProgramCache& programs,
+LightPass::LightPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
                      ShadowFilter filter)
-    : programs_(&programs), filter_(filter) {}
+    : context_(&context), programs_(&programs), filter_(filter) {}
 
 ::cl::Kernel& LightPass::variant(bool upsample, bool split) {
-  std::optional<::cl::Kernel>& k = kernels_[int(filter_)][upsample][split];
-  if (!k) {
-    std::string options = "-DRP_SHADOW_MODE=" + std::to_string(int(filter_));
-    if (split) options += " -DRP_LIGHT_SPLIT=1";
-    k = programs_->kernel("light.cl", upsample ? "light_compose" : "light_shade", options);
-  }
+  std::optional<::cl::Kernel>& k = kernels_[upsample][split];
+  if (!k)
+    k = programs_->kernel("light.cl", upsample ? "light_compose" : "light_shade",
+                          split ? "-DRP_LIGHT_SPLIT=1" : "");
   return *k;
+}
+
+::cl::Kernel& LightPass::shadow_kernel() {
+  std::optional<::cl::Kernel>& k = shadow_kernels_[int(filter_)];
+  if (!k)
+    k = programs_->kernel("shadow_visibility.cl", "shadow_visibility",
+                          "-DRP_SHADOW_MODE=" + std::to_string(int(filter_)));
+  return *k;
+}
+
+void LightPass::run_visibility(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                               const render::GBuffer& gbuffer, const render::ShadowMap& shadow) {
+  const uint32_t w = scene.constants.width, h = scene.constants.height;
+  const size_t bytes = size_t(w) * h * sizeof(float);
+  if (visibility_bytes_ < bytes) {
+    visibility_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
+    visibility_bytes_ = bytes;
+  }
+  ::cl::Kernel& k = shadow_kernel();
+  cl_uint arg = 0;
+  k.setArg(arg++, scene.frame);
+  k.setArg(arg++, gbuffer.normal_depth);
+  k.setArg(arg++, gbuffer.position);
+  k.setArg(arg++, shadow.depth);
+  // hard and pcf never read the mips: any buffer will do
+  k.setArg(arg++, shadow.mip_planes > 0 ? shadow.mips : shadow.depth);
+  k.setArg(arg, visibility_);
+  // 4x2 pixels per work-item; timed as part of the light pass
+  profiler.enqueue("light", k,
+                   ::cl::NDRange(rp::cl::round_up((w + 3) / 4, kComposeGroupX),
+                                 rp::cl::round_up((h + 1) / 2, kComposeGroupY)),
+                   ::cl::NDRange(kComposeGroupX, kComposeGroupY));
 }
 
 void LightPass::check_sizes(const render::GpuScene& scene, const render::GBuffer& gbuffer,
@@ -124,8 +152,9 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                           std::to_string(plane) + " bytes (" + std::to_string(w) + "x" +
                           std::to_string(h) + " float4)");
   }
+  run_visibility(profiler, scene, gbuffer, shadow);
   ::cl::Kernel& k = variant(indirect != nullptr, components != nullptr);
-  cl_uint arg = bind_common(k, scene, gbuffer, shadow);
+  cl_uint arg = bind_common(k, scene, gbuffer, visibility_);
   if (indirect != nullptr) {
     k.setArg(arg++, *indirect->irradiance);
     k.setArg(arg++, *indirect->geometry);

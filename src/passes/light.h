@@ -1,9 +1,11 @@
 // Light pass: direct light from the lamp (the surface model of kernels/common/brdf.h: GGX coat
-// over Lambert; directional falloff, the shadow filtered as ShadowFilter says) + indirect diffuse light + emission -> HDR float4 per pixel. The
+// over Lambert; directional falloff, the shadow filtered as ShadowFilter says) + indirect
+// diffuse light + emission -> HDR float4 per pixel. Two kernels: the lamp's visibility per
+// pixel (kernels/shadow_visibility.cl, in the ShadowFilter's mode), then the light itself. The
 // indirect light is either the 16-cone set traced per pixel through the voxel radiance chain
 // (kernels/common/cone_trace.h; the reference quality mode) or the indirect pass's accumulated
 // low-resolution result upsampled with depth- and normal-aware weights (passes/indirect.h; the
-// fast mode). Pass name "light".
+// fast mode). Pass name "light" (both kernels).
 #pragma once
 
 #include <cstdint>
@@ -59,7 +61,10 @@ class LightPass {
   // chain is then only checked, not read); else the 16 cones are traced per pixel.
   // shadow.mips must hold at least shadow_mip_planes(filter()) planes (the shadow filter pass).
   // Builds the hdr-only kernel of one variant now (the renderer builds its kernels up front).
-  void prepare(bool upsample) { variant(upsample, false); }
+  void prepare(bool upsample) {
+    variant(upsample, false);
+    shadow_kernel();
+  }
 
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
            const render::GBuffer& gbuffer, const render::ShadowMap& shadow,
@@ -71,12 +76,22 @@ class LightPass {
   void check_sizes(const render::GpuScene& scene, const render::GBuffer& gbuffer,
                    const render::ShadowMap& shadow) const;
 
-  // Kernel variant [filter][upsample][split], built on first use.
+  // Light kernel variant [upsample][split] and the visibility kernel of filter_, built on
+  // first use.
   ::cl::Kernel& variant(bool upsample, bool split);
+  ::cl::Kernel& shadow_kernel();
+  // The lamp's visibility per pixel (kernels/shadow_visibility.cl) into visibility_.
+  void run_visibility(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                      const render::GBuffer& gbuffer, const render::ShadowMap& shadow);
 
+  const rp::cl::Context* context_;
   rp::cl::ProgramCache* programs_;
   ShadowFilter filter_;
-  std::optional<::cl::Kernel> kernels_[4][2][2];
+  std::optional<::cl::Kernel> kernels_[2][2];
+  std::optional<::cl::Kernel> shadow_kernels_[4];
+  // width x height floats in [0, 1] (one per pixel, row-major), grown on demand
+  ::cl::Buffer visibility_;
+  size_t visibility_bytes_ = 0;
 };
 
 // Throws rp::cl::Error (naming `pass`) unless `voxels` holds a chain of voxel_resolution^3 at

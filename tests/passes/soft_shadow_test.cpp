@@ -132,12 +132,13 @@ class Shadows {
   }
 
   // Mean visibility over `frames` frame indices.
+  // `width`: points per image row (the kernel pools pcss searches over 2x2 pixel quads).
   std::vector<double> mean_visibility(const std::vector<Point>& points,
                                       const std::vector<float>& map, ShadowFilter filter,
-                                      uint32_t frames) {
+                                      uint32_t frames, uint32_t width = 16) {
     std::vector<double> sum(points.size(), 0.0);
     for (uint32_t f = 0; f < frames; ++f) {
-      auto v = visibility(points, map, filter, f);
+      auto v = visibility(points, map, filter, f, width);
       for (size_t i = 0; i < v.size(); ++i) sum[i] += v[i] / frames;
     }
     return sum;
@@ -255,6 +256,72 @@ TEST(SoftShadow, PcssPenumbraMatchesTheLampDisk) {
 // it): a looser bound, the measured figure in the notes.
 TEST(SoftShadow, VssmPenumbraMatchesTheLampDisk) {
   expect_plate_penumbra(ShadowFilter::kVssm, 0.08, 0.7, 0.35);
+}
+
+// In a frame, a pixel's quad neighbours mostly lie on its surface, and pcss pools their
+// blocker searches (soft_shadow.h, step 2). The plate's edge with the floor row laid out as
+// an image of two rows 0.004 apart (every quad on one surface, all four searches pooled): the
+// same bounds as the row alone.
+TEST(SoftShadow, PcssPooledQuadsMatchTheLampDisk) {
+  Shadows s(256);
+  const Plate plate{0.0, -0.4, 0.4};
+  const auto map = s.map([&](glm::dvec3 o, glm::dvec3 d) { return plate.hit(o, d); });
+  const Row row = floor_row(s.light(), plate, -0.6, 0.6, 96);
+  std::vector<Point> pts = row.points;
+  for (Point p : row.points) {
+    p.p.z += 0.004f;
+    pts.push_back(p);
+  }
+  const auto vis = s.mean_visibility(pts, map, ShadowFilter::kPcss, 64, 96);
+  double sum_error = 0.0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    sum_error += std::abs(vis[i] - row.truth[i % 96]);
+    EXPECT_NEAR(vis[i], row.truth[i % 96], 0.2) << i;
+  }
+  EXPECT_LT(sum_error / double(pts.size()), 0.03);
+  const std::vector<double> top(vis.begin(), vis.begin() + 96);
+  const double want = crossing(row.xs, row.truth, 0.9) - crossing(row.xs, row.truth, 0.1);
+  const double got = crossing(row.xs, top, 0.9) - crossing(row.xs, top, 0.1);
+  EXPECT_NEAR(got, want, 0.10 * want) << "10-90 % penumbra width";
+  std::printf("pcss pooled quads: mean |error| %.4f, 10-90 %% width %.4f (reference %.4f)\n",
+              sum_error / double(pts.size()), got, want);
+}
+
+// No pooling across surfaces: floor points across the penumbra of a plate at height 0 (A),
+// each in a quad with floor points across the penumbra of a lower plate (B, height -0.7: its
+// blockers lie at another depth) 0.7 away, must shade exactly as in quads with lit floor
+// points 0.7 away on the other side: A's receivers are too far from either to share a search,
+// so neither may change A's blocker estimate. (With the pooling gate always open, A's
+// estimate takes B's blockers in: this test fails.)
+TEST(SoftShadow, PcssDoesNotPoolAcrossSurfaces) {
+  Shadows s(256);
+  const Plate a{0.0, -0.4, 0.4};
+  const auto map = s.map([&](glm::dvec3 o, glm::dvec3 d) {
+    if (d.y < 0) {
+      const double t = (-0.7 - o.y) / d.y;  // plate B: x in (-0.8, 0), z in (0.55, 0.85)
+      const glm::dvec3 q = o + d * t;
+      if (q.x > -0.8 && q.x < 0.0 && q.z > 0.55 && q.z < 0.85) return t;
+    }
+    return a.hit(o, d);
+  });
+  std::vector<Point> with_b, with_lit;  // rows of two: (A point, the other)
+  for (int i = 0; i < 48; ++i) {
+    const float x = -0.3f + 0.6f * float(i) / 47.0f;
+    for (auto* pts : {&with_b, &with_lit}) pts->push_back({{x, -1.0f, 0.0f}, {0, 1, 0}});
+    with_b.push_back({{x, -1.0f, 0.7f}, {0, 1, 0}});
+    with_lit.push_back({{x + 0.7f, -1.0f, 0.0f}, {0, 1, 0}});
+  }
+  double b_mean = 0.0;
+  for (uint32_t frame = 0; frame < 8; ++frame) {
+    const auto vb = s.visibility(with_b, map, ShadowFilter::kPcss, frame, 2);
+    const auto vl = s.visibility(with_lit, map, ShadowFilter::kPcss, frame, 2);
+    for (size_t i = 0; i < vb.size(); i += 2) {
+      EXPECT_EQ(vb[i], vl[i]) << "A point " << i / 2 << ", frame " << frame;
+      b_mean += vb[i + 1] / (8.0 * 48.0);
+    }
+  }
+  EXPECT_GT(b_mean, 0.1);  // B's row does cross a penumbra (the test has something to leak)
+  EXPECT_LT(b_mean, 0.9);
 }
 
 // ---- exact references: mips, hard, pcf ----
