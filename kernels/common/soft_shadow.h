@@ -1,5 +1,6 @@
-/* The lamp's shadow for eight pixels at once (light.cl's light_direct8), in four modes chosen by
- * -DRP_SHADOW_MODE (RenderSettings::shadows): 0 hard, 1 pcf, 2 pcss, 3 vssm. OpenCL C only.
+/* The lamp's shadow for eight pixels at once (a 4x2 block: kernels/shadow_visibility.cl, the
+ * light pass's first kernel), in four modes chosen by -DRP_SHADOW_MODE
+ * (RenderSettings::shadows): 0 hard, 1 pcf, 2 pcss, 3 vssm. OpenCL C only.
  *
  * rp_shadow8 returns the visibility in [0, 1] of eight receivers p (unit normals n, cos_theta =
  * dot(n, l)); 1 outside the shadow frustum. Shadow map: FrameConstants.light_view_proj depth,
@@ -69,12 +70,17 @@
  *      shrinks as z grows; on the busy scene it cost more than it saved). A texel nearer than
  *      z_n counts as at z_n.
  *   2. Blocker search: RP_PCSS_SEARCH_TAPS rotated Poisson taps through the cone between z_min
- *      and z_r: the even ones uniform over the disk holding all its disks (centre halfway
+ *      and z_r (one rotation per 2x2 quad of pixels), pooled over the quad: see the code; a
+ *      quad on one surface traces the whole set once, a quarter per pixel, and every pixel of
+ *      it counts all of the quad's blockers (light pass 19.2 -> 15.4 CPU ms on the busy 720
+ *      frame; bench --accuracy at 360: floor 35.5 dB, penumbrae 0.86x / 0.95x the truth's,
+ *      against 35.4 dB, 0.93x / 1.02x with 12 taps per pixel). The set:
+ *      the even ones uniform over the disk holding all its disks (centre halfway
  *      between c(z_min) and u_r, radius r(z_min) plus half their distance), the odd ones on the
  *      cone's disk at inverse depths from 1/z_min to 1/z_r in equal steps, the last within a
  *      texel of the receiver, so blockers near it (small disks: contact shadows) are found as
  *      well as high ones; a tap is a BLOCKER when its texel is in front of the receiver plane
- * *      AND inside the cone at some depth between its own and the receiver's (|u - c(z)| <
+ *      AND inside the cone at some depth between its own and the receiver's (|u - c(z)| <
  *      max(r(z), RP_PCSS_MIN_RADIUS texels) for some z in [z_texel, z_r): the shadow map's
  *      occluders are solid behind their front faces; in (u, 1/z) the cone is linear, so that is
  *      the convex hull of the texel depth's disk and the apex u_r), which keeps walls beside
