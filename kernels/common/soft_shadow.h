@@ -442,25 +442,28 @@ inline float8 rp_pcss_blocker(__global const float* restrict shadow, const RpSha
   return front * fmax(in_disk, in_sector);
 }
 
-/* Search tap te (of RP_PCSS_SEARCH_TAPS, one value per lane) of the receivers, as in the full
- * set: even te uniform over the search disk (centre (mx, my), radius rs), odd te on the cone's
- * disk at inverse depth lerp(1 / z_min, 1 / z_r, j / (N / 2 - 1)), j = te / 2. Poisson point
- * (te 16 / N) & 15 rotated by (s->ca, s->sa). Adds the blockers found to the sums. */
+/* Search tap t of the lanes' classes, offset by `off` (pooled search, step 2): lane class c
+ * (0, 1, 0, 1, 2, 3, 2, 3: column parity + 2 row parity) traces tap te = 4 t + ((c + off + t)
+ * & 3) of the full set of RP_PCSS_SEARCH_TAPS: even te uniform over the search disk (centre
+ * (mx, my), radius rs), odd te on the cone's disk at inverse depth lerp(1 / z_min, 1 / z_r,
+ * j / (N / 2 - 1)), j = te / 2; Poisson point (te 16 / N) & 15 rotated by (s->ca, s->sa). Adds
+ * the blockers found to the sums. */
 inline void rp_pcss_search_tap(__global const float* restrict shadow, const RpShadow8* s,
-                               const RpLamp8* L, int8 te, float8 inear, float8 mx, float8 my,
-                               float8 rs, float8* count, float8* sum_inv, float8* imax) {
+                               const RpLamp8* L, int t, int off, float8 inear, float8 mx,
+                               float8 my, float8 rs, float8* count, float8* sum_inv,
+                               float8* imax) {
   const float8 mid = (float8)(s->size * 0.5f);
-  /* the lane's Poisson point: one of the four candidates 4 (te / 4) + 0..3 is the lane's (te
-   * is 4 t + a permutation of 0..3 over the lanes, t the same in every lane) */
-  const int base = te.s0 & ~3;
-  float8 ox = 0.0f, oy = 0.0f;
-  for (int k = 0; k < 4; ++k) {
-    float8 px, py;
-    RP_SOFT_POINT(((base + k) * 16 / RP_PCSS_SEARCH_TAPS) & 15, s->ca, s->sa, px, py);
-    const int8 mine = te == base + k;
-    ox = select(ox, px, mine);
-    oy = select(oy, py, mine);
-  }
+  const int t0 = 4 * t + ((off + t) & 3), t1 = 4 * t + ((off + t + 1) & 3);
+  const int t2 = 4 * t + ((off + t + 2) & 3), t3 = 4 * t + ((off + t + 3) & 3);
+  const int8 te = (int8)(t0, t1, t0, t1, t2, t3, t2, t3);
+  /* the lanes' Poisson points, then one rotation */
+  const float2 q0 = RP_POISSON_DISK[(t0 * 16 / RP_PCSS_SEARCH_TAPS) & 15];
+  const float2 q1 = RP_POISSON_DISK[(t1 * 16 / RP_PCSS_SEARCH_TAPS) & 15];
+  const float2 q2 = RP_POISSON_DISK[(t2 * 16 / RP_PCSS_SEARCH_TAPS) & 15];
+  const float2 q3 = RP_POISSON_DISK[(t3 * 16 / RP_PCSS_SEARCH_TAPS) & 15];
+  const float8 dx = (float8)(q0.x, q1.x, q0.x, q1.x, q2.x, q3.x, q2.x, q3.x);
+  const float8 dy = (float8)(q0.y, q1.y, q0.y, q1.y, q2.y, q3.y, q2.y, q3.y);
+  const float8 ox = s->ca * dx - s->sa * dy, oy = s->sa * dx + s->ca * dy;
   const float8 f = convert_float8(te >> 1) * (1.0f / (float)(RP_PCSS_SEARCH_TAPS / 2 - 1));
   const float8 ik = inear + (1.0f / s->zr - inear) * f;
   const float8 rk = fmin(fmax(L->k_h * (s->zr * ik - 1.0f), (float8)(RP_PCSS_MIN_RADIUS)),
@@ -605,7 +608,6 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
    * undecided lane of the block pools with fewer than three neighbours (a silhouette, an
    * isolated point), every lane traces another N / 4 (class c + 2's), so that no lane relies
    * on fewer than N / 2 taps and a lane pooled with one neighbour sees the whole set. */
-  const int8 ci = (int8)(0, 1, 0, 1, 2, 3, 2, 3);
   {
     /* one search rotation per quad (its top-left pixel's), so that a quad's taps together are
      * the rotated Poisson set, evenly spread, rather than four independently rotated parts */
@@ -617,16 +619,14 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
   }
   float8 count = zero, sum_inv = zero, imax = zero;
   for (int t = 0; t < RP_PCSS_SEARCH_TAPS / 4; ++t)
-    rp_pcss_search_tap(shadow, &s, &L, 4 * t + ((ci + t) & 3), inear, mx, my, rs, &count,
-                       &sum_inv, &imax);
+    rp_pcss_search_tap(shadow, &s, &L, t, 0, inear, mx, my, rs, &count, &sum_inv, &imax);
   const float8 gh = rp_pcss_same(&s, nx, ny, nz, RP_SHADOW_SWAP_H);
   const float8 gv = rp_pcss_same(&s, nx, ny, nz, RP_SHADOW_SWAP_V);
   const float8 gd = rp_pcss_same(&s, nx, ny, nz, RP_SHADOW_SWAP_D);
   float own_taps = (float)(RP_PCSS_SEARCH_TAPS / 4);
   if (any((gh + gv + gd < 2.5f) & (done < 0.5f))) {
     for (int t = 0; t < RP_PCSS_SEARCH_TAPS / 4; ++t)
-      rp_pcss_search_tap(shadow, &s, &L, 4 * t + ((ci + 2 + t) & 3), inear, mx, my, rs,
-                         &count, &sum_inv, &imax);
+      rp_pcss_search_tap(shadow, &s, &L, t, 2, inear, mx, my, rs, &count, &sum_inv, &imax);
     own_taps *= 2.0f;
   }
   const float8 taps = own_taps * (1.0f + gh + gv + gd);
