@@ -9,12 +9,18 @@
  *   position  4 planes: the sample's world position x, y, z and its view depth (0 background)
  *   geom      4 planes: the sample's unit normal x, y, z and its plane offset dot(n, p);
  *             all 0 on background and padding (every geometry weight is then 0)
+ *   specular  3 planes: r, g, b radiance of this frame's reflection cone at the sample
+ *             (coated surfaces, common/spec_cone.h; 0 elsewhere). Not filtered and not
+ *             accumulated: the cone is deterministic (single-level samples at round(L), no
+ *             jitter), and a reflection moves with the view, not with the surface, so the
+ *             surface's reprojection would drag it; the light pass upsamples this frame's
+ *             value with the same geometry weights as the irradiance.
  *   history   5 planes: accumulated irradiance / pi r, g, b, its age in frames (0: none) and
  *             the accumulated second moment of its luminance (0.2126 r + 0.7152 g + 0.0722 b)
  * geom and history are double-buffered by the host: this frame's and the previous frame's.
  *
  * indirect_trace (one work-item per sample): GBuffer at the sample pixel, one cone (a loop with
- * early exit: scalar code).
+ * early exit: scalar code), and on coated surfaces the reflection cone.
  * indirect_filter (8 samples of a row per work-item, float8 code, common/indirect_simd.h):
  *   spatial: weighted mean of the cone radiances over the 5x5 samples around it, tap weights
  *     (0.5, 1, 1, 1, 0.5) per axis (symmetric, and every residue mod 4 - every cone of the set -
@@ -41,6 +47,7 @@
 #include "common/math.h"
 #include "common/random.h"
 #include "common/cone_trace.h"
+#include "common/spec_cone.h"
 #include "common/indirect.h"
 #include "common/indirect_simd.h"
 
@@ -91,6 +98,7 @@ inline float3 indirect_cone(__global const float4* voxels, uint voxel_resolution
 __kernel void indirect_trace(__global const FrameConstants* frame,
                              __global const float4* normal_depth_plane,
                              __global const float4* position_plane,
+                             __global const float4* emission_plane,
                              __global const float4* voxels,
                              const uint voxel_resolution,
                              const uint voxel_levels,
@@ -100,7 +108,8 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
                              const uint plane,
                              __global float* radiance,
                              __global float* position,
-                             __global float* geom) {
+                             __global float* geom,
+                             __global float* specular) {
   const uint i = (uint)get_global_id(0), j = (uint)get_global_id(1);
   if (i >= lr_width || j >= lr_height) return;
   const uint s = (uint)rp_indirect_index((int)i, (int)j, (int)stride);
@@ -110,7 +119,7 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
   const uint y = min(j * RP_INDIRECT_SCALE + (cell >> 2), frame->height - 1u);
   const uint pixel = y * frame->width + x;
   const float4 pos = position_plane[pixel];
-  float3 c = (float3)(0.0f), n = (float3)(0.0f), p = (float3)(0.0f);
+  float3 c = (float3)(0.0f), n = (float3)(0.0f), p = (float3)(0.0f), sc = (float3)(0.0f);
   float d = 0.0f, depth = 0.0f;
   if (pos.w != 0.0f) {
     p = pos.xyz;
@@ -132,7 +141,14 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
 #endif
     c *= 1.0f - rp_cone_near_occlusion(voxels, voxel_resolution, voxel_levels, p, n);
     d = dot(n, p);
+    /* coated surfaces: the reflection cone (common/spec_cone.h, single-level samples) */
+    const float code = emission_plane[pixel].w;
+    if (code != 0.0f)
+      sc = rp_spec_cone(frame, voxels, voxel_resolution, voxel_levels, code, p, n, 0);
   }
+  specular[s] = sc.x;
+  specular[plane + s] = sc.y;
+  specular[2u * plane + s] = sc.z;
   radiance[s] = c.x;
   radiance[plane + s] = c.y;
   radiance[2u * plane + s] = c.z;

@@ -39,6 +39,7 @@ IndirectPass::IndirectPass(const rp::cl::Context& context, rp::cl::ProgramCache&
 void IndirectPass::resize(uint32_t width, uint32_t height) {
   const size_t plane = size_t(plane_size(low_res(width), low_res(height))) * sizeof(float);
   radiance_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
+  specular_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
   const size_t bytes = 4 * plane;
   position_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
   for (int k = 0; k < 2; ++k) {
@@ -49,7 +50,7 @@ void IndirectPass::resize(uint32_t width, uint32_t height) {
   // history_valid_, but they are read).
   // The padding must stay zero (kernels/common/indirect.h); the kernels write only samples.
   for (::cl::Buffer* b :
-       {&radiance_, &position_, &geometry_[0], &geometry_[1], &history_[0], &history_[1]})
+       {&radiance_, &specular_, &position_, &geometry_[0], &geometry_[1], &history_[0], &history_[1]})
     context_->queue.enqueueFillBuffer(*b, 0.0f, 0, b->getInfo<CL_MEM_SIZE>());
   width_ = width;
   height_ = height;
@@ -81,6 +82,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   trace.setArg(arg++, scene.frame);
   trace.setArg(arg++, gbuffer.normal_depth);
   trace.setArg(arg++, gbuffer.position);
+  trace.setArg(arg++, gbuffer.emission);
   trace.setArg(arg++, voxels);
   trace.setArg(arg++, cl_uint(voxel_resolution));
   trace.setArg(arg++, cl_uint(voxel_levels));
@@ -91,6 +93,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   trace.setArg(arg++, radiance_);
   trace.setArg(arg++, position_);
   trace.setArg(arg++, geometry_[cur]);
+  trace.setArg(arg++, specular_);
   profiler.enqueue("indirect_trace", trace,
                    ::cl::NDRange(rp::cl::round_up(lw, kGroup), rp::cl::round_up(lh, kGroup)),
                    local);
@@ -124,6 +127,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   out.plane = plane;
   out.irradiance = &history_[cur];
   out.geometry = &geometry_[cur];
+  out.specular = &specular_;
   out.pixel_scale = scale;
   return out;
 }

@@ -1,6 +1,7 @@
 // Indirect light at reduced resolution (the fast quality mode, issue 9; kernels/indirect.cl):
 // one cone of the 16-cone set per 4x4 pixel block per frame (directions interleaved over the
-// blocks, rotated per frame), a geometry-aware spatial filter, and temporal accumulation. The
+// blocks, rotated per frame), a geometry-aware spatial filter, and temporal accumulation; on
+// coated surfaces also one reflection cone per block (issue 16 part 2, not accumulated). The
 // light pass upsamples the result (LightPass::run with a LowResIndirect). Pass names
 // "indirect_trace" and "indirect_filter".
 #pragma once
@@ -24,6 +25,8 @@ struct LowResIndirect {
   const ::cl::Buffer* irradiance = nullptr;  // 5 planes: irradiance / pi r, g, b; age in frames;
                                              // luminance second moment
   const ::cl::Buffer* geometry = nullptr;    // 4 planes: unit normal x, y, z; dot(normal, position)
+  const ::cl::Buffer* specular = nullptr;    // 3 planes: this frame's reflection cone radiance
+                                             // r, g, b (coated samples; 0 elsewhere)
   float pixel_scale = 0.0f;
 };
 
@@ -72,6 +75,7 @@ class IndirectPass {
   uint32_t width_ = 0, height_ = 0;  // full-resolution size the planes were made for
   ::cl::Buffer radiance_;            // 3 planes: this frame's cone radiance r, g, b
   ::cl::Buffer position_;            // 4 planes: this frame's sample positions and view depths
+  ::cl::Buffer specular_;            // 3 planes: this frame's reflection cone radiance r, g, b
   ::cl::Buffer geometry_[2];         // 4 planes each; [current_]: this frame's, the other: the
                                      // previous frame's
   ::cl::Buffer history_[2];          // 5 planes each, likewise
