@@ -10,11 +10,13 @@
  *   geom      4 planes: the sample's unit normal x, y, z and its plane offset dot(n, p);
  *             all 0 on background and padding (every geometry weight is then 0)
  *   specular  3 planes: r, g, b radiance of this frame's reflection cone at the sample
- *             (coated surfaces, common/spec_cone.h; 0 elsewhere). Not filtered and not
- *             accumulated: the cone is deterministic (single-level samples at round(L), no
- *             jitter), and a reflection moves with the view, not with the surface, so the
- *             surface's reprojection would drag it; the light pass upsamples this frame's
- *             value with the same geometry weights as the irradiance.
+ *             (coated surfaces, common/spec_cone.h; 0 elsewhere; -1: a hole of the rough
+ *             coats' checkerboard, RP_INDIRECT_SPEC_CHECKER_TAN), and 3 more planes of the
+ *             same after indirect_filter filled the holes. Not accumulated: the cone is
+ *             deterministic (single-level samples at round(L), no jitter), and a reflection
+ *             moves with the view, not with the surface, so the surface's reprojection would
+ *             drag it; the light pass upsamples this frame's value with the same geometry
+ *             weights as the irradiance.
  *   history   5 planes: accumulated irradiance / pi r, g, b, its age in frames (0: none) and
  *             the accumulated second moment of its luminance (0.2126 r + 0.7152 g + 0.0722 b)
  * geom and history are double-buffered by the host: this frame's and the previous frame's.
@@ -76,6 +78,15 @@
 /* Smallest total reprojection weight that counts as history. */
 #ifndef RP_INDIRECT_MIN_HISTORY
 #define RP_INDIRECT_MIN_HISTORY 0.05f
+#endif
+
+/* Reflection cones at least this wide (tan of the half-angle; rp_brdf_spec_cone_tan) are
+ * traced on the checkerboard of samples with (i + j) even only; indirect_filter fills the
+ * others from their four neighbours (geometry weighted). Half the cones on rough coats (the
+ * demo's floor, 0.187), whose reflections are blurred over more than a block anyway. 0: every
+ * coated sample on the checkerboard; > 1: every coated sample traces. */
+#ifndef RP_INDIRECT_SPEC_CHECKER_TAN
+#define RP_INDIRECT_SPEC_CHECKER_TAN 0.15f
 #endif
 
 /* Radiance of one cone of the set from sample (i, j)'s surface point p (normal n) in frame f,
@@ -143,8 +154,13 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
     d = dot(n, p);
     /* coated surfaces: the reflection cone (common/spec_cone.h, single-level samples) */
     const float code = emission_plane[pixel].w;
-    if (code != 0.0f)
-      sc = rp_spec_cone(frame, voxels, voxel_resolution, voxel_levels, code, p, n, 0);
+    if (code != 0.0f) {
+      if (((i ^ j) & 1u) == 0u ||
+          rp_brdf_spec_cone_tan(rp_brdf_code_roughness(code)) < RP_INDIRECT_SPEC_CHECKER_TAN)
+        sc = rp_spec_cone(frame, voxels, voxel_resolution, voxel_levels, code, p, n, 0);
+      else
+        sc = (float3)(-1.0f); /* a hole: indirect_filter fills it from its neighbours */
+    }
   }
   specular[s] = sc.x;
   specular[plane + s] = sc.y;
@@ -198,7 +214,9 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
                               const uint plane,
                               const float pixel_scale,
                               const uint history_valid,
-                              const float alpha_min) {
+                              const float alpha_min,
+                              __global const float* restrict specular,
+                              __global float* restrict specular_out) {
   const uint i0 = 8u * (uint)get_global_id(0), j = (uint)get_global_id(1);
   if (i0 >= lr_width || j >= lr_height) return;
   const uint lanes = min(8u, lr_width - i0);
@@ -234,6 +252,47 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
   sr *= inv_w;
   sg *= inv_w;
   sb *= inv_w;
+
+  /* Reflection cones: samples left as holes by indirect_trace (r < 0, the checkerboard of
+   * rough coats) take the geometry-weighted mean of their traced edge neighbours, else the
+   * plain mean of those (no neighbour on the same surface: a one-block sliver); traced samples
+   * pass through. Not accumulated over frames (see the header). */
+  {
+    const float8 s0 = vload8(0, specular + c), s1 = vload8(0, specular + pl + c);
+    const float8 s2 = vload8(0, specular + 2 * pl + c);
+    const int8 hole = s0 < 0.0f;
+    float8 fr = s0, fg = s1, fb = s2;
+    if (any(hole)) {
+      float8 ar = 0.0f, ag = 0.0f, ab = 0.0f, aw = 0.0f, mr = 0.0f, mg = 0.0f, mb = 0.0f, mw = 0.0f;
+      const int offs[4] = {-1, 1, -st, st};
+      for (int q = 0; q < 4; ++q) {
+        const int t = c + offs[q];
+        const float8 t0 = vload8(0, specular + t);
+        const float8 traced = select((float8)(0.0f), (float8)(1.0f), t0 >= 0.0f);
+        const float8 t1 = vload8(0, specular + pl + t), t2 = vload8(0, specular + 2 * pl + t);
+        const float8 w = traced * rp_indirect_geometry_weight8(
+                                      nx, ny, nz, px, py, pz, vload8(0, geom + t),
+                                      vload8(0, geom + pl + t), vload8(0, geom + 2 * pl + t),
+                                      vload8(0, geom + 3 * pl + t), inv_sigma);
+        ar += w * t0;
+        ag += w * t1;
+        ab += w * t2;
+        aw += w;
+        mr += traced * t0;
+        mg += traced * t1;
+        mb += traced * t2;
+        mw += traced;
+      }
+      const int8 geo = aw >= 1.0e-4f;
+      const float8 inv_a = 1.0f / fmax(aw, 1.0e-4f), inv_m = 1.0f / fmax(mw, 1.0f);
+      fr = select(s0, select(mr * inv_m, ar * inv_a, geo), hole);
+      fg = select(s1, select(mg * inv_m, ag * inv_a, geo), hole);
+      fb = select(s2, select(mb * inv_m, ab * inv_a, geo), hole);
+    }
+    indirect_store8(specular_out + c, lanes, fr);
+    indirect_store8(specular_out + pl + c, lanes, fg);
+    indirect_store8(specular_out + 2 * pl + c, lanes, fb);
+  }
 
   /* Temporal: the previous frame's samples around the reprojected positions. */
   const rp_mat4 m = frame->prev_view_proj_unjittered;

@@ -382,6 +382,14 @@ inline float4 rp_cone_trace_coarse(__global const float4* voxels, uint resolutio
 #ifndef RP_CONE_SPEC_MAX_STEPS
 #define RP_CONE_SPEC_MAX_STEPS 24
 #endif
+/* The fast mode's reflection cone stops at this opacity (as the coarse diffuse cone). */
+#ifndef RP_CONE_SPEC_OPAQUE_FAST
+#define RP_CONE_SPEC_OPAQUE_FAST 0.95f
+#endif
+/* The fast mode's smallest cone diameter, in level-0 voxels. */
+#ifndef RP_CONE_SPEC_MIN_D_FAST
+#define RP_CONE_SPEC_MIN_D_FAST 1.0f
+#endif
 inline float4 rp_cone_trace_aperture(__global const float4* voxels, uint resolution, uint levels,
                                      float3 origin, float3 dir, float tan_half, const int fine) {
   const float3 w = dir * dir;
@@ -390,12 +398,14 @@ inline float4 rp_cone_trace_aperture(__global const float4* voxels, uint resolut
   const float v0 = 2.0f / (float)resolution;
   const float inv_v0 = 0.5f * (float)resolution;
   const float s = fine ? 0.5f : 1.0f;
+  const float d_min = fine ? v0 : RP_CONE_SPEC_MIN_D_FAST * v0;
+  const float opaque = fine ? RP_CONE_OPAQUE : RP_CONE_SPEC_OPAQUE_FAST;
   const int max_steps = fine ? 2 * RP_CONE_SPEC_MAX_STEPS : RP_CONE_SPEC_MAX_STEPS;
   float t = RP_CONE_T0 * v0;
   float4 acc = (float4)(0.0f);
   for (int k = 0; k < max_steps; ++k) {
     const float3 q = origin + dir * t;
-    const float d = fmax(2.0f * tan_half * t, v0);
+    const float d = fmax(2.0f * tan_half * t, d_min);
     const float level = log2(d * inv_v0);
     if (fmax(fmax(fabs(q.x), fabs(q.y)), fabs(q.z)) > 1.0f) { /* left the box: its wall */
       const float4 e = rp_cone_exit(voxels, resolution, top, dirs, origin, dir, level);
@@ -413,7 +423,7 @@ inline float4 rp_cone_trace_aperture(__global const float4* voxels, uint resolut
     }
     acc.xyz += (1.0f - acc.w) * smp.xyz;
     acc.w += (1.0f - acc.w) * smp.w;
-    if (acc.w >= RP_CONE_OPAQUE) break;
+    if (acc.w >= opaque) break;
     t += s * d;
   }
   return acc;

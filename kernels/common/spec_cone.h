@@ -19,6 +19,12 @@
 #include "common/brdf.h"
 #include "common/cone_trace.h"
 
+/* The fast mode's narrowest reflection cone (tan of the half-angle; the reference mode's is
+ * RP_SPEC_CONE_MIN_TAN): fewer, coarser samples at the indirect pass's low resolution. */
+#ifndef RP_SPEC_CONE_MIN_TAN_FAST
+#define RP_SPEC_CONE_MIN_TAN_FAST 0.1f
+#endif
+
 inline float3 rp_spec_cone(__global const FrameConstants* restrict frame,
                            __global const float4* restrict voxels, uint voxel_resolution,
                            uint voxel_levels, float code, float3 p, float3 n, const int fine) {
@@ -26,7 +32,9 @@ inline float3 rp_spec_cone(__global const FrameConstants* restrict frame,
   const float3 r = 2.0f * fmax(dot(n, v), 0.0f) * n - v;
   return rp_cone_trace_aperture(voxels, voxel_resolution, voxel_levels,
                                 rp_cone_apex(p, n, voxel_resolution), r,
-                                rp_brdf_spec_cone_tan(rp_brdf_code_roughness(code)), fine)
+                                fmax(rp_brdf_spec_cone_tan(rp_brdf_code_roughness(code)),
+                                     fine ? 0.0f : RP_SPEC_CONE_MIN_TAN_FAST),
+                                fine)
       .xyz;
 }
 

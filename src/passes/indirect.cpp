@@ -40,6 +40,7 @@ void IndirectPass::resize(uint32_t width, uint32_t height) {
   const size_t plane = size_t(plane_size(low_res(width), low_res(height))) * sizeof(float);
   radiance_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
   specular_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
+  specular_filled_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
   const size_t bytes = 4 * plane;
   position_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
   for (int k = 0; k < 2; ++k) {
@@ -50,7 +51,7 @@ void IndirectPass::resize(uint32_t width, uint32_t height) {
   // history_valid_, but they are read).
   // The padding must stay zero (kernels/common/indirect.h); the kernels write only samples.
   for (::cl::Buffer* b :
-       {&radiance_, &specular_, &position_, &geometry_[0], &geometry_[1], &history_[0], &history_[1]})
+       {&radiance_, &specular_, &specular_filled_, &position_, &geometry_[0], &geometry_[1], &history_[0], &history_[1]})
     context_->queue.enqueueFillBuffer(*b, 0.0f, 0, b->getInfo<CL_MEM_SIZE>());
   width_ = width;
   height_ = height;
@@ -114,6 +115,8 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   filter_.setArg(arg++, scale);
   filter_.setArg(arg++, cl_uint(history_valid_ ? 1 : 0));
   filter_.setArg(arg++, kAlphaMin);
+  filter_.setArg(arg++, specular_);
+  filter_.setArg(arg++, specular_filled_);
   profiler.enqueue("indirect_filter", filter_,
                    ::cl::NDRange(rp::cl::round_up((lw + 7) / 8, kGroup), rp::cl::round_up(lh, kGroup)),
                    local);
@@ -127,7 +130,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   out.plane = plane;
   out.irradiance = &history_[cur];
   out.geometry = &geometry_[cur];
-  out.specular = &specular_;
+  out.specular = &specular_filled_;
   out.pixel_scale = scale;
   return out;
 }

@@ -55,6 +55,10 @@ class IndirectPass {
   // radiance (3 planes: r, g, b) and sample positions (4 planes: x, y, z, view depth).
   const ::cl::Buffer& radiance_planes() const { return radiance_; }
   const ::cl::Buffer& position_planes() const { return position_; }
+  // This frame's reflection cones (3 planes r, g, b; -1 marks a checkerboard hole) and the
+  // same with the holes filled (what the light pass upsamples).
+  const ::cl::Buffer& specular_planes() const { return specular_; }
+  const ::cl::Buffer& specular_filled_planes() const { return specular_filled_; }
 
   // Samples per side for a frame of `pixels` pixels: ceil(pixels / kScale).
   static uint32_t low_res(uint32_t pixels) { return (pixels + kScale - 1) / kScale; }
@@ -76,6 +80,8 @@ class IndirectPass {
   ::cl::Buffer radiance_;            // 3 planes: this frame's cone radiance r, g, b
   ::cl::Buffer position_;            // 4 planes: this frame's sample positions and view depths
   ::cl::Buffer specular_;            // 3 planes: this frame's reflection cone radiance r, g, b
+                                     // (-1: a hole of the rough coats' checkerboard)
+  ::cl::Buffer specular_filled_;     // 3 planes: the same with the holes filled
   ::cl::Buffer geometry_[2];         // 4 planes each; [current_]: this frame's, the other: the
                                      // previous frame's
   ::cl::Buffer history_[2];          // 5 planes each, likewise
