@@ -306,6 +306,7 @@ void Renderer::read_components(LinearComponents& out) {
     read_rgb(hdr_, out.combined);
     read_rgb(light_components_.direct, out.direct);
     read_rgb(light_components_.indirect, out.indirect);
+    read_rgb(light_components_.specular, out.specular);
     read_rgb(gbuffer_.emission, out.emission);
     read_rgb(gbuffer_.albedo, out.albedo);
   } catch (const ::cl::Error& e) {
