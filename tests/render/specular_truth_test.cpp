@@ -6,7 +6,9 @@
 // path-traced truth (64 x 64, 64 spp, the BRDF's own sampler), in three bands of the floor:
 // far (rows 46-49 at 64 x 64: mirroring the wall's foot), middle and near (mirroring the wall's
 // upper part). Tolerance: 15 % per band, 8 % over the floor (the cone's 64^3 voxels against the
-X
+// truth's exact wall; the truth's 64-spp noise averages out over a band's 96+ pixels). The
+// placeholder this replaced (E_spec * irradiance / pi: the wall's light averaged over the whole
+// hemisphere) fails it.
 #include <cmath>
 #include <cstdio>
 #include <vector>
