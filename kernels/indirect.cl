@@ -50,6 +50,7 @@
 #include "common/random.h"
 #include "common/cone_trace.h"
 #include "common/spec_cone.h"
+#include "common/ssr.h"
 #include "common/indirect.h"
 #include "common/indirect_simd.h"
 
@@ -120,7 +121,13 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
                              __global float* radiance,
                              __global float* position,
                              __global float* geom,
-                             __global float* specular) {
+                             __global float* specular,
+                             __global const float* ssr_depth,
+                             __global const float* ssr_hiz,
+                             const uint ssr_top,
+                             __global const float4* prev_hdr,
+                             __global const float2* velocity,
+                             const uint ssr_history) {
   const uint i = (uint)get_global_id(0), j = (uint)get_global_id(1);
   if (i >= lr_width || j >= lr_height) return;
   const uint s = (uint)rp_indirect_index((int)i, (int)j, (int)stride);
@@ -155,11 +162,22 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
     /* coated surfaces: the reflection cone (common/spec_cone.h, single-level samples) */
     const float code = emission_plane[pixel].w;
     if (code != 0.0f) {
-      if (((i ^ j) & 1u) == 0u ||
-          rp_brdf_spec_cone_tan(rp_brdf_code_roughness(code)) < RP_INDIRECT_SPEC_CHECKER_TAN)
+      const float rough = rp_brdf_code_roughness(code);
+      /* screen-space reflection first (sharp coats, common/ssr.h); the cone where the screen
+       * has no full answer */
+      const float3 v = normalize(frame->camera_pos.xyz - p);
+      const float3 r = 2.0f * fmax(dot(n, v), 0.0f) * n - v;
+      const float4 ssr = rp_ssr(frame, ssr_depth, ssr_hiz, normal_depth_plane, prev_hdr, velocity,
+                                ssr_top, ssr_history, p, r, rough);
+      if (ssr.w >= 1.0f) {
+        sc = ssr.xyz;
+      } else if (((i ^ j) & 1u) == 0u ||
+                 rp_brdf_spec_cone_tan(rough) < RP_INDIRECT_SPEC_CHECKER_TAN) {
         sc = rp_spec_cone(frame, voxels, voxel_resolution, voxel_levels, code, p, n, 0);
-      else
+        sc += ssr.w * (ssr.xyz - sc);
+      } else {
         sc = (float3)(-1.0f); /* a hole: indirect_filter fills it from its neighbours */
+      }
     }
   }
   specular[s] = sc.x;

@@ -30,6 +30,16 @@ struct LowResIndirect {
   float pixel_scale = 0.0f;
 };
 
+// What screen-space reflections read (kernels/common/ssr.h): this frame's visibility depth
+// (z_ndc * 0.5 + 0.5), the previous frame's light pass output (hdr, float4) and this frame's
+// GBuffer velocity (float2, pixels). prev_hdr must hold the previous frame of the same size
+// whenever the pass has history.
+struct SsrInputs {
+  const ::cl::Buffer* depth = nullptr;
+  const ::cl::Buffer* prev_hdr = nullptr;
+  const ::cl::Buffer* velocity = nullptr;
+};
+
 class IndirectPass {
  public:
   static constexpr uint32_t kScale = 4;  // full-resolution pixels per sample, per side
@@ -44,9 +54,15 @@ class IndirectPass {
   // the next run. voxels: the radiance chain (kernels/shared/voxel_layout.h), checked by the
   // light pass's rules. Reallocates its planes (and drops the history) when the frame size
   // changes.
+  // ssr: screen-space reflections for the sharp coats (null: reflection cones only). Pass
+  // "ssr_min_z" builds the min-Z pyramid when ssr is given.
   LowResIndirect run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                      const render::GBuffer& gbuffer, const ::cl::Buffer& voxels,
-                     uint32_t voxel_resolution, uint32_t voxel_levels);
+                     uint32_t voxel_resolution, uint32_t voxel_levels,
+                     const SsrInputs* ssr = nullptr);
+  // Coarsest level of the min-Z pyramid for a frame w x h (kernels/common/ssr.h): at most 6
+  // (64-pixel cells), no level smaller than 2 x 2.
+  static uint32_t ssr_top_level(uint32_t w, uint32_t h);
 
   // The next run starts a fresh history (world reset, camera cut).
   void reset_history() { history_valid_ = false; }
@@ -76,6 +92,9 @@ class IndirectPass {
   ::cl::Kernel trace_;       // one cone per block (history valid)
   ::cl::Kernel warm_trace_;  // all 16 cones per block (no history yet)
   ::cl::Kernel filter_;
+  ::cl::Kernel min_z_;               // kernels/ssr.cl
+  ::cl::Buffer hiz_;                 // the min-Z pyramid's levels 1 .. top (kernels/common/ssr.h)
+  ::cl::Buffer dummy_;               // bound where SSR is off
   uint32_t width_ = 0, height_ = 0;  // full-resolution size the planes were made for
   ::cl::Buffer radiance_;            // 3 planes: this frame's cone radiance r, g, b
   ::cl::Buffer position_;            // 4 planes: this frame's sample positions and view depths

@@ -172,9 +172,12 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     build_voxels();
     const bool split = passes::needs_light_components(view_.view) || keep_components_;
     passes::LowResIndirect low_res;
-    if (indirect_)
+    if (indirect_) {
+      // screen-space reflections: hdr_ still holds the previous frame's light pass output
+      const passes::SsrInputs ssr{&vis_.depth, &hdr_, &gbuffer_.velocity};
       low_res = indirect_->run(profiler_, *scene_, gbuffer_, voxels_.chain, voxels_.resolution,
-                               voxels_.levels);
+                               voxels_.levels, &ssr);
+    }
     light_->run(profiler_, *scene_, gbuffer_, shadow_, voxels_.chain, voxels_.resolution,
                 voxels_.levels, hdr_, split ? &light_components_ : nullptr,
                 indirect_ ? &low_res : nullptr);
