@@ -109,8 +109,8 @@ rp::test::cone::Chain random_chain() {
 
 class IndirectFixture {
  public:
-  // glossy: the floor-like plane gets the demo floor's coat (a rough one: the reflection cones'
-  // checkerboard), the tilted plane the tumblers' lacquer (every sample traces).
+  // glossy: the floor-like plane gets the demo floor's coat, the tilted plane the tumblers'
+  // lacquer.
   explicit IndirectFixture(bool glossy = false) : pixels_(make_gbuffer()), chain_(random_chain()) {
     if (glossy)
       for (Pixel& q : pixels_)
@@ -489,8 +489,8 @@ TEST(Indirect, ComposeUpsamplesTheBlocksAndMatchesTheDirectTerm) {
 
 // The fast mode's reflection cones (issue 16 part 2) on the glossy fixture: indirect_trace's
 // specular planes against the C++ cone (nearest-level, full-diameter steps; tan from the
-// roughness, at least 0.1) from the sample pixel's apex along its mirror direction, the rough
-// floor's odd checkerboard samples left as holes (-1); indirect_filter's filled planes (a hole:
+// roughness, at least 0.1) from the sample pixel's apex along its mirror direction (no SSR:
+// the pass runs without SsrInputs), the odd checkerboard samples left as holes (-1); indirect_filter's filled planes (a hole:
 // the geometry-weighted mean of its traced edge neighbours, else their plain mean); and
 // light_compose's specular component = E_spec(mu_o) * those planes upsampled with the
 // irradiance's weights (block centres 4 i + 2, bilinear x geometry, the fallbacks).
@@ -512,7 +512,7 @@ TEST(Indirect, ReflectionConesPerBlockFilledAndUpsampled) {
       if (q.covered) {
         const float rough = rp::shading::decode_gloss(q.gloss).roughness;
         const double t = std::max(double(rp::shading::spec_cone_tan(rough)), 0.1);
-        if (((i ^ j) & 1u) == 0u || t < 0.15) {
+        if (((i ^ j) & 1u) == 0u) {  // RP_INDIRECT_SPEC_CHECKER_TAN 0: every coat
           rp::test::cone::Aperture a;
           a.fine = false;
           want = glm::dvec3(rp::test::cone::trace_aperture(
