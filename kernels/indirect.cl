@@ -10,8 +10,9 @@
  *   geom      4 planes: the sample's unit normal x, y, z and its plane offset dot(n, p);
  *             all 0 on background and padding (every geometry weight is then 0)
  *   specular  3 planes: r, g, b radiance of this frame's reflection cone at the sample
- *             (coated surfaces, common/spec_cone.h and common/ssr.h; 0 elsewhere; -1: a hole
- *             of the checkerboard, RP_INDIRECT_SPEC_CHECKER_TAN), and 3 more planes of the
+ *             (coated surfaces, common/spec_cone.h and common/ssr.h; -1: a hole of the
+ *             checkerboard, RP_INDIRECT_SPEC_CHECKER_TAN; -2: no coat; 0: background), and 3
+ *             more planes of the
  *             same after indirect_filter filled the holes. Not accumulated: the cone is
  *             deterministic (single-level samples at round(L), no jitter), and a reflection
  *             moves with the view, not with the surface, so the surface's reprojection would
@@ -163,6 +164,7 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
     d = dot(n, p);
     /* coated surfaces: the reflection cone (common/spec_cone.h, single-level samples) */
     const float code = emission_plane[pixel].w;
+    sc = (float3)(-2.0f); /* no coat: indirect_filter writes 0, and no hole takes it */
     if (code != 0.0f) {
       const float rough = rp_brdf_code_roughness(code);
       if (((i ^ j) & 1u) != 0u && rp_brdf_spec_cone_tan(rough) >= RP_INDIRECT_SPEC_CHECKER_TAN) {
@@ -274,27 +276,32 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
   sg *= inv_w;
   sb *= inv_w;
 
-  /* Reflection cones: samples left as holes by indirect_trace (r < 0, the checkerboard of
-   * rough coats) take the geometry-weighted mean of their traced edge neighbours, else the
-   * plain mean of those (no neighbour on the same surface: a one-block sliver); traced samples
-   * pass through. Not accumulated over frames (see the header). */
+  /* Reflections: samples left as holes by indirect_trace (-1, the checkerboard) take the
+   * geometry-weighted mean of their traced edge neighbours (coated samples with a value >= 0;
+   * uncoated ones hold -2, background and padding have no normal), else the plain mean of
+   * those (no neighbour on the same surface: a one-block sliver), else 0; traced samples pass
+   * through, uncoated ones become 0. Not accumulated over frames (see the header). */
   {
     const float8 s0 = vload8(0, specular + c), s1 = vload8(0, specular + pl + c);
     const float8 s2 = vload8(0, specular + 2 * pl + c);
-    const int8 hole = s0 < 0.0f;
-    float8 fr = s0, fg = s1, fb = s2;
+    const int8 none = s0 < -1.5f;
+    const int8 hole = (s0 < 0.0f) & (s0 >= -1.5f);
+    const float8 zero8 = 0.0f;
+    float8 fr = select(s0, zero8, none), fg = select(s1, zero8, none), fb = select(s2, zero8, none);
     if (any(hole)) {
       float8 ar = 0.0f, ag = 0.0f, ab = 0.0f, aw = 0.0f, mr = 0.0f, mg = 0.0f, mb = 0.0f, mw = 0.0f;
       const int offs[4] = {-1, 1, -st, st};
       for (int q = 0; q < 4; ++q) {
         const int t = c + offs[q];
         const float8 t0 = vload8(0, specular + t);
-        const float8 traced = select((float8)(0.0f), (float8)(1.0f), t0 >= 0.0f);
+        const float8 gx = vload8(0, geom + t), gy = vload8(0, geom + pl + t);
+        const float8 gz = vload8(0, geom + 2 * pl + t);
+        const float8 traced = select((float8)(0.0f), (float8)(1.0f),
+                                     (t0 >= 0.0f) & (gx * gx + gy * gy + gz * gz > 0.5f));
         const float8 t1 = vload8(0, specular + pl + t), t2 = vload8(0, specular + 2 * pl + t);
-        const float8 w = traced * rp_indirect_geometry_weight8(
-                                      nx, ny, nz, px, py, pz, vload8(0, geom + t),
-                                      vload8(0, geom + pl + t), vload8(0, geom + 2 * pl + t),
-                                      vload8(0, geom + 3 * pl + t), inv_sigma);
+        const float8 w = traced * rp_indirect_geometry_weight8(nx, ny, nz, px, py, pz, gx, gy,
+                                                               gz, vload8(0, geom + 3 * pl + t),
+                                                               inv_sigma);
         ar += w * t0;
         ag += w * t1;
         ab += w * t2;
@@ -305,10 +312,10 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
         mw += traced;
       }
       const int8 geo = aw >= 1.0e-4f;
-      const float8 inv_a = 1.0f / fmax(aw, 1.0e-4f), inv_m = 1.0f / fmax(mw, 1.0f);
-      fr = select(s0, select(mr * inv_m, ar * inv_a, geo), hole);
-      fg = select(s1, select(mg * inv_m, ag * inv_a, geo), hole);
-      fb = select(s2, select(mb * inv_m, ab * inv_a, geo), hole);
+      const float8 inv_a = 1.0f / fmax(aw, 1.0e-4f), inv_m = 1.0f / fmax(mw, 1.0f); /* mw 0: 0 */
+      fr = select(fr, select(mr * inv_m, ar * inv_a, geo), hole);
+      fg = select(fg, select(mg * inv_m, ag * inv_a, geo), hole);
+      fb = select(fb, select(mb * inv_m, ab * inv_a, geo), hole);
     }
     indirect_store8(specular_out + c, lanes, fr);
     indirect_store8(specular_out + pl + c, lanes, fg);
