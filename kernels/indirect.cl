@@ -9,12 +9,21 @@
  *   position  4 planes: the sample's world position x, y, z and its view depth (0 background)
  *   geom      4 planes: the sample's unit normal x, y, z and its plane offset dot(n, p);
  *             all 0 on background and padding (every geometry weight is then 0)
+ *   specular  3 planes: r, g, b radiance of this frame's reflection cone at the sample
+ *             (coated surfaces, common/spec_cone.h and common/ssr.h; -1: a hole of the
+ *             checkerboard, RP_INDIRECT_SPEC_CHECKER_TAN; -2: no coat; 0: background), and 3
+ *             more planes of the
+ *             same after indirect_filter filled the holes. Not accumulated: the cone is
+ *             deterministic (single-level samples at round(L), no jitter), and a reflection
+ *             moves with the view, not with the surface, so the surface's reprojection would
+ *             drag it; the light pass upsamples this frame's value with the same geometry
+ *             weights as the irradiance.
  *   history   5 planes: accumulated irradiance / pi r, g, b, its age in frames (0: none) and
  *             the accumulated second moment of its luminance (0.2126 r + 0.7152 g + 0.0722 b)
  * geom and history are double-buffered by the host: this frame's and the previous frame's.
  *
  * indirect_trace (one work-item per sample): GBuffer at the sample pixel, one cone (a loop with
- * early exit: scalar code).
+ * early exit: scalar code), and on coated surfaces the reflection cone.
  * indirect_filter (8 samples of a row per work-item, float8 code, common/indirect_simd.h):
  *   spatial: weighted mean of the cone radiances over the 5x5 samples around it, tap weights
  *     (0.5, 1, 1, 1, 0.5) per axis (symmetric, and every residue mod 4 - every cone of the set -
@@ -41,6 +50,8 @@
 #include "common/math.h"
 #include "common/random.h"
 #include "common/cone_trace.h"
+#include "common/spec_cone.h"
+#include "common/ssr.h"
 #include "common/indirect.h"
 #include "common/indirect_simd.h"
 
@@ -71,6 +82,17 @@
 #define RP_INDIRECT_MIN_HISTORY 0.05f
 #endif
 
+/* Coats whose reflection cone is at least this wide (tan of the half-angle;
+ * rp_brdf_spec_cone_tan) trace their reflection (screen-space ray and cone) on the checkerboard
+ * of samples with (i + j) even only; indirect_filter fills the others from their four
+ * neighbours (geometry weighted). 0 (default): every coat, half the rays; > 1: every coated
+ * sample traces. Measured at 720x720 busy (indirect_trace, against no reflections): every
+ * sample +1.4 ms (cones only), checkerboard on the floor only (0.15) +0.8 ms, on every coat
+ * +0.75 ms with the cones only and +1.0 ms with the screen-space rays (16 steps). */
+#ifndef RP_INDIRECT_SPEC_CHECKER_TAN
+#define RP_INDIRECT_SPEC_CHECKER_TAN 0.0f
+#endif
+
 /* Radiance of one cone of the set from sample (i, j)'s surface point p (normal n) in frame f,
  * with the block's position and level jitters. */
 inline float3 indirect_cone(__global const float4* voxels, uint voxel_resolution,
@@ -91,6 +113,7 @@ inline float3 indirect_cone(__global const float4* voxels, uint voxel_resolution
 __kernel void indirect_trace(__global const FrameConstants* frame,
                              __global const float4* normal_depth_plane,
                              __global const float4* position_plane,
+                             __global const float4* emission_plane,
                              __global const float4* voxels,
                              const uint voxel_resolution,
                              const uint voxel_levels,
@@ -100,7 +123,14 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
                              const uint plane,
                              __global float* radiance,
                              __global float* position,
-                             __global float* geom) {
+                             __global float* geom,
+                             __global float* specular,
+                             __global const float* ssr_depth,
+                             __global const float* ssr_hiz,
+                             const uint ssr_top,
+                             __global const float4* prev_hdr,
+                             __global const float2* velocity,
+                             const uint ssr_history) {
   const uint i = (uint)get_global_id(0), j = (uint)get_global_id(1);
   if (i >= lr_width || j >= lr_height) return;
   const uint s = (uint)rp_indirect_index((int)i, (int)j, (int)stride);
@@ -110,7 +140,7 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
   const uint y = min(j * RP_INDIRECT_SCALE + (cell >> 2), frame->height - 1u);
   const uint pixel = y * frame->width + x;
   const float4 pos = position_plane[pixel];
-  float3 c = (float3)(0.0f), n = (float3)(0.0f), p = (float3)(0.0f);
+  float3 c = (float3)(0.0f), n = (float3)(0.0f), p = (float3)(0.0f), sc = (float3)(0.0f);
   float d = 0.0f, depth = 0.0f;
   if (pos.w != 0.0f) {
     p = pos.xyz;
@@ -132,7 +162,32 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
 #endif
     c *= 1.0f - rp_cone_near_occlusion(voxels, voxel_resolution, voxel_levels, p, n);
     d = dot(n, p);
+    /* coated surfaces: the reflection cone (common/spec_cone.h, single-level samples) */
+    const float code = emission_plane[pixel].w;
+    sc = (float3)(-2.0f); /* no coat: indirect_filter writes 0, and no hole takes it */
+    if (code != 0.0f) {
+      const float rough = rp_brdf_code_roughness(code);
+      if (((i ^ j) & 1u) != 0u && rp_brdf_spec_cone_tan(rough) >= RP_INDIRECT_SPEC_CHECKER_TAN) {
+        sc = (float3)(-1.0f); /* a hole: indirect_filter fills it from its neighbours */
+      } else {
+        /* screen-space reflection first (sharp coats, common/ssr.h); the cone where the
+         * screen has no full answer */
+        const float3 v = normalize(frame->camera_pos.xyz - p);
+        const float3 r = 2.0f * fmax(dot(n, v), 0.0f) * n - v;
+        const float4 ssr = rp_ssr(frame, ssr_depth, ssr_hiz, normal_depth_plane, prev_hdr,
+                                  velocity, ssr_top, ssr_history, p, r, rough);
+        if (ssr.w >= 1.0f) {
+          sc = ssr.xyz;
+        } else {
+          sc = rp_spec_cone(frame, voxels, voxel_resolution, voxel_levels, code, p, n, 0);
+          sc += ssr.w * (ssr.xyz - sc);
+        }
+      }
+    }
   }
+  specular[s] = sc.x;
+  specular[plane + s] = sc.y;
+  specular[2u * plane + s] = sc.z;
   radiance[s] = c.x;
   radiance[plane + s] = c.y;
   radiance[2u * plane + s] = c.z;
@@ -182,7 +237,9 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
                               const uint plane,
                               const float pixel_scale,
                               const uint history_valid,
-                              const float alpha_min) {
+                              const float alpha_min,
+                              __global const float* restrict specular,
+                              __global float* restrict specular_out) {
   const uint i0 = 8u * (uint)get_global_id(0), j = (uint)get_global_id(1);
   if (i0 >= lr_width || j >= lr_height) return;
   const uint lanes = min(8u, lr_width - i0);
@@ -218,6 +275,52 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
   sr *= inv_w;
   sg *= inv_w;
   sb *= inv_w;
+
+  /* Reflections: samples left as holes by indirect_trace (-1, the checkerboard) take the
+   * geometry-weighted mean of their traced edge neighbours (coated samples with a value >= 0;
+   * uncoated ones hold -2, background and padding have no normal), else the plain mean of
+   * those (no neighbour on the same surface: a one-block sliver), else 0; traced samples pass
+   * through, uncoated ones become 0. Not accumulated over frames (see the header). */
+  {
+    const float8 s0 = vload8(0, specular + c), s1 = vload8(0, specular + pl + c);
+    const float8 s2 = vload8(0, specular + 2 * pl + c);
+    const int8 none = s0 < -1.5f;
+    const int8 hole = (s0 < 0.0f) & (s0 >= -1.5f);
+    const float8 zero8 = 0.0f;
+    float8 fr = select(s0, zero8, none), fg = select(s1, zero8, none), fb = select(s2, zero8, none);
+    if (any(hole)) {
+      float8 ar = 0.0f, ag = 0.0f, ab = 0.0f, aw = 0.0f, mr = 0.0f, mg = 0.0f, mb = 0.0f, mw = 0.0f;
+      const int offs[4] = {-1, 1, -st, st};
+      for (int q = 0; q < 4; ++q) {
+        const int t = c + offs[q];
+        const float8 t0 = vload8(0, specular + t);
+        const float8 gx = vload8(0, geom + t), gy = vload8(0, geom + pl + t);
+        const float8 gz = vload8(0, geom + 2 * pl + t);
+        const float8 traced = select((float8)(0.0f), (float8)(1.0f),
+                                     (t0 >= 0.0f) & (gx * gx + gy * gy + gz * gz > 0.5f));
+        const float8 t1 = vload8(0, specular + pl + t), t2 = vload8(0, specular + 2 * pl + t);
+        const float8 w = traced * rp_indirect_geometry_weight8(nx, ny, nz, px, py, pz, gx, gy,
+                                                               gz, vload8(0, geom + 3 * pl + t),
+                                                               inv_sigma);
+        ar += w * t0;
+        ag += w * t1;
+        ab += w * t2;
+        aw += w;
+        mr += traced * t0;
+        mg += traced * t1;
+        mb += traced * t2;
+        mw += traced;
+      }
+      const int8 geo = aw >= 1.0e-4f;
+      const float8 inv_a = 1.0f / fmax(aw, 1.0e-4f), inv_m = 1.0f / fmax(mw, 1.0f); /* mw 0: 0 */
+      fr = select(fr, select(mr * inv_m, ar * inv_a, geo), hole);
+      fg = select(fg, select(mg * inv_m, ag * inv_a, geo), hole);
+      fb = select(fb, select(mb * inv_m, ab * inv_a, geo), hole);
+    }
+    indirect_store8(specular_out + c, lanes, fr);
+    indirect_store8(specular_out + pl + c, lanes, fg);
+    indirect_store8(specular_out + 2 * pl + c, lanes, fb);
+  }
 
   /* Temporal: the previous frame's samples around the reprojected positions. */
   const rp_mat4 m = frame->prev_view_proj_unjittered;

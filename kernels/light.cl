@@ -2,17 +2,18 @@
  * pixel, rgb linear, a = 1 covered / 0 background).
  *
  *   L_out = (albedo * w_d + spec) * I * cos(theta) / d^2 * falloff(l.y) * shadow   (direct)
- *         + (albedo * w_i + E_spec(mu_o)) * D(p, n)                       (indirect, cone traced)
+ *         + albedo * w_i * D(p, n) + E_spec(mu_o) * R(p, r)                (indirect, cone traced)
  *         + emission
  *
  * The surface model (issue 16, common/brdf.h; the GBuffer's emission.w carries the gloss code):
  * w_d the lamp's diffuse weight, spec = pi f_spec toward the view (lamp-widened GGX + Kulla-
  * Conty), E_spec(mu_o) the coat's albedo toward the view and w_i = 1 - E_spec(mu_o) (0 for a
  * metal). Matte pixels (code 0): w_d = w_i = 1, spec = E_spec = 0, the Lambertian pass as it
- * was. The indirect specular term E_spec(mu_o) * D treats the gathered light as uniform over
- * the hemisphere (what a rough coat sees); issue 16 part 2 replaces it by a reflection cone
- * and screen-space reflections. Pixels whose eight-pixel chunk has no coated surface skip the
- * surface model entirely.
+ * was. R(p, r) is the radiance arriving along the mirror direction r = reflect(-v, n) through
+ * one cone as wide as the coat's lobe (common/spec_cone.h; issue 16 part 2): per pixel in
+ * light_shade (quadrilinear, half-diameter steps), from the indirect pass's low-resolution
+ * samples in light_compose (upsampled like D, this frame's cones only). Pixels whose
+ * eight-pixel chunk has no coated surface skip the surface model entirely.
  *
  * I = FrameConstants.light_intensity.rgb (radiant intensity), l = unit vector from the surface to
  * the lamp centre, d its distance. Background pixels: 0.
@@ -55,6 +56,7 @@
 #include "common/indirect.h"
 #include "common/indirect_simd.h"
 #include "common/brdf.h"
+#include "common/spec_cone.h"
 
 #ifndef RP_LIGHT_SPLIT
 #define RP_LIGHT_SPLIT 0
@@ -153,7 +155,12 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
   const float3 spec_direct = (float3)(sp[0].s0, sp[1].s0, sp[2].s0) * lamp;
   const float3 direct = albedo * (float3)(w[0].s0, w[1].s0, w[2].s0) * lamp + spec_direct;
   const float3 irr = rp_cone_diffuse16(voxels, voxel_resolution, voxel_levels, p, n);
-  const float3 spec_indirect = (float3)(e[0].s0, e[1].s0, e[2].s0) * irr;
+  /* the coat's share: one reflection cone (common/spec_cone.h), weighted by E_spec(mu_o) */
+  const float3 spec_indirect =
+      emission.w != 0.0f
+          ? (float3)(e[0].s0, e[1].s0, e[2].s0) *
+                rp_spec_cone(frame, voxels, voxel_resolution, voxel_levels, emission.w, p, n, 1)
+          : (float3)(0.0f);
   const float3 indirect = albedo * (float3)(iw[0].s0, iw[1].s0, iw[2].s0) * irr + spec_indirect;
   hdr[pixel] = (float4)(direct + indirect + emission.xyz, 1.0f);
 #if RP_LIGHT_SPLIT
@@ -179,8 +186,8 @@ inline float8 light_direct8(__global const FrameConstants* restrict frame, float
   return select((float8)(0.0f), c * falloff / (d2 + rp_lamp_disk_a2(lp)), c > 0.0f);
 }
 
-/* lr_irradiance (history: r, g, b, age planes) and lr_geom (normal x, y, z, plane offset): the
- * indirect pass's padded planes (common/indirect.h), lr_width x lr_height samples, row stride
+/* lr_irradiance (history: r, g, b, age planes), lr_geom (normal x, y, z, plane offset) and
+ * lr_specular (reflection cone r, g, b): the indirect pass's padded planes (common/indirect.h), lr_width x lr_height samples, row stride
  * lr_stride, planes lr_plane floats apart; pixel_scale: world size of one pixel per unit of view
  * depth. The GBuffer, hdr and the split outputs are float4 per pixel, passed as floats. Eight
  * pixels of a row per work-item (common/indirect_simd.h): global size (ceil(width / 8), height)
@@ -194,6 +201,7 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
                             __global const float4* restrict brdf_table,
                             __global const float* restrict lr_irradiance,
                             __global const float* restrict lr_geom,
+                            __global const float* restrict lr_specular,
                             const uint lr_width,
                             const uint lr_height,
                             const uint lr_stride,
@@ -283,22 +291,33 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
     RP_LIGHT_TAPS(lr_irradiance + q * pl, r1, t01, t11);
     irr[q] = w00 * t00 + w10 * t10 + w01 * t01 + w11 * t11;
   }
-#undef RP_LIGHT_TAPS
 
   float8 ar, ag, ab, aw, er, eg, eb, ew;
   rp_load8_float4(albedo, row, x0, lanes, &ar, &ag, &ab, &aw);
   rp_load8_float4(emission, row, x0, lanes, &er, &eg, &eb, &ew);
+  /* the reflection cones' radiance (this frame's, not accumulated: kernels/indirect.cl),
+   * upsampled with the irradiance's weights; chunks without a coated pixel skip it */
+  float8 spc[3] = {(float8)(0.0f), (float8)(0.0f), (float8)(0.0f)};
+  if (any(ew != 0.0f)) {
+    for (int q = 0; q < 3; ++q) {
+      float8 t00, t10, t01, t11;
+      RP_LIGHT_TAPS(lr_specular + q * pl, r0, t00, t10);
+      RP_LIGHT_TAPS(lr_specular + q * pl, r1, t01, t11);
+      spc[q] = w00 * t00 + w10 * t10 + w01 * t01 + w11 * t11;
+    }
+  }
+#undef RP_LIGHT_TAPS
   float8 wr, wg, wb, sr, sg, sb, vr, vg, vb, ir, ig, ib; /* the surface model (see top) */
   light_surface8(frame, brdf_table, ew, ar, ag, ab, px, py, pz, nx, ny, nz, &wr, &wg, &wb, &sr,
                  &sg, &sb, &vr, &vg, &vb, &ir, &ig, &ib);
   const float4 li = frame->light_intensity;
   const float8 lr = li.x * k, lg = li.y * k, lb = li.z * k;
-  const float8 spr = sr * lr + vr * irr[0], spg = sg * lg + vg * irr[1],
-               spb = sb * lb + vb * irr[2]; /* specular: direct + indirect */
+  const float8 spr = sr * lr + vr * spc[0], spg = sg * lg + vg * spc[1],
+               spb = sb * lb + vb * spc[2]; /* specular: direct + indirect */
   const float8 dr = ar * wr * lr + sr * lr, dg = ag * wg * lg + sg * lg,
                db = ab * wb * lb + sb * lb;
-  const float8 jr = ar * ir * irr[0] + vr * irr[0], jg = ag * ig * irr[1] + vg * irr[1],
-               jb = ab * ib * irr[2] + vb * irr[2];
+  const float8 jr = ar * ir * irr[0] + vr * spc[0], jg = ag * ig * irr[1] + vg * spc[1],
+               jb = ab * ib * irr[2] + vb * spc[2];
   const float8 cv = select(zero, one, covered);
   rp_store8_float4(hdr, row, x0, lanes, select(zero, dr + jr + er, covered),
                    select(zero, dg + jg + eg, covered), select(zero, db + jb + eb, covered), cv);

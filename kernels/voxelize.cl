@@ -53,6 +53,12 @@
  * the whole sphere, its mean over all directions = 1/4 of the light at the point facing the
  * lamp (the mean of max(cos, 0) over a sphere; shadow looked up at that point).
  *
+ * Coated surfaces (issue 16): "albedo" above is the material's or sphere's albedo times its
+ * albedo.w, the layered base's weight 1 - E_spec_avg (shading::voxel_base_weight; 1 without a
+ * coat and for metals): the base's diffuse outgoing radiance averaged over the directions the
+ * cones look from. The coat's own reflection of the lamp is view dependent and is left out
+ * (E_spec(mu_i) of the light, 4-8 % for the demo's coats).
+ *
  * Several bounces: with a bounce grid (common/bounce.h, bounce_cells > 0) every radiance
  * above also reflects the light of earlier bounces, L = albedo * (I * direct(p) + E(p, n)) +
  * emission, E the grid's irradiance / pi at the shading point (a sphere smaller than half a
@@ -503,7 +509,7 @@ inline VxTriangle vx_fetch_triangle(__global const Instance* instances, uint ins
   r.uv1 = (float2)(vtx1->position_u.w, vtx1->normal_v.w);
   r.uv2 = (float2)(vtx2->position_u.w, vtx2->normal_v.w);
   __global const Material* mat = materials + tri.w;
-  r.albedo = mat->albedo.xyz;
+  r.albedo = mat->albedo.xyz * mat->albedo.w; /* w: the coat's base weight (see the header) */
   r.emission = mat->emission.xyz;
   r.tex_w = r.tex_h = r.tex_w1 = r.tex_h1 = r.tex_frac = 0.0f;
   r.tex_offset = r.tex_offset1 = 0u;
@@ -1142,7 +1148,7 @@ __kernel void voxelize_spheres(__global const FrameConstants* frame,
   /* Projected area (voxel faces) and the per-axis normaliser of the bounding-box overlap. */
   const float area = M_PI_F * r2;
   const float inv_extent = 1.0f / fmin(2.0f * rg, 1.0f);
-  const float3 albedo = s->albedo.xyz, emission = s->emission.xyz;
+  const float3 albedo = s->albedo.xyz * s->albedo.w, emission = s->emission.xyz;
   const bool small = rg < 0.5f;
 
   float3 small_radiance = (float3)(0.0f);

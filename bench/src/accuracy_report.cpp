@@ -26,11 +26,17 @@ namespace {
 struct Images {
   std::string name;
   std::vector<float> combined, direct, indirect, albedo;
+  std::vector<float> specular;  // the coat's part of direct + indirect (issue 16)
 };
 
 Images from_truth(const std::string& name, const truth::PathTracedImage& t) {
-  return {name, t.combined, t.direct, t.indirect, t.albedo};
+  return {name, t.combined, t.direct, t.indirect, t.albedo, t.specular};
 }
+
+// The regions whose surfaces are coated in the demo (the floor, the tumblers): the specular
+// component's rows.
+constexpr Region kCoatedRegions[] = {Region::kImage, Region::kFloorLit, Region::kFloorShadow,
+                                     Region::kTumblerLit, Region::kTumblerShadowed};
 
 // One real-time configuration of the report (accuracy_report.h).
 struct Config {
@@ -71,7 +77,7 @@ Images render_mode(const CommonOptions& common, const std::string& name, render:
   bar.finish();
   render::LinearComponents lc;
   session.read_components(lc);
-  return {name, lc.combined, lc.direct, lc.indirect, lc.albedo};
+  return {name, lc.combined, lc.direct, lc.indirect, lc.albedo, lc.specular};
 }
 
 nlohmann::json stats_json(const ErrorStats& s) {
@@ -92,6 +98,9 @@ nlohmann::json compare(const Images& rp, const Images& truth, const std::vector<
     regions[region_name(Region(r))] =
         stats_json(compare_region(rp.indirect, truth.indirect, labels, Region(r)));
   j["indirect"] = regions;
+  for (Region r : kCoatedRegions)
+    j["specular"][region_name(r)] =
+        stats_json(compare_region(rp.specular, truth.specular, labels, r));
   for (Region wall : {Region::kLeftWall, Region::kRightWall}) {
     const IncomingLight a = incoming_indirect(rp.indirect, rp.albedo, labels, wall);
     const IncomingLight t = incoming_indirect(truth.indirect, truth.albedo, labels, wall);
@@ -130,7 +139,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   truth::PathTracer tracer(assets);
   const std::vector<uint16_t> labels = classify_regions(tracer.primary_hits(frame, w, h), w, h);
   nlohmann::json j;
-  j["schema"] = "rolypoly-accuracy/3";
+  j["schema"] = "rolypoly-accuracy/4";
   j["command"] = options.command_line;
   j["scene"] = "demo frame at rest (scene::make_demo_frame)";
   j["width"] = w;
@@ -407,6 +416,14 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
       row(std::string("indirect ") + (what[0] == 'r' ? "L1 " : "bias ") + name,
           [&](const nlohmann::json& m) {
             return pct(number(m["indirect"][name][what]), what[0] == 'b');
+          });
+    }
+  for (const char* what : {"rel_l1", "bias"})
+    for (Region r : kCoatedRegions) {
+      const std::string name = region_name(r);
+      row(std::string("specular ") + (what[0] == 'r' ? "L1 " : "bias ") + name,
+          [&](const nlohmann::json& m) {
+            return pct(number(m["specular"][name][what]), what[0] == 'b');
           });
     }
   for (const char* what : {"leak_pixels", "missing_pixels"})

@@ -14,9 +14,12 @@
 // many-bounce truth (final PSNR only). For each of the four: the final image's PSNR after the
 // tone map, the direct component's error, the indirect component's relative L1 and bias over the
 // image and per named region (bench/src/accuracy_metrics.h), the hue of the indirect light arriving on
-// each side wall, and the leak / missing pixel counts. Then the direct-light section (issue 15,
+// each side wall, the leak / missing pixel counts, and the specular component (the coat's part
+// of direct + indirect, issue 16: relative L1 and bias over the image, the floor and the
+// tumblers). Then the direct-light section (issue 15,
 // bench/src/accuracy_direct.h): every shadow mode's direct component against the area-lamp truth,
-// penumbra widths, the albedo view. Writes a JSON (schema rolypoly-accuracy/3: /2 plus "direct";
+// penumbra widths, the albedo view. Writes a JSON (schema rolypoly-accuracy/4: /3 plus
+// "specular" per configuration; /3 was /2 plus "direct";
 // README "Accuracy against the ground truth"), side-by-side PNGs and signed difference heat maps.
 #pragma once
 
@@ -66,7 +69,7 @@ struct AccuracyOptions {
 };
 
 struct AccuracyResult {
-  nlohmann::json json;   // the whole report (schema rolypoly-accuracy/3)
+  nlohmann::json json;   // the whole report (schema rolypoly-accuracy/4)
   std::string table;     // what is printed, thresholds included
   bool passed = true;    // every given threshold met
 };

@@ -9,9 +9,10 @@ namespace rp::app {
 
 int pipeline_rank(const std::string& pass) {
   // Order of DESIGN.md's data flow; "upload" covers per-frame buffer writes.
-  static constexpr std::array<std::string_view, 16> order = {
+  static constexpr std::array<std::string_view, 17> order = {
       "upload",      "visibility_host", "visibility",      "gbuffer",     "shadow_map",
-      "voxelize",    "voxel_mips",      "indirect_trace",  "indirect_filter", "light",
+      "voxelize",    "voxel_mips",      "ssr_min_z",       "indirect_trace",  "indirect_filter",
+      "light",
       "taa",         "bloom",           "motion_blur",     "tone_map",    "debug_view",
       "readback"};
   for (size_t i = 0; i < order.size(); ++i)

@@ -79,6 +79,30 @@ inline void rp_brdf_coat8(float8 f0, float8 eo, float8 so, float8 ei, float8 si,
   *spec_avg = f0 * (e_avg - s_avg) + s_avg + (1.0f - e_avg) * *f_add;
 }
 
+/* Specular cone aperture (issue 16 part 2): tan of the half-angle of the cone that stands for
+ * the coat's reflection lobe at roughness `rough` (GGX alpha = rough^2). GGX D falls to half
+ * its peak at tan(theta_h) = alpha sqrt(sqrt 2 - 1) = 0.6436 alpha (D ~ 1 / (alpha^2 +
+ * tan^2 theta_h)^2 near the peak); the reflected direction turns by twice the half vector's
+ * angle, so the lobe's half width at half maximum is theta_c = 2 atan(0.6436 alpha):
+ * tan theta_c = 1.2872 alpha / (1 - 0.41421 alpha^2). Clamped to [RP_SPEC_CONE_MIN_TAN,
+ * RP_SPEC_CONE_MAX_TAN]: below 0.1 (5.7 degrees) a cone stays within one 64^3 voxel for its
+ * first five voxels and the volume cannot show anything sharper (the sharp coats are screen-
+ * space reflections' job), above 1 (45 degrees) the lobe is as wide as the diffuse light.
+ * Demo: floor (0.38) 0.187, tumblers (0.25) 0.080 -> 0.1, marbles (0.08) 0.008 -> 0.1.
+ * src/shading/brdf.h's spec_cone_tan is the C++ twin. */
+#define RP_SPEC_CONE_MIN_TAN 0.1f
+#define RP_SPEC_CONE_MAX_TAN 1.0f
+inline float rp_brdf_spec_cone_tan(float rough) {
+  const float a = fmax(rough * rough, RP_BRDF_MIN_ALPHA);
+  return clamp(1.2872f * a / (1.0f - 0.41421f * a * a), RP_SPEC_CONE_MIN_TAN,
+               RP_SPEC_CONE_MAX_TAN);
+}
+
+/* Roughness of gloss code `code` (shared/brdf_layout.h). */
+inline float rp_brdf_code_roughness(float code) {
+  return (float)((int)code & 255) * (1.0f / 255.0f);
+}
+
 /* Lamp shading of eight lanes (see the header). code: the GBuffer's gloss code; albedo a*:
  * the base colour (a metal's F0); n, v, l unit normal, view and light directions (l towards
  * the lamp centre, as the direct factor's cosine); widen = a / (2 d) of the lamp. Outputs:

@@ -363,6 +363,72 @@ inline float4 rp_cone_trace_coarse(__global const float4* voxels, uint resolutio
   return acc;
 }
 
+/* Specular cones (issue 16 part 2): one cone of any aperture, tan_half = tan of its half-angle
+ * (the caller maps the coat's roughness to it: common/brdf.h, rp_brdf_spec_cone_tan), from
+ * `origin` (its apex) along unit `dir`. The diameter at distance t is
+ * d(t) = max(2 t tan_half, v0): a cone thinner than one level-0 voxel samples level 0 (the
+ * volume cannot resolve less) and steps as if it were one voxel wide. The sampled level is
+ * L = log2(d / v0) (one log2 per sample: the growth is not constant while d is clamped).
+ * First sample at t0 = RP_CONE_T0 v0 (the diffuse cones' start, clear of the surface's own
+ * voxels by the apex offset); each step advances a fraction s of d (t' = t + s d), so a sample
+ * is s of its voxel thick and its opacity and radiance are corrected as in rp_cone_march.
+ *   fine = 1 (the reference mode): s = 1/2, quadrilinear samples (rp_cone_sample);
+ *   fine = 0 (the fast mode): s = 1, single-level samples at round(L) (one directional
+ *     lookup per sample instead of two; deterministic, so nothing to accumulate over frames).
+ * Stops at RP_CONE_OPAQUE, on leaving the box (rp_cone_exit: the wall there), or after
+ * RP_CONE_SPEC_MAX_STEPS samples (2x for fine). Steps needed to cross the box (2 units,
+ * R = 64 voxels) at the narrowest aperture RP_CONE_SPEC_MIN_TAN = 0.1: 4 voxel-wide steps to
+ * t = 5 v0, then t grows 1.2x per step, 1.2^18 = 27 -> 22 steps (44 for fine). */
+#ifndef RP_CONE_SPEC_MAX_STEPS
+#define RP_CONE_SPEC_MAX_STEPS 24
+#endif
+/* The fast mode's reflection cone stops at this opacity (as the coarse diffuse cone). */
+#ifndef RP_CONE_SPEC_OPAQUE_FAST
+#define RP_CONE_SPEC_OPAQUE_FAST 0.95f
+#endif
+/* The fast mode's smallest cone diameter, in level-0 voxels. */
+#ifndef RP_CONE_SPEC_MIN_D_FAST
+#define RP_CONE_SPEC_MIN_D_FAST 1.0f
+#endif
+inline float4 rp_cone_trace_aperture(__global const float4* voxels, uint resolution, uint levels,
+                                     float3 origin, float3 dir, float tan_half, const int fine) {
+  const float3 w = dir * dir;
+  const uint3 dirs = rp_voxel_cone_dirs(dir);
+  const uint top = rp_cone_top_level(levels);
+  const float v0 = 2.0f / (float)resolution;
+  const float inv_v0 = 0.5f * (float)resolution;
+  const float s = fine ? 0.5f : 1.0f;
+  const float d_min = fine ? v0 : RP_CONE_SPEC_MIN_D_FAST * v0;
+  const float opaque = fine ? RP_CONE_OPAQUE : RP_CONE_SPEC_OPAQUE_FAST;
+  const int max_steps = fine ? 2 * RP_CONE_SPEC_MAX_STEPS : RP_CONE_SPEC_MAX_STEPS;
+  float t = RP_CONE_T0 * v0;
+  float4 acc = (float4)(0.0f);
+  for (int k = 0; k < max_steps; ++k) {
+    const float3 q = origin + dir * t;
+    const float d = fmax(2.0f * tan_half * t, d_min);
+    const float level = log2(d * inv_v0);
+    if (fmax(fmax(fabs(q.x), fabs(q.y)), fabs(q.z)) > 1.0f) { /* left the box: its wall */
+      const float4 e = rp_cone_exit(voxels, resolution, top, dirs, origin, dir, level);
+      acc.xyz += (1.0f - acc.w) * e.xyz;
+      acc.w += (1.0f - acc.w) * e.w;
+      break;
+    }
+    float4 smp;
+    if (fine) {
+      smp = rp_cone_sample(voxels, resolution, top, dirs, w, q, level, origin);
+      smp *= 1.0f / (1.0f + sqrt(fmax(1.0f - smp.w, 0.0f))); /* half a voxel thick */
+    } else {
+      smp = rp_cone_sample_level(voxels, resolution, top, dirs, w, q, (uint)(level + 0.5f),
+                                 origin);
+    }
+    acc.xyz += (1.0f - acc.w) * smp.xyz;
+    acc.w += (1.0f - acc.w) * smp.w;
+    if (acc.w >= opaque) break;
+    t += s * d;
+  }
+  return acc;
+}
+
 /* Orthonormal basis (t, b) completing unit n to a right-handed frame (Duff et al. 2017,
  * "Building an orthonormal basis, revisited"; branch-free, continuous except across n.z = 0). */
 inline void rp_cone_basis(float3 n, float3* t, float3* b) {

@@ -91,13 +91,16 @@ typedef struct {
 typedef struct {
   rp_float4 center_radius; /* xyz world centre, w radius */
   rp_float4 prev_center;   /* xyz previous frame's centre, w casts_shadow (1.0 or 0.0) */
-  rp_float4 albedo;        /* rgb diffuse albedo, w unused */
+  rp_float4 albedo;        /* rgb diffuse albedo, w the voxelizer's base weight (1 - E_spec_avg
+                              of the coat, 1 without one: shading::voxel_base_weight) */
   rp_float4 emission;      /* rgb emitted radiance, w gloss code (shared/brdf_layout.h) */
 } Sphere;
 
 /* Surface material. 48 bytes. */
 typedef struct {
-  rp_float4 albedo;   /* rgb, multiplied with the texture when there is one */
+  rp_float4 albedo;   /* rgb, multiplied with the texture when there is one; w the voxelizer's
+                         base weight (1 - E_spec_avg of the coat, 1 without one:
+                         shading::voxel_base_weight) */
   rp_float4 emission; /* rgb emitted radiance, w gloss code (shared/brdf_layout.h) */
   rp_uint texture;    /* index into TextureInfo, or RP_TEXTURE_NONE */
   rp_uint pad0, pad1, pad2;

@@ -36,11 +36,13 @@ class Fnv1a {
   uint64_t h_ = 0xCBF29CE484222325ull;
 };
 
-const char* const kLayers[] = {"", "direct", "indirect", "emission", "albedo"};
+const char* const kLayers[] = {"", "direct", "indirect", "emission", "albedo", "specular"};
+constexpr int kLayerCount = 6;  // an entry without the specular layer (before issue 16 part 2)
+                                // does not load and is rendered anew
 
 std::vector<float>* layer(truth::PathTracedImage& img, int i) {
   std::vector<float>* planes[] = {&img.combined, &img.direct, &img.indirect, &img.emission,
-                                  &img.albedo};
+                                  &img.albedo, &img.specular};
   return planes[i];
 }
 
@@ -53,7 +55,7 @@ bool load(const std::filesystem::path& exr, const std::filesystem::path& meta,
     const nlohmann::json j = nlohmann::json::parse(in);
     img.seconds = j.at("seconds").get<double>();
     img.rays = j.at("rays").get<uint64_t>();
-    for (int i = 0; i < 5; ++i) {
+    for (int i = 0; i < kLayerCount; ++i) {
       uint32_t w = 0, h = 0;
       *layer(img, i) = truth::read_exr_layer(exr, kLayers[i], w, h);
       if (w != s.width || h != s.height) return false;
@@ -165,7 +167,7 @@ CachedTruth cached_path_trace(truth::PathTracer& tracer, const scene::SceneAsset
   try {
     ensure_directory(dir);
     std::vector<truth::ExrLayer> layers;
-    for (int i = 0; i < 5; ++i) layers.push_back({kLayers[i], layer(out.image, i)});
+    for (int i = 0; i < kLayerCount; ++i) layers.push_back({kLayers[i], layer(out.image, i)});
     truth::write_exr_atomic(out.file, settings.width, settings.height, layers);
     nlohmann::json j;
     j["key"] = key;

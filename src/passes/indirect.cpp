@@ -1,5 +1,6 @@
 #include "passes/indirect.h"
 
+#include <algorithm>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -34,11 +35,20 @@ IndirectPass::IndirectPass(const rp::cl::Context& context, rp::cl::ProgramCache&
       trace_(programs.kernel("indirect.cl", "indirect_trace")),
       warm_trace_(
           programs.kernel("indirect.cl", "indirect_trace", "-DRP_INDIRECT_WARM_START=1")),
-      filter_(programs.kernel("indirect.cl", "indirect_filter")) {}
+      filter_(programs.kernel("indirect.cl", "indirect_filter")),
+      min_z_(programs.kernel("ssr.cl", "ssr_min_z")) {}
+
+uint32_t IndirectPass::ssr_top_level(uint32_t w, uint32_t h) {
+  uint32_t top = 0;
+  while (top < 6 && (std::max(w, h) >> (top + 1)) >= 2) ++top;
+  return top;
+}
 
 void IndirectPass::resize(uint32_t width, uint32_t height) {
   const size_t plane = size_t(plane_size(low_res(width), low_res(height))) * sizeof(float);
   radiance_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
+  specular_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
+  specular_filled_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
   const size_t bytes = 4 * plane;
   position_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
   for (int k = 0; k < 2; ++k) {
@@ -49,8 +59,17 @@ void IndirectPass::resize(uint32_t width, uint32_t height) {
   // history_valid_, but they are read).
   // The padding must stay zero (kernels/common/indirect.h); the kernels write only samples.
   for (::cl::Buffer* b :
-       {&radiance_, &position_, &geometry_[0], &geometry_[1], &history_[0], &history_[1]})
+       {&radiance_, &specular_, &specular_filled_, &position_, &geometry_[0], &geometry_[1], &history_[0], &history_[1]})
     context_->queue.enqueueFillBuffer(*b, 0.0f, 0, b->getInfo<CL_MEM_SIZE>());
+  size_t hiz = 1;
+  for (uint32_t k = 1, lw = width, lh = height; k <= ssr_top_level(width, height); ++k) {
+    lw = (lw + 1) / 2;
+    lh = (lh + 1) / 2;
+    hiz += size_t(lw) * lh;
+  }
+  hiz_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, hiz * sizeof(float));
+  dummy_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 16);
+  context_->queue.enqueueFillBuffer(dummy_, 0.0f, 0, 16);
   width_ = width;
   height_ = height;
   history_valid_ = false;
@@ -58,7 +77,8 @@ void IndirectPass::resize(uint32_t width, uint32_t height) {
 
 LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                                  const render::GBuffer& gbuffer, const ::cl::Buffer& voxels,
-                                 uint32_t voxel_resolution, uint32_t voxel_levels) {
+                                 uint32_t voxel_resolution, uint32_t voxel_levels,
+                                 const SsrInputs* ssr) {
   const uint32_t w = scene.constants.width, h = scene.constants.height;
   if (gbuffer.width != w || gbuffer.height != h)
     throw rp::cl::Error("indirect pass: frame size " + std::to_string(w) + "x" +
@@ -74,6 +94,27 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   const int cur = current_, prev = current_ ^ 1;
   const ::cl::NDRange local(kGroup, kGroup);
 
+  // The min-Z pyramid for the screen-space reflections, finest level first.
+  const uint32_t top = ssr ? ssr_top_level(w, h) : 0u;
+  for (uint32_t k = 1, sw = w, sh = h, src_off = 0, dst_off = 0; k <= top; ++k) {
+    const uint32_t dw = (sw + 1) / 2, dh = (sh + 1) / 2;
+    min_z_.setArg(0, k == 1 ? *ssr->depth : hiz_);
+    min_z_.setArg(1, cl_uint(src_off));
+    min_z_.setArg(2, cl_uint(sw));
+    min_z_.setArg(3, cl_uint(sh));
+    min_z_.setArg(4, hiz_);
+    min_z_.setArg(5, cl_uint(dst_off));
+    min_z_.setArg(6, cl_uint(dw));
+    min_z_.setArg(7, cl_uint(dh));
+    profiler.enqueue("ssr_min_z", min_z_,
+                     ::cl::NDRange(rp::cl::round_up(dw, kGroup), rp::cl::round_up(dh, kGroup)),
+                     ::cl::NDRange(kGroup, kGroup));
+    src_off = dst_off;  // level k is the next level's source
+    dst_off += dw * dh;
+    sw = dw;
+    sh = dh;
+  }
+
   // Without history the block traces the whole cone set (a converged-looking first frame after
   // a start, reset, camera cut or resize, at 16x the trace cost for that one frame).
   ::cl::Kernel& trace = history_valid_ ? trace_ : warm_trace_;
@@ -81,6 +122,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   trace.setArg(arg++, scene.frame);
   trace.setArg(arg++, gbuffer.normal_depth);
   trace.setArg(arg++, gbuffer.position);
+  trace.setArg(arg++, gbuffer.emission);
   trace.setArg(arg++, voxels);
   trace.setArg(arg++, cl_uint(voxel_resolution));
   trace.setArg(arg++, cl_uint(voxel_levels));
@@ -91,6 +133,13 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   trace.setArg(arg++, radiance_);
   trace.setArg(arg++, position_);
   trace.setArg(arg++, geometry_[cur]);
+  trace.setArg(arg++, specular_);
+  trace.setArg(arg++, ssr ? *ssr->depth : dummy_);
+  trace.setArg(arg++, ssr ? hiz_ : dummy_);
+  trace.setArg(arg++, cl_uint(top));
+  trace.setArg(arg++, ssr ? *ssr->prev_hdr : dummy_);
+  trace.setArg(arg++, ssr ? *ssr->velocity : dummy_);
+  trace.setArg(arg++, cl_uint(ssr && history_valid_ ? 1 : 0));
   profiler.enqueue("indirect_trace", trace,
                    ::cl::NDRange(rp::cl::round_up(lw, kGroup), rp::cl::round_up(lh, kGroup)),
                    local);
@@ -111,6 +160,8 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   filter_.setArg(arg++, scale);
   filter_.setArg(arg++, cl_uint(history_valid_ ? 1 : 0));
   filter_.setArg(arg++, kAlphaMin);
+  filter_.setArg(arg++, specular_);
+  filter_.setArg(arg++, specular_filled_);
   profiler.enqueue("indirect_filter", filter_,
                    ::cl::NDRange(rp::cl::round_up((lw + 7) / 8, kGroup), rp::cl::round_up(lh, kGroup)),
                    local);
@@ -124,6 +175,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   out.plane = plane;
   out.irradiance = &history_[cur];
   out.geometry = &geometry_[cur];
+  out.specular = &specular_filled_;
   out.pixel_scale = scale;
   return out;
 }

@@ -1,6 +1,7 @@
 // Indirect light at reduced resolution (the fast quality mode, issue 9; kernels/indirect.cl):
 // one cone of the 16-cone set per 4x4 pixel block per frame (directions interleaved over the
-// blocks, rotated per frame), a geometry-aware spatial filter, and temporal accumulation. The
+// blocks, rotated per frame), a geometry-aware spatial filter, and temporal accumulation; on
+// coated surfaces also one reflection cone per block (issue 16 part 2, not accumulated). The
 // light pass upsamples the result (LightPass::run with a LowResIndirect). Pass names
 // "indirect_trace" and "indirect_filter".
 #pragma once
@@ -24,7 +25,19 @@ struct LowResIndirect {
   const ::cl::Buffer* irradiance = nullptr;  // 5 planes: irradiance / pi r, g, b; age in frames;
                                              // luminance second moment
   const ::cl::Buffer* geometry = nullptr;    // 4 planes: unit normal x, y, z; dot(normal, position)
+  const ::cl::Buffer* specular = nullptr;    // 3 planes: this frame's reflection cone radiance
+                                             // r, g, b (coated samples; 0 elsewhere)
   float pixel_scale = 0.0f;
+};
+
+// What screen-space reflections read (kernels/common/ssr.h): this frame's visibility depth
+// (z_ndc * 0.5 + 0.5), the previous frame's light pass output (hdr, float4) and this frame's
+// GBuffer velocity (float2, pixels). prev_hdr must hold the previous frame of the same size
+// whenever the pass has history.
+struct SsrInputs {
+  const ::cl::Buffer* depth = nullptr;
+  const ::cl::Buffer* prev_hdr = nullptr;
+  const ::cl::Buffer* velocity = nullptr;
 };
 
 class IndirectPass {
@@ -41,9 +54,15 @@ class IndirectPass {
   // the next run. voxels: the radiance chain (kernels/shared/voxel_layout.h), checked by the
   // light pass's rules. Reallocates its planes (and drops the history) when the frame size
   // changes.
+  // ssr: screen-space reflections for the sharp coats (null: reflection cones only). Pass
+  // "ssr_min_z" builds the min-Z pyramid when ssr is given.
   LowResIndirect run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                      const render::GBuffer& gbuffer, const ::cl::Buffer& voxels,
-                     uint32_t voxel_resolution, uint32_t voxel_levels);
+                     uint32_t voxel_resolution, uint32_t voxel_levels,
+                     const SsrInputs* ssr = nullptr);
+  // Coarsest level of the min-Z pyramid for a frame w x h (kernels/common/ssr.h): at most 6
+  // (64-pixel cells), no level smaller than 2 x 2.
+  static uint32_t ssr_top_level(uint32_t w, uint32_t h);
 
   // The next run starts a fresh history (world reset, camera cut).
   void reset_history() { history_valid_ = false; }
@@ -52,6 +71,10 @@ class IndirectPass {
   // radiance (3 planes: r, g, b) and sample positions (4 planes: x, y, z, view depth).
   const ::cl::Buffer& radiance_planes() const { return radiance_; }
   const ::cl::Buffer& position_planes() const { return position_; }
+  // This frame's reflection cones (3 planes r, g, b; -1 marks a checkerboard hole) and the
+  // same with the holes filled (what the light pass upsamples).
+  const ::cl::Buffer& specular_planes() const { return specular_; }
+  const ::cl::Buffer& specular_filled_planes() const { return specular_filled_; }
 
   // Samples per side for a frame of `pixels` pixels: ceil(pixels / kScale).
   static uint32_t low_res(uint32_t pixels) { return (pixels + kScale - 1) / kScale; }
@@ -69,9 +92,15 @@ class IndirectPass {
   ::cl::Kernel trace_;       // one cone per block (history valid)
   ::cl::Kernel warm_trace_;  // all 16 cones per block (no history yet)
   ::cl::Kernel filter_;
+  ::cl::Kernel min_z_;               // kernels/ssr.cl
+  ::cl::Buffer hiz_;                 // the min-Z pyramid's levels 1 .. top (kernels/common/ssr.h)
+  ::cl::Buffer dummy_;               // bound where SSR is off
   uint32_t width_ = 0, height_ = 0;  // full-resolution size the planes were made for
   ::cl::Buffer radiance_;            // 3 planes: this frame's cone radiance r, g, b
   ::cl::Buffer position_;            // 4 planes: this frame's sample positions and view depths
+  ::cl::Buffer specular_;            // 3 planes: this frame's reflection cone radiance r, g, b
+                                     // (-1: a hole of the rough coats' checkerboard)
+  ::cl::Buffer specular_filled_;     // 3 planes: the same with the holes filled
   ::cl::Buffer geometry_[2];         // 4 planes each; [current_]: this frame's, the other: the
                                      // previous frame's
   ::cl::Buffer history_[2];          // 5 planes each, likewise

@@ -134,6 +134,7 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   if (w == 0 || h == 0) return;
   if (indirect != nullptr &&
       (indirect->irradiance == nullptr || indirect->geometry == nullptr ||
+       indirect->specular == nullptr ||
        indirect->width != IndirectPass::low_res(w) || indirect->height != IndirectPass::low_res(h) ||
        indirect->stride != IndirectPass::plane_stride(indirect->width) ||
        indirect->plane != IndirectPass::plane_size(indirect->width, indirect->height)))
@@ -158,6 +159,7 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   if (indirect != nullptr) {
     k.setArg(arg++, *indirect->irradiance);
     k.setArg(arg++, *indirect->geometry);
+    k.setArg(arg++, *indirect->specular);
     k.setArg(arg++, cl_uint(indirect->width));
     k.setArg(arg++, cl_uint(indirect->height));
     k.setArg(arg++, cl_uint(indirect->stride));

@@ -131,8 +131,10 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
     if (m.texture >= static_cast<int>(assets.textures.size()))
       throw rp::cl::Error("material '" + m.name + "' refers to a texture that does not exist");
     gpu::Material g{};
-    g.albedo = gpu::to_gpu(m.albedo, 1.0f);
-    g.emission = gpu::to_gpu(m.emission, shading::gloss_code(m.specular));  // w: brdf_layout.h
+    const float code = shading::gloss_code(m.specular);
+    // w: the voxelizer's base weight (shading::voxel_base_weight)
+    g.albedo = gpu::to_gpu(m.albedo, shading::voxel_base_weight(code, shading::BrdfTables::get()));
+    g.emission = gpu::to_gpu(m.emission, code);  // w: brdf_layout.h
     g.texture = m.texture < 0 ? RP_TEXTURE_NONE : static_cast<uint32_t>(m.texture);
     mats.push_back(g);
   }
@@ -233,8 +235,9 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
     gpu::Sphere g{};
     g.center_radius = gpu::to_gpu(s.center, s.radius);
     g.prev_center = gpu::to_gpu(s.prev_center, s.casts_shadow ? 1.0f : 0.0f);
-    g.albedo = gpu::to_gpu(s.albedo, 0.0f);
-    g.emission = gpu::to_gpu(s.emission, shading::gloss_code(s.specular));
+    const float code = shading::gloss_code(s.specular);
+    g.albedo = gpu::to_gpu(s.albedo, shading::voxel_base_weight(code, shading::BrdfTables::get()));
+    g.emission = gpu::to_gpu(s.emission, code);
     host_spheres.push_back(g);
   }
   instance_count = static_cast<uint32_t>(host_instances.size());

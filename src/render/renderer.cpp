@@ -172,9 +172,12 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     build_voxels();
     const bool split = passes::needs_light_components(view_.view) || keep_components_;
     passes::LowResIndirect low_res;
-    if (indirect_)
+    if (indirect_) {
+      // screen-space reflections: hdr_ still holds the previous frame's light pass output
+      const passes::SsrInputs ssr{&vis_.depth, &hdr_, &gbuffer_.velocity};
       low_res = indirect_->run(profiler_, *scene_, gbuffer_, voxels_.chain, voxels_.resolution,
-                               voxels_.levels);
+                               voxels_.levels, &ssr);
+    }
     light_->run(profiler_, *scene_, gbuffer_, shadow_, voxels_.chain, voxels_.resolution,
                 voxels_.levels, hdr_, split ? &light_components_ : nullptr,
                 indirect_ ? &low_res : nullptr);
@@ -306,6 +309,7 @@ void Renderer::read_components(LinearComponents& out) {
     read_rgb(hdr_, out.combined);
     read_rgb(light_components_.direct, out.direct);
     read_rgb(light_components_.indirect, out.indirect);
+    read_rgb(light_components_.specular, out.specular);
     read_rgb(gbuffer_.emission, out.emission);
     read_rgb(gbuffer_.albedo, out.albedo);
   } catch (const ::cl::Error& e) {

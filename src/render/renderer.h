@@ -93,6 +93,7 @@ enum class TextureFilter { kBilinear, kTrilinear, kAnisotropic };
 struct LinearComponents {
   uint32_t width = 0, height = 0;
   std::vector<float> combined, direct, indirect, emission, albedo;
+  std::vector<float> specular;  // the coat's part of direct + indirect (LightComponents)
 };
 
 struct RenderSettings {

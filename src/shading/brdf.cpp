@@ -223,4 +223,12 @@ scene::Specular decode_gloss(float code) {
   return s;
 }
 
+float voxel_base_weight(float code, const BrdfTables& tables) {
+  const scene::Specular spec = decode_gloss(code);
+  if (code == 0.0f || spec.metal) return 1.0f;
+  const glm::vec3 f0(spec.f0);
+  const TableEntry t = tables.lookup(1.0f, spec.roughness);  // E_avg, S_avg: any mu
+  return 1.0f - coat_albedo_avg(f0, t, ms_factor(f0, t.e_avg)).x;
+}
+
 }  // namespace rp::shading

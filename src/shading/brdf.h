@@ -81,6 +81,17 @@ inline float schlick_weight(float v_dot_h) {
 
 inline glm::vec3 fresnel_avg(glm::vec3 f0) { return f0 + (1.0f - f0) * (1.0f / 21.0f); }
 
+// Tan of the half-angle of the reflection cone that stands for the GGX lobe at `roughness`
+// (issue 16 part 2; kernels/common/brdf.h, rp_brdf_spec_cone_tan, has the derivation): the
+// reflected lobe's half width at half maximum, 2 atan(0.6436 alpha) (GGX D halves at
+// tan(theta_h) = alpha sqrt(sqrt 2 - 1)), clamped to [0.1, 1].
+inline constexpr float kSpecConeMinTan = 0.1f, kSpecConeMaxTan = 1.0f;
+inline float spec_cone_tan(float roughness) {
+  const double a = std::max(double(roughness) * roughness, double(kMinAlpha));
+  const double th = std::atan(a * std::sqrt(std::sqrt(2.0) - 1.0));
+  return std::clamp(float(std::tan(2.0 * th)), kSpecConeMinTan, kSpecConeMaxTan);
+}
+
 // One entry of the tables (brdf_tables.h): E(mu), S(mu), E_avg, S_avg at one roughness.
 struct TableEntry {
   float e = 1.0f, s = 0.0f, e_avg = 1.0f, s_avg = 0.0f;

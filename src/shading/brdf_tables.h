@@ -39,4 +39,13 @@ class BrdfTables {
 float gloss_code(const scene::Specular& spec);
 scene::Specular decode_gloss(float code);
 
+// What the voxelizer multiplies a surface's albedo by (Material.albedo.w, Sphere.albedo.w;
+// kernels/voxelize.cl): the cosine-weighted mean over outgoing directions of the layered base's
+// weight, 1 - E_spec_avg, for a dielectric coat of gloss code `code` (the quantised coat, as
+// the device sees it), so the voxels hold the base's diffuse outgoing radiance and the cones
+// gather a Lambertian view of it; the coat's own reflection of the lamp is view dependent and
+// stays out. 1 for matte surfaces and for metals (no diffuse base: their voxels keep the
+// albedo, i.e. the F0 colour, times the lamp light, about the energy their lobe reflects).
+float voxel_base_weight(float code, const BrdfTables& tables);
+
 }  // namespace rp::shading

@@ -66,6 +66,7 @@ bool coated(const Surface& s) { return bsdf_of(s).coated(); }
 // Radiance of one camera sample, split into the components of path_tracer.h.
 struct SampleResult {
   glm::vec3 direct{0.0f}, indirect{0.0f}, emission{0.0f}, albedo{0.0f};
+  glm::vec3 specular{0.0f};  // the coat's part of direct + indirect (path_tracer.h)
 };
 
 class Integrator {
@@ -87,11 +88,19 @@ class Integrator {
   glm::vec3 pi_f(const Surface& s, glm::vec3 wo, glm::vec3 wi) const {
     return shading::kPi * shading::eval_brdf(bsdf_of(s), s.ns, wo, wi, tables_).total();
   }
+  // pi f and, in *spec (when given), its specular lobe's part (f_ss + f_ms).
+  glm::vec3 pi_f(const Surface& s, glm::vec3 wo, glm::vec3 wi, glm::vec3* spec) const {
+    const shading::BrdfValue v = shading::eval_brdf(bsdf_of(s), s.ns, wo, wi, tables_);
+    if (spec) *spec = shading::kPi * v.specular;
+    return shading::kPi * v.total();
+  }
 
   // The lamp's direct light leaving `s` towards wo (unit, towards the previous vertex),
   // rolypoly's units.
-  glm::vec3 lamp(const Surface& s, glm::vec3 wo, Pcg32& rng) {
-    if (model_ == LampModel::kArea) return area_lamp(s, wo, rng);
+  // spec (optional): receives the coat's part of the result (0 for a matte surface).
+  glm::vec3 lamp(const Surface& s, glm::vec3 wo, Pcg32& rng, glm::vec3* spec = nullptr) {
+    if (spec) *spec = glm::vec3(0.0f);
+    if (model_ == LampModel::kArea) return area_lamp(s, wo, rng, spec);
     if (light_.intensity == glm::vec3(0.0f)) return glm::vec3(0.0f);
     const glm::vec3 to_light = light_.position - s.p;
     const float d2 = glm::dot(to_light, to_light);
@@ -103,13 +112,15 @@ class Integrator {
     if (scene_.shadowed(s.p + s.ng * kRayOffset, l, d)) return glm::vec3(0.0f);
     const float e = std::clamp(l.y, 0.0f, 1.0f);
     const float falloff = 0.35f + e * (0.446f + 0.204f * e);  // direct_light.h rp_lamp_falloff
-    const glm::vec3 f = coated(s) ? pi_f(s, wo, l) : s.albedo;  // uncoated: as before issue 16
-    return f * light_.intensity * (c / d2 * falloff);
+    const glm::vec3 f = coated(s) ? pi_f(s, wo, l, spec) : s.albedo;  // uncoated: as before
+    const glm::vec3 k = light_.intensity * (c / d2 * falloff);
+    if (spec) *spec *= k;
+    return f * k;
   }
 
   // The area lamp's direct light leaving `s` (path_tracer.h "lamp, area"): one direction
   // uniform in the cone the lamp's sphere subtends, kept when it meets the cap.
-  glm::vec3 area_lamp(const Surface& s, glm::vec3 wo, Pcg32& rng) {
+  glm::vec3 area_lamp(const Surface& s, glm::vec3 wo, Pcg32& rng, glm::vec3* spec) {
     const float u1 = rng.uniform(), u2 = rng.uniform();  // always drawn: streams stay aligned
     if (light_.intensity == glm::vec3(0.0f)) return glm::vec3(0.0f);
     const glm::vec3 to_centre = cap_.centre - s.p;
@@ -124,12 +135,16 @@ class Integrator {
     ++rays;
     if (scene_.shadowed(s.p + s.ng * kRayOffset, wi, t)) return glm::vec3(0.0f);
     // f * L_e * cos / pdf, pdf = 1 / (2 pi omc); pi f = albedo for a Lambertian surface
-    const glm::vec3 f = coated(s) ? pi_f(s, wo, wi) : s.albedo;
-    return f * cap_radiance_ * (2.0f * c * omc);
+    const glm::vec3 f = coated(s) ? pi_f(s, wo, wi, spec) : s.albedo;
+    const glm::vec3 k = cap_radiance_ * (2.0f * c * omc);
+    if (spec) *spec *= k;
+    return f * k;
   }
 
   // Light from the emissive spheres reflected by `s`, sampled by the spheres (MIS weighted).
-  glm::vec3 sphere_light(const Surface& s, glm::vec3 wo, Pcg32& rng) {
+  // spec (optional): receives the coat's part of the result (0 for a matte surface).
+  glm::vec3 sphere_light(const Surface& s, glm::vec3 wo, Pcg32& rng, glm::vec3* spec = nullptr) {
+    if (spec) *spec = glm::vec3(0.0f);
     const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     if (lights_.empty()) return glm::vec3(0.0f);
     const size_t k = lights_.choose(u0);
@@ -149,8 +164,11 @@ class Integrator {
     const float light_pdf = lights_.pick[k] * cone_pdf(omc);
     if (coated(s)) {
       const float bsdf_pdf = shading::brdf_pdf(bsdf_of(s), s.ns, wo, wi, tables_);
-      return pi_f(s, wo, wi) * hit.emission *
-             (c / kPi / light_pdf * power_heuristic(light_pdf, bsdf_pdf));
+      const glm::vec3 li =
+          hit.emission * (c / kPi / light_pdf * power_heuristic(light_pdf, bsdf_pdf));
+      const glm::vec3 f = pi_f(s, wo, wi, spec);
+      if (spec) *spec *= li;
+      return f * li;
     }
     const float bsdf_pdf = c / kPi;
     return s.albedo * hit.emission * (c / kPi / light_pdf * power_heuristic(light_pdf, bsdf_pdf));
@@ -174,17 +192,25 @@ class Integrator {
     r.emission = s.emission;
     r.albedo = s.albedo;
     glm::vec3 wo = -dir;  // towards the previous vertex
-    r.direct = lamp(s, wo, rng);
+    r.direct = lamp(s, wo, rng, &r.specular);
     glm::vec3 beta(1.0f);  // throughput from the camera to s: f cos / pdf of the gathers so far
+    // beta_s: the part of beta whose first gather went through the seen surface's specular
+    // lobe (f_spec cos / pdf; the same factors after it), so r.specular collects the coat's
+    // share of everything gathered there
+    glm::vec3 beta_s(0.0f);
     for (uint32_t gather = 1; gather <= bounces_; ++gather) {
       const bool glossy = coated(s);
       if (s.albedo == glm::vec3(0.0f) && !glossy) break;
-      r.indirect += beta * sphere_light(s, wo, rng);
+      glm::vec3 nee_spec;
+      const glm::vec3 nee = sphere_light(s, wo, rng, &nee_spec);
+      r.indirect += beta * nee;
+      r.specular += gather == 1 ? nee_spec : beta_s * nee;
       const float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
       if (gather > kRouletteAfter) {
         const float q = std::min(0.95f, std::max({beta.x, beta.y, beta.z}));
         if (!(u3 < q)) break;
         beta /= q;
+        beta_s /= q;
       }
       glm::vec3 wi;
       float pdf;
@@ -203,17 +229,29 @@ class Integrator {
       const float c = glm::dot(s.ns, wi);
       if (c <= 0.0f || glm::dot(s.ng, wi) <= 0.0f) break;  // below the true surface
       // f cos / pdf: albedo for the cosine-sampled Lambertian surface
-      beta *= glossy ? pi_f(s, wo, wi) * (c / (kPi * pdf)) : s.albedo;
+      if (glossy) {
+        glm::vec3 f_spec;
+        const glm::vec3 f = pi_f(s, wo, wi, &f_spec);
+        const float k = c / (kPi * pdf);
+        beta_s = gather == 1 ? f_spec * k : beta_s * (f * k);
+        beta *= f * k;
+      } else {
+        beta_s *= s.albedo;
+        beta *= s.albedo;
+      }
       Surface next;
       ++rays;
       if (!scene_.intersect(s.p + s.ng * kRayOffset, wi, kFar, next)) break;
       if (next.lights_scene && next.emission != glm::vec3(0.0f)) {
         const float w = next.sphere != 0xFFFFFFFFu ? hit_weight(s, next, pdf) : 1.0f;
         r.indirect += beta * next.emission * w;
+        r.specular += beta_s * next.emission * w;
       }
       s = next;
       wo = -wi;
-      r.indirect += beta * lamp(s, wo, rng);
+      const glm::vec3 lit = lamp(s, wo, rng);
+      r.indirect += beta * lit;
+      r.specular += beta_s * lit;
     }
     return r;
   }
@@ -359,7 +397,8 @@ PathTracedImage PathTracer::render(const scene::FrameScene& frame,
   image.width = w;
   image.height = h;
   for (std::vector<float>* plane :
-       {&image.combined, &image.direct, &image.indirect, &image.emission, &image.albedo})
+       {&image.combined, &image.direct, &image.indirect, &image.emission, &image.albedo,
+        &image.specular})
     plane->assign(size_t(w) * h * 3, 0.0f);
   const unsigned threads =
       settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
@@ -370,7 +409,7 @@ PathTracedImage PathTracer::render(const scene::FrameScene& frame,
     for (uint32_t x = 0; x < w; ++x) {
       const uint64_t pixel = uint64_t(y) * w + x;
       Pcg32 rng(settings.seed, pixel);
-      glm::dvec3 sum[4] = {};  // direct, indirect, emission, albedo
+      glm::dvec3 sum[5] = {};  // direct, indirect, emission, albedo, specular
       for (uint32_t i = 0; i < settings.spp; ++i) {
         const float jx = rng.uniform(), jy = rng.uniform();
         const SampleResult r = integrator.trace(
@@ -379,6 +418,7 @@ PathTracedImage PathTracer::render(const scene::FrameScene& frame,
         sum[1] += glm::dvec3(r.indirect);
         sum[2] += glm::dvec3(r.emission);
         sum[3] += glm::dvec3(r.albedo);
+        sum[4] += glm::dvec3(r.specular);
       }
       const double inv = 1.0 / double(settings.spp);
       for (int c = 0; c < 3; ++c) {
@@ -387,6 +427,7 @@ PathTracedImage PathTracer::render(const scene::FrameScene& frame,
         image.indirect[k] = float(sum[1][c] * inv);
         image.emission[k] = float(sum[2][c] * inv);
         image.albedo[k] = float(sum[3][c] * inv);
+        image.specular[k] = float(sum[4][c] * inv);
         image.combined[k] = float((sum[0][c] + sum[1][c] + sum[2][c]) * inv);
       }
     }

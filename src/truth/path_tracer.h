@@ -60,6 +60,11 @@
 //             indirect = everything else reaching the camera from it (gathered light)
 //             combined = direct + indirect + emission
 //             albedo   = that surface's albedo (0 where no surface: background)
+//             specular = the part of direct + indirect that the seen surface's coat reflects:
+//                        the lamp through its specular lobe (f_ss + f_ms), and every path
+//                        whose first gather's throughput is taken with the lobe's part of the
+//                        BRDF (f_spec cos / pdf: the mixture sampler's paths, either lobe
+//                        chosen, weighted by the lobe's share of f); 0 on matte surfaces
 //             so they mean the same as the light pass's direct / indirect terms, the GBuffer's
 //             emission and albedo, and its HDR output (kernels/light.cl).
 //   noise     every pixel draws from its own random stream (seed, pixel index), and a pixel is
@@ -93,7 +98,7 @@ struct PathTraceSettings {
 // Linear float RGB images: 3 floats per pixel, row-major, top row first (index 3 (y w + x) + c).
 struct PathTracedImage {
   uint32_t width = 0, height = 0;
-  std::vector<float> combined, direct, indirect, emission, albedo;
+  std::vector<float> combined, direct, indirect, emission, albedo, specular;
   uint64_t rays = 0;      // every ray traced (camera, gather, shadow and light-sample rays)
   double seconds = 0.0;   // wall clock of the render
   double rays_per_second() const { return seconds > 0.0 ? double(rays) / seconds : 0.0; }

@@ -43,7 +43,7 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
 
   std::ifstream in(dir / "acc.json");
   const nlohmann::json j = nlohmann::json::parse(in);
-  EXPECT_EQ(j["schema"], "rolypoly-accuracy/3");
+  EXPECT_EQ(j["schema"], "rolypoly-accuracy/4");
   EXPECT_EQ(j["width"], 24);
   EXPECT_FALSE(j.contains("thresholds"));
   EXPECT_TRUE(j["passed"].get<bool>());

@@ -228,6 +228,36 @@ glm::dvec4 trace(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir
   return glm::dvec4(colour, alpha);
 }
 
+glm::dvec4 trace_aperture(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
+                          double tan_half, const Aperture& a) {
+  const double v0 = 2.0 / c.resolution;
+  const double step = a.fine ? 0.5 : 1.0;  // of the diameter
+  const int max_steps = a.fine ? 2 * a.max_steps : a.max_steps;
+  const double d_min = (a.fine ? 1.0 : a.min_diameter) * v0;
+  double t = first_distance_in_voxels() * v0;  // 1.25 v0, as the diffuse cones
+  glm::dvec3 colour(0.0);
+  double alpha = 0.0;
+  for (int k = 0; k < max_steps; ++k) {
+    const glm::dvec3 q = origin + dir * t;
+    const double d = std::max(2.0 * tan_half * t, d_min);
+    double level = std::log2(d / v0);
+    if (std::abs(q.x) > 1.0 || std::abs(q.y) > 1.0 || std::abs(q.z) > 1.0) {
+      add_exit(c, origin, dir, level, colour, alpha);  // the wall there
+      break;
+    }
+    if (!a.fine) level = std::floor(level + 0.5);  // one level: the nearest
+    const glm::dvec4 s = quadrilinear(c, dir, q, level, &origin, top_level(c));
+    // half-diameter steps: the sample is half its voxel thick; full: the voxel as it is
+    const double sa = std::clamp(s.w, 0.0, 1.0);
+    const double scale = a.fine ? (sa > 0.0 ? (1.0 - std::sqrt(1.0 - sa)) / sa : 0.5) : 1.0;
+    colour += (1.0 - alpha) * glm::dvec3(s) * scale;
+    alpha += (1.0 - alpha) * s.w * scale;
+    if (alpha >= a.opaque) break;
+    t += step * d;
+  }
+  return glm::dvec4(colour, alpha);
+}
+
 void diffuse_cones(const glm::dvec3& n, glm::dvec3 dirs[16]) {
   // Duff et al. 2017 basis.
   const double sign = std::copysign(1.0, n.z);

@@ -76,6 +76,20 @@ glm::dvec4 exit_sample(const Chain& c, const glm::dvec3& origin, const glm::dvec
 // has gathered (rp_cone_march, rp_cone_trace_coarse).
 glm::dvec4 trace(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
                  const March& march = {});
+// A cone of any aperture (rp_cone_trace_aperture, issue 16's reflection cone), tan_half the
+// tan of its half-angle: diameter d(t) = max(2 t tan_half, d_min) (d_min one level-0 voxel, or
+// min_diameter voxels in the fast mode), first sample at t0 = 1.25 v0, sampled level
+// L = log2(d / v0); fine: quadrilinear at L, steps of d / 2 (opacity and radiance corrected to
+// half a voxel's thickness), at most 2 max_steps samples; else the nearest level round(L), steps
+// of d, at most max_steps samples. Stops at `opaque` or takes the exit sample where it leaves.
+struct Aperture {
+  bool fine = true;
+  int max_steps = 24;         // RP_CONE_SPEC_MAX_STEPS
+  double opaque = 0.95;       // RP_CONE_OPAQUE (fine), RP_CONE_SPEC_OPAQUE_FAST
+  double min_diameter = 1.0;  // RP_CONE_SPEC_MIN_D_FAST (fast only), in level-0 voxels
+};
+glm::dvec4 trace_aperture(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
+                          double tan_half, const Aperture& a = {});
 // Near-field occlusion of surface point p with unit normal n (rp_cone_near_occlusion): the
 // opacity the three level-1 volumes facing n (weights n^2, trilinear, no rows-behind-the-apex
 // rule) show at the cones' apex p + n v0, times kNearOcclusion, clamped to [0, 1]; 0 for a

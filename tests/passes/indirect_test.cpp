@@ -21,6 +21,9 @@
 #include "passes/indirect.h"
 #include "passes/light.h"
 #include "render/gpu_scene.h"
+#include "scene/demo_scene.h"
+#include "shading/brdf.h"
+#include "shading/brdf_tables.h"
 #include "support/cl_fixture.h"
 
 namespace {
@@ -63,6 +66,7 @@ struct Pixel {
   glm::vec3 p, n, albedo, emission;
   float depth;
   bool covered;
+  float gloss = 0.0f;  // GBuffer emission.w (the glossy fixture only)
 };
 
 // Surfaces inside the box: a floor-like plane, a tilted plane and a few background pixels, so
@@ -105,7 +109,16 @@ rp::test::cone::Chain random_chain() {
 
 class IndirectFixture {
  public:
-  IndirectFixture() : pixels_(make_gbuffer()), chain_(random_chain()) {
+  // glossy: the floor-like plane gets the demo floor's coat, the tilted plane the tumblers'
+  // lacquer, except in the first two columns (matte: the uncoated samples' path).
+  explicit IndirectFixture(bool glossy = false) : pixels_(make_gbuffer()), chain_(random_chain()) {
+    if (glossy)
+      for (uint32_t k = 0; k < pixels_.size(); ++k) {
+        Pixel& q = pixels_[k];
+        if (q.covered && k % kW >= 2)  // the first two columns stay matte
+          q.gloss = rp::shading::gloss_code(q.n.y == 1.0f ? rp::scene::demo::kFloorSpecular
+                                                          : rp::scene::demo::kTumblerSpecular);
+      }
     auto& ctx = rp::test::context();
     scene_ = std::make_unique<rp::render::GpuScene>(ctx.context, ctx.queue, rp::scene::SceneAssets{});
     gbuffer_.resize(ctx.context, kW, kH);
@@ -120,6 +133,7 @@ class IndirectFixture {
       std::memcpy(&pos[4 * i], &q.p, 12);
       pos[4 * i + 3] = q.covered ? 1.0f : 0.0f;
       std::memcpy(&em[4 * i], &q.emission, 12);
+      em[4 * i + 3] = q.gloss;
     }
     ctx.queue.enqueueWriteBuffer(gbuffer_.albedo, CL_TRUE, 0, n * 16, albedo.data());
     ctx.queue.enqueueWriteBuffer(gbuffer_.normal_depth, CL_TRUE, 0, n * 16, nd.data());
@@ -154,12 +168,18 @@ class IndirectFixture {
     q.enqueueReadBuffer(pass_->position_planes(), CL_TRUE, 0, position.size() * 4, position.data());
     q.enqueueReadBuffer(*lr.geometry, CL_TRUE, 0, geom.size() * 4, geom.data());
     q.enqueueReadBuffer(*lr.irradiance, CL_TRUE, 0, history.size() * 4, history.data());
+    specular.resize(3 * plane);
+    specular_filled.resize(3 * plane);
+    q.enqueueReadBuffer(pass_->specular_planes(), CL_TRUE, 0, specular.size() * 4, specular.data());
+    q.enqueueReadBuffer(*lr.specular, CL_TRUE, 0, specular_filled.size() * 4,
+                        specular_filled.data());
     return lr;
   }
 
   // Light pass output (hdr, direct, indirect; float4 per pixel) with or without upsampling.
   void light(const rp::passes::LowResIndirect* lr, std::vector<float>& hdr,
-             std::vector<float>& direct, std::vector<float>& indirect) {
+             std::vector<float>& direct, std::vector<float>& indirect,
+             std::vector<float>* specular_out = nullptr) {
     auto& ctx = rp::test::context();
     const size_t n = size_t(kW) * kH;
     ::cl::Buffer out(ctx.context, CL_MEM_READ_WRITE, n * 16);
@@ -180,6 +200,10 @@ class IndirectFixture {
     ctx.queue.enqueueReadBuffer(out, CL_TRUE, 0, n * 16, hdr.data());
     ctx.queue.enqueueReadBuffer(parts.direct, CL_TRUE, 0, n * 16, direct.data());
     ctx.queue.enqueueReadBuffer(parts.indirect, CL_TRUE, 0, n * 16, indirect.data());
+    if (specular_out) {
+      specular_out->resize(n * 4);
+      ctx.queue.enqueueReadBuffer(parts.specular, CL_TRUE, 0, n * 16, specular_out->data());
+    }
   }
 
   const Pixel& pixel(uint32_t x, uint32_t y) const { return pixels_[y * kW + x]; }
@@ -187,7 +211,7 @@ class IndirectFixture {
   float pixel_scale() const { return rp::passes::pixel_scale(*scene_); }
   const rp::render::GpuScene& scene() const { return *scene_; }
 
-  std::vector<float> radiance, position, geom, history;
+  std::vector<float> radiance, position, geom, history, specular, specular_filled;
 
  private:
   std::vector<Pixel> pixels_;
@@ -463,6 +487,138 @@ TEST(Indirect, ComposeUpsamplesTheBlocksAndMatchesTheDirectTerm) {
       EXPECT_EQ(hdr[o + 3], 1.0f);
     }
   EXPECT_GE(lit, 40);
+}
+
+// The fast mode's reflection cones (issue 16 part 2) on the glossy fixture: indirect_trace's
+// specular planes against the C++ cone (nearest-level, full-diameter steps; tan from the
+// roughness, at least 0.1) from the sample pixel's apex along its mirror direction (no SSR:
+// the pass runs without SsrInputs), the odd checkerboard samples left as holes (-1), uncoated
+// ones -2; indirect_filter's filled planes (a hole: the geometry-weighted mean of its traced
+// coated edge neighbours, else their plain mean, else 0; uncoated: 0); and
+// light_compose's specular component = E_spec(mu_o) * those planes upsampled with the
+// irradiance's weights (block centres 4 i + 2, bilinear x geometry, the fallbacks).
+TEST(Indirect, ReflectionConesPerBlockFilledAndUpsampled) {
+  IndirectFixture fx(true);
+  const auto lr = fx.run(2);
+  const size_t plane = lr.plane;
+  const glm::dvec3 cam(rp::scene::Camera{}.position);
+  auto mirror = [&](const Pixel& q) {
+    const glm::dvec3 n(q.n), v = glm::normalize(cam - glm::dvec3(q.p));
+    return 2.0 * std::max(glm::dot(n, v), 0.0) * n - v;
+  };
+  int holes = 0, traced = 0, matte = 0;
+  for (uint32_t j = 0; j < lr_h(); ++j)
+    for (uint32_t i = 0; i < lr_w(); ++i) {
+      const Pixel& q = sample_pixel(fx, i, j);
+      const size_t s = at(int(i), int(j));
+      glm::dvec3 want(0.0);
+      if (q.covered && q.gloss == 0.0f) {
+        want = glm::dvec3(-2.0);  // no coat
+        ++matte;
+      } else if (q.covered) {
+        const float rough = rp::shading::decode_gloss(q.gloss).roughness;  // every pixel coated
+        const double t = std::max(double(rp::shading::spec_cone_tan(rough)), 0.1);
+        if (((i ^ j) & 1u) == 0u) {  // RP_INDIRECT_SPEC_CHECKER_TAN 0: every coat
+          rp::test::cone::Aperture a;
+          a.fine = false;
+          want = glm::dvec3(rp::test::cone::trace_aperture(
+              fx.chain(), glm::dvec3(q.p) + glm::dvec3(q.n) * (2.0 / kRes), mirror(q), t, a));
+          ++traced;
+        } else {
+          want = glm::dvec3(-1.0);
+          ++holes;
+        }
+      }
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(fx.specular[c * plane + s], want[c], 2e-5) << "block " << i << "," << j;
+    }
+  EXPECT_GE(holes, 3);
+  EXPECT_GE(traced, 3);
+  EXPECT_EQ(matte, 3);
+  // the fill
+  const double ps = lr.pixel_scale;
+  int filled = 0;
+  for (uint32_t j = 0; j < lr_h(); ++j)
+    for (uint32_t i = 0; i < lr_w(); ++i) {
+      const size_t s = at(int(i), int(j));
+      glm::dvec3 want(fx.specular[s], fx.specular[plane + s], fx.specular[2 * plane + s]);
+      if (want.x < -1.5) {
+        want = glm::dvec3(0.0);  // no coat
+      } else if (want.x < 0.0) {
+        const glm::dvec3 n(fx.geom[s], fx.geom[plane + s], fx.geom[2 * plane + s]);
+        const glm::dvec3 p(fx.position[s], fx.position[plane + s], fx.position[2 * plane + s]);
+        const double is = inv_sigma(fx.position[3 * plane + s], ps);
+        glm::dvec3 a(0.0), m(0.0);
+        double aw = 0.0, mw = 0.0;
+        for (const auto& [di, dj] : {std::pair{-1, 0}, std::pair{1, 0}, std::pair{0, -1}, std::pair{0, 1}}) {
+          const size_t t = at(int(i) + di, int(j) + dj);
+          const glm::dvec3 v(fx.specular[t], fx.specular[plane + t], fx.specular[2 * plane + t]);
+          const glm::dvec3 gn(fx.geom[t], fx.geom[plane + t], fx.geom[2 * plane + t]);
+          if (v.x < 0.0 || glm::dot(gn, gn) < 0.5) continue;  // hole, no coat, background, pad
+          const double w = geometry_weight(n, p, gn, fx.geom[3 * plane + t], is);
+          a += w * v;
+          aw += w;
+          m += v;
+          mw += 1.0;
+        }
+        want = aw >= 1e-4 ? a / aw : m / std::max(mw, 1.0);
+        ++filled;
+      }
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(fx.specular_filled[c * plane + s], want[c], 1e-5 * (1.0 + want[c]))
+            << "filled block " << i << "," << j;
+    }
+  EXPECT_EQ(filled, holes);
+  // the upsampling in light_compose
+  std::vector<float> hdr, direct, indirect, specular;
+  fx.light(&lr, hdr, direct, indirect, &specular);
+  std::vector<float> hdr0, direct0, indirect0, specular0;  // no indirect light: direct specular
+  fx.light(nullptr, hdr0, direct0, indirect0, &specular0);
+  const rp::shading::BrdfTables& tables = rp::shading::BrdfTables::get();
+  int reflecting = 0;
+  for (uint32_t y = 0; y < kH; ++y)
+    for (uint32_t x = 0; x < kW; ++x) {
+      const Pixel& q = fx.pixel(x, y);
+      if (!q.covered) continue;
+      const size_t o = 4 * (size_t(y) * kW + x);
+      const double ux = (x - 1.5) / 4.0, uy = (y - 1.5) / 4.0;
+      const int i0 = int(std::floor(ux)), j0 = int(std::floor(uy));
+      const double fx_ = ux - i0, fy_ = uy - j0;
+      double g[4], b[4];
+      glm::dvec3 h[4];
+      const double is = inv_sigma(q.depth, lr.pixel_scale);
+      for (int t = 0; t < 4; ++t) {
+        const size_t s = at(i0 + (t & 1), j0 + (t >> 1));
+        g[t] = geometry_weight(glm::dvec3(q.n), glm::dvec3(q.p),
+                               glm::dvec3(fx.geom[s], fx.geom[plane + s], fx.geom[2 * plane + s]),
+                               fx.geom[3 * plane + s], is);
+        b[t] = ((t & 1) ? fx_ : 1.0 - fx_) * ((t >> 1) ? fy_ : 1.0 - fy_);
+        h[t] = glm::dvec3(fx.specular_filled[s], fx.specular_filled[plane + s],
+                          fx.specular_filled[2 * plane + s]);
+      }
+      double wsum = 0.0;
+      glm::dvec3 up(0.0);
+      for (int t = 0; t < 4; ++t) {
+        wsum += b[t] * g[t];
+        up += b[t] * g[t] * h[t];
+      }
+      if (wsum >= 1e-4) {
+        up /= wsum;
+      } else {
+        const int best = int(std::max_element(g, g + 4) - g);
+        up = g[best] > 0.0 ? h[best] : b[0] * h[0] + b[1] * h[1] + b[2] * h[2] + b[3] * h[3];
+      }
+      const rp::shading::SurfaceBsdf bsdf =
+          rp::shading::make_bsdf(rp::shading::decode_gloss(q.gloss), q.albedo);
+      const float mu = float(glm::dot(glm::dvec3(q.n), glm::normalize(cam - glm::dvec3(q.p))));
+      const glm::dvec3 e(rp::shading::coat_albedo_at(bsdf, mu, tables));
+      const glm::dvec3 want = e * up;
+      reflecting += want.x > 1e-3;
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(specular[o + c] - specular0[o + c], want[c], 2e-3 * want[c] + 2e-5)
+            << "specular " << x << "," << y;
+    }
+  EXPECT_GE(reflecting, 40);
 }
 
 }  // namespace

@@ -487,6 +487,69 @@ TEST(Light, GlossySurfacesMatchTheBrdfReference) {
   EXPECT_GT(specular[3 * 4 + 1], direct[3 * 4 + 1] * 0.5f);
 }
 
+// The specular indirect light of the reference mode (light_shade, issue 16 part 2) against its
+// C++ reference on a random 16^3 chain: indirect = albedo * w_i * cones16 + E_spec(mu_o) *
+// cone(r), r = reflect(-v, n), the cone's tan from the roughness (shading::spec_cone_tan),
+// quadrilinear half-diameter steps from the diffuse apex (cone_reference's trace_aperture);
+// w_i = 1 - E_spec(mu_o) (0 for a metal), E_spec from shading::coat_albedo_at. The specular
+// buffer holds the reflection's part (no direct light: the lamp is shadowed everywhere). Matte
+// pixels in the same chunk keep the Lambertian result. Every point faces the camera (as GBuffer
+// pixels do; the kernel clamps n.v at 0 for the mirror direction).
+TEST(Light, ReflectionConeMatchesReference) {
+  using rp::shading::gloss_code;
+  LightFixture fx(32);
+  const glm::vec3 cam = rp::scene::Camera{}.position;
+  const float floor = gloss_code(rp::scene::demo::kFloorSpecular);
+  const float lacquer = gloss_code(rp::scene::demo::kTumblerSpecular);
+  const float marble = gloss_code(rp::scene::demo::kMarbleSpecular);
+  const float gold = gloss_code(rp::scene::Specular{0.3f, 0.0f, true});
+  const float rough = gloss_code(rp::scene::Specular{0.9f, 0.05f, false});
+  std::vector<Point> pts = {
+      {{0.03f, -0.9f, 0.02f}, {0, 1, 0}, {0.6f, 0.5f, 0.4f}, {}, floor},
+      {{0.52f, -0.8f, 0.61f}, {0, 1, 0}, {0.6f, 0.5f, 0.4f}, {}, floor},
+      {{-0.4f, -0.5f, 0.3f}, glm::normalize(glm::vec3(-0.5f, 0.6f, 0.6f)), {0.8f, 0.1f, 0.1f}, {}, lacquer},
+      {{0.2f, -0.3f, 0.1f}, glm::normalize(glm::vec3(0.3f, 0.8f, 0.5f)), {0.3f, 0.6f, 0.9f}, {}, marble},
+      {{0.5f, -0.5f, -0.2f}, glm::normalize(glm::vec3(0.3f, 0.2f, 1.0f)), {1.0f, 0.78f, 0.34f}, {}, gold},
+      {{-0.5f, 0.4f, -0.2f}, glm::normalize(glm::vec3(-0.6f, -0.2f, 0.7f)), {0.5f, 0.5f, 0.5f}, {}, rough},
+      {{-0.7f, 0.0f, 0.0f}, {1, 0, 0}, {0.9f, 0.5f, 0.1f}},  // matte in the same chunk
+  };
+  const rp::test::cone::Chain chain = random_chain(16, 91);
+  const std::vector<float> dark(32 * 32, 0.0f);  // every point in the lamp's shadow
+  std::vector<float> direct, indirect, specular;
+  auto hdr = fx.run(pts, dark, ShadowFilter::kHard, 0, 8, chain, LightFixture::Mode::kConesSplit,
+                    &direct, &indirect, &specular);
+  const rp::shading::BrdfTables& tables = rp::shading::BrdfTables::get();
+  int reflecting = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const Point& pt = pts[i];
+    const rp::scene::Specular coat = rp::shading::decode_gloss(pt.gloss);
+    const rp::shading::SurfaceBsdf bsdf = rp::shading::make_bsdf(coat, pt.albedo);
+    const glm::dvec3 n(pt.n), v = glm::normalize(glm::dvec3(cam) - glm::dvec3(pt.p));
+    ASSERT_GT(glm::dot(n, v), 0.05) << "point " << i << " must face the camera";
+    const glm::dvec3 r = 2.0 * glm::dot(n, v) * n - v;
+    const glm::dvec3 e(rp::shading::coat_albedo_at(bsdf, float(glm::dot(n, v)), tables));
+    const glm::dvec3 diffuse = rp::test::cone::diffuse(chain, glm::dvec3(pt.p), n);
+    glm::dvec3 cone(0.0);
+    if (pt.gloss != 0.0f)
+      cone = glm::dvec3(rp::test::cone::trace_aperture(
+          chain, glm::dvec3(pt.p) + n * (2.0 / 16.0), r, rp::shading::spec_cone_tan(coat.roughness)));
+    const glm::dvec3 wi = bsdf.metal ? glm::dvec3(0.0) : 1.0 - e;
+    const glm::dvec3 spec = e * cone;
+    const glm::dvec3 want = glm::dvec3(pt.albedo) * wi * diffuse + spec;
+    reflecting += spec.x > 0.01;
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(indirect[i * 4 + c], want[c], 2e-3 * std::abs(want[c]) + 2e-5)
+          << "indirect, point " << i << " channel " << c;
+      EXPECT_NEAR(specular[i * 4 + c], spec[c], 2e-3 * std::abs(spec[c]) + 2e-5)
+          << "specular, point " << i << " channel " << c;
+      EXPECT_NEAR(hdr[i * 4 + c], want[c] + pt.emission[c], 2e-3 * std::abs(want[c]) + 2e-5)
+          << "hdr, point " << i;
+      EXPECT_NEAR(direct[i * 4 + c], 0.0f, 1e-6) << "point " << i;
+    }
+  }
+  EXPECT_GE(reflecting, 3);  // the chain is really reflected
+}
+
 TEST(Light, RejectsAVoxelChainThatDoesNotFit) {
   auto& ctx = rp::test::context();
   LightFixture fx(32);

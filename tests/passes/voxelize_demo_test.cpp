@@ -26,7 +26,8 @@
 namespace rp::test {
 namespace {
 
-// Six marbles (cast shadows), two fireballs and `particles` fire particles around them (emit,
+// Six marbles (cast shadows; every other one coated like the demo's, so the voxelizer's coat
+// weight Sphere.albedo.w is exercised), two fireballs and `particles` fire particles around them (emit,
 // no shadow), from a fixed seed.
 void add_spheres(scene::FrameScene& frame, int particles) {
   const glm::vec3 marbles[6] = {{-0.2f, -0.94f, 0.65f}, {0.75f, -0.6f, -0.3f}, {-0.7f, 0.1f, -0.6f},
@@ -39,6 +40,7 @@ void add_spheres(scene::FrameScene& frame, int particles) {
     s.albedo = colours[i % 3];
     s.emission = glm::vec3(0.0f);
     s.casts_shadow = true;
+    if (i % 2 == 0) s.specular = scene::demo::kMarbleSpecular;
     frame.spheres.push_back(s);
   }
   const glm::vec3 fireballs[2] = {{-0.3f, 0.2f, 0.1f}, {0.45f, -0.1f, 0.35f}};

@@ -8,6 +8,7 @@
 #include "render/frame_buffers.h"
 #include "render/texture_mips.h"
 #include "render/voxel_volume.h"
+#include "shading/brdf_tables.h"
 #include "support/cl_fixture.h"
 
 namespace rp::test {
@@ -309,10 +310,12 @@ void voxelize_triangle(const VoxelRefInput& in, const gpu::Instance& inst,
                                 uint32_t(tex.width), uint32_t(tex.height),
                                 uint32_t(chain.levels.size()), R);
   }
+  const float base_weight = shading::voxel_base_weight(shading::gloss_code(mat.specular),
+                                                       shading::BrdfTables::get());
   // vx_shade at barycentrics (b0, b1, b2).
   auto shade = [&](float b0, float b1, float b2) {
     const RefF3 p = (w0 + e01 * b1) + e02 * b2;
-    RefF3 albedo = f3(mat.albedo);
+    RefF3 albedo = f3(mat.albedo) * base_weight;  // the coat's base weight (GpuScene's albedo.w)
     if (mat.texture >= 0) {
       const float u = (v[0]->uv.x * b0 + v[1]->uv.x * b1) + v[2]->uv.x * b2;
       const float vv = (v[0]->uv.y * b0 + v[1]->uv.y * b1) + v[2]->uv.y * b2;
@@ -372,7 +375,7 @@ void voxelize_sphere(const VoxelRefInput& in, const gpu::Sphere& s, VoxelSums& s
   axis_range(lo.z, hi.z, int(R), z0, z1);
   const float area = float(M_PI) * r2;
   const float inv_extent = 1.0f / std::fmin(2.0f * rg, 1.0f);
-  const RefF3 albedo = f3(s.albedo), emission = f3(s.emission);
+  const RefF3 albedo = f3(s.albedo) * s.albedo.w, emission = f3(s.emission);
   const bool small = rg < 0.5f;
   RefF3 small_radiance{};
   if (small) {

@@ -281,3 +281,39 @@ TEST(GlossCode, RoundTripsTheQuantisedCoat) {
 
 }  // namespace
 }  // namespace rp::shading
+
+namespace rp::shading {
+namespace {
+
+// The voxelizer's weight of a coated surface's base (voxel_base_weight, Material.albedo.w) is
+// one minus the coat's cosine-weighted mean albedo: here that mean from the BRDF sampled
+// directly (black base, 16 midpoint mu_o, 64^2 strata each), not from the tables' E_avg/S_avg.
+// Matte and metal surfaces keep weight 1.
+TEST(VoxelBaseWeight, IsOneMinusTheCoatsMeanAlbedo) {
+  const scene::Specular coats[3] = {{0.38f, 0.04f, false}, {0.25f, 0.045f, false},
+                                    {0.08f, 0.046f, false}};
+  for (const scene::Specular& c : coats) {
+    const float code = gloss_code(c);
+    const scene::Specular q = decode_gloss(code);  // the quantised coat the device sees
+    SurfaceBsdf s;
+    s.albedo = glm::vec3(0.0f);
+    s.roughness = q.roughness;
+    s.f0 = q.f0;
+    double mean = 0.0;
+    const int n_mu = 16;
+    for (int k = 0; k < n_mu; ++k) {
+      const float mu = (float(k) + 0.5f) / float(n_mu);
+      mean += 2.0 * double(mu) * albedo_at(s, mu, true, 64).x / n_mu;
+    }
+    const float w = voxel_base_weight(code, tables());
+    std::printf("roughness %.2f f0 %.3f: weight %.4f, 1 - sampled mean %.4f\n", c.roughness, c.f0,
+                w, 1.0 - mean);
+    EXPECT_NEAR(w, 1.0 - mean, 0.004) << c.roughness;
+    EXPECT_LT(w, 0.97f);
+  }
+  EXPECT_EQ(voxel_base_weight(0.0f, tables()), 1.0f);
+  EXPECT_EQ(voxel_base_weight(gloss_code({0.3f, 0.0f, true}), tables()), 1.0f);
+}
+
+}  // namespace
+}  // namespace rp::shading
