@@ -1,0 +1,348 @@
+// Sparse voxel octree (issue 17): the octree built from the demo scene's fragments against a
+// straightforward C++ reference of its definition (kernels/shared/svo_layout.h) and against the
+// dense volume built by the dense passes at the same resolution:
+//   - structure: per depth, the nodes with a brick are exactly those whose 27 samples hold an
+//     occupied voxel (brute force over every node coordinate), node counts = 8 x parents,
+//     every fragment reaches an "own" leaf;
+//   - values: every sample of every brick (own and border, every level and direction) equals
+//     the dense chain's voxel at that place bit for bit (float samples) or to half precision,
+//     so leaves = dense level 0, mips = dense mips, borders = neighbours' values;
+//   - cone samples and whole cones through the octree equal the dense ones (RP_GI_SVO);
+//   - determinism (two builds, identical pools).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <set>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "cl/error.h"
+#include "kernels/shared/svo_layout.h"
+#include "kernels/shared/voxel_layout.h"
+#include "passes/svo.h"
+#include "passes/visibility.h"
+#include "passes/voxel_mips.h"
+#include "passes/voxelize.h"
+#include "render/frame_buffers.h"
+#include "render/gpu_scene.h"
+#include "render/svo_volume.h"
+#include "render/voxel_volume.h"
+#include "scene/demo_scene.h"
+#include "support/cl_fixture.h"
+
+namespace rp::test {
+namespace {
+
+constexpr uint32_t kShadow = 256;
+
+struct Scene {
+  scene::SceneAssets assets = scene::make_demo_assets(scene::default_asset_dir());
+  scene::FrameScene frame = scene::make_demo_frame(assets);
+  std::unique_ptr<render::GpuScene> gpu;
+  passes::VisibilityPass visibility{context(), programs()};
+  rp::cl::Profiler profiler{context().queue};
+  render::ShadowMap shadow;
+
+  explicit Scene(uint32_t r) {
+    // two marbles and a small particle so spheres take both sphere paths
+    scene::Sphere s;
+    s.center = s.prev_center = glm::vec3(0.3f, -0.8f, 0.1f);
+    s.radius = 0.09f;
+    s.albedo = glm::vec3(0.8f, 0.3f, 0.2f);
+    frame.spheres.push_back(s);
+    s.center = s.prev_center = glm::vec3(-0.4f, -0.5f, -0.3f);
+    s.radius = 0.01f;
+    s.albedo = glm::vec3(0.0f);
+    s.emission = glm::vec3(5.0f, 2.0f, 0.5f);
+    s.casts_shadow = false;
+    frame.spheres.push_back(s);
+    gpu = std::make_unique<render::GpuScene>(context().context, context().queue, assets);
+    gpu->update(frame, 64, 64, kShadow, r);
+    shadow.resize(context().context, kShadow);
+    visibility.render_shadow(profiler, *gpu, shadow);
+    profiler.collect();
+  }
+};
+
+struct Dense {
+  uint32_t r = 0, levels = 0;
+  std::vector<float> chain;  // 4 floats per voxel, voxel_layout.h
+  ::cl::Buffer buffer;
+  float at(uint32_t level, uint32_t dir, uint32_t x, uint32_t y, uint32_t z, int c) const {
+    const uint32_t n = r >> level;
+    return chain[4 * (gpu::rp_voxel_offset(r, level, level == 0 ? 0 : dir) +
+                      (size_t(z) * n + y) * n + x) + size_t(c)];
+  }
+};
+
+Dense build_dense(Scene& s, uint32_t r) {
+  passes::VoxelizePass voxelize(context(), programs());
+  passes::VoxelMipsPass mips(context(), programs());
+  render::VoxelVolume vol;
+  vol.resize(context().context, r);
+  voxelize.run(s.profiler, *s.gpu, s.shadow, vol);
+  mips.run(s.profiler, vol);
+  Dense d;
+  d.r = r;
+  d.levels = vol.levels;
+  d.chain.resize(vol.chain_elements() * 4);
+  context().queue.enqueueReadBuffer(vol.chain, CL_TRUE, 0, d.chain.size() * 4, d.chain.data());
+  d.buffer = vol.chain;
+  return d;
+}
+
+struct Octree {
+  render::SvoVolume vol;
+  std::vector<uint32_t> words;  // the whole buffer
+  std::vector<uint32_t> fragments;
+  uint32_t header(uint32_t w) const { return words[w]; }
+  uint32_t node_word(uint32_t node, uint32_t w) const {
+    return words[4 * RP_SVO_HEADER_FLOAT4S + 2 * node + w];
+  }
+  // Straightforward descent (independent of the kernels' helpers).
+  int64_t find(uint32_t depth, uint32_t ax, uint32_t ay, uint32_t az) const {
+    uint32_t idx = 0;
+    for (uint32_t j = 1; j <= depth; ++j) {
+      const uint32_t child = node_word(idx, 0) & RP_SVO_NODE_CHILD_MASK;
+      if (child == 0) return -1;
+      const uint32_t s = depth - j;
+      idx = child + (((ax >> s) & 1) | (((ay >> s) & 1) << 1) | (((az >> s) & 1) << 2));
+    }
+    return idx;
+  }
+  float sample(uint32_t brick, uint32_t s, int c) const {
+    const size_t base = size_t(header(RP_SVO_HDR_BRICK_OFFSET)) * 4;
+    if (vol.sample_bytes == 16) {
+      float f;
+      std::memcpy(&f, &words[base + 4 * size_t(brick + s) + size_t(c)], 4);
+      return f;
+    }
+    const uint16_t* h = reinterpret_cast<const uint16_t*>(words.data() + base);
+    const uint16_t v = h[4 * size_t(brick + s) + size_t(c)];
+    // half -> float
+    const uint32_t sign = uint32_t(v >> 15) << 31, exp = (v >> 10) & 31, man = v & 1023;
+    float out;
+    if (exp == 0) {
+      out = std::ldexp(float(man), -24);
+      if (sign) out = -out;
+      return out;
+    }
+    const uint32_t bits = sign | ((exp + 112) << 23) | (man << 13);
+    std::memcpy(&out, &bits, 4);
+    return out;
+  }
+};
+
+Octree build_octree(Scene& s, uint32_t r, bool float_samples) {
+  passes::SvoPass pass(context(), programs(), float_samples);
+  Octree o;
+  pass.run(s.profiler, *s.gpu, s.shadow, r, o.vol);
+  s.profiler.collect();
+  o.words.resize(o.vol.buffer_bytes() / 4);
+  context().queue.enqueueReadBuffer(o.vol.buffer, CL_TRUE, 0, o.words.size() * 4, o.words.data());
+  o.fragments.resize(size_t(o.vol.fragments) * RP_SVO_FRAGMENT_WORDS);
+  if (!o.fragments.empty())
+    context().queue.enqueueReadBuffer(pass.fragments(), CL_TRUE, 0, o.fragments.size() * 4,
+                                      o.fragments.data());
+  return o;
+}
+
+// Occupied level-l voxels from the fragments (a level-l voxel holds a fragment).
+std::vector<uint8_t> occupancy(const Octree& o, uint32_t r, uint32_t level) {
+  const uint32_t n = r >> level;
+  std::vector<uint8_t> occ(size_t(n) * n * n, 0);
+  for (size_t f = 0; f < o.fragments.size() / RP_SVO_FRAGMENT_WORDS; ++f) {
+    const uint32_t key = o.fragments[RP_SVO_FRAGMENT_WORDS * f + RP_SVO_FRAGMENT_KEY];
+    const uint32_t x = key % r, y = (key / r) % r, z = key / (r * r);
+    occ[((size_t(z >> level) * n) + (y >> level)) * n + (x >> level)] = 1;
+  }
+  return occ;
+}
+
+void check_octree(const Octree& o, const Dense& d, bool exact) {
+  const uint32_t r = d.r, D = o.vol.depths;
+  ASSERT_EQ(o.header(RP_SVO_HDR_RESOLUTION), r);
+  ASSERT_EQ(o.header(RP_SVO_HDR_DEPTHS), D);
+  ASSERT_GT(o.vol.fragments, 1000u);
+  size_t value_diff = 0, uncovered = 0, checked = 0;
+  for (uint32_t k = 0; k < D; ++k) {
+    const uint32_t level = D - 1 - k, n = r >> level, side = 1u << k;
+    const std::vector<uint8_t> occ = occupancy(o, r, level);
+    uint32_t expected = 0, missing = 0, extra = 0;
+    for (uint32_t az = 0; az < side; ++az)
+      for (uint32_t ay = 0; ay < side; ++ay)
+        for (uint32_t ax = 0; ax < side; ++ax) {
+          bool want = false;
+          for (uint32_t s = 0; s < 27 && !want; ++s) {
+            const uint32_t x = 2 * ax + s % 3, y = 2 * ay + (s / 3) % 3, z = 2 * az + s / 9;
+            if (x < n && y < n && z < n) want = occ[(size_t(z) * n + y) * n + x] != 0;
+          }
+          const int64_t node = o.find(k, ax, ay, az);
+          const bool got = node >= 0 && o.node_word(uint32_t(node), 1) != RP_SVO_NO_BRICK;
+          expected += want;
+          missing += want && !got;
+          extra += got && !want;
+          if (!got) continue;
+          const uint32_t brick = o.node_word(uint32_t(node), 1);
+          EXPECT_NE(o.node_word(uint32_t(node), 0) & RP_SVO_NODE_BRICK, 0u);
+          const uint32_t dirs = level == 0 ? 1 : 6;
+          for (uint32_t dir = 0; dir < dirs; ++dir)
+            for (uint32_t s = 0; s < 27; ++s) {
+              const uint32_t x = 2 * ax + s % 3, y = 2 * ay + (s / 3) % 3, z = 2 * az + s / 9;
+              for (int c = 0; c < 4; ++c) {
+                const float want_v = x < n && y < n && z < n ? d.at(level, dir, x, y, z, c) : 0.0f;
+                const float got_v = o.sample(brick + 27 * dir, s, c);
+                ++checked;
+                const bool same =
+                    exact ? std::memcmp(&want_v, &got_v, 4) == 0
+                          : std::fabs(got_v - want_v) <= 1e-3f * std::fabs(want_v) + 1e-6f;
+                value_diff += !same;
+              }
+            }
+        }
+    EXPECT_EQ(missing, 0u) << "depth " << k;
+    EXPECT_EQ(extra, 0u) << "depth " << k;
+    EXPECT_EQ(o.vol.bricks_per_depth[k], expected) << "depth " << k;
+    if (k > 0) {
+      EXPECT_EQ(o.vol.nodes_per_depth[k], 8 * o.vol.bricks_per_depth[k - 1]);
+    }
+    // Every non-empty dense voxel lies in a node with a brick (where the octree has no node the
+    // dense volume is empty).
+    const uint32_t dirs = level == 0 ? 1 : 6;
+    for (uint32_t z = 0; z < n; ++z)
+      for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 0; x < n; ++x) {
+          bool any = false;
+          for (uint32_t dir = 0; dir < dirs; ++dir)
+            for (int c = 0; c < 4; ++c) any |= d.at(level, dir, x, y, z, c) != 0.0f;
+          if (!any) continue;
+          const int64_t node = o.find(k, x / 2, y / 2, z / 2);
+          uncovered += node < 0 || o.node_word(uint32_t(node), 1) == RP_SVO_NO_BRICK;
+        }
+  }
+  EXPECT_EQ(value_diff, 0u) << "of " << checked << " sample channels";
+  EXPECT_EQ(uncovered, 0u);
+  // Every fragment reaches its own leaf.
+  size_t unreachable = 0;
+  for (size_t f = 0; f < o.fragments.size() / RP_SVO_FRAGMENT_WORDS; ++f) {
+    const uint32_t key = o.fragments[RP_SVO_FRAGMENT_WORDS * f + RP_SVO_FRAGMENT_KEY];
+    const uint32_t x = key % r, y = (key / r) % r, z = key / (r * r);
+    const int64_t leaf = o.find(D - 1, x / 2, y / 2, z / 2);
+    unreachable += leaf < 0 || (o.node_word(uint32_t(leaf), 0) & RP_SVO_NODE_OWN) == 0 ||
+                   o.node_word(uint32_t(leaf), 1) == RP_SVO_NO_BRICK;
+  }
+  EXPECT_EQ(unreachable, 0u);
+}
+
+TEST(Svo, MatchesDenseVolumeFloatSamples) {
+  const uint32_t r = 32;
+  Scene s(r);
+  const Dense d = build_dense(s, r);
+  const Octree o = build_octree(s, r, true);
+  check_octree(o, d, true);
+  std::printf("[ stats    ] R = %u: %u fragments, %llu nodes, %llu samples\n", r,
+              o.vol.fragments, (unsigned long long)o.vol.nodes(),
+              (unsigned long long)o.vol.samples);
+}
+
+TEST(Svo, MatchesDenseVolumeHalfSamples) {
+  const uint32_t r = 16;
+  Scene s(r);
+  const Dense d = build_dense(s, r);
+  const Octree o = build_octree(s, r, false);
+  check_octree(o, d, false);
+}
+
+TEST(Svo, BitIdenticalRepeats) {
+  const uint32_t r = 32;
+  Scene s(r);
+  const Octree a = build_octree(s, r, false);
+  const Octree b = build_octree(s, r, false);
+  ASSERT_EQ(a.vol.nodes(), b.vol.nodes());
+  ASSERT_EQ(a.vol.samples, b.vol.samples);
+  const size_t used = (size_t(a.header(RP_SVO_HDR_BRICK_OFFSET)) * 16 + a.vol.samples * 8) / 4;
+  const size_t nodes_end = 4 * RP_SVO_HEADER_FLOAT4S + 2 * a.vol.nodes();
+  EXPECT_TRUE(std::equal(a.words.begin(), a.words.begin() + long(nodes_end), b.words.begin()));
+  const size_t bricks = size_t(a.header(RP_SVO_HDR_BRICK_OFFSET)) * 4;
+  EXPECT_TRUE(std::equal(a.words.begin() + long(bricks), a.words.begin() + long(used),
+                         b.words.begin() + long(bricks)));
+}
+
+// Cone-tracing functions of common/cone_trace.h built twice: on the dense chain and, with
+// RP_GI_SVO, on the octree (float samples).
+const char* kConeKernels = R"CLC(
+__kernel void svo_cone_sample(__global const float4* voxels, uint resolution, uint levels,
+                              __global const float4* queries, __global const float4* dirs,
+                              __global float4* out) {
+  const size_t i = get_global_id(0);
+  const float3 d = dirs[i].xyz;
+  out[2 * i] = rp_cone_sample(voxels, resolution, rp_cone_top_level(levels),
+                              rp_voxel_cone_dirs(d), d * d, queries[i].xyz, queries[i].w,
+                              queries[i].xyz - d * 0.05f);
+  out[2 * i + 1] = rp_cone_trace_fine(voxels, resolution, levels, queries[i].xyz, d);
+}
+)CLC";
+
+std::vector<float> run_cones(bool svo, const ::cl::Buffer& volume, uint32_t r, uint32_t levels,
+                             const std::vector<float>& queries, const std::vector<float>& dirs) {
+  rp::cl::Context& ctx = context();
+  const std::string source = std::string(svo ? "#define RP_GI_SVO 1\n#define RP_SVO_FLOAT_SAMPLES 1\n" : "") +
+                             rp::cl::kernel_source("common/cone_trace.h") + kConeKernels;
+  ::cl::Program p(ctx.context, source);
+  try {
+    p.build(std::vector<::cl::Device>{ctx.info.device});
+  } catch (const ::cl::Error&) {
+    throw rp::cl::Error("svo cone kernels: " +
+                        p.getBuildInfo<CL_PROGRAM_BUILD_LOG>(ctx.info.device));
+  }
+  ::cl::Kernel k(p, "svo_cone_sample");
+  const size_t n = queries.size() / 4;
+  ::cl::Buffer q(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, queries.size() * 4,
+                 const_cast<float*>(queries.data()));
+  ::cl::Buffer d(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, dirs.size() * 4,
+                 const_cast<float*>(dirs.data()));
+  ::cl::Buffer out(ctx.context, CL_MEM_WRITE_ONLY, n * 2 * 16);
+  k.setArg(0, volume);
+  k.setArg(1, cl_uint(r));
+  k.setArg(2, cl_uint(levels));
+  k.setArg(3, q);
+  k.setArg(4, d);
+  k.setArg(5, out);
+  ctx.queue.enqueueNDRangeKernel(k, ::cl::NullRange, ::cl::NDRange(n));
+  std::vector<float> result(n * 8);
+  ctx.queue.enqueueReadBuffer(out, CL_TRUE, 0, result.size() * 4, result.data());
+  return result;
+}
+
+TEST(Svo, ConeSamplesEqualDense) {
+  const uint32_t r = 32;
+  Scene s(r);
+  const Dense d = build_dense(s, r);
+  const Octree o = build_octree(s, r, true);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<float> queries, dirs;
+  for (int i = 0; i < 4096; ++i) {
+    queries.insert(queries.end(), {0.98f * u(rng), 0.98f * u(rng), 0.98f * u(rng),
+                                   2.5f + 2.5f * u(rng)});  // levels 0 .. 5 (clamped to top)
+    float x = u(rng), y = u(rng), z = u(rng);
+    const float len = std::sqrt(x * x + y * y + z * z) + 1e-6f;
+    dirs.insert(dirs.end(), {x / len, y / len, z / len, 0.0f});
+  }
+  const std::vector<float> want = run_cones(false, d.buffer, r, d.levels, queries, dirs);
+  const std::vector<float> got = run_cones(true, o.vol.buffer, r, o.vol.levels(), queries, dirs);
+  size_t diff = 0, nonzero = 0;
+  for (size_t i = 0; i < want.size(); ++i) {
+    diff += std::memcmp(&want[i], &got[i], 4) != 0;
+    nonzero += want[i] != 0.0f;
+  }
+  EXPECT_EQ(diff, 0u);
+  EXPECT_GT(nonzero, want.size() / 4);
+}
+
+}  // namespace
+}  // namespace rp::test
