@@ -217,7 +217,8 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
 // --voxels against --gi-volume (each resolution list entry): "" when fine.
 std::string check_gi_volume(const CommonOptions& common, const std::vector<uint32_t>& voxels) {
   for (uint32_t v : voxels) {
-    if (v == 0 || render::gi_resolution_supported(common.gi_volume, v)) continue;
+    const bool svo_size = v == 256 || v == 512;  // the app's sizes (the renderer takes more)
+    if (v == 0 || svo_size == (common.gi_volume == render::GiVolume::kSvo)) continue;
     if (common.gi_volume == render::GiVolume::kSvo)
       return "--gi-volume svo takes --voxels 256 or 512, not " + std::to_string(v);
     return "--voxels " + std::to_string(v) + " needs --gi-volume svo (the dense volume takes 32, "
