@@ -51,21 +51,39 @@
 inline uint3 svo_unpack(uint c) { return (uint3)(c & 1023u, (c >> 10) & 1023u, c >> 20); }
 inline uint svo_pack(uint3 a) { return a.x | (a.y << 10) | (a.z << 20); }
 
-inline void svo_store(__global float4* pool, uint s, float4 v) {
+/* rgb (clamped to [0, 65408]) -> RGB9E5 (the EXT_texture_shared_exponent rule: shared exponent
+ * from the largest channel, mantissas rounded to nearest; the exponent from the float's bits
+ * rather than log2). */
+inline uint svo_pack_rgb(float3 c) {
+  c = fmin(fmax(c, 0.0f), 65408.0f); /* NaN -> 0 */
+  const float m = fmax(fmax(c.x, c.y), c.z);
+  int e = (int)((as_uint(m) >> 23) & 255u) - 127;  /* floor(log2 m) for normal m */
+  e = max(e, -16) + 16;                               /* biased shared exponent, 0 .. 31 */
+  float inv = as_float((uint)(151 - e) << 23);        /* 2^(24 - e) */
+  if ((uint)floor(m * inv + 0.5f) == 512u) {
+    ++e;
+    inv *= 0.5f;
+  }
+  const uint r = (uint)floor(c.x * inv + 0.5f), g = (uint)floor(c.y * inv + 0.5f),
+             b = (uint)floor(c.z * inv + 0.5f);
+  return r | (g << 9) | (b << 18) | ((uint)e << 27);
+}
+
+/* The brick pool as written by the builder: pool = the rgb plane (uints, or float4s with
+ * RP_SVO_FLOAT_SAMPLES), alpha = the opacity plane (bytes). */
+inline void svo_store(__global uint* pool, __global uchar* alpha, uint s, float4 v) {
 #if RP_SVO_FLOAT_SAMPLES
-  pool[s] = v;
+  (void)alpha;
+  ((__global float4*)pool)[s] = v;
 #else
-  vstore_half4(v, s, (__global half*)pool);
+  pool[s] = svo_pack_rgb(v.xyz);
+  alpha[s] = (uchar)(clamp(v.w, 0.0f, 1.0f) * 255.0f + 0.5f);
 #endif
 }
 
-inline float4 svo_pool_load(__global const float4* pool, uint s) {
-#if RP_SVO_FLOAT_SAMPLES
-  return pool[s];
-#else
-  return vload_half4(s, (__global const half*)pool);
-#endif
-}
+#define svo_pool_load rp_svo_pool_load
+#define SVO_POOL(svo, brick_offset) ((svo) + 4u * (brick_offset))
+#define SVO_ALPHA(svo, alpha_offset) ((__global uchar*)(svo) + (alpha_offset))
 
 __kernel void svo_clear_nodes(__global uint* svo, __global uint* own, __global uint* near,
                               uint first, uint count) {
@@ -212,12 +230,14 @@ __kernel void svo_inject(__global const uint* fragments, uint fragment_count,
 
 /* Leaves: own samples from the sums, as voxelize_resolve. */
 __kernel void svo_resolve(__global uint* svo, __global const uint* accum, uint first,
-                          uint count, uint brick_offset, uint leaf_brick_first) {
+                          uint count, uint brick_offset, uint alpha_offset,
+                          uint leaf_brick_first) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   const uint brick = SVO_NODE_WORDS(svo)[2u * (first + i) + 1u];
   if (brick == RP_SVO_NO_BRICK) return;
-  __global float4* pool = (__global float4*)svo + brick_offset;
+  __global uint* pool = SVO_POOL(svo, brick_offset);
+  __global uchar* alpha = SVO_ALPHA(svo, alpha_offset);
   for (uint o = 0; o < 8u; ++o) {
     __global const uint* acc = accum + svo_accum_index(brick, leaf_brick_first, o);
     float4 sum = convert_float4(vload4(0, acc)) * (1.0f / (float)(1u << RP_VOXEL_FIXED_BITS));
@@ -229,20 +249,22 @@ __kernel void svo_resolve(__global uint* svo, __global const uint* accum, uint f
       if (bits & 8u) sum.w = RP_VOXEL_SATURATED;
     }
     const float inv = 1.0f / fmax(sum.w, 1.0f);
-    svo_store(pool, brick + rp_svo_sample(o & 1u, (o >> 1) & 1u, o >> 2),
+    svo_store(pool, alpha, brick + rp_svo_sample(o & 1u, (o >> 1) & 1u, o >> 2),
               (float4)(sum.xyz * inv, fmin(sum.w, 1.0f)));
   }
 }
 
 /* Border samples of the nodes of `depth` (directions: 1 at the leaves, 6 above). */
 __kernel void svo_border(__global uint* svo, __global const uint* coords, uint first,
-                         uint count, uint depth, uint directions, uint brick_offset) {
+                         uint count, uint depth, uint directions, uint brick_offset,
+                         uint alpha_offset) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   __global const uint* nodes = SVO_NODE_WORDS(svo);
   const uint brick = nodes[2u * (first + i) + 1u];
   if (brick == RP_SVO_NO_BRICK) return;
-  __global float4* pool = (__global float4*)svo + brick_offset;
+  __global uint* pool = SVO_POOL(svo, brick_offset);
+  __global uchar* alpha = SVO_ALPHA(svo, alpha_offset);
   const uint3 a = svo_unpack(coords[first + i]);
   const uint side = 1u << depth;
   for (uint e = 1u; e < 8u; ++e) {
@@ -259,8 +281,8 @@ __kernel void svo_border(__global uint* svo, __global const uint* coords, uint f
       for (uint d = 0; d < directions; ++d) {
         const float4 v = src == RP_SVO_NO_BRICK
                              ? (float4)(0.0f)
-                             : svo_pool_load(pool, src + RP_SVO_BRICK_SAMPLES * d + from);
-        svo_store(pool, brick + RP_SVO_BRICK_SAMPLES * d + dst, v);
+                             : svo_pool_load(pool, alpha, src + RP_SVO_BRICK_SAMPLES * d + from);
+        svo_store(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst, v);
       }
     }
   }
@@ -268,41 +290,44 @@ __kernel void svo_border(__global uint* svo, __global const uint* coords, uint f
 
 /* Own samples of the nodes of `depth` (brick level `level` >= 1) from their children. */
 __kernel void svo_mips(__global uint* svo, __global const uint4* accum, uint first, uint count,
-                       uint level, uint brick_offset, uint leaf_brick_first) {
+                       uint level, uint brick_offset, uint alpha_offset,
+                       uint leaf_brick_first) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   __global const uint* nodes = SVO_NODE_WORDS(svo);
   const uint brick = nodes[2u * (first + i) + 1u];
   if (brick == RP_SVO_NO_BRICK) return;
-  __global float4* pool = (__global float4*)svo + brick_offset;
+  __global uint* pool = SVO_POOL(svo, brick_offset);
+  __global uchar* alpha = SVO_ALPHA(svo, alpha_offset);
   const uint children = nodes[2u * (first + i)] & RP_SVO_NODE_CHILD_MASK;
   for (uint o = 0; o < 8u; ++o) {
     const uint dst = rp_svo_sample(o & 1u, (o >> 1) & 1u, o >> 2);
     const uint cb = children == 0u ? RP_SVO_NO_BRICK : nodes[2u * (children + o) + 1u];
     if (cb == RP_SVO_NO_BRICK) { /* all eight children empty: the composite is 0 */
-      for (uint d = 0; d < 6u; ++d) svo_store(pool, brick + RP_SVO_BRICK_SAMPLES * d + dst, (float4)(0.0f));
+      for (uint d = 0; d < 6u; ++d)
+        svo_store(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst, (float4)(0.0f));
       continue;
     }
     if (level == 1u) { /* leaves: isotropic samples seen through their facing words */
       float4 iso[8];
       uint4 facing[8];
       for (uint c = 0; c < 8u; ++c) {
-        iso[c] = svo_pool_load(pool, cb + rp_svo_sample(c & 1u, (c >> 1) & 1u, c >> 2));
+        iso[c] = svo_pool_load(pool, alpha, cb + rp_svo_sample(c & 1u, (c >> 1) & 1u, c >> 2));
         facing[c] = accum[(RP_VOXEL_ACCUM_WORDS / 4u) *
                               ((cb - leaf_brick_first) / RP_SVO_BRICK_SAMPLES * 8u + c) + 1u];
       }
       for (uint d = 0; d < 6u; ++d) {
         float4 c8[8];
         for (uint c = 0; c < 8u; ++c) c8[c] = mips_facing(iso[c], facing[c], d);
-        svo_store(pool, brick + RP_SVO_BRICK_SAMPLES * d + dst, mips_composite(c8, d));
+        svo_store(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst, mips_composite(c8, d));
       }
     } else {
       for (uint d = 0; d < 6u; ++d) {
         float4 c8[8];
         for (uint c = 0; c < 8u; ++c)
-          c8[c] = svo_pool_load(pool, cb + RP_SVO_BRICK_SAMPLES * d +
-                                          rp_svo_sample(c & 1u, (c >> 1) & 1u, c >> 2));
-        svo_store(pool, brick + RP_SVO_BRICK_SAMPLES * d + dst, mips_composite(c8, d));
+          c8[c] = svo_pool_load(pool, alpha, cb + RP_SVO_BRICK_SAMPLES * d +
+                                                 rp_svo_sample(c & 1u, (c >> 1) & 1u, c >> 2));
+        svo_store(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst, mips_composite(c8, d));
       }
     }
   }

@@ -2,8 +2,8 @@
  * the meaning of nodes and bricks: shared/svo_layout.h. Used by the builder (svo.cl) and by
  * the cone tracer when the GI volume is the octree (common/cone_trace.h with RP_GI_SVO).
  *
- * Samples are RGBA half (vload_half4 / vstore_half4: core OpenCL, no cl_khr_fp16) unless the
- * kernel is built with -DRP_SVO_FLOAT_SAMPLES=1 (float4; the host writes the matching
+ * Samples are packed (RGB9E5 uint + opacity byte, shared/svo_layout.h) unless the kernel is
+ * built with -DRP_SVO_FLOAT_SAMPLES=1 (float4; the host writes the matching
  * RP_SVO_HDR_SAMPLE_BYTES).
  */
 #ifndef ROLYPOLY_COMMON_SVO_H
@@ -25,14 +25,30 @@ inline __global const uint* rp_svo_nodes(__global const float4* svo) {
   return (__global const uint*)(svo + RP_SVO_HEADER_FLOAT4S);
 }
 
+/* RGB9E5 -> rgb: mantissa * 2^(exponent - 15 - 9). */
+inline float3 rp_svo_unpack_rgb(uint w) {
+  const float scale = as_float(((w >> 27) + 103u) << 23); /* 2^(e - 24), e - 24 + 127 */
+  return (float3)((float)(w & 511u), (float)((w >> 9) & 511u), (float)((w >> 18) & 511u)) *
+         scale;
+}
+
+/* Sample s of a brick pool whose rgb plane starts at `pool` and opacity plane at `alpha`. */
+inline float4 rp_svo_pool_load(__global const uint* pool, __global const uchar* alpha, uint s) {
+#if RP_SVO_FLOAT_SAMPLES
+  (void)alpha;
+  return ((__global const float4*)pool)[s];
+#else
+  return (float4)(rp_svo_unpack_rgb(pool[s]), (float)alpha[s] * (1.0f / 255.0f));
+#endif
+}
+
 /* Brick-pool sample s (premultiplied rgb, opacity). */
 inline float4 rp_svo_load(__global const float4* svo, uint s) {
-  __global const float4* pool = svo + rp_svo_header(svo, RP_SVO_HDR_BRICK_OFFSET);
-#if RP_SVO_FLOAT_SAMPLES
-  return pool[s];
-#else
-  return vload_half4(s, (__global const half*)pool);
-#endif
+  __global const uint* pool =
+      (__global const uint*)(svo + rp_svo_header(svo, RP_SVO_HDR_BRICK_OFFSET));
+  __global const uchar* alpha =
+      (__global const uchar*)svo + rp_svo_header(svo, RP_SVO_HDR_ALPHA_OFFSET);
+  return rp_svo_pool_load(pool, alpha, s);
 }
 
 /* The node at `depth` with coordinate a (0 <= a < 2^depth per axis, unchecked): its index, or

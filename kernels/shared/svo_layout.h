@@ -36,13 +36,19 @@
  *       word 1: the brick's first sample in the brick pool (RP_SVO_NO_BRICK: none)
  *     nodes of one depth are contiguous, depth by depth: depth 0 is node 0, depth k+1 holds
  *     8 children per existing depth-k node, in the order of their parents (prefix sums).
- *   brick pool: at float4 header[RP_SVO_HDR_BRICK_OFFSET], samples of 8 bytes (RGBA half:
- *     vload_half4 / vstore_half4, rgb premultiplied radiance, a opacity; or 16 bytes, float4,
- *     when header[RP_SVO_HDR_SAMPLE_BYTES] is 16: tests compare bit for bit with the dense
- *     chain). A brick is 27 samples per direction, sample (i,j,k) at (k*3 + j)*3 + i:
- *       brick level 0 (leaves):  1 direction (isotropic), 27 samples (216 bytes in half)
- *       brick level >= 1:        6 directions (RP_DIR_* order), 162 samples (1296 bytes),
+ *   brick pool: samples of 5 bytes (header[RP_SVO_HDR_SAMPLE_BYTES] = 5): rgb (premultiplied
+ *     radiance) as one uint in the shared-exponent format RGB9E5 (9-bit mantissas, 5-bit
+ *     exponent, bias 15: values up to 65408, relative precision 2^-9 of the largest channel)
+ *     at uint s of the plane starting at float4 header[RP_SVO_HDR_BRICK_OFFSET], and the opacity
+ *     as one byte round(255 a) at byte header[RP_SVO_HDR_ALPHA_OFFSET] + s of the buffer; or,
+ *     when header[RP_SVO_HDR_SAMPLE_BYTES] is 16 (kernels built with RP_SVO_FLOAT_SAMPLES=1,
+ *     the tests' bit-exact comparison with the dense chain), float4 samples at that float4.
+ *     A brick is 27 samples per direction, sample (i,j,k) at (k*3 + j)*3 + i:
+ *       brick level 0 (leaves):  1 direction (isotropic), 27 samples (135 bytes packed)
+ *       brick level >= 1:        6 directions (RP_DIR_* order), 162 samples (810 bytes),
  *                                direction d's 27 samples at brick + 27 d
+ *     (half floats, 8 bytes, would put 512^3 of the demo at 267 MiB of bricks: over the
+ *     256 MB budget; 5 bytes: 167 MiB)
  *     samples with an index 2 along some axis are borders: copies of the neighbour node's own
  *     samples (the border transfer, svo.cl), 0 where that neighbour does not exist.
  *
@@ -67,9 +73,10 @@
 #define RP_SVO_HDR_NODES 2u        /* nodes in the pool */
 #define RP_SVO_HDR_BRICK_OFFSET 3u /* first float4 of the brick pool */
 #define RP_SVO_HDR_SAMPLES 4u      /* samples in the brick pool */
-#define RP_SVO_HDR_SAMPLE_BYTES 5u /* 8 (half) or 16 (float) */
+#define RP_SVO_HDR_SAMPLE_BYTES 5u /* 5 (packed RGB9E5 + alpha byte) or 16 (float) */
 #define RP_SVO_HDR_FRAGMENTS 6u    /* fragments the pool was built from */
 #define RP_SVO_HDR_LEVEL_START 7u  /* 7 .. 7+D: first node of each depth (+ the end) */
+#define RP_SVO_HDR_ALPHA_OFFSET 30u /* byte offset of the opacity plane (packed samples) */
 #define RP_SVO_MAX_DEPTHS 10u      /* R <= 1024 (voxel keys: 10 bits per axis) */
 
 #define RP_SVO_NODE_CHILD_MASK 0x3FFFFFFFu

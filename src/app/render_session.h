@@ -81,6 +81,7 @@ class RenderSession {
   rp::cl::Timing timing() const { return context_.timing; }
   const scene::SceneAssets& assets() const { return assets_; }
   uint32_t width() const { return renderer_->settings().width; }
+  const render::Renderer& renderer() const { return *renderer_; }
   uint32_t height() const { return renderer_->settings().height; }
 
  private:

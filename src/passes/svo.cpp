@@ -69,7 +69,7 @@ void SvoPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
 void SvoPass::allocate(render::SvoVolume& svo, size_t nodes, size_t samples) {
   svo.node_capacity = nodes;
   svo.sample_capacity = samples;
-  svo.sample_bytes = float_samples_ ? 16 : 8;
+  svo.sample_bytes = float_samples_ ? 16 : 5;
   svo.buffer = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, svo.buffer_bytes());
 }
 
@@ -100,7 +100,7 @@ void SvoPass::build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragments, u
   svo.resolution = resolution;
   svo.depths = gpu::rp_svo_log2(resolution);
   svo.fragments = count;
-  if (svo.buffer() == nullptr || svo.sample_bytes != (float_samples_ ? 16u : 8u))
+  if (svo.buffer() == nullptr || svo.sample_bytes != (float_samples_ ? 16u : 5u))
     allocate(svo, std::max<size_t>(4096, size_t(count) / 2),
              std::max<size_t>(1 << 16, size_t(count) * 8));
   for (int attempt = 0; attempt < 16; ++attempt)
@@ -116,6 +116,7 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   const cl_uint zero = 0;
   queue.enqueueFillBuffer(coords_, zero, 0, sizeof(cl_uint));  // the root's coordinate
   const cl_uint brick_offset = cl_uint(render::SvoVolume::brick_offset(svo.node_capacity));
+  const cl_uint alpha_offset = cl_uint(svo.alpha_offset());
 
   std::vector<uint32_t> first(D + 1, 0), nodes(D, 0), bricks(D, 0), brick_first(D, 0);
   nodes[0] = 1;
@@ -131,7 +132,7 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     clear_nodes_.setArg(2, near_);
     clear_nodes_.setArg(3, f0);
     clear_nodes_.setArg(4, n);
-    profiler.enqueue("svo_build", clear_nodes_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
+    profiler.enqueue("svo_nodes", clear_nodes_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
     if (count > 0) {
       flag_.setArg(0, fragments);
       flag_.setArg(1, cl_uint(count));
@@ -140,7 +141,7 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
       flag_.setArg(4, own_);
       flag_.setArg(5, cl_uint(k));
       flag_.setArg(6, cl_uint(D));
-      profiler.enqueue("svo_build", flag_, ::cl::NDRange(items(count)), ::cl::NDRange(kGroup));
+      profiler.enqueue("svo_nodes", flag_, ::cl::NDRange(items(count)), ::cl::NDRange(kGroup));
     }
     if (k > 0) {
       dilate_.setArg(0, svo.buffer);
@@ -150,7 +151,7 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
       dilate_.setArg(4, f0);
       dilate_.setArg(5, n);
       dilate_.setArg(6, cl_uint(k));
-      profiler.enqueue("svo_build", dilate_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
+      profiler.enqueue("svo_nodes", dilate_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
     }
     const cl_uint chunks = (n + kChunk - 1) / kChunk;
     count_.setArg(0, own_);
@@ -159,12 +160,12 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     count_.setArg(3, n);
     count_.setArg(4, cl_uint(kChunk));
     count_.setArg(5, sums_);
-    profiler.enqueue("svo_build", count_, ::cl::NDRange(items(chunks)), ::cl::NDRange(kGroup));
+    profiler.enqueue("svo_nodes", count_, ::cl::NDRange(items(chunks)), ::cl::NDRange(kGroup));
     scan_.setArg(0, sums_);
     scan_.setArg(1, chunks);
     scan_.setArg(2, totals_);
     scan_.setArg(3, cl_uint(k));
-    profiler.enqueue("svo_build", scan_, ::cl::NDRange(1), ::cl::NullRange);
+    profiler.enqueue("svo_nodes", scan_, ::cl::NDRange(1), ::cl::NullRange);
     cl_uint exist = 0;
     queue.enqueueReadBuffer(totals_, CL_TRUE, k * sizeof(cl_uint), sizeof(cl_uint), &exist);
     const bool leaf = k + 1 == D;
@@ -172,9 +173,13 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     const size_t need_nodes = size_t(f0) + n + (leaf ? 0 : 8 * size_t(exist));
     const size_t need_samples = samples + size_t(exist) * size;
     if (need_nodes > svo.node_capacity || need_samples > svo.sample_capacity) {
-      const size_t grow_nodes = need_nodes > svo.node_capacity ? need_nodes * 2 : svo.node_capacity;
-      const size_t grow_samples =
-          need_samples > svo.sample_capacity ? need_samples * 2 : svo.sample_capacity;
+      // 1/8 slack: a moving scene does not reallocate every frame; the first frame's few
+      // rounds each grow one depth's worth
+      const size_t grow_nodes =
+          need_nodes > svo.node_capacity ? need_nodes + need_nodes / 8 : svo.node_capacity;
+      const size_t grow_samples = need_samples > svo.sample_capacity
+                                      ? need_samples + need_samples / 8
+                                      : svo.sample_capacity;
       allocate(svo, grow_nodes, grow_samples);
       return false;
     }
@@ -192,7 +197,7 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     allocate_.setArg(9, cl_uint(samples));
     allocate_.setArg(10, cl_uint(size));
     allocate_.setArg(11, cl_uint(leaf ? 1 : 0));
-    profiler.enqueue("svo_build", allocate_, ::cl::NDRange(items(chunks)), ::cl::NDRange(kGroup));
+    profiler.enqueue("svo_nodes", allocate_, ::cl::NDRange(items(chunks)), ::cl::NDRange(kGroup));
     samples += size_t(exist) * size;
     first[k + 1] = f0 + n;
     if (!leaf) nodes[k + 1] = 8 * exist;
@@ -205,7 +210,7 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   const cl_uint accum_words = leaves * 8 * RP_VOXEL_ACCUM_WORDS;
   clear_accum_.setArg(0, accum_);
   clear_accum_.setArg(1, accum_words);
-  profiler.enqueue("svo_build", clear_accum_, ::cl::NDRange(items(accum_words)),
+  profiler.enqueue("svo_inject", clear_accum_, ::cl::NDRange(items(accum_words)),
                    ::cl::NDRange(kGroup));
   if (count > 0) {
     inject_.setArg(0, fragments);
@@ -215,15 +220,16 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     inject_.setArg(4, accum_);
     inject_.setArg(5, leaf_first);
     inject_.setArg(6, cl_uint(D));
-    profiler.enqueue("svo_build", inject_, ::cl::NDRange(items(count)), ::cl::NDRange(kGroup));
+    profiler.enqueue("svo_inject", inject_, ::cl::NDRange(items(count)), ::cl::NDRange(kGroup));
   }
   resolve_.setArg(0, svo.buffer);
   resolve_.setArg(1, accum_);
   resolve_.setArg(2, cl_uint(first[L]));
   resolve_.setArg(3, cl_uint(nodes[L]));
   resolve_.setArg(4, brick_offset);
-  resolve_.setArg(5, leaf_first);
-  profiler.enqueue("svo_build", resolve_, ::cl::NDRange(items(nodes[L])), ::cl::NDRange(kGroup));
+  resolve_.setArg(5, alpha_offset);
+  resolve_.setArg(6, leaf_first);
+  profiler.enqueue("svo_inject", resolve_, ::cl::NDRange(items(nodes[L])), ::cl::NDRange(kGroup));
   const auto border = [&](uint32_t k, cl_uint directions, const char* pass) {
     border_.setArg(0, svo.buffer);
     border_.setArg(1, coords_);
@@ -232,9 +238,10 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     border_.setArg(4, cl_uint(k));
     border_.setArg(5, directions);
     border_.setArg(6, brick_offset);
+    border_.setArg(7, alpha_offset);
     profiler.enqueue(pass, border_, ::cl::NDRange(items(nodes[k])), ::cl::NDRange(kGroup));
   };
-  border(L, 1, "svo_build");
+  border(L, 1, "svo_border");
   for (uint32_t level = 1; level < D; ++level) {
     const uint32_t k = D - 1 - level;
     mips_.setArg(0, svo.buffer);
@@ -243,9 +250,10 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     mips_.setArg(3, cl_uint(nodes[k]));
     mips_.setArg(4, cl_uint(level));
     mips_.setArg(5, brick_offset);
-    mips_.setArg(6, leaf_first);
+    mips_.setArg(6, alpha_offset);
+    mips_.setArg(7, leaf_first);
     profiler.enqueue("svo_mips", mips_, ::cl::NDRange(items(nodes[k])), ::cl::NDRange(kGroup));
-    border(k, 6, "svo_mips");
+    border(k, 6, "svo_border");
   }
 
   // The header (svo_layout.h).
@@ -257,9 +265,14 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   header_[RP_SVO_HDR_SAMPLES] = cl_uint(samples);
   header_[RP_SVO_HDR_SAMPLE_BYTES] = svo.sample_bytes;
   header_[RP_SVO_HDR_FRAGMENTS] = count;
+  header_[RP_SVO_HDR_ALPHA_OFFSET] = alpha_offset;
   for (uint32_t k = 0; k <= D; ++k) header_[RP_SVO_HDR_LEVEL_START + k] = first[k];
   queue.enqueueWriteBuffer(svo.buffer, CL_FALSE, 0, header_.size() * sizeof(cl_uint),
                            header_.data());
+  svo.scratch_bytes = uint64_t(fragment_capacity_) * RP_SVO_FRAGMENT_WORDS * 4 +
+                      uint64_t(scratch_nodes_) * 3 * 4 + (scratch_nodes_ / kChunk + 1) * 4 +
+                      uint64_t(scratch_fragments_) * 4 +
+                      uint64_t(scratch_leaves_) * 8 * RP_VOXEL_ACCUM_WORDS * 4;
   svo.nodes_per_depth = nodes;
   svo.bricks_per_depth = bricks;
   svo.samples = samples;

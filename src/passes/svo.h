@@ -1,8 +1,9 @@
 // Sparse voxel octree pass (issue 17, seed 001): the frame's fragment list at the octree's
 // resolution (the voxelizer in fragment mode), then the octree built top-down level by level
 // (flags, prefix-sum allocation), leaf injection, the bottom-up anisotropic mips and the
-// border transfer (kernels/svo.cl). Pass names "voxelize" (fragments), "svo_build" (nodes,
-// injection, leaf borders) and "svo_mips" (mips and their borders).
+// border transfer (kernels/svo.cl). Pass names: "voxelize" (the fragments), "svo_nodes" (the
+// top-down flags and allocation), "svo_inject" (leaf sums and values), "svo_mips" and
+// "svo_border" (the border transfer of every level).
 #pragma once
 
 #include <cstdint>

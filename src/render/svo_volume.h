@@ -19,12 +19,13 @@ struct SvoVolume {
   ::cl::Buffer buffer;      // header + node pool + brick pool (svo_layout.h)
   size_t node_capacity = 0;    // nodes the buffer holds
   size_t sample_capacity = 0;  // brick samples the buffer holds
-  uint32_t sample_bytes = 8;   // 8: RGBA half, 16: float4
+  uint32_t sample_bytes = 5;   // 5: packed (RGB9E5 uint + opacity byte), 16: float4
 
   // The last build: fragments, nodes and existing nodes (bricks) per depth, samples used.
   uint32_t fragments = 0;
   std::vector<uint32_t> nodes_per_depth, bricks_per_depth;
   uint64_t samples = 0;
+  uint64_t scratch_bytes = 0;  // the builder's buffers (fragments, flags, sums, leaf sums)
 
   // Levels as the dense chain counts them (log2 R + 1), what the cone tracer is given.
   uint32_t levels() const { return depths + 1; }
@@ -40,8 +41,22 @@ struct SvoVolume {
   static size_t brick_offset(size_t node_capacity) {
     return RP_SVO_HEADER_FLOAT4S + (node_capacity * 2 + 3) / 4;
   }
+  // The dense chain (level 0 + six directional volumes per level) at the same resolution, in
+  // float4: what the octree replaces.
+  static uint64_t dense_bytes(uint32_t r) {
+    uint64_t total = uint64_t(r) * r * r, n = r;
+    while (n > 1) {
+      n /= 2;
+      total += 6 * n * n * n;
+    }
+    return total * 16;
+  }
   size_t buffer_bytes() const {
     return (brick_offset(node_capacity) * 16) + sample_capacity * sample_bytes;
+  }
+  // Byte offset of the opacity plane (packed samples): after the rgb plane's uints.
+  size_t alpha_offset() const {
+    return sample_bytes == 16 ? 0 : brick_offset(node_capacity) * 16 + sample_capacity * 4;
   }
 };
 
