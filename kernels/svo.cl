@@ -60,12 +60,13 @@ inline uint svo_pack_rgb(float3 c) {
   int e = (int)((as_uint(m) >> 23) & 255u) - 127;  /* floor(log2 m) for normal m */
   e = max(e, -16) + 16;                               /* biased shared exponent, 0 .. 31 */
   float inv = as_float((uint)(151 - e) << 23);        /* 2^(24 - e) */
-  if ((uint)floor(m * inv + 0.5f) == 512u) {
+  /* round to nearest: the conversion truncates, i.e. floors these non-negative values */
+  if ((uint)(m * inv + 0.5f) == 512u) {
     ++e;
     inv *= 0.5f;
   }
-  const uint r = (uint)floor(c.x * inv + 0.5f), g = (uint)floor(c.y * inv + 0.5f),
-             b = (uint)floor(c.z * inv + 0.5f);
+  const uint r = (uint)(c.x * inv + 0.5f), g = (uint)(c.y * inv + 0.5f),
+             b = (uint)(c.z * inv + 0.5f);
   return r | (g << 9) | (b << 18) | ((uint)e << 27);
 }
 
@@ -78,6 +79,28 @@ inline void svo_store(__global uint* pool, __global uchar* alpha, uint s, float4
 #else
   pool[s] = svo_pack_rgb(v.xyz);
   alpha[s] = (uchar)(clamp(v.w, 0.0f, 1.0f) * 255.0f + 0.5f);
+#endif
+}
+
+/* Copies sample `from` to `to` as stored (the border transfer: no unpacking). */
+inline void svo_copy(__global uint* pool, __global uchar* alpha, uint to, uint from) {
+#if RP_SVO_FLOAT_SAMPLES
+  (void)alpha;
+  ((__global float4*)pool)[to] = ((__global const float4*)pool)[from];
+#else
+  pool[to] = pool[from];
+  alpha[to] = alpha[from];
+#endif
+}
+
+/* Stores the empty sample (rgb 0, opacity 0). */
+inline void svo_clear_sample(__global uint* pool, __global uchar* alpha, uint s) {
+#if RP_SVO_FLOAT_SAMPLES
+  (void)alpha;
+  ((__global float4*)pool)[s] = (float4)(0.0f);
+#else
+  pool[s] = 0u;
+  alpha[s] = (uchar)0;
 #endif
 }
 
@@ -279,10 +302,11 @@ __kernel void svo_border(__global uint* svo, __global const uint* coords, uint f
       const uint dst = rp_svo_sample(ev.x ? 2u : q.x, ev.y ? 2u : q.y, ev.z ? 2u : q.z);
       const uint from = rp_svo_sample(q.x, q.y, q.z); /* = dst - 2e in the neighbour */
       for (uint d = 0; d < directions; ++d) {
-        const float4 v = src == RP_SVO_NO_BRICK
-                             ? (float4)(0.0f)
-                             : svo_pool_load(pool, alpha, src + RP_SVO_BRICK_SAMPLES * d + from);
-        svo_store(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst, v);
+        if (src == RP_SVO_NO_BRICK)
+          svo_clear_sample(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst);
+        else
+          svo_copy(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst,
+                   src + RP_SVO_BRICK_SAMPLES * d + from);
       }
     }
   }
@@ -305,7 +329,7 @@ __kernel void svo_mips(__global uint* svo, __global const uint4* accum, uint fir
     const uint cb = children == 0u ? RP_SVO_NO_BRICK : nodes[2u * (children + o) + 1u];
     if (cb == RP_SVO_NO_BRICK) { /* all eight children empty: the composite is 0 */
       for (uint d = 0; d < 6u; ++d)
-        svo_store(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst, (float4)(0.0f));
+        svo_clear_sample(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst);
       continue;
     }
     if (level == 1u) { /* leaves: isotropic samples seen through their facing words */

@@ -51,7 +51,7 @@
  *   front-to-back accumulation c += (1 - A) c_s, A += (1 - A) a_s;
  *   stop when A >= RP_CONE_OPAQUE, when the sample point leaves [-1,1]^3, or after the step
  *   limit (RP_CONE_MAX_STEPS = 16 for s = 1/2: 1.4^16 t0 = 272 v0 lies past the box's diagonal
- *   for R <= 128; 32 for s = 1/4: 1.2^32 t0 = 428 v0).
+ *   for R <= 128; 32 for s = 1/4: 1.2^32 t0 = 428 v0; more past R = 128: rp_cone_max_steps).
  * The result is (c, A): c the radiance arriving along the cone (mean over its cross-section),
  * A its occlusion.
  *
@@ -365,6 +365,18 @@ inline float4 rp_cone_exit(__global const float4* voxels, uint resolution, uint 
   return rp_cone_volume(voxels, resolution, l, volume_dir, origin + dir * t);
 }
 
+/* Doublings of the resolution past 128 (levels - 8 for levels > 8, else 0): the step limits
+ * below were set for R <= 128, where a cone's last sample lies past the box's diagonal
+ * (sqrt 3 R voxels); at R = 256 and 512 (the octree) a cone would stop halfway, so each
+ * doubling adds two half-diameter steps (1.4^2 ~ 2), four quarter-diameter steps and one
+ * full-diameter step (1.8). R <= 128 is unchanged. */
+inline int rp_cone_extra_levels(uint levels) { return levels > 8u ? (int)levels - 8 : 0; }
+
+/* Half-diameter steps of a cone: RP_CONE_MAX_STEPS, + 2 per doubling past R = 128. */
+inline int rp_cone_max_steps(uint levels) {
+  return RP_CONE_MAX_STEPS + 2 * rp_cone_extra_levels(levels);
+}
+
 /* One cone from `origin` along unit `dir` (apex at origin): (radiance rgb, occlusion a).
  * fine = 0: half-diameter steps, 1: quarter-diameter steps (compile-time constants at every call
  * site, so the branches fold). jitter < 0: quadrilinear samples; jitter in [0, 1): single-level
@@ -377,7 +389,7 @@ inline float4 rp_cone_march(__global const float4* voxels, uint resolution, uint
   const float v0 = 2.0f / (float)resolution;
   const float growth = fine ? RP_CONE_GROWTH_FINE : RP_CONE_GROWTH;
   const float level_step = fine ? RP_CONE_LEVEL_STEP_FINE : RP_CONE_LEVEL_STEP;
-  const int max_steps = fine ? 2 * RP_CONE_MAX_STEPS : RP_CONE_MAX_STEPS;
+  const int max_steps = (fine ? 2 : 1) * rp_cone_max_steps(levels);
   float t = RP_CONE_T0 * v0;
   float level = jitter < 0.0f ? 0.0f : jitter;
   float4 acc = (float4)(0.0f);
@@ -444,7 +456,7 @@ inline float4 rp_cone_trace_coarse(__global const float4* voxels, uint resolutio
   float t = RP_CONE_T0 * v0 * exp2(level);
   level += u_level;
   float4 acc = (float4)(0.0f);
-  const int max_steps = (int)levels;
+  const int max_steps = (int)levels + rp_cone_extra_levels(levels);
   for (int k = 0; k < max_steps; ++k) {
     const float3 q = origin + dir * t;
     if (fmax(fmax(fabs(q.x), fabs(q.y)), fabs(q.z)) > 1.0f) { /* left the box: its wall */

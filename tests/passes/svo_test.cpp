@@ -358,6 +358,43 @@ TEST(Svo, ConeSamplesEqualDense) {
   EXPECT_GT(nonzero, want.size() / 4);
 }
 
+// Measurement (printed, not a criterion): the octree's passes at 256^3 for the demo frame and
+// for its static room alone (box walls: what a "static room built once" scheme would keep),
+// third run of each (the voxelizer's static cache warm). Tells how much of the per-frame
+// rebuild an incremental insertion of the dynamic objects could save.
+TEST(Svo, DeviceTimesRoomOnlyVsFull) {
+  const uint32_t r = 256;
+  std::vector<std::pair<std::string, rp::cl::PassTimes>> rows;
+  uint32_t fragments[2] = {0, 0};
+  for (int room_only = 0; room_only < 2; ++room_only) {
+    Scene s(r);
+    if (room_only) {
+      std::vector<scene::MeshInstance> room;
+      for (const scene::MeshInstance& m : s.frame.instances)
+        if (!m.casts_shadow) room.push_back(m);
+      s.frame.instances = room;
+      s.frame.spheres.clear();
+      s.gpu->update(s.frame, 64, 64, kShadow, r);
+    }
+    passes::SvoPass pass(context(), programs());
+    render::SvoVolume vol;
+    rp::cl::PassTimes times;
+    for (int i = 0; i < 3; ++i) {
+      pass.run(s.profiler, *s.gpu, s.shadow, r, vol);
+      times = s.profiler.collect();
+    }
+    fragments[room_only] = vol.fragments;
+    rows.emplace_back(room_only ? "room only" : "demo frame", times);
+  }
+  for (const auto& [name, times] : rows) {
+    std::printf("[ stats    ] %s at 256^3:", name.c_str());
+    for (const auto& [pass, ms] : times) std::printf(" %s %.1f ms", pass.c_str(), ms);
+    std::printf("\n");
+  }
+  std::printf("[ stats    ] fragments: demo %u, room only %u\n", fragments[0], fragments[1]);
+  EXPECT_GT(fragments[0], fragments[1]);
+}
+
 // The whole renderer on either volume at the same resolution (16^3, 16x16 pixels: small enough
 // for oclgrind): the octree's packed samples give the dense frame to rounding, in the fast mode
 // (indirect, multi-bounce gathers) and the reference mode (16 cones per pixel). Packed samples.
