@@ -5,7 +5,7 @@
  * RP_VOXEL_FRAGMENTS): per fragment the fixed-point sums it adds and its level-0 voxel.
  * Per frame, top-down, for depth k = 0 .. D-1 (brick level l = D-1-k):
  *   svo_clear_nodes   the depth's nodes (8 per existing parent, or the root) start empty
- *   svo_flag          one work-item per fragment: its owner node at depth k (the child of
+ *   svo_flag          32 fragments a work-item: each one's owner node at depth k (the child of
  *                     its depth k-1 owner, kept in `cur`), OR-ed flags: own voxels non-empty,
  *                     and which low faces hold the fragment's level-l voxel (bit e: node
  *                     a - e must exist too, its border holds that voxel)
@@ -119,34 +119,50 @@ __kernel void svo_clear_nodes(__global uint* svo, __global uint* own, __global u
   near[first + i] = 0u;
 }
 
-/* Fragment f's owner at `depth` (see the header). resolution_log2 = D. */
+/* Fragments per work-item of svo_flag: consecutive fragments (written by the same voxelizer
+ * work-item) mostly share their shallow owners, so a work-item ORs their bits locally and
+ * issues one atomic per change of owner (contention on the top nodes otherwise). */
+#define SVO_FLAG_CHUNK 32u
+
+/* The owners at `depth` of fragments [SVO_FLAG_CHUNK g, + SVO_FLAG_CHUNK) (see the header).
+ * resolution_log2 = D. */
 __kernel void svo_flag(__global const uint* fragments, uint fragment_count, __global uint* svo,
                        __global uint* cur, volatile __global uint* own, uint depth,
                        uint resolution_log2) {
-  const uint f = (uint)get_global_id(0);
-  if (f >= fragment_count) return;
+  const uint begin = (uint)get_global_id(0) * SVO_FLAG_CHUNK;
+  if (begin >= fragment_count) return;
+  const uint end = min(begin + SVO_FLAG_CHUNK, fragment_count);
   const uint D = resolution_log2;
   const uint R = 1u << D;
-  const uint key = fragments[RP_SVO_FRAGMENT_WORDS * f + RP_SVO_FRAGMENT_KEY];
-  const uint3 v0 = (uint3)(key & (R - 1u), (key >> D) & (R - 1u), key >> (2u * D));
   const uint level = D - 1u - depth;
-  const uint3 v = v0 >> level;     /* level-l voxel */
-  const uint3 a = v >> 1;          /* node coordinate at this depth */
   __global const uint* nodes = SVO_NODE_WORDS(svo);
-  uint node = 0u;
-  if (depth > 0u) {
-    const uint child = nodes[2u * cur[f]] & RP_SVO_NODE_CHILD_MASK;
-    node = child + ((a.x & 1u) | ((a.y & 1u) << 1) | ((a.z & 1u) << 2));
+  uint last = 0xFFFFFFFFu, pending = 0u;
+  for (uint f = begin; f < end; ++f) {
+    const uint key = fragments[RP_SVO_FRAGMENT_WORDS * f + RP_SVO_FRAGMENT_KEY];
+    const uint3 v0 = (uint3)(key & (R - 1u), (key >> D) & (R - 1u), key >> (2u * D));
+    const uint3 v = v0 >> level; /* level-l voxel */
+    const uint3 a = v >> 1;      /* node coordinate at this depth */
+    uint node = 0u;
+    if (depth > 0u) {
+      const uint child = nodes[2u * cur[f]] & RP_SVO_NODE_CHILD_MASK;
+      node = child + ((a.x & 1u) | ((a.y & 1u) << 1) | ((a.z & 1u) << 2));
+    }
+    cur[f] = node;
+    /* low faces: v on the node's low side (v = 2a) with a neighbour a - e inside the grid */
+    const uint m = ((v.x & 1u) == 0u && a.x > 0u ? 1u : 0u) |
+                   ((v.y & 1u) == 0u && a.y > 0u ? 2u : 0u) |
+                   ((v.z & 1u) == 0u && a.z > 0u ? 4u : 0u);
+    uint bits = RP_SVO_FLAG_OWN;
+    for (uint e = 1u; e < 8u; ++e)
+      if ((e & m) == e) bits |= 1u << e;
+    if (node != last) {
+      if (last != 0xFFFFFFFFu) atomic_or(own + last, pending);
+      last = node;
+      pending = 0u;
+    }
+    pending |= bits;
   }
-  cur[f] = node;
-  /* low faces: v on the node's low side (v = 2a) with a neighbour a - e inside the grid */
-  const uint m = ((v.x & 1u) == 0u && a.x > 0u ? 1u : 0u) |
-                 ((v.y & 1u) == 0u && a.y > 0u ? 2u : 0u) |
-                 ((v.z & 1u) == 0u && a.z > 0u ? 4u : 0u);
-  uint bits = RP_SVO_FLAG_OWN;
-  for (uint e = 1u; e < 8u; ++e)
-    if ((e & m) == e) bits |= 1u << e;
-  atomic_or(own + node, bits);
+  atomic_or(own + last, pending);
 }
 
 __kernel void svo_dilate(__global uint* svo, __global const uint* own, volatile __global uint* near,

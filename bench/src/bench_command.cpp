@@ -178,7 +178,8 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
     std::printf("  octree %u^3 (last frame): %u fragments, %llu nodes (node pool %.1f MiB), "
                 "%llu brick samples of %u bytes (brick pool %.1f MiB), buffer %.1f MiB, build "
                 "scratch %.1f MiB; the dense chain at %u^3 would be %.1f MiB\n",
-                o.resolution, o.fragments, (unsigned long long)o.nodes(), double(o.node_bytes()) * mb,
+                o.resolution, o.fragments, (unsigned long long)o.nodes(),
+                double(o.node_bytes()) * mb,
                 (unsigned long long)o.samples, o.sample_bytes, double(o.brick_bytes()) * mb,
                 double(o.buffer_bytes()) * mb, double(o.scratch_bytes) * mb, o.resolution,
                 double(render::SvoVolume::dense_bytes(o.resolution)) * mb);

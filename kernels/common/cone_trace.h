@@ -288,7 +288,8 @@ inline float4 rp_cone_directional(__global const float4* voxels, uint resolution
   const int3 ar = convert_int3(clamp(floor((apex + 1.0f) * (0.5f * nf)), -1.0f, nf));
   const int ax = ar.x, ay = ar.y, az = ar.z;
   const int x0 = (int)x0u.x, y0 = (int)x0u.y, z0 = (int)x0u.z;
-  const int x1 = min(x0 + 1, (int)n - 1), y1 = min(y0 + 1, (int)n - 1), z1 = min(z0 + 1, (int)n - 1);
+  const int last = (int)n - 1;
+  const int x1 = min(x0 + 1, last), y1 = min(y0 + 1, last), z1 = min(z0 + 1, last);
   const bool px = dirs.x == RP_DIR_POS_X, py = dirs.y == RP_DIR_POS_Y, pz = dirs.z == RP_DIR_POS_Z;
   const float wx0 = (px ? x0 > ax : x0 < ax) ? w.x : 0.0f;
   const float wx1 = (px ? x1 > ax : x1 < ax) ? w.x : 0.0f;

@@ -11,6 +11,7 @@ namespace {
 
 constexpr size_t kGroup = 64;
 constexpr uint32_t kChunk = 256;  // nodes per work-item of svo_count / svo_allocate
+constexpr uint32_t kFlagChunk = 32;  // fragments per work-item of svo_flag (SVO_FLAG_CHUNK)
 
 std::string svo_options(bool float_samples) {
   return "-DRP_VOXEL_FIXED_BITS=" + std::to_string(render::kVoxelFixedBits) +
@@ -141,7 +142,8 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
       flag_.setArg(4, own_);
       flag_.setArg(5, cl_uint(k));
       flag_.setArg(6, cl_uint(D));
-      profiler.enqueue("svo_nodes", flag_, ::cl::NDRange(items(count)), ::cl::NDRange(kGroup));
+      const size_t flag_items = items((count + kFlagChunk - 1) / kFlagChunk);
+      profiler.enqueue("svo_nodes", flag_, ::cl::NDRange(flag_items), ::cl::NDRange(kGroup));
     }
     if (k > 0) {
       dilate_.setArg(0, svo.buffer);

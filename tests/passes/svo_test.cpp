@@ -304,7 +304,8 @@ __kernel void svo_cone_sample(__global const float4* voxels, uint resolution, ui
 std::vector<float> run_cones(bool svo, const ::cl::Buffer& volume, uint32_t r, uint32_t levels,
                              const std::vector<float>& queries, const std::vector<float>& dirs) {
   rp::cl::Context& ctx = context();
-  const std::string source = std::string(svo ? "#define RP_GI_SVO 1\n#define RP_SVO_FLOAT_SAMPLES 1\n" : "") +
+  const std::string source =
+      std::string(svo ? "#define RP_GI_SVO 1\n#define RP_SVO_FLOAT_SAMPLES 1\n" : "") +
                              rp::cl::kernel_source("common/cone_trace.h") + kConeKernels;
   ::cl::Program p(ctx.context, source);
   try {
