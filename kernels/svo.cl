@@ -306,11 +306,32 @@ __kernel void svo_border(__global uint* svo, __global const uint* coords, uint f
   __global uchar* alpha = SVO_ALPHA(svo, alpha_offset);
   const uint3 a = svo_unpack(coords[first + i]);
   const uint side = 1u << depth;
+  /* the node's ancestors (path[j]: depth j), so that a neighbour's descent starts at the
+   * deepest ancestor they share instead of the root (usually the parent) */
+  uint path[RP_SVO_MAX_DEPTHS];
+  path[0] = 0u;
+  for (uint j = 1u; j < depth; ++j) {
+    const uint s = depth - j;
+    path[j] = (nodes[2u * path[j - 1u]] & RP_SVO_NODE_CHILD_MASK) +
+              (((a.x >> s) & 1u) | (((a.y >> s) & 1u) << 1) | (((a.z >> s) & 1u) << 2));
+  }
   for (uint e = 1u; e < 8u; ++e) {
     const uint3 ev = (uint3)(e & 1u, (e >> 1) & 1u, e >> 2);
     const uint3 b = a + ev;
     uint src = RP_SVO_NO_BRICK;
-    if (b.x < side && b.y < side && b.z < side) src = rp_svo_find_brick(nodes, depth, b);
+    if (b.x < side && b.y < side && b.z < side) {
+      /* highest differing coordinate bit h: ancestors agree above depth depth - 1 - h */
+      const uint h = 31u - clz((a.x ^ b.x) | (a.y ^ b.y) | (a.z ^ b.z));
+      uint idx = path[depth - 1u - h];
+      for (uint j = depth - h; j <= depth && idx != 0xFFFFFFFFu; ++j) {
+        const uint child = nodes[2u * idx] & RP_SVO_NODE_CHILD_MASK;
+        const uint s = depth - j;
+        idx = child == 0u ? 0xFFFFFFFFu
+                          : child + (((b.x >> s) & 1u) | (((b.y >> s) & 1u) << 1) |
+                                     (((b.z >> s) & 1u) << 2));
+      }
+      if (idx != 0xFFFFFFFFu) src = nodes[2u * idx + 1u];
+    }
     /* the samples with index 2 exactly on the axes of e: per axis 2 if e_i else 0..1 */
     for (uint s = 0; s < 8u; ++s) {
       const uint3 q = (uint3)(s & 1u, (s >> 1) & 1u, s >> 2); /* own-sample index */
