@@ -781,11 +781,36 @@ inline void vx_accumulate_span(volatile __global uint* accum, volatile __global 
 #undef VX_FIXED_SPAN
   RP_SPAN_TO_ARRAY(voxel, lv);
   const uint one = vx_fixed(1.0f);
+#ifdef RP_VOXEL_FRAGMENTS
+  /* one slot reservation for the span's fragments (the counter is the pass's hot spot: one
+   * atomic per fragment otherwise); every such fragment has opacity one, never all zero */
+  uint hits = 0;
+  for (int i = 0; i < n_lanes; ++i) hits += lh[i] ? 1u : 0u;
+  if (hits == 0u) return;
+  uint slot = atomic_add(overflow, hits);
+  for (int i = 0; i < n_lanes; ++i) {
+    if (!lh[i]) continue;
+    if (slot < overflow[1]) {
+      const uint3 f = vx_facing_words((float3)(nx[i], ny[i], nz[i]), 1.0f);
+      volatile __global uint* frag = accum + RP_SVO_FRAGMENT_WORDS * slot;
+      frag[0] = lr[i];
+      frag[1] = lg[i];
+      frag[2] = lb[i];
+      frag[3] = one;
+      frag[4] = f.x;
+      frag[5] = f.y;
+      frag[6] = f.z;
+      frag[RP_SVO_FRAGMENT_KEY] = lv[i];
+    }
+    ++slot;
+  }
+#else
   for (int i = 0; i < n_lanes; ++i)
     if (lh[i]) {
       vx_sink(accum, overflow, lv[i], (uint4)(lr[i], lg[i], lb[i], one),
               vx_facing_words((float3)(nx[i], ny[i], nz[i]), 1.0f));
     }
+#endif
 }
 
 /* The voxel (x, y, z) of lanes at (iu, iv, id) in their (u, v, d) frame. */

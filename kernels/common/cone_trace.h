@@ -371,7 +371,10 @@ inline float4 rp_cone_exit(__global const float4* voxels, uint resolution, uint 
  * (sqrt 3 R voxels); at R = 256 and 512 (the octree) a cone would stop halfway, so each
  * doubling adds two half-diameter steps (1.4^2 ~ 2), four quarter-diameter steps and one
  * full-diameter step (1.8). R <= 128 is unchanged. */
-inline int rp_cone_extra_levels(uint levels) { return levels > 8u ? (int)levels - 8 : 0; }
+inline int rp_cone_extra_levels(uint levels) {
+  /* in floats: the integer form compiles to llvm.usub.sat, which oclgrind 21.10 cannot run */
+  return (int)fmax((float)levels - 8.0f, 0.0f);
+}
 
 /* Half-diameter steps of a cone: RP_CONE_MAX_STEPS, + 2 per doubling past R = 128. */
 inline int rp_cone_max_steps(uint levels) {
