@@ -273,7 +273,7 @@ std::string check_pathtrace(const CLI::App* cmd, const CommonOptions& common) {
     return check_bounces(common);
   }
   for (const char* name : {"--device", "--visibility", "--shadow-size", "--shadows",
-                           "--texture-filter", "--bloom-strength"})
+                           "--texture-filter", "--bloom-strength", "--gi-volume"})
     if (cmd->count(name))
       return std::string(name) + " does not apply to --quality pathtraced (the path tracer "
                                  "runs on the host's cores, without post-processing)";

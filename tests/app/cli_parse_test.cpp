@@ -373,6 +373,8 @@ TEST(ParseCli, GiVolumeAndItsResolutions) {
   EXPECT_EQ(unknown.exit_code, 2);
   EXPECT_NE(unknown.message.find("--gi-volume"), std::string::npos) << unknown.message;
   EXPECT_EQ(exit_of({"render", "--voxels", "1024"}).exit_code, 2);
+  // the path tracer has no GI volume
+  EXPECT_EQ(exit_of({"render", "--quality", "pathtraced", "--gi-volume", "svo"}).exit_code, 2);
 }
 
 }  // namespace
