@@ -20,7 +20,8 @@ namespace rp::passes {
 
 class SvoPass {
  public:
-  // float_samples: float4 brick samples instead of RGBA half (tests compare bit for bit).
+  // float_samples: float4 brick samples instead of the packed 5-byte ones (tests compare bit
+  // for bit with the dense chain).
   SvoPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
           bool float_samples = false);
 
