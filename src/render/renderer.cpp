@@ -123,10 +123,13 @@ void Renderer::resize(uint32_t width, uint32_t height) {
 }
 
 void Renderer::set_debug_view(const passes::DebugViewSettings& view) {
-  if (view.view == passes::DebugView::kVoxels && (view.level >= gi_levels() || view.dir >= 6))
+  // The octree holds levels 0 .. log2 R - 1 (the dense chain's 1^3 top level is never traced).
+  const uint32_t view_levels =
+      settings_.gi_volume == GiVolume::kSvo ? gi_levels() - 1 : gi_levels();
+  if (view.view == passes::DebugView::kVoxels && (view.level >= view_levels || view.dir >= 6))
     throw rp::cl::Error("voxel view: level " + std::to_string(view.level) + " direction " +
                         std::to_string(view.dir) + " does not exist (levels 0.." +
-                        std::to_string(voxels_.levels - 1) + ", directions 0..5)");
+                        std::to_string(view_levels - 1) + ", directions 0..5)");
   view_ = view;
   update_light_components();
 }
