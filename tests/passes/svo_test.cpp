@@ -279,6 +279,30 @@ TEST(Svo, GpuLayoutsAndUncachedMatchDense) {
   check_octree(o, d, true);
 }
 
+// A build that starts with pools far too small grows them (restarting the build) and ends with
+// the same octree.
+TEST(Svo, GrowsTooSmallPools) {
+  const uint32_t r = 16;
+  Scene s(r);
+  const Dense d = build_dense(s, r);
+  passes::SvoPass pass(context(), programs(), true);
+  Octree o;
+  o.vol.node_capacity = 9;
+  o.vol.sample_capacity = 10;
+  o.vol.sample_bytes = 16;
+  o.vol.buffer = ::cl::Buffer(context().context, CL_MEM_READ_WRITE, o.vol.buffer_bytes());
+  pass.run(s.profiler, *s.gpu, s.shadow, r, o.vol);
+  s.profiler.collect();
+  EXPECT_GT(o.vol.node_capacity, 9u);
+  EXPECT_GT(o.vol.sample_capacity, 10u);
+  o.words.resize(o.vol.buffer_bytes() / 4);
+  context().queue.enqueueReadBuffer(o.vol.buffer, CL_TRUE, 0, o.words.size() * 4, o.words.data());
+  o.fragments.resize(size_t(o.vol.fragments) * RP_SVO_FRAGMENT_WORDS);
+  context().queue.enqueueReadBuffer(pass.fragments(), CL_TRUE, 0, o.fragments.size() * 4,
+                                    o.fragments.data());
+  check_octree(o, d, true);
+}
+
 TEST(Svo, MatchesDenseVolumePackedSamples) {
   const uint32_t r = 16;
   Scene s(r);
