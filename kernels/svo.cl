@@ -165,6 +165,33 @@ __kernel void svo_flag(__global const uint* fragments, uint fragment_count, __gl
   atomic_or(own + last, pending);
 }
 
+/* path[j] = the ancestor at depth j (0 .. depth-1) of the node at `depth` with coordinate a. */
+inline void svo_path(__global const uint* nodes, uint depth, uint3 a, uint* path) {
+  path[0] = 0u;
+  for (uint j = 1u; j < depth; ++j) {
+    const uint s = depth - j;
+    path[j] = (nodes[2u * path[j - 1u]] & RP_SVO_NODE_CHILD_MASK) +
+              (((a.x >> s) & 1u) | (((a.y >> s) & 1u) << 1) | (((a.z >> s) & 1u) << 2));
+  }
+}
+
+/* The node at `depth` with coordinate b (!= a, inside the grid), descending from the deepest
+ * ancestor it shares with a (path: svo_path of a) instead of the root; 0xFFFFFFFF when it is
+ * not in the tree. The ancestors agree above depth - 1 - h, h = the highest differing bit. */
+inline uint svo_find_near(__global const uint* nodes, const uint* path, uint depth, uint3 a,
+                          uint3 b) {
+  const uint h = 31u - clz((a.x ^ b.x) | (a.y ^ b.y) | (a.z ^ b.z));
+  uint idx = path[depth - 1u - h];
+  for (uint j = depth - h; j <= depth && idx != 0xFFFFFFFFu; ++j) {
+    const uint child = nodes[2u * idx] & RP_SVO_NODE_CHILD_MASK;
+    const uint s = depth - j;
+    idx = child == 0u ? 0xFFFFFFFFu
+                      : child + (((b.x >> s) & 1u) | (((b.y >> s) & 1u) << 1) |
+                                 (((b.z >> s) & 1u) << 2));
+  }
+  return idx;
+}
+
 __kernel void svo_dilate(__global uint* svo, __global const uint* own, volatile __global uint* near,
                          __global const uint* coords, uint first, uint count, uint depth) {
   const uint i = (uint)get_global_id(0);
@@ -173,10 +200,12 @@ __kernel void svo_dilate(__global uint* svo, __global const uint* own, volatile 
   if (bits == 0u) return;
   const uint3 a = svo_unpack(coords[first + i]);
   __global const uint* nodes = SVO_NODE_WORDS(svo);
+  uint path[RP_SVO_MAX_DEPTHS];
+  svo_path(nodes, depth, a, path);
   for (uint e = 1u; e < 8u; ++e) {
     if ((bits & (1u << e)) == 0u) continue;
     const uint3 b = a - (uint3)(e & 1u, (e >> 1) & 1u, e >> 2);
-    const uint t = rp_svo_find(nodes, depth, b);
+    const uint t = svo_find_near(nodes, path, depth, a, b);
     if (t != 0xFFFFFFFFu) atomic_or(near + t, 1u);
   }
 }
@@ -306,30 +335,16 @@ __kernel void svo_border(__global uint* svo, __global const uint* coords, uint f
   __global uchar* alpha = SVO_ALPHA(svo, alpha_offset);
   const uint3 a = svo_unpack(coords[first + i]);
   const uint side = 1u << depth;
-  /* the node's ancestors (path[j]: depth j), so that a neighbour's descent starts at the
-   * deepest ancestor they share instead of the root (usually the parent) */
+  /* the node's ancestors, so that a neighbour's descent starts at the deepest ancestor they
+   * share instead of the root (usually the parent) */
   uint path[RP_SVO_MAX_DEPTHS];
-  path[0] = 0u;
-  for (uint j = 1u; j < depth; ++j) {
-    const uint s = depth - j;
-    path[j] = (nodes[2u * path[j - 1u]] & RP_SVO_NODE_CHILD_MASK) +
-              (((a.x >> s) & 1u) | (((a.y >> s) & 1u) << 1) | (((a.z >> s) & 1u) << 2));
-  }
+  svo_path(nodes, depth, a, path);
   for (uint e = 1u; e < 8u; ++e) {
     const uint3 ev = (uint3)(e & 1u, (e >> 1) & 1u, e >> 2);
     const uint3 b = a + ev;
     uint src = RP_SVO_NO_BRICK;
     if (b.x < side && b.y < side && b.z < side) {
-      /* highest differing coordinate bit h: ancestors agree above depth depth - 1 - h */
-      const uint h = 31u - clz((a.x ^ b.x) | (a.y ^ b.y) | (a.z ^ b.z));
-      uint idx = path[depth - 1u - h];
-      for (uint j = depth - h; j <= depth && idx != 0xFFFFFFFFu; ++j) {
-        const uint child = nodes[2u * idx] & RP_SVO_NODE_CHILD_MASK;
-        const uint s = depth - j;
-        idx = child == 0u ? 0xFFFFFFFFu
-                          : child + (((b.x >> s) & 1u) | (((b.y >> s) & 1u) << 1) |
-                                     (((b.z >> s) & 1u) << 2));
-      }
+      const uint idx = svo_find_near(nodes, path, depth, a, b);
       if (idx != 0xFFFFFFFFu) src = nodes[2u * idx + 1u];
     }
     /* the samples with index 2 exactly on the axes of e: per axis 2 if e_i else 0..1 */
