@@ -31,9 +31,9 @@
 /* Whether the cell (level `lc` voxel v) holds anything. */
 inline bool bounce_cell_occupied(__global const float4* voxels, uint resolution, uint lc,
                                  int3 v) {
-  if (lc == 0u) return rp_voxel_fetch(voxels, resolution, 0u, 0u, v).w > 0.0f;
+  if (lc == 0u) return rp_cone_fetch(voxels, resolution, 0u, 0u, v).w > 0.0f;
   for (uint d = 0; d < 6u; ++d)
-    if (rp_voxel_fetch(voxels, resolution, lc, d, v).w > 0.0f) return true;
+    if (rp_cone_fetch(voxels, resolution, lc, d, v).w > 0.0f) return true;
   return false;
 }
 

@@ -21,6 +21,9 @@
  */
 #include "shared/types.h"
 #include "shared/voxel_layout.h"
+#ifdef RP_GI_SVO
+#include "common/svo.h"
+#endif
 #include "common/colour.h"
 #include "common/math.h"
 
@@ -127,7 +130,9 @@ __kernel void debug_view_voxels(__global const FrameConstants* frame,
   float4 acc = (float4)(0.0f);
   if (t_enter < t_exit) {
     const int n = (int)rp_voxel_level_size(voxel_resolution, level);
+#ifndef RP_GI_SVO
     __global const float4* vol = voxels + rp_voxel_offset(voxel_resolution, level, dir);
+#endif
     const float cell = 2.0f / (float)n;
     /* Start inside the first voxel: grid position of the entry point, clamped into the grid. */
     const float3 g = ((origin + d * t_enter) + 1.0f) / cell;
@@ -138,7 +143,11 @@ __kernel void debug_view_voxels(__global const FrameConstants* frame,
     float3 t_max = (next_face - origin) * inv;
     const float3 t_delta = fabs(cell * inv);
     for (int i = 0; i < 3 * n; ++i) {
+#ifdef RP_GI_SVO /* voxels: the octree (shared/svo_layout.h) */
+      const float4 s = rp_svo_fetch(voxels, voxel_resolution, level, dir, v);
+#else
       const float4 s = vol[(v.z * n + v.y) * n + v.x];
+#endif
       acc.xyz += (1.0f - acc.w) * s.xyz;
       acc.w += (1.0f - acc.w) * s.w;
       if (acc.w >= RP_DEBUG_VOXEL_OPAQUE) break;

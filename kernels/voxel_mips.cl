@@ -33,6 +33,7 @@
 
 #include "shared/voxel_layout.h"
 #include "common/voxel.h"
+#include "common/voxel_composite.h"
 
 #ifndef RP_SPAN
 #define RP_SPAN 1
@@ -50,35 +51,6 @@ inline void mips_load_children(__global const float4* chain, uint base, uint chi
     const uint x = x0 + (i & 1u), y = y0 + ((i >> 1) & 1u), z = z0 + (i >> 2);
     c[i] = chain[base + (z * child_n + y) * child_n + x];
   }
-}
-
-/* Level-0 voxel `iso` (isotropic) as a cone travelling along `dir` sees it, from its facing
- * coverage words (x, y, z: shared/voxel_layout.h): opacity c = the coverage of what faces the
- * cone (at most iso.a), radiance the voxel's mean radiance times c. A wall's voxels thus exist
- * only for cones that look at the wall's front: cones leaving the wall pass through them. */
-inline float4 mips_facing(float4 iso, uint4 facing, uint dir) {
-  const uint axis = dir >> 1;
-  const uint word = axis == 0u ? facing.x : (axis == 1u ? facing.y : facing.z);
-  const uint half_sum = (dir & 1u) == 0u ? word >> 16 : word & 0xFFFFu; /* +dir sees -facing */
-  const float c = fmin(fmin((float)half_sum * (1.0f / RP_VOXEL_FACING_UNIT), 1.0f), iso.w);
-  return iso.w > 0.0f ? (float4)(iso.xyz * (c / iso.w), c) : (float4)(0.0f);
-}
-
-/* The parent value seen along direction `dir` (see the header). */
-inline float4 mips_composite(const float4 c[8], uint dir) {
-  const uint axis = dir >> 1;          /* RP_DIR_POS_X, NEG_X = 0, 1; Y: 2, 3; Z: 4, 5 */
-  const uint step = 1u << axis;        /* child index step along the axis */
-  const bool positive = (dir & 1u) == 0u;
-  float4 col[4];
-  uint k = 0;
-  for (uint i = 0; i < 8u; ++i) {
-    if ((i & step) != 0u) continue;    /* i: a low-A child, one per column, ascending */
-    const float4 lo = c[i], hi = c[i + step];
-    const float4 f = positive ? lo : hi;
-    const float4 b = positive ? hi : lo;
-    col[k++] = f + (1.0f - f.w) * b;
-  }
-  return ((col[0] + col[1]) + (col[2] + col[3])) * 0.25f;
 }
 
 /* Level 1 voxel p in all six directions from level 0 (isotropic values and facing coverage;

@@ -67,8 +67,10 @@
  * Accumulation (order independent, DESIGN.md): per voxel RP_VOXEL_ACCUM_WORDS (8) uints. Words
  * 0-3: channel c of (L.rgb * a, a) added as round(min(value, RP_VOXEL_MAX_CONTRIB) *
  * 2^RP_VOXEL_FIXED_BITS) with atomic_add; an add that wraps past 2^32 sets bit c of the voxel's
- * overflow word (atomic_or). Words 4-6: the facing coverage along x, y, z (vx_add_facing,
- * vx_add_facing_all; layout in shared/voxel_layout.h), read by the mip builder for level 1.
+ * overflow word (atomic_or). Words 4-6: the facing coverage along x, y, z (vx_facing_words,
+ * vx_facing_words_all; layout in shared/voxel_layout.h), read by the mip builder for level 1.
+ * All of it goes through vx_sink; built with -DRP_VOXEL_FRAGMENTS the same contributions are
+ * written as a fragment list for the sparse voxel octree instead (shared/svo_layout.h).
  * Zero values are not added. Resolve, with S = sums / 2^bits (an overflowed channel reads
  * RP_VOXEL_SATURATED):
  *     level0 = (S.rgb / max(S.a, 1), min(S.a, 1))
@@ -84,6 +86,7 @@
 
 #include "shared/types.h"
 #include "shared/voxel_layout.h"
+#include "shared/svo_layout.h"
 #include "common/math.h"
 #include "common/colour.h"
 #include "common/direct_light.h"
@@ -141,35 +144,67 @@ inline void vx_add_fixed(volatile __global uint* accum, volatile __global uint* 
   }
 }
 
-/* Adds the facing coverage of a surface with normal n (any length, not 0) and opacity a to
- * voxel `voxel` (see "Facing" in the header): per axis i, round(a |n_i| / max|n| * UNIT) into
- * the half of word 4 + i that matches the sign of n_i. */
-inline void vx_add_facing(volatile __global uint* accum, uint voxel, float3 n, float a) {
+/* The facing coverage words (x, y, z) a surface with normal n (any length, not 0) and opacity
+ * a adds to its voxel (see "Facing" in the header): per axis i, round(a |n_i| / max|n| * UNIT)
+ * in the half of word i that matches the sign of n_i (0: nothing to add). */
+inline uint3 vx_facing_words(float3 n, float a) {
   const float3 an = fabs(n);
   const float scale = a * RP_VOXEL_FACING_UNIT / fmax(fmax(an.x, an.y), an.z);
   const float c[3] = {an.x * scale, an.y * scale, an.z * scale};
   const float s[3] = {n.x, n.y, n.z};
+  uint w[3];
   for (uint i = 0; i < 3u; ++i) {
     const uint q = (uint)(fmin(c[i], RP_VOXEL_FACING_UNIT) + 0.5f);
-    if (q == 0u) continue;
-    atomic_add(accum + RP_VOXEL_ACCUM_WORDS * voxel + 4u + i, s[i] > 0.0f ? q : q << 16);
+    w[i] = s[i] > 0.0f ? q : q << 16;
   }
+  return (uint3)(w[0], w[1], w[2]);
 }
 
 /* Facing coverage `a` in every direction (spheres: seen alike from everywhere). */
-inline void vx_add_facing_all(volatile __global uint* accum, uint voxel, float a) {
+inline uint3 vx_facing_words_all(float a) {
   const uint q = (uint)(fmin(a, 1.0f) * RP_VOXEL_FACING_UNIT + 0.5f);
-  if (q == 0u) return;
-  for (uint i = 0; i < 3u; ++i)
-    atomic_add(accum + RP_VOXEL_ACCUM_WORDS * voxel + 4u + i, q | (q << 16));
+  return (uint3)(q | (q << 16));
 }
 
-/* Adds (rgb * a, a) to voxel `voxel`. */
+#ifdef RP_VOXEL_FRAGMENTS
+/* Fragment output (the sparse voxel octree, shared/svo_layout.h): instead of adding into the
+ * dense sums, every contribution becomes one fragment of RP_SVO_FRAGMENT_WORDS words (the
+ * same four fixed-point words and three facing words, plus the voxel index) appended to
+ * `accum`; overflow[0] counts the fragments (also those past the capacity overflow[1]: the
+ * host then grows the list and voxelizes again). Which slot a fragment takes is racy; nothing
+ * downstream depends on it (svo.cl ORs flags and adds integers). */
+inline void vx_sink(volatile __global uint* accum, volatile __global uint* overflow, uint voxel,
+                    uint4 q, uint3 f) {
+  if ((q.x | q.y | q.z | q.w | f.x | f.y | f.z) == 0u) return;
+  const uint slot = atomic_inc(overflow);
+  if (slot >= overflow[1]) return;
+  volatile __global uint* frag = accum + RP_SVO_FRAGMENT_WORDS * slot;
+  frag[0] = q.x;
+  frag[1] = q.y;
+  frag[2] = q.z;
+  frag[3] = q.w;
+  frag[4] = f.x;
+  frag[5] = f.y;
+  frag[6] = f.z;
+  frag[RP_SVO_FRAGMENT_KEY] = voxel;
+}
+#else
+/* Adds fixed-point contributions q and facing words f to voxel `voxel`'s sums. */
+inline void vx_sink(volatile __global uint* accum, volatile __global uint* overflow, uint voxel,
+                    uint4 q, uint3 f) {
+  vx_add_fixed(accum, overflow, voxel, q);
+  const uint fs[3] = {f.x, f.y, f.z};
+  for (uint i = 0; i < 3u; ++i)
+    if (fs[i] != 0u) atomic_add(accum + RP_VOXEL_ACCUM_WORDS * voxel + 4u + i, fs[i]);
+}
+#endif
+
+/* Adds (rgb * a, a) and the facing words f to voxel `voxel`. */
 inline void vx_accumulate(volatile __global uint* accum, volatile __global uint* overflow,
-                          uint voxel, float3 radiance, float a) {
+                          uint voxel, float3 radiance, float a, uint3 f) {
   const float3 premul = radiance * a;
-  vx_add_fixed(accum, overflow, voxel,
-               (uint4)(vx_fixed(premul.x), vx_fixed(premul.y), vx_fixed(premul.z), vx_fixed(a)));
+  vx_sink(accum, overflow, voxel,
+          (uint4)(vx_fixed(premul.x), vx_fixed(premul.y), vx_fixed(premul.z), vx_fixed(a)), f);
 }
 
 /* Direct light at p (normal n) with the 4 shadow taps; rgb radiance before albedo. */
@@ -752,11 +787,36 @@ inline void vx_accumulate_span(volatile __global uint* accum, volatile __global 
 #undef VX_FIXED_SPAN
   RP_SPAN_TO_ARRAY(voxel, lv);
   const uint one = vx_fixed(1.0f);
+#ifdef RP_VOXEL_FRAGMENTS
+  /* one slot reservation for the span's fragments (the counter is the pass's hot spot: one
+   * atomic per fragment otherwise); every such fragment has opacity one, never all zero */
+  uint hits = 0;
+  for (int i = 0; i < n_lanes; ++i) hits += lh[i] ? 1u : 0u;
+  if (hits == 0u) return;
+  uint slot = atomic_add(overflow, hits);
+  for (int i = 0; i < n_lanes; ++i) {
+    if (!lh[i]) continue;
+    if (slot < overflow[1]) {
+      const uint3 f = vx_facing_words((float3)(nx[i], ny[i], nz[i]), 1.0f);
+      volatile __global uint* frag = accum + RP_SVO_FRAGMENT_WORDS * slot;
+      frag[0] = lr[i];
+      frag[1] = lg[i];
+      frag[2] = lb[i];
+      frag[3] = one;
+      frag[4] = f.x;
+      frag[5] = f.y;
+      frag[6] = f.z;
+      frag[RP_SVO_FRAGMENT_KEY] = lv[i];
+    }
+    ++slot;
+  }
+#else
   for (int i = 0; i < n_lanes; ++i)
     if (lh[i]) {
-      vx_add_fixed(accum, overflow, lv[i], (uint4)(lr[i], lg[i], lb[i], one));
-      vx_add_facing(accum, lv[i], (float3)(nx[i], ny[i], nz[i]), 1.0f);
+      vx_sink(accum, overflow, lv[i], (uint4)(lr[i], lg[i], lb[i], one),
+              vx_facing_words((float3)(nx[i], ny[i], nz[i]), 1.0f));
     }
+#endif
 }
 
 /* The voxel (x, y, z) of lanes at (iu, iv, id) in their (u, v, d) frame. */
@@ -1186,8 +1246,8 @@ __kernel void voxelize_spheres(__global const FrameConstants* frame,
                                : (float3)(0.0f);
           radiance = albedo * (vx_direct(frame, shadow, cw + n * rw, n) + e) + emission;
         }
-        vx_accumulate(accum, overflow, rp_voxel_index(vox, resolution), radiance, a);
-        vx_add_facing_all(accum, rp_voxel_index(vox, resolution), a);
+        vx_accumulate(accum, overflow, rp_voxel_index(vox, resolution), radiance, a,
+                      vx_facing_words_all(a));
       }
     }
   }

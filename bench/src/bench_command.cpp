@@ -12,6 +12,7 @@
 #include "app/progress.h"
 #include "bench/src/quality_report.h"
 #include "app/simulation_source.h"
+#include "render/renderer.h"
 #include "io/output_path.h"
 #include "scene/particles.h"
 #include "scene/world.h"
@@ -171,6 +172,22 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
   }
   progress.finish();
 
+  if (common.gi_volume == render::GiVolume::kSvo) {
+    const render::SvoVolume& o = session.renderer().octree();
+    const double mb = 1.0 / (1024.0 * 1024.0);
+    std::printf("  octree %u^3 (last frame): %u fragments, %llu nodes (node pool %.1f MiB), "
+                "%llu brick samples of %u bytes (brick pool %.1f MiB), buffer %.1f MiB, build "
+                "scratch %.1f MiB; the dense chain at %u^3 would be %.1f MiB\n",
+                o.resolution, o.fragments, (unsigned long long)o.nodes(),
+                double(o.node_bytes()) * mb,
+                (unsigned long long)o.samples, o.sample_bytes, double(o.brick_bytes()) * mb,
+                double(o.buffer_bytes()) * mb, double(o.scratch_bytes) * mb, o.resolution,
+                double(render::SvoVolume::dense_bytes(o.resolution)) * mb);
+    std::printf("  nodes / bricks per depth:");
+    for (size_t k = 0; k < o.nodes_per_depth.size(); ++k)
+      std::printf(" %u/%u", o.nodes_per_depth[k], o.bricks_per_depth[k]);
+    std::printf("\n");
+  }
   RunResult run = make_run_result(width, height, voxels_or_default(voxels), stats);
   run.timing = rp::cl::timing_name(session.timing());
   if (sim) sim->world().fill_frame(last);  // what the last frame showed (same world state)

@@ -51,7 +51,7 @@
  *   front-to-back accumulation c += (1 - A) c_s, A += (1 - A) a_s;
  *   stop when A >= RP_CONE_OPAQUE, when the sample point leaves [-1,1]^3, or after the step
  *   limit (RP_CONE_MAX_STEPS = 16 for s = 1/2: 1.4^16 t0 = 272 v0 lies past the box's diagonal
- *   for R <= 128; 32 for s = 1/4: 1.2^32 t0 = 428 v0).
+ *   for R <= 128; 32 for s = 1/4: 1.2^32 t0 = 428 v0; more past R = 128: rp_cone_max_steps).
  * The result is (c, A): c the radiance arriving along the cone (mean over its cross-section),
  * A its occlusion.
  *
@@ -84,12 +84,25 @@
  * a surface does not see its own voxels at level 0.
  * rp_cone_diffuse16 traces all 16 with quarter-diameter steps (the reference mode, per pixel);
  * the fast mode (kernels/indirect.cl) traces one cone of the set per low-resolution pixel.
+ *
+ * The GI volume (issue 17). Everything above reads the volume through three functions:
+ * rp_cone_volume (trilinear sample of one volume: a level and direction), rp_cone_directional
+ * (the three facing volumes of a level, rows behind the apex empty) and rp_cone_fetch (one
+ * voxel). By default they read the dense chain; built with -DRP_GI_SVO, `voxels` is the sparse
+ * voxel octree's buffer (shared/svo_layout.h) and they descend it to the node holding the
+ * footprint's first tap and read its 3^3 brick: the same taps, fractions and mixing order, so
+ * the same values (bit for bit with float brick samples; tests/passes/svo_test.cpp). Callers
+ * (the light, indirect, bounce and debug passes) pass the octree buffer, R and levels = log2 R
+ * + 1 unchanged, and pick the variant with the build option.
  */
 #ifndef ROLYPOLY_COMMON_CONE_TRACE_H
 #define ROLYPOLY_COMMON_CONE_TRACE_H
 
 #include "shared/voxel_layout.h"
 #include "common/voxel.h"
+#ifdef RP_GI_SVO
+#include "common/svo.h"
+#endif
 
 /* Cone start offset along the surface normal, in level-0 voxels. */
 #ifndef RP_CONE_NORMAL_OFFSET
@@ -174,6 +187,22 @@ inline float4 rp_cone_trilinear(__global const float4* vol, uint n, float3 p) {
                                vol[fp.i001], vol[fp.i101], vol[fp.i011], vol[fp.i111], fp.f);
 }
 
+#ifndef RP_GI_SVO
+/* Trilinear sample of volume `dir` (ignored at level 0) of level `level` at p. */
+inline float4 rp_cone_volume(__global const float4* voxels, uint resolution, uint level,
+                             uint dir, float3 p) {
+  if (level == 0u) return rp_cone_trilinear(voxels, resolution, p);
+  const uint n = resolution >> level;
+  return rp_cone_trilinear(voxels + rp_cone_level_base(resolution, level) + dir * n * n * n, n,
+                           p);
+}
+
+/* Voxel v of volume `dir` at `level` (rp_voxel_fetch). */
+inline float4 rp_cone_fetch(__global const float4* voxels, uint resolution, uint level, uint dir,
+                            int3 v) {
+  return rp_voxel_fetch(voxels, resolution, level, dir, v);
+}
+
 /* Directional sample of level `level` >= 1 for a cone whose three facing volumes are dirs
  * (RP_DIR_* indices) with weights w (the squared direction components), apex at `apex`: the
  * weighted sum of the three trilinear samples, evaluated as one trilinear mix of the weighted
@@ -212,12 +241,86 @@ inline float4 rp_cone_directional(__global const float4* voxels, uint resolution
   return s;
 }
 
+#else /* RP_GI_SVO: the same three functions on the octree (common/svo.h) */
+
+/* The brick holding the trilinear footprint of p at `level` (RP_SVO_NO_BRICK: none, and then
+ * every tap is empty) and the taps' first sample offset o inside it; x0: the first taps. */
+inline uint rp_cone_svo_brick(__global const float4* svo, uint resolution, uint level, float3 p,
+                              uint3* x0, float3* f) {
+  const uint depths = rp_svo_header(svo, RP_SVO_HDR_DEPTHS);
+  *x0 = rp_svo_footprint(resolution >> level, p, f);
+  if (level >= depths) return RP_SVO_NO_BRICK;
+  return rp_svo_find_brick(rp_svo_nodes(svo), depths - 1u - level, *x0 >> 1);
+}
+
+inline float4 rp_cone_volume(__global const float4* voxels, uint resolution, uint level,
+                             uint dir, float3 p) {
+  uint3 x0;
+  float3 f;
+  const uint brick = rp_cone_svo_brick(voxels, resolution, level, p, &x0, &f);
+  if (brick == RP_SVO_NO_BRICK) return (float4)(0.0f);
+  const uint3 o = x0 & 1u;
+  const uint b = brick + (level == 0u ? 0u : RP_SVO_BRICK_SAMPLES * dir) +
+                 rp_svo_sample(o.x, o.y, o.z);
+  /* sample offsets of the taps: +1 along x, +3 along y, +9 along z */
+  return rp_cone_trilinear_mix(rp_svo_load(voxels, b), rp_svo_load(voxels, b + 1u),
+                               rp_svo_load(voxels, b + 3u), rp_svo_load(voxels, b + 4u),
+                               rp_svo_load(voxels, b + 9u), rp_svo_load(voxels, b + 10u),
+                               rp_svo_load(voxels, b + 12u), rp_svo_load(voxels, b + 13u), f);
+}
+
+inline float4 rp_cone_fetch(__global const float4* voxels, uint resolution, uint level, uint dir,
+                            int3 v) {
+  return rp_svo_fetch(voxels, resolution, level, dir, v);
+}
+
+/* rp_cone_directional of the dense chain (above) on the octree: one brick holds the taps of
+ * all three volumes. The taps' coordinates for the rows-behind-the-apex rule are the dense
+ * sampler's (x1 = min(x0 + 1, n - 1)). */
+inline float4 rp_cone_directional(__global const float4* voxels, uint resolution, uint level,
+                                  uint3 dirs, float3 w, float3 p, float3 apex) {
+  const uint n = resolution >> level;
+  uint3 x0u;
+  float3 f;
+  const uint brick = rp_cone_svo_brick(voxels, resolution, level, p, &x0u, &f);
+  if (brick == RP_SVO_NO_BRICK) return (float4)(0.0f);
+  const float nf = (float)n;
+  const int3 ar = convert_int3(clamp(floor((apex + 1.0f) * (0.5f * nf)), -1.0f, nf));
+  const int ax = ar.x, ay = ar.y, az = ar.z;
+  const int x0 = (int)x0u.x, y0 = (int)x0u.y, z0 = (int)x0u.z;
+  const int last = (int)n - 1;
+  const int x1 = min(x0 + 1, last), y1 = min(y0 + 1, last), z1 = min(z0 + 1, last);
+  const bool px = dirs.x == RP_DIR_POS_X, py = dirs.y == RP_DIR_POS_Y, pz = dirs.z == RP_DIR_POS_Z;
+  const float wx0 = (px ? x0 > ax : x0 < ax) ? w.x : 0.0f;
+  const float wx1 = (px ? x1 > ax : x1 < ax) ? w.x : 0.0f;
+  const float wy0 = (py ? y0 > ay : y0 < ay) ? w.y : 0.0f;
+  const float wy1 = (py ? y1 > ay : y1 < ay) ? w.y : 0.0f;
+  const float wz0 = (pz ? z0 > az : z0 < az) ? w.z : 0.0f;
+  const float wz1 = (pz ? z1 > az : z1 < az) ? w.z : 0.0f;
+  const uint3 o = x0u & 1u;
+  const uint s0 = rp_svo_sample(o.x, o.y, o.z);
+  const uint bx = brick + RP_SVO_BRICK_SAMPLES * dirs.x + s0;
+  const uint by = brick + RP_SVO_BRICK_SAMPLES * dirs.y + s0;
+  const uint bz = brick + RP_SVO_BRICK_SAMPLES * dirs.z + s0;
+#define RP_CONE_SVO_TAP(X, Y, Z)                                            \
+  (rp_svo_load(voxels, bx + (X) + 3u * (Y) + 9u * (Z)) * wx##X +           \
+   rp_svo_load(voxels, by + (X) + 3u * (Y) + 9u * (Z)) * wy##Y +           \
+   rp_svo_load(voxels, bz + (X) + 3u * (Y) + 9u * (Z)) * wz##Z)
+  const float4 s = rp_cone_trilinear_mix(RP_CONE_SVO_TAP(0, 0, 0), RP_CONE_SVO_TAP(1, 0, 0),
+                                         RP_CONE_SVO_TAP(0, 1, 0), RP_CONE_SVO_TAP(1, 1, 0),
+                                         RP_CONE_SVO_TAP(0, 0, 1), RP_CONE_SVO_TAP(1, 0, 1),
+                                         RP_CONE_SVO_TAP(0, 1, 1), RP_CONE_SVO_TAP(1, 1, 1), f);
+#undef RP_CONE_SVO_TAP
+  return s;
+}
+#endif /* RP_GI_SVO */
+
 /* Quadrilinear sample at p and fractional level `level` >= 0 (see the header for the rule),
  * levels coarser than `top` clamped to `top`; apex: the cone's apex. */
 inline float4 rp_cone_sample(__global const float4* voxels, uint resolution, uint top,
                              uint3 dirs, float3 w, float3 p, float level, float3 apex) {
   if (level < 1.0f || top == 0u) {
-    const float4 iso = rp_cone_trilinear(voxels, resolution, p);
+    const float4 iso = rp_cone_volume(voxels, resolution, 0u, 0u, p);
     if (level <= 0.0f || top == 0u) return iso;
     return mix(iso, rp_cone_directional(voxels, resolution, 1u, dirs, w, p, apex), level);
   }
@@ -232,7 +335,7 @@ inline float4 rp_cone_sample(__global const float4* voxels, uint resolution, uin
 /* Single-level sample at integer level `level` (0: isotropic), clamped to `top`. */
 inline float4 rp_cone_sample_level(__global const float4* voxels, uint resolution, uint top,
                                    uint3 dirs, float3 w, float3 p, uint level, float3 apex) {
-  if (level == 0u || top == 0u) return rp_cone_trilinear(voxels, resolution, p);
+  if (level == 0u || top == 0u) return rp_cone_volume(voxels, resolution, 0u, 0u, p);
   return rp_cone_directional(voxels, resolution, min(level, top), dirs, w, p, apex);
 }
 
@@ -260,9 +363,22 @@ inline float4 rp_cone_exit(__global const float4* voxels, uint resolution, uint 
   const float t = fmin(fmin(tx, ty), tz);
   const uint volume_dir = t == tx ? dirs.x : (t == ty ? dirs.y : dirs.z);
   const uint l = (uint)clamp(floor(level), 1.0f, (float)top);
-  const uint n = resolution >> l;
-  const uint base = rp_cone_level_base(resolution, l) + volume_dir * n * n * n;
-  return rp_cone_trilinear(voxels + base, n, origin + dir * t);
+  return rp_cone_volume(voxels, resolution, l, volume_dir, origin + dir * t);
+}
+
+/* Doublings of the resolution past 128 (levels - 8 for levels > 8, else 0): the step limits
+ * below were set for R <= 128, where a cone's last sample lies past the box's diagonal
+ * (sqrt 3 R voxels); at R = 256 and 512 (the octree) a cone would stop halfway, so each
+ * doubling adds two half-diameter steps (1.4^2 ~ 2), four quarter-diameter steps and one
+ * full-diameter step (1.8). R <= 128 is unchanged. */
+inline int rp_cone_extra_levels(uint levels) {
+  /* in floats: the integer form compiles to llvm.usub.sat, which oclgrind 21.10 cannot run */
+  return (int)fmax((float)levels - 8.0f, 0.0f);
+}
+
+/* Half-diameter steps of a cone: RP_CONE_MAX_STEPS, + 2 per doubling past R = 128. */
+inline int rp_cone_max_steps(uint levels) {
+  return RP_CONE_MAX_STEPS + 2 * rp_cone_extra_levels(levels);
 }
 
 /* One cone from `origin` along unit `dir` (apex at origin): (radiance rgb, occlusion a).
@@ -277,7 +393,7 @@ inline float4 rp_cone_march(__global const float4* voxels, uint resolution, uint
   const float v0 = 2.0f / (float)resolution;
   const float growth = fine ? RP_CONE_GROWTH_FINE : RP_CONE_GROWTH;
   const float level_step = fine ? RP_CONE_LEVEL_STEP_FINE : RP_CONE_LEVEL_STEP;
-  const int max_steps = fine ? 2 * RP_CONE_MAX_STEPS : RP_CONE_MAX_STEPS;
+  const int max_steps = (fine ? 2 : 1) * rp_cone_max_steps(levels);
   float t = RP_CONE_T0 * v0;
   float level = jitter < 0.0f ? 0.0f : jitter;
   float4 acc = (float4)(0.0f);
@@ -344,7 +460,7 @@ inline float4 rp_cone_trace_coarse(__global const float4* voxels, uint resolutio
   float t = RP_CONE_T0 * v0 * exp2(level);
   level += u_level;
   float4 acc = (float4)(0.0f);
-  const int max_steps = (int)levels;
+  const int max_steps = (int)levels + rp_cone_extra_levels(levels);
   for (int k = 0; k < max_steps; ++k) {
     const float3 q = origin + dir * t;
     if (fmax(fmax(fabs(q.x), fabs(q.y)), fabs(q.z)) > 1.0f) { /* left the box: its wall */
@@ -482,13 +598,10 @@ inline float rp_cone_near_occlusion(__global const float4* voxels, uint resoluti
   if (levels < 2u) return 0.0f;
   const uint3 dirs = rp_voxel_cone_dirs(n);
   const float3 w = n * n;
-  const uint m = resolution >> 1;
-  const uint m3 = m * m * m;
-  const uint base = rp_cone_level_base(resolution, 1u);
   const float3 apex = rp_cone_apex(p, n, resolution);
-  const float a = w.x * rp_cone_trilinear(voxels + base + dirs.x * m3, m, apex).w +
-                  w.y * rp_cone_trilinear(voxels + base + dirs.y * m3, m, apex).w +
-                  w.z * rp_cone_trilinear(voxels + base + dirs.z * m3, m, apex).w;
+  const float a = w.x * rp_cone_volume(voxels, resolution, 1u, dirs.x, apex).w +
+                  w.y * rp_cone_volume(voxels, resolution, 1u, dirs.y, apex).w +
+                  w.z * rp_cone_volume(voxels, resolution, 1u, dirs.z, apex).w;
   return clamp(a * RP_CONE_NEAR_OCCLUSION, 0.0f, 1.0f);
 }
 

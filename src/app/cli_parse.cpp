@@ -135,9 +135,21 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
       ->transform(whole_number(1, kMaxSize));
   if (voxel_option)
     cmd->add_option("--voxels", common.voxels,
-                    "GI voxel volume resolution per side: 32, 64 or 128 (default " +
-                        std::to_string(render::RenderSettings{}.voxel_resolution) + ")")
-        ->check(CLI::IsMember({32u, 64u, 128u}));
+                    "GI voxel volume resolution per side: 32, 64 or 128 for --gi-volume dense "
+                    "(default " +
+                        std::to_string(render::RenderSettings{}.voxel_resolution) +
+                        "), 256 or 512 for --gi-volume svo (default " +
+                        std::to_string(CommonOptions::kDefaultSvoVoxels) + ")")
+        ->check(CLI::IsMember({32u, 64u, 128u, 256u, 512u}));
+  cmd->add_option_function<std::string>(
+         "--gi-volume",
+         [&common](const std::string& name) {
+           common.gi_volume = *render::parse_gi_volume(name);  // IsMember checked the name
+         },
+         "the volume the GI cones trace: dense (the anisotropic mip chain, 32^3 to 128^3; "
+         "default) or svo (the sparse voxel octree with 3^3 bricks, 256^3 or 512^3: finer "
+         "contacts for more build time, memory only where surfaces are)")
+      ->check(CLI::IsMember({"dense", "svo"}));
   cmd->add_option_function<std::string>(
          "--visibility",
          [&common](const std::string& name) {
@@ -202,6 +214,19 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
 }
 
 // --bounces 0 (no indirect light at all) exists only in the path tracer: "" when fine.
+// --voxels against --gi-volume (each resolution list entry): "" when fine.
+std::string check_gi_volume(const CommonOptions& common, const std::vector<uint32_t>& voxels) {
+  for (uint32_t v : voxels) {
+    const bool svo_size = v == 256 || v == 512;  // the app's sizes (the renderer takes more)
+    if (v == 0 || svo_size == (common.gi_volume == render::GiVolume::kSvo)) continue;
+    if (common.gi_volume == render::GiVolume::kSvo)
+      return "--gi-volume svo takes --voxels 256 or 512, not " + std::to_string(v);
+    return "--voxels " + std::to_string(v) + " needs --gi-volume svo (the dense volume takes 32, "
+           "64 or 128)";
+  }
+  return "";
+}
+
 std::string check_bounces(const CommonOptions& common) {
   if (!common.pathtraced && common.bounces == 0)
     return "--bounces 0 applies to --quality pathtraced; the fast and reference modes take 1 "
@@ -248,7 +273,7 @@ std::string check_pathtrace(const CLI::App* cmd, const CommonOptions& common) {
     return check_bounces(common);
   }
   for (const char* name : {"--device", "--visibility", "--shadow-size", "--shadows",
-                           "--texture-filter", "--bloom-strength"})
+                           "--texture-filter", "--bloom-strength", "--gi-volume"})
     if (cmd->count(name))
       return std::string(name) + " does not apply to --quality pathtraced (the path tracer "
                                  "runs on the host's cores, without post-processing)";
@@ -495,9 +520,11 @@ CliParse parse_cli(int argc, const char* const* argv) {
           ->transform(pixel_count());
   bench->add_option("--voxels", bench_opts.voxels,
                     "comma-separated GI voxel resolutions per side, each 32, 64 or 128 (default " +
-                        std::to_string(render::RenderSettings{}.voxel_resolution) + ")")
+                        std::to_string(render::RenderSettings{}.voxel_resolution) +
+                        "), or 256 or 512 with --gi-volume svo (default " +
+                        std::to_string(CommonOptions::kDefaultSvoVoxels) + ")")
       ->delimiter(',')
-      ->check(CLI::IsMember({32u, 64u, 128u}));
+      ->check(CLI::IsMember({32u, 64u, 128u, 256u, 512u}));
   bench->add_option("--scene", bench_opts.scene,
                     "default (the simulation options as given) or busy (30 marbles, a fireball "
                     "and the particle budget kept full)")
@@ -550,6 +577,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
   if (devices->parsed()) {
     parsed.kind = ParsedCommand::Kind::kDevices;
   } else if (render->parsed()) {
+    if (std::string why = check_gi_volume(common, {common.voxels}); !why.empty())
+      return usage("rolypoly render", why);
     if (std::string why = check_pathtrace(render, common); !why.empty())
       return usage("rolypoly render", why);
     if (common.pathtraced) {
@@ -567,6 +596,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
     render_opts.frames_given = render->count("--frames") > 0;
   } else if (run->parsed()) {
     if (std::string why = check_bounces(common); !why.empty()) return usage("rolypoly run", why);
+    if (std::string why = check_gi_volume(common, {common.voxels}); !why.empty())
+      return usage("rolypoly run", why);
     parsed.kind = ParsedCommand::Kind::kRun;
     run_opts.size = run_size.resolve();
   } else if (bench->parsed()) {
@@ -611,6 +642,10 @@ CliParse parse_cli(int argc, const char* const* argv) {
             "--min-direct-psnr-floor, --max-penumbra-error, --min-albedo-psnr) belong to "
             "--accuracy";
     if (why) return usage("rolypoly bench", why);
+    if (std::string gi = check_gi_volume(common, bench_opts.voxels); !gi.empty())
+      return usage("rolypoly bench", gi);
+    if (common.gi_volume == render::GiVolume::kSvo && bench_opts.voxels.empty())
+      bench_opts.voxels = {CommonOptions::kDefaultSvoVoxels};
     if (bench_opts.accuracy) {
       if (bench->count("--lamp"))
         return usage("rolypoly bench", "--lamp applies to --quality pathtraced (--accuracy uses "

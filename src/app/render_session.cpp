@@ -28,7 +28,8 @@ bool fits(const DeviceMemoryNeed& need, uint64_t global_bytes, uint64_t max_allo
 }  // namespace
 
 DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_t shadow_size,
-                                        uint32_t voxel_resolution, bool light_components) {
+                                        uint32_t voxel_resolution, bool light_components,
+                                        bool octree) {
   const uint64_t n = uint64_t(width) * height;
   uint64_t per_pixel_x3 = 3 * (20 + 72 + 16 + 32 + 4 + 32 + 4) + 32;  // bloom's 32/3 exactly
   if (light_components) per_pixel_x3 += 3 * 48;  // direct, indirect, specular float4
@@ -38,10 +39,14 @@ DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_
   const uint64_t blur_tiles = tiles(passes::MotionBlurPass::kTileSize);
   const uint64_t raster_tiles = tiles(RP_RASTER_TILE);
   const uint64_t r = voxel_resolution;
+  // The octree's pools and build scratch grow with the surface area, about R^2 x 1 KiB on the
+  // demo (the busy scene's fragments included).
   const uint64_t voxel_bytes =
-      uint64_t(gpu::rp_voxel_total(voxel_resolution,
-                                   render::VoxelVolume::levels_for(voxel_resolution))) * 16 +
-      r * r * r * (16 + 4);
+      octree ? r * r * 1024
+             : uint64_t(gpu::rp_voxel_total(voxel_resolution,
+                                            render::VoxelVolume::levels_for(voxel_resolution))) *
+                       16 +
+                   r * r * r * (16 + 4);
   DeviceMemoryNeed need;
   need.total_bytes = (n * per_pixel_x3 + 2) / 3 + blur_tiles * 20 + raster_tiles * 2 * 12 +
                      uint64_t(shadow_size) * shadow_size * 4 + voxel_bytes + kSceneReserveBytes;
@@ -51,11 +56,12 @@ DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_
 
 uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_bytes,
                                   uint32_t shadow_size, uint32_t voxel_resolution,
-                                  bool light_components) {
+                                  bool light_components, bool octree) {
   uint32_t lo = 0, hi = 1u << 17;  // invariant: lo fits (0 trivially), hi does not
   while (hi - lo > 1) {
     const uint32_t mid = lo + (hi - lo) / 2;
-    if (fits(estimate_device_memory(mid, mid, shadow_size, voxel_resolution, light_components),
+    if (fits(estimate_device_memory(mid, mid, shadow_size, voxel_resolution, light_components,
+                                    octree),
              global_bytes, max_alloc_bytes))
       lo = mid;
     else
@@ -65,9 +71,10 @@ uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_byte
 }
 
 void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint32_t height,
-                         uint32_t shadow_size, uint32_t voxel_resolution, bool light_components) {
-  const DeviceMemoryNeed need =
-      estimate_device_memory(width, height, shadow_size, voxel_resolution, light_components);
+                         uint32_t shadow_size, uint32_t voxel_resolution, bool light_components,
+                         bool octree) {
+  const DeviceMemoryNeed need = estimate_device_memory(width, height, shadow_size,
+                                                       voxel_resolution, light_components, octree);
   if (device.global_mem_bytes == 0 || fits(need, device.global_mem_bytes, device.max_alloc_bytes))
     return;  // 0: the driver did not say; buffer creation failures are still reported
   std::string size = std::to_string(width) + "x" + std::to_string(height);
@@ -80,7 +87,8 @@ void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint3
               " (a float4 per pixel), the device allows at most " +
               gib(device.max_alloc_bytes) + " per buffer";
   const uint32_t side = largest_square_that_fits(device.global_mem_bytes, device.max_alloc_bytes,
-                                                 shadow_size, voxel_resolution, light_components);
+                                                 shadow_size, voxel_resolution, light_components,
+                                                 octree);
   if (side == 0)
     message += "; not even a 1x1 image fits (a smaller --voxels or --shadow-size may help)";
   else
@@ -98,7 +106,11 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   settings.width = width;
   settings.height = height;
   if (options.shadow_size != 0) settings.shadow_size = options.shadow_size;
-  if (options.voxels != 0) settings.voxel_resolution = options.voxels;
+  settings.gi_volume = options.gi_volume;
+  if (options.voxels != 0)
+    settings.voxel_resolution = options.voxels;
+  else if (options.gi_volume == render::GiVolume::kSvo)
+    settings.voxel_resolution = CommonOptions::kDefaultSvoVoxels;
   settings.effects = options.effects;
   settings.visibility = options.visibility;
   settings.quality = options.quality;
@@ -109,7 +121,8 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   // what would fit.
   check_device_memory(context_.info, width, height, settings.shadow_size,
                       settings.voxel_resolution,
-                      passes::needs_light_components(options.view.view) || keep_components);
+                      passes::needs_light_components(options.view.view) || keep_components,
+                      settings.gi_volume == render::GiVolume::kSvo);
   renderer_ = std::make_unique<render::Renderer>(context_, programs_, assets_, settings);
   set_view(options.view);
   if (keep_components) renderer_->set_keep_light_components(true);
@@ -118,7 +131,8 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
 void RenderSession::set_keep_components(bool keep) {
   if (keep)
     check_device_memory(context_.info, width(), height(), renderer_->settings().shadow_size,
-                        renderer_->settings().voxel_resolution, true);
+                        renderer_->settings().voxel_resolution, true,
+                        renderer_->settings().gi_volume == render::GiVolume::kSvo);
   renderer_->set_keep_light_components(keep);
 }
 

@@ -23,6 +23,8 @@ struct CommonOptions {
   std::string asset_dir;   // --assets: folder with the scene's textures
   uint32_t shadow_size = 0;  // --shadow-size: shadow map texels per side (0 = renderer default)
   uint32_t voxels = 0;       // --voxels: GI volume voxels per side (0 = renderer default, 64)
+  render::GiVolume gi_volume = render::GiVolume::kDense;  // --gi-volume dense|svo (issue 17)
+  static constexpr uint32_t kDefaultSvoVoxels = 256;  // --gi-volume svo without --voxels
   render::Effects effects;   // --no-taa, --no-bloom, --no-motion-blur, --bloom-strength
   passes::DebugViewSettings view;  // --view / --level / --dir (render, run): what is shown
   render::VisibilityBackend visibility = render::VisibilityBackend::kRaster;  // --visibility
@@ -79,6 +81,7 @@ class RenderSession {
   rp::cl::Timing timing() const { return context_.timing; }
   const scene::SceneAssets& assets() const { return assets_; }
   uint32_t width() const { return renderer_->settings().width; }
+  const render::Renderer& renderer() const { return *renderer_; }
   uint32_t height() const { return renderer_->settings().height; }
 
  private:
@@ -101,20 +104,25 @@ struct DeviceMemoryNeed {
   uint64_t total_bytes = 0;
   uint64_t largest_buffer_bytes = 0;  // one float4 per pixel: the biggest single allocation
 };
+// octree: the GI volume is the sparse voxel octree (its pools counted at kSvoBytesPerArea bytes
+// per R^2: measured on the demo, see bench/results/epyc-2core-pocl-svo-*.md) instead of the
+// dense chain.
 DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_t shadow_size,
-                                        uint32_t voxel_resolution, bool light_components);
+                                        uint32_t voxel_resolution, bool light_components,
+                                        bool octree = false);
 
 // Throws rp::cl::Error before anything is allocated when the estimate exceeds the device's
 // global memory or one buffer exceeds its largest allocation, e.g. "16384x16384 needs 51.2 GiB
 // of device memory, the device has 5.6 GiB; the largest square size that fits is about 5400".
 void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint32_t height,
-                         uint32_t shadow_size, uint32_t voxel_resolution, bool light_components);
+                         uint32_t shadow_size, uint32_t voxel_resolution, bool light_components,
+                         bool octree = false);
 
 // The largest square side s (0 if none) whose estimate fits `global_bytes` with every buffer
 // within `max_alloc_bytes`.
 uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_bytes,
                                   uint32_t shadow_size, uint32_t voxel_resolution,
-                                  bool light_components);
+                                  bool light_components, bool octree = false);
 
 // "[0] pthread-... (CPU, Portable Computing Language)"
 std::string describe_device(const rp::cl::DeviceInfo& info);

@@ -7,26 +7,32 @@ namespace {
 constexpr size_t kGroup = 64;
 }  // namespace
 
-BouncePass::BouncePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
-    : context_(&context), gather_(programs.kernel("bounce.cl", "bounce_gather")) {}
+BouncePass::BouncePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+                       const std::string& gi_options)
+    : context_(&context), gather_(programs.kernel("bounce.cl", "bounce_gather", gi_options)) {}
 
 void BouncePass::run(rp::cl::Profiler& profiler, const render::VoxelVolume& volume,
                      uint32_t frame, Cones cones) {
   if (!render::VoxelVolume::valid_resolution(volume.resolution) || volume.chain() == nullptr)
     throw rp::cl::Error("bounce pass: the voxel volume has not been allocated (resize it)");
-  const size_t g = cells(volume.resolution);
+  run(profiler, volume.chain, volume.resolution, volume.levels, frame, cones);
+}
+
+void BouncePass::run(rp::cl::Profiler& profiler, const ::cl::Buffer& voxels, uint32_t resolution,
+                     uint32_t levels, uint32_t frame, Cones cones) {
+  const size_t g = cells(resolution);
   const size_t faces = 6 * g * g * g;
-  if (resolution_ != volume.resolution || grid_() == nullptr) {
+  if (resolution_ != resolution || grid_() == nullptr) {
     grid_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, faces * 4 * sizeof(float));
-    resolution_ = volume.resolution;
+    resolution_ = resolution;
     valid_ = false;
   }
   if (!valid_)  // start from nothing: every face age 0 (in queue order, no host copy)
     context_->queue.enqueueFillBuffer(grid_, cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}}, 0,
                                       faces * 4 * sizeof(float));
-  gather_.setArg(0, volume.chain);
-  gather_.setArg(1, cl_uint(volume.resolution));
-  gather_.setArg(2, cl_uint(volume.levels));
+  gather_.setArg(0, voxels);
+  gather_.setArg(1, cl_uint(resolution));
+  gather_.setArg(2, cl_uint(levels));
   gather_.setArg(3, grid_);
   gather_.setArg(4, cl_uint(frame));
   gather_.setArg(5, cl_uint(cones == Cones::kAll ? 16 : 1));

@@ -20,12 +20,19 @@ class BouncePass {
   // (blended into the face's running estimate).
   enum class Cones { kAll, kOne };
 
-  BouncePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+  // gi_options: "-DRP_GI_SVO" when the voxels given to run are the sparse voxel octree
+  // (kernels/shared/svo_layout.h) instead of the dense chain; "" otherwise.
+  BouncePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+             const std::string& gi_options = "");
 
   // Gathers into the grid from volume.chain (levels built). frame: the frame index (jitters and
   // the cone rotation). Enqueues only.
   void run(rp::cl::Profiler& profiler, const render::VoxelVolume& volume, uint32_t frame,
            Cones cones);
+  // The same from any GI volume buffer (the dense chain or, with RP_GI_SVO, the octree) of
+  // `resolution` voxels per side and `levels` levels.
+  void run(rp::cl::Profiler& profiler, const ::cl::Buffer& voxels, uint32_t resolution,
+           uint32_t levels, uint32_t frame, Cones cones);
 
   // The grid the voxelizer reads (float4 per cell face), sized for the last volume run with;
   // valid() is false until a gather has run since the last reset.

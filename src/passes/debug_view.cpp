@@ -56,13 +56,16 @@ std::optional<DebugView> debug_view_for_key(char key) {
   return DebugView(key - '1');
 }
 
-DebugViewPass::DebugViewPass(const rp::cl::Context& /*context*/, rp::cl::ProgramCache& programs)
-    : programs_(&programs) {}
+DebugViewPass::DebugViewPass(const rp::cl::Context& /*context*/, rp::cl::ProgramCache& programs,
+                             std::string gi_options)
+    : programs_(&programs), gi_options_(std::move(gi_options)) {}
 
 ::cl::Kernel& DebugViewPass::kernel(const std::string& name) {
   auto it = kernels_.find(name);
   if (it == kernels_.end())
-    it = kernels_.emplace(name, programs_->kernel("debug_view.cl", "debug_view_" + name)).first;
+    it = kernels_
+             .emplace(name, programs_->kernel("debug_view.cl", "debug_view_" + name, gi_options_))
+             .first;
   return it->second;
 }
 
@@ -146,7 +149,9 @@ void DebugViewPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scen
       require(levels <= 31 && (r >> (levels - 1)) >= 1, "voxel resolution " + std::to_string(r) +
                                             " has fewer than " + std::to_string(levels) +
                                             " levels");
-      require(holds(*in.voxels, size_t(gpu::rp_voxel_total(r, levels)) * 16),
+      // (the octree's buffer is checked by its builder)
+      require(!gi_options_.empty() ||
+                  holds(*in.voxels, size_t(gpu::rp_voxel_total(r, levels)) * 16),
               "the voxel buffer is smaller than a " + std::to_string(r) + "^3 chain of " +
                   std::to_string(levels) + " levels");
       k = &kernel("voxels");

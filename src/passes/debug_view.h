@@ -58,7 +58,10 @@ struct DebugViewInputs {
 class DebugViewPass {
  public:
   // Kernels are built on first use of each view (a debug view costs no start-up time).
-  DebugViewPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+  // gi_options: "-DRP_GI_SVO" when the voxels given to run are the sparse voxel octree
+  // (kernels/shared/svo_layout.h) instead of the dense chain; "" otherwise.
+  DebugViewPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+                std::string gi_options = "");
 
   // Writes `settings.view` into rgba8 (scene.constants.width x height uints). Throws
   // rp::cl::Error for kFinal (the renderer runs tone_map instead), a missing or mis-sized
@@ -71,6 +74,7 @@ class DebugViewPass {
   ::cl::Kernel& kernel(const std::string& name);
 
   rp::cl::ProgramCache* programs_;
+  std::string gi_options_;
   std::map<std::string, ::cl::Kernel> kernels_;
 };
 

@@ -30,12 +30,15 @@ float pixel_scale(const render::GpuScene& scene) {
   return 2.0f / (float(height) * p11);
 }
 
-IndirectPass::IndirectPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
+IndirectPass::IndirectPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+                           const std::string& gi_options)
     : context_(&context),
-      trace_(programs.kernel("indirect.cl", "indirect_trace")),
-      warm_trace_(
-          programs.kernel("indirect.cl", "indirect_trace", "-DRP_INDIRECT_WARM_START=1")),
-      filter_(programs.kernel("indirect.cl", "indirect_filter")),
+      octree_(!gi_options.empty()),
+      trace_(programs.kernel("indirect.cl", "indirect_trace", gi_options)),
+      warm_trace_(programs.kernel("indirect.cl", "indirect_trace",
+                                  "-DRP_INDIRECT_WARM_START=1" +
+                                      (gi_options.empty() ? "" : " " + gi_options))),
+      filter_(programs.kernel("indirect.cl", "indirect_filter", gi_options)),
       min_z_(programs.kernel("ssr.cl", "ssr_min_z")) {}
 
 uint32_t IndirectPass::ssr_top_level(uint32_t w, uint32_t h) {
@@ -85,7 +88,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
                         std::to_string(h) + " does not match the GBuffer (" +
                         std::to_string(gbuffer.width) + "x" + std::to_string(gbuffer.height) +
                         ")");
-  check_voxel_chain("indirect pass", voxels, voxel_resolution, voxel_levels);
+  check_voxel_chain("indirect pass", voxels, voxel_resolution, voxel_levels, octree_);
   if (w == 0 || h == 0) return {};
   if (w != width_ || h != height_) resize(w, h);
   const uint32_t lw = low_res(w), lh = low_res(h);

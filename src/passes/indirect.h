@@ -48,7 +48,10 @@ class IndirectPass {
   // estimate gets up to RP_INDIRECT_ALPHA_FAST (kernels/indirect.cl).
   static constexpr float kAlphaMin = 0.04f;
 
-  IndirectPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+  // gi_options: "-DRP_GI_SVO" when the voxels given to run are the sparse voxel octree
+  // (kernels/shared/svo_layout.h) instead of the dense chain; "" otherwise.
+  IndirectPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+               const std::string& gi_options = "");
 
   // Traces, filters and accumulates this frame's indirect light; the result stays valid until
   // the next run. voxels: the radiance chain (kernels/shared/voxel_layout.h), checked by the
@@ -89,6 +92,7 @@ class IndirectPass {
   void resize(uint32_t width, uint32_t height);
 
   const rp::cl::Context* context_;
+  bool octree_ = false;  // built with RP_GI_SVO
   ::cl::Kernel trace_;       // one cone per block (history valid)
   ::cl::Kernel warm_trace_;  // all 16 cones per block (no history yet)
   ::cl::Kernel filter_;

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "cl/error.h"
+#include "kernels/shared/svo_layout.h"
 #include "kernels/shared/voxel_layout.h"
 
 namespace rp::passes {
@@ -44,7 +45,7 @@ void enqueue(rp::cl::Profiler& profiler, const ::cl::Kernel& kernel, uint32_t w,
 }  // namespace
 
 void check_voxel_chain(const char* pass, const ::cl::Buffer& voxels, uint32_t voxel_resolution,
-                       uint32_t voxel_levels) {
+                       uint32_t voxel_levels, bool octree) {
   const std::string name(pass);
   if (!is_power_of_two(voxel_resolution) || voxel_resolution < 2 || voxel_resolution > 1024)
     throw rp::cl::Error(name + ": voxel resolution " + std::to_string(voxel_resolution) +
@@ -54,7 +55,8 @@ void check_voxel_chain(const char* pass, const ::cl::Buffer& voxels, uint32_t vo
     throw rp::cl::Error(name + ": " + std::to_string(voxel_levels) +
                         " voxel levels for resolution " + std::to_string(voxel_resolution) +
                         " (expected 1.." + std::to_string(max_levels) + ")");
-  const size_t needed = size_t(gpu::rp_voxel_total(voxel_resolution, voxel_levels)) * 16;
+  const size_t needed = octree ? size_t(RP_SVO_HEADER_FLOAT4S) * 16
+                              : size_t(gpu::rp_voxel_total(voxel_resolution, voxel_levels)) * 16;
   const size_t have = voxels.getInfo<CL_MEM_SIZE>();
   if (have < needed)
     throw rp::cl::Error(name + ": the voxel buffer holds " + std::to_string(have) +
@@ -63,14 +65,17 @@ void check_voxel_chain(const char* pass, const ::cl::Buffer& voxels, uint32_t vo
 }
 
 LightPass::LightPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
-                     ShadowFilter filter)
-    : context_(&context), programs_(&programs), filter_(filter) {}
+                     ShadowFilter filter, std::string gi_options)
+    : context_(&context), programs_(&programs), filter_(filter),
+      gi_options_(std::move(gi_options)) {}
 
 ::cl::Kernel& LightPass::variant(bool upsample, bool split) {
   std::optional<::cl::Kernel>& k = kernels_[upsample][split];
-  if (!k)
-    k = programs_->kernel("light.cl", upsample ? "light_compose" : "light_shade",
-                          split ? "-DRP_LIGHT_SPLIT=1" : "");
+  if (!k) {
+    std::string options = split ? "-DRP_LIGHT_SPLIT=1" : "";
+    if (!gi_options_.empty()) options += (options.empty() ? "" : " ") + gi_options_;
+    k = programs_->kernel("light.cl", upsample ? "light_compose" : "light_shade", options);
+  }
   return *k;
 }
 
@@ -129,7 +134,7 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                     uint32_t voxel_levels, ::cl::Buffer& hdr, LightComponents* components,
                     const LowResIndirect* indirect) {
   check_sizes(scene, gbuffer, shadow);
-  check_voxel_chain("light pass", voxels, voxel_resolution, voxel_levels);
+  check_voxel_chain("light pass", voxels, voxel_resolution, voxel_levels, !gi_options_.empty());
   const uint32_t w = scene.constants.width, h = scene.constants.height;
   if (w == 0 || h == 0) return;
   if (indirect != nullptr &&

@@ -43,8 +43,11 @@ struct LightComponents {
 class LightPass {
  public:
   // Kernel variants (hdr only or split; per-pixel cones or upsampling) build on first use.
+  // Kernel options: see gi_options below.
+  // gi_options: "-DRP_GI_SVO" when the voxels given to run are the sparse voxel octree
+  // (kernels/shared/svo_layout.h) instead of the dense chain; "" otherwise.
   LightPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
-            ShadowFilter filter = ShadowFilter::kPcss);
+            ShadowFilter filter = ShadowFilter::kPcss, std::string gi_options = "");
 
   // Switches the shadow filter for the next run (its kernels build on first use).
   void set_filter(ShadowFilter filter) { filter_ = filter; }
@@ -87,6 +90,7 @@ class LightPass {
   const rp::cl::Context* context_;
   rp::cl::ProgramCache* programs_;
   ShadowFilter filter_;
+  std::string gi_options_;  // -DRP_GI_SVO... for the light kernels ("" = the dense chain)
   std::optional<::cl::Kernel> kernels_[2][2];
   std::optional<::cl::Kernel> shadow_kernels_[4];
   // width x height floats in [0, 1] (one per pixel, row-major), grown on demand
@@ -95,8 +99,9 @@ class LightPass {
 };
 
 // Throws rp::cl::Error (naming `pass`) unless `voxels` holds a chain of voxel_resolution^3 at
-// level 0 (a power of two, 2..1024) with voxel_levels levels (1..log2(resolution) + 1).
+// level 0 (a power of two, 2..1024) with voxel_levels levels (1..log2(resolution) + 1). An
+// octree (octree = true) is only checked to hold its header.
 void check_voxel_chain(const char* pass, const ::cl::Buffer& voxels, uint32_t voxel_resolution,
-                       uint32_t voxel_levels);
+                       uint32_t voxel_levels, bool octree = false);
 
 }  // namespace rp::passes

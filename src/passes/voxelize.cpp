@@ -45,9 +45,11 @@ bool same_geometry(const gpu::Instance& a, const gpu::Instance& b) {
 
 }  // namespace
 
-VoxelizePass::VoxelizePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
-    : context_(&context), span_(choose_span(context)) {
-  const std::string options = fixed_point_options() + " -DRP_SPAN=" + std::to_string(span_);
+VoxelizePass::VoxelizePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+                           bool fragments)
+    : context_(&context), fragments_(fragments), span_(choose_span(context)) {
+  const std::string options = fixed_point_options() + " -DRP_SPAN=" + std::to_string(span_) +
+                              (fragments ? " -DRP_VOXEL_FRAGMENTS" : "");
   clear_ = programs.kernel("voxelize.cl", "voxelize_clear", options);
   triangles_ = programs.kernel("voxelize.cl", "voxelize_triangles", options);
   large_ = programs.kernel("voxelize.cl", "voxelize_large", options);
@@ -116,7 +118,7 @@ bool VoxelizePass::update_cache_plan(const render::GpuScene& scene, uint32_t res
 }
 
 void VoxelizePass::set_large_args(const render::GpuScene& scene, const render::ShadowMap& shadow,
-                                  render::VoxelVolume& volume, cl_uint record) {
+                                  cl_uint record) {
   cl_uint arg = 0;
   large_.setArg(arg++, scene.frame);
   large_.setArg(arg++, scene.instances);
@@ -127,9 +129,9 @@ void VoxelizePass::set_large_args(const render::GpuScene& scene, const render::S
   large_.setArg(arg++, scene.textures);
   large_.setArg(arg++, texels_);
   large_.setArg(arg++, shadow.depth);
-  large_.setArg(arg++, volume.resolution);
-  large_.setArg(arg++, volume.accum);
-  large_.setArg(arg++, volume.overflow);
+  large_.setArg(arg++, target_resolution_);
+  large_.setArg(arg++, target_accum_);
+  large_.setArg(arg++, target_overflow_);
   large_.setArg(arg++, large_count_);
   large_.setArg(arg++, large_list_);
   large_.setArg(arg++, cached_flags_);
@@ -142,12 +144,12 @@ void VoxelizePass::set_large_args(const render::GpuScene& scene, const render::S
 }
 
 void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScene& scene,
-                               const render::ShadowMap& shadow, render::VoxelVolume& volume) {
+                               const render::ShadowMap& shadow) {
   // Rare (the first frame, a cached instance that moved): blocking reads and writes are fine.
   ::cl::CommandQueue& queue = profiler.queue();
   const cl_uint zero = 0;
   queue.enqueueWriteBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &zero);
-  set_large_args(scene, shadow, volume, kCount);
+  set_large_args(scene, shadow, kCount);
   profiler.enqueue("voxelize", large_, ::cl::NDRange(large_items_), ::cl::NDRange(kSpanGroup));
   cl_uint samples = 0;
   queue.enqueueReadBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &samples);
@@ -157,23 +159,50 @@ void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScen
   }
   queue.enqueueWriteBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &zero);
   if (samples > 0) {
-    set_large_args(scene, shadow, volume, kRecord);
+    set_large_args(scene, shadow, kRecord);
     profiler.enqueue("voxelize", large_, ::cl::NDRange(large_items_),
                      ::cl::NDRange(kSpanGroup));
   }
   cache_samples_ = samples;
 }
 
-void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
-                       const render::ShadowMap& shadow, render::VoxelVolume& volume,
-                       const ::cl::Buffer* bounce, uint32_t bounce_cells) {
-  const cl_uint r = volume.resolution;
+void VoxelizePass::set_bounce(const ::cl::Buffer* bounce, uint32_t bounce_cells) {
   if (bounce != nullptr && bounce_cells == 0)
     throw rp::cl::Error("voxelize pass: a bounce grid needs its cells per side");
   if (no_bounce_() == nullptr)  // a valid argument when there is no grid (never read)
     no_bounce_ = ::cl::Buffer(context_->context, CL_MEM_READ_ONLY, 4 * sizeof(float));
   bounce_ = bounce != nullptr ? bounce : &no_bounce_;
   bounce_cells_ = bounce != nullptr ? bounce_cells : 0;
+}
+
+void VoxelizePass::run_fragments(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                                 const render::ShadowMap& shadow, uint32_t resolution,
+                                 const ::cl::Buffer& fragments, const ::cl::Buffer& counter,
+                                 const ::cl::Buffer* bounce, uint32_t bounce_cells) {
+  if (!fragments_)
+    throw rp::cl::Error("voxelize pass: run_fragments needs a pass built for fragments");
+  if (resolution < 2 || resolution > 1024 || (resolution & (resolution - 1)) != 0)
+    throw rp::cl::Error("voxelize pass: fragment resolution " + std::to_string(resolution) +
+                        " is not a power of two from 2 to 1024");
+  if (shadow.size != scene.constants.shadow_size)
+    throw rp::cl::Error("voxelize pass: shadow map is " + std::to_string(shadow.size) +
+                        " texels wide but the frame constants say " +
+                        std::to_string(scene.constants.shadow_size));
+  set_bounce(bounce, bounce_cells);
+  target_resolution_ = resolution;
+  target_accum_ = fragments;
+  target_overflow_ = counter;
+  const cl_uint zero = 0;  // voxelize_clear resets it in the dense mode
+  profiler.queue().enqueueFillBuffer(large_count_, zero, 0, sizeof(cl_uint));
+  voxelize(profiler, scene, shadow);
+}
+
+void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                       const render::ShadowMap& shadow, render::VoxelVolume& volume,
+                       const ::cl::Buffer* bounce, uint32_t bounce_cells) {
+  if (fragments_) throw rp::cl::Error("voxelize pass: built for fragments (run_fragments)");
+  const cl_uint r = volume.resolution;
+  set_bounce(bounce, bounce_cells);
   if (!render::VoxelVolume::valid_resolution(r) || volume.chain() == nullptr)
     throw rp::cl::Error("voxelize pass: the voxel volume has not been allocated (resize it)");
   if (scene.constants.voxel_resolution != r || scene.constants.voxel_levels != volume.levels)
@@ -186,6 +215,27 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
                         " texels wide but the frame constants say " +
                         std::to_string(scene.constants.shadow_size));
   const cl_uint voxels = r * r * r;
+  target_resolution_ = r;
+  target_accum_ = volume.accum;
+  target_overflow_ = volume.overflow;
+  clear_.setArg(0, volume.accum);
+  clear_.setArg(1, volume.overflow);
+  clear_.setArg(2, voxels);
+  clear_.setArg(3, large_count_);
+  profiler.enqueue("voxelize", clear_, ::cl::NDRange(rp::cl::round_up(voxels, kGroup)),
+                   ::cl::NDRange(kGroup));
+  voxelize(profiler, scene, shadow);
+  resolve_.setArg(0, volume.accum);
+  resolve_.setArg(1, volume.overflow);
+  resolve_.setArg(2, volume.chain);
+  resolve_.setArg(3, voxels);
+  profiler.enqueue("voxelize", resolve_, ::cl::NDRange(rp::cl::round_up(voxels, kGroup)),
+                   ::cl::NDRange(kGroup));
+}
+
+void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                            const render::ShadowMap& shadow) {
+  const cl_uint r = target_resolution_;
   const cl_uint triangles = scene.instance_triangle_count;
   if (large_capacity_ < std::max<size_t>(triangles, 1)) {
     large_capacity_ = std::max<size_t>(triangles, 1);
@@ -196,13 +246,6 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
   const bool rebuild = update_cache_plan(scene, r, scene_changed);
   large_items_ = std::min(rp::cl::round_up(std::max<size_t>(triangles, 1), kSpanGroup),
                           context_->info.is_cpu ? size_t(128) : size_t(8192));
-
-  clear_.setArg(0, volume.accum);
-  clear_.setArg(1, volume.overflow);
-  clear_.setArg(2, voxels);
-  clear_.setArg(3, large_count_);
-  profiler.enqueue("voxelize", clear_, ::cl::NDRange(rp::cl::round_up(voxels, kGroup)),
-                   ::cl::NDRange(kGroup));
 
   if (triangles > 0) {
     cl_uint arg = 0;
@@ -217,8 +260,8 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
     triangles_.setArg(arg++, texels_);
     triangles_.setArg(arg++, shadow.depth);
     triangles_.setArg(arg++, r);
-    triangles_.setArg(arg++, volume.accum);
-    triangles_.setArg(arg++, volume.overflow);
+    triangles_.setArg(arg++, target_accum_);
+    triangles_.setArg(arg++, target_overflow_);
     triangles_.setArg(arg++, large_count_);
     triangles_.setArg(arg++, large_list_);
     triangles_.setArg(arg++, *bounce_);
@@ -231,8 +274,8 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
     // The list's length is only known on the device (reading it back would stall the
     // queue): a fixed number of work-items strides over it. Few on CPUs, where every
     // work-group costs a few microseconds even when it has nothing to do.
-    if (rebuild) build_cache(profiler, scene, shadow, volume);
-    set_large_args(scene, shadow, volume, kAccumulate);
+    if (rebuild) build_cache(profiler, scene, shadow);
+    set_large_args(scene, shadow, kAccumulate);
     profiler.enqueue("voxelize", large_, ::cl::NDRange(large_items_), ::cl::NDRange(kSpanGroup));
   }
 
@@ -242,8 +285,8 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
     cached_.setArg(arg++, shadow.depth);
     cached_.setArg(arg++, cache_);
     cached_.setArg(arg++, cache_samples_);
-    cached_.setArg(arg++, volume.accum);
-    cached_.setArg(arg++, volume.overflow);
+    cached_.setArg(arg++, target_accum_);
+    cached_.setArg(arg++, target_overflow_);
     cached_.setArg(arg++, *bounce_);
     cached_.setArg(arg++, bounce_cells_);
     const size_t span = static_cast<size_t>(span_);
@@ -260,21 +303,14 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
     spheres_.setArg(arg++, cl_uint(scene.sphere_count));
     spheres_.setArg(arg++, shadow.depth);
     spheres_.setArg(arg++, r);
-    spheres_.setArg(arg++, volume.accum);
-    spheres_.setArg(arg++, volume.overflow);
+    spheres_.setArg(arg++, target_accum_);
+    spheres_.setArg(arg++, target_overflow_);
     spheres_.setArg(arg++, *bounce_);
     spheres_.setArg(arg++, bounce_cells_);
     profiler.enqueue("voxelize", spheres_,
                      ::cl::NDRange(rp::cl::round_up(scene.sphere_count, kGroup)),
                      ::cl::NDRange(kGroup));
   }
-
-  resolve_.setArg(0, volume.accum);
-  resolve_.setArg(1, volume.overflow);
-  resolve_.setArg(2, volume.chain);
-  resolve_.setArg(3, voxels);
-  profiler.enqueue("voxelize", resolve_, ::cl::NDRange(rp::cl::round_up(voxels, kGroup)),
-                   ::cl::NDRange(kGroup));
 }
 
 }  // namespace rp::passes

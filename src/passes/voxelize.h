@@ -18,7 +18,9 @@ namespace rp::passes {
 
 class VoxelizePass {
  public:
-  VoxelizePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+  // fragments: build the kernels for run_fragments (the octree's fragment list) instead of run.
+  VoxelizePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+               bool fragments = false);
 
   // Clears volume.accum/overflow, voxelizes scene's instances and spheres (world [-1,1]^3 into
   // volume.resolution^3 voxels) and resolves the sums into level 0 of volume.chain. The
@@ -31,7 +33,24 @@ class VoxelizePass {
            const render::ShadowMap& shadow, render::VoxelVolume& volume,
            const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0);
 
+  // Fragment mode (a pass built with fragments = true): the same contributions as run() adds,
+  // at `resolution` (a power of two up to 1024; the frame constants are not checked), written
+  // as a fragment list (kernels/shared/svo_layout.h) to `fragments` (uint[8] per fragment).
+  // counter: uint[2] = {0, capacity in fragments}, written by the caller before; afterwards
+  // counter[0] holds the number of fragments (also when it exceeds the capacity: then only the
+  // first `capacity` were written, in no particular order, and the caller must grow the list
+  // and run again). Enqueues only.
+  void run_fragments(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                     const render::ShadowMap& shadow, uint32_t resolution,
+                     const ::cl::Buffer& fragments, const ::cl::Buffer& counter,
+                     const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0);
+
  private:
+  // Everything but the dense clear and resolve: triangles, large triangles, cached samples
+  // and spheres into target_accum_ / target_overflow_ at target_resolution_.
+  void voxelize(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                const render::ShadowMap& shadow);
+  void set_bounce(const ::cl::Buffer* bounce, uint32_t bounce_cells);
   // Binds scene.texels (packed RGBA8 sRGB, decoded per tap by the kernels) as texels_ and
   // returns true when it is not the texel buffer of the last run (held in seen_texels_, so its
   // handle cannot be reused by another buffer): the scene changed.
@@ -41,11 +60,15 @@ class VoxelizePass {
   bool update_cache_plan(const render::GpuScene& scene, uint32_t resolution, bool scene_changed);
   // VX_COUNT then VX_RECORD passes of voxelize_large over the frame's large-triangle list.
   void build_cache(rp::cl::Profiler& profiler, const render::GpuScene& scene,
-                   const render::ShadowMap& shadow, render::VoxelVolume& volume);
+                   const render::ShadowMap& shadow);
   void set_large_args(const render::GpuScene& scene, const render::ShadowMap& shadow,
-                      render::VoxelVolume& volume, cl_uint record);
+                      cl_uint record);
 
   const rp::cl::Context* context_;
+  bool fragments_ = false;  // built with RP_VOXEL_FRAGMENTS (run_fragments)
+  // This run's output: the dense sums (run) or the fragment list and its counter.
+  cl_uint target_resolution_ = 0;
+  ::cl::Buffer target_accum_, target_overflow_;
   const ::cl::Buffer* bounce_ = nullptr;  // this run's bounce grid (or no_bounce_)
   cl_uint bounce_cells_ = 0;
   ::cl::Buffer no_bounce_;

@@ -17,6 +17,7 @@
 #include "passes/visibility.h"
 #include "passes/voxel_mips.h"
 #include "passes/voxelize.h"
+#include "passes/svo.h"
 
 namespace rp::render {
 namespace {
@@ -69,22 +70,34 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   if (settings_.visibility == VisibilityBackend::kEmbree)
     embree_ = std::make_unique<passes::EmbreeVisibilityPass>(context, assets);
   gbuffer_pass_ = std::make_unique<passes::GBufferPass>(context, programs);
-  voxelize_ = std::make_unique<passes::VoxelizePass>(context, programs);
-  voxel_mips_ = std::make_unique<passes::VoxelMipsPass>(context, programs);
-  if (settings_.bounces >= 2) bounce_ = std::make_unique<passes::BouncePass>(context, programs);
+  const bool svo = settings_.gi_volume == GiVolume::kSvo;
+  if (!gi_resolution_supported(settings_.gi_volume, settings_.voxel_resolution))
+    throw rp::cl::Error(std::string("the ") + gi_volume_name(settings_.gi_volume) +
+                        " GI volume does not take " + std::to_string(settings_.voxel_resolution) +
+                        " voxels per side (dense: 32, 64 or 128; svo: 256 or 512)");
+  const std::string gi_options = svo ? "-DRP_GI_SVO" : "";
+  if (svo) {
+    svo_pass_ = std::make_unique<passes::SvoPass>(context, programs);
+  } else {
+    voxelize_ = std::make_unique<passes::VoxelizePass>(context, programs);
+    voxel_mips_ = std::make_unique<passes::VoxelMipsPass>(context, programs);
+  }
+  if (settings_.bounces >= 2)
+    bounce_ = std::make_unique<passes::BouncePass>(context, programs, gi_options);
   if (settings_.quality == Quality::kFast)
-    indirect_ = std::make_unique<passes::IndirectPass>(context, programs);
+    indirect_ = std::make_unique<passes::IndirectPass>(context, programs, gi_options);
   light_ = std::make_unique<passes::LightPass>(context, programs,
-                                               shadow_filter_for(settings_.shadows));
+                                               shadow_filter_for(settings_.shadows), gi_options);
   light_->prepare(indirect_ != nullptr);
   shadow_filter_ = std::make_unique<passes::ShadowFilterPass>(context, programs);
   tone_map_ = std::make_unique<passes::ToneMapPass>(context, programs);
   taa_ = std::make_unique<passes::TaaPass>(context, programs);
   bloom_ = std::make_unique<passes::BloomPass>(context, programs);
   motion_blur_ = std::make_unique<passes::MotionBlurPass>(context, programs);
-  debug_view_pass_ = std::make_unique<passes::DebugViewPass>(context, programs);  // builds lazily
+  debug_view_pass_ =
+      std::make_unique<passes::DebugViewPass>(context, programs, gi_options);  // builds lazily
   shadow_.resize(context.context, settings_.shadow_size);
-  voxels_.resize(context.context, settings_.voxel_resolution);
+  if (!svo) voxels_.resize(context.context, settings_.voxel_resolution);
   resize(settings_.width, settings_.height);
 }
 
@@ -110,10 +123,13 @@ void Renderer::resize(uint32_t width, uint32_t height) {
 }
 
 void Renderer::set_debug_view(const passes::DebugViewSettings& view) {
-  if (view.view == passes::DebugView::kVoxels && (view.level >= voxels_.levels || view.dir >= 6))
+  // The octree holds levels 0 .. log2 R - 1 (the dense chain's 1^3 top level is never traced).
+  const uint32_t view_levels =
+      settings_.gi_volume == GiVolume::kSvo ? gi_levels() - 1 : gi_levels();
+  if (view.view == passes::DebugView::kVoxels && (view.level >= view_levels || view.dir >= 6))
     throw rp::cl::Error("voxel view: level " + std::to_string(view.level) + " direction " +
                         std::to_string(view.dir) + " does not exist (levels 0.." +
-                        std::to_string(voxels_.levels - 1) + ", directions 0..5)");
+                        std::to_string(view_levels - 1) + ", directions 0..5)");
   view_ = view;
   update_light_components();
 }
@@ -155,7 +171,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     if (last_view_ && *last_view_ != prev_view) reset_view_history();
     last_view_ = frame.camera.view();
     scene_->update(frame, settings_.width, settings_.height, settings_.shadow_size,
-                   voxels_.resolution,
+                   gi_resolution(),
                    fx.taa && view_.view == passes::DebugView::kFinal ? 16u : 0u);
     double host_visibility_ms = 0.0;
     if (embree_)
@@ -175,11 +191,11 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     if (indirect_) {
       // screen-space reflections: hdr_ still holds the previous frame's light pass output
       const passes::SsrInputs ssr{&vis_.depth, &hdr_, &gbuffer_.velocity};
-      low_res = indirect_->run(profiler_, *scene_, gbuffer_, voxels_.chain, voxels_.resolution,
-                               voxels_.levels, &ssr);
+      low_res = indirect_->run(profiler_, *scene_, gbuffer_, gi_buffer(), gi_resolution(),
+                               gi_levels(), &ssr);
     }
-    light_->run(profiler_, *scene_, gbuffer_, shadow_, voxels_.chain, voxels_.resolution,
-                voxels_.levels, hdr_, split ? &light_components_ : nullptr,
+    light_->run(profiler_, *scene_, gbuffer_, shadow_, gi_buffer(), gi_resolution(),
+                gi_levels(), hdr_, split ? &light_components_ : nullptr,
                 indirect_ ? &low_res : nullptr);
     if (view_.view == passes::DebugView::kFinal) {
       const uint32_t w = settings_.width, h = settings_.height;
@@ -214,9 +230,9 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
       in.gbuffer = &gbuffer_;
       in.shadow = &shadow_;
       in.light = split ? &light_components_ : nullptr;
-      in.voxels = &voxels_.chain;
-      in.voxel_resolution = voxels_.resolution;
-      in.voxel_levels = voxels_.levels;
+      in.voxels = &gi_buffer();
+      in.voxel_resolution = gi_resolution();
+      in.voxel_levels = gi_levels();
       debug_view_pass_->run(profiler_, *scene_, view_, in, rgba8_);
     }
     components_written_ = split;
@@ -256,10 +272,31 @@ const ::cl::Buffer* Renderer::bounce_grid() const {
   return bounce_ && bounce_->valid() ? &bounce_->grid() : nullptr;
 }
 
+const ::cl::Buffer& Renderer::gi_buffer() const {
+  return settings_.gi_volume == GiVolume::kSvo ? svo_.buffer : voxels_.chain;
+}
+
+uint32_t Renderer::gi_resolution() const {
+  return settings_.gi_volume == GiVolume::kSvo ? settings_.voxel_resolution : voxels_.resolution;
+}
+
+uint32_t Renderer::gi_levels() const {
+  return settings_.gi_volume == GiVolume::kSvo
+             ? gpu::rp_svo_log2(settings_.voxel_resolution) + 1
+             : voxels_.levels;
+}
+
 void Renderer::build_voxels() {
   const auto voxelize = [&](bool with_bounce) {
-    voxelize_->run(profiler_, *scene_, shadow_, voxels_, with_bounce ? &bounce_->grid() : nullptr,
-                   passes::BouncePass::cells(voxels_.resolution));
+    const ::cl::Buffer* grid = with_bounce ? &bounce_->grid() : nullptr;
+    const uint32_t cells = passes::BouncePass::cells(gi_resolution());
+    if (svo_pass_) {
+      // The octree is rebuilt every frame from the frame's fragments (the static room's
+      // surface samples come from the voxelizer's cache): see passes/svo.h.
+      svo_pass_->run(profiler_, *scene_, shadow_, settings_.voxel_resolution, svo_, grid, cells);
+      return;
+    }
+    voxelize_->run(profiler_, *scene_, shadow_, voxels_, grid, cells);
     voxel_mips_->run(profiler_, voxels_);
   };
   if (!bounce_) {
@@ -275,14 +312,15 @@ void Renderer::build_voxels() {
     const uint32_t iterations =
         std::min(settings_.bounces - 1, reference ? kWarmGathersReference : kWarmGathersFast);
     for (uint32_t i = 0; i < iterations; ++i) {
-      bounce_->run(profiler_, voxels_, frame, passes::BouncePass::Cones::kAll);
+      bounce_->run(profiler_, gi_buffer(), gi_resolution(), gi_levels(), frame,
+                   passes::BouncePass::Cones::kAll);
       voxelize(true);
     }
   } else {
     voxelize(true);
   }
   // This frame's gather, for the next frame's voxels.
-  bounce_->run(profiler_, voxels_, frame,
+  bounce_->run(profiler_, gi_buffer(), gi_resolution(), gi_levels(), frame,
                reference ? passes::BouncePass::Cones::kAll : passes::BouncePass::Cones::kOne);
 }
 

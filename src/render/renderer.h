@@ -14,6 +14,7 @@
 #include "passes/light.h"
 #include "render/frame_buffers.h"
 #include "render/gpu_scene.h"
+#include "render/svo_volume.h"
 #include "render/voxel_volume.h"
 #include "scene/frame_scene.h"
 
@@ -28,6 +29,7 @@ class ToneMapPass;
 class DebugViewPass;
 class VoxelizePass;
 class VoxelMipsPass;
+class SvoPass;
 class BouncePass;
 class TaaPass;
 class BloomPass;
@@ -64,6 +66,19 @@ enum class VisibilityBackend { kRaster, kEmbree };
 //               measured against.
 enum class Quality { kFast, kReference };
 
+// Which volume holds the voxels the cones trace (issue 17, --gi-volume):
+//   kDense: the dense anisotropic mip chain (render/voxel_volume.h), 32^3 .. 128^3;
+//   kSvo:   the sparse voxel octree of seed 001 (render/svo_volume.h, passes/svo.h), 256^3 or
+//           512^3: the same values where it has nodes, memory for the surfaces only.
+// Both are traced by the same cone functions (kernels/common/cone_trace.h, RP_GI_SVO).
+enum class GiVolume { kDense, kSvo };
+// Command-line names "dense", "svo"; nullopt for others.
+const char* gi_volume_name(GiVolume volume);
+std::optional<GiVolume> parse_gi_volume(std::string_view name);
+// Resolutions each volume takes: dense powers of two 2..256 (the app: 32, 64, 128), svo powers of
+// two 2..1024 (the app: 256, 512; tests smaller).
+bool gi_resolution_supported(GiVolume volume, uint32_t resolution);
+
 // How the lamp's shadow is filtered (issue 15, --shadows). The lamp is a half sphere of radius
 // 0.35, so real shadows are soft: their penumbra widens with the blocker-receiver distance.
 //   kHard: one shadow-map tap per pixel (a point lamp's hard shadow);
@@ -99,7 +114,9 @@ struct LinearComponents {
 struct RenderSettings {
   uint32_t width = 720, height = 720;
   uint32_t shadow_size = 1024;  // shadow map texels per side
-  uint32_t voxel_resolution = 64;  // GI volume: voxels per side over the box (32, 64 or 128)
+  uint32_t voxel_resolution = 64;  // GI volume: voxels per side over the box (dense: 32, 64 or
+                                   // 128; svo: 256 or 512)
+  GiVolume gi_volume = GiVolume::kDense;  // --gi-volume dense|svo (issue 17)
   Effects effects;
   VisibilityBackend visibility = VisibilityBackend::kRaster;  // --visibility raster|embree
   Quality quality = Quality::kFast;  // --quality fast|reference
@@ -166,7 +183,8 @@ class Renderer {
   const ShadowMap& shadow_map() const { return shadow_; }
   const GBuffer& gbuffer() const { return gbuffer_; }
   const ::cl::Buffer& hdr() const { return hdr_; }
-  const VoxelVolume& voxels() const { return voxels_; }
+  const VoxelVolume& voxels() const { return voxels_; }  // the dense volume (kDense)
+  const SvoVolume& octree() const { return svo_; }      // the octree (kSvo)
   // The bounce grid (passes/bounce.h) the next frame's voxels take their bounce light from;
   // nullptr with one bounce (settings().bounces < 2) or before the first gather after a reset.
   const ::cl::Buffer* bounce_grid() const;
@@ -179,6 +197,11 @@ class Renderer {
 
   // Voxelizes the frame and builds the mips; with several bounces, also the bounce gathers.
   void build_voxels();
+  // The GI volume the cones read: the dense chain or the octree buffer, its resolution and
+  // levels (log2 R + 1 for both).
+  const ::cl::Buffer& gi_buffer() const;
+  uint32_t gi_resolution() const;
+  uint32_t gi_levels() const;
   // Forgets the view-dependent histories (TAA, the fast mode's indirect light): camera cuts.
   void reset_view_history();
 
@@ -213,7 +236,9 @@ class Renderer {
   VisibilityBuffer vis_;
   ShadowMap shadow_;
   GBuffer gbuffer_;
-  VoxelVolume voxels_;
+  VoxelVolume voxels_;                  // kDense
+  SvoVolume svo_;                       // kSvo
+  std::unique_ptr<passes::SvoPass> svo_pass_;  // kSvo
   ::cl::Buffer hdr_;    // float4 per pixel: the light pass's output
   ::cl::Buffer post_[2];  // float4 per pixel: post-processing ping-pong
   std::optional<glm::mat4> last_view_;  // camera of the previous frame (camera-cut detection)

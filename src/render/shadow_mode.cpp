@@ -1,4 +1,5 @@
-// Names of render::ShadowMode (--shadows, key H, the window title).
+// Names of render::ShadowMode (--shadows, key H, the window title) and render::GiVolume
+// (--gi-volume).
 #include "render/renderer.h"
 
 namespace rp::render {
@@ -21,6 +22,22 @@ std::optional<ShadowMode> parse_shadow_mode(std::string_view name) {
 
 ShadowMode next_shadow_mode(ShadowMode mode) {
   return ShadowMode((int(mode) + 1) % 4);
+}
+
+const char* gi_volume_name(GiVolume volume) {
+  return volume == GiVolume::kSvo ? "svo" : "dense";
+}
+
+std::optional<GiVolume> parse_gi_volume(std::string_view name) {
+  if (name == "dense") return GiVolume::kDense;
+  if (name == "svo") return GiVolume::kSvo;
+  return std::nullopt;
+}
+
+bool gi_resolution_supported(GiVolume volume, uint32_t resolution) {
+  if (volume == GiVolume::kSvo)
+    return resolution >= 2 && resolution <= 1024 && (resolution & (resolution - 1)) == 0;
+  return VoxelVolume::valid_resolution(resolution);
 }
 
 }  // namespace rp::render

@@ -338,3 +338,44 @@ TEST(ParseCli, HugeDeviceIndexIsAUsageError) {
 }  // namespace
 }  // namespace rp::app
 
+
+namespace rp::app {
+namespace {
+
+// --gi-volume (issue 17): dense by default; svo takes --voxels 256 or 512 (256 when not
+// given, also as bench's list); mismatched resolutions and unknown volumes are usage errors
+// that say what to use.
+TEST(ParseCli, GiVolumeAndItsResolutions) {
+  EXPECT_EQ(command({"render"}).common.gi_volume, render::GiVolume::kDense);
+  const ParsedCommand svo = command({"render", "--gi-volume", "svo", "--voxels", "512"});
+  EXPECT_EQ(svo.common.gi_volume, render::GiVolume::kSvo);
+  EXPECT_EQ(svo.common.voxels, 512u);
+  EXPECT_EQ(command({"run", "--gi-volume", "svo"}).common.voxels, 0u);  // session: 256
+  EXPECT_EQ(command({"bench", "--gi-volume", "svo"}).bench.voxels,
+            (std::vector<uint32_t>{256}));
+  EXPECT_EQ(command({"bench", "--gi-volume", "svo", "--voxels", "256,512"}).bench.voxels,
+            (std::vector<uint32_t>{256, 512}));
+  EXPECT_EQ(command({"render", "--gi-volume", "dense", "--voxels", "128"}).common.gi_volume,
+            render::GiVolume::kDense);
+
+  const CliExit dense512 = exit_of({"render", "--voxels", "512"});
+  EXPECT_EQ(dense512.exit_code, 2);
+  EXPECT_NE(dense512.message.find("--voxels 512 needs --gi-volume svo"), std::string::npos)
+      << dense512.message;
+  const CliExit svo64 = exit_of({"run", "--gi-volume", "svo", "--voxels", "64"});
+  EXPECT_EQ(svo64.exit_code, 2);
+  EXPECT_NE(svo64.message.find("--gi-volume svo takes --voxels 256 or 512, not 64"),
+            std::string::npos)
+      << svo64.message;
+  EXPECT_EQ(exit_of({"bench", "--gi-volume", "svo", "--voxels", "256,32"}).exit_code, 2);
+  EXPECT_EQ(exit_of({"bench", "--voxels", "64,256"}).exit_code, 2);
+  const CliExit unknown = exit_of({"render", "--gi-volume", "octree"});
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.message.find("--gi-volume"), std::string::npos) << unknown.message;
+  EXPECT_EQ(exit_of({"render", "--voxels", "1024"}).exit_code, 2);
+  // the path tracer has no GI volume
+  EXPECT_EQ(exit_of({"render", "--quality", "pathtraced", "--gi-volume", "svo"}).exit_code, 2);
+}
+
+}  // namespace
+}  // namespace rp::app

@@ -1,0 +1,103 @@
+/* Reading the sparse voxel octree (OpenCL C only): node descent and brick samples. Layout and
+ * the meaning of nodes and bricks: shared/svo_layout.h. Used by the builder (svo.cl) and by
+ * the cone tracer when the GI volume is the octree (common/cone_trace.h with RP_GI_SVO).
+ *
+ * Samples are packed (RGB9E5 uint + opacity byte, shared/svo_layout.h) unless the kernel is
+ * built with -DRP_SVO_FLOAT_SAMPLES=1 (float4; the host writes the matching
+ * RP_SVO_HDR_SAMPLE_BYTES).
+ */
+#ifndef ROLYPOLY_COMMON_SVO_H
+#define ROLYPOLY_COMMON_SVO_H
+
+#include "shared/svo_layout.h"
+
+#ifndef RP_SVO_FLOAT_SAMPLES
+#define RP_SVO_FLOAT_SAMPLES 0
+#endif
+
+/* Header word w of the octree buffer. */
+inline uint rp_svo_header(__global const float4* svo, uint w) {
+  return ((__global const uint*)svo)[w];
+}
+
+/* The node pool (2 uints per node). */
+inline __global const uint* rp_svo_nodes(__global const float4* svo) {
+  return (__global const uint*)(svo + RP_SVO_HEADER_FLOAT4S);
+}
+
+/* RGB9E5 -> rgb: mantissa * 2^(exponent - 15 - 9). */
+inline float3 rp_svo_unpack_rgb(uint w) {
+  const float scale = as_float(((w >> 27) + 103u) << 23); /* 2^(e - 24), e - 24 + 127 */
+  return (float3)((float)(w & 511u), (float)((w >> 9) & 511u), (float)((w >> 18) & 511u)) *
+         scale;
+}
+
+/* Sample s of a brick pool whose rgb plane starts at `pool` and opacity plane at `alpha`. */
+inline float4 rp_svo_pool_load(__global const uint* pool, __global const uchar* alpha, uint s) {
+#if RP_SVO_FLOAT_SAMPLES
+  (void)alpha;
+  return ((__global const float4*)pool)[s];
+#else
+  return (float4)(rp_svo_unpack_rgb(pool[s]), (float)alpha[s] * (1.0f / 255.0f));
+#endif
+}
+
+/* Brick-pool sample s (premultiplied rgb, opacity). */
+inline float4 rp_svo_load(__global const float4* svo, uint s) {
+  __global const uint* pool =
+      (__global const uint*)(svo + rp_svo_header(svo, RP_SVO_HDR_BRICK_OFFSET));
+  __global const uchar* alpha =
+      (__global const uchar*)svo + rp_svo_header(svo, RP_SVO_HDR_ALPHA_OFFSET);
+  return rp_svo_pool_load(pool, alpha, s);
+}
+
+/* The node at `depth` with coordinate a (0 <= a < 2^depth per axis, unchecked): its index, or
+ * 0xFFFFFFFF when an ancestor has no children (the node is not in the tree). Descends from
+ * the root, one child block per depth: child o = (bit depth-j of a) for the j-th step. */
+inline uint rp_svo_find(__global const uint* nodes, uint depth, uint3 a) {
+  uint idx = 0u;
+  for (uint j = depth; j > 0u; --j) {
+    const uint child = nodes[2u * idx] & RP_SVO_NODE_CHILD_MASK;
+    if (child == 0u) return 0xFFFFFFFFu;
+    const uint s = j - 1u;
+    idx = child + (((a.x >> s) & 1u) | (((a.y >> s) & 1u) << 1) | (((a.z >> s) & 1u) << 2));
+  }
+  return idx;
+}
+
+/* First sample of the brick of the node at `depth` with coordinate a, or RP_SVO_NO_BRICK. */
+inline uint rp_svo_find_brick(__global const uint* nodes, uint depth, uint3 a) {
+  const uint idx = rp_svo_find(nodes, depth, a);
+  return idx == 0xFFFFFFFFu ? RP_SVO_NO_BRICK : nodes[2u * idx + 1u];
+}
+
+/* Voxel v of volume `dir` at `level` (dir ignored at level 0), as rp_voxel_fetch reads the
+ * dense chain: zero outside the volume or where the octree has no brick. Levels 0 .. D-1. */
+inline float4 rp_svo_fetch(__global const float4* svo, uint resolution, uint level, uint dir,
+                           int3 v) {
+  const int n = (int)(resolution >> level);
+  if (v.x < 0 || v.y < 0 || v.z < 0 || v.x >= n || v.y >= n || v.z >= n) return (float4)(0.0f);
+  const uint depths = rp_svo_header(svo, RP_SVO_HDR_DEPTHS);
+  if (level >= depths) return (float4)(0.0f);
+  const uint3 u = convert_uint3(v);
+  const uint3 a = u >> 1;
+  const uint brick = rp_svo_find_brick(rp_svo_nodes(svo), depths - 1u - level, a);
+  if (brick == RP_SVO_NO_BRICK) return (float4)(0.0f);
+  const uint3 o = u - 2u * a;
+  return rp_svo_load(svo, brick + (level == 0u ? 0u : RP_SVO_BRICK_SAMPLES * dir) +
+                              rp_svo_sample(o.x, o.y, o.z));
+}
+
+/* Trilinear footprint of point p at a level with n voxels per side, as the dense sampler
+ * (common/cone_trace.h rp_cone_footprint): taps x0 = floor(u), x0 + 1 of
+ * u = clamp((p + 1) n / 2 - 1/2, 0, n - 1), fraction f = u - x0. Returns x0; the taps lie in
+ * the brick of node x0 >> 1 at sample offsets (x0 & 1) and (x0 & 1) + 1. */
+inline uint3 rp_svo_footprint(uint n, float3 p, float3* f) {
+  const float nf = (float)n;
+  const float3 u = clamp((p + 1.0f) * (0.5f * nf) - 0.5f, 0.0f, nf - 1.0f);
+  const float3 fl = floor(u);
+  *f = u - fl;
+  return convert_uint3(fl);
+}
+
+#endif

@@ -1,0 +1,410 @@
+/* Sparse voxel octree build (issue 17, seed 001). Host side: src/passes/svo.cpp. Layout,
+ * node and brick meaning: shared/svo_layout.h; reading: common/svo.h.
+ *
+ * Input: the voxelizer's fragment list at resolution R = 2^D (kernels/voxelize.cl built with
+ * RP_VOXEL_FRAGMENTS): per fragment the fixed-point sums it adds and its level-0 voxel.
+ * Per frame, top-down, for depth k = 0 .. D-1 (brick level l = D-1-k):
+ *   svo_clear_nodes   the depth's nodes (8 per existing parent, or the root) start empty
+ *   svo_flag          32 fragments a work-item: each one's owner node at depth k (the child of
+ *                     its depth k-1 owner, kept in `cur`), OR-ed flags: own voxels non-empty,
+ *                     and which low faces hold the fragment's level-l voxel (bit e: node
+ *                     a - e must exist too, its border holds that voxel)
+ *   svo_dilate        one work-item per depth-k node with face bits: OR "exists" into the
+ *                     nodes a - e (found by descent from the root)
+ *   svo_count, svo_scan, svo_allocate
+ *                     prefix sums over the depth's nodes in index order (fixed chunks, a
+ *                     serial scan of the chunk sums): existing node i of rank r gets brick
+ *                     brick_first + r * brick size and, above the leaves, child block
+ *                     child_first + 8 r; its children's coordinates 2a + o are recorded
+ * Nothing here depends on the order of the fragments or of the work-items: flags are ORed,
+ * ranks come from prefix sums over node indices, sums are integers. So the pools are
+ * bit-identical run to run (DESIGN.md).
+ * Then bottom-up:
+ *   svo_inject        one work-item per fragment: its fixed-point words added (atomic_add,
+ *                     the dense voxelizer's overflow rule: word 7 of the voxel) into the
+ *                     accumulator of its own voxel in its leaf (8 voxels x 8 words a leaf)
+ *   svo_resolve       one work-item per leaf: own 8 samples = the dense resolve
+ *   svo_border        one work-item per node of a depth: border samples (index 2 on some
+ *                     axis) = the own samples of the neighbour a + e, 0 where it has none
+ *                     (seed 001's "value transfer": after it, every level-l voxel has the
+ *                     same value in every brick holding it)
+ *   svo_mips          one work-item per node at brick level l >= 1: own sample o (level-l
+ *                     voxel 2a + o) in the 6 directions = common/voxel_composite.h over
+ *                     the own samples of child o (for l = 1 the leaf's isotropic samples
+ *                     seen along the direction through its facing words), then svo_border.
+ * The values are those of the dense chain (voxelize.cl resolve, voxel_mips.cl), computed by
+ * the same functions in the same order; with float samples bit-identical.
+ */
+#pragma OPENCL FP_CONTRACT OFF
+
+#include "shared/voxel_layout.h"
+#include "shared/svo_layout.h"
+#include "common/voxel_composite.h"
+#include "common/svo.h"
+
+#if !defined(RP_VOXEL_FIXED_BITS) || !defined(RP_VOXEL_SATURATED)
+#error "svo.cl needs -DRP_VOXEL_FIXED_BITS, -DRP_VOXEL_SATURATED"
+#endif
+
+#define SVO_NODE_WORDS(svo) ((svo) + 4u * RP_SVO_HEADER_FLOAT4S)
+
+inline uint3 svo_unpack(uint c) { return (uint3)(c & 1023u, (c >> 10) & 1023u, c >> 20); }
+inline uint svo_pack(uint3 a) { return a.x | (a.y << 10) | (a.z << 20); }
+
+/* rgb (clamped to [0, 65408]) -> RGB9E5 (the EXT_texture_shared_exponent rule: shared exponent
+ * from the largest channel, mantissas rounded to nearest; the exponent from the float's bits
+ * rather than log2). */
+inline uint svo_pack_rgb(float3 c) {
+  c = fmin(fmax(c, 0.0f), 65408.0f); /* NaN -> 0 */
+  const float m = fmax(fmax(c.x, c.y), c.z);
+  int e = (int)((as_uint(m) >> 23) & 255u) - 127;  /* floor(log2 m) for normal m */
+  e = max(e, -16) + 16;                               /* biased shared exponent, 0 .. 31 */
+  float inv = as_float((uint)(151 - e) << 23);        /* 2^(24 - e) */
+  /* round to nearest: the conversion truncates, i.e. floors these non-negative values */
+  if ((uint)(m * inv + 0.5f) == 512u) {
+    ++e;
+    inv *= 0.5f;
+  }
+  const uint r = (uint)(c.x * inv + 0.5f), g = (uint)(c.y * inv + 0.5f),
+             b = (uint)(c.z * inv + 0.5f);
+  return r | (g << 9) | (b << 18) | ((uint)e << 27);
+}
+
+/* The brick pool as written by the builder: pool = the rgb plane (uints, or float4s with
+ * RP_SVO_FLOAT_SAMPLES), alpha = the opacity plane (bytes). */
+inline void svo_store(__global uint* pool, __global uchar* alpha, uint s, float4 v) {
+#if RP_SVO_FLOAT_SAMPLES
+  (void)alpha;
+  ((__global float4*)pool)[s] = v;
+#else
+  pool[s] = svo_pack_rgb(v.xyz);
+  alpha[s] = (uchar)(clamp(v.w, 0.0f, 1.0f) * 255.0f + 0.5f);
+#endif
+}
+
+/* Copies sample `from` to `to` as stored (the border transfer: no unpacking). */
+inline void svo_copy(__global uint* pool, __global uchar* alpha, uint to, uint from) {
+#if RP_SVO_FLOAT_SAMPLES
+  (void)alpha;
+  ((__global float4*)pool)[to] = ((__global const float4*)pool)[from];
+#else
+  pool[to] = pool[from];
+  alpha[to] = alpha[from];
+#endif
+}
+
+/* Stores the empty sample (rgb 0, opacity 0). */
+inline void svo_clear_sample(__global uint* pool, __global uchar* alpha, uint s) {
+#if RP_SVO_FLOAT_SAMPLES
+  (void)alpha;
+  ((__global float4*)pool)[s] = (float4)(0.0f);
+#else
+  pool[s] = 0u;
+  alpha[s] = (uchar)0;
+#endif
+}
+
+#define svo_pool_load rp_svo_pool_load
+#define SVO_POOL(svo, brick_offset) ((svo) + 4u * (brick_offset))
+#define SVO_ALPHA(svo, alpha_offset) ((__global uchar*)(svo) + (alpha_offset))
+
+__kernel void svo_clear_nodes(__global uint* svo, __global uint* own, __global uint* near,
+                              uint first, uint count) {
+  const uint i = (uint)get_global_id(0);
+  if (i >= count) return;
+  __global uint* nodes = SVO_NODE_WORDS(svo);
+  nodes[2u * (first + i)] = 0u;
+  nodes[2u * (first + i) + 1u] = RP_SVO_NO_BRICK;
+  own[first + i] = 0u;
+  near[first + i] = 0u;
+}
+
+/* Fragments per work-item of svo_flag: consecutive fragments (written by the same voxelizer
+ * work-item) mostly share their shallow owners, so a work-item ORs their bits locally and
+ * issues one atomic per change of owner (contention on the top nodes otherwise). */
+#define SVO_FLAG_CHUNK 32u
+
+/* The owners at `depth` of fragments [SVO_FLAG_CHUNK g, + SVO_FLAG_CHUNK) (see the header).
+ * resolution_log2 = D. */
+__kernel void svo_flag(__global const uint* fragments, uint fragment_count, __global uint* svo,
+                       __global uint* cur, volatile __global uint* own, uint depth,
+                       uint resolution_log2) {
+  const uint begin = (uint)get_global_id(0) * SVO_FLAG_CHUNK;
+  if (begin >= fragment_count) return;
+  const uint end = min(begin + SVO_FLAG_CHUNK, fragment_count);
+  const uint D = resolution_log2;
+  const uint R = 1u << D;
+  const uint level = D - 1u - depth;
+  __global const uint* nodes = SVO_NODE_WORDS(svo);
+  uint last = 0xFFFFFFFFu, pending = 0u;
+  for (uint f = begin; f < end; ++f) {
+    const uint key = fragments[RP_SVO_FRAGMENT_WORDS * f + RP_SVO_FRAGMENT_KEY];
+    const uint3 v0 = (uint3)(key & (R - 1u), (key >> D) & (R - 1u), key >> (2u * D));
+    const uint3 v = v0 >> level; /* level-l voxel */
+    const uint3 a = v >> 1;      /* node coordinate at this depth */
+    uint node = 0u;
+    if (depth > 0u) {
+      const uint child = nodes[2u * cur[f]] & RP_SVO_NODE_CHILD_MASK;
+      node = child + ((a.x & 1u) | ((a.y & 1u) << 1) | ((a.z & 1u) << 2));
+    }
+    cur[f] = node;
+    /* low faces: v on the node's low side (v = 2a) with a neighbour a - e inside the grid */
+    const uint m = ((v.x & 1u) == 0u && a.x > 0u ? 1u : 0u) |
+                   ((v.y & 1u) == 0u && a.y > 0u ? 2u : 0u) |
+                   ((v.z & 1u) == 0u && a.z > 0u ? 4u : 0u);
+    uint bits = RP_SVO_FLAG_OWN;
+    for (uint e = 1u; e < 8u; ++e)
+      if ((e & m) == e) bits |= 1u << e;
+    if (node != last) {
+      if (last != 0xFFFFFFFFu) atomic_or(own + last, pending);
+      last = node;
+      pending = 0u;
+    }
+    pending |= bits;
+  }
+  atomic_or(own + last, pending);
+}
+
+/* path[j] = the ancestor at depth j (0 .. depth-1) of the node at `depth` with coordinate a. */
+inline void svo_path(__global const uint* nodes, uint depth, uint3 a, uint* path) {
+  path[0] = 0u;
+  for (uint j = 1u; j < depth; ++j) {
+    const uint s = depth - j;
+    path[j] = (nodes[2u * path[j - 1u]] & RP_SVO_NODE_CHILD_MASK) +
+              (((a.x >> s) & 1u) | (((a.y >> s) & 1u) << 1) | (((a.z >> s) & 1u) << 2));
+  }
+}
+
+/* The node at `depth` with coordinate b (!= a, inside the grid), descending from the deepest
+ * ancestor it shares with a (path: svo_path of a) instead of the root; 0xFFFFFFFF when it is
+ * not in the tree. The ancestors agree above depth - 1 - h, h = the highest differing bit. */
+inline uint svo_find_near(__global const uint* nodes, const uint* path, uint depth, uint3 a,
+                          uint3 b) {
+  const uint h = 31u - clz((a.x ^ b.x) | (a.y ^ b.y) | (a.z ^ b.z));
+  uint idx = path[depth - 1u - h];
+  for (uint j = depth - h; j <= depth && idx != 0xFFFFFFFFu; ++j) {
+    const uint child = nodes[2u * idx] & RP_SVO_NODE_CHILD_MASK;
+    const uint s = depth - j;
+    idx = child == 0u ? 0xFFFFFFFFu
+                      : child + (((b.x >> s) & 1u) | (((b.y >> s) & 1u) << 1) |
+                                 (((b.z >> s) & 1u) << 2));
+  }
+  return idx;
+}
+
+__kernel void svo_dilate(__global uint* svo, __global const uint* own, volatile __global uint* near,
+                         __global const uint* coords, uint first, uint count, uint depth) {
+  const uint i = (uint)get_global_id(0);
+  if (i >= count) return;
+  const uint bits = own[first + i] & ~RP_SVO_FLAG_OWN;
+  if (bits == 0u) return;
+  const uint3 a = svo_unpack(coords[first + i]);
+  __global const uint* nodes = SVO_NODE_WORDS(svo);
+  uint path[RP_SVO_MAX_DEPTHS];
+  svo_path(nodes, depth, a, path);
+  for (uint e = 1u; e < 8u; ++e) {
+    if ((bits & (1u << e)) == 0u) continue;
+    const uint3 b = a - (uint3)(e & 1u, (e >> 1) & 1u, e >> 2);
+    const uint t = svo_find_near(nodes, path, depth, a, b);
+    if (t != 0xFFFFFFFFu) atomic_or(near + t, 1u);
+  }
+}
+
+inline bool svo_exists(__global const uint* own, __global const uint* near, uint i) {
+  return (own[i] | near[i]) != 0u;
+}
+
+/* Existing nodes in chunk g of [first, first + count). */
+__kernel void svo_count(__global const uint* own, __global const uint* near, uint first,
+                        uint count, uint chunk, __global uint* sums) {
+  const uint g = (uint)get_global_id(0);
+  const uint begin = g * chunk;
+  if (begin >= count) return;
+  const uint end = min(begin + chunk, count);
+  uint n = 0u;
+  for (uint i = begin; i < end; ++i) n += svo_exists(own, near, first + i) ? 1u : 0u;
+  sums[g] = n;
+}
+
+/* Exclusive prefix sum over the chunk sums, in place; the total into totals[slot]. One
+ * work-item: the chunks number nodes / chunk (a few thousand). */
+__kernel void svo_scan(__global uint* sums, uint chunks, __global uint* totals, uint slot) {
+  if (get_global_id(0) != 0) return;
+  uint run = 0u;
+  for (uint g = 0; g < chunks; ++g) {
+    const uint s = sums[g];
+    sums[g] = run;
+    run += s;
+  }
+  totals[slot] = run;
+}
+
+__kernel void svo_allocate(__global uint* svo, __global const uint* own,
+                           __global const uint* near, __global uint* coords, uint first,
+                           uint count, uint chunk, __global const uint* sums, uint child_first,
+                           uint brick_first, uint brick_size, uint leaf) {
+  const uint g = (uint)get_global_id(0);
+  const uint begin = g * chunk;
+  if (begin >= count) return;
+  const uint end = min(begin + chunk, count);
+  __global uint* nodes = SVO_NODE_WORDS(svo);
+  uint rank = sums[g];
+  for (uint k = begin; k < end; ++k) {
+    const uint i = first + k;
+    if (!svo_exists(own, near, i)) continue; /* cleared by svo_clear_nodes */
+    const uint child = leaf != 0u ? 0u : child_first + 8u * rank;
+    nodes[2u * i] = child | RP_SVO_NODE_BRICK | ((own[i] & RP_SVO_FLAG_OWN) ? RP_SVO_NODE_OWN : 0u);
+    nodes[2u * i + 1u] = brick_first + rank * brick_size;
+    if (leaf == 0u) {
+      const uint3 a2 = 2u * svo_unpack(coords[i]);
+      for (uint o = 0; o < 8u; ++o)
+        coords[child + o] = svo_pack(a2 + (uint3)(o & 1u, (o >> 1) & 1u, o >> 2));
+    }
+    ++rank;
+  }
+}
+
+/* Accumulator words of own voxel o of the leaf whose brick starts at `brick`. */
+inline uint svo_accum_index(uint brick, uint leaf_brick_first, uint o) {
+  return ((brick - leaf_brick_first) / RP_SVO_BRICK_SAMPLES * 8u + o) * RP_VOXEL_ACCUM_WORDS;
+}
+
+__kernel void svo_clear_accum(__global uint* accum, uint words) {
+  const uint i = (uint)get_global_id(0);
+  if (i < words) accum[i] = 0u;
+}
+
+__kernel void svo_inject(__global const uint* fragments, uint fragment_count,
+                         __global const uint* svo, __global const uint* cur,
+                         volatile __global uint* accum, uint leaf_brick_first,
+                         uint resolution_log2) {
+  const uint f = (uint)get_global_id(0);
+  if (f >= fragment_count) return;
+  const uint D = resolution_log2;
+  __global const uint* frag = fragments + RP_SVO_FRAGMENT_WORDS * f;
+  const uint key = frag[RP_SVO_FRAGMENT_KEY];
+  const uint o = (key & 1u) | (((key >> D) & 1u) << 1) | (((key >> (2u * D)) & 1u) << 2);
+  const uint brick = SVO_NODE_WORDS(svo)[2u * cur[f] + 1u];
+  volatile __global uint* acc = accum + svo_accum_index(brick, leaf_brick_first, o);
+  for (uint c = 0; c < 4u; ++c) {
+    const uint q = frag[c];
+    if (q == 0u) continue;
+    const uint old = atomic_add(acc + c, q);
+    if (old > 0xFFFFFFFFu - q) atomic_or(acc + 7u, 1u << c);
+  }
+  for (uint i = 4u; i < 7u; ++i)
+    if (frag[i] != 0u) atomic_add(acc + i, frag[i]);
+}
+
+/* Leaves: own samples from the sums, as voxelize_resolve. */
+__kernel void svo_resolve(__global uint* svo, __global const uint* accum, uint first,
+                          uint count, uint brick_offset, uint alpha_offset,
+                          uint leaf_brick_first) {
+  const uint i = (uint)get_global_id(0);
+  if (i >= count) return;
+  const uint brick = SVO_NODE_WORDS(svo)[2u * (first + i) + 1u];
+  if (brick == RP_SVO_NO_BRICK) return;
+  __global uint* pool = SVO_POOL(svo, brick_offset);
+  __global uchar* alpha = SVO_ALPHA(svo, alpha_offset);
+  for (uint o = 0; o < 8u; ++o) {
+    __global const uint* acc = accum + svo_accum_index(brick, leaf_brick_first, o);
+    float4 sum = convert_float4(vload4(0, acc)) * (1.0f / (float)(1u << RP_VOXEL_FIXED_BITS));
+    const uint bits = acc[7];
+    if (bits != 0u) {
+      if (bits & 1u) sum.x = RP_VOXEL_SATURATED;
+      if (bits & 2u) sum.y = RP_VOXEL_SATURATED;
+      if (bits & 4u) sum.z = RP_VOXEL_SATURATED;
+      if (bits & 8u) sum.w = RP_VOXEL_SATURATED;
+    }
+    const float inv = 1.0f / fmax(sum.w, 1.0f);
+    svo_store(pool, alpha, brick + rp_svo_sample(o & 1u, (o >> 1) & 1u, o >> 2),
+              (float4)(sum.xyz * inv, fmin(sum.w, 1.0f)));
+  }
+}
+
+/* Border samples of the nodes of `depth` (directions: 1 at the leaves, 6 above). */
+__kernel void svo_border(__global uint* svo, __global const uint* coords, uint first,
+                         uint count, uint depth, uint directions, uint brick_offset,
+                         uint alpha_offset) {
+  const uint i = (uint)get_global_id(0);
+  if (i >= count) return;
+  __global const uint* nodes = SVO_NODE_WORDS(svo);
+  const uint brick = nodes[2u * (first + i) + 1u];
+  if (brick == RP_SVO_NO_BRICK) return;
+  __global uint* pool = SVO_POOL(svo, brick_offset);
+  __global uchar* alpha = SVO_ALPHA(svo, alpha_offset);
+  const uint3 a = svo_unpack(coords[first + i]);
+  const uint side = 1u << depth;
+  /* the node's ancestors, so that a neighbour's descent starts at the deepest ancestor they
+   * share instead of the root (usually the parent) */
+  uint path[RP_SVO_MAX_DEPTHS];
+  svo_path(nodes, depth, a, path);
+  for (uint e = 1u; e < 8u; ++e) {
+    const uint3 ev = (uint3)(e & 1u, (e >> 1) & 1u, e >> 2);
+    const uint3 b = a + ev;
+    uint src = RP_SVO_NO_BRICK;
+    if (b.x < side && b.y < side && b.z < side) {
+      const uint idx = svo_find_near(nodes, path, depth, a, b);
+      if (idx != 0xFFFFFFFFu) src = nodes[2u * idx + 1u];
+    }
+    /* the samples with index 2 exactly on the axes of e: per axis 2 if e_i else 0..1 */
+    for (uint s = 0; s < 8u; ++s) {
+      const uint3 q = (uint3)(s & 1u, (s >> 1) & 1u, s >> 2); /* own-sample index */
+      if ((q.x & ev.x) | (q.y & ev.y) | (q.z & ev.z)) continue; /* each border sample once */
+      const uint dst = rp_svo_sample(ev.x ? 2u : q.x, ev.y ? 2u : q.y, ev.z ? 2u : q.z);
+      const uint from = rp_svo_sample(q.x, q.y, q.z); /* = dst - 2e in the neighbour */
+      for (uint d = 0; d < directions; ++d) {
+        if (src == RP_SVO_NO_BRICK)
+          svo_clear_sample(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst);
+        else
+          svo_copy(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst,
+                   src + RP_SVO_BRICK_SAMPLES * d + from);
+      }
+    }
+  }
+}
+
+/* Own samples of the nodes of `depth` (brick level `level` >= 1) from their children. */
+__kernel void svo_mips(__global uint* svo, __global const uint4* accum, uint first, uint count,
+                       uint level, uint brick_offset, uint alpha_offset,
+                       uint leaf_brick_first) {
+  const uint i = (uint)get_global_id(0);
+  if (i >= count) return;
+  __global const uint* nodes = SVO_NODE_WORDS(svo);
+  const uint brick = nodes[2u * (first + i) + 1u];
+  if (brick == RP_SVO_NO_BRICK) return;
+  __global uint* pool = SVO_POOL(svo, brick_offset);
+  __global uchar* alpha = SVO_ALPHA(svo, alpha_offset);
+  const uint children = nodes[2u * (first + i)] & RP_SVO_NODE_CHILD_MASK;
+  for (uint o = 0; o < 8u; ++o) {
+    const uint dst = rp_svo_sample(o & 1u, (o >> 1) & 1u, o >> 2);
+    const uint cb = children == 0u ? RP_SVO_NO_BRICK : nodes[2u * (children + o) + 1u];
+    if (cb == RP_SVO_NO_BRICK) { /* all eight children empty: the composite is 0 */
+      for (uint d = 0; d < 6u; ++d)
+        svo_clear_sample(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst);
+      continue;
+    }
+    if (level == 1u) { /* leaves: isotropic samples seen through their facing words */
+      float4 iso[8];
+      uint4 facing[8];
+      for (uint c = 0; c < 8u; ++c) {
+        iso[c] = svo_pool_load(pool, alpha, cb + rp_svo_sample(c & 1u, (c >> 1) & 1u, c >> 2));
+        facing[c] = accum[(RP_VOXEL_ACCUM_WORDS / 4u) *
+                              ((cb - leaf_brick_first) / RP_SVO_BRICK_SAMPLES * 8u + c) + 1u];
+      }
+      for (uint d = 0; d < 6u; ++d) {
+        float4 c8[8];
+        for (uint c = 0; c < 8u; ++c) c8[c] = mips_facing(iso[c], facing[c], d);
+        svo_store(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst, mips_composite(c8, d));
+      }
+    } else {
+      for (uint d = 0; d < 6u; ++d) {
+        float4 c8[8];
+        for (uint c = 0; c < 8u; ++c)
+          c8[c] = svo_pool_load(pool, alpha, cb + RP_SVO_BRICK_SAMPLES * d +
+                                                 rp_svo_sample(c & 1u, (c >> 1) & 1u, c >> 2));
+        svo_store(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst, mips_composite(c8, d));
+      }
+    }
+  }
+}

@@ -1,0 +1,284 @@
+#include "passes/svo.h"
+
+#include <algorithm>
+#include <string>
+
+#include "cl/error.h"
+#include "render/voxel_volume.h"
+
+namespace rp::passes {
+namespace {
+
+constexpr size_t kGroup = 64;
+constexpr uint32_t kChunk = 256;  // nodes per work-item of svo_count / svo_allocate
+constexpr uint32_t kFlagChunk = 32;  // fragments per work-item of svo_flag (SVO_FLAG_CHUNK)
+
+std::string svo_options(bool float_samples) {
+  return "-DRP_VOXEL_FIXED_BITS=" + std::to_string(render::kVoxelFixedBits) +
+         " -DRP_VOXEL_SATURATED=" + std::to_string(render::kVoxelSaturatedSum) + "f" +
+         " -DRP_SVO_FLOAT_SAMPLES=" + (float_samples ? "1" : "0");
+}
+
+size_t items(size_t n) { return rp::cl::round_up(std::max<size_t>(n, 1), kGroup); }
+
+}  // namespace
+
+SvoPass::SvoPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+                 bool float_samples)
+    : context_(&context), float_samples_(float_samples) {
+  voxelize_ = std::make_unique<VoxelizePass>(context, programs, /*fragments=*/true);
+  const std::string o = svo_options(float_samples);
+  clear_nodes_ = programs.kernel("svo.cl", "svo_clear_nodes", o);
+  flag_ = programs.kernel("svo.cl", "svo_flag", o);
+  dilate_ = programs.kernel("svo.cl", "svo_dilate", o);
+  count_ = programs.kernel("svo.cl", "svo_count", o);
+  scan_ = programs.kernel("svo.cl", "svo_scan", o);
+  allocate_ = programs.kernel("svo.cl", "svo_allocate", o);
+  clear_accum_ = programs.kernel("svo.cl", "svo_clear_accum", o);
+  inject_ = programs.kernel("svo.cl", "svo_inject", o);
+  resolve_ = programs.kernel("svo.cl", "svo_resolve", o);
+  border_ = programs.kernel("svo.cl", "svo_border", o);
+  mips_ = programs.kernel("svo.cl", "svo_mips", o);
+  counter_ = ::cl::Buffer(context.context, CL_MEM_READ_WRITE, 2 * sizeof(cl_uint));
+  totals_ = ::cl::Buffer(context.context, CL_MEM_READ_WRITE, RP_SVO_MAX_DEPTHS * sizeof(cl_uint));
+}
+
+void SvoPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                  const render::ShadowMap& shadow, uint32_t resolution, render::SvoVolume& svo,
+                  const ::cl::Buffer* bounce, uint32_t bounce_cells) {
+  ::cl::CommandQueue& queue = profiler.queue();
+  if (fragment_capacity_ == 0) {
+    fragment_capacity_ = 1u << 16;
+    fragments_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
+                              fragment_capacity_ * RP_SVO_FRAGMENT_WORDS * sizeof(cl_uint));
+  }
+  cl_uint count = 0;
+  for (;;) {
+    const cl_uint init[2] = {0, cl_uint(fragment_capacity_)};
+    queue.enqueueWriteBuffer(counter_, CL_TRUE, 0, sizeof(init), init);
+    voxelize_->run_fragments(profiler, scene, shadow, resolution, fragments_, counter_, bounce,
+                             bounce_cells);
+    queue.enqueueReadBuffer(counter_, CL_TRUE, 0, sizeof(cl_uint), &count);
+    if (count <= fragment_capacity_) break;
+    fragment_capacity_ = size_t(count) + count / 4;
+    fragments_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
+                              fragment_capacity_ * RP_SVO_FRAGMENT_WORDS * sizeof(cl_uint));
+  }
+  build(profiler, fragments_, count, resolution, svo);
+}
+
+void SvoPass::allocate(render::SvoVolume& svo, size_t nodes, size_t samples) {
+  svo.node_capacity = nodes;
+  svo.sample_capacity = samples;
+  svo.sample_bytes = float_samples_ ? 16 : 5;
+  svo.buffer = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, svo.buffer_bytes());
+}
+
+void SvoPass::ensure_scratch(size_t nodes, size_t fragments, size_t leaves) {
+  const auto& ctx = context_->context;
+  if (nodes > scratch_nodes_) {
+    scratch_nodes_ = nodes;
+    own_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, nodes * sizeof(cl_uint));
+    near_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, nodes * sizeof(cl_uint));
+    coords_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, nodes * sizeof(cl_uint));
+    sums_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, (nodes / kChunk + 1) * sizeof(cl_uint));
+  }
+  if (fragments > scratch_fragments_) {
+    scratch_fragments_ = fragments;
+    cur_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, fragments * sizeof(cl_uint));
+  }
+  if (leaves > scratch_leaves_) {
+    scratch_leaves_ = leaves;
+    accum_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, leaves * 8 * RP_VOXEL_ACCUM_WORDS * 4);
+  }
+}
+
+void SvoPass::build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragments, uint32_t count,
+                    uint32_t resolution, render::SvoVolume& svo) {
+  if (resolution < 2 || resolution > 1024 || (resolution & (resolution - 1)) != 0)
+    throw rp::cl::Error("octree resolution " + std::to_string(resolution) +
+                        " is not supported: use a power of two from 2 to 1024 (256 or 512)");
+  svo.resolution = resolution;
+  svo.depths = gpu::rp_svo_log2(resolution);
+  svo.fragments = count;
+  if (svo.buffer() == nullptr || svo.sample_bytes != (float_samples_ ? 16u : 5u))
+    allocate(svo, std::max<size_t>(4096, size_t(count) / 2),
+             std::max<size_t>(1 << 16, size_t(count) * 8));
+  for (int attempt = 0; attempt < 16; ++attempt)
+    if (try_build(profiler, fragments, count, svo)) return;
+  throw rp::cl::Error("octree build: the pools kept growing (16 attempts)");
+}
+
+bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragments,
+                        uint32_t count, render::SvoVolume& svo) {
+  ::cl::CommandQueue& queue = profiler.queue();
+  const uint32_t D = svo.depths;
+  ensure_scratch(svo.node_capacity, std::max<uint32_t>(count, 1), 0);
+  const cl_uint zero = 0;
+  queue.enqueueFillBuffer(coords_, zero, 0, sizeof(cl_uint));  // the root's coordinate
+  const cl_uint brick_offset = cl_uint(render::SvoVolume::brick_offset(svo.node_capacity));
+  const cl_uint alpha_offset = cl_uint(svo.alpha_offset());
+
+  std::vector<uint32_t> first(D + 1, 0), nodes(D, 0), bricks(D, 0), brick_first(D, 0);
+  nodes[0] = 1;
+  uint64_t samples = 0;
+  for (uint32_t k = 0; k < D; ++k) {
+    const cl_uint n = nodes[k], f0 = first[k];
+    if (size_t(f0) + n > svo.node_capacity) {  // cannot happen: checked before allocating
+      allocate(svo, (size_t(f0) + n) * 2, svo.sample_capacity);
+      return false;
+    }
+    clear_nodes_.setArg(0, svo.buffer);
+    clear_nodes_.setArg(1, own_);
+    clear_nodes_.setArg(2, near_);
+    clear_nodes_.setArg(3, f0);
+    clear_nodes_.setArg(4, n);
+    profiler.enqueue("svo_nodes", clear_nodes_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
+    if (count > 0) {
+      flag_.setArg(0, fragments);
+      flag_.setArg(1, cl_uint(count));
+      flag_.setArg(2, svo.buffer);
+      flag_.setArg(3, cur_);
+      flag_.setArg(4, own_);
+      flag_.setArg(5, cl_uint(k));
+      flag_.setArg(6, cl_uint(D));
+      const size_t flag_items = items((count + kFlagChunk - 1) / kFlagChunk);
+      profiler.enqueue("svo_nodes", flag_, ::cl::NDRange(flag_items), ::cl::NDRange(kGroup));
+    }
+    if (k > 0) {
+      dilate_.setArg(0, svo.buffer);
+      dilate_.setArg(1, own_);
+      dilate_.setArg(2, near_);
+      dilate_.setArg(3, coords_);
+      dilate_.setArg(4, f0);
+      dilate_.setArg(5, n);
+      dilate_.setArg(6, cl_uint(k));
+      profiler.enqueue("svo_nodes", dilate_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
+    }
+    const cl_uint chunks = (n + kChunk - 1) / kChunk;
+    count_.setArg(0, own_);
+    count_.setArg(1, near_);
+    count_.setArg(2, f0);
+    count_.setArg(3, n);
+    count_.setArg(4, cl_uint(kChunk));
+    count_.setArg(5, sums_);
+    profiler.enqueue("svo_nodes", count_, ::cl::NDRange(items(chunks)), ::cl::NDRange(kGroup));
+    scan_.setArg(0, sums_);
+    scan_.setArg(1, chunks);
+    scan_.setArg(2, totals_);
+    scan_.setArg(3, cl_uint(k));
+    profiler.enqueue("svo_nodes", scan_, ::cl::NDRange(1), ::cl::NullRange);
+    cl_uint exist = 0;
+    queue.enqueueReadBuffer(totals_, CL_TRUE, k * sizeof(cl_uint), sizeof(cl_uint), &exist);
+    const bool leaf = k + 1 == D;
+    const uint32_t size = gpu::rp_svo_brick_size(D - 1 - k);
+    const size_t need_nodes = size_t(f0) + n + (leaf ? 0 : 8 * size_t(exist));
+    const size_t need_samples = samples + size_t(exist) * size;
+    if (need_nodes > svo.node_capacity || need_samples > svo.sample_capacity) {
+      // 1/8 slack: a moving scene does not reallocate every frame; the first frame's few
+      // rounds each grow one depth's worth
+      const size_t grow_nodes =
+          need_nodes > svo.node_capacity ? need_nodes + need_nodes / 8 : svo.node_capacity;
+      const size_t grow_samples = need_samples > svo.sample_capacity
+                                      ? need_samples + need_samples / 8
+                                      : svo.sample_capacity;
+      allocate(svo, grow_nodes, grow_samples);
+      return false;
+    }
+    bricks[k] = exist;
+    brick_first[k] = cl_uint(samples);
+    allocate_.setArg(0, svo.buffer);
+    allocate_.setArg(1, own_);
+    allocate_.setArg(2, near_);
+    allocate_.setArg(3, coords_);
+    allocate_.setArg(4, f0);
+    allocate_.setArg(5, n);
+    allocate_.setArg(6, cl_uint(kChunk));
+    allocate_.setArg(7, sums_);
+    allocate_.setArg(8, cl_uint(f0 + n));
+    allocate_.setArg(9, cl_uint(samples));
+    allocate_.setArg(10, cl_uint(size));
+    allocate_.setArg(11, cl_uint(leaf ? 1 : 0));
+    profiler.enqueue("svo_nodes", allocate_, ::cl::NDRange(items(chunks)), ::cl::NDRange(kGroup));
+    samples += size_t(exist) * size;
+    first[k + 1] = f0 + n;
+    if (!leaf) nodes[k + 1] = 8 * exist;
+  }
+
+  // Leaves: inject, resolve, borders.
+  const uint32_t L = D - 1;
+  const cl_uint leaves = bricks[L], leaf_first = brick_first[L];
+  ensure_scratch(svo.node_capacity, std::max<uint32_t>(count, 1), std::max<uint32_t>(leaves, 1));
+  const cl_uint accum_words = leaves * 8 * RP_VOXEL_ACCUM_WORDS;
+  clear_accum_.setArg(0, accum_);
+  clear_accum_.setArg(1, accum_words);
+  profiler.enqueue("svo_inject", clear_accum_, ::cl::NDRange(items(accum_words)),
+                   ::cl::NDRange(kGroup));
+  if (count > 0) {
+    inject_.setArg(0, fragments);
+    inject_.setArg(1, cl_uint(count));
+    inject_.setArg(2, svo.buffer);
+    inject_.setArg(3, cur_);
+    inject_.setArg(4, accum_);
+    inject_.setArg(5, leaf_first);
+    inject_.setArg(6, cl_uint(D));
+    profiler.enqueue("svo_inject", inject_, ::cl::NDRange(items(count)), ::cl::NDRange(kGroup));
+  }
+  resolve_.setArg(0, svo.buffer);
+  resolve_.setArg(1, accum_);
+  resolve_.setArg(2, cl_uint(first[L]));
+  resolve_.setArg(3, cl_uint(nodes[L]));
+  resolve_.setArg(4, brick_offset);
+  resolve_.setArg(5, alpha_offset);
+  resolve_.setArg(6, leaf_first);
+  profiler.enqueue("svo_inject", resolve_, ::cl::NDRange(items(nodes[L])), ::cl::NDRange(kGroup));
+  const auto border = [&](uint32_t k, cl_uint directions, const char* pass) {
+    border_.setArg(0, svo.buffer);
+    border_.setArg(1, coords_);
+    border_.setArg(2, cl_uint(first[k]));
+    border_.setArg(3, cl_uint(nodes[k]));
+    border_.setArg(4, cl_uint(k));
+    border_.setArg(5, directions);
+    border_.setArg(6, brick_offset);
+    border_.setArg(7, alpha_offset);
+    profiler.enqueue(pass, border_, ::cl::NDRange(items(nodes[k])), ::cl::NDRange(kGroup));
+  };
+  border(L, 1, "svo_border");
+  for (uint32_t level = 1; level < D; ++level) {
+    const uint32_t k = D - 1 - level;
+    mips_.setArg(0, svo.buffer);
+    mips_.setArg(1, accum_);
+    mips_.setArg(2, cl_uint(first[k]));
+    mips_.setArg(3, cl_uint(nodes[k]));
+    mips_.setArg(4, cl_uint(level));
+    mips_.setArg(5, brick_offset);
+    mips_.setArg(6, alpha_offset);
+    mips_.setArg(7, leaf_first);
+    profiler.enqueue("svo_mips", mips_, ::cl::NDRange(items(nodes[k])), ::cl::NDRange(kGroup));
+    border(k, 6, "svo_border");
+  }
+
+  // The header (svo_layout.h).
+  header_.assign(4 * RP_SVO_HEADER_FLOAT4S, 0);
+  header_[RP_SVO_HDR_RESOLUTION] = svo.resolution;
+  header_[RP_SVO_HDR_DEPTHS] = D;
+  header_[RP_SVO_HDR_NODES] = first[D];
+  header_[RP_SVO_HDR_BRICK_OFFSET] = brick_offset;
+  header_[RP_SVO_HDR_SAMPLES] = cl_uint(samples);
+  header_[RP_SVO_HDR_SAMPLE_BYTES] = svo.sample_bytes;
+  header_[RP_SVO_HDR_FRAGMENTS] = count;
+  header_[RP_SVO_HDR_ALPHA_OFFSET] = alpha_offset;
+  for (uint32_t k = 0; k <= D; ++k) header_[RP_SVO_HDR_LEVEL_START + k] = first[k];
+  queue.enqueueWriteBuffer(svo.buffer, CL_FALSE, 0, header_.size() * sizeof(cl_uint),
+                           header_.data());
+  svo.scratch_bytes = uint64_t(fragment_capacity_) * RP_SVO_FRAGMENT_WORDS * 4 +
+                      uint64_t(scratch_nodes_) * 3 * 4 + (scratch_nodes_ / kChunk + 1) * 4 +
+                      uint64_t(scratch_fragments_) * 4 +
+                      uint64_t(scratch_leaves_) * 8 * RP_VOXEL_ACCUM_WORDS * 4;
+  svo.nodes_per_depth = nodes;
+  svo.bricks_per_depth = bricks;
+  svo.samples = samples;
+  return true;
+}
+
+}  // namespace rp::passes

@@ -1,0 +1,63 @@
+// Sparse voxel octree pass (issue 17, seed 001): the frame's fragment list at the octree's
+// resolution (the voxelizer in fragment mode), then the octree built top-down level by level
+// (flags, prefix-sum allocation), leaf injection, the bottom-up anisotropic mips and the
+// border transfer (kernels/svo.cl). Pass names: "voxelize" (the fragments), "svo_nodes" (the
+// top-down flags and allocation), "svo_inject" (leaf sums and values), "svo_mips" and
+// "svo_border" (the border transfer of every level).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "cl/profiler.h"
+#include "cl/program_cache.h"
+#include "passes/voxelize.h"
+#include "render/gpu_scene.h"
+#include "render/svo_volume.h"
+
+namespace rp::passes {
+
+class SvoPass {
+ public:
+  // float_samples: float4 brick samples instead of the packed 5-byte ones (tests compare bit
+  // for bit with the dense chain).
+  SvoPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+          bool float_samples = false);
+
+  // Voxelizes the frame into fragments at `resolution` (a power of two, 2 .. 1024) and builds
+  // the octree into svo (allocated or grown as needed). Blocks on small reads (a fragment and
+  // node count per depth): the sizes of the next step are only known on the device.
+  void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+           const render::ShadowMap& shadow, uint32_t resolution, render::SvoVolume& svo,
+           const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0);
+
+  // Builds svo at `resolution` from `count` fragments (svo_layout.h) in `fragments`.
+  void build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragments, uint32_t count,
+             uint32_t resolution, render::SvoVolume& svo);
+
+  // Fragments of the last run (uint[8] each) and their count.
+  const ::cl::Buffer& fragments() const { return fragments_; }
+
+ private:
+  // One attempt; false when a pool was too small (grown, try again).
+  bool try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragments, uint32_t count,
+                 render::SvoVolume& svo);
+  void allocate(render::SvoVolume& svo, size_t nodes, size_t samples);
+  void ensure_scratch(size_t nodes, size_t fragments, size_t leaves);
+
+  const rp::cl::Context* context_;
+  bool float_samples_;
+  std::unique_ptr<VoxelizePass> voxelize_;  // built for fragments
+  ::cl::Kernel clear_nodes_, flag_, dilate_, count_, scan_, allocate_, clear_accum_, inject_,
+      resolve_, border_, mips_;
+  ::cl::Buffer fragments_, counter_;
+  size_t fragment_capacity_ = 0;
+  // Build scratch: per node own flags, near ("exists") flags, coordinates; per fragment its
+  // owner node; chunk sums; per-depth totals; per leaf 8 voxels x 8 accumulator words.
+  ::cl::Buffer own_, near_, coords_, cur_, sums_, totals_, accum_;
+  size_t scratch_nodes_ = 0, scratch_fragments_ = 0, scratch_leaves_ = 0;
+  std::vector<uint32_t> header_;
+};
+
+}  // namespace rp::passes

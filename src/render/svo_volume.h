@@ -1,0 +1,63 @@
+// The sparse voxel octree on the device (issue 17): one buffer with header, node pool and brick
+// pool (kernels/shared/svo_layout.h), handed to the cone tracer in place of the dense chain,
+// plus what the last build measured. Built by passes::SvoPass.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <CL/opencl.hpp>
+
+#include "kernels/shared/svo_layout.h"
+
+namespace rp::render {
+
+struct SvoVolume {
+  uint32_t resolution = 0;  // R: level-0 voxels per side (a power of two, 2 .. 1024)
+  uint32_t depths = 0;      // D = log2 R node depths; the cone tracer's levels = D + 1
+  ::cl::Buffer buffer;      // header + node pool + brick pool (svo_layout.h)
+  size_t node_capacity = 0;    // nodes the buffer holds
+  size_t sample_capacity = 0;  // brick samples the buffer holds
+  uint32_t sample_bytes = 5;   // 5: packed (RGB9E5 uint + opacity byte), 16: float4
+
+  // The last build: fragments, nodes and existing nodes (bricks) per depth, samples used.
+  uint32_t fragments = 0;
+  std::vector<uint32_t> nodes_per_depth, bricks_per_depth;
+  uint64_t samples = 0;
+  uint64_t scratch_bytes = 0;  // the builder's buffers (fragments, flags, sums, leaf sums)
+
+  // Levels as the dense chain counts them (log2 R + 1), what the cone tracer is given.
+  uint32_t levels() const { return depths + 1; }
+  uint64_t nodes() const {
+    uint64_t n = 0;
+    for (uint32_t c : nodes_per_depth) n += c;
+    return n;
+  }
+  // Bytes of the node pool and of the brick pool in use after the last build.
+  uint64_t node_bytes() const { return nodes() * 8; }
+  uint64_t brick_bytes() const { return samples * sample_bytes; }
+  // First float4 of the brick pool for a node capacity.
+  static size_t brick_offset(size_t node_capacity) {
+    return RP_SVO_HEADER_FLOAT4S + (node_capacity * 2 + 3) / 4;
+  }
+  // The dense chain (level 0 + six directional volumes per level) at the same resolution, in
+  // float4: what the octree replaces.
+  static uint64_t dense_bytes(uint32_t r) {
+    uint64_t total = uint64_t(r) * r * r, n = r;
+    while (n > 1) {
+      n /= 2;
+      total += 6 * n * n * n;
+    }
+    return total * 16;
+  }
+  size_t buffer_bytes() const {
+    return (brick_offset(node_capacity) * 16) + sample_capacity * sample_bytes;
+  }
+  // Byte offset of the opacity plane (packed samples): after the rgb plane's uints.
+  size_t alpha_offset() const {
+    return sample_bytes == 16 ? 0 : brick_offset(node_capacity) * 16 + sample_capacity * 4;
+  }
+};
+
+}  // namespace rp::render
