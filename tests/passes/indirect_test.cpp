@@ -228,6 +228,38 @@ uint32_t lr_h() { return IndirectPass::low_res(kH); }
 // Padded plane index of sample (i, j) (common/indirect.h).
 size_t at(int i, int j) { return size_t(j + 2) * IndirectPass::plane_stride(lr_w()) + size_t(i + 2); }
 
+// light_compose's joint-bilateral upsample of three low-resolution planes `src` (r, g, b,
+// `plane` floats apart) at pixel (x, y) of surface q: the 2x2 block centres (4 i + 2) around
+// it, bilinear times geometry weights, else the best geometric match, else plain bilinear.
+glm::dvec3 upsample_ref(const std::vector<float>& geom, const std::vector<float>& src,
+                        size_t plane, double pixel_scale, const Pixel& q, uint32_t x,
+                        uint32_t y) {
+  const double ux = (x - 1.5) / 4.0, uy = (y - 1.5) / 4.0;
+  const int i0 = int(std::floor(ux)), j0 = int(std::floor(uy));
+  const double fx = ux - i0, fy = uy - j0;
+  double g[4], b[4];
+  glm::dvec3 h[4];
+  const double is = inv_sigma(q.depth, pixel_scale);
+  for (int t = 0; t < 4; ++t) {
+    const size_t s = at(i0 + (t & 1), j0 + (t >> 1));
+    g[t] = geometry_weight(glm::dvec3(q.n), glm::dvec3(q.p),
+                           glm::dvec3(geom[s], geom[plane + s], geom[2 * plane + s]),
+                           geom[3 * plane + s], is);
+    b[t] = ((t & 1) ? fx : 1.0 - fx) * ((t >> 1) ? fy : 1.0 - fy);
+    h[t] = glm::dvec3(src[s], src[plane + s], src[2 * plane + s]);
+  }
+  double wsum = 0.0;
+  glm::dvec3 v(0.0);
+  for (int t = 0; t < 4; ++t) {
+    wsum += b[t] * g[t];
+    v += b[t] * g[t] * h[t];
+  }
+  if (wsum >= 1e-4) return v / wsum;
+  const int best = int(std::max_element(g, g + 4) - g);
+  return g[best] > 0.0 ? h[best] : b[0] * h[0] + b[1] * h[1] + b[2] * h[2] + b[3] * h[3];
+}
+
+
 // The sample pixel of block (i, j): pixel (1, 1) of the block, clamped to the image.
 const Pixel& sample_pixel(const IndirectFixture& fx, uint32_t i, uint32_t j) {
   return fx.pixel(std::min(4 * i + 1, kW - 1), std::min(4 * j + 1, kH - 1));
@@ -448,32 +480,7 @@ TEST(Indirect, ComposeUpsamplesTheBlocksAndMatchesTheDirectTerm) {
         for (int c = 0; c < 4; ++c) EXPECT_EQ(hdr[o + c], 0.0f) << x << "," << y;
         continue;
       }
-      const double ux = (x - 1.5) / 4.0, uy = (y - 1.5) / 4.0;
-      const int i0 = int(std::floor(ux)), j0 = int(std::floor(uy));
-      const double fx_ = ux - i0, fy_ = uy - j0;
-      double g[4], b[4];
-      glm::dvec3 h[4];
-      const double is = inv_sigma(q.depth, lr.pixel_scale);
-      for (int t = 0; t < 4; ++t) {
-        const size_t s = at(i0 + (t & 1), j0 + (t >> 1));
-        g[t] = geometry_weight(glm::dvec3(q.n), glm::dvec3(q.p),
-                               glm::dvec3(fx.geom[s], fx.geom[plane + s], fx.geom[2 * plane + s]),
-                               fx.geom[3 * plane + s], is);
-        b[t] = ((t & 1) ? fx_ : 1.0 - fx_) * ((t >> 1) ? fy_ : 1.0 - fy_);
-        h[t] = glm::dvec3(fx.history[s], fx.history[plane + s], fx.history[2 * plane + s]);
-      }
-      double wsum = 0.0;
-      glm::dvec3 irr(0.0);
-      for (int t = 0; t < 4; ++t) {
-        wsum += b[t] * g[t];
-        irr += b[t] * g[t] * h[t];
-      }
-      if (wsum >= 1e-4) {
-        irr /= wsum;
-      } else {
-        const int best = int(std::max_element(g, g + 4) - g);
-        irr = g[best] > 0.0 ? h[best] : b[0] * h[0] + b[1] * h[1] + b[2] * h[2] + b[3] * h[3];
-      }
+      const glm::dvec3 irr = upsample_ref(fx.geom, fx.history, plane, lr.pixel_scale, q, x, y);
       const glm::dvec3 want_indirect = glm::dvec3(q.albedo) * irr;
       lit += want_indirect.x > 1e-3;
       for (int c = 0; c < 3; ++c) {
@@ -581,33 +588,8 @@ TEST(Indirect, ReflectionConesPerBlockFilledAndUpsampled) {
       const Pixel& q = fx.pixel(x, y);
       if (!q.covered) continue;
       const size_t o = 4 * (size_t(y) * kW + x);
-      const double ux = (x - 1.5) / 4.0, uy = (y - 1.5) / 4.0;
-      const int i0 = int(std::floor(ux)), j0 = int(std::floor(uy));
-      const double fx_ = ux - i0, fy_ = uy - j0;
-      double g[4], b[4];
-      glm::dvec3 h[4];
-      const double is = inv_sigma(q.depth, lr.pixel_scale);
-      for (int t = 0; t < 4; ++t) {
-        const size_t s = at(i0 + (t & 1), j0 + (t >> 1));
-        g[t] = geometry_weight(glm::dvec3(q.n), glm::dvec3(q.p),
-                               glm::dvec3(fx.geom[s], fx.geom[plane + s], fx.geom[2 * plane + s]),
-                               fx.geom[3 * plane + s], is);
-        b[t] = ((t & 1) ? fx_ : 1.0 - fx_) * ((t >> 1) ? fy_ : 1.0 - fy_);
-        h[t] = glm::dvec3(fx.specular_filled[s], fx.specular_filled[plane + s],
-                          fx.specular_filled[2 * plane + s]);
-      }
-      double wsum = 0.0;
-      glm::dvec3 up(0.0);
-      for (int t = 0; t < 4; ++t) {
-        wsum += b[t] * g[t];
-        up += b[t] * g[t] * h[t];
-      }
-      if (wsum >= 1e-4) {
-        up /= wsum;
-      } else {
-        const int best = int(std::max_element(g, g + 4) - g);
-        up = g[best] > 0.0 ? h[best] : b[0] * h[0] + b[1] * h[1] + b[2] * h[2] + b[3] * h[3];
-      }
+      const glm::dvec3 up =
+          upsample_ref(fx.geom, fx.specular_filled, plane, lr.pixel_scale, q, x, y);
       const rp::shading::SurfaceBsdf bsdf =
           rp::shading::make_bsdf(rp::shading::decode_gloss(q.gloss), q.albedo);
       const float mu = float(glm::dot(glm::dvec3(q.n), glm::normalize(cam - glm::dvec3(q.p))));
