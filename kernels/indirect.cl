@@ -92,6 +92,10 @@
 #ifndef RP_INDIRECT_SPEC_CHECKER_TAN
 #define RP_INDIRECT_SPEC_CHECKER_TAN 0.0f
 #endif
+/* The still-camera reflection history's weight of the current frame (indirect_filter). */
+#ifndef RP_INDIRECT_SPEC_ALPHA
+#define RP_INDIRECT_SPEC_ALPHA 0.25f
+#endif
 
 /* Radiance of one cone of the set from sample (i, j)'s surface point p (normal n) in frame f,
  * with the block's position and level jitters. */
@@ -239,7 +243,9 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
                               const uint history_valid,
                               const float alpha_min,
                               __global const float* restrict specular,
-                              __global float* restrict specular_out) {
+                              __global const float* restrict prev_specular_out,
+                              __global float* restrict specular_out,
+                              const uint specular_history) {
   const uint i0 = 8u * (uint)get_global_id(0), j = (uint)get_global_id(1);
   if (i0 >= lr_width || j >= lr_height) return;
   const uint lanes = min(8u, lr_width - i0);
@@ -316,6 +322,39 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
       fr = select(fr, select(mr * inv_m, ar * inv_a, geo), hole);
       fg = select(fg, select(mg * inv_m, ag * inv_a, geo), hole);
       fb = select(fb, select(mb * inv_m, ab * inv_a, geo), hole);
+    }
+    /* Still camera (specular_history, set by the host only when this frame's unjittered view
+     * equals the previous one and the history is valid): the reflection seen from a block
+     * stays where it was, so the previous frame's filled value at the same block, clamped to
+     * the range of this frame's values at the block and its traced edge neighbours (a
+     * reflected object that moved leaves no trail), is blended in with weight
+     * 1 - RP_INDIRECT_SPEC_ALPHA where the block still sees the same surface: the jitter of
+     * the sample points no longer flickers. A moving camera uses this frame's value alone. */
+    if (specular_history != 0u) {
+      float8 lo_r = fr, lo_g = fg, lo_b = fb, hi_r = fr, hi_g = fg, hi_b = fb;
+      const int offs[4] = {-1, 1, -st, st};
+      for (int q = 0; q < 4; ++q) {
+        const int t = c + offs[q];
+        const float8 t0 = vload8(0, specular + t), t1 = vload8(0, specular + pl + t);
+        const float8 t2 = vload8(0, specular + 2 * pl + t);
+        const int8 traced = t0 >= 0.0f;
+        lo_r = select(lo_r, fmin(lo_r, t0), traced);
+        lo_g = select(lo_g, fmin(lo_g, t1), traced);
+        lo_b = select(lo_b, fmin(lo_b, t2), traced);
+        hi_r = select(hi_r, fmax(hi_r, t0), traced);
+        hi_g = select(hi_g, fmax(hi_g, t1), traced);
+        hi_b = select(hi_b, fmax(hi_b, t2), traced);
+      }
+      const float8 g = rp_indirect_geometry_weight8(
+          nx, ny, nz, px, py, pz, vload8(0, prev_geom + c), vload8(0, prev_geom + pl + c),
+          vload8(0, prev_geom + 2 * pl + c), vload8(0, prev_geom + 3 * pl + c), inv_sigma);
+      const int8 keep = (g > 0.5f) & (none == 0) & valid;
+      const float8 pr = clamp(vload8(0, prev_specular_out + c), lo_r, hi_r);
+      const float8 pg = clamp(vload8(0, prev_specular_out + pl + c), lo_g, hi_g);
+      const float8 pb = clamp(vload8(0, prev_specular_out + 2 * pl + c), lo_b, hi_b);
+      fr = select(fr, pr + RP_INDIRECT_SPEC_ALPHA * (fr - pr), keep);
+      fg = select(fg, pg + RP_INDIRECT_SPEC_ALPHA * (fg - pg), keep);
+      fb = select(fb, pb + RP_INDIRECT_SPEC_ALPHA * (fb - pb), keep);
     }
     indirect_store8(specular_out + c, lanes, fr);
     indirect_store8(specular_out + pl + c, lanes, fg);

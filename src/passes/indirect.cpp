@@ -1,5 +1,7 @@
 #include "passes/indirect.h"
 
+#include <cstring>
+
 #include <algorithm>
 #include <string>
 
@@ -51,7 +53,7 @@ void IndirectPass::resize(uint32_t width, uint32_t height) {
   const size_t plane = size_t(plane_size(low_res(width), low_res(height))) * sizeof(float);
   radiance_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
   specular_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
-  specular_filled_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
+  for (::cl::Buffer& b : specular_filled_) b = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
   const size_t bytes = 4 * plane;
   position_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
   for (int k = 0; k < 2; ++k) {
@@ -62,7 +64,8 @@ void IndirectPass::resize(uint32_t width, uint32_t height) {
   // history_valid_, but they are read).
   // The padding must stay zero (kernels/common/indirect.h); the kernels write only samples.
   for (::cl::Buffer* b :
-       {&radiance_, &specular_, &specular_filled_, &position_, &geometry_[0], &geometry_[1], &history_[0], &history_[1]})
+       {&radiance_, &specular_, &specular_filled_[0], &specular_filled_[1], &position_, &geometry_[0],
+        &geometry_[1], &history_[0], &history_[1]})
     context_->queue.enqueueFillBuffer(*b, 0.0f, 0, b->getInfo<CL_MEM_SIZE>());
   size_t hiz = 1;
   for (uint32_t k = 1, lw = width, lh = height; k <= ssr_top_level(width, height); ++k) {
@@ -164,7 +167,13 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   filter_.setArg(arg++, cl_uint(history_valid_ ? 1 : 0));
   filter_.setArg(arg++, kAlphaMin);
   filter_.setArg(arg++, specular_);
-  filter_.setArg(arg++, specular_filled_);
+  filter_.setArg(arg++, specular_filled_[prev]);
+  filter_.setArg(arg++, specular_filled_[cur]);
+  // reflections move with the view: their history is used only while the camera stands still
+  const bool still = std::memcmp(&scene.constants.view_proj_unjittered,
+                                 &scene.constants.prev_view_proj_unjittered,
+                                 sizeof(scene.constants.view_proj_unjittered)) == 0;
+  filter_.setArg(arg++, cl_uint(history_valid_ && still ? 1 : 0));
   profiler.enqueue("indirect_filter", filter_,
                    ::cl::NDRange(rp::cl::round_up((lw + 7) / 8, kGroup), rp::cl::round_up(lh, kGroup)),
                    local);
@@ -178,7 +187,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   out.plane = plane;
   out.irradiance = &history_[cur];
   out.geometry = &geometry_[cur];
-  out.specular = &specular_filled_;
+  out.specular = &specular_filled_[cur];
   out.pixel_scale = scale;
   return out;
 }

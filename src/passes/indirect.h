@@ -77,7 +77,8 @@ class IndirectPass {
   // This frame's reflection cones (3 planes r, g, b; -1 marks a checkerboard hole) and the
   // same with the holes filled (what the light pass upsamples).
   const ::cl::Buffer& specular_planes() const { return specular_; }
-  const ::cl::Buffer& specular_filled_planes() const { return specular_filled_; }
+  // The last run's filled reflections (after the still-camera history blend).
+  const ::cl::Buffer& specular_filled_planes() const { return specular_filled_[1 - current_]; }
 
   // Samples per side for a frame of `pixels` pixels: ceil(pixels / kScale).
   static uint32_t low_res(uint32_t pixels) { return (pixels + kScale - 1) / kScale; }
@@ -104,7 +105,8 @@ class IndirectPass {
   ::cl::Buffer position_;            // 4 planes: this frame's sample positions and view depths
   ::cl::Buffer specular_;            // 3 planes: this frame's reflection cone radiance r, g, b
                                      // (-1: a hole of the rough coats' checkerboard)
-  ::cl::Buffer specular_filled_;     // 3 planes: the same with the holes filled
+  ::cl::Buffer specular_filled_[2];  // 3 planes each: the same with the holes filled and the
+                                     // still-camera history blended in, [cur] / [prev]
   ::cl::Buffer geometry_[2];         // 4 planes each; [current_]: this frame's, the other: the
                                      // previous frame's
   ::cl::Buffer history_[2];          // 5 planes each, likewise

@@ -208,6 +208,12 @@ class IndirectFixture {
 
   const Pixel& pixel(uint32_t x, uint32_t y) const { return pixels_[y * kW + x]; }
   const rp::test::cone::Chain& chain() const { return chain_; }
+  // Uploads the voxel chain again with its radiance scaled by k (the light changed).
+  void scale_voxels(float k) {
+    std::vector<glm::vec4> v = chain_.voxels;
+    for (glm::vec4& x : v) x = glm::vec4(glm::vec3(x) * k, x.w);
+    rp::test::context().queue.enqueueWriteBuffer(voxels_, CL_TRUE, 0, v.size() * 16, v.data());
+  }
   float pixel_scale() const { return rp::passes::pixel_scale(*scene_); }
   const rp::render::GpuScene& scene() const { return *scene_; }
 
@@ -601,6 +607,42 @@ TEST(Indirect, ReflectionConesPerBlockFilledAndUpsampled) {
             << "specular " << x << "," << y;
     }
   EXPECT_GE(reflecting, 40);
+}
+
+// With a still camera the filled reflections blend the previous frame's value at the same
+// block, clamped to the range of this frame's values at the block and its traced edge
+// neighbours, with weight 1 - RP_INDIRECT_SPEC_ALPHA (0.25 for the current frame): here the
+// light doubles between two frames of the same view, so every traced block's value is
+// clamp(previous, lo, hi) + 0.25 (current - that).
+TEST(Indirect, StillCameraReflectionsBlendTheClampedHistory) {
+  IndirectFixture fx(true);
+  fx.run(0);
+  const std::vector<float> before = fx.specular_filled;
+  fx.scale_voxels(2.0f);
+  const auto lr = fx.run(1);
+  const size_t plane = lr.plane;
+  int blended = 0;
+  for (uint32_t j = 0; j < lr_h(); ++j)
+    for (uint32_t i = 0; i < lr_w(); ++i) {
+      const size_t s = at(int(i), int(j));
+      if (fx.specular[s] < 0.0f) continue;  // holes (their fill is tested above) and matte
+      for (int c = 0; c < 3; ++c) {
+        const size_t o = c * plane;
+        double lo = fx.specular[o + s], hi = lo;
+        for (const size_t t : {at(int(i) - 1, int(j)), at(int(i) + 1, int(j)), at(int(i), int(j) - 1),
+                            at(int(i), int(j) + 1)})
+          if (fx.specular[t] >= 0.0f) {
+            lo = std::min(lo, double(fx.specular[o + t]));
+            hi = std::max(hi, double(fx.specular[o + t]));
+          }
+        const double prev = std::clamp(double(before[o + s]), lo, hi);
+        const double want = prev + 0.25 * (fx.specular[o + s] - prev);
+        EXPECT_NEAR(fx.specular_filled[o + s], want, 1e-5 * (1.0 + want))
+            << "block " << i << "," << j << " channel " << c;
+      }
+      blended += fx.specular_filled[s] < fx.specular[s] - 1e-4f;  // lagging the doubled light
+    }
+  EXPECT_GE(blended, 3);
 }
 
 }  // namespace
