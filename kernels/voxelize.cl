@@ -504,7 +504,9 @@ inline void vx_texture_level(__global const TextureInfo* info, uint resolution, 
   r->tex_frac = lod - l0f;
 }
 
-/* Triangle number `flat` in the instance-major order of all instance triangles. `hint`: an
+/* Triangle number `flat` in the instance-major order of all instances' voxel triangles (each
+ * instance's voxel_first_triangle .. + voxel_triangle_count: its mesh's voxel proxy at this
+ * resolution, or the mesh; render::GpuScene picks). `hint`: an
  * instance at or before the triangle's (the walk starts there); receives the triangle's. */
 inline VxTriangle vx_fetch_triangle(__global const Instance* instances, uint instance_count,
                                     __global const Vertex* vertices,
@@ -516,8 +518,9 @@ inline VxTriangle vx_fetch_triangle(__global const Instance* instances, uint ins
   r.valid = 0;
   /* Instances are few (a box, a lamp, the tumblers): a linear walk is cheap. */
   uint inst_index = *hint_index, start = *hint_start;
-  while (inst_index < instance_count && flat - start >= instances[inst_index].triangle_count) {
-    start += instances[inst_index].triangle_count;
+  while (inst_index < instance_count &&
+         flat - start >= instances[inst_index].voxel_triangle_count) {
+    start += instances[inst_index].voxel_triangle_count;
     ++inst_index;
   }
   *hint_index = inst_index;
@@ -525,7 +528,7 @@ inline VxTriangle vx_fetch_triangle(__global const Instance* instances, uint ins
   if (inst_index >= instance_count) return r;
   __global const Instance* inst = instances + inst_index;
   if (inst->voxelize == 0u) return r;
-  const Triangle tri = triangles[inst->first_triangle + (flat - start)];
+  const Triangle tri = triangles[inst->voxel_first_triangle + (flat - start)];
   __global const Vertex* vtx0 = vertices + tri.x;
   __global const Vertex* vtx1 = vertices + tri.y;
   __global const Vertex* vtx2 = vertices + tri.z;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -78,6 +79,12 @@ SceneAssets make_demo_assets(const std::string& asset_dir) {
   assets.meshes.push_back(make_lamp_cap(PointLight{}, demo::kLampMaterial));
   assets.meshes.push_back(
       make_tumbler_mesh(TumblerShape{}, TumblerMeshParams{}, demo::kTumblerMaterial));
+  Mesh proxy =
+      make_tumbler_mesh(TumblerShape{}, demo::kTumblerProxyParams, demo::kTumblerMaterial);
+  proxy.name = "tumbler_voxel_proxy";
+  assets.meshes.push_back(std::move(proxy));
+  assets.meshes[demo::kTumblerMesh].voxel_proxy = static_cast<int>(demo::kTumblerVoxelProxyMesh);
+  assets.meshes[demo::kTumblerMesh].voxel_proxy_max_resolution = demo::kTumblerProxyMaxResolution;
   return assets;
 }
 

@@ -4,6 +4,13 @@
 
 namespace rp::scene {
 
+uint32_t voxel_mesh(const std::vector<Mesh>& meshes, uint32_t mesh, uint32_t voxel_resolution) {
+  if (mesh >= meshes.size()) return mesh;  // the caller reports the bad index
+  const Mesh& m = meshes[mesh];
+  if (m.voxel_proxy < 0 || voxel_resolution > m.voxel_proxy_max_resolution) return mesh;
+  return static_cast<uint32_t>(m.voxel_proxy);
+}
+
 glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }
 
 glm::mat4 Camera::projection(float aspect) const {

@@ -75,7 +75,7 @@ typedef struct {
 /* One triangle: x,y,z global vertex indices (into the shared vertex buffer), w material index. */
 typedef rp_uint4 Triangle;
 
-/* One placed copy of a mesh. 208 bytes. */
+/* One placed copy of a mesh. 224 bytes. */
 typedef struct {
   rp_mat4 model;         /* object -> world, this frame */
   rp_mat4 prev_model;    /* object -> world, previous frame */
@@ -85,6 +85,9 @@ typedef struct {
   rp_uint casts_shadow;  /* 1: drawn into the shadow map */
   rp_uint voxelize;      /* 1: part of the GI voxel volume (0 for the lamp cap: its light
                             already comes from the analytic point light) */
+  rp_uint voxel_first_triangle; /* the triangles the voxelizer takes instead: the mesh's voxel */
+  rp_uint voxel_triangle_count; /* proxy at this frame's voxel resolution, or the mesh itself */
+  rp_uint pad0, pad1;
 } Instance;
 
 /* An analytic sphere (marble, fireball, particle). 64 bytes. */

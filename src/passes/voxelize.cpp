@@ -39,7 +39,8 @@ constexpr size_t kSampleBytes = 4 * 4 * sizeof(float);  // one cache sample: 4 f
 // The part of an instance voxelization depends on apart from the light.
 bool same_geometry(const gpu::Instance& a, const gpu::Instance& b) {
   return std::memcmp(&a.model, &b.model, sizeof(a.model)) == 0 &&
-         a.first_triangle == b.first_triangle && a.triangle_count == b.triangle_count &&
+         a.voxel_first_triangle == b.voxel_first_triangle &&
+         a.voxel_triangle_count == b.voxel_triangle_count &&
          a.voxelize == b.voxelize;
 }
 
@@ -236,7 +237,7 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
 void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                             const render::ShadowMap& shadow) {
   const cl_uint r = target_resolution_;
-  const cl_uint triangles = scene.instance_triangle_count;
+  const cl_uint triangles = scene.voxel_triangle_count;
   if (large_capacity_ < std::max<size_t>(triangles, 1)) {
     large_capacity_ = std::max<size_t>(triangles, 1);
     large_list_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,

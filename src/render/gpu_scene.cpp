@@ -100,6 +100,12 @@ glm::mat4 jittered_view_proj(const glm::mat4& view_proj, glm::vec2 jitter_px, ui
   return shift * view_proj;
 }
 
+uint32_t GpuScene::voxel_mesh(uint32_t mesh, uint32_t voxel_resolution) const {
+  const MeshRange& m = meshes.at(mesh);
+  if (m.voxel_proxy < 0 || voxel_resolution > m.voxel_proxy_max_resolution) return mesh;
+  return static_cast<uint32_t>(m.voxel_proxy);
+}
+
 GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue,
                    const scene::SceneAssets& assets)
     : context_(context), queue_(queue) {
@@ -108,8 +114,12 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
   for (const scene::Mesh& mesh : assets.meshes) {
     if (mesh.materials.size() != mesh.triangles.size())
       throw rp::cl::Error("mesh '" + mesh.name + "': one material per triangle expected");
+    if (mesh.voxel_proxy >= static_cast<int>(assets.meshes.size()))
+      throw rp::cl::Error("mesh '" + mesh.name + "': its voxel proxy " +
+                          std::to_string(mesh.voxel_proxy) + " does not exist");
     MeshRange range{static_cast<uint32_t>(tris.size()),
-                    static_cast<uint32_t>(mesh.triangles.size())};
+                    static_cast<uint32_t>(mesh.triangles.size()), mesh.voxel_proxy,
+                    mesh.voxel_proxy_max_resolution};
     uint32_t base = static_cast<uint32_t>(verts.size());
     for (const scene::Vertex& v : mesh.vertices)
       verts.push_back({gpu::to_gpu(v.position, v.uv.x), gpu::to_gpu(v.normal, v.uv.y)});
@@ -215,6 +225,7 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
 
   host_instances.clear();
   instance_triangle_count = 0;
+  voxel_triangle_count = 0;
   for (const scene::MeshInstance& inst : f.instances) {
     if (inst.mesh >= meshes.size())
       throw rp::cl::Error("instance refers to mesh " + std::to_string(inst.mesh) +
@@ -227,8 +238,12 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
     g.triangle_count = meshes[inst.mesh].triangle_count;
     g.casts_shadow = inst.casts_shadow ? 1u : 0u;
     g.voxelize = inst.voxelize ? 1u : 0u;
+    const MeshRange& voxel = meshes[voxel_mesh(inst.mesh, voxel_resolution)];
+    g.voxel_first_triangle = voxel.first_triangle;
+    g.voxel_triangle_count = voxel.triangle_count;
     host_instances.push_back(g);
     instance_triangle_count += g.triangle_count;
+    voxel_triangle_count += g.voxel_triangle_count;
   }
   host_spheres.clear();
   for (const scene::Sphere& s : f.spheres) {

@@ -31,6 +31,8 @@ glm::mat4 jittered_view_proj(const glm::mat4& view_proj, glm::vec2 jitter_px, ui
 struct MeshRange {
   uint32_t first_triangle = 0;
   uint32_t triangle_count = 0;
+  int voxel_proxy = -1;  // scene::Mesh::voxel_proxy and voxel_proxy_max_resolution
+  uint32_t voxel_proxy_max_resolution = 0;
 };
 
 // Throws rp::cl::Error naming the largest texture, the need and the limit when the textures
@@ -71,6 +73,9 @@ class GpuScene {
   ::cl::Buffer brdf_table;
   uint32_t vertex_count = 0, triangle_count = 0;
   std::vector<MeshRange> meshes;
+  // The mesh whose triangles the voxelizer takes for `mesh` at `voxel_resolution`: its voxel
+  // proxy up to the proxy's resolution, else the mesh itself (scene::voxel_mesh).
+  uint32_t voxel_mesh(uint32_t mesh, uint32_t voxel_resolution) const;
 
   // Per frame.
   ::cl::Buffer frame;      // gpu::FrameConstants (one)
@@ -78,6 +83,7 @@ class GpuScene {
   ::cl::Buffer spheres;    // gpu::Sphere[sphere_count] (capacity may be larger)
   uint32_t instance_count = 0, sphere_count = 0;
   uint32_t instance_triangle_count = 0;  // sum of triangle_count over instances
+  uint32_t voxel_triangle_count = 0;     // sum of voxel_triangle_count over instances
   gpu::FrameConstants constants{};
   std::vector<gpu::Instance> host_instances;
   std::vector<gpu::Sphere> host_spheres;

@@ -14,7 +14,7 @@ static_assert(sizeof(rp_mat4) == 64);
 static_assert(sizeof(FrameConstants) == 6 * 64 + 5 * 16 + 8 * 4);
 static_assert(sizeof(Vertex) == 32);
 static_assert(sizeof(Triangle) == 16);
-static_assert(sizeof(Instance) == 208);
+static_assert(sizeof(Instance) == 224);
 static_assert(sizeof(Sphere) == 64);
 static_assert(sizeof(Material) == 48);
 static_assert(sizeof(TextureInfo) == 16 + 4 * RP_TEXTURE_MAX_LEVELS);

@@ -265,8 +265,10 @@ void axis_range(float lo, float hi, int resolution, int& first, int& last) {
   last = std::min(int(std::floor(hi)), resolution - 1);
 }
 
+// chains: the mip chain of every texture of in.assets (built once per reference run).
 void voxelize_triangle(const VoxelRefInput& in, const gpu::Instance& inst,
-                       const scene::Mesh& mesh, size_t t, VoxelSums& sums) {
+                       const scene::Mesh& mesh, size_t t,
+                       const std::vector<render::MipChain>& chains, VoxelSums& sums) {
   const uint32_t R = sums.resolution;
   const glm::uvec3 idx = mesh.triangles[t];
   const scene::Vertex* v[3] = {&mesh.vertices[idx.x], &mesh.vertices[idx.y],
@@ -298,11 +300,11 @@ void voxelize_triangle(const VoxelRefInput& in, const gpu::Instance& inst,
   const float d00 = dot(e01, e01), d01 = dot(e01, e02), d11 = dot(e02, e02);
   const float inv_denom = 1.0f / (d00 * d11 - d01 * d01);
   const scene::Material& mat = in.assets->materials.at(mesh.materials[t]);
-  render::MipChain chain;
+  static const render::MipChain kNoChain;
+  const render::MipChain& chain = mat.texture >= 0 ? chains.at(size_t(mat.texture)) : kNoChain;
   float lod = 0.0f;
   if (mat.texture >= 0) {
     const scene::Texture& tex = in.assets->textures.at(size_t(mat.texture));
-    chain = render::build_mip_chain(tex);
     lod = reference_texture_lod({w0, w1, w2},
                                 {RefF3{v[0]->uv.x, v[0]->uv.y, 0.0f},
                                  RefF3{v[1]->uv.x, v[1]->uv.y, 0.0f},
@@ -464,11 +466,15 @@ VoxelSums reference_voxelize(const VoxelRefInput& in, uint32_t resolution) {
   sums.accum.assign(voxels * kAccumWords, 0u);
   sums.overflow.assign(voxels, 0u);
   sums.facing_slack.assign(voxels * 6, 0u);
+  std::vector<render::MipChain> chains;
+  for (const scene::Texture& tex : in.assets->textures) chains.push_back(render::build_mip_chain(tex));
   for (size_t i = 0; i < in.instances.size(); ++i) {
     if (!in.frame->instances[i].voxelize) continue;  // the lamp cap: lit analytically
-    const scene::Mesh& mesh = in.assets->meshes.at(in.frame->instances[i].mesh);
+    // the mesh's voxel proxy at this resolution where it has one (scene::voxel_mesh)
+    const scene::Mesh& mesh = in.assets->meshes.at(
+        scene::voxel_mesh(in.assets->meshes, in.frame->instances[i].mesh, resolution));
     for (size_t t = 0; t < mesh.triangles.size(); ++t)
-      voxelize_triangle(in, in.instances[i], mesh, t, sums);
+      voxelize_triangle(in, in.instances[i], mesh, t, chains, sums);
   }
   for (const gpu::Sphere& s : in.spheres) voxelize_sphere(in, s, sums);
   return sums;

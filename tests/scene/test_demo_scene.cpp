@@ -21,10 +21,20 @@ glm::vec3 transform(const glm::mat4& m, glm::vec3 p) { return glm::vec3(m * glm:
 
 TEST(DemoScene, AssetsLoadWithTheExpectedLayout) {
   const SceneAssets& a = assets();
-  ASSERT_EQ(a.meshes.size(), 3u);
+  ASSERT_EQ(a.meshes.size(), 4u);
   EXPECT_EQ(a.meshes[demo::kBoxMesh].name, "cornell_box");
   EXPECT_EQ(a.meshes[demo::kLampMesh].name, "lamp_cap");
   EXPECT_EQ(a.meshes[demo::kTumblerMesh].name, "tumbler");
+  EXPECT_EQ(a.meshes[demo::kTumblerVoxelProxyMesh].name, "tumbler_voxel_proxy");
+  // Only the tumbler has a voxel proxy, for volumes up to 64^3 (scene::voxel_mesh picks it).
+  for (uint32_t m = 0; m < a.meshes.size(); ++m) {
+    const int want = m == demo::kTumblerMesh ? int(demo::kTumblerVoxelProxyMesh) : -1;
+    EXPECT_EQ(a.meshes[m].voxel_proxy, want) << a.meshes[m].name;
+  }
+  EXPECT_EQ(voxel_mesh(a.meshes, demo::kTumblerMesh, 32), demo::kTumblerVoxelProxyMesh);
+  EXPECT_EQ(voxel_mesh(a.meshes, demo::kTumblerMesh, 64), demo::kTumblerVoxelProxyMesh);
+  EXPECT_EQ(voxel_mesh(a.meshes, demo::kTumblerMesh, 128), demo::kTumblerMesh);
+  EXPECT_EQ(voxel_mesh(a.meshes, demo::kBoxMesh, 64), demo::kBoxMesh);
   ASSERT_EQ(a.textures.size(), 2u);
   EXPECT_EQ(a.textures[demo::kWoodTexture].width, 512);
   EXPECT_EQ(a.textures[demo::kWoodTexture].height, 512);
