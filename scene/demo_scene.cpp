@@ -81,10 +81,12 @@ SceneAssets make_demo_assets(const std::string& asset_dir) {
       make_tumbler_mesh(TumblerShape{}, TumblerMeshParams{}, demo::kTumblerMaterial));
   Mesh proxy =
       make_tumbler_mesh(TumblerShape{}, demo::kTumblerProxyParams, demo::kTumblerMaterial);
-  proxy.name = "tumbler_voxel_proxy";
+  proxy.name = "tumbler_proxy";
   assets.meshes.push_back(std::move(proxy));
-  assets.meshes[demo::kTumblerMesh].voxel_proxy = static_cast<int>(demo::kTumblerVoxelProxyMesh);
-  assets.meshes[demo::kTumblerMesh].voxel_proxy_max_resolution = demo::kTumblerProxyMaxResolution;
+  Mesh& tumbler = assets.meshes[demo::kTumblerMesh];
+  tumbler.proxy = static_cast<int>(demo::kTumblerProxyMesh);
+  tumbler.proxy_max_voxels = demo::kTumblerProxyMaxVoxels;
+  tumbler.proxy_max_shadow_texels = demo::kTumblerProxyMaxShadowTexels;
   return assets;
 }
 

@@ -16,16 +16,18 @@ namespace rp::scene {
 // Indices into SceneAssets built by make_demo_assets().
 namespace demo {
 inline constexpr uint32_t kBoxMesh = 0, kLampMesh = 1, kTumblerMesh = 2;
-// The tumbler's voxel proxy (Mesh::voxel_proxy): a third of its triangles, for GI volumes up to
-// kTumblerProxyMaxResolution^3 (the default 64^3: the voxelizer's tumbler triangles cost a
-// third). The tumbler (bottom radius b = 0.2) is 13 voxels wide at 64^3; the proxy's rings (24
-// segments, 15 degrees apart on the bottom cap) lie within 0.06 voxel of the mesh's there
-// (sagitta 0.2 * 32 * (1 - cos 7.5 degrees)). At 64^3 0.5 % of the room's opaque voxels change
-// (a rim the mesh's outer chords just touch) and the volume's light by 0.04 %; at 128^3 it
-// would be 1.3 % of them, so finer volumes voxelize the mesh itself
-// (VoxelizeDemo.TumblerProxyVoxelizesLikeTheMesh).
-inline constexpr uint32_t kTumblerVoxelProxyMesh = 3;
-inline constexpr uint32_t kTumblerProxyMaxResolution = 64;
+// The tumbler's proxy (Mesh::proxy): a third of its triangles (24 segments, rings 8/2/6 against
+// 48 and 12/4/8: 720 triangles against 2208), for the voxelizer up to 64^3 and shadow maps up to
+// 2048^2 (the default 64^3 and 1024^2: what the voxelizer and the shadow map's rasterizer spend
+// on tumbler triangles drops to a third). The proxy's vertices lie on the surface and its
+// chords at most 0.0086 r inside it (1 - cos 7.5 degrees; r = 0.2 at the bottom). That is
+// 0.06 voxel at 64^3, where it changes 131 of the tumblers' 5431 opaque voxels (a rim) and the
+// volume's light by 0.2 %, but 1.3 % of the room's voxels at 128^3, so finer volumes voxelize
+// the mesh (VoxelizeDemo.TumblerProxyVoxelizesLikeTheMesh); and 0.26 texel of a 1024^2 shadow
+// map at the floor (texels 0.0068 wide there), inside the PCSS filter's smallest radius.
+inline constexpr uint32_t kTumblerProxyMesh = 3;
+inline constexpr uint32_t kTumblerProxyMaxVoxels = 64;
+inline constexpr uint32_t kTumblerProxyMaxShadowTexels = 2048;
 inline constexpr TumblerMeshParams kTumblerProxyParams{24, 8, 2, 6};
 inline constexpr uint32_t kFloorMaterial = 0, kCeilingMaterial = 1, kBackMaterial = 2,
                           kLeftMaterial = 3, kRightMaterial = 4, kLampMaterial = 5,
@@ -60,7 +62,7 @@ glm::mat4 upright_tumbler_model(const TumblerShape& shape, const TumblerPlacemen
 // The asset folder: $ROLYPOLY_ASSET_DIR if set, else the source tree's scene/assets.
 std::string default_asset_dir();
 
-// Meshes (box, lamp cap, tumbler, the tumbler's voxel proxy), materials (walls, lamp, tumbler) and textures (wood.png,
+// Meshes (box, lamp cap, tumbler, the tumbler's proxy), materials (walls, lamp, tumbler) and textures (wood.png,
 // tumbler_face.png from asset_dir). Throws AssetError when a texture cannot be loaded.
 SceneAssets make_demo_assets(const std::string& asset_dir);
 

@@ -7,8 +7,15 @@ namespace rp::scene {
 uint32_t voxel_mesh(const std::vector<Mesh>& meshes, uint32_t mesh, uint32_t voxel_resolution) {
   if (mesh >= meshes.size()) return mesh;  // the caller reports the bad index
   const Mesh& m = meshes[mesh];
-  if (m.voxel_proxy < 0 || voxel_resolution > m.voxel_proxy_max_resolution) return mesh;
-  return static_cast<uint32_t>(m.voxel_proxy);
+  if (m.proxy < 0 || voxel_resolution > m.proxy_max_voxels) return mesh;
+  return static_cast<uint32_t>(m.proxy);
+}
+
+uint32_t shadow_mesh(const std::vector<Mesh>& meshes, uint32_t mesh, uint32_t shadow_size) {
+  if (mesh >= meshes.size()) return mesh;
+  const Mesh& m = meshes[mesh];
+  if (m.proxy < 0 || shadow_size > m.proxy_max_shadow_texels) return mesh;
+  return static_cast<uint32_t>(m.proxy);
 }
 
 glm::mat4 Camera::view() const { return glm::lookAt(position, target, up); }

@@ -48,13 +48,15 @@ struct Mesh {
   std::vector<Vertex> vertices;
   std::vector<glm::uvec3> triangles;   // indices into vertices, counter-clockwise seen from outside
   std::vector<uint32_t> materials;     // per triangle, index into SceneAssets::materials
-  // A coarser stand-in the voxelizer takes instead of this mesh for GI volumes of at most
-  // voxel_proxy_max_resolution voxels per side (index into SceneAssets::meshes, or -1: none).
-  // Where the mesh's triangles are far smaller than a voxel, the voxels average many of them
-  // and a proxy with a fraction of the triangles gives nearly the same voxels for a fraction
-  // of the cost; the cameras and the shadow map always draw the mesh itself.
-  int voxel_proxy = -1;
-  uint32_t voxel_proxy_max_resolution = 0;
+  // A coarser stand-in (index into SceneAssets::meshes, or -1: none) drawn instead of this mesh
+  // where the mesh's triangles are far smaller than what they are drawn into: by the voxelizer
+  // in GI volumes of at most proxy_max_voxels voxels per side, into shadow maps of at most
+  // proxy_max_shadow_texels texels per side. The voxels average many of the mesh's triangles
+  // and the shadow filters span several texels, so a proxy with a fraction of the triangles
+  // gives nearly the same result for a fraction of the cost. The camera always draws the mesh.
+  int proxy = -1;
+  uint32_t proxy_max_voxels = 0;
+  uint32_t proxy_max_shadow_texels = 0;
 };
 
 // The specular coat over a surface's Lambertian base (issue 16; the model and its formulas are
@@ -88,9 +90,11 @@ struct SceneAssets {
   std::vector<Texture> textures;
 };
 
-// The mesh the voxelizer takes for `mesh` in a GI volume of `voxel_resolution` voxels per side:
-// its voxel proxy where it has one for that resolution, else the mesh itself.
+// The mesh the voxelizer takes for `mesh` in a GI volume of `voxel_resolution` voxels per side,
+// and the one the shadow map draws at `shadow_size` texels per side: its proxy where it has
+// one for that resolution, else the mesh itself.
 uint32_t voxel_mesh(const std::vector<Mesh>& meshes, uint32_t mesh, uint32_t voxel_resolution);
+uint32_t shadow_mesh(const std::vector<Mesh>& meshes, uint32_t mesh, uint32_t shadow_size);
 
 struct MeshInstance {
   uint32_t mesh = 0;                   // index into SceneAssets::meshes

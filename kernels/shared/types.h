@@ -85,9 +85,10 @@ typedef struct {
   rp_uint casts_shadow;  /* 1: drawn into the shadow map */
   rp_uint voxelize;      /* 1: part of the GI voxel volume (0 for the lamp cap: its light
                             already comes from the analytic point light) */
-  rp_uint voxel_first_triangle; /* the triangles the voxelizer takes instead: the mesh's voxel */
-  rp_uint voxel_triangle_count; /* proxy at this frame's voxel resolution, or the mesh itself */
-  rp_uint pad0, pad1;
+  rp_uint voxel_first_triangle; /* the triangles the voxelizer takes instead: the mesh's proxy */
+  rp_uint voxel_triangle_count; /* at this frame's voxel resolution, or the mesh itself */
+  rp_uint shadow_first_triangle; /* and those the shadow map draws (the draw list is built on */
+  rp_uint shadow_triangle_count; /* the host from these: kernels read the list) */
 } Instance;
 
 /* An analytic sphere (marble, fireball, particle). 64 bytes. */

@@ -86,6 +86,15 @@ struct ViewState {
   uint32_t total_host = 0;
   ::cl::Event total_event;
   bool total_pending = false;
+  // Draw items uint2 (instance, global triangle index), instance-major so the item index
+  // orders like (instance id, primitive id). The camera draws every instance's mesh; the
+  // shadow map the casters' shadow triangles (Instance.shadow_*: a mesh's proxy where it has
+  // one for the map's size). Rebuilt only when those ranges change.
+  ::cl::Buffer draw_items;
+  size_t draw_cap = 0;
+  uint32_t draw_count = 0;
+  std::vector<uint32_t> draw_key;  // (first triangle, count) per instance
+  std::vector<uint32_t> draw_host;
 };
 
 struct VisibilityPass::Impl {
@@ -93,13 +102,6 @@ struct VisibilityPass::Impl {
   int span = 1;
   bool tile_layout = false;  // raster: one work-item per tile (CPUs), else a group per tile
   ViewState camera, shadow;
-  // Draw items uint2 (instance, global triangle index), instance-major so the item index
-  // orders like (instance id, primitive id). Rebuilt only when the instance set changes.
-  ::cl::Buffer draw_items;
-  size_t draw_cap = 0;
-  uint32_t draw_count = 0;
-  std::vector<uint32_t> draw_key;  // (first_triangle, triangle_count) per instance
-  std::vector<uint32_t> draw_host;
 
   Impl() = default;
   Impl(const Impl&) = delete;
@@ -129,35 +131,41 @@ struct VisibilityPass::Impl {
     v.unused = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, 2 * sizeof(uint32_t));
   }
 
-  void update_draw_items(const render::GpuScene& scene) {
+  void update_draw_items(ViewState& v, const render::GpuScene& scene) {
     const std::vector<gpu::Instance>& instances = scene.host_instances;
-    ensure(context->context, draw_items, draw_cap, 1, 2 * sizeof(uint32_t));  // never unset
-    bool same = draw_key.size() == 2 * instances.size();
-    for (size_t i = 0; same && i < instances.size(); ++i)
-      same = draw_key[2 * i] == instances[i].first_triangle &&
-             draw_key[2 * i + 1] == instances[i].triangle_count;
-    if (same) return;
-    draw_key.clear();
-    for (const gpu::Instance& inst : instances) {
-      draw_key.push_back(inst.first_triangle);
-      draw_key.push_back(inst.triangle_count);
+    ensure(context->context, v.draw_items, v.draw_cap, 1, 2 * sizeof(uint32_t));  // never unset
+    // the triangles this view draws of instance i (none: a depth-only view's non-caster)
+    auto range = [&](const gpu::Instance& inst) -> std::pair<uint32_t, uint32_t> {
+      if (!v.depth_only) return {inst.first_triangle, inst.triangle_count};
+      if (inst.casts_shadow == 0u) return {0u, 0u};
+      return {inst.shadow_first_triangle, inst.shadow_triangle_count};
+    };
+    bool same = v.draw_key.size() == 2 * instances.size();
+    for (size_t i = 0; same && i < instances.size(); ++i) {
+      const auto [first, count] = range(instances[i]);
+      same = v.draw_key[2 * i] == first && v.draw_key[2 * i + 1] == count;
     }
-    draw_host.clear();
-    for (uint32_t i = 0; i < scene.host_instances.size(); ++i) {
-      const gpu::Instance& inst = scene.host_instances[i];
-      if (uint64_t(inst.first_triangle) + inst.triangle_count > scene.triangle_count)
+    if (same) return;
+    v.draw_key.clear();
+    v.draw_host.clear();
+    for (uint32_t i = 0; i < instances.size(); ++i) {
+      const auto [first, count] = range(instances[i]);
+      v.draw_key.push_back(first);
+      v.draw_key.push_back(count);
+      if (uint64_t(first) + count > scene.triangle_count)
         throw rp::cl::Error("visibility pass: instance " + std::to_string(i) +
                             " refers to triangles beyond the scene's triangle buffer");
-      for (uint32_t t = 0; t < inst.triangle_count; ++t) {
-        draw_host.push_back(i);
-        draw_host.push_back(inst.first_triangle + t);
+      for (uint32_t t = 0; t < count; ++t) {
+        v.draw_host.push_back(i);
+        v.draw_host.push_back(first + t);
       }
     }
-    draw_count = static_cast<uint32_t>(draw_host.size() / 2);
-    ensure(context->context, draw_items, draw_cap, draw_count, 2 * sizeof(uint32_t));
-    if (draw_count > 0)
-      context->queue.enqueueWriteBuffer(draw_items, CL_TRUE, 0,
-                                        draw_host.size() * sizeof(uint32_t), draw_host.data());
+    v.draw_count = static_cast<uint32_t>(v.draw_host.size() / 2);
+    ensure(context->context, v.draw_items, v.draw_cap, v.draw_count, 2 * sizeof(uint32_t));
+    if (v.draw_count > 0)
+      context->queue.enqueueWriteBuffer(v.draw_items, CL_TRUE, 0,
+                                        v.draw_host.size() * sizeof(uint32_t),
+                                        v.draw_host.data());
   }
 
   void run_view(rp::cl::Profiler& profiler, ViewState& v, const render::GpuScene& scene,
@@ -166,15 +174,15 @@ struct VisibilityPass::Impl {
                 const ::cl::Buffer& bary_out) {
     const ::cl::Context& ctx = context->context;
     ::cl::CommandQueue& queue = profiler.queue();
-    update_draw_items(scene);
+    update_draw_items(v, scene);
     const uint32_t tiles_x = static_cast<uint32_t>((width + kTile - 1) / kTile);
     const uint32_t tiles_y = static_cast<uint32_t>((height + kTile - 1) / kTile);
     const uint32_t tiles = tiles_x * tiles_y;
     const uint32_t spheres = scene.sphere_count;
-    const uint32_t items = draw_count + spheres;
+    const uint32_t items = v.draw_count + spheres;
 
-    ensure(ctx, v.tris, v.tris_cap, draw_count, sizeof(gpu::RasterTriangle));
-    ensure(ctx, v.edges, v.edges_cap, draw_count, kRasterEdgesBytes);
+    ensure(ctx, v.tris, v.tris_cap, v.draw_count, sizeof(gpu::RasterTriangle));
+    ensure(ctx, v.edges, v.edges_cap, v.draw_count, kRasterEdgesBytes);
     ensure(ctx, v.bounds, v.bounds_cap, items, 4 * sizeof(int32_t));
     if (v.tiles_cap < size_t(2) * tiles) {  // only when the view size grows
       v.tiles_cap = size_t(2) * tiles;
@@ -200,7 +208,7 @@ struct VisibilityPass::Impl {
     p.height = height;
     p.tiles_x = tiles_x;
     p.tiles_y = tiles_y;
-    p.triangle_items = draw_count;
+    p.triangle_items = v.draw_count;
     p.sphere_count = spheres;
     p.list_capacity = static_cast<uint32_t>(v.list_cap);
 
@@ -212,9 +220,9 @@ struct VisibilityPass::Impl {
 
     if (items > 0) {
       cl_uint a = 0;
-      if (draw_count > 0) {
+      if (v.draw_count > 0) {
         v.setup.setArg(a++, p);
-        v.setup.setArg(a++, draw_items);
+        v.setup.setArg(a++, v.draw_items);
         v.setup.setArg(a++, scene.instances);
         v.setup.setArg(a++, scene.triangles);
         v.setup.setArg(a++, scene.vertices);
@@ -222,7 +230,7 @@ struct VisibilityPass::Impl {
         v.setup.setArg(a++, v.bounds);
         v.setup.setArg(a++, v.edges);
         const size_t lanes = static_cast<size_t>(span);
-        const size_t spans = (draw_count + lanes - 1) / lanes;
+        const size_t spans = (v.draw_count + lanes - 1) / lanes;
         profiler.enqueue(v.pass, v.setup, ::cl::NDRange(rp::cl::round_up(spans, kSetupGroup)),
                          ::cl::NDRange(kSetupGroup));
       }

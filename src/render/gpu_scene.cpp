@@ -102,8 +102,14 @@ glm::mat4 jittered_view_proj(const glm::mat4& view_proj, glm::vec2 jitter_px, ui
 
 uint32_t GpuScene::voxel_mesh(uint32_t mesh, uint32_t voxel_resolution) const {
   const MeshRange& m = meshes.at(mesh);
-  if (m.voxel_proxy < 0 || voxel_resolution > m.voxel_proxy_max_resolution) return mesh;
-  return static_cast<uint32_t>(m.voxel_proxy);
+  if (m.proxy < 0 || voxel_resolution > m.proxy_max_voxels) return mesh;
+  return static_cast<uint32_t>(m.proxy);
+}
+
+uint32_t GpuScene::shadow_mesh(uint32_t mesh, uint32_t shadow_size) const {
+  const MeshRange& m = meshes.at(mesh);
+  if (m.proxy < 0 || shadow_size > m.proxy_max_shadow_texels) return mesh;
+  return static_cast<uint32_t>(m.proxy);
 }
 
 GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue,
@@ -114,12 +120,12 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
   for (const scene::Mesh& mesh : assets.meshes) {
     if (mesh.materials.size() != mesh.triangles.size())
       throw rp::cl::Error("mesh '" + mesh.name + "': one material per triangle expected");
-    if (mesh.voxel_proxy >= static_cast<int>(assets.meshes.size()))
-      throw rp::cl::Error("mesh '" + mesh.name + "': its voxel proxy " +
-                          std::to_string(mesh.voxel_proxy) + " does not exist");
+    if (mesh.proxy >= static_cast<int>(assets.meshes.size()))
+      throw rp::cl::Error("mesh '" + mesh.name + "': its proxy " + std::to_string(mesh.proxy) +
+                          " does not exist");
     MeshRange range{static_cast<uint32_t>(tris.size()),
-                    static_cast<uint32_t>(mesh.triangles.size()), mesh.voxel_proxy,
-                    mesh.voxel_proxy_max_resolution};
+                    static_cast<uint32_t>(mesh.triangles.size()), mesh.proxy,
+                    mesh.proxy_max_voxels, mesh.proxy_max_shadow_texels};
     uint32_t base = static_cast<uint32_t>(verts.size());
     for (const scene::Vertex& v : mesh.vertices)
       verts.push_back({gpu::to_gpu(v.position, v.uv.x), gpu::to_gpu(v.normal, v.uv.y)});
@@ -241,6 +247,9 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
     const MeshRange& voxel = meshes[voxel_mesh(inst.mesh, voxel_resolution)];
     g.voxel_first_triangle = voxel.first_triangle;
     g.voxel_triangle_count = voxel.triangle_count;
+    const MeshRange& shadow = meshes[shadow_mesh(inst.mesh, shadow_size)];
+    g.shadow_first_triangle = shadow.first_triangle;
+    g.shadow_triangle_count = shadow.triangle_count;
     host_instances.push_back(g);
     instance_triangle_count += g.triangle_count;
     voxel_triangle_count += g.voxel_triangle_count;

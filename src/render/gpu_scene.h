@@ -31,8 +31,9 @@ glm::mat4 jittered_view_proj(const glm::mat4& view_proj, glm::vec2 jitter_px, ui
 struct MeshRange {
   uint32_t first_triangle = 0;
   uint32_t triangle_count = 0;
-  int voxel_proxy = -1;  // scene::Mesh::voxel_proxy and voxel_proxy_max_resolution
-  uint32_t voxel_proxy_max_resolution = 0;
+  int proxy = -1;  // scene::Mesh::proxy, proxy_max_voxels and proxy_max_shadow_texels
+  uint32_t proxy_max_voxels = 0;
+  uint32_t proxy_max_shadow_texels = 0;
 };
 
 // Throws rp::cl::Error naming the largest texture, the need and the limit when the textures
@@ -73,9 +74,11 @@ class GpuScene {
   ::cl::Buffer brdf_table;
   uint32_t vertex_count = 0, triangle_count = 0;
   std::vector<MeshRange> meshes;
-  // The mesh whose triangles the voxelizer takes for `mesh` at `voxel_resolution`: its voxel
-  // proxy up to the proxy's resolution, else the mesh itself (scene::voxel_mesh).
+  // The mesh whose triangles the voxelizer takes for `mesh` at `voxel_resolution`, and the one
+  // a shadow map of `shadow_size` texels draws: its proxy up to the proxy's resolutions, else
+  // the mesh itself (scene::voxel_mesh, scene::shadow_mesh).
   uint32_t voxel_mesh(uint32_t mesh, uint32_t voxel_resolution) const;
+  uint32_t shadow_mesh(uint32_t mesh, uint32_t shadow_size) const;
 
   // Per frame.
   ::cl::Buffer frame;      // gpu::FrameConstants (one)

@@ -92,7 +92,9 @@ RefImage reference_raster(const scene::SceneAssets& assets, const scene::FrameSc
   std::vector<Tri> tris;
   for (uint32_t i = 0; i < frame.instances.size(); ++i) {
     const scene::MeshInstance& inst = frame.instances[i];
-    const scene::Mesh& mesh = assets.meshes.at(inst.mesh);
+    // a shadow map draws the mesh's proxy where it has one for the map's size
+    const scene::Mesh& mesh = assets.meshes.at(
+        view.depth_only ? scene::shadow_mesh(assets.meshes, inst.mesh, W) : inst.mesh);
     for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
       Tri tri{};
       for (int k = 0; k < 3; ++k) {

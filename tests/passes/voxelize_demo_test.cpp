@@ -183,24 +183,36 @@ TEST(VoxelizeDemo, LampCapIsNotVoxelized) {
   EXPECT_FALSE(lit.sums.accum == with_lamp.sums.accum);
 }
 
-// The tumbler's voxel proxy (scene::Mesh::voxel_proxy, a third of its triangles) stands in for
-// it up to 64^3: GpuScene gives the instances the proxy's triangles there and the mesh's above,
+// The tumbler's proxy (scene::Mesh::proxy, a third of its triangles) stands in for
+// it up to 64^3 (and in shadow maps up to 2048^2): GpuScene gives the instances the proxy's
+// triangles there and the mesh's above,
 // and at 64^3 voxelizing the proxy gives nearly the voxels the mesh gives (C++ reference, both
 // ways, the five tumblers alone): the same opaque voxels but for a thin rim (bound 5 % of the
 // tumblers' voxels), and the same light in the volume (bound 1 %).
 TEST(VoxelizeDemo, TumblerProxyVoxelizesLikeTheMesh) {
   Demo d(0, 1024);
   const render::MeshRange& mesh = d.gpu->meshes.at(scene::demo::kTumblerMesh);
-  const render::MeshRange& proxy = d.gpu->meshes.at(scene::demo::kTumblerVoxelProxyMesh);
+  const render::MeshRange& proxy = d.gpu->meshes.at(scene::demo::kTumblerProxyMesh);
   ASSERT_LT(proxy.triangle_count * 3, mesh.triangle_count + 3);
   for (uint32_t r : {32u, 64u, 128u, 256u, 512u}) {
     d.gpu->update(d.frame, 256, 256, d.shadow.size, r);
-    const render::MeshRange& want = r <= scene::demo::kTumblerProxyMaxResolution ? proxy : mesh;
+    const render::MeshRange& want = r <= scene::demo::kTumblerProxyMaxVoxels ? proxy : mesh;
     for (size_t i = 0; i < d.frame.instances.size(); ++i) {
       if (d.frame.instances[i].mesh != scene::demo::kTumblerMesh) continue;
       EXPECT_EQ(d.gpu->host_instances[i].voxel_first_triangle, want.first_triangle) << r;
       EXPECT_EQ(d.gpu->host_instances[i].voxel_triangle_count, want.triangle_count) << r;
       EXPECT_EQ(d.gpu->host_instances[i].triangle_count, mesh.triangle_count) << r;
+    }
+  }
+  // and the shadow map draws the proxy up to 2048^2 texels, the mesh above
+  for (uint32_t size : {256u, 1024u, 2048u, 4096u}) {
+    d.gpu->update(d.frame, 256, 256, size);
+    const render::MeshRange& want =
+        size <= scene::demo::kTumblerProxyMaxShadowTexels ? proxy : mesh;
+    for (size_t i = 0; i < d.frame.instances.size(); ++i) {
+      if (d.frame.instances[i].mesh != scene::demo::kTumblerMesh) continue;
+      EXPECT_EQ(d.gpu->host_instances[i].shadow_first_triangle, want.first_triangle) << size;
+      EXPECT_EQ(d.gpu->host_instances[i].shadow_triangle_count, want.triangle_count) << size;
     }
   }
   // the tumblers alone (the room's large triangles are most of the reference's time), lit and
@@ -211,7 +223,7 @@ TEST(VoxelizeDemo, TumblerProxyVoxelizesLikeTheMesh) {
   });
   d.gpu->update(tumblers, 256, 256, d.shadow.size);
   scene::SceneAssets no_proxy = d.assets;
-  no_proxy.meshes[scene::demo::kTumblerMesh].voxel_proxy = -1;
+  no_proxy.meshes[scene::demo::kTumblerMesh].proxy = -1;
   for (uint32_t R : {64u}) {
     const std::vector<float> with = reference_resolve(
         reference_voxelize(reference_input(d.assets, tumblers, *d.gpu, d.shadow_depth), R));

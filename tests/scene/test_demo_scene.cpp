@@ -25,16 +25,21 @@ TEST(DemoScene, AssetsLoadWithTheExpectedLayout) {
   EXPECT_EQ(a.meshes[demo::kBoxMesh].name, "cornell_box");
   EXPECT_EQ(a.meshes[demo::kLampMesh].name, "lamp_cap");
   EXPECT_EQ(a.meshes[demo::kTumblerMesh].name, "tumbler");
-  EXPECT_EQ(a.meshes[demo::kTumblerVoxelProxyMesh].name, "tumbler_voxel_proxy");
-  // Only the tumbler has a voxel proxy, for volumes up to 64^3 (scene::voxel_mesh picks it).
+  EXPECT_EQ(a.meshes[demo::kTumblerProxyMesh].name, "tumbler_proxy");
+  // Only the tumbler has a proxy, for volumes up to 64^3 and shadow maps up to 2048^2
+  // (scene::voxel_mesh and scene::shadow_mesh pick it).
   for (uint32_t m = 0; m < a.meshes.size(); ++m) {
-    const int want = m == demo::kTumblerMesh ? int(demo::kTumblerVoxelProxyMesh) : -1;
-    EXPECT_EQ(a.meshes[m].voxel_proxy, want) << a.meshes[m].name;
+    const int want = m == demo::kTumblerMesh ? int(demo::kTumblerProxyMesh) : -1;
+    EXPECT_EQ(a.meshes[m].proxy, want) << a.meshes[m].name;
   }
-  EXPECT_EQ(voxel_mesh(a.meshes, demo::kTumblerMesh, 32), demo::kTumblerVoxelProxyMesh);
-  EXPECT_EQ(voxel_mesh(a.meshes, demo::kTumblerMesh, 64), demo::kTumblerVoxelProxyMesh);
+  EXPECT_EQ(voxel_mesh(a.meshes, demo::kTumblerMesh, 32), demo::kTumblerProxyMesh);
+  EXPECT_EQ(voxel_mesh(a.meshes, demo::kTumblerMesh, 64), demo::kTumblerProxyMesh);
   EXPECT_EQ(voxel_mesh(a.meshes, demo::kTumblerMesh, 128), demo::kTumblerMesh);
   EXPECT_EQ(voxel_mesh(a.meshes, demo::kBoxMesh, 64), demo::kBoxMesh);
+  EXPECT_EQ(shadow_mesh(a.meshes, demo::kTumblerMesh, 1024), demo::kTumblerProxyMesh);
+  EXPECT_EQ(shadow_mesh(a.meshes, demo::kTumblerMesh, 2048), demo::kTumblerProxyMesh);
+  EXPECT_EQ(shadow_mesh(a.meshes, demo::kTumblerMesh, 4096), demo::kTumblerMesh);
+  EXPECT_EQ(shadow_mesh(a.meshes, demo::kLampMesh, 1024), demo::kLampMesh);
   ASSERT_EQ(a.textures.size(), 2u);
   EXPECT_EQ(a.textures[demo::kWoodTexture].width, 512);
   EXPECT_EQ(a.textures[demo::kWoodTexture].height, 512);
