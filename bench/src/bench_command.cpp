@@ -193,10 +193,20 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
   if (sim) sim->world().fill_frame(last);  // what the last frame showed (same world state)
   run.spheres = static_cast<uint32_t>(last.spheres.size());
   run.instances = static_cast<uint32_t>(last.instances.size());
-  for (const scene::MeshInstance& inst : last.instances)
-    if (inst.mesh < session.assets().meshes.size())
-      run.instance_triangles +=
-          static_cast<uint32_t>(session.assets().meshes[inst.mesh].triangles.size());
+  const std::vector<scene::Mesh>& meshes = session.assets().meshes;
+  const uint32_t shadow_size =
+      common.shadow_size ? common.shadow_size : render::RenderSettings{}.shadow_size;
+  auto triangles = [&](uint32_t mesh) {
+    return mesh < meshes.size() ? static_cast<uint32_t>(meshes[mesh].triangles.size()) : 0u;
+  };
+  for (const scene::MeshInstance& inst : last.instances) {
+    run.instance_triangles += triangles(inst.mesh);
+    if (inst.voxelize)
+      run.voxel_triangles +=
+          triangles(scene::voxel_mesh(meshes, inst.mesh, voxels_or_default(voxels)));
+    if (inst.casts_shadow)
+      run.shadow_triangles += triangles(scene::shadow_mesh(meshes, inst.mesh, shadow_size));
+  }
   return run;
 }
 
@@ -225,6 +235,8 @@ void add_efficiency(const CommonOptions& common, const rp::cl::DeviceInfo& info,
     p.shadow_size = common.shadow_size ? common.shadow_size : render::RenderSettings{}.shadow_size;
     p.triangles = triangles;
     p.instance_triangles = run.instance_triangles;
+    p.voxel_triangles = run.voxel_triangles;
+    p.shadow_triangles = run.shadow_triangles;
     p.spheres = run.spheres;
     p.taa = common.effects.taa;
     p.bloom = common.effects.bloom;

@@ -42,6 +42,8 @@ struct RunResult {
   TimeSummary frame;             // wall clock of Renderer::render per frame
   // What the measured frames drew (the last one; every device draws the same frames).
   uint32_t spheres = 0, instances = 0, instance_triangles = 0;
+  // Of those, the triangles the voxelizer and the shadow map took (mesh proxies, casters).
+  uint32_t voxel_triangles = 0, shadow_triangles = 0;
 
   double fps() const { return frame.median_ms > 0.0 ? 1000.0 / frame.median_ms : 0.0; }
   double pixels() const { return double(width) * double(height); }

@@ -50,7 +50,9 @@ Json run_json(const RunResult& r) {
   j["timing"] = r.timing;
   j["scene"] = {{"spheres", r.spheres},
                 {"instances", r.instances},
-                {"instance_triangles", r.instance_triangles}};
+                {"instance_triangles", r.instance_triangles},
+                {"voxel_triangles", r.voxel_triangles},
+                {"shadow_triangles", r.shadow_triangles}};
   Json passes = Json::object();
   for (const PassResult& p : r.passes) {
     Json e = summary_json(p.ms);
@@ -82,6 +84,9 @@ RunResult parse_run(const Json& j) {
   r.spheres = j.at("scene").at("spheres");
   r.instances = j.at("scene").at("instances");
   r.instance_triangles = j.at("scene").at("instance_triangles");
+  // files written before mesh proxies: every triangle was voxelized and drawn into the map
+  r.voxel_triangles = j.at("scene").value("voxel_triangles", r.instance_triangles);
+  r.shadow_triangles = j.at("scene").value("shadow_triangles", r.instance_triangles);
   for (const auto& [name, e] : j.at("passes").items()) {
     PassResult p{name, parse_summary(e), {}};
     p.efficiency.bytes = e.at("bytes");

@@ -1,7 +1,8 @@
 // Bytes and flops per frame of the hot passes, from the kernels' structure. Conventions in
 // pass_work.h; every constant below names the kernel lines it stands for. Symbols:
 //   N = width * height pixels, S = shadow_size^2 texels, R = voxel_resolution,
-//   T = instance_triangles (drawn), P = spheres, items = T + P (rasterizer draw items).
+//   T = instance_triangles (drawn by the camera; voxel_triangles for the voxelizer,
+//   shadow_triangles for the shadow map), P = spheres, items = T + P (rasterizer draw items).
 #include "bench/src/pass_work.h"
 
 #include <algorithm>
@@ -59,7 +60,7 @@ PassWork shadow_map(const WorkParams& p) {
   const double tiles = std::pow(std::ceil(p.shadow_size / kTile), 2);
   // RP_DEPTH_ONLY: writes depth only.
   return raster_view(double(p.shadow_size) * p.shadow_size, tiles,
-                     double(p.instance_triangles) + p.spheres, kFloat, 0);
+                     double(p.shadow_triangles) + p.spheres, kFloat, 0);
 }
 
 // ---- gbuffer (kernels/gbuffer.cl): upper bound, every pixel covered by a textured triangle --
@@ -106,7 +107,7 @@ constexpr double kSphereVoxels = 27;
 
 PassWork voxelize(const WorkParams& p) {
   const double r = p.voxel_resolution;
-  const double v = r * r * r, t = p.instance_triangles, s = p.spheres;
+  const double v = r * r * r, t = p.voxel_triangles, s = p.spheres;
   const double walls = kWallFaces * r * r;
   PassWork w;
   w.bytes = v * kVoxelClearResolveBytes +

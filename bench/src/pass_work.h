@@ -27,6 +27,8 @@ struct WorkParams {
   uint32_t triangles;          // triangles in the mesh buffers (GpuScene::triangle_count); not
                                // used by any formula: every pass works on drawn triangles
   uint32_t instance_triangles; // triangles drawn per frame (GpuScene::instance_triangle_count)
+  uint32_t voxel_triangles;    // triangles voxelized per frame (mesh proxies: scene::voxel_mesh)
+  uint32_t shadow_triangles;   // triangles the shadow map draws (casters; scene::shadow_mesh)
   uint32_t spheres;            // analytic spheres (GpuScene::sphere_count)
   bool taa, bloom, motion_blur;  // post-processing passes enabled (else their work is 0)
   bool reference_quality = false;  // --quality reference: "light" is the per-pixel cone tracer

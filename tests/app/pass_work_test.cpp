@@ -17,6 +17,8 @@ WorkParams base() {
   p.shadow_size = 512;
   p.triangles = 5000;
   p.instance_triangles = 20000;
+  p.voxel_triangles = 9000;
+  p.shadow_triangles = 8000;
   p.spheres = 40;
   p.taa = p.bloom = p.motion_blur = true;
   return p;
@@ -128,13 +130,13 @@ TEST(PassWork, LightComposeCountsGBufferShadowUpsampleAndOutput) {
   EXPECT_EQ(pass_work("indirect_trace", p).bytes, 0.0);
 }
 
-TEST(PassWork, VoxelizeScalesWithDrawnTriangles) {
+TEST(PassWork, VoxelizeScalesWithVoxelizedTriangles) {
   WorkParams p = base();
-  p.instance_triangles = 1000;
+  p.voxel_triangles = 1000;
   const PassWork a = pass_work("voxelize", p);
-  p.instance_triangles = 3000;
+  p.voxel_triangles = 3000;
   const PassWork b = pass_work("voxelize", p);
-  p.instance_triangles = 5000;
+  p.voxel_triangles = 5000;
   const PassWork c = pass_work("voxelize", p);
   EXPECT_GT(b.bytes, a.bytes);
   // Affine in the triangle count: equal steps add equal work.
@@ -143,6 +145,20 @@ TEST(PassWork, VoxelizeScalesWithDrawnTriangles) {
   // Independent of the screen size.
   p.width *= 2;
   EXPECT_EQ(pass_work("voxelize", p).bytes, c.bytes);
+  // The camera's triangles do not count (the voxelizer may take mesh proxies).
+  p.instance_triangles *= 7;
+  EXPECT_EQ(pass_work("voxelize", p).bytes, c.bytes);
+}
+
+// The shadow map draws the casters' shadow triangles (mesh proxies), the camera every mesh.
+TEST(PassWork, ShadowMapAndVisibilityCountTheirOwnTriangles) {
+  WorkParams p = base();
+  const PassWork shadow = pass_work("shadow_map", p), camera = pass_work("visibility", p);
+  p.instance_triangles *= 3;
+  EXPECT_EQ(pass_work("shadow_map", p).bytes, shadow.bytes);
+  EXPECT_GT(pass_work("visibility", p).bytes, camera.bytes);
+  p.shadow_triangles *= 3;
+  EXPECT_GT(pass_work("shadow_map", p).bytes, shadow.bytes);
 }
 
 TEST(PassWork, VoxelMipsScalesWithVoxelCount) {
