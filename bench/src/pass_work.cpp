@@ -20,10 +20,12 @@ constexpr double kTile = 16;  // RP_RASTER_TILE
 // spheres, plus kCoverLayers screen-covering layers of large triangles (the box walls around
 // the camera) in every tile. A typical case, not a bound: tile lists are data dependent.
 constexpr double kCoverLayers = 2;
+// The Instance record (kernels/shared/types.h; gpu_types.h checks its size).
+constexpr double kInstanceBytes = 224;
 // setup and bin (one work-item per item, each walks the same transform): Triangle (16 B),
-// three Vertex (3 x 32 B), the Instance record (208 B); setup writes a RasterTriangle (64 B)
+// three Vertex (3 x 32 B), the Instance record; setup writes a RasterTriangle (64 B)
 // and bounds (16 B); both do an atomic per touched tile (8 B); bin writes a 4 B list entry.
-constexpr double kItemReadBytes = 16 + 3 * 32 + 208;
+constexpr double kItemReadBytes = 16 + 3 * 32 + kInstanceBytes;
 constexpr double kSetupWriteBytes = 64 + 16;
 // Transform: model then view_proj per vertex (2 x 28 flops x 3), edge/bounds setup ~30.
 constexpr double kItemFlops = 3 * 2 * 28 + 30;
@@ -64,10 +66,10 @@ PassWork shadow_map(const WorkParams& p) {
 }
 
 // ---- gbuffer (kernels/gbuffer.cl): upper bound, every pixel covered by a textured triangle --
-// Reads ids (8) + bary (8) + Instance (208) + Triangle (16) + 3 Vertex (96) + Material (48) +
+// Reads ids (8) + bary (8) + Instance (224) + Triangle (16) + 3 Vertex (96) + Material (48) +
 // TextureInfo (16) + 4 bilinear texels (16); writes albedo, normal_depth, position, emission
 // (4 x 16) and velocity (8).
-constexpr double kGBufferBytes = 8 + 8 + 208 + 16 + 96 + 48 + 16 + 16 + 4 * 16 + 8;
+constexpr double kGBufferBytes = 8 + 8 + kInstanceBytes + 16 + 96 + 48 + 16 + 16 + 4 * 16 + 8;
 // Interpolation of position/normal/uv (3 vertices x 8 floats, mads ~50), model transforms of
 // position and normal (~60), current and previous screen positions (2 x 28 + divides ~60),
 // normalise (~10), bilinear texture with sRGB table decode (~40).
@@ -85,9 +87,9 @@ PassWork gbuffer(const WorkParams& p) {
 // float4 written (16 B), ~8 flops (scale, divide, clamp).
 constexpr double kVoxelClearResolveBytes = 20 + 20 + 16;
 constexpr double kVoxelResolveFlops = 8;
-// Per triangle (one work-item each): Triangle 16 + 3 Vertex 96 + Instance 208 + Material 48 +
+// Per triangle (one work-item each): Triangle 16 + 3 Vertex 96 + Instance 224 + Material 48 +
 // TextureInfo 16 + 4 texels 16 + 1 shadow tap 4 (shaded once at the centroid: small triangles).
-constexpr double kVoxelTriangleBytes = 16 + 96 + 208 + 48 + 16 + 16 + 4;
+constexpr double kVoxelTriangleBytes = 16 + 96 + kInstanceBytes + 48 + 16 + 16 + 4;
 // Vertex transforms to world and grid (3 x 28 + 18), normal (9), shading: texture, direct
 // light, shadow projection (~150).
 constexpr double kVoxelTriangleFlops = 3 * 28 + 18 + 9 + 150;
