@@ -183,6 +183,12 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
                 (unsigned long long)o.samples, o.sample_bytes, double(o.brick_bytes()) * mb,
                 double(o.buffer_bytes()) * mb, double(o.scratch_bytes) * mb, o.resolution,
                 double(render::SvoVolume::dense_bytes(o.resolution)) * mb);
+    std::printf("  octree device memory (CL_MEM_SIZE of its buffers): pools + build scratch "
+                "%.1f MiB after the last frame, peak %.1f MiB (pools %.1f, scratch %.1f); the "
+                "fragment voxelizer's own buffers (static surface cache) %.1f MiB\n",
+                double(o.device_bytes) * mb, double(o.peak_device_bytes) * mb,
+                double(o.buffer_bytes()) * mb, double(o.scratch_bytes) * mb,
+                double(o.voxelizer_bytes) * mb);
     std::printf("  nodes / bricks per depth:");
     for (size_t k = 0; k < o.nodes_per_depth.size(); ++k)
       std::printf(" %u/%u", o.nodes_per_depth[k], o.bricks_per_depth[k]);

@@ -44,19 +44,24 @@ class SvoPass {
   bool try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragments, uint32_t count,
                  render::SvoVolume& svo);
   void allocate(render::SvoVolume& svo, size_t nodes, size_t samples);
-  void ensure_scratch(size_t nodes, size_t fragments, size_t leaves);
+  void ensure_scratch(size_t nodes, size_t fragments);
+  // Bytes of every device buffer of the octree path now: svo's pools and this pass's scratch
+  // (CL_MEM_SIZE of each; the voxelizer's own buffers not included).
+  uint64_t device_bytes(const render::SvoVolume& svo) const;
 
   const rp::cl::Context* context_;
   bool float_samples_;
   std::unique_ptr<VoxelizePass> voxelize_;  // built for fragments
-  ::cl::Kernel clear_nodes_, flag_, dilate_, count_, scan_, allocate_, clear_accum_, inject_,
-      resolve_, border_, mips_;
+  ::cl::Kernel clear_nodes_, flag_, dilate_, count_, scan_, allocate_, link_, leaves_, border_,
+      mips_;
   ::cl::Buffer fragments_, counter_;
   size_t fragment_capacity_ = 0;
-  // Build scratch: per node own flags, near ("exists") flags, coordinates; per fragment its
-  // owner node; chunk sums; per-depth totals; per leaf 8 voxels x 8 accumulator words.
-  ::cl::Buffer own_, near_, coords_, cur_, sums_, totals_, accum_;
-  size_t scratch_nodes_ = 0, scratch_fragments_ = 0, scratch_leaves_ = 0;
+  // Build scratch: per node its flag word (then, at the leaves, the head of its fragment list)
+  // and coordinates; per fragment its owner node (then the next fragment of its leaf's list);
+  // chunk sums; per-depth totals.
+  ::cl::Buffer own_, coords_, cur_, sums_, totals_;
+  size_t scratch_nodes_ = 0, scratch_fragments_ = 0;
+  uint64_t peak_bytes_ = 0;  // the most device_bytes() has been at the end of a build
   std::vector<uint32_t> header_;
 };
 

@@ -175,6 +175,14 @@ void VoxelizePass::set_bounce(const ::cl::Buffer* bounce, uint32_t bounce_cells)
   bounce_cells_ = bounce != nullptr ? bounce_cells : 0;
 }
 
+uint64_t VoxelizePass::device_bytes() const {
+  uint64_t total = 0;
+  for (const ::cl::Buffer* b : {&no_bounce_, &no_texels_, &large_count_, &large_list_,
+                                &cached_flags_, &cache_, &cache_count_})
+    if ((*b)() != nullptr) total += b->getInfo<CL_MEM_SIZE>();
+  return total;
+}
+
 void VoxelizePass::run_fragments(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                                  const render::ShadowMap& shadow, uint32_t resolution,
                                  const ::cl::Buffer& fragments, const ::cl::Buffer& counter,

@@ -45,6 +45,10 @@ class VoxelizePass {
                      const ::cl::Buffer& fragments, const ::cl::Buffer& counter,
                      const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0);
 
+  // Bytes of this pass's own device buffers (CL_MEM_SIZE): the static surface cache, the
+  // large-triangle list and their small companions (not the output it is given).
+  uint64_t device_bytes() const;
+
  private:
   // Everything but the dense clear and resolve: triangles, large triangles, cached samples
   // and spheres into target_accum_ / target_overflow_ at target_resolution_.

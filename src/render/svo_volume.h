@@ -25,7 +25,15 @@ struct SvoVolume {
   uint32_t fragments = 0;
   std::vector<uint32_t> nodes_per_depth, bricks_per_depth;
   uint64_t samples = 0;
-  uint64_t scratch_bytes = 0;  // the builder's buffers (fragments, flags, sums, leaf sums)
+  // Device memory of the octree path after the last build, from the runtime (CL_MEM_SIZE):
+  // the builder's scratch (fragment list, flags, owners / list links, coordinates, sums), that
+  // plus this buffer, and the most that sum has been after any build so far.
+  uint64_t scratch_bytes = 0;
+  uint64_t device_bytes = 0;
+  uint64_t peak_device_bytes = 0;
+  // The fragment voxelizer's own buffers (its static surface cache: 64 bytes a cached room
+  // sample), set by SvoPass::run.
+  uint64_t voxelizer_bytes = 0;
 
   // Levels as the dense chain counts them (log2 R + 1), what the cone tracer is given.
   uint32_t levels() const { return depths + 1; }
