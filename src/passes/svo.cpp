@@ -51,6 +51,11 @@ void SvoPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     fragments_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
                               fragment_capacity_ * RP_SVO_FRAGMENT_WORDS * sizeof(cl_uint));
   }
+  // The voxelizer's static surface cache costs 64 bytes a cached room sample: 36 MiB at 256^3
+  // on the demo, 145 MiB at 512^3, where the octree and its build scratch already take 251 MiB
+  // of the 256 MB budget (issue 17). So from 512^3 on the room is voxelized every frame like
+  // the moving objects (the same fragments; the cost: bench/results/epyc-2core-pocl-svo2.md).
+  voxelize_->set_cache_limit(resolution >= 512 ? 0 : UINT64_MAX);
   cl_uint count = 0;
   for (;;) {
     const cl_uint init[2] = {0, cl_uint(fragment_capacity_)};

@@ -12,6 +12,7 @@
 //   - determinism (two builds, identical pools).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
@@ -324,6 +325,49 @@ TEST(Svo, BitIdenticalRepeats) {
   const size_t bricks = size_t(a.header(RP_SVO_HDR_BRICK_OFFSET)) * 4;
   EXPECT_TRUE(std::equal(a.words.begin() + long(bricks), a.words.begin() + long(used),
                          b.words.begin() + long(bricks)));
+}
+
+// The build's device memory, measured (CL_MEM_SIZE of every buffer the octree path holds),
+// stays within what its counts allow: per fragment of the list's capacity (the count plus
+// 1/16 slack, at least the first list of 65536) the fragment's 24 bytes and one 4-byte
+// owner/link word; per node of the pool's capacity a flag word and a coordinate; the chunk
+// sums (1 word per 256 nodes) and two small fixed buffers. Nothing per leaf voxel (the
+// accumulators this replaced took 256 bytes a leaf: 107 MiB of the 512^3 demo).
+TEST(Svo, BuildScratchWithinBoundOfCounts) {
+  const uint32_t r = 64;
+  Scene s(r);
+  const Octree o = build_octree(s, r, false);
+  const uint64_t f = o.vol.fragments, nodes = o.vol.nodes(), cap = o.vol.node_capacity;
+  ASSERT_GT(f, 10000u);
+  const uint64_t list = std::max<uint64_t>(65536, f + f / 16);
+  const uint64_t bound = list * (RP_SVO_FRAGMENT_WORDS * 4 + 4) + cap * 8 + (cap / 256 + 1) * 4 +
+                         (2 + RP_SVO_MAX_DEPTHS) * 4;
+  EXPECT_LE(o.vol.scratch_bytes, bound);
+  // the node pool's capacity: the first guess (4096 or fragments / 2) or the nodes + 1/16
+  EXPECT_LE(cap, std::max<uint64_t>({4096, f / 2, nodes + nodes / 16}));
+  // measured = pools + scratch, the peak so far at least that
+  EXPECT_EQ(o.vol.device_bytes,
+            uint64_t(o.vol.buffer.getInfo<CL_MEM_SIZE>()) + o.vol.scratch_bytes);
+  EXPECT_GE(o.vol.peak_device_bytes, o.vol.device_bytes);
+  EXPECT_GE(o.vol.buffer.getInfo<CL_MEM_SIZE>(), o.vol.node_bytes() + o.vol.brick_bytes());
+  std::printf("[ stats    ] R = %u: %llu fragments, %llu nodes (capacity %llu), scratch %llu "
+              "bytes (bound %llu), pools + scratch %llu\n",
+              r, (unsigned long long)f, (unsigned long long)nodes, (unsigned long long)cap,
+              (unsigned long long)o.vol.scratch_bytes, (unsigned long long)bound,
+              (unsigned long long)o.vol.device_bytes);
+}
+
+// Fragment word 4 (shared/svo_layout.h) gives back every facing word one contribution adds:
+// a plane's value (0 .. 128) in one half of an axis, a sphere's in both.
+TEST(Svo, PackedFacingWordsRoundTrip) {
+  for (uint32_t q = 0; q <= 128; ++q)
+    for (uint32_t halves = 0; halves < 4; ++halves) {
+      const uint32_t w = ((halves & 1) ? q : 0) | ((halves & 2) ? q << 16 : 0);
+      const uint32_t packed = gpu::rp_svo_pack_facing(w, (q * 7) % 129, (q * 7) % 129 << 16);
+      EXPECT_EQ(gpu::rp_svo_unpack_facing(packed, 0), w) << q << " " << halves;
+      EXPECT_EQ(gpu::rp_svo_unpack_facing(packed, 1), (q * 7) % 129);
+      EXPECT_EQ(gpu::rp_svo_unpack_facing(packed, 2), ((q * 7) % 129) << 16);
+    }
 }
 
 // Cone-tracing functions of common/cone_trace.h built twice: on the dense chain and, with
