@@ -51,6 +51,12 @@
  *     256 MB budget; 5 bytes: 167 MiB)
  *     samples with an index 2 along some axis are borders: copies of the neighbour node's own
  *     samples (the border transfer, svo.cl), 0 where that neighbour does not exist.
+ *   solid grid (optional; header[RP_SVO_HDR_SOLID_OFFSET] != 0, 16-byte aligned, after the
+ *     brick pool): for levels l = header[RP_SVO_HDR_SOLID_LEVEL] .. D-1, back to back, one byte
+ *     per level-l cell (x fastest, (R >> l)^3 cells, dense: the grid is small): round(255 x the
+ *     fraction of the cell inside a closed object), written per frame by the host
+ *     (src/passes/svo_solid.h). Cone samples at those levels take at least that opacity
+ *     (common/svo.h rp_svo_solid_apply): the voxelized shells are hollow.
  *
  * Fragments (the voxelizer's output at the octree's resolution, kernels/voxelize.cl built
  * with RP_VOXEL_FRAGMENTS): RP_SVO_FRAGMENT_WORDS = 6 uints (24 bytes) per fragment, one
@@ -80,6 +86,8 @@
 #define RP_SVO_HDR_SAMPLE_BYTES 5u /* 5 (packed RGB9E5 + alpha byte) or 16 (float) */
 #define RP_SVO_HDR_FRAGMENTS 6u    /* fragments the pool was built from */
 #define RP_SVO_HDR_LEVEL_START 7u  /* 7 .. 7+D: first node of each depth (+ the end) */
+#define RP_SVO_HDR_SOLID_OFFSET 28u /* byte offset of the solid grid, 0: none (below) */
+#define RP_SVO_HDR_SOLID_LEVEL 29u  /* its first level */
 #define RP_SVO_HDR_ALPHA_OFFSET 30u /* byte offset of the opacity plane (packed samples) */
 #define RP_SVO_MAX_DEPTHS 10u      /* R <= 1024 (voxel keys: 10 bits per axis) */
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cl/error.h"
+#include "passes/svo_solid.h"
 #include "render/voxel_volume.h"
 
 namespace rp::passes {
@@ -73,12 +74,40 @@ void SvoPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   }
   build(profiler, fragments_, count, resolution, svo);
   svo.voxelizer_bytes = voxelize_->device_bytes();
+  if (solid_ && svo.solid_capacity > 0) {
+    SolidObjects objects;
+    objects.tumbler = solid_tumbler_;
+    for (const gpu::Instance& inst : scene.host_instances) {
+      if (inst.first_triangle != solid_first_triangle_ || inst.voxelize == 0) continue;
+      glm::mat4 model;
+      for (int c = 0; c < 4; ++c)
+        model[c] = glm::vec4(inst.model.c[c].x, inst.model.c[c].y, inst.model.c[c].z,
+                             inst.model.c[c].w);
+      objects.tumbler_world_to_local.push_back(glm::inverse(model));
+    }
+    for (const gpu::Sphere& sp : scene.host_spheres)
+      objects.spheres.emplace_back(sp.center_radius.x, sp.center_radius.y, sp.center_radius.z,
+                                   sp.center_radius.w);
+    solid_grid_ = svo_solid_grid(resolution, objects);
+    queue.enqueueWriteBuffer(svo.buffer, CL_TRUE, svo.solid_offset(), solid_grid_.size(),
+                             solid_grid_.data());
+    const cl_uint words[2] = {cl_uint(svo.solid_offset()), kSvoSolidFirstLevel};
+    queue.enqueueWriteBuffer(svo.buffer, CL_TRUE, RP_SVO_HDR_SOLID_OFFSET * sizeof(cl_uint),
+                             sizeof(words), words);
+  }
+}
+
+void SvoPass::enable_solid(uint32_t tumbler_first_triangle, const scene::TumblerShape& tumbler) {
+  solid_ = true;
+  solid_first_triangle_ = tumbler_first_triangle;
+  solid_tumbler_ = tumbler;
 }
 
 void SvoPass::allocate(render::SvoVolume& svo, size_t nodes, size_t samples) {
   svo.node_capacity = nodes;
   svo.sample_capacity = samples;
   svo.sample_bytes = float_samples_ ? 16 : 5;
+  svo.solid_capacity = solid_ ? svo_solid_bytes(svo.resolution) : 0;
   svo.buffer = ::cl::Buffer();  // the old pools go first (the build restarts anyway)
   svo.buffer = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, svo.buffer_bytes());
 }
@@ -117,7 +146,8 @@ void SvoPass::build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragments, u
   svo.resolution = resolution;
   svo.depths = gpu::rp_svo_log2(resolution);
   svo.fragments = count;
-  if (svo.buffer() == nullptr || svo.sample_bytes != (float_samples_ ? 16u : 5u))
+  if (svo.buffer() == nullptr || svo.sample_bytes != (float_samples_ ? 16u : 5u) ||
+      svo.solid_capacity != (solid_ ? svo_solid_bytes(resolution) : 0))
     allocate(svo, std::max<size_t>(4096, size_t(count) / 2),
              std::max<size_t>(1 << 16, size_t(count) * 8));
   for (int attempt = 0; attempt < 16; ++attempt)

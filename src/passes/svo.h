@@ -15,6 +15,7 @@
 #include "passes/voxelize.h"
 #include "render/gpu_scene.h"
 #include "render/svo_volume.h"
+#include "scene/tumbler_shape.h"
 
 namespace rp::passes {
 
@@ -31,6 +32,12 @@ class SvoPass {
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
            const render::ShadowMap& shadow, uint32_t resolution, render::SvoVolume& svo,
            const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0);
+
+  // Closed objects made solid at the coarse levels (passes/svo_solid.h): the tumbler instances
+  // (those whose triangles start at `tumbler_first_triangle`, of shape `tumbler`) and every
+  // sphere, from the scene run() is given. Off until called (the tests that compare with the
+  // dense chain leave it off).
+  void enable_solid(uint32_t tumbler_first_triangle, const scene::TumblerShape& tumbler);
 
   // Builds svo at `resolution` from `count` fragments (svo_layout.h) in `fragments`.
   void build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragments, uint32_t count,
@@ -61,7 +68,12 @@ class SvoPass {
   // chunk sums; per-depth totals.
   ::cl::Buffer own_, coords_, cur_, sums_, totals_;
   size_t scratch_nodes_ = 0, scratch_fragments_ = 0;
-  uint64_t peak_bytes_ = 0;  // the most device_bytes() has been at the end of a build
+  uint64_t peak_bytes_ = 0;
+  // Solid grid (enable_solid).
+  bool solid_ = false;
+  uint32_t solid_first_triangle_ = 0;
+  scene::TumblerShape solid_tumbler_;
+  std::vector<uint8_t> solid_grid_;  // the most device_bytes() has been at the end of a build
   std::vector<uint32_t> header_;
 };
 

@@ -59,8 +59,15 @@ struct SvoVolume {
     }
     return total * 16;
   }
+  // Bytes of the solid grid held behind the brick pool (0: none; passes/svo_solid.h).
+  size_t solid_capacity = 0;
+  // Byte offset of the solid grid: after the brick pool, 16-byte aligned.
+  size_t solid_offset() const {
+    return ((brick_offset(node_capacity) * 16) + sample_capacity * sample_bytes + 15) / 16 * 16;
+  }
   size_t buffer_bytes() const {
-    return (brick_offset(node_capacity) * 16) + sample_capacity * sample_bytes;
+    return solid_capacity > 0 ? solid_offset() + solid_capacity
+                              : (brick_offset(node_capacity) * 16) + sample_capacity * sample_bytes;
   }
   // Byte offset of the opacity plane (packed samples): after the rgb plane's uints.
   size_t alpha_offset() const {
