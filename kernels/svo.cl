@@ -197,13 +197,13 @@ inline uint svo_find_near(__global const uint* nodes, const uint* path, uint dep
   return idx;
 }
 
-/* Reads bits 1-7 of the nodes' flag words while other work-items OR bit 8 into them (nothing
- * else writes them during this kernel): the bits read do not change, bit 8 is masked off. */
+/* Other work-items OR bit 8 into the flag words this one reads bits 1-7 of: the read is an
+ * atomic too (an OR of 0), so the accesses do not race. */
 __kernel void svo_dilate(__global uint* svo, volatile __global uint* own,
                          __global const uint* coords, uint first, uint count, uint depth) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
-  const uint bits = own[first + i] & RP_SVO_FLAG_FACES;
+  const uint bits = atomic_or(own + first + i, 0u) & RP_SVO_FLAG_FACES;
   if (bits == 0u) return;
   const uint3 a = svo_unpack(coords[first + i]);
   __global const uint* nodes = SVO_NODE_WORDS(svo);
