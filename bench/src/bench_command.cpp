@@ -190,6 +190,8 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
                 double(o.device_bytes) * mb, double(o.peak_device_bytes) * mb,
                 double(o.buffer_bytes()) * mb, double(o.solid_capacity) * mb,
                 double(o.scratch_bytes) * mb, double(o.voxelizer_bytes) * mb);
+    std::printf("  solid grid (last frame): %.2f ms on the host while the device builds\n",
+                o.solid_host_ms);
     std::printf("  nodes / bricks per depth:");
     for (size_t k = 0; k < o.nodes_per_depth.size(); ++k)
       std::printf(" %u/%u", o.nodes_per_depth[k], o.bricks_per_depth[k]);

@@ -1,6 +1,7 @@
 #include "passes/svo.h"
 
 #include <algorithm>
+#include <chrono>
 #include <string>
 
 #include "cl/error.h"
@@ -88,12 +89,19 @@ void SvoPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     for (const gpu::Sphere& sp : scene.host_spheres)
       objects.spheres.emplace_back(sp.center_radius.x, sp.center_radius.y, sp.center_radius.z,
                                    sp.center_radius.w);
+    // The host computes while the device builds; the upload does not block (the last
+    // frame's upload must be done before its data is overwritten).
+    if (solid_upload_() != nullptr) solid_upload_.wait();
+    const auto t0 = std::chrono::steady_clock::now();
     solid_grid_ = svo_solid_grid(resolution, objects);
-    queue.enqueueWriteBuffer(svo.buffer, CL_TRUE, svo.solid_offset(), solid_grid_.size(),
-                             solid_grid_.data());
-    const cl_uint words[2] = {cl_uint(svo.solid_offset()), kSvoSolidFirstLevel};
-    queue.enqueueWriteBuffer(svo.buffer, CL_TRUE, RP_SVO_HDR_SOLID_OFFSET * sizeof(cl_uint),
-                             sizeof(words), words);
+    svo.solid_host_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    queue.enqueueWriteBuffer(svo.buffer, CL_FALSE, svo.solid_offset(), solid_grid_.size(),
+                             solid_grid_.data(), nullptr, &solid_upload_);
+    solid_header_[0] = cl_uint(svo.solid_offset());
+    solid_header_[1] = kSvoSolidFirstLevel;
+    queue.enqueueWriteBuffer(svo.buffer, CL_FALSE, RP_SVO_HDR_SOLID_OFFSET * sizeof(cl_uint),
+                             sizeof(solid_header_), solid_header_);
   }
 }
 

@@ -73,7 +73,9 @@ class SvoPass {
   bool solid_ = false;
   uint32_t solid_first_triangle_ = 0;
   scene::TumblerShape solid_tumbler_;
-  std::vector<uint8_t> solid_grid_;  // the most device_bytes() has been at the end of a build
+  std::vector<uint8_t> solid_grid_;     // read by its upload (solid_upload_)
+  ::cl::Event solid_upload_;
+  cl_uint solid_header_[2] = {0, 0};    // header words 28-29, read by a non-blocking write  // the most device_bytes() has been at the end of a build
   std::vector<uint32_t> header_;
 };
 

@@ -42,9 +42,10 @@ size_t svo_solid_level_offset(uint32_t resolution, uint32_t level);
 
 // The grid: cell (x, y, z) of level l at svo_solid_level_offset(R, l) + (z n + y) n + x,
 // n = R >> l, holds round(255 * the fraction of the cell inside some object). Level
-// kSvoSolidFirstLevel: a cell whose centre is farther than its half-diagonal from every surface
-// is 0 or 1 outright, others from 4^3 sub-samples; coarser levels: the mean of their 8 children
-// (from the unrounded fractions).
+// kSvoSolidFirstLevel: from the signed distance d at the cell's centre, clamp(1/2 - d / cell,
+// 0, 1) (exact for a plane across an axis; 4^3 sub-samples took 130 ms a frame at 512^3 on the
+// 2-core CPU, this one distance a cell in the objects' boxes 10); coarser levels: the mean of
+// their 8 children (from the unrounded fractions).
 std::vector<uint8_t> svo_solid_grid(uint32_t resolution, const SolidObjects& objects);
 
 }  // namespace rp::passes

@@ -61,6 +61,7 @@ struct SvoVolume {
   }
   // Bytes of the solid grid held behind the brick pool (0: none; passes/svo_solid.h).
   size_t solid_capacity = 0;
+  double solid_host_ms = 0.0;  // the last frame's grid: host computation (the device builds)
   // Byte offset of the solid grid: after the brick pool, 16-byte aligned.
   size_t solid_offset() const {
     return ((brick_offset(node_capacity) * 16) + sample_capacity * sample_bytes + 15) / 16 * 16;

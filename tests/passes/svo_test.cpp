@@ -456,8 +456,9 @@ TEST(Svo, ConeSamplesEqualDense) {
 }
 
 // The solid grid (passes/svo_solid.h) against a brute-force count of 12^3 points per cell
-// inside a sphere and a tilted tumbler: level 2 within the 4^3 sub-sampling's error, cells away
-// from the surfaces exact; level 3 the mean of level 2's cells (to the byte rounding).
+// inside a sphere and a tilted tumbler: level 2's cells that the surfaces cross within 0.15 of
+// it (the distance ramp's error on curved, tilted surfaces; 0.04 on average), the others
+// exact; level 3 the mean of level 2's cells (to the byte rounding).
 TEST(Svo, SolidGridMatchesBruteForce) {
   const uint32_t r = 64;  // level 2: 16^3 cells of 0.125, level 3: 8^3, level 4: 4^3, level 5: 2^3
   passes::SolidObjects objects;
@@ -473,6 +474,7 @@ TEST(Svo, SolidGridMatchesBruteForce) {
   constexpr int kFine = 12;
   std::vector<float> truth(size_t(n) * n * n);
   size_t full = 0, partial = 0;
+  double partial_error = 0.0;
   for (uint32_t z = 0; z < n; ++z)
     for (uint32_t y = 0; y < n; ++y)
       for (uint32_t x = 0; x < n; ++x) {
@@ -495,8 +497,10 @@ TEST(Svo, SolidGridMatchesBruteForce) {
         if (want == 0.0f || want == 1.0f)
           EXPECT_NEAR(got, want, 0.5f / 255.0f + 0.02f) << x << " " << y << " " << z;
         else
-          EXPECT_NEAR(got, want, 0.12f) << x << " " << y << " " << z;
+          EXPECT_NEAR(got, want, 0.15f) << x << " " << y << " " << z;
+        if (want > 0.0f && want < 1.0f) partial_error += std::fabs(got - want);
       }
+  EXPECT_LT(partial_error / double(partial), 0.04);
   EXPECT_GT(full, 8u);
   EXPECT_GT(partial, 30u);
   const size_t l3 = passes::svo_solid_level_offset(r, 3);
