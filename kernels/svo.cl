@@ -9,8 +9,9 @@
  *                     its depth k-1 owner, kept in `cur`), OR-ed flags: own voxels non-empty,
  *                     and which low faces hold the fragment's level-l voxel (bit e: node
  *                     a - e must exist too, its border holds that voxel)
- *   svo_dilate        one work-item per depth-k node with face bits: OR "exists" (bit 8 of
- *                     the same flag word) into the nodes a - e (found by descent)
+ *   svo_dilate        one work-item per depth-k node with face bits: OR "exists" (bit 31 of
+ *                     the node word, final after svo_allocate) into the nodes a - e (found by
+ *                     descent)
  *   svo_count, svo_scan, svo_allocate
  *                     prefix sums over the depth's nodes in index order (fixed chunks, a
  *                     serial scan of the chunk sums): existing node i of rank r gets brick
@@ -197,39 +198,41 @@ inline uint svo_find_near(__global const uint* nodes, const uint* path, uint dep
   return idx;
 }
 
-/* Other work-items OR bit 8 into the flag words this one reads bits 1-7 of: the read is an
- * atomic too (an OR of 0), so the accesses do not race. */
-__kernel void svo_dilate(__global uint* svo, volatile __global uint* own,
+/* "Exists" goes into bit 31 of the target's node word 0 (cleared by svo_clear_nodes, final
+ * only after svo_allocate): this kernel reads the flag words and the node words of depths < k
+ * (the descent), and writes only depth k's node words, so nothing it reads is written. */
+__kernel void svo_dilate(__global uint* svo, __global const uint* own,
                          __global const uint* coords, uint first, uint count, uint depth) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
-  const uint bits = atomic_or(own + first + i, 0u) & RP_SVO_FLAG_FACES;
+  const uint bits = own[first + i] & RP_SVO_FLAG_FACES;
   if (bits == 0u) return;
   const uint3 a = svo_unpack(coords[first + i]);
-  __global const uint* nodes = SVO_NODE_WORDS(svo);
+  volatile __global uint* nodes = SVO_NODE_WORDS(svo);
   uint path[RP_SVO_MAX_DEPTHS];
-  svo_path(nodes, depth, a, path);
+  svo_path((__global const uint*)nodes, depth, a, path);
   for (uint e = 1u; e < 8u; ++e) {
     if ((bits & (1u << e)) == 0u) continue;
     const uint3 b = a - (uint3)(e & 1u, (e >> 1) & 1u, e >> 2);
-    const uint t = svo_find_near(nodes, path, depth, a, b);
-    if (t != 0xFFFFFFFFu) atomic_or(own + t, RP_SVO_FLAG_NEAR);
+    const uint t = svo_find_near((__global const uint*)nodes, path, depth, a, b);
+    if (t != 0xFFFFFFFFu) atomic_or(nodes + 2u * t, RP_SVO_NODE_BRICK);
   }
 }
 
-inline bool svo_exists(__global const uint* own, uint i) {
-  return (own[i] & (RP_SVO_FLAG_OWN | RP_SVO_FLAG_NEAR)) != 0u;
+/* Node i exists: own voxels, or a neighbour's border needs it (svo_dilate's mark). */
+inline bool svo_exists(__global const uint* svo, __global const uint* own, uint i) {
+  return (own[i] & RP_SVO_FLAG_OWN) != 0u || (SVO_NODE_WORDS(svo)[2u * i] & RP_SVO_NODE_BRICK) != 0u;
 }
 
 /* Existing nodes in chunk g of [first, first + count). */
-__kernel void svo_count(__global const uint* own, uint first, uint count, uint chunk,
-                        __global uint* sums) {
+__kernel void svo_count(__global const uint* svo, __global const uint* own, uint first,
+                        uint count, uint chunk, __global uint* sums) {
   const uint g = (uint)get_global_id(0);
   const uint begin = g * chunk;
   if (begin >= count) return;
   const uint end = min(begin + chunk, count);
   uint n = 0u;
-  for (uint i = begin; i < end; ++i) n += svo_exists(own, first + i) ? 1u : 0u;
+  for (uint i = begin; i < end; ++i) n += svo_exists(svo, own, first + i) ? 1u : 0u;
   sums[g] = n;
 }
 
@@ -262,8 +265,8 @@ __kernel void svo_allocate(__global uint* svo, __global uint* own, __global uint
     const uint i = first + k;
     const uint flags = own[i];
     if (leaf != 0u) own[i] = 0u;
-    if ((flags & (RP_SVO_FLAG_OWN | RP_SVO_FLAG_NEAR)) == 0u)
-      continue; /* cleared by svo_clear_nodes */
+    if ((flags & RP_SVO_FLAG_OWN) == 0u && (nodes[2u * i] & RP_SVO_NODE_BRICK) == 0u)
+      continue; /* does not exist: as svo_clear_nodes left it */
     const uint child = leaf != 0u ? 0u : child_first + 8u * rank;
     nodes[2u * i] = child | RP_SVO_NODE_BRICK | ((flags & RP_SVO_FLAG_OWN) ? RP_SVO_NODE_OWN : 0u);
     nodes[2u * i + 1u] = brick_first + rank * brick_size;

@@ -103,11 +103,10 @@
 
 /* Build scratch per node (svo.cl), one uint: bit 0 own voxels non-empty; bit e (1..7, e = ex
  * | ey << 1 | ez << 2) own voxels non-empty on the low faces along e, so node a - e must
- * exist; bit 8 (RP_SVO_FLAG_NEAR) a neighbour's low-face voxels lie in this node's border
- * (set by svo_dilate). The node exists iff bit 0 or bit 8 is set. */
+ * exist (svo_dilate marks it with RP_SVO_NODE_BRICK in its node word before svo_allocate
+ * writes the word). The node exists iff bit 0 or that mark is set. */
 #define RP_SVO_FLAG_OWN 1u
 #define RP_SVO_FLAG_FACES 0xFEu
-#define RP_SVO_FLAG_NEAR 0x100u
 
 #ifdef __OPENCL_VERSION__
 #define RP_SVO_FN static inline

@@ -210,11 +210,12 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
       profiler.enqueue("svo_nodes", dilate_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
     }
     const cl_uint chunks = (n + kChunk - 1) / kChunk;
-    count_.setArg(0, own_);
-    count_.setArg(1, f0);
-    count_.setArg(2, n);
-    count_.setArg(3, cl_uint(kChunk));
-    count_.setArg(4, sums_);
+    count_.setArg(0, svo.buffer);
+    count_.setArg(1, own_);
+    count_.setArg(2, f0);
+    count_.setArg(3, n);
+    count_.setArg(4, cl_uint(kChunk));
+    count_.setArg(5, sums_);
     profiler.enqueue("svo_nodes", count_, ::cl::NDRange(items(chunks)), ::cl::NDRange(kGroup));
     scan_.setArg(0, sums_);
     scan_.setArg(1, chunks);
