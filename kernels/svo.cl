@@ -5,8 +5,13 @@
  * RP_VOXEL_FRAGMENTS): per fragment the fixed-point sums it adds and its level-0 voxel.
  * Per frame, top-down, for depth k = 0 .. D-1 (brick level l = D-1-k):
  *   svo_clear_nodes   the depth's nodes (8 per existing parent, or the root) start empty
+ *   svo_flag_bits     (depths whose brick level is >= the host's bits level, 3: the top
+ *                     D - 3 depths) one work-item per node: the same flags from the level's
+ *                     occupancy bits (svo_occ_mark: one pass over the fragments for the
+ *                     finest such level, svo_occ_reduce: the coarser ones), instead of
  *   svo_flag          32 fragments a work-item: each one's owner node at depth k (the child of
- *                     its depth k-1 owner, kept in `cur`), OR-ed flags: own voxels non-empty,
+ *                     its depth k-1 owner, kept in `cur`; found by descent at the first depth
+ *                     after the bit depths), OR-ed flags: own voxels non-empty,
  *                     and which low faces hold the fragment's level-l voxel (bit e: node
  *                     a - e must exist too, its border holds that voxel)
  *   svo_dilate        one work-item per depth-k node with face bits: OR "exists" (bit 31 of
@@ -134,7 +139,7 @@ __kernel void svo_clear_nodes(__global uint* svo, __global uint* own, uint first
  * resolution_log2 = D. */
 __kernel void svo_flag(__global const uint* fragments, uint fragment_count, __global uint* svo,
                        __global uint* cur, volatile __global uint* own, uint depth,
-                       uint resolution_log2) {
+                       uint resolution_log2, uint descend) {
   const uint begin = (uint)get_global_id(0) * SVO_FLAG_CHUNK;
   if (begin >= fragment_count) return;
   const uint end = min(begin + SVO_FLAG_CHUNK, fragment_count);
@@ -143,13 +148,17 @@ __kernel void svo_flag(__global const uint* fragments, uint fragment_count, __gl
   const uint level = D - 1u - depth;
   __global const uint* nodes = SVO_NODE_WORDS(svo);
   uint last = 0xFFFFFFFFu, pending = 0u;
+  uint3 last_a = (uint3)(0xFFFFFFFFu);
   for (uint f = begin; f < end; ++f) {
     const uint key = fragments[RP_SVO_FRAGMENT_WORDS * f + RP_SVO_FRAGMENT_KEY];
     const uint3 v0 = (uint3)(key & (R - 1u), (key >> D) & (R - 1u), key >> (2u * D));
     const uint3 v = v0 >> level; /* level-l voxel */
     const uint3 a = v >> 1;      /* node coordinate at this depth */
     uint node = 0u;
-    if (depth > 0u) {
+    if (descend != 0u) { /* the depths above came from the occupancy bits: no owner yet */
+      node = all(a == last_a) ? last : rp_svo_find(nodes, depth, a);
+      last_a = a;
+    } else if (depth > 0u) {
       const uint child = nodes[2u * cur[f]] & RP_SVO_NODE_CHILD_MASK;
       node = child + ((a.x & 1u) | ((a.y & 1u) << 1) | ((a.z & 1u) << 2));
     }
@@ -169,6 +178,82 @@ __kernel void svo_flag(__global const uint* fragments, uint fragment_count, __gl
     pending |= bits;
   }
   atomic_or(own + last, pending);
+}
+
+/* Occupancy bits (the top depths' flags without a pass over the fragments per depth): bit
+ * (z n + y) n + x of level l's words (level l >= the host's bits level, n = R >> l) is set
+ * when a fragment lies in level-l voxel (x, y, z). Level `level`'s words start at word
+ * `offset`. */
+__kernel void svo_occ_clear(__global uint* occ, uint words) {
+  const uint i = (uint)get_global_id(0);
+  if (i < words) occ[i] = 0u;
+}
+
+/* SVO_FLAG_CHUNK fragments a work-item: consecutive fragments mostly share a word. */
+__kernel void svo_occ_mark(__global const uint* fragments, uint fragment_count,
+                           volatile __global uint* occ, uint level, uint resolution_log2) {
+  const uint begin = (uint)get_global_id(0) * SVO_FLAG_CHUNK;
+  if (begin >= fragment_count) return;
+  const uint end = min(begin + SVO_FLAG_CHUNK, fragment_count);
+  const uint D = resolution_log2, R = 1u << D, n = R >> level;
+  uint last = 0xFFFFFFFFu, pending = 0u;
+  for (uint f = begin; f < end; ++f) {
+    const uint key = fragments[RP_SVO_FRAGMENT_WORDS * f + RP_SVO_FRAGMENT_KEY];
+    const uint3 v = (uint3)(key & (R - 1u), (key >> D) & (R - 1u), key >> (2u * D)) >> level;
+    const uint bit = (v.z * n + v.y) * n + v.x;
+    if ((bit >> 5) != last) {
+      if (last != 0xFFFFFFFFu) atomic_or(occ + last, pending);
+      last = bit >> 5;
+      pending = 0u;
+    }
+    pending |= 1u << (bit & 31u);
+  }
+  atomic_or(occ + last, pending);
+}
+
+/* Level l + 1's bits (n per side) from level l's (2n): one work-item per word. */
+__kernel void svo_occ_reduce(__global uint* occ, uint src, uint dst, uint n) {
+  const uint w = (uint)get_global_id(0);
+  const uint count = n * n * n;
+  if (w * 32u >= count) return;
+  const uint m = 2u * n;
+  uint word = 0u;
+  for (uint b = 0; b < 32u && w * 32u + b < count; ++b) {
+    const uint j = w * 32u + b;
+    const uint3 c = 2u * (uint3)(j % n, (j / n) % n, j / (n * n));
+    uint any = 0u;
+    for (uint o = 0; o < 8u; ++o) {
+      const uint s = ((c.z + (o >> 2)) * m + c.y + ((o >> 1) & 1u)) * m + c.x + (o & 1u);
+      any |= (occ[src + (s >> 5)] >> (s & 31u)) & 1u;
+    }
+    word |= any << b;
+  }
+  occ[dst + w] = word;
+}
+
+/* svo_flag's bits for the nodes of `depth` (brick level l = D-1-depth >= the bits level) from
+ * level l's occupancy words (at `offset`): own = any own voxel 2a + o occupied; bit e = an
+ * occupied own voxel on the low faces along e (o_i = 0 and a_i > 0 for every axis i of e). */
+__kernel void svo_flag_bits(__global uint* own, __global const uint* coords,
+                            __global const uint* occ, uint offset, uint first, uint count,
+                            uint depth) {
+  const uint i = (uint)get_global_id(0);
+  if (i >= count) return;
+  const uint3 a = svo_unpack(coords[first + i]);
+  const uint n = 2u << depth; /* level-l voxels per side */
+  uint bits = 0u;
+  for (uint o = 0; o < 8u; ++o) {
+    const uint3 ov = (uint3)(o & 1u, (o >> 1) & 1u, o >> 2);
+    const uint3 v = 2u * a + ov;
+    const uint s = (v.z * n + v.y) * n + v.x;
+    if (((occ[offset + (s >> 5)] >> (s & 31u)) & 1u) == 0u) continue;
+    const uint m = (ov.x == 0u && a.x > 0u ? 1u : 0u) | (ov.y == 0u && a.y > 0u ? 2u : 0u) |
+                   (ov.z == 0u && a.z > 0u ? 4u : 0u);
+    bits |= RP_SVO_FLAG_OWN;
+    for (uint e = 1u; e < 8u; ++e)
+      if ((e & m) == e) bits |= 1u << e;
+  }
+  own[first + i] = bits;
 }
 
 /* path[j] = the ancestor at depth j (0 .. depth-1) of the node at `depth` with coordinate a. */

@@ -14,6 +14,20 @@ namespace {
 constexpr size_t kGroup = 64;
 constexpr uint32_t kChunk = 256;  // nodes per work-item of svo_count / svo_allocate
 constexpr uint32_t kFlagChunk = 32;  // fragments per work-item of svo_flag (SVO_FLAG_CHUNK)
+// Brick levels >= this one take their flags from occupancy bits (svo_flag_bits: one pass over
+// the fragments for all of them) instead of a pass over the fragments each: at 512^3 the top
+// 6 of 9 depths. Level 3's bits: (R/8)^3 (32 KiB at 512^3), the coarser levels 1/7 more.
+constexpr uint32_t kBitsLevel = 3;
+
+// First word of level l's occupancy bits (levels kBitsLevel .. D-1, each rounded to words).
+uint32_t occ_offset(uint32_t resolution, uint32_t level) {
+  uint32_t words = 0;
+  for (uint32_t l = kBitsLevel; l < level; ++l) {
+    const uint32_t n = resolution >> l;
+    words += (n * n * n + 31) / 32;
+  }
+  return words;
+}
 
 std::string svo_options(bool float_samples) {
   return "-DRP_VOXEL_FIXED_BITS=" + std::to_string(render::kVoxelFixedBits) +
@@ -32,6 +46,10 @@ SvoPass::SvoPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
   const std::string o = svo_options(float_samples);
   clear_nodes_ = programs.kernel("svo.cl", "svo_clear_nodes", o);
   flag_ = programs.kernel("svo.cl", "svo_flag", o);
+  occ_clear_ = programs.kernel("svo.cl", "svo_occ_clear", o);
+  occ_mark_ = programs.kernel("svo.cl", "svo_occ_mark", o);
+  occ_reduce_ = programs.kernel("svo.cl", "svo_occ_reduce", o);
+  flag_bits_ = programs.kernel("svo.cl", "svo_flag_bits", o);
   dilate_ = programs.kernel("svo.cl", "svo_dilate", o);
   count_ = programs.kernel("svo.cl", "svo_count", o);
   scan_ = programs.kernel("svo.cl", "svo_scan", o);
@@ -123,7 +141,7 @@ void SvoPass::allocate(render::SvoVolume& svo, size_t nodes, size_t samples) {
 uint64_t SvoPass::device_bytes(const render::SvoVolume& svo) const {
   uint64_t total = 0;
   for (const ::cl::Buffer* b : {&svo.buffer, &fragments_, &counter_, &own_, &coords_, &cur_,
-                                &sums_, &totals_})
+                                &sums_, &totals_, &occ_})
     if ((*b)() != nullptr) total += b->getInfo<CL_MEM_SIZE>();
   return total;
 }
@@ -175,6 +193,40 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   const cl_uint brick_offset = cl_uint(render::SvoVolume::brick_offset(svo.node_capacity));
   const cl_uint alpha_offset = cl_uint(svo.alpha_offset());
 
+  // Occupancy bits for the depths whose brick level is >= kBitsLevel (last_bits_depth and
+  // above; none when D - 1 < kBitsLevel).
+  const int last_bits_depth = int(D) - 1 - int(kBitsLevel);
+  if (last_bits_depth >= 0) {
+    const uint32_t words = occ_offset(svo.resolution, D);
+    if (words > occ_words_) {
+      occ_words_ = words;
+      occ_ = ::cl::Buffer();
+      occ_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, words * sizeof(cl_uint));
+    }
+    occ_clear_.setArg(0, occ_);
+    occ_clear_.setArg(1, cl_uint(words));
+    profiler.enqueue("svo_nodes", occ_clear_, ::cl::NDRange(items(words)), ::cl::NDRange(kGroup));
+    if (count > 0) {
+      occ_mark_.setArg(0, fragments);
+      occ_mark_.setArg(1, cl_uint(count));
+      occ_mark_.setArg(2, occ_);
+      occ_mark_.setArg(3, cl_uint(kBitsLevel));
+      occ_mark_.setArg(4, cl_uint(D));
+      profiler.enqueue("svo_nodes", occ_mark_,
+                       ::cl::NDRange(items((count + kFlagChunk - 1) / kFlagChunk)),
+                       ::cl::NDRange(kGroup));
+    }
+    for (uint32_t l = kBitsLevel; l + 1 < D; ++l) {
+      const uint32_t n = svo.resolution >> (l + 1);
+      occ_reduce_.setArg(0, occ_);
+      occ_reduce_.setArg(1, cl_uint(occ_offset(svo.resolution, l)));
+      occ_reduce_.setArg(2, cl_uint(occ_offset(svo.resolution, l + 1)));
+      occ_reduce_.setArg(3, cl_uint(n));
+      profiler.enqueue("svo_nodes", occ_reduce_, ::cl::NDRange(items((n * n * n + 31) / 32)),
+                       ::cl::NDRange(kGroup));
+    }
+  }
+
   std::vector<uint32_t> first(D + 1, 0), nodes(D, 0), bricks(D, 0), brick_first(D, 0);
   nodes[0] = 1;
   uint64_t samples = 0;
@@ -189,7 +241,16 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     clear_nodes_.setArg(2, f0);
     clear_nodes_.setArg(3, n);
     profiler.enqueue("svo_nodes", clear_nodes_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
-    if (count > 0) {
+    if (int(k) <= last_bits_depth) {
+      flag_bits_.setArg(0, own_);
+      flag_bits_.setArg(1, coords_);
+      flag_bits_.setArg(2, occ_);
+      flag_bits_.setArg(3, cl_uint(occ_offset(svo.resolution, D - 1 - k)));
+      flag_bits_.setArg(4, f0);
+      flag_bits_.setArg(5, n);
+      flag_bits_.setArg(6, cl_uint(k));
+      profiler.enqueue("svo_nodes", flag_bits_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
+    } else if (count > 0) {
       flag_.setArg(0, fragments);
       flag_.setArg(1, cl_uint(count));
       flag_.setArg(2, svo.buffer);
@@ -197,6 +258,7 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
       flag_.setArg(4, own_);
       flag_.setArg(5, cl_uint(k));
       flag_.setArg(6, cl_uint(D));
+      flag_.setArg(7, cl_uint(int(k) == last_bits_depth + 1 && k > 0 ? 1 : 0));
       const size_t flag_items = items((count + kFlagChunk - 1) / kFlagChunk);
       profiler.enqueue("svo_nodes", flag_, ::cl::NDRange(flag_items), ::cl::NDRange(kGroup));
     }

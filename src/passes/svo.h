@@ -59,6 +59,7 @@ class SvoPass {
   const rp::cl::Context* context_;
   bool float_samples_;
   std::unique_ptr<VoxelizePass> voxelize_;  // built for fragments
+  ::cl::Kernel occ_clear_, occ_mark_, occ_reduce_, flag_bits_;
   ::cl::Kernel clear_nodes_, flag_, dilate_, count_, scan_, allocate_, link_, leaves_, border_,
       mips_;
   ::cl::Buffer fragments_, counter_;
@@ -67,6 +68,8 @@ class SvoPass {
   // and coordinates; per fragment its owner node (then the next fragment of its leaf's list);
   // chunk sums; per-depth totals.
   ::cl::Buffer own_, coords_, cur_, sums_, totals_;
+  ::cl::Buffer occ_;  // occupancy bits of the top levels (svo.cl svo_occ_*)
+  uint32_t occ_words_ = 0;
   size_t scratch_nodes_ = 0, scratch_fragments_ = 0;
   uint64_t peak_bytes_ = 0;
   // Solid grid (enable_solid).

@@ -343,7 +343,8 @@ TEST(Svo, BitIdenticalRepeats) {
 // stays within what its counts allow: per fragment of the list's capacity (the count plus
 // 1/16 slack, at least the first list of 65536) the fragment's 24 bytes and one 4-byte
 // owner/link word; per node of the pool's capacity a flag word and a coordinate; the chunk
-// sums (1 word per 256 nodes) and two small fixed buffers. Nothing per leaf voxel (the
+// sums (1 word per 256 nodes), the occupancy bits of levels >= 3 and two small fixed buffers.
+// Nothing per leaf voxel (the
 // accumulators this replaced took 256 bytes a leaf: 107 MiB of the 512^3 demo).
 TEST(Svo, BuildScratchWithinBoundOfCounts) {
   const uint32_t r = 64;
@@ -352,8 +353,10 @@ TEST(Svo, BuildScratchWithinBoundOfCounts) {
   const uint64_t f = o.vol.fragments, nodes = o.vol.nodes(), cap = o.vol.node_capacity;
   ASSERT_GT(f, 10000u);
   const uint64_t list = std::max<uint64_t>(65536, f + f / 16);
+  uint64_t occupancy = 0;  // the top levels' occupancy bits: levels 3 .. log2 R - 1, in words
+  for (uint32_t n = r >> 3; n >= 2; n /= 2) occupancy += (uint64_t(n) * n * n + 31) / 32 * 4;
   const uint64_t bound = list * (RP_SVO_FRAGMENT_WORDS * 4 + 4) + cap * 8 + (cap / 256 + 1) * 4 +
-                         (2 + RP_SVO_MAX_DEPTHS) * 4;
+                         (2 + RP_SVO_MAX_DEPTHS) * 4 + occupancy;
   EXPECT_LE(o.vol.scratch_bytes, bound);
   // the node pool's capacity: the first guess (4096 or fragments / 2) or the nodes + 1/16
   EXPECT_LE(cap, std::max<uint64_t>({4096, f / 2, nodes + nodes / 16}));
