@@ -9,7 +9,10 @@
 //     format's rounding (RGB9E5 + opacity byte),
 //     so leaves = dense level 0, mips = dense mips, borders = neighbours' values;
 //   - cone samples and whole cones through the octree equal the dense ones (RP_GI_SVO);
-//   - determinism (two builds, identical pools).
+//   - determinism (two builds, identical pools);
+//   - the build's measured device memory within a bound from its counts;
+//   - the solid grid (closed objects' inside at the coarse levels) against a brute-force
+//     count, and the cone samples it raises against a C++ reference of the rule.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
