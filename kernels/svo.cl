@@ -5,12 +5,18 @@
  * RP_VOXEL_FRAGMENTS): per fragment the fixed-point sums it adds and its level-0 voxel.
  * Per frame, top-down, for depth k = 0 .. D-1 (brick level l = D-1-k):
  *   svo_clear_nodes   the depth's nodes (8 per existing parent, or the root) start empty
+ *   svo_flag_bits     (depths whose brick level is >= the host's bits level, 3: the top
+ *                     D - 3 depths) one work-item per node: the same flags from the level's
+ *                     occupancy bits (svo_occ_mark: one pass over the fragments for the
+ *                     finest such level, svo_occ_reduce: the coarser ones), instead of
  *   svo_flag          32 fragments a work-item: each one's owner node at depth k (the child of
- *                     its depth k-1 owner, kept in `cur`), OR-ed flags: own voxels non-empty,
+ *                     its depth k-1 owner, kept in `cur`; found by descent at the first depth
+ *                     after the bit depths), OR-ed flags: own voxels non-empty,
  *                     and which low faces hold the fragment's level-l voxel (bit e: node
  *                     a - e must exist too, its border holds that voxel)
- *   svo_dilate        one work-item per depth-k node with face bits: OR "exists" into the
- *                     nodes a - e (found by descent from the root)
+ *   svo_dilate        one work-item per depth-k node with face bits: OR "exists" (bit 31 of
+ *                     the node word, final after svo_allocate) into the nodes a - e (found by
+ *                     descent)
  *   svo_count, svo_scan, svo_allocate
  *                     prefix sums over the depth's nodes in index order (fixed chunks, a
  *                     serial scan of the chunk sums): existing node i of rank r gets brick
@@ -19,19 +25,25 @@
  * Nothing here depends on the order of the fragments or of the work-items: flags are ORed,
  * ranks come from prefix sums over node indices, sums are integers. So the pools are
  * bit-identical run to run (DESIGN.md).
- * Then bottom-up:
- *   svo_inject        one work-item per fragment: its fixed-point words added (atomic_add,
- *                     the dense voxelizer's overflow rule: word 7 of the voxel) into the
- *                     accumulator of its own voxel in its leaf (8 voxels x 8 words a leaf)
- *   svo_resolve       one work-item per leaf: own 8 samples = the dense resolve
+ Then bottom-up:
+ *   svo_link          one work-item per fragment: pushes the fragment onto its leaf's list
+ *                     (head per leaf in the flag words, which the leaf depth's svo_allocate
+ *                     zeroed; "next" in the fragment's owner word `cur`, no longer needed):
+ *                     the fragments grouped by leaf without per-voxel accumulators (those
+ *                     took 8 voxels x 8 words = 256 bytes a leaf, 107 MiB at 512^3)
+ *   svo_leaves        one work-item per leaf: walks its list summing its fragments' words
+ *                     per own voxel in private memory (uint adds with the dense voxelizer's
+ *                     overflow rule: the same integers whatever the list order), resolves
+ *                     the 8 own samples (the dense resolve), and, being the only reader of
+ *                     its facing sums, writes its parent's level-1 own sample for it (the
+ *                     anisotropic mip step from the 8 samples and their facing coverage)
  *   svo_border        one work-item per node of a depth: border samples (index 2 on some
  *                     axis) = the own samples of the neighbour a + e, 0 where it has none
  *                     (seed 001's "value transfer": after it, every level-l voxel has the
  *                     same value in every brick holding it)
- *   svo_mips          one work-item per node at brick level l >= 1: own sample o (level-l
+ *   svo_mips          one work-item per node at brick level l >= 2: own sample o (level-l
  *                     voxel 2a + o) in the 6 directions = common/voxel_composite.h over
- *                     the own samples of child o (for l = 1 the leaf's isotropic samples
- *                     seen along the direction through its facing words), then svo_border.
+ *                     the own samples of child o, then svo_border.
  * The values are those of the dense chain (voxelize.cl resolve, voxel_mips.cl), computed by
  * the same functions in the same order; with float samples bit-identical.
  */
@@ -108,15 +120,14 @@ inline void svo_clear_sample(__global uint* pool, __global uchar* alpha, uint s)
 #define SVO_POOL(svo, brick_offset) ((svo) + 4u * (brick_offset))
 #define SVO_ALPHA(svo, alpha_offset) ((__global uchar*)(svo) + (alpha_offset))
 
-__kernel void svo_clear_nodes(__global uint* svo, __global uint* own, __global uint* near,
-                              uint first, uint count) {
+__kernel void svo_clear_nodes(__global uint* svo, __global uint* own, uint first,
+                              uint count) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   __global uint* nodes = SVO_NODE_WORDS(svo);
   nodes[2u * (first + i)] = 0u;
   nodes[2u * (first + i) + 1u] = RP_SVO_NO_BRICK;
   own[first + i] = 0u;
-  near[first + i] = 0u;
 }
 
 /* Fragments per work-item of svo_flag: consecutive fragments (written by the same voxelizer
@@ -128,7 +139,7 @@ __kernel void svo_clear_nodes(__global uint* svo, __global uint* own, __global u
  * resolution_log2 = D. */
 __kernel void svo_flag(__global const uint* fragments, uint fragment_count, __global uint* svo,
                        __global uint* cur, volatile __global uint* own, uint depth,
-                       uint resolution_log2) {
+                       uint resolution_log2, uint descend) {
   const uint begin = (uint)get_global_id(0) * SVO_FLAG_CHUNK;
   if (begin >= fragment_count) return;
   const uint end = min(begin + SVO_FLAG_CHUNK, fragment_count);
@@ -137,13 +148,17 @@ __kernel void svo_flag(__global const uint* fragments, uint fragment_count, __gl
   const uint level = D - 1u - depth;
   __global const uint* nodes = SVO_NODE_WORDS(svo);
   uint last = 0xFFFFFFFFu, pending = 0u;
+  uint3 last_a = (uint3)(0xFFFFFFFFu);
   for (uint f = begin; f < end; ++f) {
     const uint key = fragments[RP_SVO_FRAGMENT_WORDS * f + RP_SVO_FRAGMENT_KEY];
     const uint3 v0 = (uint3)(key & (R - 1u), (key >> D) & (R - 1u), key >> (2u * D));
     const uint3 v = v0 >> level; /* level-l voxel */
     const uint3 a = v >> 1;      /* node coordinate at this depth */
     uint node = 0u;
-    if (depth > 0u) {
+    if (descend != 0u) { /* the depths above came from the occupancy bits: no owner yet */
+      node = all(a == last_a) ? last : rp_svo_find(nodes, depth, a);
+      last_a = a;
+    } else if (depth > 0u) {
       const uint child = nodes[2u * cur[f]] & RP_SVO_NODE_CHILD_MASK;
       node = child + ((a.x & 1u) | ((a.y & 1u) << 1) | ((a.z & 1u) << 2));
     }
@@ -163,6 +178,82 @@ __kernel void svo_flag(__global const uint* fragments, uint fragment_count, __gl
     pending |= bits;
   }
   atomic_or(own + last, pending);
+}
+
+/* Occupancy bits (the top depths' flags without a pass over the fragments per depth): bit
+ * (z n + y) n + x of level l's words (level l >= the host's bits level, n = R >> l) is set
+ * when a fragment lies in level-l voxel (x, y, z). Level `level`'s words start at word
+ * `offset`. */
+__kernel void svo_occ_clear(__global uint* occ, uint words) {
+  const uint i = (uint)get_global_id(0);
+  if (i < words) occ[i] = 0u;
+}
+
+/* SVO_FLAG_CHUNK fragments a work-item: consecutive fragments mostly share a word. */
+__kernel void svo_occ_mark(__global const uint* fragments, uint fragment_count,
+                           volatile __global uint* occ, uint level, uint resolution_log2) {
+  const uint begin = (uint)get_global_id(0) * SVO_FLAG_CHUNK;
+  if (begin >= fragment_count) return;
+  const uint end = min(begin + SVO_FLAG_CHUNK, fragment_count);
+  const uint D = resolution_log2, R = 1u << D, n = R >> level;
+  uint last = 0xFFFFFFFFu, pending = 0u;
+  for (uint f = begin; f < end; ++f) {
+    const uint key = fragments[RP_SVO_FRAGMENT_WORDS * f + RP_SVO_FRAGMENT_KEY];
+    const uint3 v = (uint3)(key & (R - 1u), (key >> D) & (R - 1u), key >> (2u * D)) >> level;
+    const uint bit = (v.z * n + v.y) * n + v.x;
+    if ((bit >> 5) != last) {
+      if (last != 0xFFFFFFFFu) atomic_or(occ + last, pending);
+      last = bit >> 5;
+      pending = 0u;
+    }
+    pending |= 1u << (bit & 31u);
+  }
+  atomic_or(occ + last, pending);
+}
+
+/* Level l + 1's bits (n per side) from level l's (2n): one work-item per word. */
+__kernel void svo_occ_reduce(__global uint* occ, uint src, uint dst, uint n) {
+  const uint w = (uint)get_global_id(0);
+  const uint count = n * n * n;
+  if (w * 32u >= count) return;
+  const uint m = 2u * n;
+  uint word = 0u;
+  for (uint b = 0; b < 32u && w * 32u + b < count; ++b) {
+    const uint j = w * 32u + b;
+    const uint3 c = 2u * (uint3)(j % n, (j / n) % n, j / (n * n));
+    uint any = 0u;
+    for (uint o = 0; o < 8u; ++o) {
+      const uint s = ((c.z + (o >> 2)) * m + c.y + ((o >> 1) & 1u)) * m + c.x + (o & 1u);
+      any |= (occ[src + (s >> 5)] >> (s & 31u)) & 1u;
+    }
+    word |= any << b;
+  }
+  occ[dst + w] = word;
+}
+
+/* svo_flag's bits for the nodes of `depth` (brick level l = D-1-depth >= the bits level) from
+ * level l's occupancy words (at `offset`): own = any own voxel 2a + o occupied; bit e = an
+ * occupied own voxel on the low faces along e (o_i = 0 and a_i > 0 for every axis i of e). */
+__kernel void svo_flag_bits(__global uint* own, __global const uint* coords,
+                            __global const uint* occ, uint offset, uint first, uint count,
+                            uint depth) {
+  const uint i = (uint)get_global_id(0);
+  if (i >= count) return;
+  const uint3 a = svo_unpack(coords[first + i]);
+  const uint n = 2u << depth; /* level-l voxels per side */
+  uint bits = 0u;
+  for (uint o = 0; o < 8u; ++o) {
+    const uint3 ov = (uint3)(o & 1u, (o >> 1) & 1u, o >> 2);
+    const uint3 v = 2u * a + ov;
+    const uint s = (v.z * n + v.y) * n + v.x;
+    if (((occ[offset + (s >> 5)] >> (s & 31u)) & 1u) == 0u) continue;
+    const uint m = (ov.x == 0u && a.x > 0u ? 1u : 0u) | (ov.y == 0u && a.y > 0u ? 2u : 0u) |
+                   (ov.z == 0u && a.z > 0u ? 4u : 0u);
+    bits |= RP_SVO_FLAG_OWN;
+    for (uint e = 1u; e < 8u; ++e)
+      if ((e & m) == e) bits |= 1u << e;
+  }
+  own[first + i] = bits;
 }
 
 /* path[j] = the ancestor at depth j (0 .. depth-1) of the node at `depth` with coordinate a. */
@@ -192,37 +283,41 @@ inline uint svo_find_near(__global const uint* nodes, const uint* path, uint dep
   return idx;
 }
 
-__kernel void svo_dilate(__global uint* svo, __global const uint* own, volatile __global uint* near,
+/* "Exists" goes into bit 31 of the target's node word 0 (cleared by svo_clear_nodes, final
+ * only after svo_allocate): this kernel reads the flag words and the node words of depths < k
+ * (the descent), and writes only depth k's node words, so nothing it reads is written. */
+__kernel void svo_dilate(__global uint* svo, __global const uint* own,
                          __global const uint* coords, uint first, uint count, uint depth) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
-  const uint bits = own[first + i] & ~RP_SVO_FLAG_OWN;
+  const uint bits = own[first + i] & RP_SVO_FLAG_FACES;
   if (bits == 0u) return;
   const uint3 a = svo_unpack(coords[first + i]);
-  __global const uint* nodes = SVO_NODE_WORDS(svo);
+  volatile __global uint* nodes = SVO_NODE_WORDS(svo);
   uint path[RP_SVO_MAX_DEPTHS];
-  svo_path(nodes, depth, a, path);
+  svo_path((__global const uint*)nodes, depth, a, path);
   for (uint e = 1u; e < 8u; ++e) {
     if ((bits & (1u << e)) == 0u) continue;
     const uint3 b = a - (uint3)(e & 1u, (e >> 1) & 1u, e >> 2);
-    const uint t = svo_find_near(nodes, path, depth, a, b);
-    if (t != 0xFFFFFFFFu) atomic_or(near + t, 1u);
+    const uint t = svo_find_near((__global const uint*)nodes, path, depth, a, b);
+    if (t != 0xFFFFFFFFu) atomic_or(nodes + 2u * t, RP_SVO_NODE_BRICK);
   }
 }
 
-inline bool svo_exists(__global const uint* own, __global const uint* near, uint i) {
-  return (own[i] | near[i]) != 0u;
+/* Node i exists: own voxels, or a neighbour's border needs it (svo_dilate's mark). */
+inline bool svo_exists(__global const uint* svo, __global const uint* own, uint i) {
+  return (own[i] & RP_SVO_FLAG_OWN) != 0u || (SVO_NODE_WORDS(svo)[2u * i] & RP_SVO_NODE_BRICK) != 0u;
 }
 
 /* Existing nodes in chunk g of [first, first + count). */
-__kernel void svo_count(__global const uint* own, __global const uint* near, uint first,
+__kernel void svo_count(__global const uint* svo, __global const uint* own, uint first,
                         uint count, uint chunk, __global uint* sums) {
   const uint g = (uint)get_global_id(0);
   const uint begin = g * chunk;
   if (begin >= count) return;
   const uint end = min(begin + chunk, count);
   uint n = 0u;
-  for (uint i = begin; i < end; ++i) n += svo_exists(own, near, first + i) ? 1u : 0u;
+  for (uint i = begin; i < end; ++i) n += svo_exists(svo, own, first + i) ? 1u : 0u;
   sums[g] = n;
 }
 
@@ -239,8 +334,10 @@ __kernel void svo_scan(__global uint* sums, uint chunks, __global uint* totals, 
   totals[slot] = run;
 }
 
-__kernel void svo_allocate(__global uint* svo, __global const uint* own,
-                           __global const uint* near, __global uint* coords, uint first,
+/* At the leaf depth the flag words are then zeroed: they become the leaves' list heads
+ * (svo_link). */
+__kernel void svo_allocate(__global uint* svo, __global uint* own, __global uint* coords,
+                           uint first,
                            uint count, uint chunk, __global const uint* sums, uint child_first,
                            uint brick_first, uint brick_size, uint leaf) {
   const uint g = (uint)get_global_id(0);
@@ -251,9 +348,12 @@ __kernel void svo_allocate(__global uint* svo, __global const uint* own,
   uint rank = sums[g];
   for (uint k = begin; k < end; ++k) {
     const uint i = first + k;
-    if (!svo_exists(own, near, i)) continue; /* cleared by svo_clear_nodes */
+    const uint flags = own[i];
+    if (leaf != 0u) own[i] = 0u;
+    if ((flags & RP_SVO_FLAG_OWN) == 0u && (nodes[2u * i] & RP_SVO_NODE_BRICK) == 0u)
+      continue; /* does not exist: as svo_clear_nodes left it */
     const uint child = leaf != 0u ? 0u : child_first + 8u * rank;
-    nodes[2u * i] = child | RP_SVO_NODE_BRICK | ((own[i] & RP_SVO_FLAG_OWN) ? RP_SVO_NODE_OWN : 0u);
+    nodes[2u * i] = child | RP_SVO_NODE_BRICK | ((flags & RP_SVO_FLAG_OWN) ? RP_SVO_NODE_OWN : 0u);
     nodes[2u * i + 1u] = brick_first + rank * brick_size;
     if (leaf == 0u) {
       const uint3 a2 = 2u * svo_unpack(coords[i]);
@@ -264,52 +364,62 @@ __kernel void svo_allocate(__global uint* svo, __global const uint* own,
   }
 }
 
-/* Accumulator words of own voxel o of the leaf whose brick starts at `brick`. */
-inline uint svo_accum_index(uint brick, uint leaf_brick_first, uint o) {
-  return ((brick - leaf_brick_first) / RP_SVO_BRICK_SAMPLES * 8u + o) * RP_VOXEL_ACCUM_WORDS;
-}
-
-__kernel void svo_clear_accum(__global uint* accum, uint words) {
-  const uint i = (uint)get_global_id(0);
-  if (i < words) accum[i] = 0u;
-}
-
-__kernel void svo_inject(__global const uint* fragments, uint fragment_count,
-                         __global const uint* svo, __global const uint* cur,
-                         volatile __global uint* accum, uint leaf_brick_first,
-                         uint resolution_log2) {
+/* Fragment f onto its leaf's list: heads[leaf] and next[] (= cur) hold fragment index + 1,
+ * 0 ends a list. Each work-item rewrites only its own cur[f] (after reading it). */
+__kernel void svo_link(uint fragment_count, __global uint* cur, volatile __global uint* heads) {
   const uint f = (uint)get_global_id(0);
   if (f >= fragment_count) return;
-  const uint D = resolution_log2;
-  __global const uint* frag = fragments + RP_SVO_FRAGMENT_WORDS * f;
-  const uint key = frag[RP_SVO_FRAGMENT_KEY];
-  const uint o = (key & 1u) | (((key >> D) & 1u) << 1) | (((key >> (2u * D)) & 1u) << 2);
-  const uint brick = SVO_NODE_WORDS(svo)[2u * cur[f] + 1u];
-  volatile __global uint* acc = accum + svo_accum_index(brick, leaf_brick_first, o);
-  for (uint c = 0; c < 4u; ++c) {
-    const uint q = frag[c];
-    if (q == 0u) continue;
-    const uint old = atomic_add(acc + c, q);
-    if (old > 0xFFFFFFFFu - q) atomic_or(acc + 7u, 1u << c);
-  }
-  for (uint i = 4u; i < 7u; ++i)
-    if (frag[i] != 0u) atomic_add(acc + i, frag[i]);
+  cur[f] = atomic_xchg(heads + cur[f], f + 1u);
 }
 
-/* Leaves: own samples from the sums, as voxelize_resolve. */
-__kernel void svo_resolve(__global uint* svo, __global const uint* accum, uint first,
-                          uint count, uint brick_offset, uint alpha_offset,
-                          uint leaf_brick_first) {
+/* Leaf slot i of the leaf depth (nodes [first, first + count), 8 per level-1 parent in the
+ * order of the parents' bricks, see svo_allocate): own samples from its fragments' sums, as
+ * voxelize_resolve; then, when there is a level 1 (parent_brick_first != RP_SVO_NO_BRICK), the
+ * parent's own sample i & 7 in the six directions (svo_mips' step over this leaf's 8 samples,
+ * seen through their facing sums: what voxel_mips.cl does for the dense level 1). A leaf slot
+ * without a brick clears that parent sample (its 8 voxels are empty). */
+__kernel void svo_leaves(__global const uint* fragments, __global const uint* next,
+                         __global const uint* heads, __global uint* svo, uint first, uint count,
+                         uint brick_offset, uint alpha_offset, uint parent_brick_first,
+                         uint resolution_log2) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
+  const uint D = resolution_log2;
   const uint brick = SVO_NODE_WORDS(svo)[2u * (first + i) + 1u];
-  if (brick == RP_SVO_NO_BRICK) return;
   __global uint* pool = SVO_POOL(svo, brick_offset);
   __global uchar* alpha = SVO_ALPHA(svo, alpha_offset);
+  const bool parent = parent_brick_first != RP_SVO_NO_BRICK;
+  const uint pdst = parent_brick_first + (i >> 3) * rp_svo_brick_size(1u) +
+                    rp_svo_sample(i & 1u, (i >> 1) & 1u, (i >> 2) & 1u);
+  if (brick == RP_SVO_NO_BRICK) {
+    if (parent)
+      for (uint d = 0; d < 6u; ++d) svo_clear_sample(pool, alpha, pdst + RP_SVO_BRICK_SAMPLES * d);
+    return;
+  }
+  /* per own voxel o: sums r, g, b, a and facing x, y, z (the dense accumulator's words 0-6),
+   * overflow bits (its word 7) */
+  uint acc[8][7], over[8];
   for (uint o = 0; o < 8u; ++o) {
-    __global const uint* acc = accum + svo_accum_index(brick, leaf_brick_first, o);
-    float4 sum = convert_float4(vload4(0, acc)) * (1.0f / (float)(1u << RP_VOXEL_FIXED_BITS));
-    const uint bits = acc[7];
+    over[o] = 0u;
+    for (uint w = 0; w < 7u; ++w) acc[o][w] = 0u;
+  }
+  for (uint j = heads[first + i]; j != 0u; j = next[j - 1u]) {
+    __global const uint* frag = fragments + RP_SVO_FRAGMENT_WORDS * (j - 1u);
+    const uint key = frag[RP_SVO_FRAGMENT_KEY];
+    const uint o = (key & 1u) | (((key >> D) & 1u) << 1) | (((key >> (2u * D)) & 1u) << 2);
+    for (uint c = 0; c < 4u; ++c) {
+      const uint q = frag[c];
+      const uint old = acc[o][c];
+      acc[o][c] = old + q;
+      if (old > 0xFFFFFFFFu - q) over[o] |= 1u << c;
+    }
+    const uint facing = frag[RP_SVO_FRAGMENT_FACING];
+    for (uint a = 0; a < 3u; ++a) acc[o][4u + a] += rp_svo_unpack_facing(facing, a);
+  }
+  for (uint o = 0; o < 8u; ++o) {
+    float4 sum = (float4)((float)acc[o][0], (float)acc[o][1], (float)acc[o][2], (float)acc[o][3]) *
+                 (1.0f / (float)(1u << RP_VOXEL_FIXED_BITS));
+    const uint bits = over[o];
     if (bits != 0u) {
       if (bits & 1u) sum.x = RP_VOXEL_SATURATED;
       if (bits & 2u) sum.y = RP_VOXEL_SATURATED;
@@ -319,6 +429,19 @@ __kernel void svo_resolve(__global uint* svo, __global const uint* accum, uint f
     const float inv = 1.0f / fmax(sum.w, 1.0f);
     svo_store(pool, alpha, brick + rp_svo_sample(o & 1u, (o >> 1) & 1u, o >> 2),
               (float4)(sum.xyz * inv, fmin(sum.w, 1.0f)));
+  }
+  if (!parent) return;
+  /* level 1: the samples as stored (packed: rounded), as svo_mips reads its children */
+  float4 iso[8];
+  uint4 facing[8];
+  for (uint c = 0; c < 8u; ++c) {
+    iso[c] = svo_pool_load(pool, alpha, brick + rp_svo_sample(c & 1u, (c >> 1) & 1u, c >> 2));
+    facing[c] = (uint4)(acc[c][4], acc[c][5], acc[c][6], over[c]);
+  }
+  for (uint d = 0; d < 6u; ++d) {
+    float4 c8[8];
+    for (uint c = 0; c < 8u; ++c) c8[c] = mips_facing(iso[c], facing[c], d);
+    svo_store(pool, alpha, pdst + RP_SVO_BRICK_SAMPLES * d, mips_composite(c8, d));
   }
 }
 
@@ -364,10 +487,10 @@ __kernel void svo_border(__global uint* svo, __global const uint* coords, uint f
   }
 }
 
-/* Own samples of the nodes of `depth` (brick level `level` >= 1) from their children. */
-__kernel void svo_mips(__global uint* svo, __global const uint4* accum, uint first, uint count,
-                       uint level, uint brick_offset, uint alpha_offset,
-                       uint leaf_brick_first) {
+/* Own samples of the nodes of `depth` (brick level `level` >= 2) from their children (level 1:
+ * svo_leaves). */
+__kernel void svo_mips(__global uint* svo, uint first, uint count, uint brick_offset,
+                       uint alpha_offset) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   __global const uint* nodes = SVO_NODE_WORDS(svo);
@@ -384,27 +507,12 @@ __kernel void svo_mips(__global uint* svo, __global const uint4* accum, uint fir
         svo_clear_sample(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst);
       continue;
     }
-    if (level == 1u) { /* leaves: isotropic samples seen through their facing words */
-      float4 iso[8];
-      uint4 facing[8];
-      for (uint c = 0; c < 8u; ++c) {
-        iso[c] = svo_pool_load(pool, alpha, cb + rp_svo_sample(c & 1u, (c >> 1) & 1u, c >> 2));
-        facing[c] = accum[(RP_VOXEL_ACCUM_WORDS / 4u) *
-                              ((cb - leaf_brick_first) / RP_SVO_BRICK_SAMPLES * 8u + c) + 1u];
-      }
-      for (uint d = 0; d < 6u; ++d) {
-        float4 c8[8];
-        for (uint c = 0; c < 8u; ++c) c8[c] = mips_facing(iso[c], facing[c], d);
-        svo_store(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst, mips_composite(c8, d));
-      }
-    } else {
-      for (uint d = 0; d < 6u; ++d) {
-        float4 c8[8];
-        for (uint c = 0; c < 8u; ++c)
-          c8[c] = svo_pool_load(pool, alpha, cb + RP_SVO_BRICK_SAMPLES * d +
-                                                 rp_svo_sample(c & 1u, (c >> 1) & 1u, c >> 2));
-        svo_store(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst, mips_composite(c8, d));
-      }
+    for (uint d = 0; d < 6u; ++d) {
+      float4 c8[8];
+      for (uint c = 0; c < 8u; ++c)
+        c8[c] = svo_pool_load(pool, alpha, cb + RP_SVO_BRICK_SAMPLES * d +
+                                               rp_svo_sample(c & 1u, (c >> 1) & 1u, c >> 2));
+      svo_store(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst, mips_composite(c8, d));
     }
   }
 }

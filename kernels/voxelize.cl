@@ -167,9 +167,19 @@ inline uint3 vx_facing_words_all(float a) {
 }
 
 #ifdef RP_VOXEL_FRAGMENTS
+/* One fragment (shared/svo_layout.h: 6 words, the facing words packed). */
+inline void vx_fragment_write(volatile __global uint* frag, uint voxel, uint4 q, uint3 f) {
+  frag[0] = q.x;
+  frag[1] = q.y;
+  frag[2] = q.z;
+  frag[3] = q.w;
+  frag[RP_SVO_FRAGMENT_FACING] = rp_svo_pack_facing(f.x, f.y, f.z);
+  frag[RP_SVO_FRAGMENT_KEY] = voxel;
+}
+
 /* Fragment output (the sparse voxel octree, shared/svo_layout.h): instead of adding into the
  * dense sums, every contribution becomes one fragment of RP_SVO_FRAGMENT_WORDS words (the
- * same four fixed-point words and three facing words, plus the voxel index) appended to
+ * same four fixed-point words, the three facing words packed, the voxel index) appended to
  * `accum`; overflow[0] counts the fragments (also those past the capacity overflow[1]: the
  * host then grows the list and voxelizes again). Which slot a fragment takes is racy; nothing
  * downstream depends on it (svo.cl ORs flags and adds integers). */
@@ -178,15 +188,7 @@ inline void vx_sink(volatile __global uint* accum, volatile __global uint* overf
   if ((q.x | q.y | q.z | q.w | f.x | f.y | f.z) == 0u) return;
   const uint slot = atomic_inc(overflow);
   if (slot >= overflow[1]) return;
-  volatile __global uint* frag = accum + RP_SVO_FRAGMENT_WORDS * slot;
-  frag[0] = q.x;
-  frag[1] = q.y;
-  frag[2] = q.z;
-  frag[3] = q.w;
-  frag[4] = f.x;
-  frag[5] = f.y;
-  frag[6] = f.z;
-  frag[RP_SVO_FRAGMENT_KEY] = voxel;
+  vx_fragment_write(accum + RP_SVO_FRAGMENT_WORDS * slot, voxel, q, f);
 }
 #else
 /* Adds fixed-point contributions q and facing words f to voxel `voxel`'s sums. */
@@ -800,16 +802,9 @@ inline void vx_accumulate_span(volatile __global uint* accum, volatile __global 
   for (int i = 0; i < n_lanes; ++i) {
     if (!lh[i]) continue;
     if (slot < overflow[1]) {
-      const uint3 f = vx_facing_words((float3)(nx[i], ny[i], nz[i]), 1.0f);
-      volatile __global uint* frag = accum + RP_SVO_FRAGMENT_WORDS * slot;
-      frag[0] = lr[i];
-      frag[1] = lg[i];
-      frag[2] = lb[i];
-      frag[3] = one;
-      frag[4] = f.x;
-      frag[5] = f.y;
-      frag[6] = f.z;
-      frag[RP_SVO_FRAGMENT_KEY] = lv[i];
+      vx_fragment_write(accum + RP_SVO_FRAGMENT_WORDS * slot, lv[i],
+                        (uint4)(lr[i], lg[i], lb[i], one),
+                        vx_facing_words((float3)(nx[i], ny[i], nz[i]), 1.0f));
     }
     ++slot;
   }

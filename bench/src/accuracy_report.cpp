@@ -17,6 +17,7 @@
 #include "app/png_output.h"
 #include "app/progress.h"
 #include "app/truth_cache.h"
+#include "render/renderer.h"
 #include "scene/demo_scene.h"
 
 namespace rp::app {
@@ -141,6 +142,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   nlohmann::json j;
   j["schema"] = "rolypoly-accuracy/4";
   j["command"] = options.command_line;
+  j["gi_volume"] = render::gi_volume_name(common.gi_volume);
   j["scene"] = "demo frame at rest (scene::make_demo_frame)";
   j["width"] = w;
   j["height"] = h;

@@ -183,6 +183,15 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
                 (unsigned long long)o.samples, o.sample_bytes, double(o.brick_bytes()) * mb,
                 double(o.buffer_bytes()) * mb, double(o.scratch_bytes) * mb, o.resolution,
                 double(render::SvoVolume::dense_bytes(o.resolution)) * mb);
+    std::printf("  octree device memory (CL_MEM_SIZE of its buffers): pools + build scratch "
+                "%.1f MiB after the last frame, peak %.1f MiB (pools %.1f with the solid grid "
+                "%.1f, scratch %.1f); the fragment voxelizer's own buffers (static surface "
+                "cache) %.1f MiB\n",
+                double(o.device_bytes) * mb, double(o.peak_device_bytes) * mb,
+                double(o.buffer_bytes()) * mb, double(o.solid_capacity) * mb,
+                double(o.scratch_bytes) * mb, double(o.voxelizer_bytes) * mb);
+    std::printf("  solid grid (last frame): %.2f ms on the host while the device builds\n",
+                o.solid_host_ms);
     std::printf("  nodes / bricks per depth:");
     for (size_t k = 0; k < o.nodes_per_depth.size(); ++k)
       std::printf(" %u/%u", o.nodes_per_depth[k], o.bricks_per_depth[k]);
@@ -190,6 +199,13 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
   }
   RunResult run = make_run_result(width, height, voxels_or_default(voxels), stats);
   run.timing = rp::cl::timing_name(session.timing());
+  run.gi_volume = render::gi_volume_name(common.gi_volume);
+  if (common.gi_volume == render::GiVolume::kSvo) {
+    const render::SvoVolume& o = session.renderer().octree();
+    run.octree_device_bytes = o.device_bytes;
+    run.octree_peak_bytes = o.peak_device_bytes;
+    run.octree_pool_bytes = o.buffer_bytes();
+  }
   if (sim) sim->world().fill_frame(last);  // what the last frame showed (same world state)
   run.spheres = static_cast<uint32_t>(last.spheres.size());
   run.instances = static_cast<uint32_t>(last.instances.size());

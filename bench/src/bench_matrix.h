@@ -38,6 +38,10 @@ struct RunResult {
   uint32_t voxels = 0;           // voxel volume resolution per side
   uint32_t frames = 0;           // measured frames
   std::string timing = "device";  // "device" or "host": how its pass times were taken
+  std::string gi_volume = "dense";  // --gi-volume: "dense" or "svo"
+  // svo only (0 otherwise): the octree path's device memory after the last frame and its peak
+  // (pools + build scratch, CL_MEM_SIZE), the pools alone, in bytes
+  uint64_t octree_device_bytes = 0, octree_peak_bytes = 0, octree_pool_bytes = 0;
   std::vector<PassResult> passes;  // pipeline order (pipeline_rank)
   TimeSummary frame;             // wall clock of Renderer::render per frame
   // What the measured frames drew (the last one; every device draws the same frames).

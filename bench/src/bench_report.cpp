@@ -48,6 +48,11 @@ Json run_json(const RunResult& r) {
   j["voxels"] = r.voxels;
   j["frames"] = r.frames;
   j["timing"] = r.timing;
+  j["gi_volume"] = r.gi_volume;
+  if (r.gi_volume == "svo")
+    j["octree_memory"] = {{"device_bytes", r.octree_device_bytes},
+                          {"peak_bytes", r.octree_peak_bytes},
+                          {"pool_bytes", r.octree_pool_bytes}};
   j["scene"] = {{"spheres", r.spheres},
                 {"instances", r.instances},
                 {"instance_triangles", r.instance_triangles},
@@ -81,6 +86,13 @@ RunResult parse_run(const Json& j) {
   r.voxels = j.at("voxels");
   r.frames = j.at("frames");
   r.timing = j.value("timing", std::string("device"));
+  r.gi_volume = j.value("gi_volume", std::string("dense"));  // files before issue 17: dense
+  if (j.contains("octree_memory")) {
+    const Json& m = j.at("octree_memory");
+    r.octree_device_bytes = m.at("device_bytes");
+    r.octree_peak_bytes = m.at("peak_bytes");
+    r.octree_pool_bytes = m.at("pool_bytes");
+  }
   r.spheres = j.at("scene").at("spheres");
   r.instances = j.at("scene").at("instances");
   r.instance_triangles = j.at("scene").at("instance_triangles");

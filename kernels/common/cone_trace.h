@@ -311,7 +311,7 @@ inline float4 rp_cone_directional(__global const float4* voxels, uint resolution
                                          RP_CONE_SVO_TAP(0, 0, 1), RP_CONE_SVO_TAP(1, 0, 1),
                                          RP_CONE_SVO_TAP(0, 1, 1), RP_CONE_SVO_TAP(1, 1, 1), f);
 #undef RP_CONE_SVO_TAP
-  return s;
+  return rp_svo_solid_apply(voxels, resolution, level, p, s);
 }
 #endif /* RP_GI_SVO */
 

@@ -100,4 +100,40 @@ inline uint3 rp_svo_footprint(uint n, float3 p, float3* f) {
   return convert_uint3(fl);
 }
 
+/* The solid fraction (0..1) at p of level `level`: trilinear over the solid grid's level-l
+ * cells with the dense sampler's footprint; 0 without a grid or below its first level. */
+inline float rp_svo_solid(__global const float4* svo, uint resolution, uint level, float3 p) {
+  const uint offset = rp_svo_header(svo, RP_SVO_HDR_SOLID_OFFSET);
+  const uint first = rp_svo_header(svo, RP_SVO_HDR_SOLID_LEVEL);
+  if (offset == 0u || level < first || level >= rp_svo_header(svo, RP_SVO_HDR_DEPTHS))
+    return 0.0f;
+  uint base = offset;
+  for (uint l = first; l < level; ++l) {
+    const uint m = resolution >> l;
+    base += m * m * m;
+  }
+  __global const uchar* g = (__global const uchar*)svo + base;
+  const uint n = resolution >> level;
+  float3 f;
+  const uint3 x0 = rp_svo_footprint(n, p, &f);
+  const uint3 x1 = min(x0 + 1u, (uint3)(n - 1u));
+#define RP_SVO_SOLID_TAP(X, Y, Z) ((float)g[(Z * n + Y) * n + X])
+  const float c00 = mix(RP_SVO_SOLID_TAP(x0.x, x0.y, x0.z), RP_SVO_SOLID_TAP(x1.x, x0.y, x0.z), f.x);
+  const float c10 = mix(RP_SVO_SOLID_TAP(x0.x, x1.y, x0.z), RP_SVO_SOLID_TAP(x1.x, x1.y, x0.z), f.x);
+  const float c01 = mix(RP_SVO_SOLID_TAP(x0.x, x0.y, x1.z), RP_SVO_SOLID_TAP(x1.x, x0.y, x1.z), f.x);
+  const float c11 = mix(RP_SVO_SOLID_TAP(x0.x, x1.y, x1.z), RP_SVO_SOLID_TAP(x1.x, x1.y, x1.z), f.x);
+#undef RP_SVO_SOLID_TAP
+  return mix(mix(c00, c10, f.y), mix(c01, c11, f.y), f.z) * (1.0f / 255.0f);
+}
+
+/* A cone sample s (premultiplied) at level `level`, point p, with the closed objects' inside
+ * made opaque: opacity max(s.a, solid fraction), the sample's mean radiance kept (rgb scaled
+ * with the opacity; 0 where the sample holds no surface: the inside itself is dark). */
+inline float4 rp_svo_solid_apply(__global const float4* svo, uint resolution, uint level,
+                                 float3 p, float4 s) {
+  const float solid = rp_svo_solid(svo, resolution, level, p);
+  if (!(solid > s.w)) return s;
+  return (float4)(s.w > 0.0f ? s.xyz * (solid / s.w) : (float3)(0.0f), solid);
+}
+
 #endif

@@ -51,18 +51,28 @@
  *     256 MB budget; 5 bytes: 167 MiB)
  *     samples with an index 2 along some axis are borders: copies of the neighbour node's own
  *     samples (the border transfer, svo.cl), 0 where that neighbour does not exist.
+ *   solid grid (optional; header[RP_SVO_HDR_SOLID_OFFSET] != 0, 16-byte aligned, after the
+ *     brick pool): for levels l = header[RP_SVO_HDR_SOLID_LEVEL] .. D-1, back to back, one byte
+ *     per level-l cell (x fastest, (R >> l)^3 cells, dense: the grid is small): round(255 x the
+ *     fraction of the cell inside a closed object), written per frame by the host
+ *     (src/passes/svo_solid.h). Cone samples at those levels take at least that opacity
+ *     (common/svo.h rp_svo_solid_apply): the voxelized shells are hollow.
  *
  * Fragments (the voxelizer's output at the octree's resolution, kernels/voxelize.cl built
- * with RP_VOXEL_FRAGMENTS): RP_SVO_FRAGMENT_WORDS = 8 uints (32 bytes) per fragment, one
+ * with RP_VOXEL_FRAGMENTS): RP_SVO_FRAGMENT_WORDS = 6 uints (24 bytes) per fragment, one
  * per (surface sample, voxel) pair, duplicates allowed:
  *   words 0-3  fixed-point radiance x opacity (r, g, b) and opacity, as the dense voxelizer
  *              adds them (render/voxel_volume.h's format),
- *   words 4-6  facing coverage x, y, z (the normal's per-axis share, voxel_layout.h),
- *   word 7     the level-0 voxel (z * R + y) * R + x.
+ *   word 4     the facing coverage words x, y, z (voxel_layout.h) packed 10 bits an axis
+ *              (rp_svo_pack_facing): one fragment adds at most RP_VOXEL_FACING_UNIT = 128 to
+ *              a half, and to both halves of an axis only the same value (spheres), so an
+ *              axis is its value (8 bits) and which halves get it (2 bits): exact,
+ *   word 5     the level-0 voxel (z * R + y) * R + x.
  * Albedo and light are combined into the radiance when the fragment is written (the
  * voxelizer shades it); the normal survives as the facing words the anisotropic mips use.
  * Their order in the list is whatever the atomics made it: nothing depends on it (flags are
- * ORed, sums are integers).
+ * ORed, sums are integers). (8 words, the facing words unpacked, put the 512^3 demo's list at
+ * 59 MiB instead of 44: the difference between fitting the 256 MB budget or not.)
  */
 #ifndef ROLYPOLY_SHARED_SVO_LAYOUT_H
 #define ROLYPOLY_SHARED_SVO_LAYOUT_H
@@ -76,6 +86,8 @@
 #define RP_SVO_HDR_SAMPLE_BYTES 5u /* 5 (packed RGB9E5 + alpha byte) or 16 (float) */
 #define RP_SVO_HDR_FRAGMENTS 6u    /* fragments the pool was built from */
 #define RP_SVO_HDR_LEVEL_START 7u  /* 7 .. 7+D: first node of each depth (+ the end) */
+#define RP_SVO_HDR_SOLID_OFFSET 28u /* byte offset of the solid grid, 0: none (below) */
+#define RP_SVO_HDR_SOLID_LEVEL 29u  /* its first level */
 #define RP_SVO_HDR_ALPHA_OFFSET 30u /* byte offset of the opacity plane (packed samples) */
 #define RP_SVO_MAX_DEPTHS 10u      /* R <= 1024 (voxel keys: 10 bits per axis) */
 
@@ -85,12 +97,16 @@
 #define RP_SVO_NO_BRICK 0xFFFFFFFFu
 
 #define RP_SVO_BRICK_SAMPLES 27u  /* one direction */
-#define RP_SVO_FRAGMENT_WORDS 8u
-#define RP_SVO_FRAGMENT_KEY 7u    /* word holding the voxel index */
+#define RP_SVO_FRAGMENT_WORDS 6u
+#define RP_SVO_FRAGMENT_FACING 4u /* word holding the packed facing words */
+#define RP_SVO_FRAGMENT_KEY 5u    /* word holding the voxel index */
 
-/* Build scratch per node (svo.cl): bit 0 own voxels non-empty; bit e (1..7, e = ex | ey << 1
- * | ez << 2) own voxels non-empty on the low faces along e, so node a - e must exist. */
+/* Build scratch per node (svo.cl), one uint: bit 0 own voxels non-empty; bit e (1..7, e = ex
+ * | ey << 1 | ez << 2) own voxels non-empty on the low faces along e, so node a - e must
+ * exist (svo_dilate marks it with RP_SVO_NODE_BRICK in its node word before svo_allocate
+ * writes the word). The node exists iff bit 0 or that mark is set. */
 #define RP_SVO_FLAG_OWN 1u
+#define RP_SVO_FLAG_FACES 0xFEu
 
 #ifdef __OPENCL_VERSION__
 #define RP_SVO_FN static inline
@@ -110,6 +126,25 @@ RP_SVO_FN RP_SVO_UINT rp_svo_brick_size(RP_SVO_UINT level) {
 /* Sample index of brick coordinate (i, j, k) in 0..2 (one direction). */
 RP_SVO_FN RP_SVO_UINT rp_svo_sample(RP_SVO_UINT i, RP_SVO_UINT j, RP_SVO_UINT k) {
   return (k * 3u + j) * 3u + i;
+}
+
+/* Facing coverage words (x, y, z; shared/voxel_layout.h) of ONE contribution -> fragment word
+ * 4: per axis i bits [10 i, 10 i + 8) the value, bit 10 i + 8 set when the low half (+ facing)
+ * gets it, bit 10 i + 9 when the high half does. Exact for what the voxelizer adds (see the
+ * header: a value <= 128 per half, both halves only with the same value). */
+RP_SVO_FN RP_SVO_UINT rp_svo_pack_facing_axis(RP_SVO_UINT w) {
+  const RP_SVO_UINT lo = w & 0xFFFFu, hi = w >> 16;
+  const RP_SVO_UINT q = lo > hi ? lo : hi;
+  return (q & 255u) | (lo != 0u ? 256u : 0u) | (hi != 0u ? 512u : 0u);
+}
+RP_SVO_FN RP_SVO_UINT rp_svo_pack_facing(RP_SVO_UINT fx, RP_SVO_UINT fy, RP_SVO_UINT fz) {
+  return rp_svo_pack_facing_axis(fx) | (rp_svo_pack_facing_axis(fy) << 10) |
+         (rp_svo_pack_facing_axis(fz) << 20);
+}
+/* The facing word of `axis` (0..2) back from fragment word 4. */
+RP_SVO_FN RP_SVO_UINT rp_svo_unpack_facing(RP_SVO_UINT packed, RP_SVO_UINT axis) {
+  const RP_SVO_UINT b = packed >> (10u * axis), q = b & 255u;
+  return ((b & 256u) != 0u ? q : 0u) | ((b & 512u) != 0u ? q << 16 : 0u);
 }
 
 /* log2 of a power of two. */

@@ -1,9 +1,11 @@
 #include "passes/svo.h"
 
 #include <algorithm>
+#include <chrono>
 #include <string>
 
 #include "cl/error.h"
+#include "passes/svo_solid.h"
 #include "render/voxel_volume.h"
 
 namespace rp::passes {
@@ -12,6 +14,20 @@ namespace {
 constexpr size_t kGroup = 64;
 constexpr uint32_t kChunk = 256;  // nodes per work-item of svo_count / svo_allocate
 constexpr uint32_t kFlagChunk = 32;  // fragments per work-item of svo_flag (SVO_FLAG_CHUNK)
+// Brick levels >= this one take their flags from occupancy bits (svo_flag_bits: one pass over
+// the fragments for all of them) instead of a pass over the fragments each: at 512^3 the top
+// 6 of 9 depths. Level 3's bits: (R/8)^3 (32 KiB at 512^3), the coarser levels 1/7 more.
+constexpr uint32_t kBitsLevel = 3;
+
+// First word of level l's occupancy bits (levels kBitsLevel .. D-1, each rounded to words).
+uint32_t occ_offset(uint32_t resolution, uint32_t level) {
+  uint32_t words = 0;
+  for (uint32_t l = kBitsLevel; l < level; ++l) {
+    const uint32_t n = resolution >> l;
+    words += (n * n * n + 31) / 32;
+  }
+  return words;
+}
 
 std::string svo_options(bool float_samples) {
   return "-DRP_VOXEL_FIXED_BITS=" + std::to_string(render::kVoxelFixedBits) +
@@ -30,13 +46,16 @@ SvoPass::SvoPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
   const std::string o = svo_options(float_samples);
   clear_nodes_ = programs.kernel("svo.cl", "svo_clear_nodes", o);
   flag_ = programs.kernel("svo.cl", "svo_flag", o);
+  occ_clear_ = programs.kernel("svo.cl", "svo_occ_clear", o);
+  occ_mark_ = programs.kernel("svo.cl", "svo_occ_mark", o);
+  occ_reduce_ = programs.kernel("svo.cl", "svo_occ_reduce", o);
+  flag_bits_ = programs.kernel("svo.cl", "svo_flag_bits", o);
   dilate_ = programs.kernel("svo.cl", "svo_dilate", o);
   count_ = programs.kernel("svo.cl", "svo_count", o);
   scan_ = programs.kernel("svo.cl", "svo_scan", o);
   allocate_ = programs.kernel("svo.cl", "svo_allocate", o);
-  clear_accum_ = programs.kernel("svo.cl", "svo_clear_accum", o);
-  inject_ = programs.kernel("svo.cl", "svo_inject", o);
-  resolve_ = programs.kernel("svo.cl", "svo_resolve", o);
+  link_ = programs.kernel("svo.cl", "svo_link", o);
+  leaves_ = programs.kernel("svo.cl", "svo_leaves", o);
   border_ = programs.kernel("svo.cl", "svo_border", o);
   mips_ = programs.kernel("svo.cl", "svo_mips", o);
   counter_ = ::cl::Buffer(context.context, CL_MEM_READ_WRITE, 2 * sizeof(cl_uint));
@@ -52,6 +71,11 @@ void SvoPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     fragments_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
                               fragment_capacity_ * RP_SVO_FRAGMENT_WORDS * sizeof(cl_uint));
   }
+  // The voxelizer's static surface cache costs 64 bytes a cached room sample: 36 MiB at 256^3
+  // on the demo, 145 MiB at 512^3, where the octree and its build scratch already take 251 MiB
+  // of the 256 MB budget (issue 17). So from 512^3 on the room is voxelized every frame like
+  // the moving objects (the same fragments; the cost: bench/results/epyc-2core-pocl-svo2.md).
+  voxelize_->set_cache_limit(resolution >= 512 ? 0 : UINT64_MAX);
   cl_uint count = 0;
   for (;;) {
     const cl_uint init[2] = {0, cl_uint(fragment_capacity_)};
@@ -60,36 +84,83 @@ void SvoPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                              bounce_cells);
     queue.enqueueReadBuffer(counter_, CL_TRUE, 0, sizeof(cl_uint), &count);
     if (count <= fragment_capacity_) break;
-    fragment_capacity_ = size_t(count) + count / 4;
+    // 1/16 slack: a moving scene does not regrow every frame (the demo's count varies by a
+    // few per cent); released first, so the old and the new list never coexist
+    fragment_capacity_ = size_t(count) + count / 16;
+    fragments_ = ::cl::Buffer();
     fragments_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
                               fragment_capacity_ * RP_SVO_FRAGMENT_WORDS * sizeof(cl_uint));
   }
   build(profiler, fragments_, count, resolution, svo);
+  svo.voxelizer_bytes = voxelize_->device_bytes();
+  if (solid_ && svo.solid_capacity > 0) {
+    SolidObjects objects;
+    objects.tumbler = solid_tumbler_;
+    for (const gpu::Instance& inst : scene.host_instances) {
+      if (inst.first_triangle != solid_first_triangle_ || inst.voxelize == 0) continue;
+      glm::mat4 model;
+      for (int c = 0; c < 4; ++c)
+        model[c] = glm::vec4(inst.model.c[c].x, inst.model.c[c].y, inst.model.c[c].z,
+                             inst.model.c[c].w);
+      objects.tumbler_world_to_local.push_back(glm::inverse(model));
+    }
+    for (const gpu::Sphere& sp : scene.host_spheres)
+      objects.spheres.emplace_back(sp.center_radius.x, sp.center_radius.y, sp.center_radius.z,
+                                   sp.center_radius.w);
+    // The host computes while the device builds; the upload does not block (the last
+    // frame's upload must be done before its data is overwritten).
+    if (solid_upload_() != nullptr) solid_upload_.wait();
+    const auto t0 = std::chrono::steady_clock::now();
+    solid_grid_ = svo_solid_grid(resolution, objects);
+    svo.solid_host_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    queue.enqueueWriteBuffer(svo.buffer, CL_FALSE, svo.solid_offset(), solid_grid_.size(),
+                             solid_grid_.data(), nullptr, &solid_upload_);
+    solid_header_[0] = cl_uint(svo.solid_offset());
+    solid_header_[1] = kSvoSolidFirstLevel;
+    queue.enqueueWriteBuffer(svo.buffer, CL_FALSE, RP_SVO_HDR_SOLID_OFFSET * sizeof(cl_uint),
+                             sizeof(solid_header_), solid_header_);
+  }
+}
+
+void SvoPass::enable_solid(uint32_t tumbler_first_triangle, const scene::TumblerShape& tumbler) {
+  solid_ = true;
+  solid_first_triangle_ = tumbler_first_triangle;
+  solid_tumbler_ = tumbler;
 }
 
 void SvoPass::allocate(render::SvoVolume& svo, size_t nodes, size_t samples) {
   svo.node_capacity = nodes;
   svo.sample_capacity = samples;
   svo.sample_bytes = float_samples_ ? 16 : 5;
+  svo.solid_capacity = solid_ ? svo_solid_bytes(svo.resolution) : 0;
+  svo.buffer = ::cl::Buffer();  // the old pools go first (the build restarts anyway)
   svo.buffer = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, svo.buffer_bytes());
 }
 
-void SvoPass::ensure_scratch(size_t nodes, size_t fragments, size_t leaves) {
+uint64_t SvoPass::device_bytes(const render::SvoVolume& svo) const {
+  uint64_t total = 0;
+  for (const ::cl::Buffer* b : {&svo.buffer, &fragments_, &counter_, &own_, &coords_, &cur_,
+                                &sums_, &totals_, &occ_})
+    if ((*b)() != nullptr) total += b->getInfo<CL_MEM_SIZE>();
+  return total;
+}
+
+void SvoPass::ensure_scratch(size_t nodes, size_t fragments) {
   const auto& ctx = context_->context;
   if (nodes > scratch_nodes_) {
     scratch_nodes_ = nodes;
+    own_ = ::cl::Buffer();  // released before their successors exist
+    coords_ = ::cl::Buffer();
+    sums_ = ::cl::Buffer();
     own_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, nodes * sizeof(cl_uint));
-    near_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, nodes * sizeof(cl_uint));
     coords_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, nodes * sizeof(cl_uint));
     sums_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, (nodes / kChunk + 1) * sizeof(cl_uint));
   }
   if (fragments > scratch_fragments_) {
     scratch_fragments_ = fragments;
+    cur_ = ::cl::Buffer();
     cur_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, fragments * sizeof(cl_uint));
-  }
-  if (leaves > scratch_leaves_) {
-    scratch_leaves_ = leaves;
-    accum_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, leaves * 8 * RP_VOXEL_ACCUM_WORDS * 4);
   }
 }
 
@@ -101,7 +172,8 @@ void SvoPass::build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragments, u
   svo.resolution = resolution;
   svo.depths = gpu::rp_svo_log2(resolution);
   svo.fragments = count;
-  if (svo.buffer() == nullptr || svo.sample_bytes != (float_samples_ ? 16u : 5u))
+  if (svo.buffer() == nullptr || svo.sample_bytes != (float_samples_ ? 16u : 5u) ||
+      svo.solid_capacity != (solid_ ? svo_solid_bytes(resolution) : 0))
     allocate(svo, std::max<size_t>(4096, size_t(count) / 2),
              std::max<size_t>(1 << 16, size_t(count) * 8));
   for (int attempt = 0; attempt < 16; ++attempt)
@@ -113,11 +185,47 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
                         uint32_t count, render::SvoVolume& svo) {
   ::cl::CommandQueue& queue = profiler.queue();
   const uint32_t D = svo.depths;
-  ensure_scratch(svo.node_capacity, std::max<uint32_t>(count, 1), 0);
+  // cur: one word per fragment of the list's capacity (not the count), so that a list that
+  // grew once is matched at once and a moving scene reallocates neither
+  ensure_scratch(svo.node_capacity, std::max<size_t>(fragment_capacity_, std::max(count, 1u)));
   const cl_uint zero = 0;
   queue.enqueueFillBuffer(coords_, zero, 0, sizeof(cl_uint));  // the root's coordinate
   const cl_uint brick_offset = cl_uint(render::SvoVolume::brick_offset(svo.node_capacity));
   const cl_uint alpha_offset = cl_uint(svo.alpha_offset());
+
+  // Occupancy bits for the depths whose brick level is >= kBitsLevel (last_bits_depth and
+  // above; none when D - 1 < kBitsLevel).
+  const int last_bits_depth = int(D) - 1 - int(kBitsLevel);
+  if (last_bits_depth >= 0) {
+    const uint32_t words = occ_offset(svo.resolution, D);
+    if (words > occ_words_) {
+      occ_words_ = words;
+      occ_ = ::cl::Buffer();
+      occ_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, words * sizeof(cl_uint));
+    }
+    occ_clear_.setArg(0, occ_);
+    occ_clear_.setArg(1, cl_uint(words));
+    profiler.enqueue("svo_nodes", occ_clear_, ::cl::NDRange(items(words)), ::cl::NDRange(kGroup));
+    if (count > 0) {
+      occ_mark_.setArg(0, fragments);
+      occ_mark_.setArg(1, cl_uint(count));
+      occ_mark_.setArg(2, occ_);
+      occ_mark_.setArg(3, cl_uint(kBitsLevel));
+      occ_mark_.setArg(4, cl_uint(D));
+      profiler.enqueue("svo_nodes", occ_mark_,
+                       ::cl::NDRange(items((count + kFlagChunk - 1) / kFlagChunk)),
+                       ::cl::NDRange(kGroup));
+    }
+    for (uint32_t l = kBitsLevel; l + 1 < D; ++l) {
+      const uint32_t n = svo.resolution >> (l + 1);
+      occ_reduce_.setArg(0, occ_);
+      occ_reduce_.setArg(1, cl_uint(occ_offset(svo.resolution, l)));
+      occ_reduce_.setArg(2, cl_uint(occ_offset(svo.resolution, l + 1)));
+      occ_reduce_.setArg(3, cl_uint(n));
+      profiler.enqueue("svo_nodes", occ_reduce_, ::cl::NDRange(items((n * n * n + 31) / 32)),
+                       ::cl::NDRange(kGroup));
+    }
+  }
 
   std::vector<uint32_t> first(D + 1, 0), nodes(D, 0), bricks(D, 0), brick_first(D, 0);
   nodes[0] = 1;
@@ -130,11 +238,19 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     }
     clear_nodes_.setArg(0, svo.buffer);
     clear_nodes_.setArg(1, own_);
-    clear_nodes_.setArg(2, near_);
-    clear_nodes_.setArg(3, f0);
-    clear_nodes_.setArg(4, n);
+    clear_nodes_.setArg(2, f0);
+    clear_nodes_.setArg(3, n);
     profiler.enqueue("svo_nodes", clear_nodes_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
-    if (count > 0) {
+    if (int(k) <= last_bits_depth) {
+      flag_bits_.setArg(0, own_);
+      flag_bits_.setArg(1, coords_);
+      flag_bits_.setArg(2, occ_);
+      flag_bits_.setArg(3, cl_uint(occ_offset(svo.resolution, D - 1 - k)));
+      flag_bits_.setArg(4, f0);
+      flag_bits_.setArg(5, n);
+      flag_bits_.setArg(6, cl_uint(k));
+      profiler.enqueue("svo_nodes", flag_bits_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
+    } else if (count > 0) {
       flag_.setArg(0, fragments);
       flag_.setArg(1, cl_uint(count));
       flag_.setArg(2, svo.buffer);
@@ -142,22 +258,22 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
       flag_.setArg(4, own_);
       flag_.setArg(5, cl_uint(k));
       flag_.setArg(6, cl_uint(D));
+      flag_.setArg(7, cl_uint(int(k) == last_bits_depth + 1 && k > 0 ? 1 : 0));
       const size_t flag_items = items((count + kFlagChunk - 1) / kFlagChunk);
       profiler.enqueue("svo_nodes", flag_, ::cl::NDRange(flag_items), ::cl::NDRange(kGroup));
     }
     if (k > 0) {
       dilate_.setArg(0, svo.buffer);
       dilate_.setArg(1, own_);
-      dilate_.setArg(2, near_);
-      dilate_.setArg(3, coords_);
-      dilate_.setArg(4, f0);
-      dilate_.setArg(5, n);
-      dilate_.setArg(6, cl_uint(k));
+      dilate_.setArg(2, coords_);
+      dilate_.setArg(3, f0);
+      dilate_.setArg(4, n);
+      dilate_.setArg(5, cl_uint(k));
       profiler.enqueue("svo_nodes", dilate_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
     }
     const cl_uint chunks = (n + kChunk - 1) / kChunk;
-    count_.setArg(0, own_);
-    count_.setArg(1, near_);
+    count_.setArg(0, svo.buffer);
+    count_.setArg(1, own_);
     count_.setArg(2, f0);
     count_.setArg(3, n);
     count_.setArg(4, cl_uint(kChunk));
@@ -175,12 +291,12 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     const size_t need_nodes = size_t(f0) + n + (leaf ? 0 : 8 * size_t(exist));
     const size_t need_samples = samples + size_t(exist) * size;
     if (need_nodes > svo.node_capacity || need_samples > svo.sample_capacity) {
-      // 1/8 slack: a moving scene does not reallocate every frame; the first frame's few
+      // 1/16 slack: a moving scene does not reallocate every frame; the first frame's few
       // rounds each grow one depth's worth
       const size_t grow_nodes =
-          need_nodes > svo.node_capacity ? need_nodes + need_nodes / 8 : svo.node_capacity;
+          need_nodes > svo.node_capacity ? need_nodes + need_nodes / 16 : svo.node_capacity;
       const size_t grow_samples = need_samples > svo.sample_capacity
-                                      ? need_samples + need_samples / 8
+                                      ? need_samples + need_samples / 16
                                       : svo.sample_capacity;
       allocate(svo, grow_nodes, grow_samples);
       return false;
@@ -189,49 +305,40 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     brick_first[k] = cl_uint(samples);
     allocate_.setArg(0, svo.buffer);
     allocate_.setArg(1, own_);
-    allocate_.setArg(2, near_);
-    allocate_.setArg(3, coords_);
-    allocate_.setArg(4, f0);
-    allocate_.setArg(5, n);
-    allocate_.setArg(6, cl_uint(kChunk));
-    allocate_.setArg(7, sums_);
-    allocate_.setArg(8, cl_uint(f0 + n));
-    allocate_.setArg(9, cl_uint(samples));
-    allocate_.setArg(10, cl_uint(size));
-    allocate_.setArg(11, cl_uint(leaf ? 1 : 0));
+    allocate_.setArg(2, coords_);
+    allocate_.setArg(3, f0);
+    allocate_.setArg(4, n);
+    allocate_.setArg(5, cl_uint(kChunk));
+    allocate_.setArg(6, sums_);
+    allocate_.setArg(7, cl_uint(f0 + n));
+    allocate_.setArg(8, cl_uint(samples));
+    allocate_.setArg(9, cl_uint(size));
+    allocate_.setArg(10, cl_uint(leaf ? 1 : 0));
     profiler.enqueue("svo_nodes", allocate_, ::cl::NDRange(items(chunks)), ::cl::NDRange(kGroup));
     samples += size_t(exist) * size;
     first[k + 1] = f0 + n;
     if (!leaf) nodes[k + 1] = 8 * exist;
   }
 
-  // Leaves: inject, resolve, borders.
+  // Leaves: fragment lists, sums and samples (and level 1's own samples), borders.
   const uint32_t L = D - 1;
-  const cl_uint leaves = bricks[L], leaf_first = brick_first[L];
-  ensure_scratch(svo.node_capacity, std::max<uint32_t>(count, 1), std::max<uint32_t>(leaves, 1));
-  const cl_uint accum_words = leaves * 8 * RP_VOXEL_ACCUM_WORDS;
-  clear_accum_.setArg(0, accum_);
-  clear_accum_.setArg(1, accum_words);
-  profiler.enqueue("svo_inject", clear_accum_, ::cl::NDRange(items(accum_words)),
-                   ::cl::NDRange(kGroup));
   if (count > 0) {
-    inject_.setArg(0, fragments);
-    inject_.setArg(1, cl_uint(count));
-    inject_.setArg(2, svo.buffer);
-    inject_.setArg(3, cur_);
-    inject_.setArg(4, accum_);
-    inject_.setArg(5, leaf_first);
-    inject_.setArg(6, cl_uint(D));
-    profiler.enqueue("svo_inject", inject_, ::cl::NDRange(items(count)), ::cl::NDRange(kGroup));
+    link_.setArg(0, cl_uint(count));
+    link_.setArg(1, cur_);
+    link_.setArg(2, own_);
+    profiler.enqueue("svo_inject", link_, ::cl::NDRange(items(count)), ::cl::NDRange(kGroup));
   }
-  resolve_.setArg(0, svo.buffer);
-  resolve_.setArg(1, accum_);
-  resolve_.setArg(2, cl_uint(first[L]));
-  resolve_.setArg(3, cl_uint(nodes[L]));
-  resolve_.setArg(4, brick_offset);
-  resolve_.setArg(5, alpha_offset);
-  resolve_.setArg(6, leaf_first);
-  profiler.enqueue("svo_inject", resolve_, ::cl::NDRange(items(nodes[L])), ::cl::NDRange(kGroup));
+  leaves_.setArg(0, fragments);
+  leaves_.setArg(1, cur_);
+  leaves_.setArg(2, own_);
+  leaves_.setArg(3, svo.buffer);
+  leaves_.setArg(4, cl_uint(first[L]));
+  leaves_.setArg(5, cl_uint(nodes[L]));
+  leaves_.setArg(6, brick_offset);
+  leaves_.setArg(7, alpha_offset);
+  leaves_.setArg(8, L > 0 ? cl_uint(brick_first[L - 1]) : cl_uint(RP_SVO_NO_BRICK));
+  leaves_.setArg(9, cl_uint(D));
+  profiler.enqueue("svo_inject", leaves_, ::cl::NDRange(items(nodes[L])), ::cl::NDRange(kGroup));
   const auto border = [&](uint32_t k, cl_uint directions, const char* pass) {
     border_.setArg(0, svo.buffer);
     border_.setArg(1, coords_);
@@ -246,15 +353,14 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   border(L, 1, "svo_border");
   for (uint32_t level = 1; level < D; ++level) {
     const uint32_t k = D - 1 - level;
-    mips_.setArg(0, svo.buffer);
-    mips_.setArg(1, accum_);
-    mips_.setArg(2, cl_uint(first[k]));
-    mips_.setArg(3, cl_uint(nodes[k]));
-    mips_.setArg(4, cl_uint(level));
-    mips_.setArg(5, brick_offset);
-    mips_.setArg(6, alpha_offset);
-    mips_.setArg(7, leaf_first);
-    profiler.enqueue("svo_mips", mips_, ::cl::NDRange(items(nodes[k])), ::cl::NDRange(kGroup));
+    if (level >= 2) {
+      mips_.setArg(0, svo.buffer);
+      mips_.setArg(1, cl_uint(first[k]));
+      mips_.setArg(2, cl_uint(nodes[k]));
+      mips_.setArg(3, brick_offset);
+      mips_.setArg(4, alpha_offset);
+      profiler.enqueue("svo_mips", mips_, ::cl::NDRange(items(nodes[k])), ::cl::NDRange(kGroup));
+    }
     border(k, 6, "svo_border");
   }
 
@@ -271,10 +377,13 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   for (uint32_t k = 0; k <= D; ++k) header_[RP_SVO_HDR_LEVEL_START + k] = first[k];
   queue.enqueueWriteBuffer(svo.buffer, CL_FALSE, 0, header_.size() * sizeof(cl_uint),
                            header_.data());
-  svo.scratch_bytes = uint64_t(fragment_capacity_) * RP_SVO_FRAGMENT_WORDS * 4 +
-                      uint64_t(scratch_nodes_) * 3 * 4 + (scratch_nodes_ / kChunk + 1) * 4 +
-                      uint64_t(scratch_fragments_) * 4 +
-                      uint64_t(scratch_leaves_) * 8 * RP_VOXEL_ACCUM_WORDS * 4;
+  // What the runtime says the buffers hold (CL_MEM_SIZE), not what the counts would need.
+  // Buffers only grow, and a buffer that grows is released before its successor is created,
+  // so the end of a build holds the most the octree path has had at once.
+  svo.device_bytes = device_bytes(svo);
+  peak_bytes_ = std::max(peak_bytes_, svo.device_bytes);
+  svo.scratch_bytes = svo.device_bytes - svo.buffer.getInfo<CL_MEM_SIZE>();
+  svo.peak_device_bytes = peak_bytes_;
   svo.nodes_per_depth = nodes;
   svo.bricks_per_depth = bricks;
   svo.samples = samples;

@@ -154,6 +154,19 @@ void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScen
   profiler.enqueue("voxelize", large_, ::cl::NDRange(large_items_), ::cl::NDRange(kSpanGroup));
   cl_uint samples = 0;
   queue.enqueueReadBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &samples);
+  if (uint64_t(samples) * kSampleBytes > cache_limit_) {
+    // Over the owner's memory limit (the octree at 512^3): no cache for this session, the
+    // instances are voxelized every frame like moving ones (the same volume, more time).
+    cache_enabled_ = false;
+    std::fill(still_.begin(), still_.end(), 0u);
+    std::fill(cached_host_.begin(), cached_host_.end(), 0u);
+    queue.enqueueWriteBuffer(cached_flags_, CL_TRUE, 0, cached_host_.size() * sizeof(cl_uint),
+                             cached_host_.data());
+    cache_ = ::cl::Buffer();
+    cache_capacity_ = 0;
+    cache_samples_ = 0;
+    return;
+  }
   if (samples > cache_capacity_) {
     cache_capacity_ = samples + samples / 4;
     cache_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, cache_capacity_ * kSampleBytes);
@@ -174,6 +187,14 @@ void VoxelizePass::set_bounce(const ::cl::Buffer* bounce, uint32_t bounce_cells)
     no_bounce_ = ::cl::Buffer(context_->context, CL_MEM_READ_ONLY, 4 * sizeof(float));
   bounce_ = bounce != nullptr ? bounce : &no_bounce_;
   bounce_cells_ = bounce != nullptr ? bounce_cells : 0;
+}
+
+uint64_t VoxelizePass::device_bytes() const {
+  uint64_t total = 0;
+  for (const ::cl::Buffer* b : {&no_bounce_, &no_texels_, &large_count_, &large_list_,
+                                &cached_flags_, &cache_, &cache_count_})
+    if ((*b)() != nullptr) total += b->getInfo<CL_MEM_SIZE>();
+  return total;
 }
 
 void VoxelizePass::run_fragments(rp::cl::Profiler& profiler, const render::GpuScene& scene,

@@ -45,6 +45,14 @@ class VoxelizePass {
                      const ::cl::Buffer& fragments, const ::cl::Buffer& counter,
                      const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0);
 
+  // Largest static surface cache allowed (bytes of its samples); a larger one is not built and
+  // the cache stays off for the pass's life (default: no limit).
+  void set_cache_limit(uint64_t bytes) { cache_limit_ = bytes; }
+
+  // Bytes of this pass's own device buffers (CL_MEM_SIZE): the static surface cache, the
+  // large-triangle list and their small companions (not the output it is given).
+  uint64_t device_bytes() const;
+
  private:
   // Everything but the dense clear and resolve: triangles, large triangles, cached samples
   // and spheres into target_accum_ / target_overflow_ at target_resolution_.
@@ -99,6 +107,7 @@ class VoxelizePass {
   size_t flags_capacity_ = 0;
   ::cl::Buffer cache_, cache_count_;     // 4 float4 per sample; sample count scratch
   size_t cache_capacity_ = 0;            // samples
+  uint64_t cache_limit_ = UINT64_MAX;    // set_cache_limit
   uint32_t cache_samples_ = 0;
   bool cache_valid_ = false;
   uint32_t cache_resolution_ = 0;

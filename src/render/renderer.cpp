@@ -78,6 +78,11 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   const std::string gi_options = svo ? "-DRP_GI_SVO" : "";
   if (svo) {
     svo_pass_ = std::make_unique<passes::SvoPass>(context, programs);
+    // The tumblers (the mesh named "tumbler", made from scene::TumblerShape{}) and the spheres
+    // are made solid at the octree's coarse levels (passes/svo_solid.h).
+    for (size_t m = 0; m < assets.meshes.size() && m < scene_->meshes.size(); ++m)
+      if (assets.meshes[m].name == "tumbler")
+        svo_pass_->enable_solid(scene_->meshes[m].first_triangle, scene::TumblerShape{});
   } else {
     voxelize_ = std::make_unique<passes::VoxelizePass>(context, programs);
     voxel_mips_ = std::make_unique<passes::VoxelMipsPass>(context, programs);

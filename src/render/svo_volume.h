@@ -25,7 +25,15 @@ struct SvoVolume {
   uint32_t fragments = 0;
   std::vector<uint32_t> nodes_per_depth, bricks_per_depth;
   uint64_t samples = 0;
-  uint64_t scratch_bytes = 0;  // the builder's buffers (fragments, flags, sums, leaf sums)
+  // Device memory of the octree path after the last build, from the runtime (CL_MEM_SIZE):
+  // the builder's scratch (fragment list, flags, owners / list links, coordinates, sums), that
+  // plus this buffer, and the most that sum has been after any build so far.
+  uint64_t scratch_bytes = 0;
+  uint64_t device_bytes = 0;
+  uint64_t peak_device_bytes = 0;
+  // The fragment voxelizer's own buffers (its static surface cache: 64 bytes a cached room
+  // sample), set by SvoPass::run.
+  uint64_t voxelizer_bytes = 0;
 
   // Levels as the dense chain counts them (log2 R + 1), what the cone tracer is given.
   uint32_t levels() const { return depths + 1; }
@@ -51,8 +59,16 @@ struct SvoVolume {
     }
     return total * 16;
   }
+  // Bytes of the solid grid held behind the brick pool (0: none; passes/svo_solid.h).
+  size_t solid_capacity = 0;
+  double solid_host_ms = 0.0;  // the last frame's grid: host computation (the device builds)
+  // Byte offset of the solid grid: after the brick pool, 16-byte aligned.
+  size_t solid_offset() const {
+    return ((brick_offset(node_capacity) * 16) + sample_capacity * sample_bytes + 15) / 16 * 16;
+  }
   size_t buffer_bytes() const {
-    return (brick_offset(node_capacity) * 16) + sample_capacity * sample_bytes;
+    return solid_capacity > 0 ? solid_offset() + solid_capacity
+                              : (brick_offset(node_capacity) * 16) + sample_capacity * sample_bytes;
   }
   // Byte offset of the opacity plane (packed samples): after the rgb plane's uints.
   size_t alpha_offset() const {

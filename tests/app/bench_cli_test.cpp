@@ -110,6 +110,26 @@ TEST(BenchCli, NoEfficiencyFigureAbove100Percent) {
   nlohmann::json j = nlohmann::json::parse(read_text(json));
   expect_no_impossible_fraction(j);
   EXPECT_EQ(j.at("devices").at(0).at("timing"), "device") << "PoCL's timestamps are usable";
+  EXPECT_EQ(j.at("devices").at(0).at("runs").at(0).at("gi_volume"), "dense");
+  EXPECT_FALSE(j.at("devices").at(0).at("runs").at(0).contains("octree_memory"));
+}
+
+// The octree's runs say so in the JSON, with the octree path's measured device memory.
+TEST(BenchCli, OctreeRunNamesItsVolumeAndMemory) {
+  TempDir dir;
+  auto json = dir / "svo.json";
+  CommandResult r = run_rolypoly("bench --size 64 --frames 1 --warmup 0 --gi-volume svo "
+                                 "--json " + shell_quote(json.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_TRUE(Contains(r.out, "octree device memory")) << r.out;
+  nlohmann::json j = nlohmann::json::parse(read_text(json));
+  const nlohmann::json& run = j.at("devices").at(0).at("runs").at(0);
+  EXPECT_EQ(run.at("gi_volume"), "svo");
+  EXPECT_EQ(run.at("voxels"), 256);
+  const nlohmann::json& m = run.at("octree_memory");
+  EXPECT_GT(m.at("pool_bytes").get<uint64_t>(), 1u << 20);
+  EXPECT_GT(m.at("device_bytes").get<uint64_t>(), m.at("pool_bytes").get<uint64_t>());
+  EXPECT_GE(m.at("peak_bytes").get<uint64_t>(), m.at("device_bytes").get<uint64_t>());
 }
 
 // A device whose timestamps are unusable (forced here with ROLYPOLY_TIMING=host, what the check

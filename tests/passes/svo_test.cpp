@@ -9,9 +9,15 @@
 //     format's rounding (RGB9E5 + opacity byte),
 //     so leaves = dense level 0, mips = dense mips, borders = neighbours' values;
 //   - cone samples and whole cones through the octree equal the dense ones (RP_GI_SVO);
-//   - determinism (two builds, identical pools).
+//   - determinism (two builds, identical pools);
+//   - the build's measured device memory within a bound from its counts;
+//   - the solid grid (closed objects' inside at the coarse levels) against a brute-force
+//     count, and the cone samples it raises against a C++ reference of the rule.
 #include <gtest/gtest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
@@ -26,6 +32,7 @@
 #include "kernels/shared/svo_layout.h"
 #include "kernels/shared/voxel_layout.h"
 #include "passes/svo.h"
+#include "passes/svo_solid.h"
 #include "passes/visibility.h"
 #include "passes/voxel_mips.h"
 #include "passes/voxelize.h"
@@ -136,8 +143,17 @@ struct Octree {
   }
 };
 
-Octree build_octree(Scene& s, uint32_t r, bool float_samples) {
+// The tumbler mesh's first triangle in the scene (the renderer's rule for enable_solid).
+uint32_t tumbler_first_triangle(const Scene& s) {
+  for (size_t m = 0; m < s.assets.meshes.size(); ++m)
+    if (s.assets.meshes[m].name == "tumbler") return s.gpu->meshes[m].first_triangle;
+  ADD_FAILURE() << "no tumbler mesh";
+  return 0;
+}
+
+Octree build_octree(Scene& s, uint32_t r, bool float_samples, bool solid = false) {
   passes::SvoPass pass(context(), programs(), float_samples);
+  if (solid) pass.enable_solid(tumbler_first_triangle(s), scene::TumblerShape{});
   Octree o;
   pass.run(s.profiler, *s.gpu, s.shadow, r, o.vol);
   s.profiler.collect();
@@ -326,6 +342,52 @@ TEST(Svo, BitIdenticalRepeats) {
                          b.words.begin() + long(bricks)));
 }
 
+// The build's device memory, measured (CL_MEM_SIZE of every buffer the octree path holds),
+// stays within what its counts allow: per fragment of the list's capacity (the count plus
+// 1/16 slack, at least the first list of 65536) the fragment's 24 bytes and one 4-byte
+// owner/link word; per node of the pool's capacity a flag word and a coordinate; the chunk
+// sums (1 word per 256 nodes), the occupancy bits of levels >= 3 and two small fixed buffers.
+// Nothing per leaf voxel (the
+// accumulators this replaced took 256 bytes a leaf: 107 MiB of the 512^3 demo).
+TEST(Svo, BuildScratchWithinBoundOfCounts) {
+  const uint32_t r = 64;
+  Scene s(r);
+  const Octree o = build_octree(s, r, false);
+  const uint64_t f = o.vol.fragments, nodes = o.vol.nodes(), cap = o.vol.node_capacity;
+  ASSERT_GT(f, 10000u);
+  const uint64_t list = std::max<uint64_t>(65536, f + f / 16);
+  uint64_t occupancy = 0;  // the top levels' occupancy bits: levels 3 .. log2 R - 1, in words
+  for (uint32_t n = r >> 3; n >= 2; n /= 2) occupancy += (uint64_t(n) * n * n + 31) / 32 * 4;
+  const uint64_t bound = list * (RP_SVO_FRAGMENT_WORDS * 4 + 4) + cap * 8 + (cap / 256 + 1) * 4 +
+                         (2 + RP_SVO_MAX_DEPTHS) * 4 + occupancy;
+  EXPECT_LE(o.vol.scratch_bytes, bound);
+  // the node pool's capacity: the first guess (4096 or fragments / 2) or the nodes + 1/16
+  EXPECT_LE(cap, std::max<uint64_t>({4096, f / 2, nodes + nodes / 16}));
+  // measured = pools + scratch, the peak so far at least that
+  EXPECT_EQ(o.vol.device_bytes,
+            uint64_t(o.vol.buffer.getInfo<CL_MEM_SIZE>()) + o.vol.scratch_bytes);
+  EXPECT_GE(o.vol.peak_device_bytes, o.vol.device_bytes);
+  EXPECT_GE(o.vol.buffer.getInfo<CL_MEM_SIZE>(), o.vol.node_bytes() + o.vol.brick_bytes());
+  std::printf("[ stats    ] R = %u: %llu fragments, %llu nodes (capacity %llu), scratch %llu "
+              "bytes (bound %llu), pools + scratch %llu\n",
+              r, (unsigned long long)f, (unsigned long long)nodes, (unsigned long long)cap,
+              (unsigned long long)o.vol.scratch_bytes, (unsigned long long)bound,
+              (unsigned long long)o.vol.device_bytes);
+}
+
+// Fragment word 4 (shared/svo_layout.h) gives back every facing word one contribution adds:
+// a plane's value (0 .. 128) in one half of an axis, a sphere's in both.
+TEST(Svo, PackedFacingWordsRoundTrip) {
+  for (uint32_t q = 0; q <= 128; ++q)
+    for (uint32_t halves = 0; halves < 4; ++halves) {
+      const uint32_t w = ((halves & 1) ? q : 0) | ((halves & 2) ? q << 16 : 0);
+      const uint32_t packed = gpu::rp_svo_pack_facing(w, (q * 7) % 129, (q * 7) % 129 << 16);
+      EXPECT_EQ(gpu::rp_svo_unpack_facing(packed, 0), w) << q << " " << halves;
+      EXPECT_EQ(gpu::rp_svo_unpack_facing(packed, 1), (q * 7) % 129);
+      EXPECT_EQ(gpu::rp_svo_unpack_facing(packed, 2), ((q * 7) % 129) << 16);
+    }
+}
+
 // Cone-tracing functions of common/cone_trace.h built twice: on the dense chain and, with
 // RP_GI_SVO, on the octree (float samples).
 const char* kConeKernels = R"CLC(
@@ -397,6 +459,175 @@ TEST(Svo, ConeSamplesEqualDense) {
   }
   EXPECT_EQ(diff, 0u);
   EXPECT_GT(nonzero, want.size() / 4);
+}
+
+// The solid grid (passes/svo_solid.h) against a brute-force count of 12^3 points per cell
+// inside a sphere and a tilted tumbler: level 2's cells that the surfaces cross within 0.15 of
+// it (the distance ramp's error on curved, tilted surfaces; 0.04 on average), the others
+// exact; level 3 the mean of level 2's cells (to the byte rounding).
+TEST(Svo, SolidGridMatchesBruteForce) {
+  const uint32_t r = 64;  // level 2: 16^3 cells of 0.125, level 3: 8^3, level 4: 4^3, level 5: 2^3
+  passes::SolidObjects objects;
+  const glm::mat4 model = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(-0.3f, -0.5f, 0.1f)),
+                                      0.4f, glm::normalize(glm::vec3(1.0f, 0.2f, 0.3f)));
+  objects.tumbler_world_to_local.push_back(glm::inverse(model));
+  objects.spheres.emplace_back(0.45f, 0.3f, -0.2f, 0.3f);
+  const std::vector<uint8_t> grid = passes::svo_solid_grid(r, objects);
+  ASSERT_EQ(grid.size(), passes::svo_solid_bytes(r));
+  ASSERT_EQ(grid.size(), size_t(16 * 16 * 16 + 8 * 8 * 8 + 4 * 4 * 4 + 2 * 2 * 2));
+  const uint32_t n = 16;
+  const float cell = 2.0f / float(n);
+  constexpr int kFine = 12;
+  std::vector<float> truth(size_t(n) * n * n);
+  size_t full = 0, partial = 0;
+  double partial_error = 0.0;
+  for (uint32_t z = 0; z < n; ++z)
+    for (uint32_t y = 0; y < n; ++y)
+      for (uint32_t x = 0; x < n; ++x) {
+        int inside = 0;
+        for (int k = 0; k < kFine * kFine * kFine; ++k) {
+          const glm::vec3 q = glm::vec3(-1.0f) +
+                              cell * (glm::vec3(float(x), float(y), float(z)) +
+                                      (glm::vec3(float(k % kFine), float((k / kFine) % kFine),
+                                                 float(k / (kFine * kFine))) + 0.5f) /
+                                          float(kFine));
+          const glm::vec3 local(glm::inverse(model) * glm::vec4(q, 1.0f));
+          inside += objects.tumbler.sdf(local) < 0.0f ||
+                    glm::length(q - glm::vec3(0.45f, 0.3f, -0.2f)) < 0.3f;
+        }
+        const float want = float(inside) / float(kFine * kFine * kFine);
+        truth[(size_t(z) * n + y) * n + x] = want;
+        const float got = float(grid[(size_t(z) * n + y) * n + x]) / 255.0f;
+        full += want == 1.0f;
+        partial += want > 0.0f && want < 1.0f;
+        if (want == 0.0f || want == 1.0f)
+          EXPECT_NEAR(got, want, 0.5f / 255.0f + 0.02f) << x << " " << y << " " << z;
+        else
+          EXPECT_NEAR(got, want, 0.15f) << x << " " << y << " " << z;
+        if (want > 0.0f && want < 1.0f) partial_error += std::fabs(got - want);
+      }
+  EXPECT_LT(partial_error / double(partial), 0.04);
+  EXPECT_GT(full, 8u);
+  EXPECT_GT(partial, 30u);
+  const size_t l3 = passes::svo_solid_level_offset(r, 3);
+  ASSERT_EQ(l3, size_t(16 * 16 * 16));
+  for (uint32_t z = 0; z < 8; ++z)
+    for (uint32_t y = 0; y < 8; ++y)
+      for (uint32_t x = 0; x < 8; ++x) {
+        float mean = 0.0f;
+        for (uint32_t o = 0; o < 8; ++o)
+          mean += float(grid[(size_t(2 * z + (o >> 2)) * n + 2 * y + ((o >> 1) & 1)) * n +
+                             2 * x + (o & 1)]) / 255.0f;
+        EXPECT_NEAR(float(grid[l3 + (size_t(z) * 8 + y) * 8 + x]) / 255.0f, mean / 8.0f,
+                    1.0f / 255.0f);
+      }
+}
+
+// Directional cone samples on the octree with the solid grid enabled = the dense chain's
+// sample (no grid) with its opacity raised to the grid's trilinear fraction at levels >= 2
+// (C++ reference of common/svo.h rp_svo_solid_apply over the grid the pass uploaded), and
+// unchanged below level 2.
+const char* kDirectionalKernel = R"CLC(
+__kernel void svo_directional(__global const float4* voxels, uint resolution,
+                              __global const float4* queries, __global const float4* dirs,
+                              __global float4* out) {
+  const size_t i = get_global_id(0);
+  const float3 d = dirs[i].xyz;
+  out[i] = rp_cone_directional(voxels, resolution, (uint)queries[i].w, rp_voxel_cone_dirs(d),
+                               d * d, queries[i].xyz, queries[i].xyz - d * 0.3f);
+}
+)CLC";
+
+std::vector<float> run_directional(bool svo, const ::cl::Buffer& volume, uint32_t r,
+                                   const std::vector<float>& queries,
+                                   const std::vector<float>& dirs) {
+  rp::cl::Context& ctx = context();
+  const std::string source =
+      std::string(svo ? "#define RP_GI_SVO 1\n#define RP_SVO_FLOAT_SAMPLES 1\n" : "") +
+      rp::cl::kernel_source("common/cone_trace.h") + kDirectionalKernel;
+  ::cl::Program p(ctx.context, source);
+  try {
+    p.build(std::vector<::cl::Device>{ctx.info.device});
+  } catch (const ::cl::Error&) {
+    throw rp::cl::Error("svo directional kernel: " +
+                        p.getBuildInfo<CL_PROGRAM_BUILD_LOG>(ctx.info.device));
+  }
+  ::cl::Kernel k(p, "svo_directional");
+  const size_t n = queries.size() / 4;
+  ::cl::Buffer q(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, queries.size() * 4,
+                 const_cast<float*>(queries.data()));
+  ::cl::Buffer d(ctx.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, dirs.size() * 4,
+                 const_cast<float*>(dirs.data()));
+  ::cl::Buffer out(ctx.context, CL_MEM_WRITE_ONLY, n * 16);
+  k.setArg(0, volume);
+  k.setArg(1, cl_uint(r));
+  k.setArg(2, q);
+  k.setArg(3, d);
+  k.setArg(4, out);
+  ctx.queue.enqueueNDRangeKernel(k, ::cl::NullRange, ::cl::NDRange(n));
+  std::vector<float> result(n * 4);
+  ctx.queue.enqueueReadBuffer(out, CL_TRUE, 0, result.size() * 4, result.data());
+  return result;
+}
+
+TEST(Svo, SolidGridRaisesCoarseOpacity) {
+  const uint32_t r = 16;  // levels 2 and 3 have solid cells (4^3, 2^3); small for oclgrind
+  Scene s(r);
+  const Dense d = build_dense(s, r);
+  const Octree o = build_octree(s, r, true, /*solid=*/true);
+  const uint32_t offset = o.header(RP_SVO_HDR_SOLID_OFFSET);
+  ASSERT_NE(offset, 0u);
+  ASSERT_EQ(o.header(RP_SVO_HDR_SOLID_LEVEL), passes::kSvoSolidFirstLevel);
+  const uint8_t* grid = reinterpret_cast<const uint8_t*>(o.words.data()) + offset;
+  // queries around the tumblers and the marble (world y from the floor up)
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<float> queries, dirs;
+  for (int i = 0; i < 4096; ++i) {
+    queries.insert(queries.end(), {0.9f * u(rng), -0.95f + 0.6f * (u(rng) + 1.0f), 0.9f * u(rng),
+                                   float(1 + i % 3)});  // levels 1 .. 3
+    float x = u(rng), y = u(rng), z = u(rng);
+    const float len = std::sqrt(x * x + y * y + z * z) + 1e-6f;
+    dirs.insert(dirs.end(), {x / len, y / len, z / len, 0.0f});
+  }
+  const std::vector<float> dense = run_directional(false, d.buffer, r, queries, dirs);
+  const std::vector<float> got = run_directional(true, o.vol.buffer, r, queries, dirs);
+  size_t raised = 0, bad = 0;
+  for (size_t i = 0; i < queries.size() / 4; ++i) {
+    const uint32_t level = uint32_t(queries[4 * i + 3]);
+    float want[4] = {dense[4 * i], dense[4 * i + 1], dense[4 * i + 2], dense[4 * i + 3]};
+    if (level >= passes::kSvoSolidFirstLevel) {
+      // trilinear over the level's cells, footprint as the dense sampler
+      const uint32_t n = r >> level;
+      const uint8_t* g = grid + passes::svo_solid_level_offset(r, level);
+      float f[3];
+      uint32_t x0[3], x1[3];
+      for (int k = 0; k < 3; ++k) {
+        const float uu = std::clamp((queries[4 * i + k] + 1.0f) * 0.5f * float(n) - 0.5f, 0.0f,
+                                    float(n) - 1.0f);
+        x0[k] = uint32_t(std::floor(uu));
+        f[k] = uu - std::floor(uu);
+        x1[k] = std::min(x0[k] + 1, n - 1);
+      }
+      float solid = 0.0f;
+      for (int c = 0; c < 8; ++c) {
+        const uint32_t x = (c & 1) ? x1[0] : x0[0], y = (c & 2) ? x1[1] : x0[1],
+                       z = (c & 4) ? x1[2] : x0[2];
+        const float w = ((c & 1) ? f[0] : 1.0f - f[0]) * ((c & 2) ? f[1] : 1.0f - f[1]) *
+                        ((c & 4) ? f[2] : 1.0f - f[2]);
+        solid += w * float(g[(size_t(z) * n + y) * n + x]) / 255.0f;
+      }
+      if (solid > want[3]) {
+        ++raised;
+        for (int c = 0; c < 3; ++c) want[c] = want[3] > 0.0f ? want[c] * solid / want[3] : 0.0f;
+        want[3] = solid;
+      }
+    }
+    for (int c = 0; c < 4; ++c)
+      bad += std::fabs(got[4 * i + c] - want[c]) > 1e-5f * (1.0f + std::fabs(want[c]));
+  }
+  EXPECT_EQ(bad, 0u);
+  EXPECT_GT(raised, 100u);
 }
 
 // Measurement (printed, not a criterion): the octree's passes at 256^3 for the demo frame and
