@@ -11,7 +11,8 @@
  *             all 0 on background and padding (every geometry weight is then 0)
  *   specular  3 planes: r, g, b radiance of this frame's reflection cone at the sample
  *             (coated surfaces, common/spec_cone.h and common/ssr.h; -1: a hole of the
- *             checkerboard, RP_INDIRECT_SPEC_CHECKER_TAN; -2: no coat; 0: background), and 3
+ *             checkerboard, RP_INDIRECT_SPEC_CHECKER_TAN; -2: no coat; -3: background, and
+ *             the padding, filled with -3 by the host: every value >= 0 is a traced coat), and 3
  *             more planes of the same after indirect_filter filled the holes (double-buffered
  *             by the host). Not reprojected: a reflection moves with the view, not with the
  *             surface, so the surface's reprojection would drag it. Only while the camera
@@ -144,7 +145,7 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
   const uint y = min(j * RP_INDIRECT_SCALE + (cell >> 2), frame->height - 1u);
   const uint pixel = y * frame->width + x;
   const float4 pos = position_plane[pixel];
-  float3 c = (float3)(0.0f), n = (float3)(0.0f), p = (float3)(0.0f), sc = (float3)(0.0f);
+  float3 c = (float3)(0.0f), n = (float3)(0.0f), p = (float3)(0.0f), sc = (float3)(-3.0f);
   float d = 0.0f, depth = 0.0f;
   if (pos.w != 0.0f) {
     p = pos.xyz;
@@ -283,10 +284,10 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
   sb *= inv_w;
 
   /* Reflections: samples left as holes by indirect_trace (-1, the checkerboard) take the
-   * geometry-weighted mean of their traced edge neighbours (coated samples with a value >= 0;
-   * uncoated ones hold -2, background and padding have no surface: view depth 0), else the
-   * plain mean of those (no neighbour on the same surface: a one-block sliver), else 0; traced
-   * samples pass through, uncoated ones become 0. Not accumulated over a moving view (see the
+   * geometry-weighted mean of their traced edge neighbours (coated samples: a value >= 0;
+   * uncoated ones hold -2, background and padding -3), else the plain mean of those (no
+   * neighbour on the same surface: a one-block sliver), else 0; traced samples pass through,
+   * uncoated ones and the background become 0. Not accumulated over a moving view (see the
    * header). One loop over the 3x3 neighbours: the edge ones (q < 4) fill the holes, all eight
    * bound the still-camera history below. */
   {
@@ -311,7 +312,7 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
       const int t = c + offs[q];
       const float8 t0 = vload8(0, specular + t), t1 = vload8(0, specular + pl + t);
       const float8 t2 = vload8(0, specular + 2 * pl + t);
-      const int8 traced = (t0 >= 0.0f) & (vload8(0, position + 3 * pl + t) > 0.0f);
+      const int8 traced = t0 >= 0.0f;
       if (fill && q < 4) {
         const float8 on = select((float8)(0.0f), (float8)(1.0f), traced);
         const float8 w = on * rp_indirect_geometry_weight8(

@@ -506,7 +506,7 @@ TEST(Indirect, ComposeUpsamplesTheBlocksAndMatchesTheDirectTerm) {
 // specular planes against the C++ cone (nearest-level, full-diameter steps; tan from the
 // roughness, at least 0.1) from the sample pixel's apex along its mirror direction (no SSR:
 // the pass runs without SsrInputs), the odd checkerboard samples left as holes (-1), uncoated
-// ones -2; indirect_filter's filled planes (a hole: the geometry-weighted mean of its traced
+// ones -2, the background -3; indirect_filter's filled planes (a hole: the geometry-weighted mean of its traced
 // coated edge neighbours, else their plain mean, else 0; uncoated: 0); and
 // light_compose's specular component = E_spec(mu_o) * those planes upsampled with the
 // irradiance's weights (block centres 4 i + 2, bilinear x geometry, the fallbacks).
@@ -524,7 +524,7 @@ TEST(Indirect, ReflectionConesPerBlockFilledAndUpsampled) {
     for (uint32_t i = 0; i < lr_w(); ++i) {
       const Pixel& q = sample_pixel(fx, i, j);
       const size_t s = at(int(i), int(j));
-      glm::dvec3 want(0.0);
+      glm::dvec3 want(-3.0);  // background
       if (q.covered && q.gloss == 0.0f) {
         want = glm::dvec3(-2.0);  // no coat
         ++matte;
@@ -635,7 +635,7 @@ TEST(Indirect, StillCameraReflectionsBlendTheClampedHistory) {
         for (int dj = -1; dj <= 1; ++dj)
           for (int di = -1; di <= 1; ++di) {
             const size_t t = at(int(i) + di, int(j) + dj);
-            if (fx.specular[t] >= 0.0f && fx.position[3 * plane + t] > 0.0f) {
+            if (fx.specular[t] >= 0.0f && fx.position[3 * plane + t] > 0.0f) {  // padding: -3
               lo = std::min(lo, double(fx.specular[o + t]));
               hi = std::max(hi, double(fx.specular[o + t]));
             }
