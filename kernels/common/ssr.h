@@ -1,7 +1,10 @@
 /* Screen-space reflections (issue 16 part 2, seed 003: a hierarchical min-Z depth march), used
- * by the fast mode's low-resolution trace (kernels/indirect.cl) for the sharp coats; the
- * reflection cone (common/spec_cone.h) is the fallback and is blended in where the screen has
- * no answer. OpenCL C only.
+ * by the fast mode's low-resolution trace (kernels/indirect.cl) and by the reference mode per
+ * pixel (kernels/light.cl, light_shade) for the sharp coats; the reflection cone
+ * (common/spec_cone.h) is the fallback and is blended in where the screen has no answer.
+ * OpenCL C only. The reference mode has no pyramid: it marches with top = 0 (level 0, one
+ * pixel per step, every pixel along the ray tested) and includes this header with
+ * RP_SSR_MAX_ITER 4096 and every ray marched (RP_SSR_MAX_TOWARDS_CAMERA 2).
  *
  * Depth: the visibility buffer's z01 = z_ndc * 0.5 + 0.5 (1 where nothing), this frame's,
  * rasterised with view_proj (jittered). The min-Z pyramid (kernels/ssr.cl, ssr_min_z): level
