@@ -64,9 +64,11 @@
 /* The reference mode's screen-space reflections (light_shade; issue 16): the march of
  * common/ssr.h at level 0 only (the reference mode builds no min-Z pyramid), so every pixel the
  * ray crosses is tested, one pixel per step: enough steps to cross a 2048-pixel screen
- * diagonally; and every ray is marched, also those turned towards the camera. */
+ * diagonally; every ray is marched, also those turned towards the camera; the colour at a hit
+ * is averaged over the coat's lobe there (rp_ssr_footprint). */
 #define RP_SSR_MAX_ITER 4096
 #define RP_SSR_MAX_TOWARDS_CAMERA 2.0f
+#define RP_SSR_FOOTPRINT 1
 #include "common/ssr.h"
 
 #ifndef RP_LIGHT_SPLIT

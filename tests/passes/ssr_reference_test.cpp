@@ -6,8 +6,10 @@
 // half roughness 0.1, SSR at full weight, the right half 0.31, half weight) in front of a matte
 // back wall (z = -0.9) whose previous-frame colour is a smooth gradient, and background around
 // them (rays that leave the picture miss). Expected specular component of every floor pixel:
-// E_spec(mu_o) (cone + c (ssr - cone)), c = (roughness fade) x (screen-edge fade), the cone the
-// C++ trace_aperture on a random chain; 0 for the rest. Without a previous frame the same
+// E_spec(mu_o) (cone + c (ssr - cone)), c = (roughness fade) x (screen-edge fade), ssr the
+// previous colour over the lobe's footprint at the hit (one pixel for the sharp half, about 1.6
+// pixels' radius for the other), the cone the C++ trace_aperture on a random chain; 0 for the
+// rest. Without a previous frame the same
 // pixels take the cone alone.
 #include <gtest/gtest.h>
 
@@ -87,7 +89,8 @@ Screen make_screen(const rp::scene::Camera& camera, float floor_left, float floo
         s.p = pw;
         s.n = glm::dvec3(0, 0, 1);
         s.gloss = 0.0f;
-        s.prev = glm::dvec3(0.5 + 0.3 * pw.x, 0.6 + 0.25 * pw.y, 0.4);
+        // green: stripes about 4 pixels apart, so that averaging over the lobe shows
+        s.prev = glm::dvec3(0.5 + 0.3 * pw.x, 0.6 + 0.3 * std::sin(4.0 * M_PI * pw.x), 0.4);
       }
       if (!s.covered) continue;
       const glm::dvec4 c = sc.vp * glm::dvec4(s.p, 1.0);
@@ -96,6 +99,32 @@ Screen make_screen(const rp::scene::Camera& camera, float floor_left, float floo
       if (s.gloss != 0.0f) s.prev = glm::dvec3(0.3);
     }
   return sc;
+}
+
+// The previous frame's colour over the coat's lobe at hit surfel h (pixel centre q, no
+// velocity): the GGX lobe's half width at half maximum, tan = 1.2872 a / (1 - 0.41421 a^2) with
+// a = roughness^2, times the distance from p, projected at the hit's view depth (h / 2 /
+// tan(fov_y / 2) pixels per unit of depth); under half a pixel the hit pixel alone, else the
+// mean of the hit pixel and the covered on-screen pixels at 8 points on that circle.
+glm::dvec3 footprint(const Screen& sc, const rp::scene::Camera& camera, const glm::dvec3& p,
+                     double rough, const Surfel& h, glm::dvec2 q) {
+  const double a = std::max(rough * rough, 1e-4);
+  const double tan_lobe = 1.2872 * a / (1.0 - 0.41421 * a * a);
+  const double radius = glm::length(h.p - p) * tan_lobe * 0.5 * kH /
+                        std::tan(glm::radians(double(camera.fov_y_deg)) * 0.5) / h.depth;
+  if (radius < 0.5) return h.prev;
+  glm::dvec3 sum = h.prev;
+  double n = 1.0;
+  for (int k = 0; k < 8; ++k) {
+    const double ang = k * 0.78539816;
+    const glm::dvec2 t = q + radius * glm::dvec2(std::cos(ang), std::sin(ang));
+    if (t.x < 0.0 || t.y < 0.0 || t.x >= kW || t.y >= kH) continue;
+    const Surfel& f = sc.px[int(t.y) * kW + int(t.x)];
+    if (!f.covered) continue;
+    sum += f.prev;
+    n += 1.0;
+  }
+  return sum / n;
 }
 
 // The C++ march: the ray from p along unit r in steps of 1e-3 world units, up to 3 units; a
@@ -183,10 +212,11 @@ TEST(Ssr, ReferenceModeReflectsTheScreenLikeAWorldSpaceMarch) {
   const std::vector<float> got = run_light(sc, chain, true);
   const std::vector<float> cone_only = run_light(sc, chain, false);
   const rp::shading::BrdfTables& tables = rp::shading::BrdfTables::get();
-  int floor = 0, hits = 0, faded = 0, misses = 0, exact = 0;
+  int floor = 0, hits = 0, faded = 0, misses = 0, exact = 0, spread = 0, spread_exact = 0;
   for (uint32_t i = 0; i < kW * kH; ++i) {
     const Surfel& s = sc.px[i];
     glm::dvec3 want(0.0), want_cone(0.0), tol(2e-5);
+    bool averaged = false;
     if (s.covered && s.gloss != 0.0f) {
       ++floor;
       const rp::scene::Specular coat = rp::shading::decode_gloss(s.gloss);
@@ -206,16 +236,18 @@ TEST(Ssr, ReferenceModeReflectsTheScreenLikeAWorldSpaceMarch) {
           const double edge = std::min(std::min(q.x, kW - q.x), std::min(q.y, kH - q.y)) /
                               (0.06 * std::min(kW, kH));
           c = std::clamp((0.34 - coat.roughness) / 0.06, 0.0, 1.0) * std::clamp(edge, 0.0, 1.0);
-          ssr = h.prev;
+          ssr = footprint(sc, camera, s.p, coat.roughness, h, q);
+          averaged = c > 0.0 && glm::length(ssr - h.prev) > 1e-6;  // over the lobe
+          spread += averaged;
         }
       }
       hits += c >= 0.999;
       faded += c > 0.0 && c < 0.999;
       misses += c == 0.0;
       want = e * (cone + c * (ssr - cone));
-      // one pixel along the wall's gradient (0.3 and 0.25 per unit; the wall is about 15
-      // pixels across 2 units): a march that lands one pixel off
-      tol = glm::dvec3(5e-3) * glm::abs(want) + 2e-5 + e * c * 0.045;
+      // one pixel along the wall's colours (the wall is about 15 pixels across 2 units; the
+      // stripes change green by up to 0.5 per pixel): a march that lands one pixel off
+      tol = glm::dvec3(5e-3) * glm::abs(want) + 2e-5 + e * c * glm::dvec3(0.045, 0.5, 0.0);
     }
     for (int ch = 0; ch < 3; ++ch) {
       EXPECT_NEAR(got[4 * i + ch], want[ch], tol[ch])
@@ -225,16 +257,21 @@ TEST(Ssr, ReferenceModeReflectsTheScreenLikeAWorldSpaceMarch) {
       EXPECT_NEAR(cone_only[4 * i + ch], want_cone[ch], 5e-3 * want_cone[ch] + 2e-5)
           << "no history, pixel " << i % kW << "," << i / kW;
     }
-    exact += s.gloss != 0.0f &&
-             std::abs(got[4 * i] - want.x) <= 5e-3 * std::abs(want.x) + 2e-5;
+    bool same = true;
+    for (int ch = 0; ch < 3; ++ch)
+      same = same && std::abs(got[4 * i + ch] - want[ch]) <= 5e-3 * std::abs(want[ch]) + 2e-5;
+    exact += s.gloss != 0.0f && same;
+    spread_exact += averaged && same;
   }
-  std::printf("reference SSR: %d floor pixels, %d full hits, %d faded, %d misses, %d as the C++ "
-              "march\n", floor, hits, faded, misses, exact);
+  std::printf("reference SSR: %d floor pixels, %d full hits, %d faded, %d misses, %d averaged "
+              "over the lobe, %d as the C++ march\n", floor, hits, faded, misses, spread, exact);
   EXPECT_GE(floor, 150);
   EXPECT_GE(hits, 40) << "floor pixels reflecting the wall at full weight";
   EXPECT_GE(faded, 40) << "half-weight coats and the screen edge";
   EXPECT_GE(misses, 10) << "rays leaving the picture";
-  EXPECT_GE(exact, floor * 9 / 10) << "the same hit pixel for most of the floor";
+  EXPECT_GE(spread, 5) << "hits whose colour is averaged over the lobe's footprint";
+  EXPECT_EQ(spread_exact, spread) << "the lobe's average as the C++ one";
+  EXPECT_GE(exact, floor * 95 / 100) << "the same hit pixel for (nearly) all of the floor";
 }
 
 }  // namespace
