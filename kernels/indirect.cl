@@ -359,7 +359,8 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
       const float8 g = rp_indirect_geometry_weight8(
           nx, ny, nz, px, py, pz, vload8(0, prev_geom + c), vload8(0, prev_geom + pl + c),
           vload8(0, prev_geom + 2 * pl + c), vload8(0, prev_geom + 3 * pl + c), inv_sigma);
-      const int8 keep = (g > 0.5f) & (none == 0) & valid & (lo_r <= hi_r);
+      /* s0 >= -1.5: a coat (not `none == 0`, a negated mask oclgrind 21.10 mis-evaluates) */
+      const int8 keep = (g > 0.5f) & (s0 >= -1.5f) & valid & (lo_r <= hi_r);
       const float8 pr = clamp(vload8(0, prev_specular_out + c), lo_r, hi_r);
       const float8 pg = clamp(vload8(0, prev_specular_out + pl + c), lo_g, hi_g);
       const float8 pb = clamp(vload8(0, prev_specular_out + 2 * pl + c), lo_b, hi_b);
