@@ -503,13 +503,13 @@ TEST(Indirect, ComposeUpsamplesTheBlocksAndMatchesTheDirectTerm) {
 }
 
 // The fast mode's reflection cones (issue 16 part 2) on the glossy fixture: indirect_trace's
-// specular planes against the C++ cone (nearest-level, full-diameter steps; tan from the
-// roughness, at least 0.1) from the sample pixel's apex along its mirror direction (no SSR:
-// the pass runs without SsrInputs), the odd checkerboard samples left as holes (-1), uncoated
-// ones -2, the background -3; indirect_filter's filled planes (a hole: the geometry-weighted mean of its traced
-// coated edge neighbours, else their plain mean, else 0; uncoated: 0); and
-// light_compose's specular component = E_spec(mu_o) * those planes upsampled with the
-// irradiance's weights (block centres 4 i + 2, bilinear x geometry, the fallbacks).
+// specular planes against the C++ cone (nearest-level, full-diameter steps; tan from the roughness,
+// at least 0.1) from the sample pixel's apex along its mirror direction (no SSR: the pass runs
+// without SsrInputs), the odd checkerboard samples left as holes (-1), uncoated ones -2, the
+// background -3; indirect_filter's filled planes (a hole: the geometry-weighted mean of its traced
+// coated edge neighbours, else their plain mean, else 0; uncoated: 0); and light_compose's specular
+// component = E_spec(mu_o) * those planes upsampled with the irradiance's weights (block centres 4
+// i + 2, bilinear x geometry, the fallbacks).
 TEST(Indirect, ReflectionConesPerBlockFilledAndUpsampled) {
   IndirectFixture fx(true);
   const auto lr = fx.run(2);

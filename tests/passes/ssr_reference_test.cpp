@@ -149,7 +149,8 @@ std::optional<glm::ivec2> march(const Screen& sc, const glm::dvec3& p, const glm
 }
 
 // The light pass's specular component (rgba per pixel) on the screen's GBuffer.
-std::vector<float> run_light(const Screen& sc, const rp::test::cone::Chain& chain, bool with_history) {
+std::vector<float> run_light(const Screen& sc, const rp::test::cone::Chain& chain,
+                             bool with_history) {
   auto& ctx = rp::test::context();
   rp::render::GpuScene scene(ctx.context, ctx.queue, rp::scene::SceneAssets{});
   rp::scene::FrameScene frame;
@@ -178,7 +179,8 @@ std::vector<float> run_light(const Screen& sc, const rp::test::cone::Chain& chai
   ctx.queue.enqueueWriteBuffer(gb.position, CL_TRUE, 0, n * 16, pos.data());
   ctx.queue.enqueueWriteBuffer(gb.emission, CL_TRUE, 0, n * 16, em.data());
   ctx.queue.enqueueWriteBuffer(gb.velocity, CL_TRUE, 0, n * 8, vel.data());
-  ::cl::Buffer depth(ctx.context, CL_MEM_READ_WRITE, n * 4), prev_hdr(ctx.context, CL_MEM_READ_WRITE, n * 16);
+  ::cl::Buffer depth(ctx.context, CL_MEM_READ_WRITE, n * 4);
+  ::cl::Buffer prev_hdr(ctx.context, CL_MEM_READ_WRITE, n * 16);
   ctx.queue.enqueueWriteBuffer(depth, CL_TRUE, 0, n * 4, z01.data());
   ctx.queue.enqueueWriteBuffer(prev_hdr, CL_TRUE, 0, n * 16, prev.data());
   rp::render::ShadowMap sm;  // every pixel in the lamp's shadow: no direct specular
