@@ -328,13 +328,15 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
         mb += on * t2;
         mw += on;
       }
-      if (still) { /* compare-selects: fmin / fmax cost about three instructions each */
+      if (still) { /* compare-selects: fmin / fmax cost about three instructions each. The
+                    * maximum needs no mask: what is not traced is negative in every channel
+                    * (-1, -2, -3), below any traced value; with nothing traced hi < lo. */
         lo_r = select(lo_r, t0, traced & (t0 < lo_r));
         lo_g = select(lo_g, t1, traced & (t1 < lo_g));
         lo_b = select(lo_b, t2, traced & (t2 < lo_b));
-        hi_r = select(hi_r, t0, traced & (t0 > hi_r));
-        hi_g = select(hi_g, t1, traced & (t1 > hi_g));
-        hi_b = select(hi_b, t2, traced & (t2 > hi_b));
+        hi_r = select(hi_r, t0, t0 > hi_r);
+        hi_g = select(hi_g, t1, t1 > hi_g);
+        hi_b = select(hi_b, t2, t2 > hi_b);
       }
     }
     if (fill) {
