@@ -12,7 +12,11 @@
  * was. R(p, r) is the radiance arriving along the mirror direction r = reflect(-v, n) through
  * one cone as wide as the coat's lobe (common/spec_cone.h; issue 16 part 2): per pixel in
  * light_shade (quadrilinear, half-diameter steps), from the indirect pass's low-resolution
- * samples in light_compose (upsampled like D, this frame's cones only). Pixels whose
+ * samples in light_compose (upsampled like D, this frame's cones only). For sharp coats
+ * (roughness < 0.34) both modes first try a screen-space reflection (common/ssr.h; in
+ * light_shade per pixel at level 0, reading ssr_depth (the visibility buffer's z01),
+ * ssr_prev_hdr (the previous frame's light output, a copy: hdr is written here) and
+ * ssr_velocity (the GBuffer's); ssr_history 0: none of them is read). Pixels whose
  * eight-pixel chunk has no coated surface skip the surface model entirely.
  *
  * I = FrameConstants.light_intensity.rgb (radiant intensity), l = unit vector from the surface to
@@ -57,6 +61,15 @@
 #include "common/indirect_simd.h"
 #include "common/brdf.h"
 #include "common/spec_cone.h"
+/* The reference mode's screen-space reflections (light_shade; issue 16): the march of
+ * common/ssr.h at level 0 only (the reference mode builds no min-Z pyramid), so every pixel the
+ * ray crosses is tested, one pixel per step: enough steps to cross a 2048-pixel screen
+ * diagonally; every ray is marched, also those turned towards the camera; the colour at a hit
+ * is averaged over the coat's lobe there (rp_ssr_footprint). */
+#define RP_SSR_MAX_ITER 4096
+#define RP_SSR_MAX_TOWARDS_CAMERA 2.0f
+#define RP_SSR_FOOTPRINT 1
+#include "common/ssr.h"
 
 #ifndef RP_LIGHT_SPLIT
 #define RP_LIGHT_SPLIT 0
@@ -115,6 +128,10 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
                           __global const float4* restrict voxels,
                           const uint voxel_resolution,
                           const uint voxel_levels,
+                          __global const float* restrict ssr_depth,
+                          __global const float4* restrict ssr_prev_hdr,
+                          __global const float2* restrict ssr_velocity,
+                          const uint ssr_history,
 #if RP_LIGHT_SPLIT
                           __global float4* restrict direct_out,
                           __global float4* restrict indirect_out,
@@ -155,12 +172,25 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
   const float3 spec_direct = (float3)(sp[0].s0, sp[1].s0, sp[2].s0) * lamp;
   const float3 direct = albedo * (float3)(w[0].s0, w[1].s0, w[2].s0) * lamp + spec_direct;
   const float3 irr = rp_cone_diffuse16(voxels, voxel_resolution, voxel_levels, p, n);
-  /* the coat's share: one reflection cone (common/spec_cone.h), weighted by E_spec(mu_o) */
-  const float3 spec_indirect =
-      emission.w != 0.0f
-          ? (float3)(e[0].s0, e[1].s0, e[2].s0) *
-                rp_spec_cone(frame, voxels, voxel_resolution, voxel_levels, emission.w, p, n, 1)
-          : (float3)(0.0f);
+  /* the coat's share, weighted by E_spec(mu_o): the screen-space reflection (common/ssr.h,
+   * level 0, the previous frame's output at the hit) with confidence c, and the reflection cone
+   * (common/spec_cone.h) for the rest, cone + c (ssr - cone), as in the fast mode's
+   * indirect_trace; the cone is not traced where c = 1 */
+  float3 spec_indirect = (float3)(0.0f);
+  if (emission.w != 0.0f) {
+    const float3 v = normalize(frame->camera_pos.xyz - p);
+    const float3 r = 2.0f * fmax(dot(n, v), 0.0f) * n - v;
+    const float4 ssr = rp_ssr(frame, ssr_depth, ssr_depth, normal_depth_plane, ssr_prev_hdr,
+                              ssr_velocity, 0u, ssr_history, p, r,
+                              rp_brdf_code_roughness(emission.w));
+    float3 refl = ssr.xyz;
+    if (ssr.w < 1.0f) {
+      const float3 cone =
+          rp_spec_cone(frame, voxels, voxel_resolution, voxel_levels, emission.w, p, n, 1);
+      refl = cone + ssr.w * (ssr.xyz - cone);
+    }
+    spec_indirect = (float3)(e[0].s0, e[1].s0, e[2].s0) * refl;
+  }
   const float3 indirect = albedo * (float3)(iw[0].s0, iw[1].s0, iw[2].s0) * irr + spec_indirect;
   hdr[pixel] = (float4)(direct + indirect + emission.xyz, 1.0f);
 #if RP_LIGHT_SPLIT

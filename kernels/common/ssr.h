@@ -1,7 +1,11 @@
 /* Screen-space reflections (issue 16 part 2, seed 003: a hierarchical min-Z depth march), used
- * by the fast mode's low-resolution trace (kernels/indirect.cl) for the sharp coats; the
- * reflection cone (common/spec_cone.h) is the fallback and is blended in where the screen has
- * no answer. OpenCL C only.
+ * by the fast mode's low-resolution trace (kernels/indirect.cl) and by the reference mode per
+ * pixel (kernels/light.cl, light_shade) for the sharp coats; the reflection cone
+ * (common/spec_cone.h) is the fallback and is blended in where the screen has no answer.
+ * OpenCL C only. The reference mode has no pyramid: it marches with top = 0 (level 0, one
+ * pixel per step, every pixel along the ray tested) and includes this header with
+ * RP_SSR_MAX_ITER 4096, every ray marched (RP_SSR_MAX_TOWARDS_CAMERA 2) and the colour at a
+ * hit averaged over the lobe (RP_SSR_FOOTPRINT 1).
  *
  * Depth: the visibility buffer's z01 = z_ndc * 0.5 + 0.5 (1 where nothing), this frame's,
  * rasterised with view_proj (jittered). The min-Z pyramid (kernels/ssr.cl, ssr_min_z): level
@@ -57,6 +61,11 @@
 #define RP_SSR_START 1.5f       /* pixels from the ray's origin before the first test */
 #define RP_SSR_THICKNESS 0.06f  /* world units a surface is assumed thick (plus 2 % of depth) */
 #define RP_SSR_EDGE 0.06f       /* fraction of the smaller screen side faded at the borders */
+/* 1: the colour at a hit is averaged over the coat's lobe (rp_ssr_footprint; the reference
+ * mode); 0: the hit pixel alone (the fast mode, whose 4x4 blocks average anyway). */
+#ifndef RP_SSR_FOOTPRINT
+#define RP_SSR_FOOTPRINT 0
+#endif
 #ifndef RP_SSR_ROUGH_FULL
 #define RP_SSR_ROUGH_FULL 0.28f
 #endif
@@ -154,6 +163,50 @@ inline int rp_ssr_march(__global const FrameConstants* restrict frame,
   return 0;
 }
 
+#if RP_SSR_FOOTPRINT
+/* The reference mode's colour at a hit (RP_SSR_FOOTPRINT 1): the previous frame's light
+ * output averaged over the coat's lobe where it meets the hit surface, instead of one pixel,
+ * which carries that frame's shadow and jitter noise into the reflection. The lobe's radius
+ * there is its half width at half maximum (rp_brdf_spec_cone_tan's formula, without the voxel
+ * volume's 0.1 .. 1 clamp) times the distance from p to the hit (the hit's world position from
+ * its pixel centre and z01 through inv_view_proj), in pixels at the hit's view depth
+ * (view_proj's second row has length 1 / tan(fov_y / 2) before the jitter's tiny shift: h / 2
+ * of them per unit of depth). Below half a pixel: the hit pixel alone (c). Else the mean of the
+ * hit pixel and 8 points on that circle around `prev` (the hit moved back by its velocity),
+ * those on screen and covered. */
+inline float3 rp_ssr_footprint(__global const FrameConstants* restrict frame,
+                               __global const float* restrict depth,
+                               __global const float4* restrict normal_depth,
+                               __global const float4* restrict prev_hdr, int2 hp, float2 prev,
+                               float3 p, float rough, float3 c) {
+  const uint w = frame->width, h = frame->height;
+  const uint hit = (uint)hp.y * w + (uint)hp.x;
+  const float a = fmax(rough * rough, 1.0e-4f);
+  const float tan_lobe = 1.2872f * a / (1.0f - 0.41421f * a * a);
+  const float3 ndc = (float3)(((float)hp.x + 0.5f) / (float)w * 2.0f - 1.0f,
+                              1.0f - ((float)hp.y + 0.5f) / (float)h * 2.0f,
+                              depth[hit] * 2.0f - 1.0f);
+  const float4 q = rp_mat4_mul_point(frame->inv_view_proj, ndc);
+  const rp_mat4 m = frame->view_proj;
+  const float p11 = length((float3)(m.c[0].y, m.c[1].y, m.c[2].y));
+  const float radius = length(q.xyz / q.w - p) * tan_lobe * p11 * 0.5f * (float)h /
+                       normal_depth[hit].w;
+  if (!(radius >= 0.5f)) return c;
+  float3 sum = c;
+  float n = 1.0f;
+  for (int k = 0; k < 8; ++k) {
+    const float ang = (float)k * 0.78539816f;
+    const float2 t = prev + radius * (float2)(cos(ang), sin(ang));
+    if (t.x < 0.0f || t.y < 0.0f || t.x >= (float)w || t.y >= (float)h) continue;
+    const float4 v = prev_hdr[(uint)t.y * w + (uint)t.x];
+    if (v.w == 0.0f) continue;
+    sum += v.xyz;
+    n += 1.0f;
+  }
+  return sum / n;
+}
+#endif
+
 /* Screen-space reflection of the mirror ray from p (unit normal n) along r for a coat of
  * roughness `rough`: the previous frame's radiance at the hit (rgb) and the confidence (w);
  * see the header. history: whether prev_hdr holds the previous frame. */
@@ -177,8 +230,11 @@ inline float4 rp_ssr(__global const FrameConstants* restrict frame,
   const float2 prev = (float2)((float)hp.x + 0.5f, (float)hp.y + 0.5f) - velocity[hit];
   if (prev.x < 0.0f || prev.y < 0.0f || prev.x >= (float)w || prev.y >= (float)h)
     return (float4)(0.0f);
-  const float4 c = prev_hdr[(uint)prev.y * w + (uint)prev.x];
+  float4 c = prev_hdr[(uint)prev.y * w + (uint)prev.x];
   if (c.w == 0.0f) return (float4)(0.0f);
+#if RP_SSR_FOOTPRINT
+  c.xyz = rp_ssr_footprint(frame, depth, normal_depth, prev_hdr, hp, prev, p, rough, c.xyz);
+#endif
   const float edge = fmin(fmin(prev.x, (float)w - prev.x), fmin(prev.y, (float)h - prev.y)) /
                      (RP_SSR_EDGE * (float)min(w, h));
   return (float4)(c.xyz, fade_r * clamp(edge, 0.0f, 1.0f));

@@ -63,10 +63,13 @@ void IndirectPass::resize(uint32_t width, uint32_t height) {
   // Defined contents from the start (the filter ignores the previous frame's planes until
   // history_valid_, but they are read).
   // The padding must stay zero (kernels/common/indirect.h); the kernels write only samples.
+  // Except in the traced reflections, which only indirect_filter reads: -3 there marks "no
+  // surface", like the background's samples, so that every value >= 0 is a traced coat.
   for (::cl::Buffer* b :
-       {&radiance_, &specular_, &specular_filled_[0], &specular_filled_[1], &position_, &geometry_[0],
+       {&radiance_, &specular_filled_[0], &specular_filled_[1], &position_, &geometry_[0],
         &geometry_[1], &history_[0], &history_[1]})
     context_->queue.enqueueFillBuffer(*b, 0.0f, 0, b->getInfo<CL_MEM_SIZE>());
+  context_->queue.enqueueFillBuffer(specular_, -3.0f, 0, specular_.getInfo<CL_MEM_SIZE>());
   size_t hiz = 1;
   for (uint32_t k = 1, lw = width, lh = height; k <= ssr_top_level(width, height); ++k) {
     lw = (lw + 1) / 2;

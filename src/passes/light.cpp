@@ -132,7 +132,7 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                     const render::GBuffer& gbuffer, const render::ShadowMap& shadow,
                     const ::cl::Buffer& voxels, uint32_t voxel_resolution,
                     uint32_t voxel_levels, ::cl::Buffer& hdr, LightComponents* components,
-                    const LowResIndirect* indirect) {
+                    const LowResIndirect* indirect, const SsrInputs* ssr) {
   check_sizes(scene, gbuffer, shadow);
   check_voxel_chain("light pass", voxels, voxel_resolution, voxel_levels, !gi_options_.empty());
   const uint32_t w = scene.constants.width, h = scene.constants.height;
@@ -174,6 +174,13 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     k.setArg(arg++, voxels);
     k.setArg(arg++, cl_uint(voxel_resolution));
     k.setArg(arg++, cl_uint(voxel_levels));
+    // the screen-space reflections (light_shade reads none of these when ssr_history is 0)
+    if (ssr != nullptr && ssr->prev_hdr == &hdr)
+      throw rp::cl::Error("light pass: the reflections' previous frame must not be the output");
+    k.setArg(arg++, ssr != nullptr ? *ssr->depth : visibility_);
+    k.setArg(arg++, ssr != nullptr ? *ssr->prev_hdr : gbuffer.position);
+    k.setArg(arg++, ssr != nullptr ? *ssr->velocity : gbuffer.velocity);
+    k.setArg(arg++, cl_uint(ssr != nullptr ? 1 : 0));
   }
   if (components != nullptr) {
     k.setArg(arg++, components->direct);

@@ -62,6 +62,9 @@ class LightPass {
   // kernel variant; the default path writes hdr only).
   // indirect: when given, the indirect light is upsampled from it (the fast mode; the voxel
   // chain is then only checked, not read); else the 16 cones are traced per pixel.
+  // ssr (the reference mode, without `indirect`): the screen-space reflections' inputs;
+  // ssr->prev_hdr must not be `hdr` (the previous frame's output, copied). nullptr: no previous
+  // frame, the reflection cone alone.
   // shadow.mips must hold at least shadow_mip_planes(filter()) planes (the shadow filter pass).
   // Builds the hdr-only kernel of one variant now (the renderer builds its kernels up front).
   void prepare(bool upsample) {
@@ -73,7 +76,7 @@ class LightPass {
            const render::GBuffer& gbuffer, const render::ShadowMap& shadow,
            const ::cl::Buffer& voxels, uint32_t voxel_resolution, uint32_t voxel_levels,
            ::cl::Buffer& hdr, LightComponents* components = nullptr,
-           const LowResIndirect* indirect = nullptr);
+           const LowResIndirect* indirect = nullptr, const SsrInputs* ssr = nullptr);
 
  private:
   void check_sizes(const render::GpuScene& scene, const render::GBuffer& gbuffer,

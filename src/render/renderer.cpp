@@ -117,6 +117,7 @@ void Renderer::resize(uint32_t width, uint32_t height) {
     vis_.resize(context_.context, width, height);
     gbuffer_.resize(context_.context, width, height);
     hdr_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
+    if (!indirect_) hdr_prev_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
     for (::cl::Buffer& b : post_) b = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
     rgba8_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 4);
   } catch (const ::cl::Error& e) {
@@ -124,6 +125,7 @@ void Renderer::resize(uint32_t width, uint32_t height) {
     throw;
   }
   components_written_ = false;  // what they hold is of the old size
+  hdr_prev_valid_ = false;
   update_light_components();    // reallocate at the new size (when they are needed)
 }
 
@@ -199,9 +201,16 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
       low_res = indirect_->run(profiler_, *scene_, gbuffer_, gi_buffer(), gi_resolution(),
                                gi_levels(), &ssr);
     }
+    // the reference mode's screen-space reflections read the previous frame's light output
+    const passes::SsrInputs ssr_reference{&vis_.depth, &hdr_prev_, &gbuffer_.velocity};
+    const bool ssr_history = !indirect_ && hdr_prev_valid_;
+    if (ssr_history)
+      profiler_.queue().enqueueCopyBuffer(hdr_, hdr_prev_, 0, 0,
+                                          size_t(settings_.width) * settings_.height * 16);
     light_->run(profiler_, *scene_, gbuffer_, shadow_, gi_buffer(), gi_resolution(),
                 gi_levels(), hdr_, split ? &light_components_ : nullptr,
-                indirect_ ? &low_res : nullptr);
+                indirect_ ? &low_res : nullptr, ssr_history ? &ssr_reference : nullptr);
+    hdr_prev_valid_ = !indirect_;
     if (view_.view == passes::DebugView::kFinal) {
       const uint32_t w = settings_.width, h = settings_.height;
       const ::cl::Buffer* colour = &hdr_;
@@ -265,6 +274,7 @@ void Renderer::set_shadows(ShadowMode mode) {
 
 void Renderer::reset_view_history() {
   taa_->reset_history();
+  hdr_prev_valid_ = false;
   if (indirect_) indirect_->reset_history();
 }
 

@@ -240,6 +240,12 @@ class Renderer {
   SvoVolume svo_;                       // kSvo
   std::unique_ptr<passes::SvoPass> svo_pass_;  // kSvo
   ::cl::Buffer hdr_;    // float4 per pixel: the light pass's output
+  // The reference mode's screen-space reflections (issue 16): the previous frame's hdr_, copied
+  // before the light pass overwrites it (float4 per pixel; not allocated in the fast mode, whose
+  // indirect pass reads hdr_ before the light pass), and whether it holds that frame (not after
+  // a start, resize, reset or camera cut).
+  ::cl::Buffer hdr_prev_;
+  bool hdr_prev_valid_ = false;
   ::cl::Buffer post_[2];  // float4 per pixel: post-processing ping-pong
   std::optional<glm::mat4> last_view_;  // camera of the previous frame (camera-cut detection)
   ::cl::Buffer rgba8_;  // uint per pixel

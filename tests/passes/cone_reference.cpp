@@ -299,4 +299,23 @@ glm::dvec3 diffuse(const Chain& c, const glm::dvec3& p, const glm::dvec3& n, boo
   return sum / 16.0 * (issue14 ? 1.0 - near_occlusion(c, p, n) : 1.0);
 }
 
+Chain random_chain(uint32_t resolution, uint32_t seed) {
+  uint32_t levels = 1;
+  while ((resolution >> (levels - 1)) > 1) ++levels;
+  Chain c(resolution, levels);
+  uint32_t state = seed;
+  auto next = [&state] {  // small LCG: deterministic, platform independent
+    state = state * 1664525u + 1013904223u;
+    return double(state >> 8) / double(1u << 24);
+  };
+  for (glm::vec4& v : c.voxels) {
+    if (&v - c.voxels.data() >= ptrdiff_t(resolution) * resolution * resolution) break;
+    if (next() > 0.3) continue;
+    double a = 0.6 * next();
+    v = glm::vec4(glm::dvec4(3.0 * a * next(), 3.0 * a * next(), 3.0 * a * next(), a));
+  }
+  c.build_mips();
+  return c;
+}
+
 }  // namespace rp::test::cone

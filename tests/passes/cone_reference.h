@@ -106,4 +106,8 @@ glm::dvec3 diffuse(const Chain& c, const glm::dvec3& p, const glm::dvec3& n,
 // the kernel's table.
 void diffuse_cones(const glm::dvec3& n, glm::dvec3 dirs[16]);
 
+// A random voxel chain (coloured, translucent, sparse; a small LCG from `seed`, so the same on
+// every platform) of resolution^3 with every level, built with build_mips.
+Chain random_chain(uint32_t resolution, uint32_t seed);
+
 }  // namespace rp::test::cone

@@ -503,13 +503,13 @@ TEST(Indirect, ComposeUpsamplesTheBlocksAndMatchesTheDirectTerm) {
 }
 
 // The fast mode's reflection cones (issue 16 part 2) on the glossy fixture: indirect_trace's
-// specular planes against the C++ cone (nearest-level, full-diameter steps; tan from the
-// roughness, at least 0.1) from the sample pixel's apex along its mirror direction (no SSR:
-// the pass runs without SsrInputs), the odd checkerboard samples left as holes (-1), uncoated
-// ones -2; indirect_filter's filled planes (a hole: the geometry-weighted mean of its traced
-// coated edge neighbours, else their plain mean, else 0; uncoated: 0); and
-// light_compose's specular component = E_spec(mu_o) * those planes upsampled with the
-// irradiance's weights (block centres 4 i + 2, bilinear x geometry, the fallbacks).
+// specular planes against the C++ cone (nearest-level, full-diameter steps; tan from the roughness,
+// at least 0.1) from the sample pixel's apex along its mirror direction (no SSR: the pass runs
+// without SsrInputs), the odd checkerboard samples left as holes (-1), uncoated ones -2, the
+// background -3; indirect_filter's filled planes (a hole: the geometry-weighted mean of its traced
+// coated edge neighbours, else their plain mean, else 0; uncoated: 0); and light_compose's specular
+// component = E_spec(mu_o) * those planes upsampled with the irradiance's weights (block centres 4
+// i + 2, bilinear x geometry, the fallbacks).
 TEST(Indirect, ReflectionConesPerBlockFilledAndUpsampled) {
   IndirectFixture fx(true);
   const auto lr = fx.run(2);
@@ -524,7 +524,7 @@ TEST(Indirect, ReflectionConesPerBlockFilledAndUpsampled) {
     for (uint32_t i = 0; i < lr_w(); ++i) {
       const Pixel& q = sample_pixel(fx, i, j);
       const size_t s = at(int(i), int(j));
-      glm::dvec3 want(0.0);
+      glm::dvec3 want(-3.0);  // background
       if (q.covered && q.gloss == 0.0f) {
         want = glm::dvec3(-2.0);  // no coat
         ++matte;
@@ -610,10 +610,13 @@ TEST(Indirect, ReflectionConesPerBlockFilledAndUpsampled) {
 }
 
 // With a still camera the filled reflections blend the previous frame's value at the same
-// block, clamped to the range of this frame's values at the block and its traced edge
-// neighbours, with weight 1 - RP_INDIRECT_SPEC_ALPHA (0.25 for the current frame): here the
-// light doubles between two frames of the same view, so every traced block's value is
-// clamp(previous, lo, hi) + 0.25 (current - that).
+// block, clamped to the range of this frame's traced values at the block and its eight
+// neighbours (traced: a coated sample on the checkerboard, value >= 0, with a surface, view depth
+// > 0), with weight 1 - RP_INDIRECT_SPEC_ALPHA (0.1 for the current frame): here the light
+// doubles between two frames of the same view, so every traced block's value is
+// clamp(previous, lo, hi) + 0.1 (current - that). On the checkerboard a traced block's edge
+// neighbours are holes, so its range comes from its diagonal neighbours: with the edge ones
+// alone (the first version) the range was the block's own value and the history did nothing.
 TEST(Indirect, StillCameraReflectionsBlendTheClampedHistory) {
   IndirectFixture fx(true);
   fx.run(0);
@@ -621,7 +624,7 @@ TEST(Indirect, StillCameraReflectionsBlendTheClampedHistory) {
   fx.scale_voxels(2.0f);
   const auto lr = fx.run(1);
   const size_t plane = lr.plane;
-  int blended = 0;
+  int blended = 0, widened = 0;
   for (uint32_t j = 0; j < lr_h(); ++j)
     for (uint32_t i = 0; i < lr_w(); ++i) {
       const size_t s = at(int(i), int(j));
@@ -629,20 +632,24 @@ TEST(Indirect, StillCameraReflectionsBlendTheClampedHistory) {
       for (int c = 0; c < 3; ++c) {
         const size_t o = c * plane;
         double lo = fx.specular[o + s], hi = lo;
-        for (const size_t t : {at(int(i) - 1, int(j)), at(int(i) + 1, int(j)), at(int(i), int(j) - 1),
-                            at(int(i), int(j) + 1)})
-          if (fx.specular[t] >= 0.0f) {
-            lo = std::min(lo, double(fx.specular[o + t]));
-            hi = std::max(hi, double(fx.specular[o + t]));
+        for (int dj = -1; dj <= 1; ++dj)
+          for (int di = -1; di <= 1; ++di) {
+            const size_t t = at(int(i) + di, int(j) + dj);
+            if (fx.specular[t] >= 0.0f && fx.position[3 * plane + t] > 0.0f) {  // padding: -3
+              lo = std::min(lo, double(fx.specular[o + t]));
+              hi = std::max(hi, double(fx.specular[o + t]));
+            }
           }
         const double prev = std::clamp(double(before[o + s]), lo, hi);
-        const double want = prev + 0.25 * (fx.specular[o + s] - prev);
+        const double want = prev + 0.1 * (fx.specular[o + s] - prev);
+        widened += c == 0 && hi > lo;
         EXPECT_NEAR(fx.specular_filled[o + s], want, 1e-5 * (1.0 + want))
             << "block " << i << "," << j << " channel " << c;
       }
       blended += fx.specular_filled[s] < fx.specular[s] - 1e-4f;  // lagging the doubled light
     }
   EXPECT_GE(blended, 3);
+  EXPECT_GE(widened, 4) << "traced blocks whose range holds more than their own value";
 }
 
 }  // namespace

@@ -350,25 +350,7 @@ TEST(Light, DeterministicPerFrameNoise) {
   EXPECT_GT(differs, 0);             // the rotation changes with the frame index
 }
 
-// A random voxel chain (coloured, translucent, sparse) built with the reference's mip rule.
-rp::test::cone::Chain random_chain(uint32_t resolution, uint32_t seed) {
-  uint32_t levels = 1;
-  while ((resolution >> (levels - 1)) > 1) ++levels;
-  rp::test::cone::Chain c(resolution, levels);
-  uint32_t state = seed;
-  auto next = [&state] {  // small LCG: deterministic, platform independent
-    state = state * 1664525u + 1013904223u;
-    return double(state >> 8) / double(1u << 24);
-  };
-  for (glm::vec4& v : c.voxels) {
-    if (&v - c.voxels.data() >= ptrdiff_t(resolution) * resolution * resolution) break;
-    if (next() > 0.3) continue;
-    double a = 0.6 * next();
-    v = glm::vec4(glm::dvec4(3.0 * a * next(), 3.0 * a * next(), 3.0 * a * next(), a));
-  }
-  c.build_mips();
-  return c;
-}
+using rp::test::cone::random_chain;
 
 // Direct + albedo * (the six-cone irradiance / pi of the reference) + emission.
 TEST(Light, ConeTracedIndirectMatchesReference) {

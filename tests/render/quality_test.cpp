@@ -61,12 +61,21 @@ TEST(Quality, FastModeFlickersNoMoreThanTheReference) {
   // Issue 15 (PCSS 0.479 vs 0.477, +0.4 %) and its thick-blocker PCSS with the lamp's disk
   // model (0.497 vs 0.492, +0.9 %: the brighter floor's bounce light carries the per-block
   // occlusion's flicker; the shadows themselves are the same in both modes).
-  // Issue 16 part 2 (the reflections): 0.510 vs 0.480. The reference's reflection is one
-  // deterministic cone per pixel (its flicker fell from 0.492); the fast mode's comes from 4x4
-  // blocks, not accumulated under camera motion; blending it with its clamped history while
-  // the camera stands still brought the fast mode to 0.498 (+3.8 %). Not yet explained: the
-  // fast mode without any reflection measured 0.502. KNOWN MISS, at most +5 %, until found.
-  EXPECT_LE(report().flicker_fast, report().flicker_reference * 1.05);
+  // Issue 16 part 2 (the reflections): 0.510 vs 0.480 at the merge. The reference's reflection
+  // is one deterministic cone per pixel: a steady term that lowers the flicker of the 8-bit
+  // codes (0.4995 with the reflections zeroed in both modes, fast 0.502: +0.5 %, the same
+  // +0.5..0.9 % as before; the "0.502 without reflections" was compared with the reference's
+  // 0.480 with them). The fast mode's comes from 4x4 blocks whose sample point rotates through
+  // the block every frame; while the camera stands still each block blends its history
+  // clamped to this frame's traced values around it. That range first came from the edge
+  // neighbours only, which on the checkerboard are holes for every traced block, so half the
+  // blocks had no history (0.498); over the eight neighbours and with weight 0.1 for the
+  // current frame: 0.4845 vs 0.4803 (+0.9 %); with the reference mode's own screen-space
+  // reflections (which read the previous, noisier frame) the reference measures 0.4825: +0.4 %.
+  // What is left is about 40 pixels (the lamp's lower rim, the image corners, tumbler
+  // silhouettes) where the per-block light meets the TAA jitter. KNOWN MISS of issue 9's
+  // criterion: at most +1 %.
+  EXPECT_LE(report().flicker_fast, report().flicker_reference * 1.01);
 }
 
 // The report's image measures against the test suite's own PSNR and hand-computed differences.
