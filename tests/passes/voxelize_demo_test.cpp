@@ -184,7 +184,7 @@ TEST(VoxelizeDemo, LampCapIsNotVoxelized) {
 }
 
 // The tumbler's proxy (scene::Mesh::proxy, a third of its triangles) stands in for
-// it up to 64^3 (and in shadow maps up to 2048^2): GpuScene gives the instances the proxy's
+// it up to 64^3 (and in shadow maps up to 512^2): GpuScene gives the instances the proxy's
 // triangles there and the mesh's above,
 // and at 64^3 voxelizing the proxy gives nearly the voxels the mesh gives (C++ reference, both
 // ways, the five tumblers alone): the same opaque voxels but for a thin rim (bound 5 % of the
@@ -204,8 +204,8 @@ TEST(VoxelizeDemo, TumblerProxyVoxelizesLikeTheMesh) {
       EXPECT_EQ(d.gpu->host_instances[i].triangle_count, mesh.triangle_count) << r;
     }
   }
-  // and the shadow map draws the proxy up to 2048^2 texels, the mesh above
-  for (uint32_t size : {256u, 1024u, 2048u, 4096u}) {
+  // and the shadow map draws the proxy up to 512^2 texels, the mesh above
+  for (uint32_t size : {256u, 512u, 1024u, 2048u}) {
     d.gpu->update(d.frame, 256, 256, size);
     const render::MeshRange& want =
         size <= scene::demo::kTumblerProxyMaxShadowTexels ? proxy : mesh;

@@ -26,7 +26,7 @@ TEST(DemoScene, AssetsLoadWithTheExpectedLayout) {
   EXPECT_EQ(a.meshes[demo::kLampMesh].name, "lamp_cap");
   EXPECT_EQ(a.meshes[demo::kTumblerMesh].name, "tumbler");
   EXPECT_EQ(a.meshes[demo::kTumblerProxyMesh].name, "tumbler_proxy");
-  // Only the tumbler has a proxy, for volumes up to 64^3 and shadow maps up to 2048^2
+  // Only the tumbler has a proxy, for volumes up to 64^3 and shadow maps up to 512^2
   // (scene::voxel_mesh and scene::shadow_mesh pick it).
   for (uint32_t m = 0; m < a.meshes.size(); ++m) {
     const int want = m == demo::kTumblerMesh ? int(demo::kTumblerProxyMesh) : -1;
@@ -36,9 +36,9 @@ TEST(DemoScene, AssetsLoadWithTheExpectedLayout) {
   EXPECT_EQ(voxel_mesh(a.meshes, demo::kTumblerMesh, 64), demo::kTumblerProxyMesh);
   EXPECT_EQ(voxel_mesh(a.meshes, demo::kTumblerMesh, 128), demo::kTumblerMesh);
   EXPECT_EQ(voxel_mesh(a.meshes, demo::kBoxMesh, 64), demo::kBoxMesh);
-  EXPECT_EQ(shadow_mesh(a.meshes, demo::kTumblerMesh, 1024), demo::kTumblerProxyMesh);
-  EXPECT_EQ(shadow_mesh(a.meshes, demo::kTumblerMesh, 2048), demo::kTumblerProxyMesh);
-  EXPECT_EQ(shadow_mesh(a.meshes, demo::kTumblerMesh, 4096), demo::kTumblerMesh);
+  EXPECT_EQ(shadow_mesh(a.meshes, demo::kTumblerMesh, 256), demo::kTumblerProxyMesh);
+  EXPECT_EQ(shadow_mesh(a.meshes, demo::kTumblerMesh, 512), demo::kTumblerProxyMesh);
+  EXPECT_EQ(shadow_mesh(a.meshes, demo::kTumblerMesh, 1024), demo::kTumblerMesh);
   EXPECT_EQ(shadow_mesh(a.meshes, demo::kLampMesh, 1024), demo::kLampMesh);
   ASSERT_EQ(a.textures.size(), 2u);
   EXPECT_EQ(a.textures[demo::kWoodTexture].width, 512);
