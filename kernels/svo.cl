@@ -52,6 +52,7 @@
 #include "shared/voxel_layout.h"
 #include "shared/svo_layout.h"
 #include "common/voxel_composite.h"
+#include "common/voxel_resolve.h"
 #include "common/svo.h"
 
 #if !defined(RP_VOXEL_FIXED_BITS) || !defined(RP_VOXEL_SATURATED)
@@ -417,18 +418,8 @@ __kernel void svo_leaves(__global const uint* fragments, __global const uint* ne
     for (uint a = 0; a < 3u; ++a) acc[o][4u + a] += rp_svo_unpack_facing(facing, a);
   }
   for (uint o = 0; o < 8u; ++o) {
-    float4 sum = (float4)((float)acc[o][0], (float)acc[o][1], (float)acc[o][2], (float)acc[o][3]) *
-                 (1.0f / (float)(1u << RP_VOXEL_FIXED_BITS));
-    const uint bits = over[o];
-    if (bits != 0u) {
-      if (bits & 1u) sum.x = RP_VOXEL_SATURATED;
-      if (bits & 2u) sum.y = RP_VOXEL_SATURATED;
-      if (bits & 4u) sum.z = RP_VOXEL_SATURATED;
-      if (bits & 8u) sum.w = RP_VOXEL_SATURATED;
-    }
-    const float inv = 1.0f / fmax(sum.w, 1.0f);
     svo_store(pool, alpha, brick + rp_svo_sample(o & 1u, (o >> 1) & 1u, o >> 2),
-              (float4)(sum.xyz * inv, fmin(sum.w, 1.0f)));
+              rp_voxel_resolve((uint4)(acc[o][0], acc[o][1], acc[o][2], acc[o][3]), over[o]));
   }
   if (!parent) return;
   /* level 1: the samples as stored (packed: rounded), as svo_mips reads its children */

@@ -88,6 +88,7 @@
 #include "shared/voxel_layout.h"
 #include "shared/svo_layout.h"
 #include "common/math.h"
+#include "common/voxel_resolve.h"
 #include "common/colour.h"
 #include "common/direct_light.h"
 #include "common/voxel.h"
@@ -1255,14 +1256,5 @@ __kernel void voxelize_resolve(__global const uint4* accum, __global const uint*
                                __global float4* level0, uint voxel_count) {
   const uint i = (uint)get_global_id(0);
   if (i >= voxel_count) return;
-  float4 sum = convert_float4(accum[2u * i]) * (1.0f / RP_VOXEL_FIXED_SCALE);
-  const uint bits = overflow[i];
-  if (bits != 0u) {
-    if (bits & 1u) sum.x = RP_VOXEL_SATURATED;
-    if (bits & 2u) sum.y = RP_VOXEL_SATURATED;
-    if (bits & 4u) sum.z = RP_VOXEL_SATURATED;
-    if (bits & 8u) sum.w = RP_VOXEL_SATURATED;
-  }
-  const float inv = 1.0f / fmax(sum.w, 1.0f);
-  level0[i] = (float4)(sum.xyz * inv, fmin(sum.w, 1.0f));
+  level0[i] = rp_voxel_resolve(accum[2u * i], overflow[i]);
 }
