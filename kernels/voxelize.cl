@@ -732,33 +732,38 @@ inline VxVec vx_albedo_span(const VxSetup* s, __global const uint* texels, rp_sp
 }
 
 /* Outgoing radiance albedo * direct light + emission at points p with unit normals n. */
+/* The bounce grid's light (irradiance / pi, rgb) at p with unit normal n for lanes in `active`
+ * (< n_lanes), 0 elsewhere; the caller adds it only when L->bounce_cells != 0. */
+inline VxVec vx_bounce_span(const VxLight* L, const VxVec* p, const VxVec* n, rp_spani active,
+                            int n_lanes) {
+  float px[RP_SPAN], py[RP_SPAN], pz[RP_SPAN], nx[RP_SPAN], ny[RP_SPAN], nz[RP_SPAN];
+  float ex[RP_SPAN], ey[RP_SPAN], ez[RP_SPAN];
+  int la[RP_SPAN];
+  RP_SPAN_TO_ARRAY(p->x, px);
+  RP_SPAN_TO_ARRAY(p->y, py);
+  RP_SPAN_TO_ARRAY(p->z, pz);
+  RP_SPAN_TO_ARRAY(n->x, nx);
+  RP_SPAN_TO_ARRAY(n->y, ny);
+  RP_SPAN_TO_ARRAY(n->z, nz);
+  RP_SPAN_TO_ARRAY(active, la);
+  for (int i = 0; i < RP_SPAN; ++i) {
+    float3 e = (float3)(0.0f);
+    if (i < n_lanes && la[i])
+      e = rp_bounce_irradiance(L->bounce, L->bounce_cells, (float3)(px[i], py[i], pz[i]),
+                               (float3)(nx[i], ny[i], nz[i]));
+    ex[i] = e.x;
+    ey[i] = e.y;
+    ez[i] = e.z;
+  }
+  return vxv(RP_SPAN_FROM_ARRAY(ex), RP_SPAN_FROM_ARRAY(ey), RP_SPAN_FROM_ARRAY(ez));
+}
+
 inline VxVec vx_radiance_span(const VxLight* L, __global const float* shadow,
                               const VxVec* albedo, const VxVec* p, const VxVec* n,
                               const VxVec* emission, rp_spani active, int n_lanes) {
   VxVec light = vx_direct_span(L, shadow, p, n, active, n_lanes);
-  if (L->bounce_cells != 0u) { /* the light of earlier bounces (several bounces) */
-    float px[RP_SPAN], py[RP_SPAN], pz[RP_SPAN], nx[RP_SPAN], ny[RP_SPAN], nz[RP_SPAN];
-    float ex[RP_SPAN], ey[RP_SPAN], ez[RP_SPAN];
-    int la[RP_SPAN];
-    RP_SPAN_TO_ARRAY(p->x, px);
-    RP_SPAN_TO_ARRAY(p->y, py);
-    RP_SPAN_TO_ARRAY(p->z, pz);
-    RP_SPAN_TO_ARRAY(n->x, nx);
-    RP_SPAN_TO_ARRAY(n->y, ny);
-    RP_SPAN_TO_ARRAY(n->z, nz);
-    RP_SPAN_TO_ARRAY(active, la);
-    for (int i = 0; i < RP_SPAN; ++i) {
-      float3 e = (float3)(0.0f);
-      if (i < n_lanes && la[i])
-        e = rp_bounce_irradiance(L->bounce, L->bounce_cells, (float3)(px[i], py[i], pz[i]),
-                                 (float3)(nx[i], ny[i], nz[i]));
-      ex[i] = e.x;
-      ey[i] = e.y;
-      ez[i] = e.z;
-    }
-    light = vxv_add(light, vxv(RP_SPAN_FROM_ARRAY(ex), RP_SPAN_FROM_ARRAY(ey),
-                               RP_SPAN_FROM_ARRAY(ez)));
-  }
+  if (L->bounce_cells != 0u) /* the light of earlier bounces (several bounces) */
+    light = vxv_add(light, vx_bounce_span(L, p, n, active, n_lanes));
   return vxv(albedo->x * light.x + emission->x, albedo->y * light.y + emission->y,
              albedo->z * light.z + emission->z);
 }
@@ -883,7 +888,14 @@ inline VxVec vx_voxel_radiance(const VxSetup* s, const VxLight* light,
  * particular order); the samples are computed by the same code as in VX_ACCUMULATE, and sums
  * are order independent, so the volume
  * is bit-identical with or without the cache. One sample is 4 float4:
- *   (p.xyz, voxel index as bits), (unit normal, 0), (albedo * texture, 0), (emission, 0). */
+ *   (p.xyz, voxel index as bits), (unit normal, bounce.r), (albedo * texture, bounce.g),
+ *   (emission, bounce.b), bounce = the bounce grid's light at the sample (irradiance / pi) as of
+ *   the frame that last refreshed it (0 when recorded).
+ * The bounce grid changes slowly (it blends each frame's gather in at 1/32, kernels/bounce.cl),
+ * so voxelize_cached may refresh the bounce light of only one in `refresh_stride` samples per
+ * run (those whose voxel hashes to `refresh_phase`) and reuse the stored value for the others
+ * (the host cycles the phase over the runs; stride 1 refreshes all: exact, and bit-identical
+ * to the per-frame path). The trilinear ambient-cube lookup is most of the cached samples' cost. */
 #define VX_ACCUMULATE 0u /* voxelize_large: shade and accumulate non-cached instances */
 #define VX_COUNT 1u      /* count the samples of cached instances */
 #define VX_RECORD 2u     /* write them (cache_count restarts at 0) */
@@ -1145,13 +1157,14 @@ __kernel void voxelize_large(__global const FrameConstants* frame,
 
 /* The frame's light on the cached samples: RP_SPAN samples per work-item. */
 __kernel void voxelize_cached(__global const FrameConstants* frame, __global const float* shadow,
-                              __global const float4* cache, uint samples,
+                              __global float4* cache, uint samples,
                               volatile __global uint* accum, volatile __global uint* overflow,
-                              __global const float4* bounce, uint bounce_cells) {
+                              __global const float4* bounce, uint bounce_cells,
+                              uint refresh_stride, uint refresh_phase) {
   const uint first = (uint)get_global_id(0) * RP_SPAN;
   if (first >= samples) return;
   const int n = (int)min((uint)RP_SPAN, samples - first);
-  float v[12][RP_SPAN];
+  float v[15][RP_SPAN];
   uint lv[RP_SPAN];
   for (int i = 0; i < RP_SPAN; ++i) {
     const uint k = first + (uint)(i < n ? i : 0);
@@ -1170,6 +1183,9 @@ __kernel void voxelize_cached(__global const FrameConstants* frame, __global con
     v[9][i] = q3.x;
     v[10][i] = q3.y;
     v[11][i] = q3.z;
+    v[12][i] = q1.w;
+    v[13][i] = q2.w;
+    v[14][i] = q3.w;
   }
   const VxVec p = vxv(VX_SPAN(v[0]), VX_SPAN(v[1]), VX_SPAN(v[2]));
   const VxVec nrm = vxv(VX_SPAN(v[3]), VX_SPAN(v[4]), VX_SPAN(v[5]));
@@ -1177,8 +1193,39 @@ __kernel void voxelize_cached(__global const FrameConstants* frame, __global con
   const VxVec emission = vxv(VX_SPAN(v[9]), VX_SPAN(v[10]), VX_SPAN(v[11]));
   const rp_spani active = rp_span_convert_int(RP_LANES) < n;
   const VxLight light = vx_light(frame, bounce, bounce_cells);
+  const VxVec direct = vx_direct_span(&light, shadow, &p, &nrm, active, n);
+  VxVec e = vxv(VX_SPAN(v[12]), VX_SPAN(v[13]), VX_SPAN(v[14]));
+  if (bounce_cells != 0u) {
+    /* Which samples refresh is a hash of their voxel (16 bits, scaled to [0, stride)), not
+     * of their slot (the cache is recorded in no particular order): the volume stays the
+     * same run to run. */
+    const rp_spanu phase = (rp_spanu)(refresh_phase);
+    const rp_spanu slot = (((VX_SPAN(lv) * 2654435761u) >> 16) * refresh_stride) >> 16;
+    const rp_spani refresh = active & (slot == phase);
+    int lr[RP_SPAN];
+    RP_SPAN_TO_ARRAY(refresh, lr);
+    const VxVec fresh = vx_bounce_span(&light, &p, &nrm, refresh, n);
+    float ex[RP_SPAN], ey[RP_SPAN], ez[RP_SPAN];
+    RP_SPAN_TO_ARRAY(fresh.x, ex);
+    RP_SPAN_TO_ARRAY(fresh.y, ey);
+    RP_SPAN_TO_ARRAY(fresh.z, ez);
+    for (int i = 0; i < n; ++i) {
+      if (!lr[i]) continue;
+      const uint k = first + (uint)i;
+      cache[4u * k + 1u].w = ex[i];
+      cache[4u * k + 2u].w = ey[i];
+      cache[4u * k + 3u].w = ez[i];
+    }
+    e = vxv(select(e.x, fresh.x, refresh), select(e.y, fresh.y, refresh),
+            select(e.z, fresh.z, refresh));
+  }
+  /* albedo * (direct + bounce) + emission, as vx_radiance_span (written out: a small inlined
+   * helper returning a struct leaves noalias intrinsics that oclgrind 21.10 cannot run) */
+  VxVec lit = direct;
+  if (bounce_cells != 0u) lit = vxv_add(lit, e);
   const VxVec radiance =
-      vx_radiance_span(&light, shadow, &albedo, &p, &nrm, &emission, active, n);
+      vxv(albedo.x * lit.x + emission.x, albedo.y * lit.y + emission.y,
+          albedo.z * lit.z + emission.z);
   vx_accumulate_span(accum, overflow, VX_SPAN(lv), &radiance, &nrm, active, n);
 }
 

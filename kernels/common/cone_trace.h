@@ -599,9 +599,12 @@ inline float rp_cone_near_occlusion(__global const float4* voxels, uint resoluti
   const uint3 dirs = rp_voxel_cone_dirs(n);
   const float3 w = n * n;
   const float3 apex = rp_cone_apex(p, n, resolution);
-  const float a = w.x * rp_cone_volume(voxels, resolution, 1u, dirs.x, apex).w +
-                  w.y * rp_cone_volume(voxels, resolution, 1u, dirs.y, apex).w +
-                  w.z * rp_cone_volume(voxels, resolution, 1u, dirs.z, apex).w;
+  /* volumes of weight 0 are not read (a wall's or the floor's normal reads one of three);
+   * their term would add exactly 0 */
+  float a = 0.0f;
+  if (w.x > 0.0f) a = w.x * rp_cone_volume(voxels, resolution, 1u, dirs.x, apex).w;
+  if (w.y > 0.0f) a += w.y * rp_cone_volume(voxels, resolution, 1u, dirs.y, apex).w;
+  if (w.z > 0.0f) a += w.z * rp_cone_volume(voxels, resolution, 1u, dirs.z, apex).w;
   return clamp(a * RP_CONE_NEAR_OCCLUSION, 0.0f, 1.0f);
 }
 

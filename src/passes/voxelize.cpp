@@ -178,6 +178,7 @@ void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScen
                      ::cl::NDRange(kSpanGroup));
   }
   cache_samples_ = samples;
+  cache_bounce_fresh_ = false;  // recorded with no bounce light
 }
 
 void VoxelizePass::set_bounce(const ::cl::Buffer* bounce, uint32_t bounce_cells) {
@@ -311,6 +312,16 @@ void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& 
     cached_.setArg(arg++, target_overflow_);
     cached_.setArg(arg++, *bounce_);
     cached_.setArg(arg++, bounce_cells_);
+    // The bounce light's refresh (set_bounce_refresh_stride): all of it unless every sample
+    // already holds a light of this very grid.
+    const bool reuse = bounce_cells_ != 0 && cache_bounce_fresh_ &&
+                       cache_bounce_grid_ == (*bounce_)() && bounce_refresh_stride_ > 1;
+    const cl_uint stride = reuse ? bounce_refresh_stride_ : 1u;
+    const cl_uint phase = reuse ? bounce_refresh_runs_++ % stride : 0u;
+    cached_.setArg(arg++, stride);
+    cached_.setArg(arg++, phase);
+    cache_bounce_fresh_ = bounce_cells_ != 0;
+    cache_bounce_grid_ = (*bounce_)();
     const size_t span = static_cast<size_t>(span_);
     profiler.enqueue("voxelize", cached_,
                      ::cl::NDRange(rp::cl::round_up((cache_samples_ + span - 1) / span,

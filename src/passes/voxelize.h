@@ -5,6 +5,7 @@
 // kernels/voxelize.cl; coordinates and direction convention: kernels/common/voxel.h.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -44,6 +45,18 @@ class VoxelizePass {
                      const render::ShadowMap& shadow, uint32_t resolution,
                      const ::cl::Buffer& fragments, const ::cl::Buffer& counter,
                      const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0);
+
+  // The static surface cache's samples keep the bounce grid's light of the run that last
+  // refreshed them; a run refreshes one in `stride` of them (by a hash of their voxel, with a
+  // phase that advances every run) and reuses the stored light for the others. 1 (the default):
+  // every run refreshes all, exactly the per-frame result. Runs after a cache rebuild, after a
+  // run without a bounce grid or with a different grid refresh all, whatever the stride. The
+  // grid blends each frame's gather in at 1/32, so a few runs' delay changes little: the fast
+  // mode's renderer uses kBounceRefreshFast.
+  // stride: 1 to 256.
+  void set_bounce_refresh_stride(uint32_t stride) {
+    bounce_refresh_stride_ = std::clamp(stride, 1u, 256u);
+  }
 
   // Largest static surface cache allowed (bytes of its samples); a larger one is not built and
   // the cache stays off for the pass's life (default: no limit).
@@ -110,6 +123,10 @@ class VoxelizePass {
   uint64_t cache_limit_ = UINT64_MAX;    // set_cache_limit
   uint32_t cache_samples_ = 0;
   bool cache_valid_ = false;
+  uint32_t bounce_refresh_stride_ = 1;    // set_bounce_refresh_stride
+  uint32_t bounce_refresh_runs_ = 0;      // runs with a stride > 1: the phase
+  bool cache_bounce_fresh_ = false;       // every sample holds a light of cache_bounce_grid_
+  cl_mem cache_bounce_grid_ = nullptr;    // the grid the samples' bounce light came from
   uint32_t cache_resolution_ = 0;
   ::cl::Buffer cache_vertices_, cache_triangles_, cache_materials_;  // scene buffers tracked
 };

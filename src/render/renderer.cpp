@@ -302,7 +302,8 @@ uint32_t Renderer::gi_levels() const {
 }
 
 void Renderer::build_voxels() {
-  const auto voxelize = [&](bool with_bounce) {
+  // bounce_refresh: the static surface cache's bounce-light refresh stride (VoxelizePass).
+  const auto voxelize = [&](bool with_bounce, uint32_t bounce_refresh = 1) {
     const ::cl::Buffer* grid = with_bounce ? &bounce_->grid() : nullptr;
     const uint32_t cells = passes::BouncePass::cells(gi_resolution());
     if (svo_pass_) {
@@ -311,6 +312,7 @@ void Renderer::build_voxels() {
       svo_pass_->run(profiler_, *scene_, shadow_, settings_.voxel_resolution, svo_, grid, cells);
       return;
     }
+    voxelize_->set_bounce_refresh_stride(bounce_refresh);
     voxelize_->run(profiler_, *scene_, shadow_, voxels_, grid, cells);
     voxel_mips_->run(profiler_, voxels_);
   };
@@ -332,7 +334,9 @@ void Renderer::build_voxels() {
       voxelize(true);
     }
   } else {
-    voxelize(true);
+    // The fast mode refreshes the static samples' bounce light over several frames (the grid
+    // itself lags 32); the reference mode every frame.
+    voxelize(true, reference ? 1u : kBounceRefreshFast);
   }
   // This frame's gather, for the next frame's voxels.
   bounce_->run(profiler_, gi_buffer(), gi_resolution(), gi_levels(), frame,

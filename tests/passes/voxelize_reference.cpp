@@ -532,14 +532,16 @@ size_t compare_sums(const VoxelSums& got, const VoxelSums& want, std::vector<std
   return bad;
 }
 
-VoxelGpuOutput run_voxelize(render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r) {
+VoxelGpuOutput run_voxelize(render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r,
+                            const ::cl::Buffer* bounce, uint32_t bounce_cells) {
   passes::VoxelizePass pass(context(), programs());
   render::VoxelVolume vol;
-  return run_voxelize(pass, vol, gpu, shadow, r);
+  return run_voxelize(pass, vol, gpu, shadow, r, bounce, bounce_cells);
 }
 
 VoxelGpuOutput run_voxelize(passes::VoxelizePass& pass, render::VoxelVolume& vol,
-                            render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r) {
+                            render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r,
+                            const ::cl::Buffer* bounce, uint32_t bounce_cells) {
   rp::cl::Context& ctx = context();
   vol.resize(ctx.context, r);
   gpu.constants.voxel_resolution = vol.resolution;
@@ -561,7 +563,7 @@ VoxelGpuOutput run_voxelize(passes::VoxelizePass& pass, render::VoxelVolume& vol
   ctx.queue.enqueueWriteBuffer(sm.depth, CL_TRUE, 0, shadow.size() * sizeof(float), shadow.data());
 
   rp::cl::Profiler profiler(ctx.queue);
-  pass.run(profiler, gpu, sm, vol);
+  pass.run(profiler, gpu, sm, vol, bounce, bounce_cells);
   VoxelGpuOutput out;
   out.times = profiler.collect();
   out.sums.resolution = r;

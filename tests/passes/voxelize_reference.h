@@ -106,12 +106,15 @@ struct VoxelGpuOutput {
 // voxel_resolution / voxel_levels and rewrites its frame buffer) with the shadow map `shadow`
 // (gpu.constants.shadow_size^2 depths). The volume's buffers start filled with garbage so a
 // missing clear or resolve shows.
-VoxelGpuOutput run_voxelize(render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r);
+// bounce: a bounce grid (common/bounce.h, bounce_cells per side) the voxels reflect, or none.
+VoxelGpuOutput run_voxelize(render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r,
+                            const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0);
 
 // The same with a given pass (its state, the static surface cache, carries over between
 // calls) and volume (resized to r; garbage is written into it first all the same).
 VoxelGpuOutput run_voxelize(passes::VoxelizePass& pass, render::VoxelVolume& vol,
-                            render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r);
+                            render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r,
+                            const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0);
 
 // The reference input for the same scene.
 VoxelRefInput reference_input(const scene::SceneAssets& assets, const scene::FrameScene& frame,

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <random>
 #include <set>
 #include <vector>
@@ -368,6 +369,95 @@ TEST(Voxelize, StaticCacheGivesTheSameSumsAsFrameByFrame) {
       EXPECT_TRUE(got.level0 == direct.level0) << "level 0 with and without the cache";
     }
   }
+}
+
+// The fast mode's bounce-light refresh (VoxelizePass::set_bounce_refresh_stride): the cached
+// samples keep the bounce grid's light of the run that last refreshed them, one in `stride` of
+// them refreshed per run. The run that builds the cache refreshes all; after the grid changes,
+// one run brings about a quarter of the cached voxels up to date (and not all of them), and
+// `stride` runs all of them: the volume then equals the per-frame pass's bit for bit.
+TEST(Voxelize, StaticCacheRefreshesTheBounceLightOverStrideRuns) {
+  Scene s = many_triangles_scene();
+  const std::vector<float> shadow = uniform_shadow(1.0f);
+  constexpr uint32_t kR = 16, kCells = 16, kStride = 4;
+  s.frame.light.intensity = glm::vec3(5.0f);
+  s.gpu->update(s.frame, 16, 16, kShadowSize);
+  // Two grids of six faces per cell (rgb irradiance / pi, w the age: gathered), deterministic.
+  const size_t faces = size_t(kCells) * kCells * kCells * 6;
+  const auto grid_values = [&](uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 0.5f);
+    std::vector<float> g(faces * 4);
+    for (size_t i = 0; i < faces; ++i) g[4 * i] = u(rng), g[4 * i + 1] = u(rng),
+                                       g[4 * i + 2] = u(rng), g[4 * i + 3] = 1.0f;
+    return g;
+  };
+  const std::vector<float> grid_a = grid_values(1), grid_b = grid_values(2);
+  rp::cl::Context& ctx = context();
+  ::cl::Buffer grid(ctx.context, CL_MEM_READ_WRITE, faces * 16);
+  const auto write_grid = [&](const std::vector<float>& g) {
+    ctx.queue.enqueueWriteBuffer(grid, CL_TRUE, 0, g.size() * sizeof(float), g.data());
+  };
+  const auto per_frame = [&](const std::vector<float>& g) {
+    write_grid(g);
+    setenv("ROLYPOLY_VOXELIZE_CACHE", "0", 1);
+    VoxelGpuOutput out = run_voxelize(*s.gpu, shadow, kR, &grid, kCells);
+    unsetenv("ROLYPOLY_VOXELIZE_CACHE");
+    return out;
+  };
+  const VoxelGpuOutput want_a = per_frame(grid_a), want_b = per_frame(grid_b);
+  ASSERT_NE(want_a.level0, want_b.level0) << "the two grids must light the voxels differently";
+
+  // The fraction of the voxels lit differently by the two grids that a volume shows as B.
+  size_t differing = 0;
+  for (size_t v = 0; v < want_a.level0.size() / 4; ++v)
+    differing += !std::equal(&want_a.level0[4 * v], &want_a.level0[4 * v + 4],
+                             &want_b.level0[4 * v]);
+  ASSERT_GT(differing, 100u);
+  const auto fraction_at_b = [&](const VoxelGpuOutput& got) {
+    size_t at_b = 0;
+    for (size_t v = 0; v < got.level0.size() / 4; ++v) {
+      const bool differs =
+          !std::equal(&want_a.level0[4 * v], &want_a.level0[4 * v + 4], &want_b.level0[4 * v]);
+      at_b += differs && std::equal(&got.level0[4 * v], &got.level0[4 * v + 4],
+                                    &want_b.level0[4 * v]);
+    }
+    return double(at_b) / double(differing);
+  };
+  // Each pass builds its cache under grid A (refreshing all), then runs once under grid B.
+  const auto pass_with_stride = [&](uint32_t stride, render::VoxelVolume& vol) {
+    auto pass = std::make_unique<passes::VoxelizePass>(context(), programs());
+    pass->set_bounce_refresh_stride(stride);
+    write_grid(grid_a);
+    const VoxelGpuOutput first = run_voxelize(*pass, vol, *s.gpu, shadow, kR, &grid, kCells);
+    EXPECT_TRUE(first.level0 == want_a.level0) << "the run that builds the cache refreshes all";
+    write_grid(grid_b);
+    return pass;
+  };
+  // Voxels without cached samples (small triangles only, shaded every run) show B at once:
+  // the baseline is a pass that refreshes almost nothing (1 in 256).
+  render::VoxelVolume vol_slow, vol;
+  auto slow = pass_with_stride(256, vol_slow);
+  const double baseline =
+      fraction_at_b(run_voxelize(*slow, vol_slow, *s.gpu, shadow, kR, &grid, kCells));
+  ASSERT_LT(baseline, 0.8) << "most differing voxels must hold cached samples";
+  auto pass = pass_with_stride(kStride, vol);
+  for (uint32_t run = 1; run <= kStride; ++run) {
+    const VoxelGpuOutput got = run_voxelize(*pass, vol, *s.gpu, shadow, kR, &grid, kCells);
+    if (run == 1) {
+      // The cached voxels refresh together (the hash is per voxel): about 1 in kStride.
+      const double refreshed = (fraction_at_b(got) - baseline) / (1.0 - baseline);
+      EXPECT_GT(refreshed, 0.12) << "one run refreshes about a quarter";
+      EXPECT_LT(refreshed, 0.40) << "one run refreshes about a quarter, not all";
+    }
+    if (run < kStride) EXPECT_FALSE(got.level0 == want_b.level0) << "run " << run;
+    else EXPECT_TRUE(got.level0 == want_b.level0) << "after " << kStride << " runs: all fresh";
+  }
+  // Stride 1: every run exact.
+  pass->set_bounce_refresh_stride(1);
+  write_grid(grid_a);
+  EXPECT_TRUE(run_voxelize(*pass, vol, *s.gpu, shadow, kR, &grid, kCells).level0 ==
+              want_a.level0);
 }
 
 // ---- no gaps ----
