@@ -540,11 +540,41 @@ inline void rp_vssm_lookup8(__global const float* restrict mips, const RpShadow8
 }
 #endif
 
-/* Visibility of the lamp from eight receivers (see the header). */
+/* The hard mode's one tap (see the header) from a set-up state: 1 lit, 0 shadowed; 1 outside
+ * the shadow frustum. Also the pcss checkerboard's check of a filled chunk
+ * (kernels/shadow_visibility.cl). */
+inline float8 rp_shadow8_hard_tap(__global const float* restrict shadow, const RpShadow8* s) {
+  const float8 receiver = s->zr - s->texel * (RP_SHADOW_DEPTH_BIAS + 1.0f * s->tan_theta);
+  const float8 hi = (float8)(s->size - 1.0f), lo = (float8)(0.0f);
+  const int8 idx = convert_int8(fmin(fmax(s->sy, lo), hi)) * s->isize +
+                   convert_int8(fmin(fmax(s->sx, lo), hi));
+  const float8 d = rp_shadow_gather8(shadow, idx);
+  /* lit iff 1/z_stored <= 1/receiver (both depths positive); an empty texel is lit */
+  const float8 inv_tap = s->inv_a - d * s->inv_b;
+  const int8 shadowed = s->inside & (d < 1.0f) & (inv_tap * receiver > 1.0f);
+  return select((float8)(1.0f), (float8)(0.0f), shadowed);
+}
+
+/* rp_shadow8_hard_tap for eight receivers (rp_shadow8's arguments). */
+inline float8 rp_shadow8_hard(__global const FrameConstants* restrict frame,
+                              __global const float* restrict shadow, float8 px, float8 py,
+                              float8 pz, float8 nx, float8 ny, float8 nz, float8 cos_theta,
+                              uint8 xs, uint8 ys) {
+  RpShadow8 s;
+  rp_shadow8_setup(&s, frame, px, py, pz, nx, ny, nz, cos_theta, xs, ys);
+  if (!any(s.inside)) return (float8)(1.0f);
+  return rp_shadow8_hard_tap(shadow, &s);
+}
+
+/* Visibility of the lamp from eight receivers (see the header). *mip_lit: 1 when pcss's step 1
+ * found every lane lit (nothing in front of any receiver over the union of their cones), else
+ * 0. */
 inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
                          __global const float* restrict shadow,
                          __global const float* restrict mips, float8 px, float8 py, float8 pz,
-                         float8 nx, float8 ny, float8 nz, float8 cos_theta, uint8 xs, uint8 ys) {
+                         float8 nx, float8 ny, float8 nz, float8 cos_theta, uint8 xs, uint8 ys,
+                         int* mip_lit) {
+  *mip_lit = 0;
   RpShadow8 s;
   rp_shadow8_setup(&s, frame, px, py, pz, nx, ny, nz, cos_theta, xs, ys);
   const float8 one = (float8)(1.0f), zero = (float8)(0.0f);
@@ -552,15 +582,8 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
   const float8 outside = select(one, zero, s.inside);
 #if RP_SHADOW_MODE == 0
   (void)mips;
-  const float8 receiver = s.zr - s.texel * (RP_SHADOW_DEPTH_BIAS + 1.0f * s.tan_theta);
-  const float8 hi = (float8)(s.size - 1.0f), lo = (float8)(0.0f);
-  const int8 idx = convert_int8(fmin(fmax(s.sy, lo), hi)) * s.isize +
-                   convert_int8(fmin(fmax(s.sx, lo), hi));
-  const float8 d = rp_shadow_gather8(shadow, idx);
-  /* lit iff 1/z_stored <= 1/receiver (both depths positive); an empty texel is lit */
-  const float8 inv_tap = s.inv_a - d * s.inv_b;
-  const int8 shadowed = s.inside & (d < 1.0f) & (inv_tap * receiver > 1.0f);
-  return select(one, zero, shadowed);
+  (void)outside;
+  return rp_shadow8_hard_tap(shadow, &s);
 #elif RP_SHADOW_MODE == 1
   (void)mips;
   float8 lit = zero;
@@ -582,7 +605,10 @@ inline float8 rp_shadow8(__global const FrameConstants* restrict frame,
   float8 inear = L.i_near;
   for (int pass = 0; pass < RP_PCSS_MIN_PASSES; ++pass) {
     zm = fmax(zm, rp_pcss_min(mips, &s, &L, &table, inear, outside));
-    if (all((zm >= s.zr) | (s.inside == 0))) return one;
+    if (all((zm >= s.zr) | (s.inside == 0))) {
+      *mip_lit = 1;
+      return one;
+    }
     inear = fmin((float8)(1.0f / zm), L.i_near);
   }
   const float8 zmin = (float8)(zm);

@@ -13,6 +13,8 @@ constexpr size_t kGroup = 16;        // 16x16 work-groups (see gbuffer.cpp)
 // light_compose: work-groups of 16 x 4 chunks of 8 pixels (128 x 4 pixels; measured at 720x720
 // a little faster than 8x8, 4x16 or 32x4 chunks)
 constexpr size_t kComposeGroupX = 16, kComposeGroupY = 4;
+// shadow_visibility's `pass` (kernels/shadow_visibility.cl, RP_SHADOW_PASS_*)
+constexpr cl_uint kShadowPassAll = 0, kShadowPassBlack = 1, kShadowPassWhite = 2;
 
 bool is_power_of_two(uint32_t v) { return v != 0 && (v & (v - 1)) == 0; }
 
@@ -103,12 +105,28 @@ void LightPass::run_visibility(rp::cl::Profiler& profiler, const render::GpuScen
   k.setArg(arg++, shadow.depth);
   // hard and pcf never read the mips: any buffer will do
   k.setArg(arg++, shadow.mip_planes > 0 ? shadow.mips : shadow.depth);
-  k.setArg(arg, visibility_);
+  k.setArg(arg++, visibility_);
   // 4x2 pixels per work-item; timed as part of the light pass
-  profiler.enqueue("light", k,
-                   ::cl::NDRange(rp::cl::round_up((w + 3) / 4, kComposeGroupX),
-                                 rp::cl::round_up((h + 1) / 2, kComposeGroupY)),
-                   ::cl::NDRange(kComposeGroupX, kComposeGroupY));
+  const size_t chunks_x = (w + 3) / 4, chunks_y = (h + 1) / 2;
+  const ::cl::NDRange local(kComposeGroupX, kComposeGroupY);
+  const size_t rows = rp::cl::round_up(chunks_y, kComposeGroupY);
+  if (!checkerboard_ || filter_ != ShadowFilter::kPcss) {
+    k.setArg(arg++, cl_uint(kShadowPassAll));
+    k.setArg(arg, visibility_);  // not read in this pass
+    profiler.enqueue("light", k, ::cl::NDRange(rp::cl::round_up(chunks_x, kComposeGroupX), rows),
+                     local);
+    return;
+  }
+  if (consensus_bytes_ < chunks_x * chunks_y) {
+    consensus_bytes_ = chunks_x * chunks_y;
+    consensus_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, consensus_bytes_);
+  }
+  k.setArg(arg + 1, consensus_);
+  const ::cl::NDRange half(rp::cl::round_up((chunks_x + 1) / 2, kComposeGroupX), rows);
+  for (cl_uint pass : {kShadowPassBlack, kShadowPassWhite}) {
+    k.setArg(arg, pass);
+    profiler.enqueue("light", k, half, local);
+  }
 }
 
 void LightPass::check_sizes(const render::GpuScene& scene, const render::GBuffer& gbuffer,

@@ -53,6 +53,13 @@ class LightPass {
   void set_filter(ShadowFilter filter) { filter_ = filter; }
   ShadowFilter filter() const { return filter_; }
 
+  // The pcss visibility's chunk checkerboard (kernels/shadow_visibility.cl): half the 4x2
+  // chunks computed, the others filled where all their neighbours agree on lit or umbra (on by
+  // default; off computes every chunk).
+  void set_shadow_checkerboard(bool on) { checkerboard_ = on; }
+  // The last run's lamp visibility: width x height floats in [0, 1], row-major (for tests).
+  const ::cl::Buffer& visibility() const { return visibility_; }
+
   // hdr: float4 per pixel (rgb linear radiance, a = 1 covered / 0 background), gbuffer.width x
   // gbuffer.height. voxels: the radiance chain of kernels/shared/voxel_layout.h,
   // voxel_resolution^3 voxels at level 0 (a power of two, 2..1024) and voxel_levels levels
@@ -99,6 +106,9 @@ class LightPass {
   // width x height floats in [0, 1] (one per pixel, row-major), grown on demand
   ::cl::Buffer visibility_;
   size_t visibility_bytes_ = 0;
+  bool checkerboard_ = true;
+  ::cl::Buffer consensus_;  // uchar per 4x2 chunk (the checkerboard's black chunks' verdicts)
+  size_t consensus_bytes_ = 0;
 };
 
 // Throws rp::cl::Error (naming `pass`) unless `voxels` holds a chain of voxel_resolution^3 at

@@ -82,8 +82,13 @@ class Shadows {
   }
 
   // Visibility per point (hdr over the unshadowed direct light; empty voxel chain).
+  // checkerboard: the light pass's chunk checkerboard (off by default here: these point lists
+  // are rows of unrelated points, not an image whose neighbouring chunks see neighbouring
+  // surfaces).
+  // raw: when given, also the visibility kernel's own output per pixel (width x height).
   std::vector<double> visibility(const std::vector<Point>& points, const std::vector<float>& map,
-                                 ShadowFilter filter, uint32_t frame_index, uint32_t width = 16) {
+                                 ShadowFilter filter, uint32_t frame_index, uint32_t width = 16,
+                                 bool checkerboard = false, std::vector<float>* raw = nullptr) {
     auto& ctx = rp::test::context();
     const uint32_t height = uint32_t((points.size() + width - 1) / width);
     frame_.frame_index = frame_index;
@@ -119,8 +124,13 @@ class Shadows {
       mips.run(profiler, *scene_, sm, planes > 1);
     }
     rp::passes::LightPass pass(ctx, rp::test::programs(), filter);
+    pass.set_shadow_checkerboard(checkerboard);
     pass.run(profiler, *scene_, gb, sm, voxels, chain.resolution, chain.levels, hdr);
     profiler.collect();
+    if (raw != nullptr) {
+      raw->resize(n);
+      ctx.queue.enqueueReadBuffer(pass.visibility(), CL_TRUE, 0, n * 4, raw->data());
+    }
     std::vector<float> out(n * 4);
     ctx.queue.enqueueReadBuffer(hdr, CL_TRUE, 0, n * 16, out.data());
     std::vector<double> vis(points.size());
@@ -432,6 +442,89 @@ std::vector<Point> floor_grid(int n) {
                       -0.95f + 1.9f * float(j) / float(n - 1)},
                      {0, 1, 0}});
   return pts;
+}
+
+// The pcss chunk checkerboard (kernels/shadow_visibility.cl) on an image of the floor under a
+// plate and a ball (neighbouring pixels see neighbouring floor points), against the full
+// evaluation: the chunks of the frame's parity are computed (equal to the full pass), every
+// other chunk is filled with 1 (0) exactly when all its edge neighbours came out all 1 (all 0),
+// and is computed otherwise; the fill loses nothing visible here, and covers much of the image.
+TEST(SoftShadow, PcssCheckerboardFillsOnlyWhereTheNeighboursAgree) {
+  constexpr uint32_t kN = 96, kCx = kN / 4, kCy = kN / 2;  // chunks of 4 x 2 pixels
+  Shadows s(256);
+  const auto map = s.map(busy_hit);
+  const std::vector<Point> floor = floor_grid(int(kN));
+  size_t filled = 0, differ = 0, chunks = 0;
+  for (uint32_t frame = 0; frame < 2; ++frame) {
+    std::vector<float> full, got;
+    const auto full_image = s.visibility(floor, map, ShadowFilter::kPcss, frame, kN, false, &full);
+    const auto got_image = s.visibility(floor, map, ShadowFilter::kPcss, frame, kN, true, &got);
+    const auto chunk_value = [&](const std::vector<float>& v, uint32_t ci, uint32_t cj) {
+      // 1 or 0 when the chunk's 8 pixels all are exactly that, else -1
+      const float first = v[size_t(2 * cj) * kN + 4 * ci];
+      for (uint32_t k = 0; k < 8; ++k)
+        if (v[size_t(2 * cj + k / 4) * kN + 4 * ci + k % 4] != first) return -1.0f;
+      return first == 1.0f || first == 0.0f ? first : -1.0f;
+    };
+    for (uint32_t cj = 0; cj < kCy; ++cj)
+      for (uint32_t ci = 0; ci < kCx; ++ci) {
+        ++chunks;
+        float agreed = -2.0f;  // the neighbours' common verdict; -1 when they disagree
+        if (((ci + cj + frame) & 1u) != 0u) {
+          const int dx[4] = {-1, 1, 0, 0}, dy[4] = {0, 0, -1, 1};
+          for (int n = 0; n < 4; ++n) {
+            const int x = int(ci) + dx[n], y = int(cj) + dy[n];
+            if (x < 0 || y < 0 || x >= int(kCx) || y >= int(kCy)) continue;
+            const float v = chunk_value(got, uint32_t(x), uint32_t(y));
+            agreed = agreed == -2.0f || agreed == v ? v : -1.0f;
+          }
+        }
+        for (uint32_t k = 0; k < 8; ++k) {
+          const size_t i = size_t(2 * cj + k / 4) * kN + 4 * ci + k % 4;
+          const float want = agreed >= 0.0f ? agreed : full[i];
+          EXPECT_EQ(got[i], want) << "chunk " << ci << "," << cj << " pixel " << k << " frame "
+                                  << frame << (agreed >= 0.0f ? " (filled)" : " (computed)");
+          differ += got[i] != full[i];
+          EXPECT_EQ(got_image[i], agreed >= 0.0f && got[i] != full[i] ? got_image[i]
+                                                                      : full_image[i]);
+        }
+        filled += agreed >= 0.0f;
+      }
+  }
+  EXPECT_GT(double(filled), 0.2 * double(chunks)) << "the fill must cover much of the image";
+  EXPECT_LT(double(differ), 0.002 * double(chunks) * 8.0) << "filled pixels the full pass shades";
+}
+
+// The limit the checkerboard accepts: a shadow smaller than a chunk whose neighbours are all lit
+// is filled over in the frames where its chunk is not computed, and seen in the others (the
+// checkerboard alternates). A ball of radius 0.01 on the lit floor (a 1024^2 map resolves it):
+// its umbra covers one pixel (0.02 units), pixel (80, 80) of a 96 x 96 image, chunk (20, 40):
+// computed in even frames, filled in odd ones.
+TEST(SoftShadow, PcssCheckerboardMissesASubChunkShadowEveryOtherFrame) {
+  constexpr uint32_t kN = 96;
+  const double step = 1.9 / double(kN - 1);
+  const glm::dvec3 centre(-0.95 + 80 * step, -1.0 + 0.01, -0.95 + 80 * step);
+  Shadows s(1024);
+  const auto map = s.map([&](glm::dvec3 o, glm::dvec3 d) {
+    const glm::dvec3 oc = o - centre;
+    const double b = glm::dot(oc, d), disc = b * b - (glm::dot(oc, oc) - 0.01 * 0.01);
+    double t = floor_hit(o, d);
+    if (disc > 0 && -b - std::sqrt(disc) > 0) t = std::min(t, -b - std::sqrt(disc));
+    return t;
+  });
+  const std::vector<Point> floor = floor_grid(int(kN));
+  const size_t ball = size_t(80) * kN + 80;
+  for (uint32_t frame = 0; frame < 4; ++frame) {
+    std::vector<float> full, got;
+    s.visibility(floor, map, ShadowFilter::kPcss, frame, kN, false, &full);
+    s.visibility(floor, map, ShadowFilter::kPcss, frame, kN, true, &got);
+    ASSERT_LT(full[ball], 0.9f) << "the ball's shadow must show in the full evaluation";
+    if (frame % 2 == 0) {
+      EXPECT_EQ(got[ball], full[ball]) << "computed chunk, frame " << frame;
+    } else {
+      EXPECT_EQ(got[ball], 1.0f) << "filled chunk, frame " << frame;
+    }
+  }
 }
 
 TEST(SoftShadow, MipsMatchAReduction) {
