@@ -29,10 +29,11 @@ bool fits(const DeviceMemoryNeed& need, uint64_t global_bytes, uint64_t max_allo
 
 DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_t shadow_size,
                                         uint32_t voxel_resolution, bool light_components,
-                                        bool octree) {
+                                        bool octree, bool reference) {
   const uint64_t n = uint64_t(width) * height;
   uint64_t per_pixel_x3 = 3 * (20 + 72 + 16 + 32 + 4 + 32 + 4) + 32;  // bloom's 32/3 exactly
   if (light_components) per_pixel_x3 += 3 * 48;  // direct, indirect, specular float4
+  if (reference) per_pixel_x3 += 3 * 16;         // the previous frame's output (its SSR)
   const auto tiles = [&](uint64_t side) {
     return ((width + side - 1) / side) * ((height + side - 1) / side);
   };
@@ -56,12 +57,12 @@ DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_
 
 uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_bytes,
                                   uint32_t shadow_size, uint32_t voxel_resolution,
-                                  bool light_components, bool octree) {
+                                  bool light_components, bool octree, bool reference) {
   uint32_t lo = 0, hi = 1u << 17;  // invariant: lo fits (0 trivially), hi does not
   while (hi - lo > 1) {
     const uint32_t mid = lo + (hi - lo) / 2;
     if (fits(estimate_device_memory(mid, mid, shadow_size, voxel_resolution, light_components,
-                                    octree),
+                                    octree, reference),
              global_bytes, max_alloc_bytes))
       lo = mid;
     else
@@ -72,9 +73,9 @@ uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_byte
 
 void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint32_t height,
                          uint32_t shadow_size, uint32_t voxel_resolution, bool light_components,
-                         bool octree) {
-  const DeviceMemoryNeed need = estimate_device_memory(width, height, shadow_size,
-                                                       voxel_resolution, light_components, octree);
+                         bool octree, bool reference) {
+  const DeviceMemoryNeed need = estimate_device_memory(
+      width, height, shadow_size, voxel_resolution, light_components, octree, reference);
   if (device.global_mem_bytes == 0 || fits(need, device.global_mem_bytes, device.max_alloc_bytes))
     return;  // 0: the driver did not say; buffer creation failures are still reported
   std::string size = std::to_string(width) + "x" + std::to_string(height);
@@ -88,7 +89,7 @@ void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint3
               gib(device.max_alloc_bytes) + " per buffer";
   const uint32_t side = largest_square_that_fits(device.global_mem_bytes, device.max_alloc_bytes,
                                                  shadow_size, voxel_resolution, light_components,
-                                                 octree);
+                                                 octree, reference);
   if (side == 0)
     message += "; not even a 1x1 image fits (a smaller --voxels or --shadow-size may help)";
   else
@@ -122,7 +123,8 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   check_device_memory(context_.info, width, height, settings.shadow_size,
                       settings.voxel_resolution,
                       passes::needs_light_components(options.view.view) || keep_components,
-                      settings.gi_volume == render::GiVolume::kSvo);
+                      settings.gi_volume == render::GiVolume::kSvo,
+                      settings.quality == render::Quality::kReference);
   renderer_ = std::make_unique<render::Renderer>(context_, programs_, assets_, settings);
   set_view(options.view);
   if (keep_components) renderer_->set_keep_light_components(true);
@@ -132,7 +134,8 @@ void RenderSession::set_keep_components(bool keep) {
   if (keep)
     check_device_memory(context_.info, width(), height(), renderer_->settings().shadow_size,
                         renderer_->settings().voxel_resolution, true,
-                        renderer_->settings().gi_volume == render::GiVolume::kSvo);
+                        renderer_->settings().gi_volume == render::GiVolume::kSvo,
+                        renderer_->settings().quality == render::Quality::kReference);
   renderer_->set_keep_light_components(keep);
 }
 

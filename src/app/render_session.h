@@ -107,22 +107,25 @@ struct DeviceMemoryNeed {
 // octree: the GI volume is the sparse voxel octree (its pools counted at kSvoBytesPerArea bytes
 // per R^2: measured on the demo, see bench/results/epyc-2core-pocl-svo-*.md) instead of the
 // dense chain.
+// reference: the reference quality mode, which keeps a copy of the previous frame's light output
+// for its screen-space reflections (16 bytes per pixel).
 DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_t shadow_size,
                                         uint32_t voxel_resolution, bool light_components,
-                                        bool octree = false);
+                                        bool octree = false, bool reference = false);
 
 // Throws rp::cl::Error before anything is allocated when the estimate exceeds the device's
 // global memory or one buffer exceeds its largest allocation, e.g. "16384x16384 needs 51.2 GiB
 // of device memory, the device has 5.6 GiB; the largest square size that fits is about 5400".
 void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint32_t height,
                          uint32_t shadow_size, uint32_t voxel_resolution, bool light_components,
-                         bool octree = false);
+                         bool octree = false, bool reference = false);
 
 // The largest square side s (0 if none) whose estimate fits `global_bytes` with every buffer
 // within `max_alloc_bytes`.
 uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_bytes,
                                   uint32_t shadow_size, uint32_t voxel_resolution,
-                                  bool light_components, bool octree = false);
+                                  bool light_components, bool octree = false,
+                                  bool reference = false);
 
 // "[0] pthread-... (CPU, Portable Computing Language)"
 std::string describe_device(const rp::cl::DeviceInfo& info);

@@ -116,6 +116,9 @@ TEST(BadInput, DeviceMemoryEstimateCountsEveryBuffer) {
   // The direct / indirect / specular views add three float4 per pixel.
   EXPECT_EQ(app::estimate_device_memory(160, 160, 64, 32, true).total_bytes,
             expected + pixels * 48);
+  // The reference mode keeps the previous frame's output (float4 per pixel) for its SSR.
+  EXPECT_EQ(app::estimate_device_memory(160, 160, 64, 32, false, false, true).total_bytes,
+            expected + pixels * 16);
 }
 
 TEST(BadInput, LargestSquareThatFitsIsTheBoundary) {
