@@ -147,7 +147,7 @@ __kernel void shadow_visibility(__global const FrameConstants* restrict frame,
     /* the neighbours agree: fill, unless the chunk's own one-tap test says otherwise somewhere
      * (a small umbra inside the chunk, or a small lit gap in an umbra) */
     const float8 fill = agreed == RP_SHADOW_ALL_LIT ? (float8)(1.0f) : (float8)(0.0f);
-    if (all(rp_shadow8_hard(frame, shadow, px, py, pz, nx, ny, nz, c, xs, ys) == fill)) {
+    if (all(rp_shadow8_hard(frame, shadow, px, py, pz, nx, ny, nz, c) == fill)) {
       shadow_store_chunk(visibility, width, height, x0, y0, fill);
       return;
     }

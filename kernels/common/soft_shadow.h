@@ -231,9 +231,11 @@ inline float8 rp_soft_plane_lit(__global const float* restrict shadow, const RpS
   }
 
 /* Fills *out (PoCL does not inline helpers that return structs: an out-pointer). */
-inline void rp_shadow8_setup(RpShadow8* out, __global const FrameConstants* restrict frame,
-                             float8 px, float8 py, float8 pz, float8 nx, float8 ny, float8 nz,
-                             float8 cos_theta, uint8 xs, uint8 ys) {
+/* The receivers' projection: every field of RpShadow8 up to inv0 (what the hard mode's one tap
+ * reads) and q's NDC x, y; rp_shadow8_setup adds the receiver planes and the rotations. */
+inline void rp_shadow8_project(RpShadow8* out, __global const FrameConstants* restrict frame,
+                               float8 px, float8 py, float8 pz, float8 nx, float8 ny, float8 nz,
+                               float8 cos_theta, float8* ndx_out, float8* ndy_out) {
   RpShadow8 s;
   const rp_mat4 m = frame->light_view_proj;
   s.isize = (int)frame->shadow_size;
@@ -244,7 +246,6 @@ inline void rp_shadow8_setup(RpShadow8* out, __global const FrameConstants* rest
   s.inv_b = (s.far - s.near) / (s.near * s.far);
   const float8 w0 = m.c[0].w * px + m.c[1].w * py + m.c[2].w * pz + m.c[3].w;
   const float r0 = m.c[0].x * m.c[0].x + m.c[1].x * m.c[1].x + m.c[2].x * m.c[2].x;
-  const float r1 = m.c[0].y * m.c[0].y + m.c[1].y * m.c[1].y + m.c[2].y * m.c[2].y;
   s.texel = fabs(w0) * (2.0f / (s.size * sqrt(r0)));
   const float8 cc = fmax(cos_theta, 1.0e-4f);
   s.tan_theta = fmin(sqrt(fmax(1.0f - cc * cc, 0.0f)) / cc, RP_DIRECT_MAX_SLOPE);
@@ -263,6 +264,20 @@ inline void rp_shadow8_setup(RpShadow8* out, __global const FrameConstants* rest
   s.sy = (0.5f - ndy * 0.5f) * s.size;
   s.zr = cw;
   s.inv0 = 1.0f / fmax(cw - s.texel * RP_SHADOW_DEPTH_BIAS, 1.0e-3f);
+  *ndx_out = ndx;
+  *ndy_out = ndy;
+  *out = s;
+}
+
+inline void rp_shadow8_setup(RpShadow8* out, __global const FrameConstants* restrict frame,
+                             float8 px, float8 py, float8 pz, float8 nx, float8 ny, float8 nz,
+                             float8 cos_theta, uint8 xs, uint8 ys) {
+  RpShadow8 s;
+  float8 ndx, ndy;
+  rp_shadow8_project(&s, frame, px, py, pz, nx, ny, nz, cos_theta, &ndx, &ndy);
+  const rp_mat4 m = frame->light_view_proj;
+  const float r0 = m.c[0].x * m.c[0].x + m.c[1].x * m.c[1].x + m.c[2].x * m.c[2].x;
+  const float r1 = m.c[0].y * m.c[0].y + m.c[1].y * m.c[1].y + m.c[2].y * m.c[2].y;
   /* receiver plane: n.D(u, v) = n.F + u n.R + v n.U */
   const float ir0 = 1.0f / r0, ir1 = 1.0f / r1;
   const float8 n_f = nx * m.c[0].w + ny * m.c[1].w + nz * m.c[2].w;
@@ -555,13 +570,13 @@ inline float8 rp_shadow8_hard_tap(__global const float* restrict shadow, const R
   return select((float8)(1.0f), (float8)(0.0f), shadowed);
 }
 
-/* rp_shadow8_hard_tap for eight receivers (rp_shadow8's arguments). */
+/* rp_shadow8_hard_tap for eight receivers (rp_shadow8's arguments, without the pixels). */
 inline float8 rp_shadow8_hard(__global const FrameConstants* restrict frame,
                               __global const float* restrict shadow, float8 px, float8 py,
-                              float8 pz, float8 nx, float8 ny, float8 nz, float8 cos_theta,
-                              uint8 xs, uint8 ys) {
+                              float8 pz, float8 nx, float8 ny, float8 nz, float8 cos_theta) {
   RpShadow8 s;
-  rp_shadow8_setup(&s, frame, px, py, pz, nx, ny, nz, cos_theta, xs, ys);
+  float8 ndx, ndy;
+  rp_shadow8_project(&s, frame, px, py, pz, nx, ny, nz, cos_theta, &ndx, &ndy);
   if (!any(s.inside)) return (float8)(1.0f);
   return rp_shadow8_hard_tap(shadow, &s);
 }
