@@ -117,10 +117,12 @@ MarbleResult measure_marbles(const CommonOptions& common, const scene::SceneAsse
       m["region_psnr_db"][region_name(region)] =
           masked_tone_mapped_psnr(rp.combined, truth.combined, region_mask(labels, region));
     }
-    const LeakStats leaks = leaks_and_misses(rp.indirect, truth.indirect, labels);
-    m["leaks"] = {{"leak_pixels", leaks.leak_pixels},
-                  {"missing_pixels", leaks.missing_pixels},
-                  {"epsilon", leaks.epsilon}};
+    for (size_t r = 0; r < kRegionCount; ++r) {
+      const LeakStats leaks = leaks_and_misses(rp.indirect, truth.indirect, labels, Region(r));
+      m["leaks"][region_name(Region(r))] = {{"leak_pixels", leaks.leak_pixels},
+                                            {"missing_pixels", leaks.missing_pixels},
+                                            {"epsilon", leaks.epsilon}};
+    }
     j["configurations"][c.key] = m;
   }
 
@@ -194,6 +196,18 @@ MarbleResult measure_marbles(const CommonOptions& common, const scene::SceneAsse
           j["region_pixels"][name].get<uint64_t>(),
           pct(number(cfg["fast_many"]["indirect"][name][what]), sign),
           pct(number(cfg["reference_many"]["indirect"][name][what]), sign));
+    }
+  for (const char* what : {"leak_pixels", "missing_pixels"})
+    for (Region r : kTableRegions) {
+      const std::string name = region_name(r);
+      auto count = [&](const char* key) {
+        char b[32];
+        std::snprintf(b, sizeof b, "%8llu",
+                      static_cast<unsigned long long>(cfg[key]["leaks"][name][what].get<uint64_t>()));
+        return std::string(b);
+      };
+      put(std::string(what[0] == 'l' ? "leak" : "missing") + " pixels " + name,
+          j["region_pixels"][name].get<uint64_t>(), count("fast_many"), count("reference_many"));
     }
   t += "wrote " + side.string() + " and " + heat.string() + "\n";
   return {j, t};

@@ -143,18 +143,20 @@ IncomingLight incoming_indirect(const std::vector<float>& indirect,
 }
 
 LeakStats leaks_and_misses(const std::vector<float>& a, const std::vector<float>& truth,
-                           const std::vector<uint16_t>& labels) {
+                           const std::vector<uint16_t>& labels, Region in) {
   check_sizes(a, truth, labels);
   LeakStats s;
   double sum = 0.0;
+  uint64_t covered = 0;
   for (size_t i = 0; i < labels.size(); ++i)
     if (labels[i] & bit(Region::kImage)) {
       sum += luma(truth, i);
-      ++s.covered_pixels;
+      ++covered;
     }
-  s.epsilon = s.covered_pixels ? 0.05 * sum / double(s.covered_pixels) : 0.0;
+  s.epsilon = covered ? 0.05 * sum / double(covered) : 0.0;
   for (size_t i = 0; i < labels.size(); ++i) {
-    if (!(labels[i] & bit(Region::kImage))) continue;
+    if (!(labels[i] & bit(in))) continue;
+    ++s.covered_pixels;
     const double v = luma(a, i), t = luma(truth, i);
     if (v > 1.5 * t + s.epsilon) ++s.leak_pixels;
     if (v < (t - s.epsilon) / 1.5) ++s.missing_pixels;

@@ -76,13 +76,14 @@ IncomingLight incoming_indirect(const std::vector<float>& indirect,
 
 // Pixels (covered) where a's indirect luminance exceeds 1.5 x the truth's + eps (leaks: light
 // where the truth is dark) or falls below (truth - eps) / 1.5 (missing light); eps = 5 % of the
-// truth's mean indirect luminance over the covered pixels.
+// truth's mean indirect luminance over the covered pixels. `in`: count only the pixels of that
+// region (eps stays the whole image's; covered_pixels counts the region's pixels).
 struct LeakStats {
   uint64_t leak_pixels = 0, missing_pixels = 0, covered_pixels = 0;
   double epsilon = 0.0;
 };
 LeakStats leaks_and_misses(const std::vector<float>& a, const std::vector<float>& truth,
-                           const std::vector<uint16_t>& labels);
+                           const std::vector<uint16_t>& labels, Region in = Region::kImage);
 
 // PSNR (dB, peak 1) of two radiance images after the renderer's tone map x / (1 + x) and the
 // sRGB encode (no quantisation), over all pixels and channels; +inf when identical.
