@@ -408,14 +408,14 @@ __kernel void svo_leaves(__global const uint* fragments, __global const uint* ne
     __global const uint* frag = fragments + RP_SVO_FRAGMENT_WORDS * (j - 1u);
     const uint key = frag[RP_SVO_FRAGMENT_KEY];
     const uint o = (key & 1u) | (((key >> D) & 1u) << 1) | (((key >> (2u * D)) & 1u) << 2);
+    const uint cover = frag[RP_SVO_FRAGMENT_COVER];
     for (uint c = 0; c < 4u; ++c) {
-      const uint q = frag[c];
+      const uint q = c < 3u ? frag[c] : rp_svo_cover_opacity(cover, 1u << RP_VOXEL_FIXED_BITS);
       const uint old = acc[o][c];
       acc[o][c] = old + q;
       if (old > 0xFFFFFFFFu - q) over[o] |= 1u << c;
     }
-    const uint facing = frag[RP_SVO_FRAGMENT_FACING];
-    for (uint a = 0; a < 3u; ++a) acc[o][4u + a] += rp_svo_unpack_facing(facing, a);
+    for (uint a = 0; a < 3u; ++a) acc[o][4u + a] += rp_svo_cover_facing(cover, a);
   }
   for (uint o = 0; o < 8u; ++o) {
     svo_store(pool, alpha, brick + rp_svo_sample(o & 1u, (o >> 1) & 1u, o >> 2),

@@ -168,13 +168,13 @@ inline uint3 vx_facing_words_all(float a) {
 }
 
 #ifdef RP_VOXEL_FRAGMENTS
-/* One fragment (shared/svo_layout.h: 6 words, the facing words packed). */
+/* One fragment (shared/svo_layout.h: 5 words, the opacity and the facing words packed into
+ * one: exact for the two kinds vx_sink gets, a plane's at opacity 1 and a sphere's). */
 inline void vx_fragment_write(volatile __global uint* frag, uint voxel, uint4 q, uint3 f) {
   frag[0] = q.x;
   frag[1] = q.y;
   frag[2] = q.z;
-  frag[3] = q.w;
-  frag[RP_SVO_FRAGMENT_FACING] = rp_svo_pack_facing(f.x, f.y, f.z);
+  frag[RP_SVO_FRAGMENT_COVER] = rp_svo_pack_cover(q.w, f.x, f.y, f.z);
   frag[RP_SVO_FRAGMENT_KEY] = voxel;
 }
 

@@ -43,15 +43,14 @@ class Fnv1a {
   uint64_t h_ = 0xcbf29ce484222325ULL;
 };
 
-// Saturated "glass" colour from a hue in [0, 1): HSV with s = 0.75, v = 0.9, linear RGB.
+}  // namespace
+
 glm::vec3 glass_colour(float hue) {
   const float h6 = hue * 6.0f;
   const glm::vec3 rgb = glm::clamp(
       glm::abs(glm::mod(glm::vec3(h6, h6 + 4.0f, h6 + 2.0f), 6.0f) - 3.0f) - 1.0f, 0.0f, 1.0f);
   return 0.9f * glm::mix(glm::vec3(1.0f), rgb, 0.75f);
 }
-
-}  // namespace
 
 World::World(WorldConfig config)
     : config_(config), arena_(Arena::from_light(PointLight{})) {

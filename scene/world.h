@@ -63,6 +63,10 @@ inline constexpr float kDragMaxSpeed = 4.0f;
 inline constexpr float kDragMaxSpin = 12.0f;
 }  // namespace world_constants
 
+// A marble's saturated "glass" colour from a hue in [0, 1): HSV with s = 0.75, v = 0.9, linear
+// RGB (the spawned marbles' albedo; the accuracy report's marble frame uses it too).
+glm::vec3 glass_colour(float hue);
+
 // A marble or fireball with what the renderer needs.
 struct Ball {
   SphereBody sphere;

@@ -24,9 +24,30 @@ void check_sizes(const std::vector<float>& a, const std::vector<float>& b,
     throw std::invalid_argument("accuracy: images and region labels differ in size");
 }
 
+constexpr float kFloorY = -1.0f;  // the box's floor (scene/cornell_box.h: the box [-1, 1]^3)
+
+// Whether floor point p (y = -1) lies within kMarbleContactRadii radii of a marble's contact
+// point; marbles are the spheres that do not emit, resting on the floor.
+bool beside_marble(glm::vec3 p, const std::vector<scene::Sphere>& spheres) {
+  for (const scene::Sphere& s : spheres) {
+    if (s.emission != glm::vec3(0.0f)) continue;
+    if (std::abs(s.center.y - s.radius - kFloorY) > 0.01f * s.radius) continue;
+    const glm::vec2 d(p.x - s.center.x, p.z - s.center.z);
+    if (glm::dot(d, d) < (kMarbleContactRadii * s.radius) * (kMarbleContactRadii * s.radius))
+      return true;
+  }
+  return false;
+}
+
 // The label a primary hit gives (without the erosion): one named region or none (kImage).
-Region label_of(const truth::PrimaryHit& h) {
+Region label_of(const truth::PrimaryHit& h, const std::vector<scene::Sphere>& spheres) {
   namespace demo = scene::demo;
+  if (h.sphere != truth::PrimaryHit::kNone)
+    return h.sphere < spheres.size() && spheres[h.sphere].emission == glm::vec3(0.0f)
+               ? Region::kMarble
+               : Region::kImage;  // fireballs, particles, or no sphere list given
+  if (h.material == demo::kFloorMaterial && beside_marble(h.position, spheres))
+    return Region::kFloorByMarbles;
   switch (h.material) {
     case demo::kCeilingMaterial: return Region::kCeiling;
     case demo::kBackMaterial: return Region::kBackWall;
@@ -53,18 +74,20 @@ const char* region_name(Region r) {
     case Region::kRightWall: return "right_wall";
     case Region::kTumblerLit: return "tumblers_lit";
     case Region::kTumblerShadowed: return "tumblers_shadowed";
+    case Region::kMarble: return "marbles";
+    case Region::kFloorByMarbles: return "floor_by_marbles";
     case Region::kCount: break;
   }
   return "?";
 }
 
 std::vector<uint16_t> classify_regions(const std::vector<truth::PrimaryHit>& hits, uint32_t width,
-                                       uint32_t height) {
+                                       uint32_t height, const std::vector<scene::Sphere>& spheres) {
   if (hits.size() != size_t(width) * height)
     throw std::invalid_argument("accuracy: primary hits do not match the image size");
   std::vector<Region> raw(hits.size(), Region::kCount);  // kCount = background
   for (size_t i = 0; i < hits.size(); ++i)
-    if (hits[i].hit()) raw[i] = label_of(hits[i]);
+    if (hits[i].hit()) raw[i] = label_of(hits[i], spheres);
   std::vector<uint16_t> labels(hits.size(), 0);
   for (uint32_t y = 0; y < height; ++y)
     for (uint32_t x = 0; x < width; ++x) {
@@ -120,18 +143,20 @@ IncomingLight incoming_indirect(const std::vector<float>& indirect,
 }
 
 LeakStats leaks_and_misses(const std::vector<float>& a, const std::vector<float>& truth,
-                           const std::vector<uint16_t>& labels) {
+                           const std::vector<uint16_t>& labels, Region in) {
   check_sizes(a, truth, labels);
   LeakStats s;
   double sum = 0.0;
+  uint64_t covered = 0;
   for (size_t i = 0; i < labels.size(); ++i)
     if (labels[i] & bit(Region::kImage)) {
       sum += luma(truth, i);
-      ++s.covered_pixels;
+      ++covered;
     }
-  s.epsilon = s.covered_pixels ? 0.05 * sum / double(s.covered_pixels) : 0.0;
+  s.epsilon = covered ? 0.05 * sum / double(covered) : 0.0;
   for (size_t i = 0; i < labels.size(); ++i) {
-    if (!(labels[i] & bit(Region::kImage))) continue;
+    if (!(labels[i] & bit(in))) continue;
+    ++s.covered_pixels;
     const double v = luma(a, i), t = luma(truth, i);
     if (v > 1.5 * t + s.epsilon) ++s.leak_pixels;
     if (v < (t - s.epsilon) / 1.5) ++s.missing_pixels;

@@ -28,15 +28,31 @@ enum class Region : uint8_t {
   kRightWall,       // sky blue, x = +1
   kTumblerLit,      // tumbler surface facing the lamp and reached by it
   kTumblerShadowed, // tumbler surface turned away from the lamp or shadowed
+  // Only in frames with marbles (the report's marble section, bench/src/accuracy_marbles.h):
+  kMarble,          // a marble's surface (a sphere that does not emit)
+  kFloorByMarbles,  // floor within kMarbleContactRadii marble radii of a resting marble's
+                    // contact point, lit or not (taken out of kFloorLit / kFloorShadow): where
+                    // a coarse volume leaks light under a marble or darkens the floor around it
   kCount
 };
 inline constexpr size_t kRegionCount = size_t(Region::kCount);
+// The regions the plain demo frame has (the report's main section lists these only).
+inline constexpr size_t kDemoRegionCount = size_t(Region::kMarble);
+// Radius of the floor_by_marbles disc around a contact point, in marble radii: the marble's own
+// footprint (1) plus 1.5 radii beside it (0.06 world units for the demo's r = 0.04 marbles: two
+// voxels at 64^3, where a marble is under three voxels across).
+inline constexpr float kMarbleContactRadii = 2.5f;
 const char* region_name(Region r);
 
 // Label per pixel: bit r set when the pixel belongs to region r (kImage for every covered
-// pixel). Material indices are those of scene::make_demo_assets (scene::demo).
+// pixel). Material indices are those of scene::make_demo_assets (scene::demo). `spheres` are
+// the frame's (FrameScene::spheres, which PrimaryHit::sphere indexes): with none given, a
+// sphere's pixel is in kImage only and no floor is kFloorByMarbles (the plain demo frame's and
+// the direct section's labels). A marble "rests on the floor" when its lowest point is within
+// 1 % of its radius of y = -1.
 std::vector<uint16_t> classify_regions(const std::vector<truth::PrimaryHit>& hits, uint32_t width,
-                                       uint32_t height);
+                                       uint32_t height,
+                                       const std::vector<scene::Sphere>& spheres = {});
 
 // sum |a - t| / sum t and sum a / sum t - 1 over the RGB channels of the pixels in `region`.
 struct ErrorStats {
@@ -60,13 +76,14 @@ IncomingLight incoming_indirect(const std::vector<float>& indirect,
 
 // Pixels (covered) where a's indirect luminance exceeds 1.5 x the truth's + eps (leaks: light
 // where the truth is dark) or falls below (truth - eps) / 1.5 (missing light); eps = 5 % of the
-// truth's mean indirect luminance over the covered pixels.
+// truth's mean indirect luminance over the covered pixels. `in`: count only the pixels of that
+// region (eps stays the whole image's; covered_pixels counts the region's pixels).
 struct LeakStats {
   uint64_t leak_pixels = 0, missing_pixels = 0, covered_pixels = 0;
   double epsilon = 0.0;
 };
 LeakStats leaks_and_misses(const std::vector<float>& a, const std::vector<float>& truth,
-                           const std::vector<uint16_t>& labels);
+                           const std::vector<uint16_t>& labels, Region in = Region::kImage);
 
 // PSNR (dB, peak 1) of two radiance images after the renderer's tone map x / (1 + x) and the
 // sRGB encode (no quantisation), over all pixels and channels; +inf when identical.

@@ -1,7 +1,6 @@
 // `bench --accuracy` (see accuracy_report.h).
 #include "bench/src/accuracy_report.h"
 
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -10,29 +9,19 @@
 #include <vector>
 
 #include "bench/src/accuracy_direct.h"
+#include "bench/src/accuracy_marbles.h"
 #include "bench/src/accuracy_metrics.h"
+#include "bench/src/accuracy_render.h"
 #include "app/commands.h"
 #include "app/host_tone_map.h"
 #include "app/interrupt.h"
 #include "app/png_output.h"
-#include "app/progress.h"
 #include "app/truth_cache.h"
 #include "render/renderer.h"
 #include "scene/demo_scene.h"
 
 namespace rp::app {
 namespace {
-
-// The linear images one mode or truth gives (3 floats per pixel).
-struct Images {
-  std::string name;
-  std::vector<float> combined, direct, indirect, albedo;
-  std::vector<float> specular;  // the coat's part of direct + indirect (issue 16)
-};
-
-Images from_truth(const std::string& name, const truth::PathTracedImage& t) {
-  return {name, t.combined, t.direct, t.indirect, t.albedo, t.specular};
-}
 
 // The regions whose surfaces are coated in the demo (the floor, the tumblers): the specular
 // component's rows.
@@ -54,33 +43,6 @@ constexpr Config kConfigs[] = {
 };
 constexpr const char* kTaaKey = "fast_many_taa";
 
-// The real-time renderer on the demo frame at rest: `frames` frames (frame_index counting up,
-// so the fast mode's interleaving, the shadow noise and TAA's jitter rotate as in the app), no
-// bloom or motion blur, TAA only when asked. `final_rgba` gets the last finished frame.
-Images render_mode(const CommonOptions& common, const std::string& name, render::Quality quality,
-                   uint32_t bounces, bool taa, uint32_t w, uint32_t h, uint32_t frames,
-                   std::vector<uint8_t>& final_rgba) {
-  CommonOptions c = common;
-  c.quality = quality;
-  c.bounces = bounces;
-  c.view = {};
-  c.effects.bloom = c.effects.motion_blur = false;
-  c.effects.taa = taa;
-  RenderSession session(c, w, h);
-  session.set_keep_components(true);
-  ProgressBar bar(name, frames);
-  double ms = 0.0;
-  for (uint32_t i = 0; i < frames; ++i) {
-    if (InterruptGuard::interrupted()) throw truth::PathTracer::Cancelled();
-    session.render(scene::make_demo_frame(session.assets(), i), final_rgba, ms);
-    bar.update(i + 1);
-  }
-  bar.finish();
-  render::LinearComponents lc;
-  session.read_components(lc);
-  return {name, lc.combined, lc.direct, lc.indirect, lc.albedo, lc.specular};
-}
-
 nlohmann::json stats_json(const ErrorStats& s) {
   return {{"rel_l1", s.rel_l1}, {"bias", s.bias}, {"pixels", s.pixels}};
 }
@@ -95,7 +57,7 @@ nlohmann::json compare(const Images& rp, const Images& truth, const std::vector<
   j["final_psnr_db"] = tone_mapped_psnr(rp.combined, truth.combined);
   j["direct"] = stats_json(compare_region(rp.direct, truth.direct, labels, Region::kImage));
   nlohmann::json regions;
-  for (size_t r = 0; r < kRegionCount; ++r)
+  for (size_t r = 0; r < kDemoRegionCount; ++r)
     regions[region_name(Region(r))] =
         stats_json(compare_region(rp.indirect, truth.indirect, labels, Region(r)));
   j["indirect"] = regions;
@@ -156,18 +118,9 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
     s.spp = options.spp;
     s.bounces = bounces;
     s.seed = options.seed;
-    ProgressBar bar("path tracing (" + std::to_string(bounces) + " bounce" +
-                        (bounces == 1 ? "" : "s") + ")",
-                    h);
-    std::atomic<bool> cancel{false};  // set from the progress callback on Ctrl-C / SIGTERM
-    const CachedTruth t = cached_path_trace(
+    const CachedTruth t = cached_truth_with_progress(
         tracer, assets, frame, s, cache,
-        [&](uint32_t done, uint32_t) {
-          if (InterruptGuard::interrupted()) cancel = true;
-          bar.update(done);
-        },
-        &cancel);
-    bar.finish();
+        "path tracing (" + std::to_string(bounces) + " bounce" + (bounces == 1 ? "" : "s") + ")");
     const std::string key = bounces == 1 ? "one" : "many";
     j["truth"][key] = {{"bounces", bounces},
                        {"spp", s.spp},
@@ -218,7 +171,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
                                   {"motion_blur", false},
                                   {"truth", "many"},
                                   {"final_psnr_db", rgba8_psnr(taa_rgba, truth_many.combined)}};
-  for (size_t r = 0; r < kRegionCount; ++r) {
+  for (size_t r = 0; r < kDemoRegionCount; ++r) {
     uint64_t n = 0;
     for (uint16_t l : labels) n += (l >> r) & 1u;
     j["region_pixels"][region_name(Region(r))] = n;
@@ -283,6 +236,23 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   const DirectResult direct = measure_direct(common, assets, tracer, dopt);
   j["direct"] = direct.json;
 
+  // The marble section (issue 17), on its own frame, only when asked (--marbles).
+  MarbleResult marbles;
+  if (options.marbles) {
+    MarbleOptions mopt;
+    mopt.width = w;
+    mopt.height = h;
+    mopt.spp = options.spp;
+    mopt.bounces = options.many_bounces;
+    mopt.converge_frames = options.converge_frames;
+    mopt.reference_frames = options.reference_many_frames;
+    mopt.seed = options.seed;
+    mopt.cache_dir = cache;
+    mopt.out_dir = options.out_dir;
+    marbles = measure_marbles(common, assets, tracer, mopt);
+    j["marbles"] = marbles.json;
+  }
+
   // Thresholds, each on the fast mode (the default) against the truth at its bounce count.
   AccuracyResult result;
   std::ostringstream checks;
@@ -315,7 +285,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
     // The worst named region; a region without pixels at this size has no figure and is skipped.
     double worst = NAN;
     std::string where;
-    for (size_t r = 1; r < kRegionCount; ++r) {
+    for (size_t r = 1; r < kDemoRegionCount; ++r) {
       const double v = std::abs(number(cfg["fast_many"]["indirect"][region_name(Region(r))]["bias"]));
       if (std::isfinite(v) && !(v <= worst)) {
         worst = v;
@@ -413,7 +383,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   t << line;
   row("direct bias", [&](const nlohmann::json& m) { return pct(number(m["direct"]["bias"]), true); });
   for (const char* what : {"rel_l1", "bias"})
-    for (size_t r = 0; r < kRegionCount; ++r) {
+    for (size_t r = 0; r < kDemoRegionCount; ++r) {
       const std::string name = region_name(Region(r));
       row(std::string("indirect ") + (what[0] == 'r' ? "L1 " : "bias ") + name,
           [&](const nlohmann::json& m) {
@@ -459,7 +429,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
     t << line;
   }
   t << "wrote " << side.string() << ", " << heat.string() << " and " << taa_png.string() << "\n"
-    << direct.table << checks.str();
+    << direct.table << marbles.table << checks.str();
   result.table = t.str();
   result.json = j;
   if (!options.json_path.empty()) write_text_atomic(options.json_path, j.dump(2) + "\n");
@@ -485,6 +455,7 @@ int accuracy_command(const CommonOptions& common, const BenchOptions& options) {
   o.min_direct_psnr_floor = options.min_direct_psnr_floor;
   o.max_penumbra_error = options.max_penumbra_error;
   o.min_albedo_psnr = options.min_albedo_psnr;
+  o.marbles = options.sim.marbles;
   o.command_line = options.command_line;
   AccuracyResult r;
   try {

@@ -18,8 +18,11 @@
 // of direct + indirect, issue 16: relative L1 and bias over the image, the floor and the
 // tumblers). Then the direct-light section (issue 15,
 // bench/src/accuracy_direct.h): every shadow mode's direct component against the area-lamp truth,
-// penumbra widths, the albedo view. Writes a JSON (schema rolypoly-accuracy/4: /3 plus
-// "specular" per configuration; /3 was /2 plus "direct";
+// penumbra widths, the albedo view. With `marbles` (--marbles), the marble section (issue 17,
+// bench/src/accuracy_marbles.h): a second frame with 16 marbles at rest, fast/N and ref/N
+// against its many-bounce truth, per region (marbles and the floor beside them included);
+// the main section's frame, regions and figures stay as without it. Writes a JSON (schema rolypoly-accuracy/4: /3 plus
+// "specular" per configuration, and "marbles" only with --marbles; /3 was /2 plus "direct";
 // README "Accuracy against the ground truth"), side-by-side PNGs and signed difference heat maps.
 #pragma once
 
@@ -65,6 +68,9 @@ struct AccuracyOptions {
   std::optional<double> min_direct_psnr_floor;   // direct PSNR (dB) on the floor
   std::optional<double> max_penumbra_error;      // |width / truth's - 1|, tumbler and marble
   std::optional<double> min_albedo_psnr;         // albedo view PSNR (dB), image
+  // The marble section (bench/src/accuracy_marbles.h; `bench --accuracy --marbles`): the
+  // marble frame's truth at many bounces and fast/N, ref/N on it; JSON "marbles".
+  bool marbles = false;
   std::string command_line;
 };
 

@@ -59,20 +59,23 @@
  *     (common/svo.h rp_svo_solid_apply): the voxelized shells are hollow.
  *
  * Fragments (the voxelizer's output at the octree's resolution, kernels/voxelize.cl built
- * with RP_VOXEL_FRAGMENTS): RP_SVO_FRAGMENT_WORDS = 6 uints (24 bytes) per fragment, one
+ * with RP_VOXEL_FRAGMENTS): RP_SVO_FRAGMENT_WORDS = 5 uints (20 bytes) per fragment, one
  * per (surface sample, voxel) pair, duplicates allowed:
- *   words 0-3  fixed-point radiance x opacity (r, g, b) and opacity, as the dense voxelizer
- *              adds them (render/voxel_volume.h's format),
- *   word 4     the facing coverage words x, y, z (voxel_layout.h) packed 10 bits an axis
- *              (rp_svo_pack_facing): one fragment adds at most RP_VOXEL_FACING_UNIT = 128 to
- *              a half, and to both halves of an axis only the same value (spheres), so an
- *              axis is its value (8 bits) and which halves get it (2 bits): exact,
- *   word 5     the level-0 voxel (z * R + y) * R + x.
- * Albedo and light are combined into the radiance when the fragment is written (the
- * voxelizer shades it); the normal survives as the facing words the anisotropic mips use.
- * Their order in the list is whatever the atomics made it: nothing depends on it (flags are
+ *   words 0-2  fixed-point radiance x opacity (r, g, b), as the dense voxelizer adds them
+ *              (render/voxel_volume.h's format),
+ *   word 3     the "cover" word: the contribution's fixed-point opacity and its facing
+ *              coverage words x, y, z (voxel_layout.h), exactly (rp_svo_pack_cover). The
+ *              voxelizer adds two kinds: a plane's (triangles) at opacity 1 with each axis's
+ *              value (<= RP_VOXEL_FACING_UNIT = 128) in one half, packed 10 bits an axis
+ *              (rp_svo_pack_facing: the value, which halves), bit 31 clear, the opacity
+ *              implied; and a sphere's at any opacity <= 1 with the same value in both halves
+ *              of every axis: bit 31 set, the opacity (<= 2^16: 17 bits) in bits 0-16 and the
+ *              value in bits 17-24,
+ *   word 4     the level-0 voxel (z * R + y) * R + x.
+  * Their order in the list is whatever the atomics made it: nothing depends on it (flags are
  * ORed, sums are integers). (8 words, the facing words unpacked, put the 512^3 demo's list at
- * 59 MiB instead of 44: the difference between fitting the 256 MB budget or not.)
+ * 59 MiB instead of 44: the difference between fitting the 256 MB budget or not; 6 words, the
+ * opacity a word of its own, 10.4 MiB more on the busy scene at 512^3.)
  */
 #ifndef ROLYPOLY_SHARED_SVO_LAYOUT_H
 #define ROLYPOLY_SHARED_SVO_LAYOUT_H
@@ -97,9 +100,10 @@
 #define RP_SVO_NO_BRICK 0xFFFFFFFFu
 
 #define RP_SVO_BRICK_SAMPLES 27u  /* one direction */
-#define RP_SVO_FRAGMENT_WORDS 6u
-#define RP_SVO_FRAGMENT_FACING 4u /* word holding the packed facing words */
-#define RP_SVO_FRAGMENT_KEY 5u    /* word holding the voxel index */
+#define RP_SVO_FRAGMENT_WORDS 5u
+#define RP_SVO_FRAGMENT_COVER 3u  /* word holding the opacity and the facing words */
+#define RP_SVO_FRAGMENT_KEY 4u    /* word holding the voxel index */
+#define RP_SVO_COVER_SPHERE 0x80000000u
 
 /* Build scratch per node (svo.cl), one uint: bit 0 own voxels non-empty; bit e (1..7, e = ex
  * | ey << 1 | ez << 2) own voxels non-empty on the low faces along e, so node a - e must
@@ -128,8 +132,8 @@ RP_SVO_FN RP_SVO_UINT rp_svo_sample(RP_SVO_UINT i, RP_SVO_UINT j, RP_SVO_UINT k)
   return (k * 3u + j) * 3u + i;
 }
 
-/* Facing coverage words (x, y, z; shared/voxel_layout.h) of ONE contribution -> fragment word
- * 4: per axis i bits [10 i, 10 i + 8) the value, bit 10 i + 8 set when the low half (+ facing)
+/* Facing coverage words (x, y, z; shared/voxel_layout.h) of ONE plane contribution -> fragment
+ * word 3 (rp_svo_pack_cover): per axis i bits [10 i, 10 i + 8) the value, bit 10 i + 8 set when the low half (+ facing)
  * gets it, bit 10 i + 9 when the high half does. Exact for what the voxelizer adds (see the
  * header: a value <= 128 per half, both halves only with the same value). */
 RP_SVO_FN RP_SVO_UINT rp_svo_pack_facing_axis(RP_SVO_UINT w) {
@@ -141,10 +145,31 @@ RP_SVO_FN RP_SVO_UINT rp_svo_pack_facing(RP_SVO_UINT fx, RP_SVO_UINT fy, RP_SVO_
   return rp_svo_pack_facing_axis(fx) | (rp_svo_pack_facing_axis(fy) << 10) |
          (rp_svo_pack_facing_axis(fz) << 20);
 }
-/* The facing word of `axis` (0..2) back from fragment word 4. */
+/* The facing word of `axis` (0..2) back from rp_svo_pack_facing's word. */
 RP_SVO_FN RP_SVO_UINT rp_svo_unpack_facing(RP_SVO_UINT packed, RP_SVO_UINT axis) {
   const RP_SVO_UINT b = packed >> (10u * axis), q = b & 255u;
   return ((b & 256u) != 0u ? q : 0u) | ((b & 512u) != 0u ? q << 16 : 0u);
+}
+
+/* Fragment word 3 from one contribution's fixed-point opacity `a` and facing words: a
+ * sphere's (every axis the same value v <= 255 in both halves) as RP_SVO_COVER_SPHERE | a
+ * (a < 2^17) | v << 17, else a plane's (opacity 1 implied) as rp_svo_pack_facing. */
+RP_SVO_FN RP_SVO_UINT rp_svo_pack_cover(RP_SVO_UINT a, RP_SVO_UINT fx, RP_SVO_UINT fy,
+                                        RP_SVO_UINT fz) {
+  const RP_SVO_UINT v = fx & 0xFFFFu;
+  if (fx == fy && fy == fz && (fx >> 16) == v && v <= 255u)
+    return RP_SVO_COVER_SPHERE | (a & 0x1FFFFu) | (v << 17);
+  return rp_svo_pack_facing(fx, fy, fz);
+}
+/* The fixed-point opacity back from word 3 (`one`: the fixed-point 1.0, a plane's). */
+RP_SVO_FN RP_SVO_UINT rp_svo_cover_opacity(RP_SVO_UINT cover, RP_SVO_UINT one) {
+  return (cover & RP_SVO_COVER_SPHERE) != 0u ? cover & 0x1FFFFu : one;
+}
+/* The facing word of `axis` (0..2) back from word 3. */
+RP_SVO_FN RP_SVO_UINT rp_svo_cover_facing(RP_SVO_UINT cover, RP_SVO_UINT axis) {
+  if ((cover & RP_SVO_COVER_SPHERE) == 0u) return rp_svo_unpack_facing(cover, axis);
+  const RP_SVO_UINT v = (cover >> 17) & 255u;
+  return v | (v << 16);
 }
 
 /* log2 of a power of two. */

@@ -509,6 +509,10 @@ CliParse parse_cli(int argc, const char* const* argv) {
                   "sign of R - B is the truth's: fast at 64 bounces as the 64-bounce truth, fast "
                   "at 1 bounce as the 1-bounce truth");
   add_simulation(bench, bench_opts.sim);
+  bench->get_option("--marbles")
+      ->description("start with the 30 marbles (key S toggles them); with --accuracy: also "
+                    "measure the marble frame (16 marbles at rest: fast and reference mode "
+                    "against its truth, the marbles and the floor beside them as regions)");
   CLI::Option* devices_opt = bench->add_option(
       "--devices", bench_opts.devices,
       "devices to bench one after the other: all, or a comma-separated list of indices from "

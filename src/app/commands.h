@@ -19,7 +19,8 @@ struct ImageSize {
 // What the simulated world starts with (render, run and bench).
 struct SimulationArgs {
   uint64_t seed = 1;       // --seed: marbles' and particles' random streams
-  bool marbles = false;    // --marbles: start with the 30 marbles (key S)
+  bool marbles = false;    // --marbles: start with the 30 marbles (key S); bench --accuracy:
+                           // also the marble section (bench/src/accuracy_marbles.h)
   bool fireball = false;   // --fireball: start with a fireball (key F)
   std::string replay;      // --replay FILE: input log to replay ("" = none)
 };

@@ -43,7 +43,7 @@ class SvoPass {
   void build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragments, uint32_t count,
              uint32_t resolution, render::SvoVolume& svo);
 
-  // Fragments of the last run (uint[8] each) and their count.
+  // Fragments of the last run (RP_SVO_FRAGMENT_WORDS uints each).
   const ::cl::Buffer& fragments() const { return fragments_; }
 
  private:

@@ -452,6 +452,7 @@ std::vector<PrimaryHit> PathTracer::primary_hits(const scene::FrameScene& frame,
       hit.instance = s.instance;
       hit.sphere = s.sphere;
       hit.material = s.material;
+      hit.position = s.p;
       const glm::vec3 to_light = frame.light.position - s.p;
       const float d = glm::length(to_light);
       hit.lamp_cos = glm::dot(s.ns, to_light / d);

@@ -110,6 +110,7 @@ struct PrimaryHit {
   uint32_t instance = kNone;  // FrameScene::instances index, or kNone
   uint32_t sphere = kNone;    // FrameScene::spheres index, or kNone
   uint32_t material = kNone;  // SceneAssets::materials index of a mesh hit, or kNone
+  glm::vec3 position{0.0f};   // world-space hit point (the accuracy report's marble regions)
   float lamp_cos = 0.0f;      // dot(shading normal, direction to the lamp centre)
   bool lamp_visible = false;  // no shadow caster between the point and the lamp centre
   // Only when primary_hits was given lamp_strata > 0, for the area lamp (LampModel::kArea):

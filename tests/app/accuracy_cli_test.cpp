@@ -131,6 +131,34 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
   EXPECT_EQ(third.exit_code, 0) << third.out << third.err;
   EXPECT_NE(third.out.find("threshold min_psnr_taa"), std::string::npos) << third.out;
   EXPECT_EQ(third.out.find("MISSED"), std::string::npos) << third.out;
+
+  // --marbles adds the marble section (its own frame and truth) and leaves the main section's
+  // figures as they are (the renders are deterministic).
+  EXPECT_FALSE(j.contains("marbles"));
+  const rp::test::CommandResult fourth = run_rolypoly(args + " --marbles");
+  ASSERT_EQ(fourth.exit_code, 0) << fourth.out << fourth.err;
+  EXPECT_NE(fourth.out.find("marbles: demo + 16 marbles at rest"), std::string::npos)
+      << fourth.out;
+  EXPECT_NE(fourth.out.find("indirect bias floor_by_marbles"), std::string::npos) << fourth.out;
+  EXPECT_EQ(rp::test::files_with_suffix(dir / "cache", ".exr").size(), 6u);
+  for (const char* png : {"accuracy_marbles_side_by_side.png", "accuracy_marbles_heat.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / png)) << png;
+  std::ifstream in4(dir / "acc.json");
+  const nlohmann::json j4 = nlohmann::json::parse(in4);
+  EXPECT_EQ(j4["configurations"], j["configurations"]);
+  EXPECT_EQ(j4["region_pixels"], j["region_pixels"]);
+  EXPECT_FALSE(j["region_pixels"].contains("marbles"));
+  const nlohmann::json& marbles = j4["marbles"];
+  EXPECT_EQ(marbles["truth"]["bounces"], 64);
+  EXPECT_FALSE(marbles["truth"]["from_cache"].get<bool>());
+  EXPECT_TRUE(marbles["region_pixels"].contains("floor_by_marbles"));
+  for (const char* key : {"fast_many", "reference_many"}) {
+    EXPECT_TRUE(marbles["configurations"][key]["final_psnr_db"].is_number()) << key;
+    EXPECT_TRUE(marbles["configurations"][key]["indirect"].contains("marbles")) << key;
+    EXPECT_TRUE(marbles["configurations"][key]["region_psnr_db"].contains("floor_by_marbles"));
+  }
+  EXPECT_EQ(marbles["configurations"]["fast_many"]["frames"], 128);
+  EXPECT_EQ(marbles["configurations"]["reference_many"]["frames"], 32);
 }
 
 TEST(AccuracyCli, UsageErrors) {

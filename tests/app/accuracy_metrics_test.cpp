@@ -92,6 +92,16 @@ TEST(AccuracyMetrics, LeaksAndMissingPixels) {
   EXPECT_EQ(s.leak_pixels, 1u);     // 2 > 1.55; 1.5 is not
   EXPECT_EQ(s.missing_pixels, 1u);  // 0.5 < 0.95 / 1.5 = 0.633; 0.7 is not
   EXPECT_EQ(s.covered_pixels, 4u);
+  // Counted in one region: the leak pixel and one plain pixel are marbles; eps stays the
+  // image's (a region of dark truth does not get a smaller eps).
+  std::vector<uint16_t> marbles = labels;
+  marbles[0] |= bit(Region::kMarble);
+  marbles[1] |= bit(Region::kMarble);
+  const LeakStats m = leaks_and_misses(a, truth, marbles, Region::kMarble);
+  EXPECT_NEAR(m.epsilon, 0.05, 1e-9);
+  EXPECT_EQ(m.leak_pixels, 1u);
+  EXPECT_EQ(m.missing_pixels, 0u);
+  EXPECT_EQ(m.covered_pixels, 2u);
 }
 
 TEST(AccuracyMetrics, PsnrAfterToneMap) {

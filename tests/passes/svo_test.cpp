@@ -344,7 +344,7 @@ TEST(Svo, BitIdenticalRepeats) {
 
 // The build's device memory, measured (CL_MEM_SIZE of every buffer the octree path holds),
 // stays within what its counts allow: per fragment of the list's capacity (the count plus
-// 1/16 slack, at least the first list of 65536) the fragment's 24 bytes and one 4-byte
+// 1/16 slack, at least the first list of 65536) the fragment's 20 bytes and one 4-byte
 // owner/link word; per node of the pool's capacity a flag word and a coordinate; the chunk
 // sums (1 word per 256 nodes), the occupancy bits of levels >= 3 and two small fixed buffers.
 // Nothing per leaf voxel (the
@@ -386,6 +386,40 @@ TEST(Svo, PackedFacingWordsRoundTrip) {
       EXPECT_EQ(gpu::rp_svo_unpack_facing(packed, 1), (q * 7) % 129);
       EXPECT_EQ(gpu::rp_svo_unpack_facing(packed, 2), ((q * 7) % 129) << 16);
     }
+}
+
+// Fragment word 3 (shared/svo_layout.h) gives back the opacity and the facing words of both
+// kinds of contribution the voxelizer adds: a plane's at opacity 1 (the fixed-point 2^16), each
+// axis's value in one half and the largest axis at 128 (voxelize.cl vx_facing_words); a
+// sphere's at any opacity up to 1 with round(128 a) in both halves of every axis
+// (vx_facing_words_all), down to the tiny particles whose value rounds to 0.
+TEST(Svo, PackedCoverWordsRoundTrip) {
+  const uint32_t one = 1u << render::kVoxelFixedBits;
+  for (uint32_t q = 0; q <= 128; ++q)
+    for (uint32_t halves = 0; halves < 8; ++halves) {
+      // axis x at 128, y at q, z at 128 - q; `halves` picks each axis's half
+      const uint32_t v[3] = {128, q, 128 - q};
+      uint32_t w[3];
+      for (int i = 0; i < 3; ++i) w[i] = (halves >> i) & 1 ? v[i] << 16 : v[i];
+      for (int rot = 0; rot < 3; ++rot) {  // the 128 on every axis in turn
+        const uint32_t fx = w[rot], fy = w[(rot + 1) % 3], fz = w[(rot + 2) % 3];
+        const uint32_t c = gpu::rp_svo_pack_cover(one, fx, fy, fz);
+        EXPECT_EQ(gpu::rp_svo_cover_opacity(c, one), one) << q << " " << halves;
+        EXPECT_EQ(gpu::rp_svo_cover_facing(c, 0), fx) << q << " " << halves;
+        EXPECT_EQ(gpu::rp_svo_cover_facing(c, 1), fy) << q << " " << halves;
+        EXPECT_EQ(gpu::rp_svo_cover_facing(c, 2), fz) << q << " " << halves;
+      }
+    }
+  for (uint32_t a = 0; a <= one; a += 97) {
+    for (uint32_t fixed : {a, one}) {  // the loop's values and opacity 1 itself
+      const uint32_t q = uint32_t(float(fixed) / float(one) * 128.0f + 0.5f);
+      const uint32_t f = q | q << 16;
+      const uint32_t c = gpu::rp_svo_pack_cover(fixed, f, f, f);
+      EXPECT_EQ(gpu::rp_svo_cover_opacity(c, one), fixed) << fixed;
+      for (uint32_t axis = 0; axis < 3; ++axis)
+        EXPECT_EQ(gpu::rp_svo_cover_facing(c, axis), f) << fixed;
+    }
+  }
 }
 
 // Cone-tracing functions of common/cone_trace.h built twice: on the dense chain and, with

@@ -1,0 +1,58 @@
+// The shared parts of `bench --accuracy` (see accuracy_render.h).
+#include "bench/src/accuracy_render.h"
+
+#include <atomic>
+
+#include "app/interrupt.h"
+#include "app/progress.h"
+
+namespace rp::app {
+
+Images from_truth(const std::string& name, const truth::PathTracedImage& t) {
+  return {name, t.combined, t.direct, t.indirect, t.albedo, t.specular};
+}
+
+Images render_mode(const CommonOptions& common, const std::string& name, render::Quality quality,
+                   uint32_t bounces, bool taa, uint32_t w, uint32_t h, uint32_t frames,
+                   std::vector<uint8_t>& final_rgba, FrameFn frame_fn) {
+  CommonOptions c = common;
+  c.quality = quality;
+  c.bounces = bounces;
+  c.view = {};
+  c.effects.bloom = c.effects.motion_blur = false;
+  c.effects.taa = taa;
+  RenderSession session(c, w, h);
+  session.set_keep_components(true);
+  ProgressBar bar(name, frames);
+  double ms = 0.0;
+  for (uint32_t i = 0; i < frames; ++i) {
+    if (InterruptGuard::interrupted()) throw truth::PathTracer::Cancelled();
+    session.render(frame_fn(session.assets(), i), final_rgba, ms);
+    bar.update(i + 1);
+  }
+  bar.finish();
+  render::LinearComponents lc;
+  session.read_components(lc);
+  return {name, lc.combined, lc.direct, lc.indirect, lc.albedo, lc.specular};
+}
+
+CachedTruth cached_truth_with_progress(truth::PathTracer& tracer,
+                                       const scene::SceneAssets& assets,
+                                       const scene::FrameScene& frame,
+                                       const truth::PathTraceSettings& settings,
+                                       const std::filesystem::path& cache,
+                                       const std::string& label) {
+  ProgressBar bar(label, settings.height);
+  std::atomic<bool> cancel{false};  // set from the progress callback on Ctrl-C / SIGTERM
+  CachedTruth t = cached_path_trace(
+      tracer, assets, frame, settings, cache,
+      [&](uint32_t done, uint32_t) {
+        if (InterruptGuard::interrupted()) cancel = true;
+        bar.update(done);
+      },
+      &cancel);
+  bar.finish();
+  return t;
+}
+
+}  // namespace rp::app
