@@ -20,7 +20,9 @@
  * Buffers (row-major, top row first; src/render/frame_buffers.h):
  *   hdr_in       float4  linear HDR radiance of this (jittered) frame, w passed through
  *   velocity     float2  pixels, this frame minus previous (+y down), unjittered
- *   normal_depth float4  w = linear view depth (picks the velocity, below)
+ *   depth        float   the visibility buffer's depth, z_ndc * 0.5 + 0.5 (1 where nothing):
+ *                        ordered as the view depth, so it picks the nearest surface below (a
+ *                        plane of 4 bytes a pixel instead of the GBuffer's 16-byte normal_depth)
  *   history_in   float   previous resolved frame, TONE-MAPPED rgb T(x) = x / (1 + x), as three
  *                        planes of width * height floats: all R, then all G, then all B
  *   history_out  float   this resolved frame, same layout (next frame's history_in)
@@ -49,11 +51,13 @@
 #ifdef RP_TAA_BORDER /* the block crossing the right border: w - x0 < 8 pixels */
 #define RP_TAA_LOAD(img, row, R, G, B, A) RP_LOAD_PX8_CLAMPED(img, row, x0, w, R, G, B, A)
 #define RP_TAA_LOAD2(img, row, X, Y) RP_LOAD_PX8_FLOAT2_CLAMPED(img, row, x0, w, X, Y)
+#define RP_TAA_LOAD1(plane, row, V) RP_LOAD_PLANE8_CLAMPED(plane, row, x0, w, V)
 #define RP_TAA_STORE(img, R, G, B, A) RP_STORE_PX8_FIRST(img, row, x0, w - x0, R, G, B, A)
 #define RP_TAA_STORE_PLANE(plane, V) RP_STORE_PLANE8_FIRST(plane, row, x0, w - x0, V)
 #else
 #define RP_TAA_LOAD(img, row, R, G, B, A) RP_LOAD_PX8(img, row, x0, R, G, B, A)
 #define RP_TAA_LOAD2(img, row, X, Y) RP_LOAD_PX8_FLOAT2(img, row, x0, X, Y)
+#define RP_TAA_LOAD1(plane, row, V) RP_LOAD_PLANE8(plane, row, x0, V)
 #define RP_TAA_STORE(img, R, G, B, A) RP_STORE_PX8(img, row, x0, R, G, B, A)
 #define RP_TAA_STORE_PLANE(plane, V) RP_STORE_PLANE8(plane, row, x0, V)
 #endif
@@ -91,7 +95,7 @@
     sq_y += dy_ * dy_;                                                                     \
     sq_co += dco_ * dco_;                                                                  \
     sq_cg += dcg_ * dcg_;                                                                  \
-    RP_TAA_LOAD(normal_depth, row_start, r_, g_, b_, d_);                                  \
+    RP_TAA_LOAD1(depth, row_start, d_);                                                    \
     RP_TAA_LOAD2(velocity, row_start, vx_, vy_);                                           \
     const int8 closer_ = d_ < nd;                                                          \
     nd = select(nd, d_, closer_);                                                          \
@@ -101,7 +105,7 @@
 
 __kernel void taa_resolve(__global const float4* restrict hdr_in,
                           __global const float2* restrict velocity,
-                          __global const float4* restrict normal_depth,
+                          __global const float* restrict depth,
                           __global const float* restrict history_in,
                           __global float* restrict history_out,
                           __global float4* restrict hdr_out,
@@ -128,10 +132,7 @@ __kernel void taa_resolve(__global const float4* restrict hdr_in,
   cr = rp_tone_map8(cr);
   cg = rp_tone_map8(cg);
   cb = rp_tone_map8(cb);
-  {
-    float8 unused0, unused1, unused2;
-    RP_TAA_LOAD(normal_depth, row, unused0, unused1, unused2, nd);
-  }
+  RP_TAA_LOAD1(depth, row, nd);
   RP_TAA_LOAD2(velocity, row, vx, vy);
 
   /* 2. Cross statistics in YCoCg. Left / right neighbours are the row shifted by one lane,
@@ -156,8 +157,8 @@ __kernel void taa_resolve(__global const float4* restrict hdr_in,
    * centre wins ties) and its velocity. */
   {
     const float2 vl = velocity[row + xl], vr = velocity[row + xr];
-    const float8 dl = rp_shift_right8(nd, normal_depth[row + xl].w);
-    const float8 dr = rp_shift_left8(nd, normal_depth[row + xr].w);
+    const float8 dl = rp_shift_right8(nd, depth[row + xl]);
+    const float8 dr = rp_shift_left8(nd, depth[row + xr]);
     const float8 vxl = rp_shift_right8(vx, vl.x), vyl = rp_shift_right8(vy, vl.y);
     const float8 vxr = rp_shift_left8(vx, vr.x), vyr = rp_shift_left8(vy, vr.y);
     int8 closer = dl < nd;

@@ -95,6 +95,16 @@ inline float3 rp_taa_clip(float3 q, float3 centre, float3 extent) {
     Y = p_.odd;                                                                          \
   } while (0)
 
+/* Pixels x0 .. x0+7 of a float plane's row (all 8 must exist), and the same for a block that
+ * would cross the right border (lanes past the last column repeat it). */
+#define RP_LOAD_PLANE8(plane, row, x0, V) V = vload8(0, (plane) + (row) + (x0))
+#define RP_LOAD_PLANE8_CLAMPED(plane, row, x0, w, V)                                       \
+  do {                                                                                   \
+    float t_[8];                                                                         \
+    for (int k_ = 0; k_ < 8; ++k_) t_[k_] = (plane)[(row) + min((x0) + k_, (w) - 1)];   \
+    V = vload8(0, t_);                                                                   \
+  } while (0)
+
 /* Writes planes R, G, B, A to pixels x0 .. x0+7 of a float4 image row. */
 #define RP_STORE_PX8(img, row, x0, R, G, B, A)                                            \
   do {                                                                                   \

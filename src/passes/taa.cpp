@@ -37,7 +37,7 @@ void TaaPass::set_settings(const TaaSettings& settings) {
 
 void TaaPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                   const ::cl::Buffer& hdr_in, const render::GBuffer& gbuffer,
-                  ::cl::Buffer& hdr_out) {
+                  const ::cl::Buffer& depth, ::cl::Buffer& hdr_out) {
   const uint32_t w = scene.constants.width, h = scene.constants.height;
   if (w == 0 || h == 0) return;
   if (gbuffer.width != w || gbuffer.height != h)
@@ -57,7 +57,7 @@ void TaaPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     cl_uint arg = 0;
     kernel.setArg(arg++, hdr_in);
     kernel.setArg(arg++, gbuffer.velocity);
-    kernel.setArg(arg++, gbuffer.normal_depth);
+    kernel.setArg(arg++, depth);
     kernel.setArg(arg++, history_[current_]);
     kernel.setArg(arg++, history_[next]);
     kernel.setArg(arg++, hdr_out);

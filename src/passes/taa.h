@@ -32,11 +32,13 @@ class TaaPass {
           TaaSettings settings = {});
 
   // hdr_in: float4 linear HDR of this (jittered) frame, width x height of scene.constants.
-  // gbuffer: velocity (float2 px, current - previous) and normal_depth.w (linear depth), same
-  // size. hdr_out: float4, the resolved frame in linear HDR (must not alias hdr_in).
+  // gbuffer: velocity (float2 px, current - previous), same size. depth: a float per pixel
+  // ordered as the view depth (render::VisibilityBuffer::depth: z_ndc * 0.5 + 0.5, 1 where
+  // nothing); only its order matters (the nearest surface's velocity). hdr_out: float4, the
+  // resolved frame in linear HDR (must not alias hdr_in).
   // The jitter comes from scene.constants.jitter.xy (used only with unjitter_current).
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene, const ::cl::Buffer& hdr_in,
-           const render::GBuffer& gbuffer, ::cl::Buffer& hdr_out);
+           const render::GBuffer& gbuffer, const ::cl::Buffer& depth, ::cl::Buffer& hdr_out);
 
   // Forget the history: the next run() outputs its current frame (camera cuts).
   void reset_history() { history_valid_ = false; }

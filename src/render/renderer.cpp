@@ -216,7 +216,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
       const ::cl::Buffer* colour = &hdr_;
       int next = 0;
       if (fx.taa) {
-        taa_->run(profiler_, *scene_, *colour, gbuffer_, post_[next]);
+        taa_->run(profiler_, *scene_, *colour, gbuffer_, vis_.depth, post_[next]);
         colour = &post_[next];
         next ^= 1;
       }

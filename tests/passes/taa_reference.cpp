@@ -162,17 +162,16 @@ std::vector<glm::vec4> Harness::run(const Frame& f) {
     gbuffer_.resize(ctx.context, f.width, f.height);
     hdr_in_ = ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16);
     hdr_out_ = ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16);
+    depth_ = ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 4);
   }
-  std::vector<glm::vec4> normal_depth(n);
-  for (size_t i = 0; i < n; ++i) normal_depth[i] = glm::vec4(0.0f, 0.0f, 1.0f, f.depth[i]);
   ctx.queue.enqueueWriteBuffer(hdr_in_, CL_TRUE, 0, n * 16, f.hdr.data());
   ctx.queue.enqueueWriteBuffer(gbuffer_.velocity, CL_TRUE, 0, n * 8, f.velocity.data());
-  ctx.queue.enqueueWriteBuffer(gbuffer_.normal_depth, CL_TRUE, 0, n * 16, normal_depth.data());
+  ctx.queue.enqueueWriteBuffer(depth_, CL_TRUE, 0, n * 4, f.depth.data());
   scene_->constants.width = f.width;
   scene_->constants.height = f.height;
   scene_->constants.jitter = {f.jitter.x, f.jitter.y, 0.0f, 0.0f};
   rp::cl::Profiler profiler(ctx.queue);
-  pass_->run(profiler, *scene_, hdr_in_, gbuffer_, hdr_out_);
+  pass_->run(profiler, *scene_, hdr_in_, gbuffer_, depth_, hdr_out_);
   rp::cl::PassTimes times = profiler.collect();
   last_ms_ = times.count("taa") ? times.at("taa") : -1.0;
   std::vector<glm::vec4> out(n);

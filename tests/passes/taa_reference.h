@@ -19,7 +19,7 @@ struct Frame {
   uint32_t width = 0, height = 0;
   std::vector<glm::vec4> hdr;       // linear HDR (w passed through)
   std::vector<glm::vec2> velocity;  // pixels, current - previous
-  std::vector<float> depth;         // linear view depth
+  std::vector<float> depth;         // per pixel, ordered as the view depth (nearest = least)
   glm::vec2 jitter{0.0f};           // this frame's jitter in pixels
 };
 
@@ -63,7 +63,7 @@ class Harness {
   std::unique_ptr<render::GpuScene> scene_;
   std::unique_ptr<passes::TaaPass> pass_;
   render::GBuffer gbuffer_;
-  ::cl::Buffer hdr_in_, hdr_out_;
+  ::cl::Buffer hdr_in_, hdr_out_, depth_;  // depth_: a float per pixel (the pass's depth input)
   double last_ms_ = 0.0;
 };
 
