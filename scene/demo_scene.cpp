@@ -125,4 +125,14 @@ FrameScene make_demo_frame(const SceneAssets& assets, uint32_t frame_index) {
   return frame;
 }
 
+Sphere resting_marble(glm::vec2 xz, float radius, glm::vec3 albedo) {
+  Sphere s;
+  s.center = s.prev_center = glm::vec3(xz.x, -1.0f + radius, xz.y);
+  s.radius = radius;
+  s.albedo = albedo;
+  s.specular = demo::kMarbleSpecular;  // as the simulated world's marbles
+  s.casts_shadow = true;
+  return s;
+}
+
 }  // namespace rp::scene

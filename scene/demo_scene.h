@@ -73,6 +73,11 @@ SceneAssets make_demo_assets(const std::string& asset_dir);
 // equal the current ones (no motion).
 FrameScene make_demo_frame(const SceneAssets& assets, uint32_t frame_index = 0);
 
+// A marble at rest on the floor (y = -1) at floor position (x, z): still (previous centre =
+// centre), the simulated marbles' coat (demo::kMarbleSpecular), casting a shadow. The accuracy
+// report's frames place them.
+Sphere resting_marble(glm::vec2 xz, float radius, glm::vec3 albedo);
+
 // Appends the room's static instances (identity model): the box (no shadow) and the lamp cap
 // (no shadow, not voxelized). Shared by the demo frame and the simulated world.
 void add_room_instances(FrameScene& frame);

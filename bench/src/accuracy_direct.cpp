@@ -192,15 +192,8 @@ double dnum(const nlohmann::json& v) { return v.is_number() ? v.get<double>() : 
 
 scene::FrameScene direct_frame(const scene::SceneAssets& assets, uint32_t frame_index) {
   scene::FrameScene frame = scene::make_demo_frame(assets, frame_index);
-  for (const MarbleSpot& m : kMarbles) {
-    scene::Sphere s;
-    s.center = s.prev_center = glm::vec3(m.xz.x, -1.0f + kMarbleRadius, m.xz.y);
-    s.radius = kMarbleRadius;
-    s.albedo = m.albedo;
-    s.specular = scene::demo::kMarbleSpecular;  // as the simulated world's marbles
-    s.casts_shadow = true;
-    frame.spheres.push_back(s);
-  }
+  for (const MarbleSpot& m : kMarbles)
+    frame.spheres.push_back(scene::resting_marble(m.xz, kMarbleRadius, m.albedo));
   return frame;
 }
 

@@ -55,15 +55,10 @@ scene::FrameScene marble_frame(const scene::SceneAssets& assets, uint32_t frame_
   scene::FrameScene frame = scene::make_demo_frame(assets, frame_index);
   const float r = scene::world_constants::kMarbleRadius;
   for (uint32_t i = 0; i < kMarbleFrameCount; ++i) {
-    scene::Sphere s;
-    s.center = s.prev_center = glm::vec3(kSpots[i].x, -1.0f + r, kSpots[i].y);
-    s.radius = r;
     // Hues spread by the golden ratio, so neighbours differ.
     const double hue = 0.1 + 0.6180339887 * i;
-    s.albedo = scene::glass_colour(float(hue - std::floor(hue)));
-    s.specular = scene::demo::kMarbleSpecular;  // as the simulated world's marbles
-    s.casts_shadow = true;
-    frame.spheres.push_back(s);
+    frame.spheres.push_back(scene::resting_marble(
+        kSpots[i], r, scene::glass_colour(float(hue - std::floor(hue)))));
   }
   return frame;
 }
