@@ -731,7 +731,6 @@ inline VxVec vx_albedo_span(const VxSetup* s, __global const uint* texels, rp_sp
   return vxv(r, g, b);
 }
 
-/* Outgoing radiance albedo * direct light + emission at points p with unit normals n. */
 /* The bounce grid's light (irradiance / pi, rgb) at p with unit normal n for lanes in `active`
  * (< n_lanes), 0 elsewhere; the caller adds it only when L->bounce_cells != 0. */
 inline VxVec vx_bounce_span(const VxLight* L, const VxVec* p, const VxVec* n, rp_spani active,
@@ -758,6 +757,8 @@ inline VxVec vx_bounce_span(const VxLight* L, const VxVec* p, const VxVec* n, rp
   return vxv(RP_SPAN_FROM_ARRAY(ex), RP_SPAN_FROM_ARRAY(ey), RP_SPAN_FROM_ARRAY(ez));
 }
 
+/* Outgoing radiance albedo * (direct + bounce light) + emission at points p with unit
+ * normals n. */
 inline VxVec vx_radiance_span(const VxLight* L, __global const float* shadow,
                               const VxVec* albedo, const VxVec* p, const VxVec* n,
                               const VxVec* emission, rp_spani active, int n_lanes) {

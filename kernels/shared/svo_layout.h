@@ -72,7 +72,7 @@
  *              of every axis: bit 31 set, the opacity (<= 2^16: 17 bits) in bits 0-16 and the
  *              value in bits 17-24,
  *   word 4     the level-0 voxel (z * R + y) * R + x.
-  * Their order in the list is whatever the atomics made it: nothing depends on it (flags are
+ * Their order in the list is whatever the atomics made it: nothing depends on it (flags are
  * ORed, sums are integers). (8 words, the facing words unpacked, put the 512^3 demo's list at
  * 59 MiB instead of 44: the difference between fitting the 256 MB budget or not; 6 words, the
  * opacity a word of its own, 10.4 MiB more on the busy scene at 512^3.)
@@ -133,9 +133,10 @@ RP_SVO_FN RP_SVO_UINT rp_svo_sample(RP_SVO_UINT i, RP_SVO_UINT j, RP_SVO_UINT k)
 }
 
 /* Facing coverage words (x, y, z; shared/voxel_layout.h) of ONE plane contribution -> fragment
- * word 3 (rp_svo_pack_cover): per axis i bits [10 i, 10 i + 8) the value, bit 10 i + 8 set when the low half (+ facing)
- * gets it, bit 10 i + 9 when the high half does. Exact for what the voxelizer adds (see the
- * header: a value <= 128 per half, both halves only with the same value). */
+ * word 3 (rp_svo_pack_cover): per axis i bits [10 i, 10 i + 8) the value, bit 10 i + 8 set
+ * when the low half (+ facing) gets it, bit 10 i + 9 when the high half does. Exact for what
+ * the voxelizer adds (see the header: a value <= 128 per half, both halves only with the same
+ * value). */
 RP_SVO_FN RP_SVO_UINT rp_svo_pack_facing_axis(RP_SVO_UINT w) {
   const RP_SVO_UINT lo = w & 0xFFFFu, hi = w >> 16;
   const RP_SVO_UINT q = lo > hi ? lo : hi;

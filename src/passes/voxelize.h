@@ -36,7 +36,8 @@ class VoxelizePass {
 
   // Fragment mode (a pass built with fragments = true): the same contributions as run() adds,
   // at `resolution` (a power of two up to 1024; the frame constants are not checked), written
-  // as a fragment list (kernels/shared/svo_layout.h) to `fragments` (RP_SVO_FRAGMENT_WORDS uints per fragment).
+  // as a fragment list (kernels/shared/svo_layout.h) to `fragments` (RP_SVO_FRAGMENT_WORDS
+  // uints per fragment).
   // counter: uint[2] = {0, capacity in fragments}, written by the caller before; afterwards
   // counter[0] holds the number of fragments (also when it exceeds the capacity: then only the
   // first `capacity` were written, in no particular order, and the caller must grow the list
