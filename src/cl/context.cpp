@@ -76,6 +76,7 @@ std::vector<DeviceInfo> list_devices() {
       d.max_alloc_bytes = dev.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
       d.local_mem_bytes = dev.getInfo<CL_DEVICE_LOCAL_MEM_SIZE>();
       d.max_work_group_size = dev.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
+      d.native_float_width = dev.getInfo<CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT>();
       d.version = trim(dev.getInfo<CL_DEVICE_VERSION>());
       d.c_version = trim(dev.getInfo<CL_DEVICE_OPENCL_C_VERSION>());
       d.device = dev;
@@ -94,6 +95,8 @@ std::vector<DeviceInfo> list_devices() {
   }
   return out;
 }
+
+int cpu_span_lanes(const DeviceInfo& info) { return info.native_float_width >= 16 ? 16 : 8; }
 
 DeviceInfo choose_device(const std::string& spec) {
   std::vector<DeviceInfo> devices = list_devices();

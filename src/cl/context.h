@@ -26,6 +26,7 @@ struct DeviceInfo {
   uint64_t max_alloc_bytes = 0;
   uint64_t local_mem_bytes = 0;
   size_t max_work_group_size = 0;
+  uint32_t native_float_width = 1;  // CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT: 8 on AVX2, 16 on AVX-512
   std::string version;        // CL_DEVICE_VERSION, e.g. "OpenCL 3.0 PoCL ..."
   std::string c_version;      // CL_DEVICE_OPENCL_C_VERSION
   ::cl::Device device;
@@ -39,6 +40,15 @@ std::vector<DeviceInfo> list_devices();
 // list_devices(); anything else = first device whose name (or platform name) contains spec,
 // case-insensitively. Throws rp::cl::Error listing the devices when nothing matches.
 DeviceInfo choose_device(const std::string& spec);
+
+// Pixels (triangles, voxels) per work-item of the span kernels (kernels/common/span.h) on a
+// CPU: the device's native float vector width, 8 or 16, so that a span fills the SIMD
+// registers without spilling them. PoCL reports 8 on AVX2 and 16 on AVX-512. Measured on the
+// 2-core AVX2 EPYC (busy 720, perf cpu-clock, both threads): gbuffer_resolve 42.3 CPU ms a
+// frame with 16 lanes against 32.1 with 8 (16 lanes are two registers each, and the texture
+// footprint's live values spill); the raster and the voxelizer within noise. On the AVX-512
+// EPYC 16 was the faster choice for all three (comments in passes/gbuffer.cpp, visibility.cpp).
+int cpu_span_lanes(const DeviceInfo& info);
 
 // Context and one in-order queue with profiling enabled, on one device.
 struct Context {

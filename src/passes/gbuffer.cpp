@@ -13,11 +13,12 @@ namespace {
 // arrays side by side, and 64 of them no longer stay in cache).
 constexpr size_t kGroup = 16;
 
-// Pixels per work-item: 16 on CPUs (float16 spans map onto PoCL's SIMD code), 1 on GPUs.
-// Measured on the 2-core AVX-512 EPYC, busy 720: before the texture footprint (issue 15) 8 was
-// best (3.6 ms against 4.2 ms with 16, 6.5 ms with 4); the footprint's per-primitive set-up
-// (gb_uv_derivatives) and the trilinear taps made 16 the better choice: 8.9 against 11.0 CPU ms
-// a frame (perf cpu-clock samples, both threads; 15.0 with 4), about 1 ms of the pass's wall time.
+// Pixels per work-item: the CPU's native float vector width (rp::cl::cpu_span_lanes: spans map
+// onto PoCL's SIMD code), 1 on GPUs. Measured on the 2-core AVX-512 EPYC, busy 720: before the
+// texture footprint (issue 15) 8 was best (3.6 ms against 4.2 ms with 16, 6.5 ms with 4); the
+// footprint's per-primitive set-up (gb_uv_derivatives) and the trilinear taps made 16 the better
+// choice there: 8.9 against 11.0 CPU ms a frame (perf cpu-clock samples, both threads; 15.0
+// with 4). On the 2-core AVX2 EPYC 8 is: 32.1 against 42.3 CPU ms.
 // ROLYPOLY_GBUFFER_SPAN (1, 4, 8 or 16) overrides the choice (tests compare the variants).
 int choose_span(const rp::cl::Context& context) {
   if (const char* env = std::getenv("ROLYPOLY_GBUFFER_SPAN"); env && *env) {
@@ -25,7 +26,7 @@ int choose_span(const rp::cl::Context& context) {
     if (s == "1" || s == "4" || s == "8" || s == "16") return std::stoi(s);
     throw rp::cl::Error("ROLYPOLY_GBUFFER_SPAN must be 1, 4, 8 or 16, not '" + s + "'");
   }
-  return context.info.is_cpu ? 16 : 1;
+  return context.info.is_cpu ? rp::cl::cpu_span_lanes(context.info) : 1;
 }
 
 }  // namespace

@@ -35,7 +35,8 @@ constexpr size_t kTilesPerGroup = 4;  // work-group of the one-tile-per-work-ite
 constexpr size_t kRasterEdgesBytes = 64;  // RasterEdges (kernels/common/raster.h): 4 x 16 bytes
 
 // Pixels per raster work-item: SIMD-wide spans on CPUs (PoCL vectorizes float16 code, not the
-// loop over a tile's triangles; 16 measured faster than 8 on the 2-core AVX-512 EPYC), one
+// loop over a tile's triangles): the native float vector width (rp::cl::cpu_span_lanes; 16
+// measured faster than 8 on the 2-core AVX-512 EPYC, the two within noise on AVX2), one
 // pixel per work-item on GPUs. ROLYPOLY_RASTER_SPAN (1, 4, 8 or 16) overrides the choice
 // (tests use it to compare the variants). CPUs with spans of 8 or 16 use the one-tile-per-
 // work-item raster layout (kernels/visibility.cl RP_TILE_LAYOUT).
@@ -45,7 +46,7 @@ int choose_span(const rp::cl::Context& context) {
     if (s == "1" || s == "4" || s == "8" || s == "16") return std::stoi(s);
     throw rp::cl::Error("ROLYPOLY_RASTER_SPAN must be 1, 4, 8 or 16, not '" + s + "'");
   }
-  if (context.info.is_cpu) return 16;
+  if (context.info.is_cpu) return rp::cl::cpu_span_lanes(context.info);
   // One pixel per work-item needs 16x16 work-groups and 28 KiB of local memory (256 RasterItems).
   if (context.info.max_work_group_size < 256 || context.info.local_mem_bytes < 32 * 1024) return 4;
   return 1;

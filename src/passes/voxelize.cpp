@@ -20,8 +20,9 @@ std::string fixed_point_options() {
          " -DRP_VOXEL_SATURATED=" + std::to_string(render::kVoxelSaturatedSum) + "f";
 }
 
-// Lanes per work-item of voxelize_triangles / voxelize_large: 16 on CPUs (float16 spans map
-// onto PoCL's SIMD code), 1 on GPUs. ROLYPOLY_VOXELIZE_SPAN (1, 4, 8 or 16) overrides it
+// Lanes per work-item of voxelize_triangles / voxelize_large: the CPU's native float vector
+// width (rp::cl::cpu_span_lanes: 16 on AVX-512, 8 on AVX2, where 8 and 16 measured within
+// noise), 1 on GPUs. ROLYPOLY_VOXELIZE_SPAN (1, 4, 8 or 16) overrides it
 // (tests compare the variants).
 int choose_span(const rp::cl::Context& context) {
   if (const char* env = std::getenv("ROLYPOLY_VOXELIZE_SPAN"); env && *env) {
@@ -29,7 +30,7 @@ int choose_span(const rp::cl::Context& context) {
     if (s == "1" || s == "4" || s == "8" || s == "16") return std::stoi(s);
     throw rp::cl::Error("ROLYPOLY_VOXELIZE_SPAN must be 1, 4, 8 or 16, not '" + s + "'");
   }
-  return context.info.is_cpu ? 16 : 1;
+  return context.info.is_cpu ? rp::cl::cpu_span_lanes(context.info) : 1;
 }
 
 // voxelize_large's modes (VX_ACCUMULATE, VX_COUNT, VX_RECORD in voxelize.cl).

@@ -48,6 +48,24 @@ TEST(Devices, ListsAtLeastOneDeviceWithSaneProperties) {
   }
 }
 
+TEST(Devices, CpuSpansFollowTheNativeFloatWidth) {
+  // The span kernels' lanes per work-item on a CPU (rp::cl::cpu_span_lanes): 16 where the
+  // registers hold 16 floats (AVX-512), 8 otherwise (AVX2: 8; narrower CPUs still get 8, the
+  // narrowest span the CPU layouts support).
+  rp::cl::DeviceInfo d;
+  for (uint32_t width : {1u, 4u, 8u}) {
+    d.native_float_width = width;
+    EXPECT_EQ(rp::cl::cpu_span_lanes(d), 8) << width;
+  }
+  for (uint32_t width : {16u, 32u}) {
+    d.native_float_width = width;
+    EXPECT_EQ(rp::cl::cpu_span_lanes(d), 16) << width;
+  }
+  // Every listed device reports its native width (OpenCL requires at least 1).
+  for (const rp::cl::DeviceInfo& device : rp::cl::list_devices())
+    EXPECT_GE(device.native_float_width, 1u) << device.name;
+}
+
 TEST(Devices, ChoiceByIndexNameAndDefault) {
   auto devices = rp::cl::list_devices();
   EXPECT_EQ(rp::cl::choose_device("0").name, devices[0].name);
