@@ -48,6 +48,10 @@ struct Mesh {
   std::vector<Vertex> vertices;
   std::vector<glm::uvec3> triangles;   // indices into vertices, counter-clockwise seen from outside
   std::vector<uint32_t> materials;     // per triangle, index into SceneAssets::materials
+  // Per-vertex tangent frame for normal maps (glTF TANGENT: xyz unit tangent along +u, w = +-1
+  // the bitangent's sign, bitangent = w * cross(normal, tangent)); empty when no material of
+  // the mesh has a normal map.
+  std::vector<glm::vec4> tangents;
   // A coarser stand-in (index into SceneAssets::meshes, or -1: none) drawn instead of this mesh
   // where the mesh's triangles are far smaller than what they are drawn into: by the voxelizer
   // in GI volumes of at most proxy_max_voxels voxels per side, into shadow maps of at most
@@ -68,19 +72,48 @@ struct Specular {
   bool metal = false;      // true: a metal, F0 = the albedo colour, no diffuse base
 };
 
-struct Material {
-  std::string name;
-  glm::vec3 albedo{0.8f};
-  glm::vec3 emission{0.0f};
-  int texture = -1;                    // index into SceneAssets::textures, or -1
-  Specular specular{};                 // default: matte (no coat)
+// How a material's base colour alpha is used (glTF alphaMode; BLEND is loaded as kMask).
+enum class AlphaMode : uint8_t {
+  kOpaque,  // alpha ignored
+  kMask,    // a surface point with alpha < alpha_cutoff does not exist (leaves, chains): the
+            // camera, shadows, voxelizer and path tracer all see through it
 };
 
-// RGBA8 texture, sRGB encoded, rows top to bottom.
+struct Material {
+  std::string name;
+  glm::vec3 albedo{0.8f};              // linear base colour (glTF baseColorFactor.rgb)
+  glm::vec3 emission{0.0f};            // emitted radiance, linear rgb (glTF emissiveFactor x
+                                       // KHR_materials_emissive_strength)
+  int texture = -1;                    // base colour (sRGB rgb, linear alpha) in
+                                       // SceneAssets::textures, or -1; multiplies albedo
+  Specular specular{};                 // default: matte (no coat)
+  // glTF metallic-roughness. A file's material maps onto `specular` as: roughness =
+  // roughnessFactor, metal = metallicFactor >= 0.5, f0 = 0.04 for dielectrics. Where a texture
+  // is given its G channel scales the roughness and its B channel the metallic factor per texel.
+  float metallic = 0.0f;               // glTF metallicFactor in [0, 1]
+  int metallic_roughness_texture = -1; // linear texture (G roughness, B metallic), or -1
+  int normal_texture = -1;             // tangent-space normal map (linear rgb), or -1
+  float normal_scale = 1.0f;           // glTF normalTexture.scale (x and y of the map)
+  int emission_texture = -1;           // sRGB texture multiplying `emission`, or -1
+  float opacity = 1.0f;                // base colour alpha (baseColorFactor.a), times texture alpha
+  AlphaMode alpha_mode = AlphaMode::kOpaque;
+  float alpha_cutoff = 0.5f;           // kMask: alpha below this is a hole
+  bool double_sided = false;           // glTF doubleSided: back faces are shaded with the
+                                       // flipped normal; the demo's closed meshes keep false
+};
+
+// How texture coordinates outside [0, 1] are folded back (glTF sampler wrapS / wrapT).
+enum class TextureWrap : uint8_t { kRepeat, kClampToEdge, kMirroredRepeat };
+
+// RGBA8 texture, rows top to bottom. Colour textures (base colour, emission) hold sRGB-encoded
+// rgb; data textures (normal, metallic-roughness) hold linear values: `srgb` says which.
 struct Texture {
   std::string name;
   int width = 0, height = 0;
   std::vector<uint8_t> rgba;           // width * height * 4 bytes
+  bool srgb = true;
+  TextureWrap wrap_u = TextureWrap::kRepeat;
+  TextureWrap wrap_v = TextureWrap::kRepeat;
 };
 
 // Everything uploaded once: meshes, materials, textures.
@@ -95,6 +128,37 @@ struct SceneAssets {
 // one for that resolution, else the mesh itself.
 uint32_t voxel_mesh(const std::vector<Mesh>& meshes, uint32_t mesh, uint32_t voxel_resolution);
 uint32_t shadow_mesh(const std::vector<Mesh>& meshes, uint32_t mesh, uint32_t shadow_size);
+
+// Axis-aligned box in world units.
+struct Bounds {
+  glm::vec3 lo{0.0f};
+  glm::vec3 hi{0.0f};
+  bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
+  glm::vec3 center() const { return 0.5f * (lo + hi); }
+  glm::vec3 size() const { return hi - lo; }
+};
+
+// A punctual light of a loaded scene (glTF KHR_lights_punctual). Units follow the renderer's
+// convention (DESIGN.md, "light units"): direct radiance from a Lambertian surface is
+// albedo * intensity * cos(theta) * attenuation, with no 1/pi. The loader converts from glTF's
+// photometric units as radiometric ones (candela as W/sr, lux as W/m^2): intensity = colour *
+// glTF intensity / pi, so a white surface 1 m under a 1 cd point light reflects 1/pi.
+enum class LightType : uint8_t { kDirectional, kPoint, kSpot };
+
+struct PunctualLight {
+  std::string name;
+  LightType type = LightType::kPoint;
+  glm::vec3 position{0.0f};            // world (point, spot)
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // unit, the way the light travels (directional,
+                                       // spot): the node's -z axis
+  glm::vec3 intensity{1.0f};           // rgb, see above; point/spot: x 1/d^2, directional: as is
+  float range = 0.0f;                  // point/spot: 0 = infinite; else glTF's window
+                                       // clamp(1 - (d / range)^4, 0, 1) multiplies 1/d^2
+  float inner_cone = 0.0f;             // spot: radians from the axis, full intensity inside
+  float outer_cone = 0.7853982f;       // spot: radians, zero outside; between: glTF's smooth
+                                       // t = clamp((cos a - cos outer) / (cos inner - cos outer)),
+                                       // attenuation t^2
+};
 
 struct MeshInstance {
   uint32_t mesh = 0;                   // index into SceneAssets::meshes
@@ -121,7 +185,9 @@ struct Sphere {
 struct FrameScene {
   Camera camera;
   Camera prev_camera;
-  PointLight light;
+  PointLight light;                    // the demo's ceiling lamp, used only when `lamp` is true
+  bool lamp = true;
+  std::vector<PunctualLight> lights;   // a loaded scene's lights (the demo has none)
   std::vector<MeshInstance> instances;
   std::vector<Sphere> spheres;
   uint32_t frame_index = 0;

@@ -2,7 +2,8 @@
 # libFuzzer runs (issue 8 item 5): builds fuzz/ with clang into build-fuzz/ and runs every target
 # for SECONDS (default 30) from its seed corpus fuzz/corpus/<target>/.
 #
-#   bash tools/fuzz.sh [SECONDS] [TARGET...]     targets: input_log cli_devices cli (default: all)
+#   bash tools/fuzz.sh [SECONDS] [TARGET...]     targets: input_log cli_devices cli gltf_loader
+#                                                (default: all)
 #
 # New inputs go to build-fuzz/corpus/<target>/ (the seeds in fuzz/ are only read), crash
 # reproducers to build-fuzz/artifacts/<target>/; a reproducer re-runs with
@@ -16,7 +17,7 @@ seconds="${1:-30}"
   { echo "fuzz.sh: SECONDS must be a positive integer, got '$seconds'" >&2; exit 2; }
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(input_log cli_devices cli)
+((${#targets[@]})) || targets=(input_log cli_devices cli gltf_loader)
 
 command -v clang++ >/dev/null ||
   { echo "fuzz.sh: clang++ not found (Debian: apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }

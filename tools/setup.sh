@@ -23,7 +23,7 @@ PACKAGES=(
   cmake make g++ pkg-config
   pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers clinfo oclgrind
   mesa-opencl-icd
-  libglm-dev libglfw3-dev libgl-dev libstb-dev libembree-dev
+  libglm-dev libglfw3-dev libgl-dev libstb-dev libembree-dev libtinygltf-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev libopenexr-dev
   xvfb xauth libgl1-mesa-dri xdotool ffmpeg
   clang libclang-rt-14-dev
