@@ -10,6 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene/punctual_light.h"
 #include "shading/brdf.h"
 #include "shading/brdf_tables.h"
 #include "truth/sampling.h"
@@ -95,11 +96,40 @@ class Integrator {
     return shading::kPi * v.total();
   }
 
-  // The lamp's direct light leaving `s` towards wo (unit, towards the previous vertex),
-  // rolypoly's units.
+  // The direct light leaving `s` towards wo (unit, towards the previous vertex), rolypoly's
+  // units: the demo's lamp (FrameScene::lamp) and every punctual light of the frame.
   // spec (optional): receives the coat's part of the result (0 for a matte surface).
   glm::vec3 lamp(const Surface& s, glm::vec3 wo, Pcg32& rng, glm::vec3* spec = nullptr) {
+    if (scene_.frame().lights.empty()) return demo_lamp(s, wo, rng, spec);
+    glm::vec3 sum = demo_lamp(s, wo, rng, spec);
+    glm::vec3 light_spec(0.0f);
+    for (const scene::PunctualLight& light : scene_.frame().lights) {
+      sum += punctual(light, s, wo, spec ? &light_spec : nullptr);
+      if (spec) *spec += light_spec;
+    }
+    return sum;
+  }
+
+  // One punctual light's direct light (scene/punctual_light.h), with a shadow ray.
+  glm::vec3 punctual(const scene::PunctualLight& light, const Surface& s, glm::vec3 wo,
+                     glm::vec3* spec) {
     if (spec) *spec = glm::vec3(0.0f);
+    const scene::LightSample ls = scene::sample_light(light, s.p);
+    const float c = glm::dot(s.ns, ls.l);
+    if (!(ls.attenuation > 0.0f) || c <= 0.0f || glm::dot(s.ng, ls.l) <= 0.0f)
+      return glm::vec3(0.0f);
+    ++rays;
+    if (scene_.shadowed(s.p + s.ng * kRayOffset, ls.l, ls.distance)) return glm::vec3(0.0f);
+    const glm::vec3 f = coated(s) ? pi_f(s, wo, ls.l, spec) : s.albedo;
+    const glm::vec3 k = light.intensity * (c * ls.attenuation);
+    if (spec) *spec *= k;
+    return f * k;
+  }
+
+  // The demo's ceiling lamp (point or area model; none when FrameScene::lamp is false).
+  glm::vec3 demo_lamp(const Surface& s, glm::vec3 wo, Pcg32& rng, glm::vec3* spec) {
+    if (spec) *spec = glm::vec3(0.0f);
+    if (!scene_.frame().lamp) return glm::vec3(0.0f);
     if (model_ == LampModel::kArea) return area_lamp(s, wo, rng, spec);
     if (light_.intensity == glm::vec3(0.0f)) return glm::vec3(0.0f);
     const glm::vec3 to_light = light_.position - s.p;

@@ -41,6 +41,14 @@
 //             cap add nothing (voxelize == false), so the cap's light is counted once, by
 //             next-event estimation only (one strategy, no MIS); the camera still sees the cap's
 //             material emission (the emission component, as the real-time GBuffer shows it).
+//   lights    a loaded scene's punctual lights (FrameScene::lights: directional, point, spot;
+//             scene/punctual_light.h) light every surface directly like the lamp, each with
+//             one shadow ray towards it; the lamp itself only when FrameScene::lamp is set.
+//             They count as the direct component and, after a gather, as lamp-lit surfaces do.
+//   materials a file's materials as the renderer reads them: alpha-masked holes are skipped
+//             by every ray (an Embree filter), normal maps tilt the shading normal in the
+//             interpolated tangent frame, metallic-roughness and emission textures scale their
+//             factors per texel (scene/frame_scene.h Material).
 //   emitters  mesh emission is counted where a path hits it, except on instances that are not
 //             part of the GI volume (MeshInstance::voxelize == false: the lamp cap), which the
 //             camera sees but whose light is already the point light; emissive spheres (fireball,

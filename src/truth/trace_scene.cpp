@@ -1,6 +1,7 @@
 // Embree scenes and surface resolution of the path tracer (see trace_scene.h).
 #include "truth/trace_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -36,28 +37,74 @@ RTCRay make_ray(glm::vec3 org, glm::vec3 dir, float t_max) {
 
 }  // namespace
 
-glm::vec3 LinearTexture::sample(glm::vec2 uv) const {
+namespace {
+
+// Texel coordinate i (any integer) folded into [0, n) by `mode`.
+int fold(int i, int n, scene::TextureWrap mode) {
+  switch (mode) {
+    case scene::TextureWrap::kClampToEdge: return std::clamp(i, 0, n - 1);
+    case scene::TextureWrap::kMirroredRepeat: {
+      int k = i % (2 * n);
+      if (k < 0) k += 2 * n;
+      return k < n ? k : 2 * n - 1 - k;
+    }
+    case scene::TextureWrap::kRepeat: break;
+  }
+  int k = i % n;
+  return k < 0 ? k + n : k;
+}
+
+}  // namespace
+
+LinearTexture::Footprint LinearTexture::footprint(glm::vec2 uv) const {
   const float w = float(width), h = float(height);
   const float x = uv.x * w - 0.5f, y = (1.0f - uv.y) * h - 0.5f;
   float x0f = std::floor(x), y0f = std::floor(y);
   const float fx = x - x0f, fy = y - y0f;
-  x0f -= std::floor(x0f / w) * w;  // wrap in float (exact for integers below 2^24)
-  y0f -= std::floor(y0f / h) * h;
-  int x0 = int(x0f), y0 = int(y0f);
-  if (x0 >= width) x0 -= width;
-  if (y0 >= height) y0 -= height;
-  if (x0 < 0) x0 += width;
-  if (y0 < 0) y0 += height;
-  const int x1 = x0 + 1 == width ? 0 : x0 + 1, y1 = y0 + 1 == height ? 0 : y0 + 1;
-  auto texel = [&](int tx, int ty) {
-    const float* t = &rgb[3 * (size_t(ty) * size_t(width) + size_t(tx))];
-    return glm::vec3(t[0], t[1], t[2]);
-  };
-  return glm::mix(glm::mix(texel(x0, y0), texel(x1, y0), fx),
-                  glm::mix(texel(x0, y1), texel(x1, y1), fx), fy);
+  int x0, y0, x1, y1;
+  if (wrap_u == scene::TextureWrap::kRepeat) {
+    x0f -= std::floor(x0f / w) * w;  // wrap in float (exact for integers below 2^24)
+    x0 = int(x0f);
+    if (x0 >= width) x0 -= width;
+    if (x0 < 0) x0 += width;
+    x1 = x0 + 1 == width ? 0 : x0 + 1;
+  } else {
+    const float xc = std::clamp(x0f, -4.0f * w, 4.0f * w);  // far outside: any fold is the same
+    x0 = fold(int(xc), width, wrap_u);
+    x1 = fold(int(xc) + 1, width, wrap_u);
+  }
+  if (wrap_v == scene::TextureWrap::kRepeat) {
+    y0f -= std::floor(y0f / h) * h;
+    y0 = int(y0f);
+    if (y0 >= height) y0 -= height;
+    if (y0 < 0) y0 += height;
+    y1 = y0 + 1 == height ? 0 : y0 + 1;
+  } else {
+    const float yc = std::clamp(y0f, -4.0f * h, 4.0f * h);
+    y0 = fold(int(yc), height, wrap_v);
+    y1 = fold(int(yc) + 1, height, wrap_v);
+  }
+  const size_t row0 = size_t(y0) * size_t(width), row1 = size_t(y1) * size_t(width);
+  return {row0 + size_t(x0), row0 + size_t(x1), row1 + size_t(x0), row1 + size_t(x1), fx, fy};
+}
+
+glm::vec3 LinearTexture::sample(glm::vec2 uv) const {
+  const Footprint f = footprint(uv);
+  auto texel = [&](size_t i) { return glm::vec3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]); };
+  return glm::mix(glm::mix(texel(f.i00), texel(f.i10), f.fx),
+                  glm::mix(texel(f.i01), texel(f.i11), f.fx), f.fy);
+}
+
+float LinearTexture::sample_alpha(glm::vec2 uv) const {
+  if (alpha.empty()) return 1.0f;
+  const Footprint f = footprint(uv);
+  const float top = alpha[f.i00] + (alpha[f.i10] - alpha[f.i00]) * f.fx;
+  const float bottom = alpha[f.i01] + (alpha[f.i11] - alpha[f.i01]) * f.fx;
+  return top + (bottom - top) * f.fy;
 }
 
 TraceAssets::TraceAssets(const scene::SceneAssets& assets) : materials_(assets.materials) {
+  meshes_.reserve(assets.meshes.size());  // the alpha filter's user data points into it
   device_ = rtcNewDevice(nullptr);
   if (device_ == nullptr)
     throw std::runtime_error("path tracer: Embree could not create a device (error " +
@@ -68,17 +115,32 @@ TraceAssets::TraceAssets(const scene::SceneAssets& assets) : materials_(assets.m
     LinearTexture lt;
     lt.width = t.width;
     lt.height = t.height;
-    lt.rgb.resize(size_t(t.width) * size_t(t.height) * 3);
-    for (size_t i = 0; i < size_t(t.width) * size_t(t.height); ++i)
-      for (size_t c = 0; c < 3; ++c) lt.rgb[3 * i + c] = srgb8_to_linear(t.rgba[4 * i + c]);
+    lt.wrap_u = t.wrap_u;
+    lt.wrap_v = t.wrap_v;
+    const size_t texels = size_t(t.width) * size_t(t.height);
+    lt.rgb.resize(texels * 3);
+    for (size_t i = 0; i < texels; ++i)
+      for (size_t c = 0; c < 3; ++c)
+        lt.rgb[3 * i + c] =
+            t.srgb ? srgb8_to_linear(t.rgba[4 * i + c]) : float(t.rgba[4 * i + c]) / 255.0f;
+    // Alpha only where some texel is not opaque (the demo's textures are opaque).
+    bool opaque = true;
+    for (size_t i = 0; i < texels && opaque; ++i) opaque = t.rgba[4 * i + 3] == 255;
+    if (!opaque) {
+      lt.alpha.resize(texels);
+      for (size_t i = 0; i < texels; ++i) lt.alpha[i] = float(t.rgba[4 * i + 3]) / 255.0f;
+    }
     textures_.push_back(std::move(lt));
   }
   for (const scene::Material& m : materials_)
-    if (m.texture >= int(textures_.size()))
-      throw std::runtime_error("path tracer: material '" + m.name + "' refers to texture " +
-                               std::to_string(m.texture) + ", which does not exist");
+    for (int texture : {m.texture, m.metallic_roughness_texture, m.normal_texture,
+                        m.emission_texture})
+      if (texture >= int(textures_.size()))
+        throw std::runtime_error("path tracer: material '" + m.name + "' refers to texture " +
+                                 std::to_string(texture) + ", which does not exist");
   for (const scene::Mesh& mesh : assets.meshes) {
     TraceMesh m;
+    m.owner = this;
     const size_t nv = mesh.vertices.size();
     for (const scene::Vertex& v : mesh.vertices) {
       m.positions.insert(m.positions.end(), {v.position.x, v.position.y, v.position.z, 0.0f});
@@ -101,6 +163,14 @@ TraceAssets::TraceAssets(const scene::SceneAssets& assets) : materials_(assets.m
       m.indices.insert(m.indices.end(), {tri.x, tri.y, tri.z});
     }
     m.materials = mesh.materials;
+    if (!mesh.tangents.empty() && mesh.tangents.size() != nv)
+      throw std::runtime_error("path tracer: mesh '" + mesh.name + "' has " +
+                               std::to_string(mesh.tangents.size()) + " tangents for " +
+                               std::to_string(nv) + " vertices");
+    m.tangents = mesh.tangents;
+    bool masked = false;
+    for (uint32_t material : mesh.materials)
+      masked = masked || materials_[material].alpha_mode == scene::AlphaMode::kMask;
     if (!mesh.triangles.empty()) {
       m.bvh = rtcNewScene(device_);
       rtcSetSceneBuildQuality(m.bvh, RTC_BUILD_QUALITY_HIGH);
@@ -110,6 +180,13 @@ TraceAssets::TraceAssets(const scene::SceneAssets& assets) : materials_(assets.m
       rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(),
                                  0, 3 * sizeof(uint32_t), mesh.triangles.size());
       rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
+      if (masked) {
+        // Cut-outs: every ray (camera, gathers, shadows) passes through a hole. The meshes_
+        // element is the user data: its address is reserved below, so it does not move.
+        rtcSetGeometryUserData(g, meshes_.data() + meshes_.size());
+        rtcSetGeometryIntersectFilterFunction(g, &TraceAssets::alpha_filter);
+        rtcSetGeometryOccludedFilterFunction(g, &TraceAssets::alpha_filter);
+      }
       rtcCommitGeometry(g);
       rtcAttachGeometryByID(m.bvh, g, 0);
       rtcReleaseGeometry(g);
@@ -117,6 +194,30 @@ TraceAssets::TraceAssets(const scene::SceneAssets& assets) : materials_(assets.m
     }
     meshes_.push_back(std::move(m));  // the vectors' buffers move with it (Embree keeps pointers)
     check(("building the BVH of mesh '" + mesh.name + "'").c_str());
+  }
+}
+
+bool TraceAssets::solid(uint32_t material, glm::vec2 uv) const {
+  const scene::Material& m = materials_[material];
+  if (m.alpha_mode != scene::AlphaMode::kMask) return true;
+  float alpha = m.opacity;
+  if (m.texture >= 0) alpha *= textures_[size_t(m.texture)].sample_alpha(uv);
+  return alpha >= m.alpha_cutoff;
+}
+
+glm::vec2 TraceMesh::uv_at(uint32_t prim, float b1, float b2) const {
+  const uint32_t i0 = indices[3 * prim], i1 = indices[3 * prim + 1], i2 = indices[3 * prim + 2];
+  return (1.0f - b1 - b2) * uvs[i0] + b1 * uvs[i1] + b2 * uvs[i2];
+}
+
+void TraceAssets::alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* mesh = static_cast<const TraceMesh*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
+    const glm::vec2 uv =
+        mesh->uv_at(prim, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+    if (!mesh->owner->solid(mesh->materials[prim], uv)) args->valid[i] = 0;
   }
 }
 
@@ -228,12 +329,36 @@ bool TraceScene::intersect(glm::vec3 org, glm::vec3 dir, float t_max, Surface& o
     out.ng = glm::normalize(nm * glm::cross(pos(i1) - p0, pos(i2) - p0));
     out.ns = glm::normalize(nm * (b0 * m.normals[i0] + b1 * m.normals[i1] + b2 * m.normals[i2]));
     const scene::Material& mat = assets_->materials()[m.materials[prim]];
+    const glm::vec2 uv = b0 * m.uvs[i0] + b1 * m.uvs[i1] + b2 * m.uvs[i2];
+    const auto& textures = assets_->textures();
     out.albedo = mat.albedo;
-    if (mat.texture >= 0)
-      out.albedo *= assets_->textures()[size_t(mat.texture)].sample(
-          b0 * m.uvs[i0] + b1 * m.uvs[i1] + b2 * m.uvs[i2]);
+    if (mat.texture >= 0) out.albedo *= textures[size_t(mat.texture)].sample(uv);
     out.emission = mat.emission;
+    if (mat.emission_texture >= 0)
+      out.emission *= textures[size_t(mat.emission_texture)].sample(uv);
     out.specular = mat.specular;
+    if (mat.metallic_roughness_texture >= 0) {
+      // glTF: G scales the roughness, B the metallic factor; a texel is a metal at >= 0.5
+      const glm::vec3 mr = textures[size_t(mat.metallic_roughness_texture)].sample(uv);
+      out.specular.roughness = mat.specular.roughness * mr.y;
+      out.specular.metal = mat.metallic * mr.z >= 0.5f;
+    }
+    if (mat.normal_texture >= 0 && !m.tangents.empty()) {
+      // Tangent space (frame_scene.h Mesh::tangents): the tangent follows the model matrix,
+      // the bitangent is w * cross(n, t) after orthogonalising t against the shading normal.
+      const glm::vec4 t4 = b0 * m.tangents[i0] + b1 * m.tangents[i1] + b2 * m.tangents[i2];
+      glm::vec3 tangent = glm::mat3(inst.model) * glm::vec3(t4);
+      tangent -= out.ns * glm::dot(out.ns, tangent);
+      const float len = glm::length(tangent);
+      if (len > 1.0e-12f) {
+        tangent /= len;
+        const glm::vec3 b = (t4.w < 0.0f ? -1.0f : 1.0f) * glm::cross(out.ns, tangent);
+        const glm::vec3 tex = textures[size_t(mat.normal_texture)].sample(uv) * 2.0f - 1.0f;
+        const glm::vec3 n = tangent * (tex.x * mat.normal_scale) + b * (tex.y * mat.normal_scale) +
+                            out.ns * tex.z;
+        if (glm::dot(n, n) > 1.0e-12f) out.ns = glm::normalize(n);
+      }
+    }
     out.lights_scene = inst.voxelize;
     out.instance = i;
     out.sphere = 0xFFFFFFFFu;

@@ -28,16 +28,32 @@ struct TraceMesh {
   std::vector<glm::vec3> normals;    // per vertex
   std::vector<glm::vec2> uvs;        // per vertex
   std::vector<uint32_t> materials;   // per triangle
+  std::vector<glm::vec4> tangents;   // per vertex, empty without a normal map (frame_scene.h)
   RTCScene bvh = nullptr;            // nullptr for a mesh without triangles
+  const class TraceAssets* owner = nullptr;  // materials and textures (the alpha mask's filter)
+  // Texture coordinates at barycentrics (b1, b2) of triangle `prim`.
+  glm::vec2 uv_at(uint32_t prim, float b1, float b2) const;
 };
 
-// A texture decoded to linear rgb (3 floats per texel, rows top to bottom).
+// A texture decoded to linear values (rows top to bottom): rgb, 3 floats per texel (colour
+// textures sRGB-decoded, data textures byte / 255), and alpha, 1 float per texel (byte / 255).
 struct LinearTexture {
   int width = 0, height = 0;
   std::vector<float> rgb;
-  // Bilinear, wrapping, texel centres at +0.5, v up (the arithmetic of
+  std::vector<float> alpha;
+  scene::TextureWrap wrap_u = scene::TextureWrap::kRepeat;
+  scene::TextureWrap wrap_v = scene::TextureWrap::kRepeat;
+  // Bilinear, texel centres at +0.5, v up, folded by the wrap modes (repeat: the arithmetic of
   // kernels/common/span_texture.h).
   glm::vec3 sample(glm::vec2 uv) const;
+  float sample_alpha(glm::vec2 uv) const;
+
+ private:
+  struct Footprint {
+    size_t i00, i10, i01, i11;  // texel indices
+    float fx, fy;
+  };
+  Footprint footprint(glm::vec2 uv) const;
 };
 
 // A surface point found by a ray.
@@ -64,9 +80,14 @@ class TraceAssets {
   const std::vector<TraceMesh>& meshes() const { return meshes_; }
   const std::vector<scene::Material>& materials() const { return materials_; }
   const std::vector<LinearTexture>& textures() const { return textures_; }
+  // False where an alpha-masked material's surface point is a hole (frame_scene.h AlphaMode).
+  bool solid(uint32_t material, glm::vec2 uv) const;
   void check(const char* what) const;  // throws std::runtime_error on a pending Embree error
 
  private:
+  // Embree filter of meshes with alpha-masked materials: rejects hits in holes.
+  static void alpha_filter(const RTCFilterFunctionNArguments* args);
+
   RTCDevice device_ = nullptr;
   std::vector<TraceMesh> meshes_;
   std::vector<scene::Material> materials_;
