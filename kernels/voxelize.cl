@@ -95,6 +95,7 @@
 #include "common/span.h"
 #include "common/span_texture.h"
 #include "common/bounce.h"
+#include "common/punctual_light.h"
 
 #if !defined(RP_VOXEL_FIXED_BITS) || !defined(RP_VOXEL_MAX_CONTRIB) || !defined(RP_VOXEL_SATURATED)
 #error "voxelize.cl needs -DRP_VOXEL_FIXED_BITS, -DRP_VOXEL_MAX_CONTRIB, -DRP_VOXEL_SATURATED"
@@ -372,6 +373,7 @@ typedef struct {
   float texel_den;  /* size * |row 0 of lvp|: a texel is 2 |w| / texel_den world units */
   __global const float4* bounce; /* the bounce grid (common/bounce.h) */
   uint bounce_cells;             /* its cells per side; 0: no bounce light (one bounce) */
+  __global const FrameConstants* frame; /* a file scene's punctual lights */
 } VxLight;
 
 inline VxLight vx_light(__global const FrameConstants* frame, __global const float4* bounce,
@@ -379,6 +381,7 @@ inline VxLight vx_light(__global const FrameConstants* frame, __global const flo
   VxLight L;
   L.bounce = bounce;
   L.bounce_cells = bounce_cells;
+  L.frame = frame;
   /* the lamp disk's centre and a^2 (common/direct_light.h, rp_direct_unshadowed) */
   L.light_pos = frame->light_pos.xyz;
   L.disk_a2 = rp_lamp_disk_a2(frame->light_pos);
@@ -757,12 +760,45 @@ inline VxVec vx_bounce_span(const VxLight* L, const VxVec* p, const VxVec* n, rp
   return vxv(RP_SPAN_FROM_ARRAY(ex), RP_SPAN_FROM_ARRAY(ey), RP_SPAN_FROM_ARRAY(ez));
 }
 
+/* A file scene's punctual lights at points p with unit normals n (lanes in `active`, 0
+ * elsewhere): common/punctual_light.h lane by lane, one bilinear shadow comparison per light
+ * (the voxels average many surface points, as the lamp's four taps do). */
+inline VxVec vx_punctual_span(const VxLight* L, __global const float* shadow, const VxVec* p,
+                              const VxVec* n, rp_spani active, int n_lanes) {
+  float px[RP_SPAN], py[RP_SPAN], pz[RP_SPAN], nx[RP_SPAN], ny[RP_SPAN], nz[RP_SPAN];
+  float rx[RP_SPAN], ry[RP_SPAN], rz[RP_SPAN];
+  int on[RP_SPAN];
+  RP_SPAN_TO_ARRAY(p->x, px);
+  RP_SPAN_TO_ARRAY(p->y, py);
+  RP_SPAN_TO_ARRAY(p->z, pz);
+  RP_SPAN_TO_ARRAY(n->x, nx);
+  RP_SPAN_TO_ARRAY(n->y, ny);
+  RP_SPAN_TO_ARRAY(n->z, nz);
+  RP_SPAN_TO_ARRAY(active, on);
+  for (int k = 0; k < RP_SPAN; ++k) {
+    float3 sum = (float3)(0.0f);
+    if (k < n_lanes && on[k]) {
+      const float3 pk = (float3)(px[k], py[k], pz[k]), nk = (float3)(nx[k], ny[k], nz[k]);
+      for (uint i = 0; i < L->frame->punctual_count; ++i) {
+        float3 l;
+        sum += rp_punctual_direct(L->frame, shadow, i, pk, nk, 0, &l);
+      }
+    }
+    rx[k] = sum.x;
+    ry[k] = sum.y;
+    rz[k] = sum.z;
+  }
+  return vxv(RP_SPAN_FROM_ARRAY(rx), RP_SPAN_FROM_ARRAY(ry), RP_SPAN_FROM_ARRAY(rz));
+}
+
 /* Outgoing radiance albedo * (direct + bounce light) + emission at points p with unit
  * normals n. */
 inline VxVec vx_radiance_span(const VxLight* L, __global const float* shadow,
                               const VxVec* albedo, const VxVec* p, const VxVec* n,
                               const VxVec* emission, rp_spani active, int n_lanes) {
   VxVec light = vx_direct_span(L, shadow, p, n, active, n_lanes);
+  if (L->frame->punctual_count != 0u)
+    light = vxv_add(light, vx_punctual_span(L, shadow, p, n, active, n_lanes));
   if (L->bounce_cells != 0u) /* the light of earlier bounces (several bounces) */
     light = vxv_add(light, vx_bounce_span(L, p, n, active, n_lanes));
   return vxv(albedo->x * light.x + emission->x, albedo->y * light.y + emission->y,

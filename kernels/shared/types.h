@@ -45,6 +45,41 @@ typedef struct {
 /* Texture index meaning "no texture" in Material.texture. */
 #define RP_TEXTURE_NONE 0xFFFFFFFFu
 
+/* A loaded scene's punctual lights (scene/frame_scene.h PunctualLight, in render space) and
+ * the shadow views they are seen from. Their shadow maps lie in the ShadowMap's depth buffer
+ * after the lamp's two planes: view v has two planes of size^2 floats at `offset` (nearest
+ * occluder, z_ndc * 0.5 + 0.5, 1.0 empty; then the farthest), drawn by the same rasterizer.
+ * A point light has six views (cube faces +x, -x, +y, -y, +z, -z, 90 degrees), a spot one
+ * perspective view along its axis, a directional light one orthographic view over the GI
+ * volume. Light units and attenuation: scene/punctual_light.h (common/punctual_light.h). */
+#define RP_MAX_PUNCTUAL_LIGHTS 8u
+#define RP_MAX_SHADOW_VIEWS 48u
+#define RP_LIGHT_DIRECTIONAL 0u
+#define RP_LIGHT_POINT 1u
+#define RP_LIGHT_SPOT 2u
+
+/* 80 bytes. */
+typedef struct {
+  rp_float4 position_range; /* xyz position (point, spot), w range (0: none) */
+  rp_float4 direction;      /* xyz unit direction the light travels (directional, spot) */
+  rp_float4 intensity;      /* rgb: direct radiance = albedo * intensity * cos * attenuation */
+  rp_float4 cone;           /* spot: x cos(outer), y 1 / (cos inner - cos outer), 0: hard edge */
+  rp_uint type;             /* RP_LIGHT_* */
+  rp_uint first_view;       /* its shadow views in FrameConstants.shadow_views */
+  rp_uint view_count;       /* 0: no shadow */
+  rp_uint pad0;
+} PunctualLightGpu;
+
+/* 96 bytes. */
+typedef struct {
+  rp_mat4 view_proj;        /* render space -> this view's clip space */
+  rp_float4 depth;          /* x near, y far, z 1: orthographic (linear z01), 0: perspective;
+                               w world size of a texel at clip w = 1 (2 / (size |row 0|)) */
+  rp_uint offset;           /* first float of its nearest-occluder plane in the depth buffer */
+  rp_uint size;             /* texels per side */
+  rp_uint pad0, pad1;
+} ShadowViewGpu;
+
 /* Per-frame constants, one copy per frame (uploaded once). */
 typedef struct {
   rp_mat4 view_proj;            /* world -> clip, including the sub-pixel jitter (rasterize with it) */
@@ -64,6 +99,11 @@ typedef struct {
   rp_uint instance_count, sphere_count;
   rp_uint voxel_resolution;     /* voxels per side of level 0 (32, 64 or 128) over [-1,1]^3 */
   rp_uint voxel_levels;         /* mip levels incl. level 0: log2(voxel_resolution) + 1 */
+  rp_uint punctual_count;       /* lights in `punctual` (0: the demo) */
+  rp_uint shadow_view_count;
+  rp_uint pad_punctual0, pad_punctual1;
+  PunctualLightGpu punctual[RP_MAX_PUNCTUAL_LIGHTS];
+  ShadowViewGpu shadow_views[RP_MAX_SHADOW_VIEWS];
 } FrameConstants;
 
 /* One vertex of a mesh in object space. 32 bytes. */
@@ -100,14 +140,19 @@ typedef struct {
   rp_float4 emission;      /* rgb emitted radiance, w gloss code (shared/brdf_layout.h) */
 } Sphere;
 
-/* Surface material. 48 bytes. */
+/* Surface material. 64 bytes. */
 typedef struct {
   rp_float4 albedo;   /* rgb, multiplied with the texture when there is one; w the voxelizer's
                          base weight (1 - E_spec_avg of the coat, 1 without one:
                          shading::voxel_base_weight) */
   rp_float4 emission; /* rgb emitted radiance, w gloss code (shared/brdf_layout.h) */
-  rp_uint texture;    /* index into TextureInfo, or RP_TEXTURE_NONE */
-  rp_uint pad0, pad1, pad2;
+  rp_uint texture;    /* base colour: index into TextureInfo, or RP_TEXTURE_NONE */
+  /* A file's per-texel maps (scene/frame_scene.h Material), or RP_TEXTURE_NONE; resolved by
+   * gbuffer_material (kernels/gbuffer_material.cl) */
+  rp_uint normal_texture;             /* tangent-space normal map (linear rgb) */
+  rp_uint metallic_roughness_texture; /* G scales the roughness, B the metallic factor */
+  rp_uint emission_texture;           /* sRGB, multiplies emission.rgb */
+  rp_float4 factors;  /* x normal scale, y roughness factor, z metallic factor, w dielectric f0 */
 } Material;
 
 /* gbuffer_resolve's texture filter (render::TextureFilter, --texture-filter). */

@@ -11,6 +11,7 @@
 #include "app/interrupt.h"
 #include "cl/context.h"
 #include "cl/error.h"
+#include "scene/gltf_loader.h"
 
 namespace rp::app {
 namespace {
@@ -39,6 +40,7 @@ int execute(const ParsedCommand& command) {
     case ParsedCommand::Kind::kRender: return render_command(command.common, command.render);
     case ParsedCommand::Kind::kRun: return run_command(command.common, command.run);
     case ParsedCommand::Kind::kBench: return bench_command(command.common, command.bench);
+    case ParsedCommand::Kind::kExport: return export_command(command.common, command.exporting);
   }
   return report("unknown subcommand kind");
 }
@@ -62,6 +64,9 @@ int run_cli(int argc, char** argv) {
                          rp::cl::error_name(e.err()));
   } catch (const rp::cl::Error& e) {
     return report_opencl(e.what());
+  } catch (const scene::SceneFileError& e) {
+    report(e.what());
+    return 2;  // a bad input file is a usage error, like a bad option
   } catch (const std::exception& e) {
     return report(e.what());
   }

@@ -23,12 +23,13 @@ namespace rp::app {
 // (--size/--width/--height into `size`, --view/--level/--dir into common.view). Only the
 // options struct of `kind` is meaningful; the others keep their defaults.
 struct ParsedCommand {
-  enum class Kind { kDevices, kRender, kRun, kBench };
+  enum class Kind { kDevices, kRender, kRun, kBench, kExport };
   Kind kind = Kind::kDevices;
   CommonOptions common;
   RenderOptions render;  // frames_given set from the command line
   RunOptions run;
   BenchOptions bench;    // command_line: "rolypoly" and the arguments joined by spaces
+  ExportOptions exporting;
 };
 
 // A command line that ends before running anything: --help (exit code 0, the help text for

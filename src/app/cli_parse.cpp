@@ -1,6 +1,7 @@
 // parse_cli (app/cli.h): the options of every subcommand, CLI11's parse and the usage checks.
 // Nothing here opens a device, a file or the terminal, so fuzz/cli_fuzzer.cpp compiles this file
 // alone (with passes/debug_view.cpp for the view names) and fuzzes the real command line.
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/cli.h"
+#include "app/scene_input.h"
 #include "passes/debug_view.h"
 
 namespace rp::app {
@@ -413,6 +415,10 @@ CliParse parse_cli(int argc, const char* const* argv) {
   add_spp(render, common);
   add_bounces(render, common);
   add_size(render, render_size);
+  render->add_option("--scene", common.scene,
+                     "what to draw: demo (the simulated Cornell box) or a glTF 2.0 file "
+                     "(.gltf or .glb)")
+      ->capture_default_str();
   render->add_option("--frames", render_opts.frames, "number of frames")
       ->capture_default_str()
       ->transform(whole_number(1, 1000000));
@@ -430,6 +436,10 @@ CliParse parse_cli(int argc, const char* const* argv) {
   add_common(run, common, true, false);
   add_bounces(run, common);
   add_size(run, run_size);
+  run->add_option("--scene", common.scene,
+                  "what to show: demo (the simulated Cornell box) or a glTF 2.0 file (.gltf or "
+                  ".glb) to fly through")
+      ->capture_default_str();
   run->add_option("--frames", run_opts.frames, "frames to show, 0 = until the window is closed")
       ->capture_default_str()
       ->transform(whole_number(0, std::numeric_limits<uint32_t>::max()));
@@ -440,6 +450,18 @@ CliParse parse_cli(int argc, const char* const* argv) {
                   "`rolypoly render --replay FILE`)");
   add_simulation(run, run_opts.sim);
   add_view(run, run_view);
+
+  CLI::App* export_cmd = app.add_subcommand(
+      "export", "write the demo's frame as a glTF 2.0 file (.glb, or .gltf with the data "
+                "embedded) that --scene FILE opens again");
+  export_cmd->add_option("FILE", parsed.exporting.file, "the file to write (.glb or .gltf)")
+      ->required();
+  export_cmd->add_option("--scene", common.scene, "what to export: demo (the only choice)")
+      ->capture_default_str();
+  export_cmd->add_option("--assets", common.asset_dir,
+                         "folder with the demo's textures (default: the built-in asset folder)");
+  add_simulation(export_cmd, parsed.exporting.sim);
+  export_cmd->remove_option(export_cmd->get_option("--replay"));
 
   CLI::App* bench = app.add_subcommand(
       "bench", "time every pass over many frames, on one or many devices, sizes and voxel "
@@ -564,7 +586,7 @@ CliParse parse_cli(int argc, const char* const* argv) {
   }
   if (std::string why = check_list_entries(argc, argv); !why.empty())
     return usage("rolypoly: error", why);
-  for (const CLI::App* cmd : {render, run, bench}) {
+  for (const CLI::App* cmd : {render, run, bench, export_cmd}) {
     if (!cmd->parsed()) continue;
     if (const CLI::Option* empty = option_with_empty_value(cmd))
       return usage("rolypoly " + cmd->get_name(),
@@ -585,6 +607,13 @@ CliParse parse_cli(int argc, const char* const* argv) {
       return usage("rolypoly render", why);
     if (std::string why = check_pathtrace(render, common); !why.empty())
       return usage("rolypoly render", why);
+    if (!is_demo_scene(common.scene)) {
+      for (const char* name : {"--seed", "--marbles", "--fireball", "--replay", "--assets"})
+        if (render->count(name))
+          return usage("rolypoly render",
+                       std::string(name) + " applies to the simulated demo, not to a scene "
+                       "file (--scene " + common.scene + ")");
+    }
     if (common.pathtraced) {
       const passes::DebugView v = common.view.view;
       if (v != passes::DebugView::kFinal && v != passes::DebugView::kDirect &&
@@ -602,8 +631,30 @@ CliParse parse_cli(int argc, const char* const* argv) {
     if (std::string why = check_bounces(common); !why.empty()) return usage("rolypoly run", why);
     if (std::string why = check_gi_volume(common, {common.voxels}); !why.empty())
       return usage("rolypoly run", why);
+    if (!is_demo_scene(common.scene)) {
+      for (const char* name :
+           {"--seed", "--marbles", "--fireball", "--replay", "--record", "--assets"})
+        if (run->count(name))
+          return usage("rolypoly run",
+                       std::string(name) + " applies to the simulated demo, not to a scene "
+                       "file (--scene " + common.scene + ")");
+    }
     parsed.kind = ParsedCommand::Kind::kRun;
     run_opts.size = run_size.resolve();
+  } else if (export_cmd->parsed()) {
+    if (!is_demo_scene(common.scene))
+      return usage("rolypoly export", "--scene takes only demo (a scene file is already glTF)");
+    const std::string& f = parsed.exporting.file;
+    const auto ends_with = [&f](const char* ext) {
+      const std::string e(ext);
+      if (f.size() <= e.size()) return false;
+      std::string tail = f.substr(f.size() - e.size());
+      for (char& c : tail) c = char(std::tolower(static_cast<unsigned char>(c)));
+      return tail == e;
+    };
+    if (!ends_with(".glb") && !ends_with(".gltf"))
+      return usage("rolypoly export", "FILE must end in .glb or .gltf, not '" + f + "'");
+    parsed.kind = ParsedCommand::Kind::kExport;
   } else if (bench->parsed()) {
     const char* why = nullptr;
     if (devices_opt->count() && bench->count("--device"))

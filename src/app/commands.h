@@ -75,6 +75,12 @@ struct BenchOptions {
   std::string command_line;  // how the bench was invoked (recorded in the JSON)
 };
 
+// `rolypoly export`: the demo's frame as a glTF 2.0 file.
+struct ExportOptions {
+  std::string file;  // FILE.glb (binary) or FILE.gltf (JSON with the buffer as a data URI)
+  SimulationArgs sim;  // --seed, --marbles, --fireball: which frame of the demo
+};
+
 // Prints every OpenCL platform/device.
 int devices_command();
 // Headless: frame_0000.png ... into out_dir (with common.pathtraced: pathtrace_render_command).
@@ -94,5 +100,9 @@ int accuracy_command(const CommonOptions& common, const BenchOptions& options);
 // bench --quality pathtraced: seconds and Mrays/s per path-traced frame, optional JSON (schema
 // "rolypoly-pathtrace-bench/1").
 int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& options);
+
+// Writes the demo's first frame (room, lamp, tumblers, marbles and fireball when asked) with
+// its materials and textures embedded and its lamp as a light (scene/gltf_export.h).
+int export_command(const CommonOptions& common, const ExportOptions& options);
 
 }  // namespace rp::app

@@ -17,6 +17,7 @@
 #include "bench/src/pass_stats.h"
 #include "app/png_output.h"
 #include "app/progress.h"
+#include "app/scene_input.h"
 #include "app/simulation_source.h"
 #include "app/video_output.h"
 #include "scene/demo_scene.h"
@@ -79,14 +80,26 @@ int pathtrace_render_command(const CommonOptions& common, const RenderOptions& o
   InterruptGuard interrupt;
   const std::filesystem::path out_dir(options.out_dir);
   ensure_directory(out_dir);
-  // Cheap checks first (as the real-time render): replay log, ffmpeg, then the assets.
-  SimulationFrameSource source(make_simulation_options(options.sim, common.effects));
+  // Cheap checks first (as the real-time render): the scene file or the replay log, ffmpeg,
+  // then the assets.
+  std::unique_ptr<FileScene> file;
+  std::unique_ptr<FileFrameSource> file_source;
+  std::unique_ptr<SimulationFrameSource> simulation;
+  if (is_demo_scene(common.scene)) {
+    simulation = std::make_unique<SimulationFrameSource>(
+        make_simulation_options(options.sim, common.effects));
+  } else {
+    file = std::make_unique<FileScene>(open_scene_file(common.scene));
+    file_source = std::make_unique<FileFrameSource>(*file);
+  }
   uint32_t frames = options.frames;
-  if (!options.frames_given && source.replay_frames() > 0) frames = source.replay_frames();
+  if (!options.frames_given && simulation && simulation->replay_frames() > 0)
+    frames = simulation->replay_frames();
   const uint32_t w = options.size.width, h = options.size.height;
   std::unique_ptr<VideoPipe> video;
   if (!options.video.empty()) video = std::make_unique<VideoPipe>(options.video, w, h, 60);
-  const scene::SceneAssets assets = load_assets(common);
+  const scene::SceneAssets assets = file ? file->loaded.assets : load_assets(common);
+  auto next_frame = [&] { return simulation ? simulation->next_frame() : file_source->next(); };
   rp::truth::PathTracer tracer(assets);
   const rp::truth::PathTraceSettings settings = settings_for(common, w, h, options.sim.seed);
 
@@ -107,7 +120,7 @@ int pathtrace_render_command(const CommonOptions& common, const RenderOptions& o
     if (interrupt.interrupted()) break;
     rp::truth::PathTracedImage image;
     try {
-      image = tracer.render(source.next_frame(), settings, progress, &cancel);
+      image = tracer.render(next_frame(), settings, progress, &cancel);
     } catch (const rp::truth::PathTracer::Cancelled&) {
       break;  // nothing of this frame was written
     }

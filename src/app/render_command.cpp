@@ -12,6 +12,7 @@
 #include "bench/src/pass_stats.h"
 #include "app/png_output.h"
 #include "app/progress.h"
+#include "app/scene_input.h"
 #include "app/simulation_source.h"
 #include "app/video_output.h"
 
@@ -37,11 +38,15 @@ void show_long_steps(SimulationFrameSource& source) {
 }
 
 // The device, the kernels and the frames; `written` counts the complete PNGs as they appear.
+// `simulation` or `file` (the other nullptr) gives the frames.
 int render_frames(const CommonOptions& common, const RenderOptions& options,
-                  SimulationFrameSource& source, uint32_t frames, VideoPipe* video,
-                  uint32_t& written) {
+                  SimulationFrameSource* simulation, FileScene* file, uint32_t frames,
+                  VideoPipe* video, uint32_t& written) {
   const std::filesystem::path out_dir(options.out_dir);
-  RenderSession session(common, options.size.width, options.size.height, options.exr);
+  RenderSession session(common, options.size.width, options.size.height, options.exr,
+                        file ? &file->loaded.assets : nullptr);
+  std::unique_ptr<FileFrameSource> file_source;
+  if (file) file_source = std::make_unique<FileFrameSource>(*file);
   std::printf("device %s\n", describe_device(session.device()).c_str());
   std::fflush(stdout);
 
@@ -58,7 +63,9 @@ int render_frames(const CommonOptions& common, const RenderOptions& options,
       return report_interrupted(i, out_dir, options.exr ? ", each with its .exr" : "");
     }
     double frame_ms = 0.0;
-    rp::cl::PassTimes times = render_next_frame(session, source, common.effects, rgba, frame_ms);
+    rp::cl::PassTimes times =
+        simulation ? render_next_frame(session, *simulation, common.effects, rgba, frame_ms)
+                   : session.render(file_source->next(), rgba, frame_ms);
     stats.add(times, frame_ms);
     if (options.exr) {  // before the PNG: a frame counts as written once its PNG is there
       session.read_components(components);
@@ -91,18 +98,28 @@ int render_command(const CommonOptions& common, const RenderOptions& options) {
   InterruptGuard interrupt;
   std::filesystem::path out_dir(options.out_dir);
   ensure_directory(out_dir);  // fail before the (slow) kernel builds if the folder is unusable
-  // Cheap checks first: a malformed replay log or a missing ffmpeg fail before kernel builds.
-  SimulationFrameSource source(make_simulation_options(options.sim, common.effects));
+  // Cheap checks first: a malformed scene file or replay log, or a missing ffmpeg fail before
+  // kernel builds.
+  std::unique_ptr<SimulationFrameSource> simulation;
+  std::unique_ptr<FileScene> file;
   uint32_t frames = options.frames;
-  if (!options.frames_given && source.replay_frames() > 0) frames = source.replay_frames();
-  show_long_steps(source);
+  if (is_demo_scene(common.scene)) {
+    simulation = std::make_unique<SimulationFrameSource>(
+        make_simulation_options(options.sim, common.effects));
+    if (!options.frames_given && simulation->replay_frames() > 0)
+      frames = simulation->replay_frames();
+    show_long_steps(*simulation);
+  } else {
+    file = std::make_unique<FileScene>(open_scene_file(common.scene));
+  }
   std::unique_ptr<VideoPipe> video;
   if (!options.video.empty())
     video = std::make_unique<VideoPipe>(options.video, options.size.width, options.size.height,
                                         60);
   uint32_t written = 0;
   try {
-    return render_frames(common, options, source, frames, video.get(), written);
+    return render_frames(common, options, simulation.get(), file.get(), frames, video.get(),
+                         written);
   } catch (const std::exception&) {
     // A signal can make the work fail before the loop sees it (LLVM deletes its temporary
     // files on SIGINT / SIGTERM, so a kernel build in progress fails; a long replay stops):

@@ -98,9 +98,11 @@ void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint3
   throw rp::cl::Error(message);
 }
 RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint32_t height,
-                             bool keep_components)
-    : assets_(scene::make_demo_assets(options.asset_dir.empty() ? scene::default_asset_dir()
-                                                                : options.asset_dir)),
+                             bool keep_components, const scene::SceneAssets* assets)
+    : assets_(assets ? *assets
+                     : scene::make_demo_assets(options.asset_dir.empty()
+                                                   ? scene::default_asset_dir()
+                                                   : options.asset_dir)),
       context_(rp::cl::Context::create(options.device)),
       programs_(context_) {
   render::RenderSettings settings;

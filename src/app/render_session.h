@@ -20,7 +20,8 @@ namespace rp::app {
 
 struct CommonOptions {
   std::string device;      // --device: index or name substring ("" = first GPU, else CPU)
-  std::string asset_dir;   // --assets: folder with the scene's textures
+  std::string asset_dir;   // --assets: folder with the demo's textures
+  std::string scene = "demo";  // --scene (render): "demo" or a glTF 2.0 file (app/scene_input.h)
   uint32_t shadow_size = 0;  // --shadow-size: shadow map texels per side (0 = renderer default)
   uint32_t voxels = 0;       // --voxels: GI volume voxels per side (0 = renderer default, 64)
   render::GiVolume gi_volume = render::GiVolume::kDense;  // --gi-volume dense|svo (issue 17)
@@ -48,8 +49,10 @@ class RenderSession {
  public:
   // keep_components: set_keep_components(true) from the start, counted in the memory check
   // that runs before anything is allocated (`render --exr`).
+  // assets: what the scene draws (a loaded file's); nullptr = the demo's, from
+  // options.asset_dir.
   RenderSession(const CommonOptions& options, uint32_t width, uint32_t height,
-                bool keep_components = false);
+                bool keep_components = false, const scene::SceneAssets* assets = nullptr);
   RenderSession(const RenderSession&) = delete;
   RenderSession& operator=(const RenderSession&) = delete;
 

@@ -82,6 +82,30 @@ void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   const size_t spans = (w + span - 1) / span * h;
   profiler.enqueue("gbuffer", resolve, ::cl::NDRange(rp::cl::round_up(spans, kGroup)),
                    ::cl::NDRange(kGroup));
+  if (scene.has_material_maps) run_material(profiler, scene, vis, out);
+}
+
+void GBufferPass::run_material(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                               const render::VisibilityBuffer& vis, render::GBuffer& out) {
+  if (!material_()) material_ = programs_->kernel("gbuffer_material.cl", "gbuffer_material");
+  cl_uint arg = 0;
+  material_.setArg(arg++, scene.frame);
+  material_.setArg(arg++, vis.ids);
+  material_.setArg(arg++, vis.bary);
+  material_.setArg(arg++, scene.instances);
+  material_.setArg(arg++, scene.vertices);
+  material_.setArg(arg++, scene.tangents);
+  material_.setArg(arg++, scene.triangles);
+  material_.setArg(arg++, scene.materials);
+  material_.setArg(arg++, scene.textures);
+  material_.setArg(arg++, scene.texels() ? scene.texels : no_texels_);
+  material_.setArg(arg++, out.normal_depth);
+  material_.setArg(arg++, out.emission);
+  constexpr size_t kTile = 16;
+  const uint32_t w = scene.constants.width, h = scene.constants.height;
+  profiler.enqueue("gbuffer", material_,
+                   ::cl::NDRange(rp::cl::round_up(w, kTile), rp::cl::round_up(h, kTile)),
+                   ::cl::NDRange(kTile, kTile));
 }
 
 }  // namespace rp::passes

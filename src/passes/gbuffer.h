@@ -34,6 +34,11 @@ class GBufferPass {
   // resolve_[filter]: gbuffer_resolve built with -DRP_TEXTURE_FILTER_FIXED=filter on first use
   // (a constant filter lets the compiler drop the other paths: kernels/gbuffer.cl).
   std::array<::cl::Kernel, 3> resolve_;
+  // gbuffer_material (kernels/gbuffer_material.cl): a file's normal, metallic-roughness and
+  // emission maps, when the scene has any (GpuScene::has_material_maps); built on first use.
+  ::cl::Kernel material_;
+  void run_material(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                    const render::VisibilityBuffer& vis, render::GBuffer& out);
   rp::cl::ProgramCache* programs_;
   std::string options_;
   ::cl::Buffer no_texels_;  // one texel, bound when the scene has no texel buffer

@@ -103,13 +103,19 @@ struct VisibilityPass::Impl {
   int span = 1;
   bool tile_layout = false;  // raster: one work-item per tile (CPUs), else a group per tile
   ViewState camera, shadow;
+  ViewState lights;  // the punctual lights' shadow views, one after the other
+  // Sub-buffers of the shadow depth buffer, one per punctual view (offset, size), rebuilt
+  // when the buffer or the views change.
+  ::cl::Buffer light_maps_of;
+  std::vector<std::pair<uint64_t, uint32_t>> light_map_keys;
+  std::vector<::cl::Buffer> light_maps;
 
   Impl() = default;
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
   // A pending read of a list total writes into its ViewState: let it land first.
   ~Impl() {
-    for (ViewState* v : {&camera, &shadow})
+    for (ViewState* v : {&camera, &shadow, &lights})
       if (v->total_pending) v->total_event.wait();
   }
 
@@ -307,6 +313,7 @@ VisibilityPass::VisibilityPass(const rp::cl::Context& context, rp::cl::ProgramCa
   impl_->tile_layout = context.info.is_cpu && impl_->span >= 8;
   impl_->init_view(impl_->camera, programs, "visibility", false);
   impl_->init_view(impl_->shadow, programs, "shadow_map", true);
+  impl_->init_view(impl_->lights, programs, "shadow_map_lights", true);
 }
 
 void VisibilityPass::render(rp::cl::Profiler& profiler, const render::GpuScene& scene,
@@ -333,6 +340,35 @@ void VisibilityPass::render_shadow(rp::cl::Profiler& profiler, const render::Gpu
   ViewState& v = impl_->shadow;
   impl_->run_view(profiler, v, scene, light, glm::inverse(light), out.size, out.size, out.depth,
                   v.unused, v.unused);
+}
+
+void VisibilityPass::render_light_shadows(rp::cl::Profiler& profiler,
+                                          const render::GpuScene& scene,
+                                          render::ShadowMap& out) {
+  const std::vector<gpu::ShadowViewGpu>& views = scene.punctual.views;
+  if (views.empty()) return;
+  const uint64_t needed = views.back().offset + 2 * uint64_t(views.back().size) * views.back().size;
+  out.ensure_floats(impl_->context->context, needed);
+  std::vector<std::pair<uint64_t, uint32_t>> keys;
+  keys.reserve(views.size());
+  for (const gpu::ShadowViewGpu& v : views) keys.emplace_back(v.offset, v.size);
+  if (impl_->light_maps_of() != out.depth() || impl_->light_map_keys != keys) {
+    impl_->light_maps.clear();
+    for (const auto& [offset, size] : keys) {
+      const cl_buffer_region region{size_t(offset) * sizeof(float),
+                                    2 * size_t(size) * size * sizeof(float)};
+      impl_->light_maps.push_back(
+          out.depth.createSubBuffer(CL_MEM_READ_WRITE, CL_BUFFER_CREATE_TYPE_REGION, &region));
+    }
+    impl_->light_maps_of = out.depth;
+    impl_->light_map_keys = std::move(keys);
+  }
+  ViewState& v = impl_->lights;
+  for (size_t i = 0; i < views.size(); ++i) {
+    const glm::mat4 vp = to_glm(views[i].view_proj);
+    impl_->run_view(profiler, v, scene, vp, glm::inverse(vp), views[i].size, views[i].size,
+                    impl_->light_maps[i], v.unused, v.unused);
+  }
 }
 
 }  // namespace rp::passes

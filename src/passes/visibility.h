@@ -24,6 +24,12 @@ class VisibilityPass {
   void render_shadow(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                      render::ShadowMap& out);
 
+  // The punctual lights' shadow views (FrameConstants.shadow_views, render/punctual_shadows.h)
+  // into `out`'s depth buffer after the lamp's planes, which it grows to hold them. Depth only,
+  // the shadow casters. Pass name "shadow_map_lights". Nothing when the frame has no views.
+  void render_light_shadows(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                            render::ShadowMap& out);
+
  private:
   struct Impl;
   std::shared_ptr<Impl> impl_;

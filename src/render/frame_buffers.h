@@ -39,8 +39,18 @@ struct ShadowMap {
   ::cl::Buffer mips;
   uint32_t mip_planes = 0;
 
+  // Floats `depth` holds: the lamp's two planes, then the punctual lights' shadow views
+  // (kernels/shared/types.h ShadowViewGpu), which grow it on demand (ensure_floats).
+  uint64_t depth_floats = 0;
+  void ensure_floats(const ::cl::Context& context, uint64_t floats) {
+    if (floats <= depth_floats) return;
+    depth = ::cl::Buffer(context, CL_MEM_READ_WRITE, size_t(floats) * sizeof(float));
+    depth_floats = floats;
+  }
+
   void resize(const ::cl::Context& context, uint32_t s) {
     size = s;
+    depth_floats = 2 * uint64_t(s) * s;
     depth = ::cl::Buffer(context, CL_MEM_READ_WRITE, 2 * size_t(s) * s * sizeof(float));
   }
 };

@@ -116,6 +116,7 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
                    const scene::SceneAssets& assets)
     : context_(context), queue_(queue) {
   std::vector<gpu::Vertex> verts;
+  std::vector<gpu::rp_float4> tangents_host;  // parallel to verts (zero: no tangent)
   std::vector<gpu::Triangle> tris;
   for (const scene::Mesh& mesh : assets.meshes) {
     if (mesh.materials.size() != mesh.triangles.size())
@@ -129,6 +130,11 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
     uint32_t base = static_cast<uint32_t>(verts.size());
     for (const scene::Vertex& v : mesh.vertices)
       verts.push_back({gpu::to_gpu(v.position, v.uv.x), gpu::to_gpu(v.normal, v.uv.y)});
+    if (!mesh.tangents.empty() && mesh.tangents.size() != mesh.vertices.size())
+      throw rp::cl::Error("mesh '" + mesh.name + "': one tangent per vertex expected");
+    for (size_t i = 0; i < mesh.vertices.size(); ++i)
+      tangents_host.push_back(mesh.tangents.empty() ? gpu::rp_float4{0.0f, 0.0f, 0.0f, 0.0f}
+                                                    : gpu::to_gpu(mesh.tangents[i]));
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
       const glm::uvec3& tri = mesh.triangles[t];
       if (tri.x >= mesh.vertices.size() || tri.y >= mesh.vertices.size() ||
@@ -151,7 +157,19 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
     // w: the voxelizer's base weight (shading::voxel_base_weight)
     g.albedo = gpu::to_gpu(m.albedo, shading::voxel_base_weight(code, shading::BrdfTables::get()));
     g.emission = gpu::to_gpu(m.emission, code);  // w: brdf_layout.h
-    g.texture = m.texture < 0 ? RP_TEXTURE_NONE : static_cast<uint32_t>(m.texture);
+    const auto texture_index = [&](int t) {
+      if (t >= static_cast<int>(assets.textures.size()))
+        throw rp::cl::Error("material '" + m.name + "' refers to a texture that does not exist");
+      return t < 0 ? RP_TEXTURE_NONE : static_cast<uint32_t>(t);
+    };
+    g.texture = texture_index(m.texture);
+    g.normal_texture = texture_index(m.normal_texture);
+    g.metallic_roughness_texture = texture_index(m.metallic_roughness_texture);
+    g.emission_texture = texture_index(m.emission_texture);
+    g.factors = {m.normal_scale, m.specular.roughness, m.metallic, m.specular.f0};
+    if (g.normal_texture != RP_TEXTURE_NONE || g.metallic_roughness_texture != RP_TEXTURE_NONE ||
+        g.emission_texture != RP_TEXTURE_NONE)
+      has_material_maps = true;
     mats.push_back(g);
   }
 
@@ -183,6 +201,10 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
   }
 
   vertices = upload(context, queue_, verts);
+  // Only scenes with normal, metallic-roughness or emission maps read the tangents (the
+  // material pass); the others keep one unused element.
+  if (!has_material_maps) tangents_host.assign(1, gpu::rp_float4{0.0f, 0.0f, 0.0f, 0.0f});
+  tangents = upload(context, queue_, tangents_host);
   triangles = upload(context, queue_, tris);
   materials = upload(context, queue_, mats);
   texels = upload(context, queue_, texel_data);
@@ -228,6 +250,12 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
   c.voxel_resolution = voxel_resolution;
   c.voxel_levels = 1;
   while ((voxel_resolution >> c.voxel_levels) > 0) ++c.voxel_levels;  // log2(R) + 1
+  // A file scene's lights; their shadow views follow the lamp's two planes.
+  punctual = setup_punctual_lights(f.lights, shadow_size, 2 * uint64_t(shadow_size) * shadow_size);
+  c.punctual_count = uint32_t(punctual.lights.size());
+  c.shadow_view_count = uint32_t(punctual.views.size());
+  std::copy(punctual.lights.begin(), punctual.lights.end(), c.punctual);
+  std::copy(punctual.views.begin(), punctual.views.end(), c.shadow_views);
 
   host_instances.clear();
   instance_triangle_count = 0;

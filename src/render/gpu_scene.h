@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "render/gpu_types.h"
+#include "render/punctual_shadows.h"
 #include "scene/frame_scene.h"
 
 namespace rp::render {
@@ -64,6 +65,12 @@ class GpuScene {
   // Static data.
   ::cl::Buffer vertices;   // gpu::Vertex[vertex_count]
   ::cl::Buffer triangles;  // gpu::Triangle[triangle_count], vertex indices are global
+  // float4 per vertex, parallel to `vertices`: a file's tangent frame (scene::Mesh::tangents;
+  // zero where none); one element only when no material has per-texel maps.
+  ::cl::Buffer tangents;
+  // Some material has a normal, metallic-roughness or emission map: the GBuffer's material
+  // pass (kernels/gbuffer_material.cl) runs.
+  bool has_material_maps = false;
   ::cl::Buffer materials;  // gpu::Material[]
   // uint RGBA8 (R in the low byte, sRGB rgb), all textures back to back, each followed by its
   // mip levels (render/texture_mips.h; 4/3 of the level-0 texels for square textures).
@@ -88,6 +95,8 @@ class GpuScene {
   uint32_t instance_triangle_count = 0;  // sum of triangle_count over instances
   uint32_t voxel_triangle_count = 0;     // sum of voxel_triangle_count over instances
   gpu::FrameConstants constants{};
+  // This frame's punctual lights and shadow views (also in `constants`), for the shadow pass.
+  PunctualSetup punctual;
   std::vector<gpu::Instance> host_instances;
   std::vector<gpu::Sphere> host_spheres;
 

@@ -11,12 +11,16 @@ namespace rp::gpu {
 
 static_assert(sizeof(rp_float4) == 16);
 static_assert(sizeof(rp_mat4) == 64);
-static_assert(sizeof(FrameConstants) == 6 * 64 + 5 * 16 + 8 * 4);
+static_assert(sizeof(PunctualLightGpu) == 80);
+static_assert(sizeof(ShadowViewGpu) == 96);
+static_assert(sizeof(FrameConstants) == 6 * 64 + 5 * 16 + 8 * 4 + 4 * 4 +
+                                            RP_MAX_PUNCTUAL_LIGHTS * 80 +
+                                            RP_MAX_SHADOW_VIEWS * 96);
 static_assert(sizeof(Vertex) == 32);
 static_assert(sizeof(Triangle) == 16);
 static_assert(sizeof(Instance) == 224);
 static_assert(sizeof(Sphere) == 64);
-static_assert(sizeof(Material) == 48);
+static_assert(sizeof(Material) == 64);
 static_assert(sizeof(TextureInfo) == 16 + 4 * RP_TEXTURE_MAX_LEVELS);
 
 inline rp_float4 to_gpu(const glm::vec4& v) { return {v.x, v.y, v.z, v.w}; }

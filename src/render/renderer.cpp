@@ -11,6 +11,7 @@
 #include "passes/indirect.h"
 #include "passes/light.h"
 #include "passes/motion_blur.h"
+#include "passes/punctual_light.h"
 #include "passes/shadow_filter.h"
 #include "passes/taa.h"
 #include "passes/tone_map.h"
@@ -94,6 +95,7 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   light_ = std::make_unique<passes::LightPass>(context, programs,
                                                shadow_filter_for(settings_.shadows), gi_options);
   light_->prepare(indirect_ != nullptr);
+  punctual_ = std::make_unique<passes::PunctualLightPass>(programs);
   shadow_filter_ = std::make_unique<passes::ShadowFilterPass>(context, programs);
   tone_map_ = std::make_unique<passes::ToneMapPass>(context, programs);
   taa_ = std::make_unique<passes::TaaPass>(context, programs);
@@ -186,6 +188,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     else
       visibility_->render(profiler_, *scene_, vis_);
     visibility_->render_shadow(profiler_, *scene_, shadow_);
+    visibility_->render_light_shadows(profiler_, *scene_, shadow_);
     if (const uint32_t planes = passes::shadow_mip_planes(light_->filter()); planes > 0)
       shadow_filter_->run(profiler_, *scene_, shadow_, planes > 1);
     gbuffer_pass_->run(
@@ -210,6 +213,8 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     light_->run(profiler_, *scene_, gbuffer_, shadow_, gi_buffer(), gi_resolution(),
                 gi_levels(), hdr_, split ? &light_components_ : nullptr,
                 indirect_ ? &low_res : nullptr, ssr_history ? &ssr_reference : nullptr);
+    punctual_->run(profiler_, *scene_, gbuffer_, shadow_, hdr_,
+                   split ? &light_components_ : nullptr);
     hdr_prev_valid_ = !indirect_;
     if (view_.view == passes::DebugView::kFinal) {
       const uint32_t w = settings_.width, h = settings_.height;

@@ -23,6 +23,7 @@ class VisibilityPass;
 class EmbreeVisibilityPass;
 class GBufferPass;
 class LightPass;
+class PunctualLightPass;
 class ShadowFilterPass;
 class IndirectPass;
 class ToneMapPass;
@@ -220,6 +221,7 @@ class Renderer {
   std::unique_ptr<passes::BouncePass> bounce_;  // only with settings_.bounces >= 2
   std::unique_ptr<passes::IndirectPass> indirect_;  // set with Quality::kFast
   std::unique_ptr<passes::LightPass> light_;
+  std::unique_ptr<passes::PunctualLightPass> punctual_;  // a file scene's lights
   std::unique_ptr<passes::ShadowFilterPass> shadow_filter_;  // the mips pcss / vssm read
   std::unique_ptr<passes::ToneMapPass> tone_map_;
   std::unique_ptr<passes::TaaPass> taa_;

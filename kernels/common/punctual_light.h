@@ -1,0 +1,135 @@
+/* A loaded scene's punctual lights (kernels/shared/types.h PunctualLightGpu, ShadowViewGpu):
+ * the direction, attenuation and shadow of light i at a surface point. OpenCL C only; the
+ * host's twin is scene/punctual_light.h (the path tracer's), with the same formulas:
+ *
+ *   direct radiance = albedo * intensity * cos(theta) * attenuation * visibility
+ *   attenuation: directional 1; point and spot 1 / d^2 x clamp(1 - (d / range)^4, 0, 1) (range
+ *   > 0) x (spot) t^2, t = clamp((cos a - cos outer) / (cos inner - cos outer), 0, 1).
+ *
+ * Shadow: the light's view that sees p (a point light: the cube face of the major axis of p -
+ * position), the receiver pushed one texel along its normal and compared in linear depth with
+ * a bias of (1.5 + tan(theta)) texels, filtered over 3x3 texels with bilinear weights (16
+ * texel reads: the mean of nine bilinear comparisons; `wide` = 0: one bilinear comparison, 4
+ * reads, for the voxelizer). Points outside every view are lit.
+ */
+#ifndef ROLYPOLY_COMMON_PUNCTUAL_LIGHT_H
+#define ROLYPOLY_COMMON_PUNCTUAL_LIGHT_H
+
+#include "shared/types.h"
+#include "common/math.h"
+
+/* Unit vector from p towards light L and its attenuation (0: no light here). */
+inline float3 rp_punctual_dir(__global const PunctualLightGpu* L, float3 p, float* atten) {
+  if (L->type == RP_LIGHT_DIRECTIONAL) {
+    *atten = 1.0f;
+    return -L->direction.xyz;
+  }
+  const float3 to_light = L->position_range.xyz - p;
+  const float d2 = dot(to_light, to_light);
+  if (!(d2 > 0.0f)) {
+    *atten = 0.0f;
+    return (float3)(0.0f, 1.0f, 0.0f);
+  }
+  const float inv_d = rsqrt(d2);
+  const float3 l = to_light * inv_d;
+  float a = 1.0f / d2;
+  const float range = L->position_range.w;
+  if (range > 0.0f) {
+    const float r = d2 * inv_d / range;
+    a *= clamp(1.0f - (r * r) * (r * r), 0.0f, 1.0f);
+  }
+  if (L->type == RP_LIGHT_SPOT) {
+    const float cos_a = -dot(l, L->direction.xyz);
+    const float t = L->cone.y > 0.0f ? clamp((cos_a - L->cone.x) * L->cone.y, 0.0f, 1.0f)
+                                     : (cos_a >= L->cone.x ? 1.0f : 0.0f);
+    a *= t * t;
+  }
+  *atten = a;
+  return l;
+}
+
+/* Linear depth of a stored depth d (z_ndc * 0.5 + 0.5) in view V; +inf-like where empty. */
+inline float rp_punctual_linear(__global const ShadowViewGpu* V, float d) {
+  const float near = V->depth.x, far = V->depth.y;
+  if (d >= 1.0f) return 3.0e38f;
+  if (V->depth.z != 0.0f) return near + d * (far - near);
+  const float z_ndc = d * 2.0f - 1.0f;
+  return 2.0f * near * far / ((far + near) - z_ndc * (far - near));
+}
+
+/* 1 where texel (tx, ty) of view V (clamped to the map) is farther than `receiver`. */
+inline float rp_punctual_tap(__global const float* shadow, __global const ShadowViewGpu* V,
+                             int tx, int ty, float receiver) {
+  const int last = (int)V->size - 1;
+  tx = clamp(tx, 0, last);
+  ty = clamp(ty, 0, last);
+  const float d = shadow[V->offset + (uint)ty * V->size + (uint)tx];
+  return receiver <= rp_punctual_linear(V, d) ? 1.0f : 0.0f;
+}
+
+/* Visibility in [0, 1] of light L (l: towards it) at p with unit normal n. */
+inline float rp_punctual_visibility(__global const FrameConstants* frame,
+                                    __global const float* shadow,
+                                    __global const PunctualLightGpu* L, float3 p, float3 n,
+                                    float3 l, int wide) {
+  if (L->view_count == 0u) return 1.0f;
+  uint view = L->first_view;
+  if (L->type == RP_LIGHT_POINT) {
+    const float3 d = p - L->position_range.xyz, a = fabs(d);
+    const uint face = a.x >= a.y && a.x >= a.z ? (d.x >= 0.0f ? 0u : 1u)
+                      : a.y >= a.z           ? (d.y >= 0.0f ? 2u : 3u)
+                                             : (d.z >= 0.0f ? 4u : 5u);
+    view += face;
+  }
+  __global const ShadowViewGpu* V = &frame->shadow_views[view];
+  const rp_mat4 vp = V->view_proj;
+  const float w0 = V->depth.z != 0.0f ? 1.0f : fabs(rp_mat4_mul_point(vp, p).w);
+  const float texel = w0 * V->depth.w;
+  const float c = fmax(dot(n, l), 1.0e-4f);
+  const float tan_theta = fmin(sqrt(fmax(1.0f - c * c, 0.0f)) / c, 8.0f);
+  const float4 clip = rp_mat4_mul_point(vp, p + n * texel);
+  if (clip.w <= 0.0f) return 1.0f;
+  const float3 ndc = clip.xyz / clip.w;
+  if (fabs(ndc.x) > 1.0f || fabs(ndc.y) > 1.0f || ndc.z > 1.0f) return 1.0f;
+  const float lin = V->depth.z != 0.0f ? rp_punctual_linear(V, ndc.z * 0.5f + 0.5f) : clip.w;
+  const float receiver = lin - texel * (1.5f + tan_theta);
+  const float size = (float)V->size;
+  const float x = (ndc.x * 0.5f + 0.5f) * size - 0.5f, y = (0.5f - ndc.y * 0.5f) * size - 0.5f;
+  const float fx0 = floor(x), fy0 = floor(y);
+  const float fx = x - fx0, fy = y - fy0;
+  const int x0 = (int)fx0, y0 = (int)fy0;
+  if (!wide) {
+    const float t00 = rp_punctual_tap(shadow, V, x0, y0, receiver);
+    const float t10 = rp_punctual_tap(shadow, V, x0 + 1, y0, receiver);
+    const float t01 = rp_punctual_tap(shadow, V, x0, y0 + 1, receiver);
+    const float t11 = rp_punctual_tap(shadow, V, x0 + 1, y0 + 1, receiver);
+    return mix(mix(t00, t10, fx), mix(t01, t11, fx), fy);
+  }
+  /* nine bilinear comparisons around the receiver = 4x4 texels weighted (1 - f, 1, 1, f) */
+  const float wx[4] = {1.0f - fx, 1.0f, 1.0f, fx}, wy[4] = {1.0f - fy, 1.0f, 1.0f, fy};
+  float lit = 0.0f;
+  for (int j = 0; j < 4; ++j) {
+    float row = 0.0f;
+    for (int i = 0; i < 4; ++i)
+      row += wx[i] * rp_punctual_tap(shadow, V, x0 - 1 + i, y0 - 1 + j, receiver);
+    lit += wy[j] * row;
+  }
+  return lit * (1.0f / 9.0f);
+}
+
+/* Light L's direct irradiance factor at p (normal n): intensity * cos * attenuation *
+ * visibility (rgb; multiply by albedo, or by the surface model's weights); *l receives the
+ * direction towards it. 0 where the surface faces away. */
+inline float3 rp_punctual_direct(__global const FrameConstants* frame,
+                                 __global const float* shadow, uint i, float3 p, float3 n,
+                                 int wide, float3* l) {
+  __global const PunctualLightGpu* L = &frame->punctual[i];
+  float atten;
+  *l = rp_punctual_dir(L, p, &atten);
+  const float c = dot(n, *l);
+  if (!(c > 0.0f) || !(atten > 0.0f)) return (float3)(0.0f);
+  const float vis = rp_punctual_visibility(frame, shadow, L, p, n, *l, wide);
+  return L->intensity.xyz * (c * atten * vis);
+}
+
+#endif

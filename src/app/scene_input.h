@@ -1,0 +1,48 @@
+// What a command draws: the built-in demo (the simulated Cornell box: SimulationFrameSource)
+// or a scene file (glTF 2.0, static: FileFrameSource). `--scene demo` or `--scene FILE`.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "app/frame_source.h"
+#include "scene/file_scene.h"
+#include "scene/gltf_loader.h"
+
+namespace rp::app {
+
+inline constexpr const char* kDemoScene = "demo";
+inline bool is_demo_scene(const std::string& scene) { return scene == kDemoScene; }
+
+// A loaded scene file, fitted to the GI volume (scene/file_scene.h), with the camera it opens
+// with (world units).
+struct FileScene {
+  std::string path;
+  scene::LoadedScene loaded;
+  scene::VolumeFit fit;
+  scene::Camera camera;
+};
+
+// Loads `path` (scene::SceneFileError: the app's exit status 2), prints each warning once on
+// stderr ("rolypoly: warning: FILE: ...") and fits the volume.
+FileScene open_scene_file(const std::string& path);
+
+// The same frame every time, seen from a camera the caller may move between frames (the
+// window's fly camera); the previous frame's camera gives the velocity.
+class FileFrameSource final : public FrameSource {
+ public:
+  explicit FileFrameSource(const FileScene& scene)
+      : scene_(scene), camera_(scene.camera), previous_(scene.camera) {}
+  scene::FrameScene next() override;
+  uint32_t frames_produced() const override { return frames_; }
+  // Where the next frame is seen from (world units).
+  void set_camera(const scene::Camera& camera) { camera_ = camera; }
+  const scene::Camera& camera() const { return camera_; }
+
+ private:
+  const FileScene& scene_;
+  scene::Camera camera_, previous_;
+  uint32_t frames_ = 0;
+};
+
+}  // namespace rp::app
