@@ -1230,7 +1230,9 @@ __kernel void voxelize_cached(__global const FrameConstants* frame, __global con
   const VxVec emission = vxv(VX_SPAN(v[9]), VX_SPAN(v[10]), VX_SPAN(v[11]));
   const rp_spani active = rp_span_convert_int(RP_LANES) < n;
   const VxLight light = vx_light(frame, bounce, bounce_cells);
-  const VxVec direct = vx_direct_span(&light, shadow, &p, &nrm, active, n);
+  VxVec direct = vx_direct_span(&light, shadow, &p, &nrm, active, n);
+  if (frame->punctual_count != 0u)
+    direct = vxv_add(direct, vx_punctual_span(&light, shadow, &p, &nrm, active, n));
   VxVec e = vxv(VX_SPAN(v[12]), VX_SPAN(v[13]), VX_SPAN(v[14]));
   if (bounce_cells != 0u) {
     /* Which samples refresh is a hash of their voxel (16 bits, scaled to [0, stride)), not

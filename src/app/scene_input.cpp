@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "render/gpu_types.h"
+
 namespace rp::app {
 
 FileScene open_scene_file(const std::string& path) {
@@ -10,6 +12,11 @@ FileScene open_scene_file(const std::string& path) {
   scene.loaded = scene::load_gltf(path);
   for (const std::string& warning : scene.loaded.warnings)
     std::fprintf(stderr, "rolypoly: warning: %s: %s\n", path.c_str(), warning.c_str());
+  if (const size_t n = scene.loaded.lights.size(); n > RP_MAX_PUNCTUAL_LIGHTS)
+    std::fprintf(stderr,
+                 "rolypoly: warning: %s: %zu punctual lights; the real-time passes draw the "
+                 "first %u (the path tracer all of them)\n",
+                 path.c_str(), n, RP_MAX_PUNCTUAL_LIGHTS);
   scene.fit = scene::fit_volume(scene.loaded);
   scene.camera = scene::initial_camera(scene.loaded);
   return scene;

@@ -109,6 +109,9 @@ struct VisibilityPass::Impl {
   ::cl::Buffer light_maps_of;
   std::vector<std::pair<uint64_t, uint32_t>> light_map_keys;
   std::vector<::cl::Buffer> light_maps;
+  // What the light maps were drawn from (views, instances, spheres as bytes): a static scene
+  // under fixed lights draws them once.
+  std::vector<unsigned char> light_maps_key, light_maps_key_scratch;
 
   Impl() = default;
   Impl(const Impl&) = delete;
@@ -362,7 +365,20 @@ void VisibilityPass::render_light_shadows(rp::cl::Profiler& profiler,
     }
     impl_->light_maps_of = out.depth;
     impl_->light_map_keys = std::move(keys);
+    impl_->light_maps_key.clear();  // new storage: draw every view again
   }
+  // Skip the views when nothing they draw or see changed since they were drawn.
+  std::vector<unsigned char>& key = impl_->light_maps_key_scratch;
+  key.clear();
+  const auto append = [&key](const void* data, size_t bytes) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    key.insert(key.end(), b, b + bytes);
+  };
+  append(views.data(), views.size() * sizeof(views[0]));
+  append(scene.host_instances.data(), scene.host_instances.size() * sizeof(gpu::Instance));
+  append(scene.host_spheres.data(), scene.host_spheres.size() * sizeof(gpu::Sphere));
+  if (key == impl_->light_maps_key) return;
+  std::swap(impl_->light_maps_key, key);
   ViewState& v = impl_->lights;
   for (size_t i = 0; i < views.size(); ++i) {
     const glm::mat4 vp = to_glm(views[i].view_proj);

@@ -26,7 +26,9 @@ class VisibilityPass {
 
   // The punctual lights' shadow views (FrameConstants.shadow_views, render/punctual_shadows.h)
   // into `out`'s depth buffer after the lamp's planes, which it grows to hold them. Depth only,
-  // the shadow casters. Pass name "shadow_map_lights". Nothing when the frame has no views.
+  // the shadow casters. Pass name "shadow_map_lights". Nothing when the frame has no views, or
+  // when its views, instances and spheres are those the maps were last drawn with (a static
+  // scene under fixed lights draws them once).
   void render_light_shadows(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                             render::ShadowMap& out);
 

@@ -187,8 +187,17 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
       host_visibility_ms = embree_->render(profiler_, *scene_, vis_);
     else
       visibility_->render(profiler_, *scene_, vis_);
-    visibility_->render_shadow(profiler_, *scene_, shadow_);
+    // The punctual lights' views first: they may grow the depth buffer (a new one). Then the
+    // lamp's map: a file scene without the demo's lamp (intensity 0) draws it once into each
+    // depth buffer, so the lamp's shadow lookups read defined depths, and then leaves it.
+    const ::cl::Buffer depth_before = shadow_.depth;
     visibility_->render_light_shadows(profiler_, *scene_, shadow_);
+    if (shadow_.depth() != depth_before()) lamp_map_drawn_ = false;
+    const gpu::rp_float4 lamp = scene_->constants.light_intensity;
+    if (lamp.x != 0.0f || lamp.y != 0.0f || lamp.z != 0.0f || !lamp_map_drawn_) {
+      visibility_->render_shadow(profiler_, *scene_, shadow_);
+      lamp_map_drawn_ = true;
+    }
     if (const uint32_t planes = passes::shadow_mip_planes(light_->filter()); planes > 0)
       shadow_filter_->run(profiler_, *scene_, shadow_, planes > 1);
     gbuffer_pass_->run(

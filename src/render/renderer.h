@@ -222,6 +222,7 @@ class Renderer {
   std::unique_ptr<passes::IndirectPass> indirect_;  // set with Quality::kFast
   std::unique_ptr<passes::LightPass> light_;
   std::unique_ptr<passes::PunctualLightPass> punctual_;  // a file scene's lights
+  bool lamp_map_drawn_ = false;  // the lamp's shadow map holds a drawing (see render())
   std::unique_ptr<passes::ShadowFilterPass> shadow_filter_;  // the mips pcss / vssm read
   std::unique_ptr<passes::ToneMapPass> tone_map_;
   std::unique_ptr<passes::TaaPass> taa_;

@@ -8,12 +8,13 @@
 #include <filesystem>
 #include <vector>
 
+#include "app/commands.h"
 #include "app/host_tone_map.h"
 #include "app/render_session.h"
 #include "app/scene_input.h"
 #include "app/simulation_source.h"
 #include "cl/context.h"
-#include "image_metrics.h"
+#include "support/image_metrics.h"
 #include "scene/demo_scene.h"
 #include "scene/gltf_export.h"
 #include "truth/path_tracer.h"
@@ -39,7 +40,7 @@ struct Exported {
 };
 
 scene::FrameScene demo_first_frame() {
-  app::SimulationFrameSource source(app::make_simulation_options({}, render::Effects{}));
+  app::SimulationFrameSource source(app::make_simulation_options(app::SimulationArgs{}, render::Effects{}));
   return source.next_frame();
 }
 
