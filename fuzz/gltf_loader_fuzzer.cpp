@@ -129,6 +129,7 @@ void load(const std::vector<uint8_t>& bytes, const std::string& name) {
   limits.max_image_side = 2048;
   limits.max_texels = uint64_t{1} << 22;
   limits.max_bounds_work = uint64_t{1} << 20;
+  limits.max_accessor_reads = uint64_t{1} << 22;
   const std::string path = folder() + "/" + name;
   try {
     check_scene(gltf::load_gltf_from_memory(bytes, path, limits));

@@ -119,6 +119,10 @@ Checked check(Context& ctx, int index, int components, ComponentOk component_ok,
   if (a.count == 0 || a.count > ctx.limits.max_vertices * 3)
     ctx.fail(at + ": count " + std::to_string(a.count) + " (must be 1 to " +
              std::to_string(ctx.limits.max_vertices * 3) + ")");
+  ctx.accessor_reads += a.count;
+  if (ctx.accessor_reads > ctx.limits.max_accessor_reads)
+    ctx.fail(at + ": the scene reads more than " + std::to_string(ctx.limits.max_accessor_reads) +
+             " accessor elements");
   if (a.bufferView < 0)
     ctx.fail(at + " has no bufferView (zero-filled and sparse-only accessors are not supported)");
   const uint64_t element = size * static_cast<uint64_t>(components);

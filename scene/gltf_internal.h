@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "scene/frame_scene.h"
 #include "scene/gltf_loader.h"
@@ -33,6 +34,9 @@ struct Limits {
   uint64_t max_triangles = uint64_t{1} << 28;         // the whole scene
   int max_image_side = 16384;                         // texels, either side of one image
   uint64_t max_texels = uint64_t{1} << 30;            // all decoded textures: 4 GiB of RGBA8
+  uint64_t max_accessor_reads = uint64_t{1} << 30;    // accessor elements read, all primitives
+                                                      // together (one accessor may be read by
+                                                      // many primitives)
   int max_node_depth = 1024;                          // levels of the node hierarchy
   uint64_t max_bounds_work = uint64_t{1} << 28;       // instance-vertex transforms for exact
                                                       // bounds; beyond: transformed mesh boxes
@@ -62,6 +66,7 @@ struct Context {
   uint64_t vertices = 0;  // running totals against the limits
   uint64_t triangles = 0;
   uint64_t texels = 0;
+  uint64_t accessor_reads = 0;
 
   [[noreturn]] void fail(const std::string& what) const;
 };
@@ -71,7 +76,7 @@ struct Context {
 bool fits_float(double v);
 float to_float(const Context& ctx, double v, const std::string& where);
 
-// ---- gltf_source.cpp: the file, the GLB container, the JSON checks, tinygltf with our I/O ----
+// ---- gltf_files.cpp: reading files, resolving URIs ----
 
 // A regular file's size, and its bytes (at most `max_bytes` of them). Directories, FIFOs,
 // devices and sockets are refused after stat() and before open(), so a FIFO never blocks the
@@ -79,17 +84,36 @@ float to_float(const Context& ctx, double v, const std::string& where);
 bool regular_file_size(const std::string& path, uint64_t* size, std::string* why);
 bool read_regular_file(const std::string& path, uint64_t max_bytes, std::vector<uint8_t>* out,
                        std::string* why);
+// The first `want` bytes of a regular file (whose size was checked to be at least that).
+bool read_file_start(const std::string& path, uint64_t want, std::vector<uint8_t>* out,
+                     std::string* why);
+
+// The directory a relative URI is resolved against, and tinygltf's percent-decoding of URIs.
+std::string base_dir_of(const std::string& path);
+std::string uri_decode(const std::string& uri);
+std::string join_path(const std::string& dir, const std::string& name);
+
+// ---- gltf_json_checks.cpp ----
+
+// What the GLB container holds besides the JSON.
+struct GlbChunks {
+  bool binary = false;  // a GLB at all
+  bool has_bin = false;
+  uint64_t bin_size = 0;
+};
+// The parsed JSON checked where tinygltf would truncate, trust or allocate for a claim: the
+// asset version, index types, required extensions, buffers against their real data (external
+// buffers' paths and checked byteLength go to `exact_size`), bufferViews, images' views.
+void check_json(const Context& ctx, const nlohmann::json& root, const GlbChunks& glb,
+                const std::string& base_dir, std::map<std::string, uint64_t>* exact_size);
+
+// ---- gltf_source.cpp ----
 
 // Parses `bytes` (GLB or JSON text), checks what tinygltf trusts without checking (JSON depth,
 // index types, buffer and bufferView sizes against the real data, the GLB's chunks), then runs
 // tinygltf with file callbacks that read only regular files with a size bound, and an image
 // callback that keeps the encoded bytes (images are decoded on use, gltf_materials.cpp).
 void load_model(Context& ctx, const std::vector<uint8_t>& bytes, tinygltf::Model* model);
-
-// The directory a relative URI is resolved against, and tinygltf's percent-decoding of URIs.
-std::string base_dir_of(const std::string& path);
-std::string uri_decode(const std::string& uri);
-std::string join_path(const std::string& dir, const std::string& name);
 
 // ---- gltf_accessors.cpp: typed, bounds-checked reads of accessors (byteStride, sparse) ----
 

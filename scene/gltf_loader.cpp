@@ -1,7 +1,7 @@
 // load_gltf: a glTF 2.0 file as a static scene. The steps live in their own files:
-// gltf_source.cpp (reading and checking the file, tinygltf), gltf_accessors.cpp,
-// gltf_meshes.cpp, gltf_materials.cpp and gltf_nodes.cpp. This file picks the scene, places
-// instances, lights and the camera, and computes the bounds.
+// gltf_files.cpp (reading files), gltf_source.cpp and gltf_json_checks.cpp (checking the file,
+// then tinygltf), gltf_accessors.cpp, gltf_meshes.cpp, gltf_materials.cpp and gltf_nodes.cpp.
+// This file picks the scene, places instances, lights and the camera, and computes the bounds.
 #include "scene/gltf_loader.h"
 
 #include <algorithm>

@@ -232,6 +232,11 @@ TEST(GltfBadContent, RefusesScenesPastTheVertexTriangleAndTexelLimits) {
   small.max_triangles = 3;
   expect_error(b.write_gltf(dir, "triangles"), {"mesh 1 primitive 0", "more than 3 triangles"},
                small);
+  // Many primitives reading one accessor: each read counts.
+  small = {};
+  small.max_accessor_reads = 20;  // each quad primitive reads 4 + 4 + 6 elements
+  expect_error(b.write_gltf(dir, "reads"), {"mesh 1 primitive 0", "more than 20 accessor elements"},
+               small);
   small = {};
   small.max_texels = 10;
   GltfBuilder t = valid();
