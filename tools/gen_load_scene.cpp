@@ -1,7 +1,13 @@
-// Writes a large glTF scene for load-time and frame-time benches of scene files (no third-party
-// data): a 40 x 40 m floor, rows of tumblers of ten mesh variants (each variant one glTF mesh,
-// instanced), one procedural 256x256 texture per material, a sun and three point lights.
-// Usage: gen_load_scene OUT.glb [TRIANGLES] [TEXTURES]   (defaults: 250000, 50)
+// Writes generated glTF scenes (no third-party data):
+//   gen_load_scene OUT.glb [TRIANGLES] [TEXTURES]   (defaults: 250000, 50)
+//     for load-time and frame-time benches: a 40 x 40 m floor, rows of tumblers of ten mesh
+//     variants (each variant one glTF mesh, instanced), one procedural 256x256 texture per
+//     material, a sun and three point lights;
+//   gen_load_scene OUT.glb --room
+//     a small room with every feature the renderers read from a file, for the tests: a sun, a
+//     spot and a point light, a floor with normal and metallic-roughness maps, a red wall, two
+//     boxes, a cube with an emission map (10 m across; tests/app/file_scene_truth_test.cpp,
+//     the oclgrind renders).
 // Deterministic: integer hashing only, so the same arguments write the same bytes.
 #include <cmath>
 #include <cstdint>
@@ -47,11 +53,138 @@ rp::scene::Texture make_texture(uint32_t index) {
   return t;
 }
 
+// An axis-aligned box (outward normals, uv 0..1 on each face) appended to `m`.
+void add_box(rp::scene::Mesh& m, glm::vec3 c, glm::vec3 h, uint32_t mat) {
+  for (int axis = 0; axis < 3; ++axis)
+    for (float s : {-1.0f, 1.0f}) {
+      glm::vec3 n(0.0f), u(0.0f), v(0.0f);
+      n[axis] = s;
+      u[(axis + 1) % 3] = 1.0f;
+      v[(axis + 2) % 3] = 1.0f;
+      const uint32_t b = uint32_t(m.vertices.size());
+      const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+      for (const auto& k : corners)
+        m.vertices.push_back({c + h * (n + k[0] * u + k[1] * v), n,
+                              glm::vec2(0.5f + 0.5f * k[0], 0.5f + 0.5f * k[1])});
+      // tangent along the face's u direction; the bitangent w * cross(n, t) must follow +v
+      const float w = glm::dot(glm::cross(n, u), v) > 0.0f ? 1.0f : -1.0f;
+      for (int k = 0; k < 4; ++k) m.tangents.push_back(glm::vec4(u, w));
+      if (s > 0) {
+        m.triangles.push_back({b, b + 1, b + 2});
+        m.triangles.push_back({b, b + 2, b + 3});
+      } else {
+        m.triangles.push_back({b, b + 2, b + 1});
+        m.triangles.push_back({b, b + 3, b + 2});
+      }
+      m.materials.insert(m.materials.end(), {mat, mat});
+    }
+}
+
+// A 64x64 linear or sRGB texture from f(x, y) -> rgb bytes.
+template <class F>
+rp::scene::Texture pattern(const char* name, bool srgb, F f) {
+  rp::scene::Texture t;
+  t.name = name;
+  t.srgb = srgb;
+  t.width = t.height = 64;
+  t.rgba.resize(64 * 64 * 4);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const glm::ivec3 c = f(x, y);
+      uint8_t* p = &t.rgba[size_t(y * 64 + x) * 4];
+      p[0] = uint8_t(c.x);
+      p[1] = uint8_t(c.y);
+      p[2] = uint8_t(c.z);
+      p[3] = 255;
+    }
+  return t;
+}
+
+int write_room(const char* path) {
+  using namespace rp::scene;
+  SceneAssets a;
+  // Floor maps: ridges across u (the normal tilts +-30 degrees along the tangent), and
+  // alternating rough dielectric / polished metal stripes (G roughness, B metallic).
+  a.textures.push_back(pattern("floor_normal", false, [](int x, int) {
+    const float tilt = 0.5f * std::sin(float(x) * 0.392699f);  // 16-texel period
+    return glm::ivec3(int(std::lround((tilt * 0.5f + 0.5f) * 255.0f)), 128,
+                      int(std::lround((std::sqrt(1.0f - tilt * tilt) * 0.5f + 0.5f) * 255.0f)));
+  }));
+  a.textures.push_back(pattern("floor_metallic_roughness", false, [](int, int y) {
+    return (y / 16) % 2 ? glm::ivec3(0, 230, 0) : glm::ivec3(0, 80, 255);
+  }));
+  a.textures.push_back(pattern("glow_emission", true, [](int x, int y) {
+    return ((x / 8) + (y / 8)) % 2 ? glm::ivec3(255, 220, 160) : glm::ivec3(60, 40, 20);
+  }));
+  const auto material = [&](const char* name, glm::vec3 albedo, float roughness) {
+    Material m;
+    m.name = name;
+    m.albedo = albedo;
+    m.specular = {roughness, 0.04f, false};
+    a.materials.push_back(m);
+    return &a.materials.back();
+  };
+  Material* floor = material("floor", glm::vec3(0.7f), 1.0f);
+  floor->normal_texture = 0;
+  floor->metallic_roughness_texture = 1;
+  floor->metallic = 1.0f;
+  material("wall", glm::vec3(0.8f, 0.8f, 0.75f), 1.0f);
+  material("red", glm::vec3(0.8f, 0.1f, 0.1f), 1.0f);
+  material("boxes", glm::vec3(0.3f, 0.5f, 0.8f), 0.4f);
+  Material* glow = material("glow", glm::vec3(0.1f), 1.0f);
+  glow->emission = glm::vec3(4.0f, 2.4f, 0.8f);
+  glow->emission_texture = 2;
+  Mesh room;
+  room.name = "room";
+  add_box(room, {0, -0.05f, 0}, {5, 0.05f, 5}, 0);
+  add_box(room, {0, 2.5f, -5}, {5, 2.5f, 0.05f}, 1);
+  add_box(room, {-5, 2.5f, 0}, {0.05f, 2.5f, 5}, 2);
+  add_box(room, {-1.5f, 0.75f, -1}, {0.75f, 0.75f, 0.75f}, 3);
+  add_box(room, {1.5f, 1.25f, 0.5f}, {0.5f, 1.25f, 0.5f}, 3);
+  add_box(room, {0, 0.4f, 2}, {0.4f, 0.4f, 0.4f}, 4);
+  a.meshes.push_back(room);
+  FrameScene f;
+  f.lamp = false;
+  f.camera.position = {0.0f, 3.0f, 9.0f};
+  f.camera.target = {0.0f, 0.9f, 2.0f};
+  f.camera.fov_y_deg = 52.0f;
+  f.camera.near_plane = 0.05f;
+  f.camera.far_plane = 50.0f;
+  f.instances.push_back(MeshInstance{});
+  constexpr float kInvPi = 0.318309886f;  // glTF intensity / pi: the renderer's units
+  PunctualLight sun;
+  sun.name = "sun";
+  sun.type = LightType::kDirectional;
+  sun.direction = glm::normalize(glm::vec3(0.4f, -0.8f, -0.45f));
+  sun.intensity = glm::vec3(1.0f, 0.95f, 0.85f) * (3.0f * kInvPi);
+  f.lights.push_back(sun);
+  PunctualLight spot;
+  spot.name = "spot";
+  spot.type = LightType::kSpot;
+  spot.position = {3.0f, 4.0f, 3.0f};
+  spot.direction = glm::normalize(glm::vec3(-0.6f, -0.8f, -0.6f));
+  spot.inner_cone = 0.3f;
+  spot.outer_cone = 0.5f;
+  spot.intensity = glm::vec3(0.6f, 0.8f, 1.0f) * (60.0f * kInvPi);
+  f.lights.push_back(spot);
+  PunctualLight point;
+  point.name = "point";
+  point.position = {-2.5f, 3.0f, 1.5f};
+  point.intensity = glm::vec3(1.0f, 0.8f, 0.6f) * (15.0f * kInvPi);
+  f.lights.push_back(point);
+  export_gltf(a, f, path);
+  std::printf("wrote %s: the test room (%zu triangles, 3 lights)\n", path,
+              room.triangles.size());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 3 && std::string(argv[2]) == "--room") return write_room(argv[1]);
   if (argc < 2 || argc > 4) {
-    std::fprintf(stderr, "usage: gen_load_scene OUT.glb [TRIANGLES] [TEXTURES]\n");
+    std::fprintf(stderr, "usage: gen_load_scene OUT.glb [TRIANGLES] [TEXTURES]\n"
+                         "       gen_load_scene OUT.glb --room\n");
     return 2;
   }
   const long triangles = argc > 2 ? std::strtol(argv[2], nullptr, 10) : 250000;
