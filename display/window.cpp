@@ -51,6 +51,7 @@ Window::Window(int width, int height, const std::string& title) {
   glfwSetKeyCallback(window_, on_key);
   glfwSetMouseButtonCallback(window_, on_mouse_button);
   glfwSetCursorPosCallback(window_, on_cursor);
+  glfwSetScrollCallback(window_, on_scroll);
 
   glGenTextures(1, &texture_);
   glBindTexture(GL_TEXTURE_2D, texture_);
@@ -164,15 +165,34 @@ void Window::on_key(GLFWwindow* window, int key, int /*scancode*/, int action, i
     return;
   }
   auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window));
+  if (!self) return;
+  if (key == GLFW_KEY_HOME) {
+    self->events_.push_back({WindowEvent::Type::Home, 0, 0.0f, 0.0f});
+    return;
+  }
   // GLFW key codes for letters, digits and space are their ASCII codes.
   bool printable = key == GLFW_KEY_SPACE || (key >= GLFW_KEY_A && key <= GLFW_KEY_Z) ||
                    (key >= GLFW_KEY_0 && key <= GLFW_KEY_9);
-  if (self && printable) self->events_.push_back({WindowEvent::Type::Key, char(key), 0.0f, 0.0f});
+  if (printable) self->events_.push_back({WindowEvent::Type::Key, char(key), 0.0f, 0.0f});
 }
 
 void Window::on_mouse_button(GLFWwindow* window, int button, int action, int /*mods*/) {
   auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window));
-  if (!self || button != GLFW_MOUSE_BUTTON_LEFT) return;
+  if (!self) return;
+  if (button == GLFW_MOUSE_BUTTON_RIGHT) {
+    if (action == GLFW_PRESS && self->look_drag_) {
+      // A disabled cursor is hidden and not stopped by the screen's edges: a drag can turn
+      // any amount. Its (virtual) position keeps counting from where it was.
+      glfwSetInputMode(window, GLFW_CURSOR, GLFW_CURSOR_DISABLED);
+      glfwGetCursorPos(window, &self->look_x_, &self->look_y_);
+      self->looking_ = true;
+    } else if (action == GLFW_RELEASE && self->looking_) {
+      glfwSetInputMode(window, GLFW_CURSOR, GLFW_CURSOR_NORMAL);
+      self->looking_ = false;
+    }
+    return;
+  }
+  if (button != GLFW_MOUSE_BUTTON_LEFT) return;
   double cx = 0.0, cy = 0.0;
   glfwGetCursorPos(window, &cx, &cy);
   WindowEvent e;
@@ -184,11 +204,36 @@ void Window::on_mouse_button(GLFWwindow* window, int button, int action, int /*m
 
 void Window::on_cursor(GLFWwindow* window, double x, double y) {
   auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window));
-  if (!self || !self->left_down_) return;
+  if (!self) return;
+  if (self->looking_) {
+    self->events_.push_back({WindowEvent::Type::Look, 0, float(x - self->look_x_),
+                             float(y - self->look_y_)});
+    self->look_x_ = x;
+    self->look_y_ = y;
+  }
+  if (!self->left_down_) return;
   WindowEvent e;
   e.type = WindowEvent::Type::MouseMove;
   self->to_image(x, y, e.x, e.y);
   self->events_.push_back(e);
+}
+
+void Window::on_scroll(GLFWwindow* window, double /*x*/, double y) {
+  auto* self = static_cast<Window*>(glfwGetWindowUserPointer(window));
+  if (self && y != 0.0) self->events_.push_back({WindowEvent::Type::Scroll, 0, 0.0f, float(y)});
+}
+
+bool Window::key_held(char key) const {
+  if (key < 'A' || key > 'Z') return false;
+  return glfwGetKey(window_, int(key)) == GLFW_PRESS;  // GLFW_KEY_A..Z are 'A'..'Z'
+}
+
+void Window::set_look_drag(bool enabled) {
+  look_drag_ = enabled;
+  if (!enabled && looking_) {
+    glfwSetInputMode(window_, GLFW_CURSOR, GLFW_CURSOR_NORMAL);
+    looking_ = false;
+  }
 }
 
 void Window::poll_events() { glfwPollEvents(); }

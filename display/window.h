@@ -24,12 +24,15 @@ class DisplayError : public std::runtime_error {
 std::string missing_display_reason();
 
 // Input the window collected since the last take_events(). Keys are the printable ones the app
-// uses ('A'-'Z', '0'-'9', ' '), reported on press. Mouse events are the left button; cursor
-// positions are in image pixels (continuous, (0,0) the top-left corner of the image, y down),
-// so letterboxing and HiDPI scaling are already undone. Moves are reported only while the left
-// button is held (that is all a drag needs).
+// uses ('A'-'Z', '0'-'9', ' '), reported on press, and Home (its own type). Mouse events are the
+// left button; cursor positions are in image pixels (continuous, (0,0) the top-left corner of
+// the image, y down), so letterboxing and HiDPI scaling are already undone. Moves are reported
+// only while the left button is held (that is all a drag needs). Look: with set_look_drag(true),
+// the cursor's movement while the right button is held, in screen pixels (x, y: right, down;
+// not image pixels, so turning does not depend on how the image is scaled). Scroll: y holds
+// the wheel's notches, positive away from the user.
 struct WindowEvent {
-  enum class Type { Key, MouseDown, MouseUp, MouseMove };
+  enum class Type { Key, MouseDown, MouseUp, MouseMove, Look, Scroll, Home };
   Type type = Type::Key;
   char key = 0;
   float x = 0.0f, y = 0.0f;
@@ -52,6 +55,11 @@ class Window {
   // Events gathered by poll_events() since the last call, in order.
   std::vector<WindowEvent> take_events();
   bool should_close() const;
+  // Whether the key ('A'-'Z') is down now (polled: held keys, not presses).
+  bool key_held(char key) const;
+  // Right-button drags report Look events; the cursor is hidden and unbounded while the button
+  // is held (a fly camera's mouse look). Off by default: the right button is ignored.
+  void set_look_drag(bool enabled);
   void set_title(const std::string& title);
 
   // Current framebuffer size in pixels.
@@ -72,11 +80,15 @@ class Window {
   static void on_key(GLFWwindow* window, int key, int scancode, int action, int mods);
   static void on_mouse_button(GLFWwindow* window, int button, int action, int mods);
   static void on_cursor(GLFWwindow* window, double x, double y);
+  static void on_scroll(GLFWwindow* window, double x, double y);
 
   GLFWwindow* window_ = nullptr;
   unsigned int texture_ = 0;  // GL texture name holding the last presented image
   int image_width_ = 0, image_height_ = 0;
   bool left_down_ = false;
+  bool look_drag_ = false;
+  bool looking_ = false;            // the right button is held with look_drag_ on
+  double look_x_ = 0.0, look_y_ = 0.0;  // the cursor when the last Look event was made
   std::vector<WindowEvent> events_;
 };
 

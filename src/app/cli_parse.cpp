@@ -486,10 +486,10 @@ CliParse parse_cli(int argc, const char* const* argv) {
                   "busy animation, and the flicker of both (issue 9's criteria)");
   bench->add_flag("--accuracy", bench_opts.accuracy,
                   "hold the fast and reference modes against the path-traced truth of the demo "
-                  "frame (cached on disk): each at 64 bounces against the 64-bounce truth and at "
+                  "frame or the --scene file's (cached on disk): each at 64 bounces against the 64-bounce truth and at "
                   "--bounces 1 against the 1-bounce truth, plus the fast mode's final image with "
-                  "TAA; PSNR, indirect L1 and bias per region, side-wall hue, leaks; default size "
-                  "360, --spp 1024");
+                  "TAA; PSNR, indirect L1 and bias per region (a file's: per material), "
+                  "side-wall hue, leaks; default size 360, --spp 1024");
   bench->add_option("--out", bench_opts.out_dir,
                     "--accuracy: folder for the side-by-side PNGs and the heat maps")
       ->capture_default_str();
@@ -552,10 +552,11 @@ CliParse parse_cli(int argc, const char* const* argv) {
       ->delimiter(',')
       ->check(CLI::IsMember({32u, 64u, 128u, 256u, 512u}));
   bench->add_option("--scene", bench_opts.scene,
-                    "default (the simulation options as given) or busy (30 marbles, a fireball "
-                    "and the particle budget kept full)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"default", "busy"}));
+                    "default or demo (the simulated demo, the simulation options as given), busy "
+                    "(30 marbles, a fireball and the particle budget kept full), or a glTF 2.0 "
+                    "file (.gltf or .glb: its still frame from the file's camera; with "
+                    "--accuracy its materials are the regions)")
+      ->capture_default_str();
   bench->add_option("--chart", bench_opts.chart,
                     "also write an SVG chart: per-pass time per device, frame time against "
                     "resolution and voxel count");
@@ -656,6 +657,25 @@ CliParse parse_cli(int argc, const char* const* argv) {
       return usage("rolypoly export", "FILE must end in .glb or .gltf, not '" + f + "'");
     parsed.kind = ParsedCommand::Kind::kExport;
   } else if (bench->parsed()) {
+    if (bench_opts.scene == kDemoScene) bench_opts.scene = "default";
+    // Neither demo name: a scene file (bench/src/bench_scene.h), static and with its own
+    // materials, so the simulation's options and the demo-only reports cannot apply.
+    if (bench_opts.scene != "default" && bench_opts.scene != "busy") {
+      std::string why;
+      for (const char* name : {"--seed", "--marbles", "--fireball", "--replay", "--assets"})
+        if (why.empty() && bench->count(name))
+          why = std::string(name) + " applies to the simulated demo, not to a scene file";
+      if (why.empty() && bench_opts.quality_report)
+        why = "--quality-report measures the demo (at rest and the busy animation), not a "
+              "scene file";
+      for (const char* name :
+           {"--require-wall-hue", "--min-direct-psnr-floor", "--max-penumbra-error"})
+        if (why.empty() && bench->count(name))
+          why = std::string(name) + " measures the demo's box (its side walls, the floor's "
+                "shadows under its lamp); a scene file's report has its materials as regions";
+      if (!why.empty())
+        return usage("rolypoly bench", why + " (--scene " + bench_opts.scene + ")");
+    }
     const char* why = nullptr;
     if (devices_opt->count() && bench->count("--device"))
       why = "--devices and --device both choose devices; use one";
@@ -673,18 +693,19 @@ CliParse parse_cli(int argc, const char* const* argv) {
              (devices_opt->count() || sizes_opt->count() || bench->count("--voxels") ||
               bench_opts.compare_visibility || bench_opts.quality_report ||
               bench->count("--chart") || bench->count("--markdown") ||
-              bench_opts.scene != "default"))
-      why = "--quality pathtraced benches the path tracer on the host at one size and the "
-            "default scene (no --devices, --sizes, --voxels, --compare-visibility, "
+              bench_opts.scene == "busy"))
+      why = "--quality pathtraced benches the path tracer on the host at one size on the "
+            "demo or a scene file (no --devices, --sizes, --voxels, --compare-visibility, "
             "--quality-report, --chart, --markdown or --scene busy)";
     else if (bench_opts.accuracy &&
              (devices_opt->count() || sizes_opt->count() || bench_opts.voxels.size() > 1 ||
               bench_opts.compare_visibility || bench_opts.quality_report || common.pathtraced ||
               bench->count("--bounces") || bench->count("--chart") ||
-              bench->count("--markdown") || bench_opts.scene != "default"))
-      why = "--accuracy runs one device and voxel resolution on the demo frame, at 1 and 64 "
-            "bounces (no --devices, --sizes, --compare-visibility, --quality-report, --quality "
-            "pathtraced, --bounces, --chart, --markdown or --scene busy)";
+              bench->count("--markdown") || bench_opts.scene == "busy"))
+      why = "--accuracy runs one device and voxel resolution on the demo frame or a scene "
+            "file, at 1 and 64 bounces (no --devices, --sizes, --compare-visibility, "
+            "--quality-report, --quality pathtraced, --bounces, --chart, --markdown or --scene "
+            "busy)";
     else if (!bench_opts.accuracy &&
              (bench->count("--out") || bench->count("--truth-cache") ||
               bench->count("--max-indirect-l1") || bench->count("--max-indirect-bias") ||
