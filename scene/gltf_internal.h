@@ -67,6 +67,7 @@ struct Context {
   uint64_t triangles = 0;
   uint64_t texels = 0;
   uint64_t accessor_reads = 0;
+  double decode_ms = 0.0;  // wall clock spent decoding images (LoadedScene::times)
 
   [[noreturn]] void fail(const std::string& what) const;
 };

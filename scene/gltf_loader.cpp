@@ -4,6 +4,7 @@
 // This file picks the scene, places instances, lights and the camera, and computes the bounds.
 #include "scene/gltf_loader.h"
 
+#include <chrono>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -242,18 +243,23 @@ LoadedScene load_gltf_from_memory(const std::vector<uint8_t>& bytes, const std::
   }
   out.volume = volume_extra(ctx, scene);
   out.warnings = ctx.warnings.lines();
+  out.times.decode_ms = ctx.decode_ms;
   return out;
 }
 
 }  // namespace gltf
 
 LoadedScene load_gltf(const std::string& path) {
+  const auto start = std::chrono::steady_clock::now();
   const gltf::Limits limits;
   std::vector<uint8_t> bytes;
   std::string why;
   if (!gltf::read_regular_file(path, limits.max_file_bytes, &bytes, &why))
     throw SceneFileError(path + ": cannot open the scene file: " + why);
-  return gltf::load_gltf_from_memory(bytes, path, limits);
+  LoadedScene scene = gltf::load_gltf_from_memory(bytes, path, limits);
+  scene.times.total_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return scene;
 }
 
 }  // namespace rp::scene

@@ -40,6 +40,12 @@ struct LoadedScene {
   // One line per kind of unsupported feature met (skins, morph targets, extensions, BLEND
   // materials treated as MASK, ...), for the app to print once.
   std::vector<std::string> warnings;
+  // Wall-clock milliseconds of the load: everything (reading, JSON, accessors, images) and the
+  // part of it that decoded images.
+  struct Times {
+    double total_ms = 0.0;
+    double decode_ms = 0.0;
+  } times;
 };
 
 // Reads `path` (.gltf or .glb; decided by content, not by name). Throws SceneFileError.

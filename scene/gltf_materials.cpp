@@ -2,6 +2,7 @@
 // primitive first uses one, so images no drawn surface needs are never decoded. One
 // scene::Texture per (glTF texture, colour or data use): the same image read as base colour
 // (sRGB) and as a normal map (linear) becomes two textures with the right `srgb` flag.
+#include <chrono>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -236,8 +237,11 @@ std::vector<uint8_t> MaterialTable::decoded_image(int index, int* width, int* he
   if (png && bytes.size() < raw / 1032)
     ctx_.fail(at + ": its " + std::to_string(bytes.size()) + " bytes cannot hold " +
               std::to_string(w) + "x" + std::to_string(h) + " texels");
+  const auto start = std::chrono::steady_clock::now();
   std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> pixels(
       stbi_load_from_memory(data, length, &w, &h, &channels, 4), &stbi_image_free);
+  ctx_.decode_ms +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (!pixels) {
     const char* reason = stbi_failure_reason();
     ctx_.fail(at + " cannot be decoded: " + (reason ? reason : "unknown error"));

@@ -1,7 +1,7 @@
 // Writes generated glTF scenes (no third-party data):
 //   gen_load_scene OUT.glb [TRIANGLES] [TEXTURES]   (defaults: 250000, 50)
-//     for load-time and frame-time benches: a 40 x 40 m floor, rows of tumblers of ten mesh
-//     variants (each variant one glTF mesh, instanced), one procedural 256x256 texture per
+//     for load-time and frame-time benches: a 40 x 40 m floor, rows of tumblers (one glTF mesh
+//     per material, ten levels of detail, instanced), one procedural 256x256 texture per
 //     material, a sun and three point lights;
 //   gen_load_scene OUT.glb --room
 //     a small room with every feature the renderers read from a file, for the tests: a sun, a
@@ -213,19 +213,21 @@ int main(int argc, char** argv) {
   floor.triangles = {{0, 1, 2}, {0, 2, 3}};
   floor.materials = {0, 0};
   a.meshes.push_back(floor);
-  // Ten tumbler variants of growing detail.
-  for (int v = 0; v < 10; ++v) {
-    const TumblerMeshParams params{24 + 4 * v, 8 + v, 3, 6 + v / 2};
-    Mesh mesh = make_tumbler_mesh(TumblerShape{}, params, uint32_t(v % textures));
+  // Tumblers of ten levels of detail, one mesh per material (so every texture is drawn).
+  for (long v = 0; v < textures; ++v) {
+    const int detail = int(v % 10);
+    const TumblerMeshParams params{24 + 4 * detail, 8 + detail, 3, 6 + detail / 2};
+    Mesh mesh = make_tumbler_mesh(TumblerShape{}, params, uint32_t(v));
     mesh.name = "tumbler_" + std::to_string(v);
     a.meshes.push_back(std::move(mesh));
   }
+  const uint32_t variants = uint32_t(textures);
   FrameScene f;
   f.lamp = false;
   f.instances.push_back(MeshInstance{});
   long drawn = 2;
   for (uint32_t k = 0; drawn < triangles; ++k) {
-    const uint32_t mesh = 1 + hash(k) % 10;
+    const uint32_t mesh = 1 + hash(k) % variants;
     const int side = 24;  // instances on a grid, 1.6 m apart, wrapping into more rows
     const float x = -19.0f + 1.6f * float(k % side), z = 19.0f - 1.6f * float((k / side) % side);
     const float y = 0.2f + 1.5f * float(k / (side * side));
@@ -255,7 +257,8 @@ int main(int argc, char** argv) {
   f.camera.near_plane = 0.1f;
   f.camera.far_plane = 120.0f;
   export_gltf(a, f, argv[1]);
-  std::printf("wrote %s: %ld triangles drawn (%zu instances of 11 meshes), %ld textures, "
-              "%zu lights\n", argv[1], drawn, f.instances.size(), textures, f.lights.size());
+  std::printf("wrote %s: %ld triangles drawn (%zu instances of %zu meshes), %ld textures, "
+              "%zu lights\n", argv[1], drawn, f.instances.size(), a.meshes.size(), textures,
+              f.lights.size());
   return 0;
 }

@@ -48,6 +48,11 @@ int render_frames(const CommonOptions& common, const RenderOptions& options,
   std::unique_ptr<FileFrameSource> file_source;
   if (file) file_source = std::make_unique<FileFrameSource>(*file);
   std::printf("device %s\n", describe_device(session.device()).c_str());
+  if (file) {
+    const render::SetupTimes& t = session.renderer().setup_times();
+    std::printf("%s\nset-up: scene upload %.0f ms (mip chains, buffers), kernels %.0f ms\n",
+                describe_file_scene(*file).c_str(), t.scene_ms, t.kernels_ms);
+  }
   std::fflush(stdout);
 
   PassStats stats;
@@ -86,6 +91,8 @@ int render_frames(const CommonOptions& common, const RenderOptions& options,
   }
 
   print_written(out_dir, frames, session.width(), session.height(), options.exr);
+  std::printf("%s; device memory: about %.0f MiB (estimate)\n", describe_host_memory().c_str(),
+              double(session.device_memory_estimate()) / double(1 << 20));
   std::printf("per-pass median: %s; frame %.2f ms\n", median_line(stats).c_str(),
               stats.frame().median_ms);
   return 0;

@@ -127,6 +127,12 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
                       passes::needs_light_components(options.view.view) || keep_components,
                       settings.gi_volume == render::GiVolume::kSvo,
                       settings.quality == render::Quality::kReference);
+  device_memory_estimate_ =
+      estimate_device_memory(width, height, settings.shadow_size, settings.voxel_resolution,
+                             passes::needs_light_components(options.view.view) || keep_components,
+                             settings.gi_volume == render::GiVolume::kSvo,
+                             settings.quality == render::Quality::kReference)
+          .total_bytes;
   renderer_ = std::make_unique<render::Renderer>(context_, programs_, assets_, settings);
   set_view(options.view);
   if (keep_components) renderer_->set_keep_light_components(true);

@@ -85,6 +85,8 @@ class RenderSession {
   const scene::SceneAssets& assets() const { return assets_; }
   uint32_t width() const { return renderer_->settings().width; }
   const render::Renderer& renderer() const { return *renderer_; }
+  // What estimate_device_memory counted for this session (bytes).
+  uint64_t device_memory_estimate() const { return device_memory_estimate_; }
   uint32_t height() const { return renderer_->settings().height; }
 
  private:
@@ -93,6 +95,7 @@ class RenderSession {
   rp::cl::ProgramCache programs_;
   std::unique_ptr<render::Renderer> renderer_;
   passes::DebugViewSettings view_;
+  uint64_t device_memory_estimate_ = 0;
 };
 
 // Device memory the renderer allocates for one width x height image, counted buffer by buffer

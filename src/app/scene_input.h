@@ -27,6 +27,13 @@ struct FileScene {
 // stderr ("rolypoly: warning: FILE: ...") and fits the volume.
 FileScene open_scene_file(const std::string& path);
 
+// "scene FILE: N triangles drawn (I instances of M meshes), T textures, L lights; loaded in
+// X ms (images decoded in Y ms)"
+std::string describe_file_scene(const FileScene& scene);
+
+// "host memory: peak N MiB" (the process's peak resident set, getrusage).
+std::string describe_host_memory();
+
 // The same frame every time, seen from a camera the caller may move between frames (the
 // window's fly camera); the previous frame's camera gives the velocity.
 class FileFrameSource final : public FrameSource {

@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 
 #include "cl/error.h"
 #include "passes/bounce.h"
@@ -66,7 +67,14 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
     : context_(context), settings_(settings), profiler_(context.queue, context.timing) {
   if (settings_.width == 0 || settings_.height == 0 || settings_.shadow_size == 0)
     throw rp::cl::Error("render size must be at least 1x1 pixels");
+  const auto start = std::chrono::steady_clock::now();
+  const auto ms_since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t)
+        .count();
+  };
   scene_ = std::make_unique<GpuScene>(context.context, context.queue, assets);
+  setup_times_.scene_ms = ms_since(start);
+  const auto kernels_start = std::chrono::steady_clock::now();
   visibility_ = std::make_unique<passes::VisibilityPass>(context, programs);
   if (settings_.visibility == VisibilityBackend::kEmbree)
     embree_ = std::make_unique<passes::EmbreeVisibilityPass>(context, assets);
@@ -103,6 +111,7 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   motion_blur_ = std::make_unique<passes::MotionBlurPass>(context, programs);
   debug_view_pass_ =
       std::make_unique<passes::DebugViewPass>(context, programs, gi_options);  // builds lazily
+  setup_times_.kernels_ms = ms_since(kernels_start);
   shadow_.resize(context.context, settings_.shadow_size);
   if (!svo) voxels_.resize(context.context, settings_.voxel_resolution);
   resize(settings_.width, settings_.height);

@@ -130,6 +130,13 @@ struct RenderSettings {
   TextureFilter texture_filter = TextureFilter::kTrilinear;  // --texture-filter (issue 15)
 };
 
+// Wall-clock milliseconds of the renderer's set-up: the scene's upload (texture mip chains,
+// buffers) and the kernel builds (the program cache's: 0.5-4 s each when PoCL's cache is cold).
+struct SetupTimes {
+  double scene_ms = 0.0;
+  double kernels_ms = 0.0;
+};
+
 class Renderer {
  public:
   // Uploads the assets and builds every kernel (throws rp::cl::BuildError with the log).
@@ -138,6 +145,8 @@ class Renderer {
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
+
+  const SetupTimes& setup_times() const { return setup_times_; }
 
   // Reallocates the per-pixel buffers (not per frame: only when the size changes).
   void resize(uint32_t width, uint32_t height);
@@ -223,6 +232,7 @@ class Renderer {
   std::unique_ptr<passes::LightPass> light_;
   std::unique_ptr<passes::PunctualLightPass> punctual_;  // a file scene's lights
   bool lamp_map_drawn_ = false;  // the lamp's shadow map holds a drawing (see render())
+  SetupTimes setup_times_;
   std::unique_ptr<passes::ShadowFilterPass> shadow_filter_;  // the mips pcss / vssm read
   std::unique_ptr<passes::ToneMapPass> tone_map_;
   std::unique_ptr<passes::TaaPass> taa_;
