@@ -73,21 +73,28 @@ inline float rp_punctual_visibility(__global const FrameConstants* frame,
                                     __global const PunctualLightGpu* L, float3 p, float3 n,
                                     float3 l, int wide) {
   if (L->view_count == 0u) return 1.0f;
-  uint view = L->first_view;
+  __global const ShadowViewGpu* V = &frame->shadow_views[L->first_view];
+  float w0;  /* the receiver's clip w in its view: a texel's size scales with it */
   if (L->type == RP_LIGHT_POINT) {
-    const float3 d = p - L->position_range.xyz, a = fabs(d);
-    const uint face = a.x >= a.y && a.x >= a.z ? (d.x >= 0.0f ? 0u : 1u)
-                      : a.y >= a.z           ? (d.y >= 0.0f ? 2u : 3u)
-                                             : (d.z >= 0.0f ? 4u : 5u);
-    view += face;
+    const float3 a = fabs(p - L->position_range.xyz);
+    w0 = fmax(a.x, fmax(a.y, a.z)); /* every face has the same projection */
+  } else {
+    w0 = V->depth.z != 0.0f ? 1.0f : fabs(rp_mat4_mul_point(V->view_proj, p).w);
   }
-  __global const ShadowViewGpu* V = &frame->shadow_views[view];
-  const rp_mat4 vp = V->view_proj;
-  const float w0 = V->depth.z != 0.0f ? 1.0f : fabs(rp_mat4_mul_point(vp, p).w);
   const float texel = w0 * V->depth.w;
   const float c = fmax(dot(n, l), 1.0e-4f);
   const float tan_theta = fmin(sqrt(fmax(1.0f - c * c, 0.0f)) / c, 8.0f);
-  const float4 clip = rp_mat4_mul_point(vp, p + n * texel);
+  const float3 q = p + n * texel; /* pushed off the surface along its normal */
+  if (L->type == RP_LIGHT_POINT) {
+    /* the face that sees the pushed point (near a cube edge the push may cross to the next) */
+    const float3 d = q - L->position_range.xyz, a = fabs(d);
+    const uint face = a.x >= a.y && a.x >= a.z ? (d.x >= 0.0f ? 0u : 1u)
+                      : a.y >= a.z           ? (d.y >= 0.0f ? 2u : 3u)
+                                             : (d.z >= 0.0f ? 4u : 5u);
+    V += face;
+  }
+  const rp_mat4 vp = V->view_proj;
+  const float4 clip = rp_mat4_mul_point(vp, q);
   if (clip.w <= 0.0f) return 1.0f;
   const float3 ndc = clip.xyz / clip.w;
   if (fabs(ndc.x) > 1.0f || fabs(ndc.y) > 1.0f || ndc.z > 1.0f) return 1.0f;
