@@ -734,10 +734,16 @@ inline VxVec vx_albedo_span(const VxSetup* s, __global const uint* texels, rp_sp
   return vxv(r, g, b);
 }
 
-/* The bounce grid's light (irradiance / pi, rgb) at p with unit normal n for lanes in `active`
- * (< n_lanes), 0 elsewhere; the caller adds it only when L->bounce_cells != 0. */
-inline VxVec vx_bounce_span(const VxLight* L, const VxVec* p, const VxVec* n, rp_spani active,
-                            int n_lanes) {
+/* Light that is evaluated lane by lane (scalar per point), at p with unit normal n for lanes
+ * in `active` (< n_lanes), 0 elsewhere; rgb:
+ *   punctual 0: the bounce grid's light (irradiance / pi; the caller adds it only when
+ *     L->bounce_cells != 0);
+ *   punctual 1: a file scene's punctual lights, common/punctual_light.h with one bilinear
+ *     shadow comparison per light (the voxels average many surface points, as the lamp's four
+ *     taps do). */
+inline VxVec vx_lane_light_span(const VxLight* L, __global const float* shadow, const VxVec* p,
+                                const VxVec* n, rp_spani active, int n_lanes,
+                                const int punctual) {
   float px[RP_SPAN], py[RP_SPAN], pz[RP_SPAN], nx[RP_SPAN], ny[RP_SPAN], nz[RP_SPAN];
   float ex[RP_SPAN], ey[RP_SPAN], ez[RP_SPAN];
   int la[RP_SPAN];
@@ -750,9 +756,17 @@ inline VxVec vx_bounce_span(const VxLight* L, const VxVec* p, const VxVec* n, rp
   RP_SPAN_TO_ARRAY(active, la);
   for (int i = 0; i < RP_SPAN; ++i) {
     float3 e = (float3)(0.0f);
-    if (i < n_lanes && la[i])
-      e = rp_bounce_irradiance(L->bounce, L->bounce_cells, (float3)(px[i], py[i], pz[i]),
-                               (float3)(nx[i], ny[i], nz[i]));
+    if (i < n_lanes && la[i]) {
+      const float3 pl = (float3)(px[i], py[i], pz[i]), nl = (float3)(nx[i], ny[i], nz[i]);
+      if (!punctual) {
+        e = rp_bounce_irradiance(L->bounce, L->bounce_cells, pl, nl);
+      } else {
+        for (uint k = 0; k < L->frame->punctual_count; ++k) {
+          float3 l;
+          e += rp_punctual_direct(L->frame, shadow, k, pl, nl, 0, &l);
+        }
+      }
+    }
     ex[i] = e.x;
     ey[i] = e.y;
     ez[i] = e.z;
@@ -760,36 +774,13 @@ inline VxVec vx_bounce_span(const VxLight* L, const VxVec* p, const VxVec* n, rp
   return vxv(RP_SPAN_FROM_ARRAY(ex), RP_SPAN_FROM_ARRAY(ey), RP_SPAN_FROM_ARRAY(ez));
 }
 
-/* A file scene's punctual lights at points p with unit normals n (lanes in `active`, 0
- * elsewhere): common/punctual_light.h lane by lane, one bilinear shadow comparison per light
- * (the voxels average many surface points, as the lamp's four taps do). */
-inline VxVec vx_punctual_span(const VxLight* L, __global const float* shadow, const VxVec* p,
-                              const VxVec* n, rp_spani active, int n_lanes) {
-  float px[RP_SPAN], py[RP_SPAN], pz[RP_SPAN], nx[RP_SPAN], ny[RP_SPAN], nz[RP_SPAN];
-  float rx[RP_SPAN], ry[RP_SPAN], rz[RP_SPAN];
-  int on[RP_SPAN];
-  RP_SPAN_TO_ARRAY(p->x, px);
-  RP_SPAN_TO_ARRAY(p->y, py);
-  RP_SPAN_TO_ARRAY(p->z, pz);
-  RP_SPAN_TO_ARRAY(n->x, nx);
-  RP_SPAN_TO_ARRAY(n->y, ny);
-  RP_SPAN_TO_ARRAY(n->z, nz);
-  RP_SPAN_TO_ARRAY(active, on);
-  for (int k = 0; k < RP_SPAN; ++k) {
-    float3 sum = (float3)(0.0f);
-    if (k < n_lanes && on[k]) {
-      const float3 pk = (float3)(px[k], py[k], pz[k]), nk = (float3)(nx[k], ny[k], nz[k]);
-      for (uint i = 0; i < L->frame->punctual_count; ++i) {
-        float3 l;
-        sum += rp_punctual_direct(L->frame, shadow, i, pk, nk, 0, &l);
-      }
-    }
-    rx[k] = sum.x;
-    ry[k] = sum.y;
-    rz[k] = sum.z;
-  }
-  return vxv(RP_SPAN_FROM_ARRAY(rx), RP_SPAN_FROM_ARRAY(ry), RP_SPAN_FROM_ARRAY(rz));
-}
+/* The bounce grid's light and the punctual lights at p (vx_lane_light_span; macros, not
+ * helpers: another inlined struct-returning level leaves noalias intrinsics that oclgrind
+ * 21.10 cannot run). */
+#define vx_bounce_span(L, p, n, active, n_lanes) \
+  vx_lane_light_span((L), 0, (p), (n), (active), (n_lanes), 0)
+#define vx_punctual_span(L, shadow, p, n, active, n_lanes) \
+  vx_lane_light_span((L), (shadow), (p), (n), (active), (n_lanes), 1)
 
 /* Outgoing radiance albedo * (direct + bounce light) + emission at points p with unit
  * normals n. */
