@@ -2,11 +2,31 @@
 #include "bench/src/accuracy_render.h"
 
 #include <atomic>
+#include <cmath>
+#include <cstdio>
 
 #include "app/interrupt.h"
 #include "app/progress.h"
 
 namespace rp::app {
+
+nlohmann::json stats_json(const ErrorStats& s) {
+  return {{"rel_l1", s.rel_l1}, {"bias", s.bias}, {"pixels", s.pixels}};
+}
+
+std::string percent_cell(double v, bool sign) {
+  if (!std::isfinite(v)) return "     n/a";
+  char b[32];
+  std::snprintf(b, sizeof b, sign ? "%+7.1f%%" : "%7.1f%%", v * 100.0);
+  return b;
+}
+
+std::string db_cell(double v) {
+  if (std::isnan(v)) return "     n/a";
+  char b[32];
+  std::snprintf(b, sizeof b, "%8.2f", v);
+  return b;
+}
 
 Images from_truth(const std::string& name, const truth::PathTracedImage& t) {
   return {name, t.combined, t.direct, t.indirect, t.albedo, t.specular};
@@ -14,14 +34,15 @@ Images from_truth(const std::string& name, const truth::PathTracedImage& t) {
 
 Images render_mode(const CommonOptions& common, const std::string& name, render::Quality quality,
                    uint32_t bounces, bool taa, uint32_t w, uint32_t h, uint32_t frames,
-                   std::vector<uint8_t>& final_rgba, FrameFn frame_fn) {
+                   std::vector<uint8_t>& final_rgba, const FrameFn& frame_fn,
+                   const scene::SceneAssets* assets) {
   CommonOptions c = common;
   c.quality = quality;
   c.bounces = bounces;
   c.view = {};
   c.effects.bloom = c.effects.motion_blur = false;
   c.effects.taa = taa;
-  RenderSession session(c, w, h);
+  RenderSession session(c, w, h, false, assets);
   session.set_keep_components(true);
   ProgressBar bar(name, frames);
   double ms = 0.0;

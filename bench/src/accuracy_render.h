@@ -5,15 +5,49 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "app/render_session.h"
 #include "app/truth_cache.h"
+#include "bench/src/accuracy_metrics.h"
 #include "scene/demo_scene.h"
 #include "truth/path_tracer.h"
 
 namespace rp::app {
+
+// One real-time configuration of the report (accuracy_report.h): a quality mode at many
+// bounces against the many-bounce truth, or at --bounces 1 against the 1-bounce truth.
+struct AccuracyConfig {
+  const char* key;     // JSON key under "configurations"
+  const char* column;  // the table's column
+  render::Quality quality;
+  bool many;           // AccuracyOptions::many_bounces against the many-bounce truth
+};
+inline constexpr AccuracyConfig kAccuracyConfigs[] = {
+    {"fast_many", "fast/N", render::Quality::kFast, true},
+    {"reference_many", "ref/N", render::Quality::kReference, true},
+    {"fast_one", "fast/1", render::Quality::kFast, false},
+    {"reference_one", "ref/1", render::Quality::kReference, false},
+};
+// The fifth render: fast at many bounces with TAA, its finished 8-bit frame.
+inline constexpr const char* kTaaConfigKey = "fast_many_taa";
+
+// {"rel_l1", "bias", "pixels"} (NaN figures, a region without light, are written as null).
+nlohmann::json stats_json(const ErrorStats& s);
+// "+12.3%" (signed: a bias) or "12.3%" (a magnitude), right-aligned in 8 characters; "n/a"
+// for NaN.
+std::string percent_cell(double v, bool sign);
+// "   12.34" (8 characters); "     n/a" for NaN.
+std::string db_cell(double v);
+// A JSON number as a double, NaN for null (a figure without pixels).
+inline double json_number(const nlohmann::json& v) {
+  return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN();
+}
 
 // The linear images one mode or truth gives (3 floats per pixel).
 struct Images {
@@ -25,15 +59,19 @@ struct Images {
 Images from_truth(const std::string& name, const truth::PathTracedImage& t);
 
 // The frame a section measures: frame `frame_index` of a scene at rest (scene::make_demo_frame,
-// the marble section's marble_frame).
-using FrameFn = scene::FrameScene (*)(const scene::SceneAssets&, uint32_t frame_index);
+// the marble section's marble_frame, a scene file's still frame).
+using FrameFn =
+    std::function<scene::FrameScene(const scene::SceneAssets&, uint32_t frame_index)>;
 
 // The real-time renderer on `frame_fn`'s frames: `frames` frames (frame_index counting up, so
 // the fast mode's interleaving, the shadow noise and TAA's jitter rotate as in the app), no
 // bloom or motion blur, TAA only when asked. `final_rgba` gets the last finished frame.
+// `assets`: what the frames draw from (a scene file's); nullptr = the demo's (--assets).
 Images render_mode(const CommonOptions& common, const std::string& name, render::Quality quality,
                    uint32_t bounces, bool taa, uint32_t w, uint32_t h, uint32_t frames,
-                   std::vector<uint8_t>& final_rgba, FrameFn frame_fn = scene::make_demo_frame);
+                   std::vector<uint8_t>& final_rgba,
+                   const FrameFn& frame_fn = scene::make_demo_frame,
+                   const scene::SceneAssets* assets = nullptr);
 
 // cached_path_trace with a progress bar named `label`; Ctrl-C / SIGTERM (InterruptGuard) stops
 // the render between rows (truth::PathTracer::Cancelled).

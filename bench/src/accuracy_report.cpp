@@ -9,9 +9,12 @@
 #include <vector>
 
 #include "bench/src/accuracy_direct.h"
+#include "bench/src/accuracy_file.h"
 #include "bench/src/accuracy_marbles.h"
 #include "bench/src/accuracy_metrics.h"
 #include "bench/src/accuracy_render.h"
+#include "bench/src/bench_scene.h"
+#include "bench/src/scene_file_facts.h"
 #include "app/commands.h"
 #include "app/host_tone_map.h"
 #include "app/interrupt.h"
@@ -27,25 +30,6 @@ namespace {
 // component's rows.
 constexpr Region kCoatedRegions[] = {Region::kImage, Region::kFloorLit, Region::kFloorShadow,
                                      Region::kTumblerLit, Region::kTumblerShadowed};
-
-// One real-time configuration of the report (accuracy_report.h).
-struct Config {
-  const char* key;     // JSON key under "configurations"
-  const char* column;  // the table's column
-  render::Quality quality;
-  bool many;           // options.many_bounces against the many-bounce truth, else 1 against 1
-};
-constexpr Config kConfigs[] = {
-    {"fast_many", "fast/N", render::Quality::kFast, true},
-    {"reference_many", "ref/N", render::Quality::kReference, true},
-    {"fast_one", "fast/1", render::Quality::kFast, false},
-    {"reference_one", "ref/1", render::Quality::kReference, false},
-};
-constexpr const char* kTaaKey = "fast_many_taa";
-
-nlohmann::json stats_json(const ErrorStats& s) {
-  return {{"rel_l1", s.rel_l1}, {"bias", s.bias}, {"pixels", s.pixels}};
-}
 
 nlohmann::json rgb_json(const IncomingLight& in) {
   return {{"rgb", {in.rgb[0], in.rgb[1], in.rgb[2]}}, {"r_minus_b", in.r_minus_b()}};
@@ -79,14 +63,6 @@ nlohmann::json compare(const Images& rp, const Images& truth, const std::vector<
   return j;
 }
 
-
-// "+12.3%" (signed: a bias) or "12.3%" (a magnitude), right-aligned in 8 characters.
-std::string pct(double v, bool sign) {
-  if (!std::isfinite(v)) return "     n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, sign ? "%+7.1f%%" : "%7.1f%%", v * 100.0);
-  return b;
-}
 
 }  // namespace
 
@@ -146,7 +122,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   // The four configurations, each against the truth at its bounce count, then the TAA render.
   std::vector<Images> rendered;
   std::vector<uint8_t> rgba;
-  for (const Config& c : kConfigs) {
+  for (const AccuracyConfig& c : kAccuracyConfigs) {
     const uint32_t bounces = c.many ? options.many_bounces : 1u;
     const uint32_t frames = c.quality == render::Quality::kFast ? options.converge_frames
                             : c.many                            ? options.reference_many_frames
@@ -161,9 +137,9 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
     j["configurations"][c.key] = m;
   }
   std::vector<uint8_t> taa_rgba;
-  render_mode(common, kTaaKey, render::Quality::kFast, options.many_bounces, true, w, h,
+  render_mode(common, kTaaConfigKey, render::Quality::kFast, options.many_bounces, true, w, h,
               options.converge_frames, taa_rgba);
-  j["configurations"][kTaaKey] = {{"quality", "fast"},
+  j["configurations"][kTaaConfigKey] = {{"quality", "fast"},
                                   {"bounces", options.many_bounces},
                                   {"frames", options.converge_frames},
                                   {"taa", true},
@@ -301,7 +277,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
           v <= *options.max_indirect_l1_single, "fast/1 indirect relative L1 (image)");
   }
   if (options.min_psnr_taa) {
-    const double v = cfg[kTaaKey]["final_psnr_db"].get<double>();
+    const double v = cfg[kTaaConfigKey]["final_psnr_db"].get<double>();
     check("min_psnr_taa", *options.min_psnr_taa, v, v >= *options.min_psnr_taa,
           "final PSNR with TAA, fast/N (dB)");
   }
@@ -357,10 +333,10 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
     t << line;
   }
   t << "  the 1-bounce truth's indirect light against " << n << " bounces: bias"
-    << pct(number(j["truth"]["one"]["indirect_vs_many"]["bias"]), true) << "\n";
+    << percent_cell(number(j["truth"]["one"]["indirect_vs_many"]["bias"]), true) << "\n";
   std::snprintf(line, sizeof line, "\n%-32s", "(rolypoly vs truth)");
   t << line;
-  for (const Config& c : kConfigs) {
+  for (const AccuracyConfig& c : kAccuracyConfigs) {
     std::snprintf(line, sizeof line, " %8s", c.column);
     t << line;
   }
@@ -369,7 +345,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   auto row = [&](const std::string& label, auto get) {
     std::snprintf(line, sizeof line, "%-32s", label.c_str());
     t << line;
-    for (const Config& c : kConfigs) t << ' ' << get(cfg[c.key]);
+    for (const AccuracyConfig& c : kAccuracyConfigs) t << ' ' << get(cfg[c.key]);
     t << '\n';
   };
   auto db = [](double v) {
@@ -379,15 +355,17 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   };
   row("final PSNR (dB)", [&](const nlohmann::json& m) { return db(number(m["final_psnr_db"])); });
   std::snprintf(line, sizeof line, "%-32s %s %8s %8s %8s\n", "final PSNR, TAA (dB)",
-                db(cfg[kTaaKey]["final_psnr_db"].get<double>()).c_str(), "-", "-", "-");
+                db(cfg[kTaaConfigKey]["final_psnr_db"].get<double>()).c_str(), "-", "-", "-");
   t << line;
-  row("direct bias", [&](const nlohmann::json& m) { return pct(number(m["direct"]["bias"]), true); });
+  row("direct bias", [&](const nlohmann::json& m) {
+    return percent_cell(number(m["direct"]["bias"]), true);
+  });
   for (const char* what : {"rel_l1", "bias"})
     for (size_t r = 0; r < kDemoRegionCount; ++r) {
       const std::string name = region_name(Region(r));
       row(std::string("indirect ") + (what[0] == 'r' ? "L1 " : "bias ") + name,
           [&](const nlohmann::json& m) {
-            return pct(number(m["indirect"][name][what]), what[0] == 'b');
+            return percent_cell(number(m["indirect"][name][what]), what[0] == 'b');
           });
     }
   for (const char* what : {"rel_l1", "bias"})
@@ -395,7 +373,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
       const std::string name = region_name(r);
       row(std::string("specular ") + (what[0] == 'r' ? "L1 " : "bias ") + name,
           [&](const nlohmann::json& m) {
-            return pct(number(m["specular"][name][what]), what[0] == 'b');
+            return percent_cell(number(m["specular"][name][what]), what[0] == 'b');
           });
     }
   for (const char* what : {"leak_pixels", "missing_pixels"})
@@ -459,7 +437,13 @@ int accuracy_command(const CommonOptions& common, const BenchOptions& options) {
   o.command_line = options.command_line;
   AccuracyResult r;
   try {
-    r = measure_accuracy(common, o);
+    if (is_bench_scene_file(options.scene)) {
+      // The scene file first: a malformed one fails before anything is traced.
+      const FileScene file = open_scene_file(options.scene);
+      r = measure_file_accuracy(common, file, scene_file_facts(file), o);
+    } else {
+      r = measure_accuracy(common, o);
+    }
   } catch (const truth::PathTracer::Cancelled&) {
     std::fprintf(stderr,
                  "rolypoly: error: interrupted; no report was written (finished truths stay in "

@@ -24,6 +24,8 @@
 // the main section's frame, regions and figures stay as without it. Writes a JSON (schema rolypoly-accuracy/4: /3 plus
 // "specular" per configuration, and "marbles" only with --marbles; /3 was /2 plus "direct";
 // README "Accuracy against the ground truth"), side-by-side PNGs and signed difference heat maps.
+// With --scene FILE the report is a scene file's instead, its materials as the regions
+// (bench/src/accuracy_file.h); AccuracyOptions and AccuracyResult serve both.
 #pragma once
 
 #include <cstdint>

@@ -1,21 +1,24 @@
+// `rolypoly bench`: the device x size x voxels matrix of frame times on the scene of --scene
+// (bench/src/bench_scene.h), or one of its other reports (--compare-visibility here;
+// --quality-report, --accuracy and --quality pathtraced elsewhere).
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
+#include "app/commands.h"
+#include "app/png_output.h"
+#include "app/progress.h"
 #include "bench/src/bench_chart.h"
 #include "bench/src/bench_matrix.h"
 #include "bench/src/bench_report.h"
-#include "app/commands.h"
-#include "app/frame_source.h"
+#include "bench/src/bench_scene.h"
 #include "bench/src/pass_stats.h"
-#include "app/png_output.h"
-#include "app/progress.h"
+#include "bench/src/pathtrace_file_bench.h"
 #include "bench/src/quality_report.h"
-#include "app/simulation_source.h"
-#include "render/renderer.h"
+#include "bench/src/scene_file_facts.h"
 #include "io/output_path.h"
-#include "scene/particles.h"
-#include "scene/world.h"
+#include "render/renderer.h"
+#include "scene/demo_scene.h"
 
 // The efficiency columns (issue 7 item 3) need the work counts and the peak probe; built without
 // them the bench reports times only.
@@ -40,12 +43,12 @@ double visibility_ms(const PassStats& stats) {
   return ms;
 }
 
-// Renders the simulated frames of `options` (same seed, toggles and replay every time) and
-// returns the measured frames' statistics.
+// Renders the scene's frames (the same every time) and returns the measured frames'
+// statistics.
 PassStats measure(const CommonOptions& common, const BenchOptions& options,
-                  rp::cl::DeviceInfo& info) {
-  SimulationFrameSource source(make_simulation_options(options.sim, common.effects));
-  RenderSession session(common, options.size.width, options.size.height);
+                  const BenchScene& scene, rp::cl::DeviceInfo& info) {
+  std::unique_ptr<BenchFrames> frames = scene.frames();
+  RenderSession session(common, options.size.width, options.size.height, false, scene.assets());
   info = session.device();
   PassStats stats;
   std::vector<uint8_t> rgba;
@@ -53,7 +56,7 @@ PassStats measure(const CommonOptions& common, const BenchOptions& options,
   progress.update(0);
   for (uint32_t i = 0; i < options.warmup + options.frames; ++i) {
     double frame_ms = 0.0;
-    rp::cl::PassTimes times = render_next_frame(session, source, common.effects, rgba, frame_ms);
+    rp::cl::PassTimes times = frames->render(session, rgba, frame_ms);
     if (i >= options.warmup) stats.add(times, frame_ms);
     progress.update(i + 1);
   }
@@ -61,7 +64,8 @@ PassStats measure(const CommonOptions& common, const BenchOptions& options,
   return stats;
 }
 
-int compare_visibility(const CommonOptions& common, const BenchOptions& options) {
+int compare_visibility(const CommonOptions& common, const BenchOptions& options,
+                       const BenchScene& scene) {
   // Both backends render the same frames one after the other; everything but the visibility
   // buffer's source is shared.
   std::printf("%ux%u, %u warm-up + %u measured frames\n", options.size.width,
@@ -70,9 +74,9 @@ int compare_visibility(const CommonOptions& common, const BenchOptions& options)
   CommonOptions raster = common, embree = common;
   raster.visibility = render::VisibilityBackend::kRaster;
   embree.visibility = render::VisibilityBackend::kEmbree;
-  PassStats r = measure(raster, options, info);
+  PassStats r = measure(raster, options, scene, info);
   std::printf("device %s\n", describe_device(info).c_str());
-  PassStats e = measure(embree, options, info);
+  PassStats e = measure(embree, options, scene, info);
   std::printf("visibility backend     median ms (frame median ms)\n");
   std::printf("raster (device)      %9.3f   (%.3f)\n", visibility_ms(r), r.frame().median_ms);
   std::printf("embree (host+upload) %9.3f   (%.3f)\n", visibility_ms(e), e.frame().median_ms);
@@ -80,78 +84,22 @@ int compare_visibility(const CommonOptions& common, const BenchOptions& options)
   return 0;
 }
 
-// --scene busy: 30 marbles and a fireball (World with both on, seed --seed), settled for
-// kSettleSteps fixed steps before the first frame; every frame then advances 1/60 s (4 steps)
-// and tops the particle system up to its full budget (ParticleSystem::kMaxParticles = 2048)
-// with ash clouds (ParticleSystem::emit_ash, 64 flakes each) at the marbles' centres in turn,
-// drawing from the world's own particle stream. No input, no wall clock: every device gets the
-// same frames, bit for bit.
-class BusyFrameSource final : public FrameSource {
- public:
-  static constexpr int kSettleSteps = 120;  // 0.5 s: marbles falling, fire trail formed
-  static constexpr int kStepsPerFrame = 4;  // 1/60 s at 240 Hz
-
-  explicit BusyFrameSource(uint64_t seed)
-      : world_(scene::WorldConfig{seed, 1.0f / 240.0f, true, true}) {
-    world_.advance(kSettleSteps);
-    top_up();
-  }
-
-  scene::FrameScene next() override {
-    world_.advance(kStepsPerFrame);
-    top_up();
-    scene::FrameScene frame;
-    world_.fill_frame(frame);
-    frame.frame_index = frames_++;
-    return frame;
-  }
-  uint32_t frames_produced() const override { return frames_; }
-
- private:
-  void top_up() {
-    const auto& marbles = world_.marble_balls();
-    const auto& fireballs = world_.fireball_balls();
-    scene::ParticleSystem& particles = world_.particles();
-    while (particles.live_count() < scene::ParticleSystem::kMaxParticles) {
-      const scene::Ball* b = nullptr;
-      if (!marbles.empty())
-        b = &marbles[next_marble_++ % marbles.size()];
-      else if (!fireballs.empty())
-        b = &fireballs.front();
-      glm::vec3 centre = b ? b->sphere.body.p : glm::vec3(0.0f);
-      glm::vec3 velocity = b ? b->sphere.body.v : glm::vec3(0.0f);
-      particles.emit_ash(centre, scene::world_constants::kMarbleRadius, velocity, world_.particle_rng());
-    }
-  }
-
-  scene::World world_;
-  size_t next_marble_ = 0;
-  uint32_t frames_ = 0;
-};
-
 uint32_t voxels_or_default(uint32_t voxels) {
   return voxels ? voxels : render::RenderSettings{}.voxel_resolution;
 }
 
 // One cell of the matrix on one device.
 RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
-                      const rp::cl::DeviceInfo& device, uint32_t width, uint32_t height,
-                      uint32_t voxels) {
+                      const BenchScene& scene, const rp::cl::DeviceInfo& device, uint32_t width,
+                      uint32_t height, uint32_t voxels) {
   CommonOptions c = common;
   c.device = std::to_string(device.index);
   c.voxels = voxels;
-  RenderSession session(c, width, height);
-  std::unique_ptr<SimulationFrameSource> sim;
-  std::unique_ptr<BusyFrameSource> busy;
-  if (options.scene == "busy")
-    busy = std::make_unique<BusyFrameSource>(options.sim.seed);
-  else
-    sim = std::make_unique<SimulationFrameSource>(
-        make_simulation_options(options.sim, common.effects));
+  RenderSession session(c, width, height, false, scene.assets());
+  std::unique_ptr<BenchFrames> frames = scene.frames();
 
   PassStats stats;
   std::vector<uint8_t> rgba;
-  scene::FrameScene last;
   char label[96];
   std::snprintf(label, sizeof label, "[%d] %ux%u %u^3", device.index, width, height,
                 voxels_or_default(voxels));
@@ -159,14 +107,7 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
   progress.update(0);
   for (uint32_t i = 0; i < options.warmup + options.frames; ++i) {
     double frame_ms = 0.0;
-    rp::cl::PassTimes times;
-    if (busy) {
-      last = busy->next();
-      session.set_effects(common.effects);
-      times = session.render(last, rgba, frame_ms);
-    } else {
-      times = render_next_frame(session, *sim, common.effects, rgba, frame_ms);
-    }
+    rp::cl::PassTimes times = frames->render(session, rgba, frame_ms);
     if (i >= options.warmup) stats.add(times, frame_ms);
     progress.update(i + 1);
   }
@@ -206,7 +147,7 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
     run.octree_peak_bytes = o.peak_device_bytes;
     run.octree_pool_bytes = o.buffer_bytes();
   }
-  if (sim) sim->world().fill_frame(last);  // what the last frame showed (same world state)
+  const scene::FrameScene last = frames->last();
   run.spheres = static_cast<uint32_t>(last.spheres.size());
   run.instances = static_cast<uint32_t>(last.instances.size());
   const std::vector<scene::Mesh>& meshes = session.assets().meshes;
@@ -228,8 +169,8 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
 
 #if RP_BENCH_EFFICIENCY
 // Measures the device's peak and fills every pass's work and share of that peak.
-void add_efficiency(const CommonOptions& common, const rp::cl::DeviceInfo& info,
-                    DeviceResult& result) {
+void add_efficiency(const CommonOptions& common, const BenchScene& scene,
+                    const rp::cl::DeviceInfo& info, DeviceResult& result) {
   rp::cl::Context context = rp::cl::Context::create(info);
   rp::cl::ProgramCache programs(context);
   DevicePeak peak = measure_peak(context, programs);
@@ -239,8 +180,10 @@ void add_efficiency(const CommonOptions& common, const rp::cl::DeviceInfo& info,
   result.bandwidth_levels = peak.levels;
   result.bandwidth_note = peak.bandwidth_note;
   result.compute_note = peak.compute_note;
-  const scene::SceneAssets assets = scene::make_demo_assets(
-      common.asset_dir.empty() ? scene::default_asset_dir() : common.asset_dir);
+  const scene::SceneAssets assets =
+      scene.assets() ? *scene.assets()
+                     : scene::make_demo_assets(common.asset_dir.empty() ? scene::default_asset_dir()
+                                                                        : common.asset_dir);
   uint32_t triangles = 0;
   for (const scene::Mesh& m : assets.meshes) triangles += static_cast<uint32_t>(m.triangles.size());
   for (RunResult& run : result.runs) {
@@ -302,72 +245,31 @@ void write_outputs(const BenchOptions& given, const BenchMatrix& matrix) {
   }
 }
 
-// Issue 9's quality criteria at the bench size: both quality modes render the static demo and
-// the busy animation; prints the figures and the pass/fail of each threshold, and writes them
-// as JSON with --json.
-int quality_report(const CommonOptions& common, const BenchOptions& options) {
-  const uint32_t w = options.size.width, h = options.size.height;
-  QualityOptions q;
-  q.seed = options.sim.seed;
-  std::printf("quality: fast vs reference at %ux%u (static demo %u frames, busy animation %u + "
-              "%u frames, seed %llu)\n",
-              w, h, q.static_frames, q.busy_warmup, q.busy_frames,
-              static_cast<unsigned long long>(q.seed));
-  std::fflush(stdout);
-  const QualityReport r = measure_quality(common, w, h, q);
-  const bool static_ok = r.static_psnr_db >= 35.0;
-  const bool busy_ok = r.busy_min_psnr_db >= 30.0;
-  const bool flicker_ok = r.flicker_fast <= r.flicker_reference;
-  std::printf("  static PSNR after TAA converged  %7.2f dB   (>= 35: %s)\n", r.static_psnr_db,
-              static_ok ? "yes" : "NO");
-  std::printf("  busy PSNR per frame, min/median  %7.2f / %.2f dB   (min >= 30: %s)\n",
-              r.busy_min_psnr_db, r.busy_median_psnr_db, busy_ok ? "yes" : "NO");
-  std::printf("  static flicker fast / reference  %7.3f / %.3f codes   (fast <= reference: %s)\n",
-              r.flicker_fast, r.flicker_reference, flicker_ok ? "yes" : "NO");
-  if (!options.json.empty()) {
-    std::string busy = "[";
-    for (size_t i = 0; i < r.busy_psnr_db.size(); ++i) {
-      char v[32];
-      std::snprintf(v, sizeof v, "%s%.3f", i ? ", " : "", r.busy_psnr_db[i]);
-      busy += v;
-    }
-    busy += "]";
-    char text[1024];
-    std::snprintf(text, sizeof text,
-                  "{\n  \"schema\": \"rolypoly-quality/1\",\n  \"command\": \"%s\",\n"
-                  "  \"width\": %u, \"height\": %u, \"bounces\": %u,\n"
-                  "  \"static_psnr_db\": %.3f,\n"
-                  "  \"busy_min_psnr_db\": %.3f, \"busy_median_psnr_db\": %.3f,\n"
-                  "  \"flicker_fast\": %.4f, \"flicker_reference\": %.4f,\n"
-                  "  \"busy_psnr_db\": ",
-                  options.command_line.c_str(), w, h, common.bounces, r.static_psnr_db,
-                  r.busy_min_psnr_db,
-                  r.busy_median_psnr_db, r.flicker_fast, r.flicker_reference);
-    write_text_atomic(options.json, std::string(text) + busy + "\n}\n");
-    std::printf("wrote %s\n", options.json.c_str());
-  }
-  return static_ok && busy_ok && flicker_ok ? 0 : 3;
-}
-
 }  // namespace
 
 int bench_command(const CommonOptions& common, const BenchOptions& options) {
   check_outputs(options);
-  if (common.pathtraced) return pathtrace_bench_command(common, options);
-  if (options.accuracy) {
+  if (options.accuracy) {  // opens the scene itself: the demo's or the file's report
     CommonOptions c = common;
     if (!options.voxels.empty()) c.voxels = options.voxels.front();
     return accuracy_command(c, options);
   }
-  if (options.quality_report) {
+  if (options.quality_report) {  // the demo only (parse_cli refuses a file)
     CommonOptions c = common;
     if (!options.voxels.empty()) c.voxels = options.voxels.front();
-    return quality_report(c, options);
+    return quality_report_command(c, options);
   }
+  // A malformed scene file fails here, before any device is opened or anything is traced.
+  const BenchScene scene(common, options);
+  if (scene.facts()) std::printf("scene %s\n", describe_scene_file(*scene.facts()).c_str());
+  if (common.pathtraced)
+    return scene.file() ? pathtrace_file_bench_command(common, options, *scene.file(),
+                                                       *scene.facts())
+                        : pathtrace_bench_command(common, options);
   if (options.compare_visibility) {
     CommonOptions c = common;
     if (!options.voxels.empty()) c.voxels = options.voxels.front();
-    return compare_visibility(c, options);
+    return compare_visibility(c, options, scene);
   }
 
   MatrixPlan plan;
@@ -383,7 +285,8 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
 
   BenchMatrix matrix;
   matrix.command = options.command_line;
-  matrix.scene = options.scene;
+  matrix.scene = scene.kind();
+  matrix.file = scene.facts();
   matrix.seed = options.sim.seed;
   matrix.bounces = common.bounces;
   matrix.frames = options.frames;
@@ -393,14 +296,18 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
 
   std::printf("bench: %zu device(s) x %zu size(s) x %zu voxel resolution(s), scene %s, "
               "shadows %s, %u warm-up + %u measured frames each\n",
-              plan.devices.size(), plan.sizes.size(), plan.voxels.size(), options.scene.c_str(),
+              plan.devices.size(), plan.sizes.size(), plan.voxels.size(), matrix.scene.c_str(),
               render::shadow_mode_name(common.shadows), options.warmup, options.frames);
   std::fflush(stdout);
   MeasureRun measure_cell = [&](const rp::cl::DeviceInfo& d, uint32_t w, uint32_t h,
-                                uint32_t v) { return measure_run(common, options, d, w, h, v); };
+                                uint32_t v) {
+    return measure_run(common, options, scene, d, w, h, v);
+  };
   FinishDevice finish;
 #if RP_BENCH_EFFICIENCY
-  finish = [&](const rp::cl::DeviceInfo& d, DeviceResult& r) { add_efficiency(common, d, r); };
+  finish = [&](const rp::cl::DeviceInfo& d, DeviceResult& r) {
+    add_efficiency(common, scene, d, r);
+  };
 #endif
   run_matrix(plan, measure_cell, finish, matrix, stderr);
   for (DeviceResult& d : matrix.devices)

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -101,9 +102,20 @@ struct DeviceResult {
   std::string label() const;  // "[0] pthread-... (CPU)"
 };
 
+// What the bench records of a scene file (bench --scene FILE; bench/src/bench_scene.h).
+struct SceneFileFacts {
+  std::string path;          // as given on the command line
+  std::string content_hash;  // 16 hex digits: the file's bytes and those of the files it names
+  uint32_t triangles = 0;    // drawn by the file's instances (a mesh drawn twice counts twice)
+  uint32_t meshes = 0, instances = 0, materials = 0, textures = 0;
+  uint32_t lights = 0;       // punctual lights (KHR_lights_punctual), the demo's lamp not counted
+  bool lamp = false;         // the file carries the demo's lamp (written by `rolypoly export`)
+};
+
 struct BenchMatrix {
   std::string command;     // the command line that produced it (informational)
-  std::string scene;       // "default" or "busy"
+  std::string scene;       // "default", "busy" or "file" (then `file` says which)
+  std::optional<SceneFileFacts> file;
   uint64_t seed = 1;
   // --bounces of the real-time modes (1 = single bounce); files from before issue 14 have no
   // field and read as 1, the only count the renderer had then.

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/src/scene_file_facts.h"
+
 namespace rp::app {
 namespace {
 
@@ -173,6 +175,7 @@ std::string matrix_json(const BenchMatrix& m) {
   j["schema"] = kBenchMatrixSchema;
   j["command"] = m.command;
   j["scene"] = m.scene;
+  if (m.file) j["scene_file"] = scene_file_json<Json>(*m.file);
   j["seed"] = m.seed;
   j["bounces"] = m.bounces;
   j["frames"] = m.frames;
@@ -228,6 +231,7 @@ BenchMatrix parse_matrix_json(const std::string& text) {
   BenchMatrix m;
   m.command = j.at("command");
   m.scene = j.at("scene");
+  if (j.contains("scene_file")) m.file = parse_scene_file_json(j.at("scene_file"));
   m.seed = j.at("seed");
   m.bounces = j.value("bounces", 1u);
   m.frames = j.at("frames");
@@ -339,7 +343,9 @@ std::string matrix_table(const BenchMatrix& m) {
 
 std::string matrix_markdown(const BenchMatrix& m) {
   std::vector<std::string> names = all_pass_names(m);
-  std::string out = "| device | size | voxels |";
+  std::string out;
+  if (m.file) out = str_cat("Scene: ", describe_scene_file(*m.file), "\n\n");
+  out += "| device | size | voxels |";
   std::string rule = "|---|---|---|";
   for (const std::string& n : names) {
     out += str_cat(" ", n, " |");

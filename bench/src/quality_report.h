@@ -49,4 +49,10 @@ double mean_abs_diff_rgb8(const std::vector<uint8_t>& a, const std::vector<uint8
 QualityReport measure_quality(const CommonOptions& common, uint32_t width, uint32_t height,
                               const QualityOptions& options = {});
 
+struct BenchOptions;
+// `bench --quality-report`: measure_quality at the bench size, the figures and the pass/fail of
+// each criterion printed (and written as JSON with --json). Exit code 0 when all are met, 3
+// when not.
+int quality_report_command(const CommonOptions& common, const BenchOptions& options);
+
 }  // namespace rp::app

@@ -1,0 +1,259 @@
+// `bench --accuracy --scene FILE` (see accuracy_file.h).
+#include "bench/src/accuracy_file.h"
+
+#include <cstdio>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "app/host_tone_map.h"
+#include "app/png_output.h"
+#include "app/truth_cache.h"
+#include "bench/src/accuracy_materials.h"
+#include "bench/src/accuracy_metrics.h"
+#include "bench/src/accuracy_render.h"
+#include "bench/src/scene_file_facts.h"
+#include "render/renderer.h"
+
+namespace rp::app {
+namespace {
+
+// The regions' labels, built once: the whole image, then each material the camera sees.
+struct Regions {
+  MaterialPixels pixels;
+  std::vector<std::string> names;     // per material (material_region_names)
+  std::vector<uint16_t> image;        // material_labels(kNoMaterial)
+  std::vector<uint32_t> seen;         // materials with pixels, ascending
+  std::vector<std::vector<uint16_t>> labels;  // per entry of `seen`
+};
+
+Regions make_regions(truth::PathTracer& tracer, const scene::FrameScene& frame,
+                     const scene::SceneAssets& assets, uint32_t w, uint32_t h) {
+  Regions r;
+  r.pixels = classify_materials(tracer.primary_hits(frame, w, h), w, h, assets.materials.size());
+  r.names = material_region_names(assets.materials);
+  r.image = material_labels(r.pixels, kNoMaterial);
+  for (uint32_t m = 0; m < r.pixels.counts.size(); ++m)
+    if (r.pixels.counts[m] > 0) {
+      r.seen.push_back(m);
+      r.labels.push_back(material_labels(r.pixels, m));
+    }
+  return r;
+}
+
+bool coated(const scene::Material& m) { return m.specular.metal || m.specular.f0 > 0.0f; }
+
+nlohmann::json no_pixels() { return {{"rel_l1", nullptr}, {"bias", nullptr}, {"pixels", 0}}; }
+
+// One mode against one truth, over the image and every material (null figures for a material
+// the camera does not see).
+nlohmann::json compare(const Images& rp, const Images& truth, const Regions& regions,
+                       const scene::SceneAssets& assets) {
+  nlohmann::json j;
+  const std::string image = region_name(Region::kImage);
+  j["final_psnr_db"] = tone_mapped_psnr(rp.combined, truth.combined);
+  j["albedo_psnr_db"] = srgb_psnr(rp.albedo, truth.albedo, regions.pixels.covered);
+  j["direct"] = stats_json(compare_region(rp.direct, truth.direct, regions.image, Region::kImage));
+  j["direct_psnr_db"][image] =
+      masked_tone_mapped_psnr(rp.direct, truth.direct, regions.pixels.covered);
+  j["indirect"][image] =
+      stats_json(compare_region(rp.indirect, truth.indirect, regions.image, Region::kImage));
+  j["specular"][image] =
+      stats_json(compare_region(rp.specular, truth.specular, regions.image, Region::kImage));
+  const LeakStats leaks = leaks_and_misses(rp.indirect, truth.indirect, regions.image);
+  j["leaks"] = {{"leak_pixels", leaks.leak_pixels},
+                {"missing_pixels", leaks.missing_pixels},
+                {"covered_pixels", leaks.covered_pixels},
+                {"epsilon", leaks.epsilon}};
+  for (size_t m = 0; m < assets.materials.size(); ++m) {
+    const std::string& name = regions.names[m];
+    j["indirect"][name] = no_pixels();
+    j["direct_psnr_db"][name] = nullptr;
+    if (coated(assets.materials[m])) j["specular"][name] = no_pixels();
+  }
+  for (size_t k = 0; k < regions.seen.size(); ++k) {
+    const uint32_t m = regions.seen[k];
+    const std::string& name = regions.names[m];
+    const std::vector<uint16_t>& labels = regions.labels[k];
+    j["indirect"][name] =
+        stats_json(compare_region(rp.indirect, truth.indirect, labels, kMaterialRegion));
+    j["direct_psnr_db"][name] = masked_tone_mapped_psnr(rp.direct, truth.direct,
+                                                        material_mask(regions.pixels, m));
+    if (coated(assets.materials[m]))
+      j["specular"][name] =
+          stats_json(compare_region(rp.specular, truth.specular, labels, kMaterialRegion));
+    const LeakStats l = leaks_and_misses(rp.indirect, truth.indirect, labels, kMaterialRegion);
+    j["leaks"]["regions"][name] = {{"leak_pixels", l.leak_pixels},
+                                   {"missing_pixels", l.missing_pixels},
+                                   {"covered_pixels", l.covered_pixels}};
+  }
+  return j;
+}
+
+// The demo report's three PNGs in its layout; returns the "images" object.
+nlohmann::json write_pictures(const std::filesystem::path& out, uint32_t w, uint32_t h,
+                              const std::vector<Images>& truths,
+                              const std::vector<Images>& rendered, const Regions& regions,
+                              const std::vector<uint8_t>& taa_rgba, uint32_t many) {
+  const Images& truth_one = truths[0];
+  const Images& truth_many = truths[1];
+  const Images& fast_many = rendered[0];
+  const Images& ref_many = rendered[1];
+  const Images& fast_one = rendered[2];
+  const Images& ref_one = rendered[3];
+  std::vector<std::vector<uint8_t>> tiles;
+  const Images* order[] = {&truth_one, &fast_one, &ref_one, &truth_many, &fast_many, &ref_many};
+  for (int row = 0; row < 2; ++row)
+    for (const Images* img : order) {
+      tiles.emplace_back();
+      encode_rgba8(row == 0 ? img->combined : img->indirect, true, tiles.back());
+    }
+  const std::filesystem::path side = out / "accuracy_side_by_side.png";
+  write_png_atomic(side, int(w * 6), int(h * 2), tile_rgba8(tiles, w, h, 6));
+  tiles.clear();
+  for (const auto& [mode, t] : {std::pair{&fast_one, &truth_one}, std::pair{&ref_one, &truth_one},
+                                std::pair{&fast_many, &truth_many},
+                                std::pair{&ref_many, &truth_many}}) {
+    tiles.emplace_back();
+    const double eps = leaks_and_misses(mode->indirect, t->indirect, regions.image).epsilon;
+    signed_heat_map(mode->indirect, t->indirect, regions.image, eps, tiles.back());
+  }
+  const std::filesystem::path heat = out / "accuracy_indirect_heat.png";
+  write_png_atomic(heat, int(w * 2), int(h * 2), tile_rgba8(tiles, w, h, 2));
+  tiles.assign(1, {});
+  encode_rgba8(truth_many.combined, true, tiles.back());
+  tiles.push_back(taa_rgba);
+  const std::filesystem::path taa_png = out / "accuracy_final_taa.png";
+  write_png_atomic(taa_png, int(w * 2), int(h), tile_rgba8(tiles, w, h, 2));
+  const std::string n = std::to_string(many);
+  return {
+      {"side_by_side", side.string()},
+      {"side_by_side_layout",
+       "columns: truth (1 bounce), fast (1), reference (1), truth (" + n + " bounces), fast (" +
+           n + "), reference (" + n + "); rows: final (combined radiance), indirect component; "
+           "tone mapped x/(1+x), sRGB"},
+      {"heat_map", heat.string()},
+      {"heat_map_layout",
+       "rows: 1 bounce against the 1-bounce truth, " + n + " against the " + n +
+           "-bounce truth; columns: fast, reference; (rp - truth) / (truth + eps) of indirect "
+           "luminance: blue -1 (too dark), white 0, red +1 (too bright)"},
+      {"final_taa", taa_png.string()},
+      {"final_taa_layout", "truth (" + n + " bounces, tone mapped x/(1+x), sRGB), the fast "
+                           "mode's finished frame with TAA (" + n + " bounces, no bloom or "
+                           "motion blur)"}};
+}
+
+}  // namespace
+
+AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScene& file,
+                                     const SceneFileFacts& facts, const AccuracyOptions& options) {
+  if (options.require_wall_hue || options.min_direct_psnr_floor || options.max_penumbra_error ||
+      options.marbles)
+    throw std::invalid_argument(
+        "the side-wall hue, the direct-light section's thresholds and the marble section "
+        "measure the demo's box, not a scene file");
+  const uint32_t w = options.width, h = options.height;
+  const scene::SceneAssets& assets = file.loaded.assets;
+  // The still frame, numbered as the renders count (TAA's jitter and the fast mode's
+  // interleaving rotate with frame_index); the camera never moves, so no velocity.
+  const FrameFn frame_fn = [&file](const scene::SceneAssets&, uint32_t index) {
+    FileFrameSource source(file);
+    scene::FrameScene frame = source.next();
+    frame.frame_index = index;
+    return frame;
+  };
+  const scene::FrameScene frame = frame_fn(assets, 0);
+  const std::filesystem::path cache =
+      (options.cache_dir.empty() ? default_truth_cache_dir() : options.cache_dir) /
+      ("scene-" + facts.content_hash);
+  ensure_directory(options.out_dir);  // before the long renders
+
+  truth::PathTracer tracer(assets);
+  const Regions regions = make_regions(tracer, frame, assets, w, h);
+  nlohmann::json j;
+  j["schema"] = "rolypoly-accuracy-file/1";
+  j["command"] = options.command_line;
+  j["gi_volume"] = render::gi_volume_name(common.gi_volume);
+  j["scene"] = scene_file_json<nlohmann::json>(facts);
+  j["width"] = w;
+  j["height"] = h;
+  j["many_bounces"] = options.many_bounces;
+  j["truth_spp"] = options.spp;
+  j["truth_seed"] = options.seed;
+  uint64_t covered = 0;
+  for (uint8_t c : regions.pixels.covered) covered += c;
+  j["region_pixels"][region_name(Region::kImage)] = covered;
+  j["materials"] = nlohmann::json::array();
+  for (size_t m = 0; m < assets.materials.size(); ++m) {
+    const scene::Material& mat = assets.materials[m];
+    j["region_pixels"][regions.names[m]] = regions.pixels.counts[m];
+    j["materials"].push_back({{"index", m},
+                              {"name", mat.name},
+                              {"region", regions.names[m]},
+                              {"pixels", regions.pixels.counts[m]},
+                              {"emissive", mat.emission != glm::vec3(0.0f)},
+                              {"coated", coated(mat)}});
+  }
+
+  // Truths at one gather and at many: truths[0] "one", truths[1] "many".
+  std::vector<Images> truths;
+  for (uint32_t bounces : {1u, options.many_bounces}) {
+    truth::PathTraceSettings s;
+    s.width = w;
+    s.height = h;
+    s.spp = options.spp;
+    s.bounces = bounces;
+    s.seed = options.seed;
+    const CachedTruth t = cached_truth_with_progress(
+        tracer, assets, frame, s, cache,
+        "path tracing (" + std::to_string(bounces) + " bounce" + (bounces == 1 ? "" : "s") + ")");
+    const std::string key = bounces == 1 ? "one" : "many";
+    j["truth"][key] = {{"bounces", bounces},
+                       {"spp", s.spp},
+                       {"seed", s.seed},
+                       {"seconds", t.image.seconds},
+                       {"rays_per_second", t.image.rays_per_second()},
+                       {"from_cache", t.from_cache},
+                       {"file", t.file.string()}};
+    truths.push_back(from_truth("truth_" + key, t.image));
+  }
+  j["truth"]["one"]["indirect_vs_many"] = stats_json(
+      compare_region(truths[0].indirect, truths[1].indirect, regions.image, Region::kImage));
+
+  std::vector<Images> rendered;
+  std::vector<uint8_t> rgba;
+  for (const AccuracyConfig& c : kAccuracyConfigs) {
+    const uint32_t bounces = c.many ? options.many_bounces : 1u;
+    const uint32_t frames = c.quality == render::Quality::kFast ? options.converge_frames
+                            : c.many                            ? options.reference_many_frames
+                                                                : 1u;
+    rendered.push_back(render_mode(common, c.key, c.quality, bounces, false, w, h, frames, rgba,
+                                   frame_fn, &assets));
+    nlohmann::json m = compare(rendered.back(), truths[c.many ? 1 : 0], regions, assets);
+    m["quality"] = c.quality == render::Quality::kFast ? "fast" : "reference";
+    m["bounces"] = bounces;
+    m["frames"] = frames;
+    m["taa"] = false;
+    m["truth"] = c.many ? "many" : "one";
+    j["configurations"][c.key] = m;
+  }
+  std::vector<uint8_t> taa_rgba;
+  render_mode(common, kTaaConfigKey, render::Quality::kFast, options.many_bounces, true, w, h,
+              options.converge_frames, taa_rgba, frame_fn, &assets);
+  j["configurations"][kTaaConfigKey] = {
+      {"quality", "fast"},  {"bounces", options.many_bounces},
+      {"frames", options.converge_frames}, {"taa", true},
+      {"bloom", false},     {"motion_blur", false},
+      {"truth", "many"},    {"final_psnr_db", rgba8_psnr(taa_rgba, truths[1].combined)}};
+  j["images"] = write_pictures(options.out_dir, w, h, truths, rendered, regions, taa_rgba,
+                               options.many_bounces);
+
+  AccuracyResult result;
+  const std::string checks = check_file_thresholds(options, j, result.passed);
+  result.table = file_accuracy_table(j) + checks;
+  result.json = j;
+  if (!options.json_path.empty()) write_text_atomic(options.json_path, j.dump(2) + "\n");
+  return result;
+}
+
+}  // namespace rp::app
