@@ -69,7 +69,8 @@ struct BenchOptions {
   std::string devices;           // --devices all|LIST ("" = the one --device, or the default)
   std::vector<uint32_t> sizes;   // --sizes: square sizes (empty = `size`)
   std::vector<uint32_t> voxels;  // --voxels: resolutions (empty = the renderer's default)
-  std::string scene = "default";  // --scene default|busy (busy: see bench_command.cpp)
+  // --scene default|demo|busy|FILE (busy: bench/src/bench_scene.h; FILE: a glTF scene)
+  std::string scene = "default";
   std::string chart;     // --chart FILE.svg ("" = none)
   std::string markdown;  // --markdown FILE.md: the summary table ("" = none)
   std::string command_line;  // how the bench was invoked (recorded in the JSON)
