@@ -150,8 +150,6 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
 
   std::vector<gpu::Material> mats;
   for (const scene::Material& m : assets.materials) {
-    if (m.texture >= static_cast<int>(assets.textures.size()))
-      throw rp::cl::Error("material '" + m.name + "' refers to a texture that does not exist");
     gpu::Material g{};
     const float code = shading::gloss_code(m.specular);
     // w: the voxelizer's base weight (shading::voxel_base_weight)
