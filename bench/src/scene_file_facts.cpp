@@ -10,25 +10,12 @@
 #include <stdexcept>
 #include <vector>
 
+#include "io/fnv1a.h"
+
 namespace rp::app {
 namespace {
 
-class Fnv1a {
- public:
-  void bytes(const void* data, size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) h_ = (h_ ^ p[i]) * 0x100000001B3ull;
-  }
-  void text(const std::string& s) {
-    const uint64_t n = s.size();
-    bytes(&n, sizeof n);  // the length first: "ab" + "c" and "a" + "bc" differ
-    bytes(s.data(), s.size());
-  }
-  uint64_t get() const { return h_; }
-
- private:
-  uint64_t h_ = 0xCBF29CE484222325ull;
-};
+using io::Fnv1a;
 
 bool read_bytes(const std::filesystem::path& path, std::vector<char>& out) {
   std::error_code ec;

@@ -9,32 +9,13 @@
 #include <nlohmann/json.hpp>
 
 #include "app/png_output.h"
+#include "io/fnv1a.h"
 #include "truth/exr_io.h"
 
 namespace rp::app {
 namespace {
 
-class Fnv1a {
- public:
-  void bytes(const void* data, size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < n; ++i) h_ = (h_ ^ p[i]) * 0x100000001B3ull;
-  }
-  template <class T>
-  void value(const T& v) {
-    bytes(&v, sizeof v);
-  }
-  void vec(glm::vec3 v) { bytes(&v.x, 3 * sizeof(float)); }
-  void mat(const glm::mat4& m) { bytes(&m[0][0], 16 * sizeof(float)); }
-  void text(const std::string& s) {
-    value(s.size());
-    bytes(s.data(), s.size());
-  }
-  uint64_t get() const { return h_; }
-
- private:
-  uint64_t h_ = 0xCBF29CE484222325ull;
-};
+using io::Fnv1a;
 
 const char* const kLayers[] = {"", "direct", "indirect", "emission", "albedo", "specular"};
 constexpr int kLayerCount = 6;  // an entry without the specular layer (before issue 16 part 2)
