@@ -13,7 +13,6 @@
 #include "bench/src/bench_report.h"
 #include "bench/src/bench_scene.h"
 #include "bench/src/pass_stats.h"
-#include "bench/src/pathtrace_file_bench.h"
 #include "bench/src/quality_report.h"
 #include "bench/src/scene_file_facts.h"
 #include "io/output_path.h"
@@ -262,10 +261,11 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
   // A malformed scene file fails here, before any device is opened or anything is traced.
   const BenchScene scene(common, options);
   if (scene.facts()) std::printf("scene %s\n", describe_scene_file(*scene.facts()).c_str());
-  if (common.pathtraced)
-    return scene.file() ? pathtrace_file_bench_command(common, options, *scene.file(),
-                                                       *scene.facts())
-                        : pathtrace_bench_command(common, options);
+  if (common.pathtraced) {
+    if (!scene.file()) return pathtrace_bench_command(common, options);
+    const auto facts = scene_file_json<nlohmann::ordered_json>(*scene.facts());
+    return pathtrace_bench_command(common, options, scene.file(), &facts);
+  }
   if (options.compare_visibility) {
     CommonOptions c = common;
     if (!options.voxels.empty()) c.voxels = options.voxels.front();

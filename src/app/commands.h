@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "app/render_session.h"
 
 namespace rp::app {
@@ -99,8 +101,12 @@ int bench_command(const CommonOptions& common, const BenchOptions& options);
 // interrupted.
 int accuracy_command(const CommonOptions& common, const BenchOptions& options);
 // bench --quality pathtraced: seconds and Mrays/s per path-traced frame, optional JSON (schema
-// "rolypoly-pathtrace-bench/1").
-int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& options);
+// "rolypoly-pathtrace-bench/1"). file: a loaded scene file instead of the demo, with
+// scene_file: its facts for the JSON ("scene_file").
+struct FileScene;
+int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& options,
+                           const FileScene* file = nullptr,
+                           const nlohmann::ordered_json* scene_file = nullptr);
 
 // Writes the demo's first frame (room, lamp, tumblers, marbles and fireball when asked) with
 // its materials and textures embedded and its lamp as a light (scene/gltf_export.h).

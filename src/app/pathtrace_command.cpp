@@ -148,11 +148,19 @@ int pathtrace_render_command(const CommonOptions& common, const RenderOptions& o
   return 0;
 }
 
-int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& options) {
-  SimulationFrameSource source(make_simulation_options(options.sim, common.effects));
+int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& options,
+                            const FileScene* file, const nlohmann::ordered_json* scene_file) {
+  std::unique_ptr<SimulationFrameSource> simulation;
+  std::unique_ptr<FileFrameSource> file_source;
+  if (file)
+    file_source = std::make_unique<FileFrameSource>(*file);
+  else
+    simulation = std::make_unique<SimulationFrameSource>(
+        make_simulation_options(options.sim, common.effects));
+  auto next_frame = [&] { return simulation ? simulation->next_frame() : file_source->next(); };
   // --json was checked by bench_command before this (the long renders).
   const uint32_t w = options.size.width, h = options.size.height;
-  const scene::SceneAssets assets = load_assets(common);
+  const scene::SceneAssets assets = file ? file->loaded.assets : load_assets(common);
   rp::truth::PathTracer tracer(assets);
   const rp::truth::PathTraceSettings settings = settings_for(common, w, h, options.sim.seed);
   const uint32_t total = options.warmup + options.frames;
@@ -171,7 +179,7 @@ int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& opt
   std::vector<uint64_t> rays;
   bar.update(0);
   for (; frame < total; ++frame) {
-    const rp::truth::PathTracedImage image = tracer.render(source.next_frame(), settings, progress);
+    const rp::truth::PathTracedImage image = tracer.render(next_frame(), settings, progress);
     seconds.push_back(image.seconds);
     rays.push_back(image.rays);
     mrays.push_back(mrays_per_second(image.rays, image.seconds));
@@ -193,6 +201,10 @@ int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& opt
     nlohmann::ordered_json j;
     j["schema"] = kPathtraceBenchSchema;
     j["command"] = options.command_line;
+    if (scene_file) {
+      j["scene"] = "file";
+      j["scene_file"] = *scene_file;
+    }
     j["size"] = {w, h};
     j["spp"] = settings.spp;
     j["bounces"] = settings.bounces;
