@@ -18,6 +18,7 @@
 //   --bounces in every mode, 1..1000 in the real-time modes and 0..1000 path traced; bench
 //   --accuracy alone on one device and size at its own bounce counts (--spp its truth's
 //   samples), its --out, --truth-cache and thresholds (finite, 0..1000) only with it.
+#include <cctype>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -170,6 +171,15 @@ void check_command(const ParsedCommand& p, const std::vector<std::string>& words
               "run size out of range");
       check_view(c.view);
       break;
+    case ParsedCommand::Kind::kExport: {
+      // a .glb or .gltf name, the demo only
+      const std::string& name = p.exporting.file;
+      std::string tail = name.size() >= 5 ? name.substr(name.size() - 5) : name;
+      for (char& ch : tail) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+      require(c.scene == "demo" && (tail == ".gltf" || tail.substr(1) == ".glb"),
+              "export of something other than the demo, or to a name not .glb / .gltf");
+      break;
+    }
     case ParsedCommand::Kind::kBench: {
       const rp::app::BenchOptions& b = p.bench;
       require(valid_size(b.size.width) && valid_size(b.size.height), "bench size out of range");
@@ -177,20 +187,21 @@ void check_command(const ParsedCommand& p, const std::vector<std::string>& words
       for (uint32_t v : b.voxels) require(valid_voxels(v), "bench --voxels entry not 32/64/128");
       require(b.frames >= 1 && b.frames <= 1000000, "bench --frames out of range");
       require(b.warmup <= 1000000, "bench --warmup out of range");
-      require(b.scene == "default" || b.scene == "busy", "bench --scene unknown");
+      // default, busy or a scene file's path ("demo" reads as default)
+      require(!b.scene.empty() && b.scene != "demo", "bench --scene empty or not resolved");
       require(b.devices.empty() || c.device.empty(), "bench took both --devices and --device");
       if (b.compare_visibility)
         require(b.devices.empty() && b.sizes.empty() && b.voxels.size() <= 1,
                 "--compare-visibility with several devices, sizes or voxel resolutions");
       if (c.pathtraced)
         require(b.devices.empty() && b.sizes.empty() && b.voxels.empty() &&
-                    !b.compare_visibility && !b.quality_report && b.scene == "default" &&
+                    !b.compare_visibility && !b.quality_report && b.scene != "busy" &&
                     b.chart.empty() && b.markdown.empty(),
                 "bench --quality pathtraced with matrix, comparison or report options");
       if (b.accuracy) {
         require(b.devices.empty() && b.sizes.empty() && b.voxels.size() <= 1 &&
                     !b.compare_visibility && !b.quality_report && !c.pathtraced &&
-                    b.scene == "default" && b.chart.empty() && b.markdown.empty(),
+                    b.scene != "busy" && b.chart.empty() && b.markdown.empty(),
                 "bench --accuracy with matrix, comparison, report or path-tracer options");
         require(b.accuracy_spp >= 1 && b.accuracy_spp <= 1000000, "--accuracy --spp out of range");
       } else {
