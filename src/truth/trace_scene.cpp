@@ -37,73 +37,15 @@ RTCRay make_ray(glm::vec3 org, glm::vec3 dir, float t_max) {
 
 }  // namespace
 
-namespace {
-
-// Texel coordinate i (any integer) folded into [0, n) by `mode`.
-int fold(int i, int n, scene::TextureWrap mode) {
-  switch (mode) {
-    case scene::TextureWrap::kClampToEdge: return std::clamp(i, 0, n - 1);
-    case scene::TextureWrap::kMirroredRepeat: {
-      int k = i % (2 * n);
-      if (k < 0) k += 2 * n;
-      return k < n ? k : 2 * n - 1 - k;
-    }
-    case scene::TextureWrap::kRepeat: break;
-  }
-  int k = i % n;
-  return k < 0 ? k + n : k;
-}
-
-}  // namespace
-
-LinearTexture::Footprint LinearTexture::footprint(glm::vec2 uv) const {
-  const float w = float(width), h = float(height);
-  const float x = uv.x * w - 0.5f, y = (1.0f - uv.y) * h - 0.5f;
-  float x0f = std::floor(x), y0f = std::floor(y);
-  const float fx = x - x0f, fy = y - y0f;
-  int x0, y0, x1, y1;
-  if (wrap_u == scene::TextureWrap::kRepeat) {
-    x0f -= std::floor(x0f / w) * w;  // wrap in float (exact for integers below 2^24)
-    x0 = int(x0f);
-    if (x0 >= width) x0 -= width;
-    if (x0 < 0) x0 += width;
-    x1 = x0 + 1 == width ? 0 : x0 + 1;
-  } else {
-    const float xc = std::clamp(x0f, -4.0f * w, 4.0f * w);  // far outside: any fold is the same
-    x0 = fold(int(xc), width, wrap_u);
-    x1 = fold(int(xc) + 1, width, wrap_u);
-  }
-  if (wrap_v == scene::TextureWrap::kRepeat) {
-    y0f -= std::floor(y0f / h) * h;
-    y0 = int(y0f);
-    if (y0 >= height) y0 -= height;
-    if (y0 < 0) y0 += height;
-    y1 = y0 + 1 == height ? 0 : y0 + 1;
-  } else {
-    const float yc = std::clamp(y0f, -4.0f * h, 4.0f * h);
-    y0 = fold(int(yc), height, wrap_v);
-    y1 = fold(int(yc) + 1, height, wrap_v);
-  }
-  const size_t row0 = size_t(y0) * size_t(width), row1 = size_t(y1) * size_t(width);
-  return {row0 + size_t(x0), row0 + size_t(x1), row1 + size_t(x0), row1 + size_t(x1), fx, fy};
-}
-
 glm::vec3 LinearTexture::sample(glm::vec2 uv) const {
-  const Footprint f = footprint(uv);
+  const scene::BilinearTaps f = scene::bilinear_taps(width, height, wrap_u, wrap_v, uv);
   auto texel = [&](size_t i) { return glm::vec3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]); };
   return glm::mix(glm::mix(texel(f.i00), texel(f.i10), f.fx),
                   glm::mix(texel(f.i01), texel(f.i11), f.fx), f.fy);
 }
 
-float LinearTexture::sample_alpha(glm::vec2 uv) const {
-  if (alpha.empty()) return 1.0f;
-  const Footprint f = footprint(uv);
-  const float top = alpha[f.i00] + (alpha[f.i10] - alpha[f.i00]) * f.fx;
-  const float bottom = alpha[f.i01] + (alpha[f.i11] - alpha[f.i01]) * f.fx;
-  return top + (bottom - top) * f.fy;
-}
-
-TraceAssets::TraceAssets(const scene::SceneAssets& assets) : materials_(assets.materials) {
+TraceAssets::TraceAssets(const scene::SceneAssets& assets)
+    : materials_(assets.materials), masks_(assets) {
   meshes_.reserve(assets.meshes.size());  // the alpha filter's user data points into it
   device_ = rtcNewDevice(nullptr);
   if (device_ == nullptr)
@@ -123,13 +65,6 @@ TraceAssets::TraceAssets(const scene::SceneAssets& assets) : materials_(assets.m
       for (size_t c = 0; c < 3; ++c)
         lt.rgb[3 * i + c] =
             t.srgb ? srgb8_to_linear(t.rgba[4 * i + c]) : float(t.rgba[4 * i + c]) / 255.0f;
-    // Alpha only where some texel is not opaque (the demo's textures are opaque).
-    bool opaque = true;
-    for (size_t i = 0; i < texels && opaque; ++i) opaque = t.rgba[4 * i + 3] == 255;
-    if (!opaque) {
-      lt.alpha.resize(texels);
-      for (size_t i = 0; i < texels; ++i) lt.alpha[i] = float(t.rgba[4 * i + 3]) / 255.0f;
-    }
     textures_.push_back(std::move(lt));
   }
   for (const scene::Material& m : materials_)
@@ -169,8 +104,7 @@ TraceAssets::TraceAssets(const scene::SceneAssets& assets) : materials_(assets.m
                                std::to_string(nv) + " vertices");
     m.tangents = mesh.tangents;
     bool masked = false;
-    for (uint32_t material : mesh.materials)
-      masked = masked || materials_[material].alpha_mode == scene::AlphaMode::kMask;
+    for (uint32_t material : mesh.materials) masked = masked || masks_.masked(material);
     if (!mesh.triangles.empty()) {
       m.bvh = rtcNewScene(device_);
       rtcSetSceneBuildQuality(m.bvh, RTC_BUILD_QUALITY_HIGH);
@@ -197,14 +131,6 @@ TraceAssets::TraceAssets(const scene::SceneAssets& assets) : materials_(assets.m
   }
 }
 
-bool TraceAssets::solid(uint32_t material, glm::vec2 uv) const {
-  const scene::Material& m = materials_[material];
-  if (m.alpha_mode != scene::AlphaMode::kMask) return true;
-  float alpha = m.opacity;
-  if (m.texture >= 0) alpha *= textures_[size_t(m.texture)].sample_alpha(uv);
-  return alpha >= m.alpha_cutoff;
-}
-
 glm::vec2 TraceMesh::uv_at(uint32_t prim, float b1, float b2) const {
   const uint32_t i0 = indices[3 * prim], i1 = indices[3 * prim + 1], i2 = indices[3 * prim + 2];
   return (1.0f - b1 - b2) * uvs[i0] + b1 * uvs[i1] + b2 * uvs[i2];
@@ -217,7 +143,7 @@ void TraceAssets::alpha_filter(const RTCFilterFunctionNArguments* args) {
     const uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
     const glm::vec2 uv =
         mesh->uv_at(prim, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
-    if (!mesh->owner->solid(mesh->materials[prim], uv)) args->valid[i] = 0;
+    if (!mesh->owner->masks().solid(mesh->materials[prim], uv)) args->valid[i] = 0;
   }
 }
 

@@ -17,6 +17,7 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/alpha_mask.h"
 #include "scene/frame_scene.h"
 
 namespace rp::truth {
@@ -36,24 +37,15 @@ struct TraceMesh {
 };
 
 // A texture decoded to linear values (rows top to bottom): rgb, 3 floats per texel (colour
-// textures sRGB-decoded, data textures byte / 255), and alpha, 1 float per texel (byte / 255).
+// textures sRGB-decoded, data textures byte / 255).
 struct LinearTexture {
   int width = 0, height = 0;
   std::vector<float> rgb;
-  std::vector<float> alpha;
   scene::TextureWrap wrap_u = scene::TextureWrap::kRepeat;
   scene::TextureWrap wrap_v = scene::TextureWrap::kRepeat;
   // Bilinear, texel centres at +0.5, v up, folded by the wrap modes (repeat: the arithmetic of
   // kernels/common/span_texture.h).
   glm::vec3 sample(glm::vec2 uv) const;
-  float sample_alpha(glm::vec2 uv) const;
-
- private:
-  struct Footprint {
-    size_t i00, i10, i01, i11;  // texel indices
-    float fx, fy;
-  };
-  Footprint footprint(glm::vec2 uv) const;
 };
 
 // A surface point found by a ray.
@@ -80,8 +72,8 @@ class TraceAssets {
   const std::vector<TraceMesh>& meshes() const { return meshes_; }
   const std::vector<scene::Material>& materials() const { return materials_; }
   const std::vector<LinearTexture>& textures() const { return textures_; }
-  // False where an alpha-masked material's surface point is a hole (frame_scene.h AlphaMode).
-  bool solid(uint32_t material, glm::vec2 uv) const;
+  // Where alpha-masked materials have holes (frame_scene.h AlphaMode).
+  const scene::AlphaMasks& masks() const { return masks_; }
   void check(const char* what) const;  // throws std::runtime_error on a pending Embree error
 
  private:
@@ -92,6 +84,7 @@ class TraceAssets {
   std::vector<TraceMesh> meshes_;
   std::vector<scene::Material> materials_;
   std::vector<LinearTexture> textures_;
+  scene::AlphaMasks masks_;
 };
 
 // One frame's top-level scenes over TraceAssets.
