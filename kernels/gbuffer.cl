@@ -247,6 +247,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
   rp_spani textured = (rp_spani)(0);          /* lanes with a texture: its size and offset */
   rp_spanf tex_w = 1.0f, tex_h = 1.0f;
   rp_spanu tex_offset = (rp_spanu)(0u);
+  rp_spanu tex_wrap = (rp_spanu)(RP_WRAP_REPEAT);
   rp_spanu tex_index = (rp_spanu)(0u);         /* TextureInfo of the lane (mip levels) */
   rp_spani tex_levels = (rp_spani)(1);
   /* Texture-coordinate derivatives per pixel step (texels of level 0; "v" texels = v * height):
@@ -321,6 +322,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
         tex_w = select(tex_w, (rp_spanf)((float)info->width), group);
         tex_h = select(tex_h, (rp_spanf)((float)info->height), group);
         tex_offset = select(tex_offset, (rp_spanu)(info->offset), group);
+        tex_wrap = select(tex_wrap, (rp_spanu)(info->wrap), group);
         tex_index = select(tex_index, (rp_spanu)(texture), group);
         tex_levels = select(tex_levels, (rp_spani)((int)info->levels), group);
         textured |= group;
@@ -396,7 +398,7 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
   rp_spanf lod_used = 0.0f;
   if (any_texture) {
     if (!mipmapped)
-      rp_span_texture_linear(texels, textured, tex_w, tex_h, tex_offset, tu, tv, n, &ar,
+      rp_span_texture_linear(texels, textured, tex_w, tex_h, tex_offset, tex_wrap, tu, tv, n, &ar,
                              &ag, &ab);
     else {
       /* per-lane level picks for stochastic trilinear (pixel and frame hashed) */

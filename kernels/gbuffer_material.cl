@@ -11,7 +11,7 @@
  *     gloss code (shared/brdf_layout.h) rebuilt from them (dielectrics keep the material's f0);
  *   emission: emission.rgb *= the map (sRGB).
  *
- * The maps are sampled bilinearly at level 0 with repeat wrapping, texel centres at +0.5, v
+ * The maps are sampled bilinearly at level 0 with the texture's wrap modes, texel centres at +0.5, v
  * up: the path tracer's arithmetic (truth/trace_scene.h LinearTexture), so both see the same
  * surface; the base colour keeps gbuffer_resolve's filtered lookup. Spheres and background
  * are left as they are. One work-item per pixel.
@@ -19,6 +19,25 @@
 #include "shared/types.h"
 #include "shared/brdf_layout.h"
 #include "common/colour.h"
+
+/* Texel column (or row) c (an integer held in float) and c + 1 folded into [0, n) by wrap
+ * mode `mode` (RP_WRAP_*): the path tracer's rules (common/span_texture.h rp_span_wrap_taps
+ * for spans). */
+inline void gm_fold(float c, int n, uint mode, int* i0, int* i1) {
+  if (mode == RP_WRAP_CLAMP) {
+    const int k = (int)clamp(c, -1.0f, (float)n);
+    *i0 = clamp(k, 0, n - 1);
+    *i1 = clamp(k + 1, 0, n - 1);
+    return;
+  }
+  const int period = mode == RP_WRAP_MIRROR ? 2 * n : n;
+  int m = (int)(c - floor(c / (float)period) * (float)period);
+  if (m >= period) m -= period;
+  if (m < 0) m += period;
+  const int m1 = m + 1 == period ? 0 : m + 1;
+  *i0 = m < n ? m : period - 1 - m;
+  *i1 = m1 < n ? m1 : period - 1 - m1;
+}
 
 /* Bilinear texel of texture `info` at uv: linear bytes / 255 (srgb 0) or sRGB decoded
  * (srgb 1); rgb. */
@@ -28,13 +47,9 @@ inline float3 gm_sample(__global const TextureInfo* info, __global const uint* t
   const float x = uv.x * (float)w - 0.5f, y = (1.0f - uv.y) * (float)h - 0.5f;
   const float fx0 = floor(x), fy0 = floor(y);
   const float fx = x - fx0, fy = y - fy0;
-  int x0 = (int)(fx0 - floor(fx0 / (float)w) * (float)w);
-  int y0 = (int)(fy0 - floor(fy0 / (float)h) * (float)h);
-  if (x0 >= w) x0 -= w;
-  if (y0 >= h) y0 -= h;
-  if (x0 < 0) x0 += w;
-  if (y0 < 0) y0 += h;
-  const int x1 = x0 + 1 == w ? 0 : x0 + 1, y1 = y0 + 1 == h ? 0 : y0 + 1;
+  int x0, x1, y0, y1;
+  gm_fold(fx0, w, RP_WRAP_U(info->wrap), &x0, &x1);
+  gm_fold(fy0, h, RP_WRAP_V(info->wrap), &y0, &y1);
   const uint base = info->offset;
   const uint t[4] = {texels[base + (uint)(y0 * w + x0)], texels[base + (uint)(y0 * w + x1)],
                      texels[base + (uint)(y1 * w + x0)], texels[base + (uint)(y1 * w + x1)]};

@@ -30,6 +30,8 @@
 #include "shared/raster_types.h"
 #include "common/raster.h"
 #include "common/span.h"
+#include "common/span_texture.h"
+#include "common/alpha_mask.h"
 
 #ifndef RP_DEPTH_ONLY
 #define RP_DEPTH_ONLY 0
@@ -231,8 +233,9 @@ inline void rp_lanes_bound_point(RpLanes4 q, rp_spani use, rp_spanf* lo_x, rp_sp
 __kernel __attribute__((reqd_work_group_size(RP_SETUP_GROUP, 1, 1)))
 void visibility_setup(const RasterView view, __global const uint2* draw_items,
                       __global const Instance* instances, __global const Triangle* triangles,
-                      __global const Vertex* vertices, __global RasterTriangle* tris_out,
-                      __global int4* bounds_out, __global RasterEdges* edges_out) {
+                      __global const Vertex* vertices, __global const Material* materials,
+                      __global RasterTriangle* tris_out, __global int4* bounds_out,
+                      __global RasterEdges* edges_out) {
   const uint first = (uint)get_global_id(0) * RP_SPAN;
   if (first >= view.triangle_items) return;
   const int n = (int)min((uint)RP_SPAN, view.triangle_items - first);
@@ -240,7 +243,7 @@ void visibility_setup(const RasterView view, __global const uint2* draw_items,
 
   /* Gather: object positions, instance and primitive per lane (lanes >= n repeat lane 0). */
   float pos[3][3][RP_SPAN];
-  uint inst_of[RP_SPAN], prim_of[RP_SPAN];
+  uint inst_of[RP_SPAN], prim_of[RP_SPAN], tri_of[RP_SPAN], masked_of[RP_SPAN];
   int drawn_of[RP_SPAN];
   for (int i = 0; i < RP_SPAN; ++i) {
     const uint2 d = draw_items[first + (uint)(i < n ? i : 0)];
@@ -255,6 +258,8 @@ void visibility_setup(const RasterView view, __global const uint2* draw_items,
     }
     inst_of[i] = d.x;
     prim_of[i] = d.y - inst->first_triangle;
+    tri_of[i] = d.y;
+    masked_of[i] = RP_MATERIAL_MASKED(materials[t.w]) ? 1u : 0u;
 #if RP_DEPTH_ONLY
     drawn_of[i] = inst->casts_shadow != 0u ? -1 : 0;
 #else
@@ -411,7 +416,7 @@ void visibility_setup(const RasterView view, __global const uint2* draw_items,
     RasterTriangle rt;
     for (int k = 0; k < 3; ++k)
       rt.v[k] = (float4)(vf[k][0][i], vf[k][1][i], vf[k][2][i], vf[k][3][i]);
-    rt.info = (uint4)(inst_of[i], prim_of[i], 0u, 0u);
+    rt.info = (uint4)(inst_of[i], prim_of[i], tri_of[i], masked_of[i]);
     tris_out[first + (uint)i] = rt;
     bounds_out[first + (uint)i] = (int4)(b0[i], b1[i], b2[i], b3[i]);
     RasterEdges e;
@@ -561,8 +566,11 @@ inline RasterItem rp_item_triangle(__global const RasterTriangle* tris,
   it.z = (float4)(t.v[0].z, t.v[1].z, t.v[2].z, 0.0f);
   it.w = (float4)(t.v[0].w, t.v[1].w, t.v[2].w, 0.0f);
   it.box = r.top_left.w ? bounds_in[item] - (int4)(ox, oy, ox, oy) : RP_EMPTY_BOUNDS;
-  it.flags = (int4)((r.top_left.x & 1) | (r.top_left.y & 2) | (r.top_left.z & 4), (int)item,
-                    (int)t.info.x, (int)t.info.y);
+  /* flags.x: the top-left bits; for a masked material also bit 3 and, from bit 4, the global
+   * triangle index the alpha test reads (up to 2^27 triangles) */
+  const int mask_bits = t.info.w != 0u ? (int)(8u | (t.info.z << 4)) : 0;
+  it.flags = (int4)((r.top_left.x & 1) | (r.top_left.y & 2) | (r.top_left.z & 4) | mask_bits,
+                    (int)item, (int)t.info.x, (int)t.info.y);
   return it;
 }
 
@@ -583,8 +591,16 @@ inline RasterItem rp_item_sphere(const RasterView* view, __global const Sphere* 
 #define RP_ITEM_MISSES(box, lx0, ly) \
   ((ly) < (box).y || (ly) > (box).w || (lx0) + (RP_SPAN - 1) < (box).x || (lx0) > (box).z)
 
+/* The scene data the alpha test of masked materials reads (common/alpha_mask.h). */
+#define RP_MASK_PARAMS                                                                         \
+  __global const Triangle *triangles, __global const Vertex *vertices,                       \
+      __global const Material *materials, __global const TextureInfo *textures,              \
+      __global const uint *texels
+#define RP_MASK_ARGS triangles, vertices, materials, textures, texels
+
 /* Tests pixel centres (dx, dy) (tile frame) against triangle item `it`. */
-inline void rp_best_triangle(RasterBest* b, const RasterItem* it, rp_spanf dx, float dy) {
+inline void rp_best_triangle(RasterBest* b, const RasterItem* it, rp_spanf dx, float dy,
+                             RP_MASK_PARAMS) {
   const float4 e0 = it->e0, e1 = it->e1, e2 = it->e2;
   const int4 flags = it->flags;
   const uint key = (uint)flags.y;
@@ -595,6 +611,10 @@ inline void rp_best_triangle(RasterBest* b, const RasterItem* it, rp_spanf dx, f
   rp_spanf z = RP_RASTER_DEPTH(f0, f1, f2, it->z, it->w);
   rp_spani in = ((f0 > 0.0f) | ((f0 == 0.0f) & tl0)) & ((f1 > 0.0f) | ((f1 == 0.0f) & tl1)) &
                 ((f2 > 0.0f) | ((f2 == 0.0f) & tl2)) & (z >= -1.0f);
+  if ((flags.x & 8) != 0 && rp_span_any(in)) { /* a masked material: holes where alpha is low */
+    const rp_spanf sum = (f0 + f1) + f2;
+    in = rp_alpha_solid(RP_MASK_ARGS, (uint)flags.x >> 4, f1 / sum, f2 / sum, in, RP_SPAN);
+  }
 #if RP_DEPTH_ONLY
   b->z_back = select(b->z_back, fmax(b->z_back, fmin(z, 1.0f)), in);
 #endif
@@ -727,7 +747,8 @@ __kernel void visibility_raster(const RasterView view, __global const RasterTria
                                 __global const int4* bounds_in, __global const Sphere* spheres,
                                 __global const uint* tile_start, __global const uint* tile_end,
                                 __global const uint* tile_list, __global float* depth_out,
-                                __global uint* ids_out, __global float* bary_out) {
+                                __global uint* ids_out, __global float* bary_out,
+                                RP_MASK_PARAMS) {
   const uint tile_count = view.tiles_x * view.tiles_y;
   const uint tile = (uint)get_global_id(0);
   if (tile >= tile_count) return;
@@ -763,7 +784,7 @@ __kernel void visibility_raster(const RasterView view, __global const RasterTria
             const float dy = (float)ly + 0.5f;
             for (uint k = 0; k < n; ++k)
               if (!RP_ITEM_MISSES(items[k].box, lx0, ly))
-                rp_best_triangle(&best, &items[k], dx, dy);
+                rp_best_triangle(&best, &items[k], dx, dy, RP_MASK_ARGS);
           } else {
             const RasterRays rays = rp_row_rays(&view, ox + lx0, oy + ly);
             for (uint k = 0; k < n; ++k)
@@ -789,7 +810,7 @@ void visibility_raster(const RasterView view, __global const RasterTriangle* tri
                        __global const int4* bounds_in, __global const Sphere* spheres,
                        __global const uint* tile_start, __global const uint* tile_end,
                        __global const uint* tile_list, __global float* depth_out,
-                       __global uint* ids_out, __global float* bary_out) {
+                       __global uint* ids_out, __global float* bary_out, RP_MASK_PARAMS) {
   __local RasterItem l_items[RP_BATCH];
 
   uint tile_x = get_group_id(0), tile_y = get_group_id(1);
@@ -823,7 +844,7 @@ void visibility_raster(const RasterView view, __global const RasterTriangle* tri
         if (kind)
           rp_best_sphere(&best, &it, &rays);
         else
-          rp_best_triangle(&best, &it, dx, dy);
+          rp_best_triangle(&best, &it, dx, dy, RP_MASK_ARGS);
       }
       barrier(CLK_LOCAL_MEM_FENCE);
     }

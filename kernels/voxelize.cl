@@ -94,6 +94,7 @@
 #include "common/voxel.h"
 #include "common/span.h"
 #include "common/span_texture.h"
+#include "common/alpha_mask.h"
 #include "common/bounce.h"
 #include "common/punctual_light.h"
 
@@ -475,6 +476,9 @@ typedef struct {
   float tex_w1, tex_h1;    /* level l1 = min(l0 + 1, last level) (vx_texture_level) */
   uint tex_offset1;
   float tex_frac;          /* weight of level l1 */
+  uint tex_wrap;           /* RP_WRAP_PACK modes (shared/types.h) */
+  uint tri;                /* global triangle index (the alpha test reads it) */
+  int masked;              /* -1: an alpha-masked material (common/alpha_mask.h), else 0 */
   int valid;               /* an existing triangle of an instance that is voxelized */
 } VxTriangle;
 
@@ -508,6 +512,7 @@ inline void vx_texture_level(__global const TextureInfo* info, uint resolution, 
   r->tex_h1 = (float)max(info->height >> l1, 1u);
   r->tex_offset1 = info->level_offset[l1];
   r->tex_frac = lod - l0f;
+  r->tex_wrap = info->wrap;
 }
 
 /* Triangle number `flat` in the instance-major order of all instances' voxel triangles (each
@@ -534,7 +539,8 @@ inline VxTriangle vx_fetch_triangle(__global const Instance* instances, uint ins
   if (inst_index >= instance_count) return r;
   __global const Instance* inst = instances + inst_index;
   if (inst->voxelize == 0u) return r;
-  const Triangle tri = triangles[inst->voxel_first_triangle + (flat - start)];
+  const uint tri_index = inst->voxel_first_triangle + (flat - start);
+  const Triangle tri = triangles[tri_index];
   __global const Vertex* vtx0 = vertices + tri.x;
   __global const Vertex* vtx1 = vertices + tri.y;
   __global const Vertex* vtx2 = vertices + tri.z;
@@ -557,7 +563,10 @@ inline VxTriangle vx_fetch_triangle(__global const Instance* instances, uint ins
   r.emission = mat->emission.xyz;
   r.tex_w = r.tex_h = r.tex_w1 = r.tex_h1 = r.tex_frac = 0.0f;
   r.tex_offset = r.tex_offset1 = 0u;
+  r.tex_wrap = RP_WRAP_REPEAT;
   if (mat->texture != RP_TEXTURE_NONE) vx_texture_level(textures + mat->texture, resolution, &r);
+  r.tri = tri_index;
+  r.masked = RP_MATERIAL_MASKED(*mat) ? -1 : 0;
   r.valid = -1;
   return r;
 }
@@ -574,7 +583,9 @@ typedef struct {
   VxVec albedo, emission;
   rp_spani textured;
   rp_spanf tex_w, tex_h, tex_w1, tex_h1, tex_frac;
-  rp_spanu tex_offset, tex_offset1;
+  rp_spanu tex_offset, tex_offset1, tex_wrap;
+  rp_spanu tri;             /* global triangle index */
+  rp_spani masked;          /* an alpha-masked material */
   rp_spani origin[3];       /* first voxel of the range per axis */
   VxAxes axes;              /* relative to origin */
   rp_spani dom;             /* dominant axis 0, 1, 2 */
@@ -589,8 +600,8 @@ typedef struct {
   float uv[6][RP_SPAN];  /* u0, u1, u2, v0, v1, v2 */
   float albedo[3][RP_SPAN], emission[3][RP_SPAN];
   float tex_w[RP_SPAN], tex_h[RP_SPAN], tex_w1[RP_SPAN], tex_h1[RP_SPAN], tex_frac[RP_SPAN];
-  uint tex_offset[RP_SPAN], tex_offset1[RP_SPAN];
-  int valid[RP_SPAN];
+  uint tex_offset[RP_SPAN], tex_offset1[RP_SPAN], tex_wrap[RP_SPAN], tri[RP_SPAN];
+  int masked[RP_SPAN], valid[RP_SPAN];
 } VxLanes;
 
 inline void vx_put_lane(VxLanes* L, int i, const VxTriangle* t) {
@@ -610,6 +621,9 @@ inline void vx_put_lane(VxLanes* L, int i, const VxTriangle* t) {
   L->tex_h1[i] = t->tex_h1;
   L->tex_offset1[i] = t->tex_offset1;
   L->tex_frac[i] = t->tex_frac;
+  L->tex_wrap[i] = t->tex_wrap;
+  L->tri[i] = t->tri;
+  L->masked[i] = t->masked;
   L->valid[i] = t->valid;
 }
 
@@ -620,6 +634,9 @@ inline void vx_put_empty_lane(VxLanes* L, int i) {
   t.uv0 = t.uv1 = t.uv2 = (float2)(0.0f);
   t.tex_w = t.tex_h = t.tex_w1 = t.tex_h1 = t.tex_frac = 0.0f;
   t.tex_offset = t.tex_offset1 = 0u;
+  t.tex_wrap = RP_WRAP_REPEAT;
+  t.tri = 0u;
+  t.masked = 0;
   t.valid = 0;
   vx_put_lane(L, i, &t);
 }
@@ -701,6 +718,9 @@ inline void vx_setup(const VxLanes* L, uint resolution, VxSetup* s) {
   s->tex_h1 = VX_SPAN(L->tex_h1);
   s->tex_offset1 = VX_SPAN(L->tex_offset1);
   s->tex_frac = VX_SPAN(L->tex_frac);
+  s->tex_wrap = VX_SPAN(L->tex_wrap);
+  s->tri = VX_SPAN(L->tri);
+  s->masked = VX_SPAN(L->masked) != 0;
   s->textured = s->tex_w > 0.0f;
 
   const VxVec extent = vxv_sub(hi, lo);
@@ -723,9 +743,9 @@ inline VxVec vx_albedo_span(const VxSetup* s, __global const uint* texels, rp_sp
     const rp_spanf v = (s->uv_v.x * b0 + s->uv_v.y * b1) + s->uv_v.z * b2;
     /* trilinear: levels l0 and l1 of the triangle (vx_texture_level), mixed by tex_frac */
     rp_spanf r0, g0, b0_, r1, g1, b1_;
-    rp_span_texture_sample(texels, textured, s->tex_w, s->tex_h, s->tex_offset, u, v,
+    rp_span_texture_sample(texels, textured, s->tex_w, s->tex_h, s->tex_offset, s->tex_wrap, u, v,
                            n_lanes, &r0, &g0, &b0_);
-    rp_span_texture_sample(texels, textured, s->tex_w1, s->tex_h1, s->tex_offset1, u, v,
+    rp_span_texture_sample(texels, textured, s->tex_w1, s->tex_h1, s->tex_offset1, s->tex_wrap, u, v,
                            n_lanes, &r1, &g1, &b1_);
     r = select(r, r * mix(r0, r1, s->tex_frac), textured);
     g = select(g, g * mix(g0, g1, s->tex_frac), textured);
@@ -909,6 +929,48 @@ inline VxVec vx_voxel_radiance(const VxSetup* s, const VxLight* light,
   return vx_shade_span(s, light, shadow, texels, &p, b0, b1, b2, hit, n_lanes);
 }
 
+/* Lanes of `hit` on alpha-masked materials keep only solid surface points (barycentrics b1,
+ * b2; common/alpha_mask.h): one point per voxel decides, as a ray would at that point, so a
+ * cut-out card (leaves) covers about its solid fraction of the voxels it crosses. One test per
+ * distinct triangle among the lanes. */
+inline rp_spani vx_alpha_keep(const VxSetup* s, __global const Triangle* triangles,
+                              __global const Vertex* vertices,
+                              __global const Material* materials,
+                              __global const TextureInfo* textures,
+                              __global const uint* texels, rp_spanf b1, rp_spanf b2,
+                              rp_spani hit) {
+  const rp_spani masked = hit & s->masked;
+  if (!rp_span_any(masked)) return hit;
+  rp_spani keep = select(hit, (rp_spani)(0), masked);
+  uint tri[RP_SPAN];
+  int todo[RP_SPAN];
+  RP_SPAN_TO_ARRAY(s->tri, tri);
+  RP_SPAN_TO_ARRAY(masked, todo);
+  for (int i = 0; i < RP_SPAN; ++i) {
+    if (!todo[i]) continue;
+    const rp_spani group = masked & (s->tri == tri[i]);
+    int g[RP_SPAN];
+    RP_SPAN_TO_ARRAY(group, g);
+    for (int j = i; j < RP_SPAN; ++j) todo[j] = todo[j] && !g[j];
+    keep |= rp_alpha_solid(triangles, vertices, materials, textures, texels, tri[i], b1, b2,
+                           group, RP_SPAN);
+  }
+  return keep;
+}
+
+/* vx_alpha_keep at the shading points of voxels (x, y, z) (triangles shaded per voxel). */
+inline rp_spani vx_alpha_keep_voxels(const VxSetup* s, __global const Triangle* triangles,
+                                     __global const Vertex* vertices,
+                                     __global const Material* materials,
+                                     __global const TextureInfo* textures,
+                                     __global const uint* texels, uint resolution, rp_spani x,
+                                     rp_spani y, rp_spani z, rp_spani hit) {
+  if (!rp_span_any(hit & s->masked)) return hit;
+  rp_spanf b0, b1, b2;
+  (void)vx_voxel_point(s, resolution, x, y, z, &b0, &b1, &b2);
+  return vx_alpha_keep(s, triangles, vertices, materials, textures, texels, b1, b2, hit);
+}
+
 /* ---- the static surface cache (voxelize_cached; host side in src/passes/voxelize.cpp) ----
  * Per-voxel samples of the large triangles of instances that have not moved: everything but
  * the light (point, normal, albedo * texture, emission), so a frame only adds the direct light
@@ -1042,6 +1104,12 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
   const VxVec centroid = vxv_add(vxv_add(s.w0, vxv_scale(s.e01, third)), vxv_scale(s.e02, third));
   const VxVec radiance = vx_shade_span(&s, &light, shadow, texels, &centroid, third,
                                        third, third, small, n);
+  /* alpha masks: a small triangle exists where its centroid does */
+  const bool any_masked = vx_lane_any(s.masked & active, n);
+  const rp_spani small_kept =
+      any_masked ? vx_alpha_keep(&s, triangles, vertices, materials, textures, texels,
+                                 (rp_spanf)(third), (rp_spanf)(third), small)
+                 : small;
 
   /* Every column (iu, iv) of the lanes' candidate rectangles, one or two voxels along d each. */
   const int max_du = vx_lane_max(s.ru1 - s.ru0, active, n, 0);
@@ -1060,7 +1128,11 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
         const VxVec centre = vxv(rp_span_convert_float(x - s.origin[0]) + 0.5f,
                                  rp_span_convert_float(y - s.origin[1]) + 0.5f,
                                  rp_span_convert_float(z - s.origin[2]) + 0.5f);
-        const rp_spani hit = col & (id <= d_last) & vx_triangle_box_span(&s.axes, &centre);
+        rp_spani hit = col & (id <= d_last) & vx_triangle_box_span(&s.axes, &centre);
+        if (any_masked)
+          hit = (hit & small_kept) |
+                vx_alpha_keep_voxels(&s, triangles, vertices, materials, textures, texels,
+                                     resolution, x, y, z, hit & per_voxel);
         const rp_spanu voxel = rp_span_convert_uint((z * R + y) * R + x);
         VxVec value = radiance;
         if (any_per_voxel && vx_lane_any(hit & per_voxel, n))
@@ -1112,6 +1184,7 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
   RP_SPAN_TO_ARRAY(s.rv1, rv1);
   RP_SPAN_TO_ARRAY(s.valid, valid);
   if (!valid[0]) return;
+  const bool masked = t.masked != 0;
   const VxLight light = vx_light(frame, bounce, bounce_cells);
   const rp_spani lane = rp_span_convert_int(RP_LANES);
 
@@ -1136,7 +1209,10 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
         const VxVec box = vxv(rp_span_convert_float(x - s.origin[0]) + 0.5f,
                               rp_span_convert_float(y - s.origin[1]) + 0.5f,
                               rp_span_convert_float(z - s.origin[2]) + 0.5f);
-        const rp_spani hit = col & (id <= d_last) & vx_triangle_box_span(&s.axes, &box);
+        rp_spani hit = col & (id <= d_last) & vx_triangle_box_span(&s.axes, &box);
+        if (masked)
+          hit = vx_alpha_keep_voxels(&s, triangles, vertices, materials, textures, texels,
+                                     resolution, x, y, z, hit);
         if (!vx_lane_any(hit, RP_SPAN)) continue;
 
         const rp_spanu voxel = rp_span_convert_uint((z * R + y) * R + x);

@@ -13,44 +13,83 @@
 #include "common/colour.h"
 #include "common/span.h"
 
-/* Bilinear texture sample (wrap) of the lanes with `textured` set (the arithmetic of
- * sampling.h's rp_texture_bilinear on decoded texels, so the same values): (w, h) the lane's
- * texture (or mip level) size in texels, offset its first texel in texels (packed RGBA8 sRGB
- * per texel, rows top to bottom). Writes the sampled (r, g, b); untextured lanes and lanes
- * >= n read nothing and get 0. */
-inline void rp_span_texture_sample(__global const uint* texels, rp_spani textured,
-                                   rp_spanf w, rp_spanf h, rp_spanu offset, rp_spanf u,
-                                   rp_spanf v, int n, rp_spanf* r, rp_spanf* g, rp_spanf* b) {
-  /* Untextured lanes sample (0, 0) of a 1x1 texture (ignored below): no NaN reaches the int
-   * conversions. */
+/* Folds texel column (or row) c and c + 1 into [0, size) per lane by the lane's wrap mode
+ * (RP_WRAP_*, shared/types.h; the rules of the path tracer's textures, src/truth): c is an
+ * integer held in float (the floor of the footprint's first tap). */
+inline void rp_span_wrap_taps(rp_spanf c, rp_spanf size, rp_spanu mode, rp_spani* i0,
+                              rp_spani* i1) {
+  /* Repeat: wrap in float (exact for integers below 2^24), so huge uv (tiling) cannot overflow
+   * the int conversion; the int result may still be size after rounding or -1 for a tiny
+   * negative quotient: fold those back. */
+  const rp_spani n = rp_span_convert_int(size);
+  rp_spani r0 = rp_span_convert_int(c - floor(c / size) * size);
+  r0 = select(r0, r0 - n, r0 >= n);
+  r0 = select(r0, r0 + n, r0 < 0);
+  *i0 = r0;
+  *i1 = select(r0 + 1, (rp_spani)(0), r0 + 1 == n);
+  const rp_spani clamp_mode = mode == RP_WRAP_CLAMP;
+  const rp_spani mirror_mode = mode == RP_WRAP_MIRROR;
+  if (!rp_span_any(clamp_mode | mirror_mode)) return;
+  /* Clamp to edge: c limited to [-1, size] first (any farther is the same edge texel). */
+  const rp_spani k = rp_span_convert_int(clamp(c, -1.0f, size));
+  const rp_spani zero = (rp_spani)(0), last = n - 1;
+  *i0 = select(*i0, clamp(k, zero, last), clamp_mode);
+  *i1 = select(*i1, clamp(k + 1, zero, last), clamp_mode);
+  /* Mirrored repeat: position in the period of 2 size, the second half read backwards. */
+  const rp_spani n2 = 2 * n;
+  rp_spani m0 = rp_span_convert_int(c - floor(c / (2.0f * size)) * (2.0f * size));
+  m0 = select(m0, m0 - n2, m0 >= n2);
+  m0 = select(m0, m0 + n2, m0 < 0);
+  const rp_spani m1 = select(m0 + 1, zero, m0 + 1 == n2);
+  *i0 = select(*i0, select(m0, n2 - 1 - m0, m0 >= n), mirror_mode);
+  *i1 = select(*i1, select(m1, n2 - 1 - m1, m1 >= n), mirror_mode);
+}
+
+/* The four taps of a bilinear footprint at (u, v) of a w x h texture (or mip level) whose first
+ * texel is `offset`: texel indices (offset + row * width + column) and the weights' fractions. */
+inline void rp_span_texture_taps(rp_spani textured, rp_spanf w, rp_spanf h, rp_spanu offset,
+                                 rp_spanu wrap, rp_spanf u, rp_spanf v, rp_spanu* i00,
+                                 rp_spanu* i10, rp_spanu* i01, rp_spanu* i11, rp_spanf* fx,
+                                 rp_spanf* fy) {
+  /* Untextured lanes sample (0, 0) of a 1x1 texture (ignored by the callers): no NaN reaches
+   * the int conversions. */
   u = select((rp_spanf)(0.0f), u, textured);
   v = select((rp_spanf)(0.0f), v, textured);
   const rp_spanf x = u * w - 0.5f;
   const rp_spanf y = (1.0f - v) * h - 0.5f;
-  rp_spanf x0f = floor(x), y0f = floor(y);
-  const rp_spanf fx = x - x0f, fy = y - y0f;
-  /* Wrap into [0, size) in float (exact for integers below 2^24), so huge uv (tiling) cannot
-   * overflow the int conversion; the int result may still be size after rounding or -1 for a
-   * tiny negative quotient: fold those back (the old rp_wrap_index). */
-  x0f -= floor(x0f / w) * w;
-  y0f -= floor(y0f / h) * h;
-  const rp_spani wi = rp_span_convert_int(w), hi = rp_span_convert_int(h);
-  rp_spani x0 = rp_span_convert_int(x0f), y0 = rp_span_convert_int(y0f);
-  x0 = select(x0, x0 - wi, x0 >= wi);
-  y0 = select(y0, y0 - hi, y0 >= hi);
-  x0 = select(x0, x0 + wi, x0 < 0);
-  y0 = select(y0, y0 + hi, y0 < 0);
-  const rp_spani x1 = select(x0 + 1, (rp_spani)(0), x0 + 1 == wi);
-  const rp_spani y1 = select(y0 + 1, (rp_spani)(0), y0 + 1 == hi);
-  /* Texel indices of the four taps (offset + row * width + column). */
+  const rp_spanf x0f = floor(x), y0f = floor(y);
+  *fx = x - x0f;
+  *fy = y - y0f;
+  rp_spani x0, x1, y0, y1;
+  rp_span_wrap_taps(x0f, w, wrap & 3u, &x0, &x1);
+  rp_span_wrap_taps(y0f, h, (wrap >> 2) & 3u, &y0, &y1);
+  const rp_spani wi = rp_span_convert_int(w);
   const rp_spanu row0 = offset + rp_span_convert_uint(y0 * wi);
   const rp_spanu row1 = offset + rp_span_convert_uint(y1 * wi);
+  *i00 = row0 + rp_span_convert_uint(x0);
+  *i10 = row0 + rp_span_convert_uint(x1);
+  *i01 = row1 + rp_span_convert_uint(x0);
+  *i11 = row1 + rp_span_convert_uint(x1);
+}
+
+/* Bilinear texture sample of the lanes with `textured` set (the arithmetic of sampling.h's
+ * rp_texture_bilinear on decoded texels, so the same values): (w, h) the lane's texture (or
+ * mip level) size in texels, offset its first texel in texels (packed RGBA8 sRGB per texel,
+ * rows top to bottom), wrap its RP_WRAP_PACK modes. Writes the sampled (r, g, b); untextured
+ * lanes and lanes >= n read nothing and get 0. */
+inline void rp_span_texture_sample(__global const uint* texels, rp_spani textured,
+                                   rp_spanf w, rp_spanf h, rp_spanu offset, rp_spanu wrap,
+                                   rp_spanf u, rp_spanf v, int n, rp_spanf* r, rp_spanf* g,
+                                   rp_spanf* b) {
+  rp_spanu t00, t10, t01, t11;
+  rp_spanf fx, fy;
+  rp_span_texture_taps(textured, w, h, offset, wrap, u, v, &t00, &t10, &t01, &t11, &fx, &fy);
   uint i00[RP_SPAN], i10[RP_SPAN], i01[RP_SPAN], i11[RP_SPAN];
   int on[RP_SPAN];
-  RP_SPAN_TO_ARRAY(row0 + rp_span_convert_uint(x0), i00);
-  RP_SPAN_TO_ARRAY(row0 + rp_span_convert_uint(x1), i10);
-  RP_SPAN_TO_ARRAY(row1 + rp_span_convert_uint(x0), i01);
-  RP_SPAN_TO_ARRAY(row1 + rp_span_convert_uint(x1), i11);
+  RP_SPAN_TO_ARRAY(t00, i00);
+  RP_SPAN_TO_ARRAY(t10, i10);
+  RP_SPAN_TO_ARRAY(t01, i01);
+  RP_SPAN_TO_ARRAY(t11, i11);
   RP_SPAN_TO_ARRAY(textured, on);
   /* The four taps per lane, decoded (untextured lanes keep code 0, which decodes to 0). */
   float r00a[RP_SPAN], g00a[RP_SPAN], b00a[RP_SPAN], r10a[RP_SPAN], g10a[RP_SPAN], b10a[RP_SPAN];
@@ -86,13 +125,45 @@ inline void rp_span_texture_sample(__global const uint* texels, rp_spani texture
   *b = mix(mix(b00, b10, fx), mix(b01, b11, fx), fy);
 }
 
+/* Bilinear sample of the alpha channel (linear, the top byte) of the lanes with `textured`
+ * set (arguments as rp_span_texture_sample): alpha-mask tests (common/alpha_mask.h). Lanes
+ * not textured or >= n get 1. */
+inline rp_spanf rp_span_texture_alpha(__global const uint* texels, rp_spani textured,
+                                      rp_spanf w, rp_spanf h, rp_spanu offset, rp_spanu wrap,
+                                      rp_spanf u, rp_spanf v, int n) {
+  rp_spanu t00, t10, t01, t11;
+  rp_spanf fx, fy;
+  rp_span_texture_taps(textured, w, h, offset, wrap, u, v, &t00, &t10, &t01, &t11, &fx, &fy);
+  uint i00[RP_SPAN], i10[RP_SPAN], i01[RP_SPAN], i11[RP_SPAN];
+  int on[RP_SPAN];
+  RP_SPAN_TO_ARRAY(t00, i00);
+  RP_SPAN_TO_ARRAY(t10, i10);
+  RP_SPAN_TO_ARRAY(t01, i01);
+  RP_SPAN_TO_ARRAY(t11, i11);
+  RP_SPAN_TO_ARRAY(textured, on);
+  float a00[RP_SPAN], a10[RP_SPAN], a01[RP_SPAN], a11[RP_SPAN];
+  for (int i = 0; i < RP_SPAN; ++i) {
+    const bool read = i < n && on[i];
+    a00[i] = read ? (float)(texels[i00[i]] >> 24) / 255.0f : 1.0f;
+    a10[i] = read ? (float)(texels[i10[i]] >> 24) / 255.0f : 1.0f;
+    a01[i] = read ? (float)(texels[i01[i]] >> 24) / 255.0f : 1.0f;
+    a11[i] = read ? (float)(texels[i11[i]] >> 24) / 255.0f : 1.0f;
+  }
+  /* a + (b - a) t per row, then between the rows (the path tracer's sample_alpha) */
+  const rp_spanf p00 = RP_SPAN_FROM_ARRAY(a00), p10 = RP_SPAN_FROM_ARRAY(a10),
+                 p01 = RP_SPAN_FROM_ARRAY(a01), p11 = RP_SPAN_FROM_ARRAY(a11);
+  const rp_spanf top = p00 + (p10 - p00) * fx, bottom = p01 + (p11 - p01) * fx;
+  return top + (bottom - top) * fy;
+}
+
 /* Bilinear texture sampling of the lanes with `textured` set at level 0 (arguments as
  * rp_span_texture_sample): multiplies (r, g, b) of those lanes in place. */
 inline void rp_span_texture_linear(__global const uint* texels, rp_spani textured,
-                                   rp_spanf w, rp_spanf h, rp_spanu offset, rp_spanf u,
-                                   rp_spanf v, int n, rp_spanf* r, rp_spanf* g, rp_spanf* b) {
+                                   rp_spanf w, rp_spanf h, rp_spanu offset, rp_spanu wrap,
+                                   rp_spanf u, rp_spanf v, int n, rp_spanf* r, rp_spanf* g,
+                                   rp_spanf* b) {
   rp_spanf cr, cg, cb;
-  rp_span_texture_sample(texels, textured, w, h, offset, u, v, n, &cr, &cg, &cb);
+  rp_span_texture_sample(texels, textured, w, h, offset, wrap, u, v, n, &cr, &cg, &cb);
   *r = select(*r, *r * cr, textured);
   *g = select(*g, *g * cg, textured);
   *b = select(*b, *b * cb, textured);
@@ -109,15 +180,19 @@ inline void rp_span_texture_level(__global const uint* texels,
   rp_spani wl = w0 >> level, hl = h0 >> level;
   wl = select(wl, (rp_spani)(1), wl < 1);
   hl = select(hl, (rp_spani)(1), hl < 1);
-  uint idx[RP_SPAN], off[RP_SPAN];
+  uint idx[RP_SPAN], off[RP_SPAN], wrap[RP_SPAN];
   int lvl[RP_SPAN], on[RP_SPAN];
   RP_SPAN_TO_ARRAY(index, idx);
   RP_SPAN_TO_ARRAY(level, lvl);
   RP_SPAN_TO_ARRAY(textured, on);
-  for (int i = 0; i < RP_SPAN; ++i)
-    off[i] = (i < n && on[i]) ? textures[idx[i]].level_offset[lvl[i]] : 0u;
+  for (int i = 0; i < RP_SPAN; ++i) {
+    const bool read = i < n && on[i];
+    off[i] = read ? textures[idx[i]].level_offset[lvl[i]] : 0u;
+    wrap[i] = read ? textures[idx[i]].wrap : RP_WRAP_REPEAT;
+  }
   rp_span_texture_sample(texels, textured, rp_span_convert_float(wl),
-                         rp_span_convert_float(hl), RP_SPAN_FROM_ARRAY(off), u, v, n, r, g, b);
+                         rp_span_convert_float(hl), RP_SPAN_FROM_ARRAY(off),
+                         RP_SPAN_FROM_ARRAY(wrap), u, v, n, r, g, b);
 }
 
 /* Trilinear sample at level of detail `lod` (per lane; clamped to [0, levels - 1]): bilinear

@@ -140,7 +140,7 @@ typedef struct {
   rp_float4 emission;      /* rgb emitted radiance, w gloss code (shared/brdf_layout.h) */
 } Sphere;
 
-/* Surface material. 64 bytes. */
+/* Surface material. 80 bytes. */
 typedef struct {
   rp_float4 albedo;   /* rgb, multiplied with the texture when there is one; w the voxelizer's
                          base weight (1 - E_spec_avg of the coat, 1 without one:
@@ -153,7 +153,15 @@ typedef struct {
   rp_uint metallic_roughness_texture; /* G scales the roughness, B the metallic factor */
   rp_uint emission_texture;           /* sRGB, multiplies emission.rgb */
   rp_float4 factors;  /* x normal scale, y roughness factor, z metallic factor, w dielectric f0 */
+  /* Alpha masks (scene/frame_scene.h AlphaMode::kMask): x the base colour alpha factor, y the
+   * cutoff below which (factor x the base colour texture's alpha) is a hole, 0 for an opaque
+   * material (nothing is cut); zw unused. The rasterizer, the shadow maps and the voxelizer
+   * test it (kernels/common/alpha_mask.h). */
+  rp_float4 coverage;
 } Material;
+
+/* A material that cuts holes (Material.coverage.y > 0). */
+#define RP_MATERIAL_MASKED(m) ((m).coverage.y > 0.0f)
 
 /* gbuffer_resolve's texture filter (render::TextureFilter, --texture-filter). */
 #define RP_TEXTURE_FILTER_BILINEAR 0u
@@ -168,13 +176,23 @@ typedef struct {
  * row = (1 - v) * height). Level k is max(1, width >> k) x max(1, height >> k) texels at
  * level_offset[k] (absolute texel index; the levels of a texture lie back to back, level 0 at
  * `offset`), k < levels = floor(log2(max(width, height))) + 1; unused entries are 0. Built on
- * the host (src/render/texture_mips.h). 80 bytes. */
+ * the host (src/render/texture_mips.h). 96 bytes. */
 typedef struct {
   rp_uint offset; /* first texel of level 0 (= level_offset[0]) */
   rp_uint width, height; /* level 0 */
   rp_uint levels;
   rp_uint level_offset[RP_TEXTURE_MAX_LEVELS];
+  rp_uint wrap; /* how u and v outside [0, 1] fold back: RP_WRAP_U(wrap), RP_WRAP_V(wrap) */
+  rp_uint unused[3];
 } TextureInfo;
+
+/* Texture wrap modes (scene/frame_scene.h TextureWrap, glTF wrapS / wrapT), 2 bits per axis. */
+#define RP_WRAP_REPEAT 0u
+#define RP_WRAP_CLAMP 1u
+#define RP_WRAP_MIRROR 2u
+#define RP_WRAP_PACK(u, v) ((u) | ((v) << 2))
+#define RP_WRAP_U(w) ((w) & 3u)
+#define RP_WRAP_V(w) (((w) >> 2) & 3u)
 
 #ifndef __OPENCL_VERSION__
 }  // namespace rp::gpu

@@ -236,6 +236,7 @@ struct VisibilityPass::Impl {
         v.setup.setArg(a++, scene.instances);
         v.setup.setArg(a++, scene.triangles);
         v.setup.setArg(a++, scene.vertices);
+        v.setup.setArg(a++, scene.materials);
         v.setup.setArg(a++, v.tris);
         v.setup.setArg(a++, v.bounds);
         v.setup.setArg(a++, v.edges);
@@ -291,6 +292,12 @@ struct VisibilityPass::Impl {
     v.raster.setArg(a++, depth_out);
     v.raster.setArg(a++, ids_out);
     v.raster.setArg(a++, bary_out);
+    // what the alpha test of masked materials reads (kernels/common/alpha_mask.h)
+    v.raster.setArg(a++, scene.triangles);
+    v.raster.setArg(a++, scene.vertices);
+    v.raster.setArg(a++, scene.materials);
+    v.raster.setArg(a++, scene.textures);
+    v.raster.setArg(a++, scene.texels);
     if (tile_layout) {  // CPU layout: one work-item per tile
       profiler.enqueue(v.pass, v.raster,
                        ::cl::NDRange(rp::cl::round_up(tiles, kTilesPerGroup)),

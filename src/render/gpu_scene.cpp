@@ -39,6 +39,15 @@ uint64_t chain_texels(const scene::Texture& texture) {
   return texels;
 }
 
+uint32_t gpu_wrap(scene::TextureWrap wrap) {
+  switch (wrap) {
+    case scene::TextureWrap::kClampToEdge: return RP_WRAP_CLAMP;
+    case scene::TextureWrap::kMirroredRepeat: return RP_WRAP_MIRROR;
+    case scene::TextureWrap::kRepeat: break;
+  }
+  return RP_WRAP_REPEAT;
+}
+
 }  // namespace
 
 // On the device every texel of every mip level takes 4 bytes (packed sRGB, one buffer for all
@@ -165,6 +174,10 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
     g.metallic_roughness_texture = texture_index(m.metallic_roughness_texture);
     g.emission_texture = texture_index(m.emission_texture);
     g.factors = {m.normal_scale, m.specular.roughness, m.metallic, m.specular.f0};
+    // A cutoff of 0 cuts nothing (alpha >= 0): opaque materials need no test.
+    const bool masked = m.alpha_mode == scene::AlphaMode::kMask && m.alpha_cutoff > 0.0f;
+    g.coverage = {m.opacity, masked ? m.alpha_cutoff : 0.0f, 0.0f, 0.0f};
+    if (masked) has_alpha_masks = true;
     if (g.normal_texture != RP_TEXTURE_NONE || g.metallic_roughness_texture != RP_TEXTURE_NONE ||
         g.emission_texture != RP_TEXTURE_NONE)
       has_material_maps = true;
@@ -192,6 +205,7 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
     info.width = static_cast<uint32_t>(t.width);
     info.height = static_cast<uint32_t>(t.height);
     info.levels = static_cast<uint32_t>(chain.levels.size());
+    info.wrap = RP_WRAP_PACK(gpu_wrap(t.wrap_u), gpu_wrap(t.wrap_v));
     for (size_t k = 0; k < chain.levels.size(); ++k)
       info.level_offset[k] = base + chain.levels[k].offset;
     infos.push_back(info);

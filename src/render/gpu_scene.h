@@ -71,6 +71,9 @@ class GpuScene {
   // Some material has a normal, metallic-roughness or emission map: the GBuffer's material
   // pass (kernels/gbuffer_material.cl) runs.
   bool has_material_maps = false;
+  // Some material cuts holes (alpha mask): the rasterizer, shadow maps and voxelizer test
+  // texture alpha (kernels/common/alpha_mask.h).
+  bool has_alpha_masks = false;
   ::cl::Buffer materials;  // gpu::Material[]
   // uint RGBA8 (R in the low byte, sRGB rgb), all textures back to back, each followed by its
   // mip levels (render/texture_mips.h; 4/3 of the level-0 texels for square textures).

@@ -20,8 +20,8 @@ static_assert(sizeof(Vertex) == 32);
 static_assert(sizeof(Triangle) == 16);
 static_assert(sizeof(Instance) == 224);
 static_assert(sizeof(Sphere) == 64);
-static_assert(sizeof(Material) == 64);
-static_assert(sizeof(TextureInfo) == 16 + 4 * RP_TEXTURE_MAX_LEVELS);
+static_assert(sizeof(Material) == 80);
+static_assert(sizeof(TextureInfo) == 32 + 4 * RP_TEXTURE_MAX_LEVELS);
 
 inline rp_float4 to_gpu(const glm::vec4& v) { return {v.x, v.y, v.z, v.w}; }
 inline rp_float4 to_gpu(const glm::vec3& v, float w) { return {v.x, v.y, v.z, w}; }

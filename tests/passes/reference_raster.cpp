@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "kernels/shared/types.h"
+#include "scene/alpha_mask.h"
 
 namespace rp::test {
 namespace {
@@ -69,7 +70,17 @@ Edges tile_edges(const glm::vec4 v[3], float ox, float oy) {
 struct Tri {
   glm::vec4 v[3];  // homogeneous pixel space
   uint32_t instance, primitive;
+  const scene::Mesh* mesh;  // the mesh drawn (a shadow map's proxy where it has one)
 };
+
+// Texture coordinates of `tri` at barycentrics (b1, b2), as kernels/common/alpha_mask.h.
+glm::vec2 uv_at(const Tri& tri, float b1, float b2) {
+  const glm::uvec3 t = tri.mesh->triangles[tri.primitive];
+  const glm::vec2 u0 = tri.mesh->vertices[t.x].uv, u1 = tri.mesh->vertices[t.y].uv,
+                  u2 = tri.mesh->vertices[t.z].uv;
+  const float b0 = (1.0f - b1) - b2;
+  return glm::vec2((b0 * u0.x + b1 * u1.x) + b2 * u2.x, (b0 * u0.y + b1 * u1.y) + b2 * u2.y);
+}
 
 }  // namespace
 
@@ -87,6 +98,8 @@ RefImage reference_raster(const scene::SceneAssets& assets, const scene::FrameSc
   img.bary.assign(n, glm::vec2(0.0f));
   img.hits_positive.assign(n, 0);
   img.hits_negative.assign(n, 0);
+  img.alpha_edge.assign(n, 0);
+  const scene::AlphaMasks masks(assets);
 
   // Every (instance, triangle) in instance order: the index is the tie-break key.
   std::vector<Tri> tris;
@@ -105,6 +118,7 @@ RefImage reference_raster(const scene::SceneAssets& assets, const scene::FrameSc
       }
       tri.instance = i;
       tri.primitive = t;
+      tri.mesh = &mesh;
       if (view.depth_only && !inst.casts_shadow) tri.instance = RP_ID_NONE;  // not drawn
       tris.push_back(tri);
     }
@@ -134,6 +148,18 @@ RefImage reference_raster(const scene::SceneAssets& assets, const scene::FrameSc
             float z = ((f[0] * e.z[0] + f[1] * e.z[1]) + f[2] * e.z[2]) /
                       ((f[0] * e.w[0] + f[1] * e.w[1]) + f[2] * e.w[2]);
             if (!in || !(z >= -1.0f)) continue;
+            const uint32_t material = tris[t].mesh->materials[tris[t].primitive];
+            if (masks.masked(material)) {
+              const float sum = (f[0] + f[1]) + f[2], b1 = f[1] / sum, b2 = f[2] / sum;
+              const bool solid = masks.solid(material, uv_at(tris[t], b1, b2));
+              // the kernel's divisions may round differently: a point this close to the
+              // cutoff's contour may go either way
+              for (float d : {-1e-4f, 1e-4f})
+                if (masks.solid(material, uv_at(tris[t], b1 + d, b2)) != solid ||
+                    masks.solid(material, uv_at(tris[t], b1, b2 + d)) != solid)
+                  img.alpha_edge[p] = 1;
+              if (!solid) continue;
+            }
             if (z <= 1.0f) ++(e.sign > 0.0f ? img.hits_positive[p] : img.hits_negative[p]);
             back_z[p] = std::max(back_z[p], std::min(z, 1.0f));
             if (z < best_z[p] || (z == best_z[p] && t < best_key[p])) {

@@ -1,7 +1,8 @@
 // Plain C++ reference of the compute rasterizer (kernels/visibility.cl): brute force over every
 // pixel and primitive, no binning, same conventions (kernels/shared/types.h) and the same float
 // operations in the same order (kernels/common/raster.h), so coverage and ids must agree
-// exactly and depth / barycentrics to rounding of divisions.
+// exactly and depth / barycentrics to rounding of divisions. Alpha-masked materials cut holes
+// by the host's rule (scene/alpha_mask.h).
 #pragma once
 
 #include <cstdint>
@@ -29,6 +30,9 @@ struct RefImage {
   // Triangles whose inside test passes at the pixel centre with z_ndc in [-1, 1], split by the
   // sign of the triangle's homogeneous determinant (its winding as seen from the view).
   std::vector<uint32_t> hits_positive, hits_negative;
+  // 1 where an alpha-masked triangle's point is within rounding of its cutoff (either answer
+  // is right there): the comparisons skip those pixels.
+  std::vector<uint8_t> alpha_edge;
 
   size_t index(uint32_t x, uint32_t y) const { return size_t(y) * width + x; }
 };

@@ -7,6 +7,7 @@
 #include "passes/voxelize.h"
 #include "render/frame_buffers.h"
 #include "render/texture_mips.h"
+#include "scene/alpha_mask.h"
 #include "render/voxel_volume.h"
 #include "shading/brdf_tables.h"
 #include "support/cl_fixture.h"
@@ -268,7 +269,8 @@ void axis_range(float lo, float hi, int resolution, int& first, int& last) {
 // chains: the mip chain of every texture of in.assets (built once per reference run).
 void voxelize_triangle(const VoxelRefInput& in, const gpu::Instance& inst,
                        const scene::Mesh& mesh, size_t t,
-                       const std::vector<render::MipChain>& chains, VoxelSums& sums) {
+                       const std::vector<render::MipChain>& chains,
+                       const scene::AlphaMasks& masks, VoxelSums& sums) {
   const uint32_t R = sums.resolution;
   const glm::uvec3 idx = mesh.triangles[t];
   const scene::Vertex* v[3] = {&mesh.vertices[idx.x], &mesh.vertices[idx.y],
@@ -325,9 +327,20 @@ void voxelize_triangle(const VoxelRefInput& in, const gpu::Instance& inst,
     }
     return albedo * direct(in, p, nw) + f3(mat.emission);
   };
+  // vx_alpha_keep: an alpha-masked material's surface exists where it is solid (uv as
+  // kernels/common/alpha_mask.h interpolates it from b1, b2).
+  const uint32_t material = mesh.materials[t];
+  auto solid = [&](float b1, float b2) {
+    if (!masks.masked(material)) return true;
+    const float b0 = (1.0f - b1) - b2;
+    const glm::vec2 uv((b0 * v[0]->uv.x + b1 * v[1]->uv.x) + b2 * v[2]->uv.x,
+                       (b0 * v[0]->uv.y + b1 * v[1]->uv.y) + b2 * v[2]->uv.y);
+    return masks.solid(material, uv);
+  };
   const RefF3 extent = hi - lo;
   const bool small = std::fmax(std::fmax(extent.x, extent.y), extent.z) <= 2.0f;
   const float third = 1.0f / 3.0f;
+  if (small && !solid(third, third)) return;  // a small triangle is cut or kept whole
   const RefF3 small_radiance = small ? shade(third, third, third) : RefF3{};
 
   for (int z = z0; z <= z1; ++z)
@@ -353,6 +366,7 @@ void voxelize_triangle(const VoxelRefInput& in, const gpu::Instance& inst,
           } else {
             b0 = b1 = b2 = third;
           }
+          if (!solid(b1, b2)) continue;
           radiance = shade(b0, b1, b2);
         }
         const uint32_t voxel = (uint32_t(z) * R + uint32_t(y)) * R + uint32_t(x);
@@ -468,13 +482,14 @@ VoxelSums reference_voxelize(const VoxelRefInput& in, uint32_t resolution) {
   sums.facing_slack.assign(voxels * 6, 0u);
   std::vector<render::MipChain> chains;
   for (const scene::Texture& tex : in.assets->textures) chains.push_back(render::build_mip_chain(tex));
+  const scene::AlphaMasks masks(*in.assets);
   for (size_t i = 0; i < in.instances.size(); ++i) {
     if (!in.frame->instances[i].voxelize) continue;  // the lamp cap: lit analytically
     // the mesh's voxel proxy at this resolution where it has one (scene::voxel_mesh)
     const scene::Mesh& mesh = in.assets->meshes.at(
         scene::voxel_mesh(in.assets->meshes, in.frame->instances[i].mesh, resolution));
     for (size_t t = 0; t < mesh.triangles.size(); ++t)
-      voxelize_triangle(in, in.instances[i], mesh, t, chains, sums);
+      voxelize_triangle(in, in.instances[i], mesh, t, chains, masks, sums);
   }
   for (const gpu::Sphere& s : in.spheres) voxelize_sphere(in, s, sums);
   return sums;

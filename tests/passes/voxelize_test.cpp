@@ -53,7 +53,9 @@ scene::Mesh make_mesh(const std::vector<TriSpec>& tris) {
   return mesh;
 }
 
-// Materials 0..2 plain (2 has no emission), 3 textured with a 4x4 texture of varied colours.
+// Materials 0..2 plain (2 has no emission), 3 textured with a 4x4 texture of varied colours,
+// 4 alpha-masked by an 8x8 texture with holes (mirrored in u, clamped in v), 5 masked with an
+// opacity below its cutoff (never there).
 scene::SceneAssets base_assets() {
   scene::SceneAssets assets;
   assets.materials = {
@@ -72,6 +74,26 @@ scene::SceneAssets base_assets() {
     tex.rgba.push_back(255);
   }
   assets.textures.push_back(tex);
+  scene::Texture holes;
+  holes.name = "holes";
+  holes.width = holes.height = 8;
+  holes.wrap_u = scene::TextureWrap::kMirroredRepeat;
+  holes.wrap_v = scene::TextureWrap::kClampToEdge;
+  for (int i = 0; i < 64; ++i) {
+    const int block = (i % 8) / 2 + 4 * (i / 16);
+    holes.rgba.insert(holes.rgba.end(), {uint8_t(90 + 2 * i), 160, uint8_t(250 - 3 * i),
+                                         uint8_t(block % 3 == 0 ? 0 : block % 5 == 1 ? 128 : 255)});
+  }
+  assets.textures.push_back(holes);
+  scene::Material cut{"m4", {0.9f, 0.7f, 0.5f}, {0.3f, 0.1f, 0.6f}, 1};
+  cut.alpha_mode = scene::AlphaMode::kMask;
+  cut.alpha_cutoff = 0.5f;
+  scene::Material gone{"m5", {0.9f, 0.9f, 0.9f}, {2.0f, 2.0f, 2.0f}, -1};
+  gone.alpha_mode = scene::AlphaMode::kMask;
+  gone.opacity = 0.2f;
+  gone.alpha_cutoff = 0.3f;
+  assets.materials.push_back(cut);
+  assets.materials.push_back(gone);
   return assets;
 }
 
@@ -150,6 +172,12 @@ Scene exact_scene() {
       {{-0.9f, 0.6f, 0.8f}, {-0.2f, 0.7f, 0.6f}, {-0.5f, 0.2f, 0.9f}, 3},
       // Small (within 2 voxels: shaded once at its centroid), textured, across a voxel face.
       {{0.55f, 0.6f, -0.7f}, {0.62f, 0.65f, -0.72f}, {0.58f, 0.7f, -0.66f}, 3},
+      // Alpha-masked: a large card with holes, small ones kept or cut whole, an invisible one.
+      {{-0.95f, -0.7f, -0.9f}, {0.9f, -0.6f, -0.8f}, {0.1f, 0.45f, -0.85f}, 4},
+      {{0.3f, 0.3f, 0.3f}, {0.38f, 0.35f, 0.33f}, {0.33f, 0.4f, 0.38f}, 4},
+      {{-0.1f, 0.3f, 0.3f}, {-0.02f, 0.35f, 0.33f}, {-0.07f, 0.4f, 0.38f}, 4},
+      {{0.6f, 0.3f, 0.3f}, {0.68f, 0.35f, 0.33f}, {0.63f, 0.4f, 0.38f}, 4},
+      {{-0.7f, 0.0f, 0.5f}, {0.2f, 0.1f, 0.6f}, {-0.3f, 0.5f, 0.4f}, 5},
   };
   s.assets.meshes.push_back(make_mesh(tris));
   // A second mesh drawn through a rotating, translating instance.
@@ -203,6 +231,14 @@ TEST(Voxelize, IdenticalSumsToReference) {
   EXPECT_NE(alpha(8, 10, 7), 0u);
   EXPECT_NE(alpha(7, 9, 6), 0u);
   EXPECT_NE(alpha(7, 10, 6), 0u);
+
+  // The masked materials cut voxels: with them opaque, more voxels are touched.
+  scene::SceneAssets opaque = s.assets;
+  for (scene::Material& m : opaque.materials) m.alpha_mode = scene::AlphaMode::kOpaque;
+  const VoxelSums all = reference_voxelize(reference_input(opaque, s.frame, *s.gpu, shadow), 16);
+  size_t touched_opaque = 0;
+  for (size_t v = 0; v < all.overflow.size(); ++v) touched_opaque += word(all, v, 3) != 0;
+  EXPECT_GT(touched_opaque, touched + 40) << "the holes and the invisible triangle";
 }
 
 TEST(Voxelize, LitMatchesReferenceAndShadowedIsEmissionOnly) {
