@@ -17,6 +17,7 @@
 
 #include "cl/error.h"
 #include "render/gpu_types.h"
+#include "scene/alpha_mask.h"
 
 namespace rp::passes {
 namespace {
@@ -108,6 +109,24 @@ struct MeshData {
   std::vector<uint32_t> indices;
   uint32_t triangle_count = 0;
   RTCScene scene = nullptr;  // HIGH quality BVH over this mesh alone (nullptr when empty)
+  // Meshes with alpha-masked materials: per-vertex uv and per-triangle material, read by the
+  // Embree filter that lets rays through the holes (scene/alpha_mask.h); empty otherwise.
+  std::vector<glm::vec2> uvs;
+  std::vector<uint32_t> materials;
+  const scene::AlphaMasks* masks = nullptr;
+
+  // Embree filter (intersect and occluded) of a masked mesh: rejects hits in holes.
+  static void alpha_filter(const RTCFilterFunctionNArguments* args) {
+    const auto* m = static_cast<const MeshData*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+      if (args->valid[i] != -1) continue;
+      const uint32_t prim = RTCHitN_primID(args->hit, args->N, i);
+      const float b1 = RTCHitN_u(args->hit, args->N, i), b2 = RTCHitN_v(args->hit, args->N, i);
+      const uint32_t* t = &m->indices[3 * size_t(prim)];
+      const glm::vec2 uv = (1.0f - b1 - b2) * m->uvs[t[0]] + b1 * m->uvs[t[1]] + b2 * m->uvs[t[2]];
+      if (!m->masks->solid(m->materials[prim], uv)) args->valid[i] = 0;
+    }
+  }
 };
 
 }  // namespace
@@ -154,6 +173,7 @@ struct EmbreeVisibilityPass::Impl {
   uint32_t width = 0, height = 0, tiles_x = 0;
 
   std::unique_ptr<TilePool> pool;
+  std::unique_ptr<scene::AlphaMasks> masks;  // what masked meshes' filters ask
 
   ~Impl() {
     for (RTCGeometry g : movers) rtcReleaseGeometry(g);
@@ -177,6 +197,7 @@ struct EmbreeVisibilityPass::Impl {
   }
 
   void build_meshes(const scene::SceneAssets& assets) {
+    masks = std::make_unique<scene::AlphaMasks>(assets);
     for (const scene::Mesh& mesh : assets.meshes) {
       MeshData m;
       m.triangle_count = static_cast<uint32_t>(mesh.triangles.size());
@@ -190,6 +211,13 @@ struct EmbreeVisibilityPass::Impl {
           throw rp::cl::Error("Embree visibility: mesh '" + mesh.name +
                               "' refers to a vertex that does not exist");
         m.indices.insert(m.indices.end(), {t.x, t.y, t.z});
+      }
+      bool masked = false;
+      for (uint32_t material : mesh.materials) masked = masked || masks->masked(material);
+      if (masked && mesh.materials.size() == mesh.triangles.size()) {
+        for (const scene::Vertex& v : mesh.vertices) m.uvs.push_back(v.uv);
+        m.materials = mesh.materials;
+        m.masks = masks.get();
       }
       meshes.push_back(std::move(m));
     }
@@ -215,6 +243,11 @@ struct EmbreeVisibilityPass::Impl {
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
                                3 * sizeof(uint32_t), m.triangle_count);
     rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
+    if (m.masks != nullptr) {  // `m` stays in place: `meshes` is complete before any geometry
+      rtcSetGeometryUserData(g, const_cast<MeshData*>(&m));
+      rtcSetGeometryIntersectFilterFunction(g, &MeshData::alpha_filter);
+      rtcSetGeometryOccludedFilterFunction(g, &MeshData::alpha_filter);
+    }
     rtcCommitGeometry(g);
     check("creating a triangle geometry");
     return g;
