@@ -6,8 +6,8 @@
 //   gen_load_scene OUT.glb --room
 //     a small room with every feature the renderers read from a file, for the tests: a sun, a
 //     spot and a point light, a floor with normal and metallic-roughness maps, a red wall, two
-//     boxes, a cube with an emission map (10 m across; tests/app/file_scene_truth_test.cpp,
-//     the oclgrind renders).
+//     boxes, a cube with an emission map, a trellis panel cut out by an alpha mask (mirrored
+//     texture) (10 m across; tests/app/file_scene_truth_test.cpp, the oclgrind renders).
 // Deterministic: integer hashing only, so the same arguments write the same bytes.
 #include <cmath>
 #include <cstdint>
@@ -134,6 +134,21 @@ int write_room(const char* path) {
   Material* glow = material("glow", glm::vec3(0.1f), 1.0f);
   glow->emission = glm::vec3(4.0f, 2.4f, 0.8f);
   glow->emission_texture = 2;
+  // A trellis: 22-texel windows between 10-texel bars, cut out by alpha (MASK), mirrored so the
+  // bars at the texture's edges meet; a thin double-sided panel.
+  Texture trellis = pattern("trellis", true, [](int x, int y) {
+    return glm::ivec3(150 + (x * 3) % 40, 110 + (y * 5) % 50, 60);
+  });
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      trellis.rgba[size_t(y * 64 + x) * 4 + 3] = (x % 32 < 10 || y % 32 < 10) ? 255 : 0;
+  trellis.wrap_u = trellis.wrap_v = TextureWrap::kMirroredRepeat;
+  a.textures.push_back(trellis);
+  Material* lattice = material("trellis", glm::vec3(0.9f), 0.8f);
+  lattice->texture = 3;
+  lattice->alpha_mode = AlphaMode::kMask;
+  lattice->alpha_cutoff = 0.5f;
+  lattice->double_sided = true;
   Mesh room;
   room.name = "room";
   add_box(room, {0, -0.05f, 0}, {5, 0.05f, 5}, 0);
@@ -142,6 +157,18 @@ int write_room(const char* path) {
   add_box(room, {-1.5f, 0.75f, -1}, {0.75f, 0.75f, 0.75f}, 3);
   add_box(room, {1.5f, 1.25f, 0.5f}, {0.5f, 1.25f, 0.5f}, 3);
   add_box(room, {0, 0.4f, 2}, {0.4f, 0.4f, 0.4f}, 4);
+  {  // the trellis panel, upright in z = 1, uv 0..2.5 (mirrored)
+    const glm::vec3 n(0.0f, 0.0f, 1.0f);
+    const uint32_t b = uint32_t(room.vertices.size());
+    room.vertices.push_back({{-3.6f, 0.0f, 1.0f}, n, {0.0f, 0.0f}});
+    room.vertices.push_back({{-0.9f, 0.0f, 1.0f}, n, {2.5f, 0.0f}});
+    room.vertices.push_back({{-0.9f, 2.2f, 1.0f}, n, {2.5f, 2.0f}});
+    room.vertices.push_back({{-3.6f, 2.2f, 1.0f}, n, {0.0f, 2.0f}});
+    for (int k = 0; k < 4; ++k) room.tangents.push_back(glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+    room.triangles.push_back({b, b + 1, b + 2});
+    room.triangles.push_back({b, b + 2, b + 3});
+    room.materials.insert(room.materials.end(), {5, 5});
+  }
   a.meshes.push_back(room);
   FrameScene f;
   f.lamp = false;

@@ -1,12 +1,14 @@
 // A loaded scene's real-time frame against its path-traced truth at 128x128: the test room of
 // tools/gen_load_scene (a red wall, two boxes, a cube with an emission map, a floor with
-// normal and metallic-roughness maps, a sun, a spot and a point light), written as glTF and
-// opened as a scene file like `render --scene FILE`. The thresholds guard what was measured on
-// the 2-core EPYC with PoCL (fast mode, 64^3, 8 frames): direct 32.5 dB (the punctual lights'
-// light and shadows, the normal and metallic-roughness maps), final 28.0 dB, indirect
-// relative L1 55.1 % and bias -16.1 % (the truth's 256 samples leave noise in the polished
-// metal stripes' indirect light). The open room's indirect light is far from the demo box's
-// (L1 9-11 %); the thresholds keep it from getting worse until it is tuned.
+// normal and metallic-roughness maps, a trellis cut out by an alpha mask, a sun, a spot and a
+// point light), written as glTF and opened as a scene file like `render --scene FILE`. The
+// thresholds guard what was measured on the 2-core EPYC with PoCL (fast mode, 64^3, 8 frames,
+// no TAA): direct 29.6 dB (the punctual lights' light and shadows, the material maps, the
+// trellis's holes and its shadow; the difference is on edges, one raster sample per pixel
+// against 256 jittered ones, the trellis's bars adding most of them), final 27.6 dB,
+// indirect relative L1 55.1 % and bias -13.2 % (the truth's 256 samples leave noise in the
+// polished metal stripes' indirect light). The open room's indirect light is far from the
+// demo box's (L1 9-11 %); the thresholds keep it from getting worse until it is tuned.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -91,7 +93,7 @@ TEST(FileSceneTruth, LoadedRoomMatchesItsPathTracedTruth) {
   RecordProperty("final_psnr", std::to_string(final_psnr));
   std::printf("loaded room vs truth: direct %.2f dB, final %.2f dB, indirect L1 %.1f %%, "
               "bias %+.1f %%\n", direct_psnr, final_psnr, 100.0 * l1, 100.0 * bias);
-  EXPECT_GE(direct_psnr, 31.0);
+  EXPECT_GE(direct_psnr, 29.0);
   EXPECT_GE(final_psnr, 27.0);
   EXPECT_LE(l1, 0.62);
   EXPECT_LE(std::abs(bias), 0.30);
