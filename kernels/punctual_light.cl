@@ -9,12 +9,17 @@
  * widen = 0; matte pixels, gloss code 0: w_d = 1, spec = 0). The shadow of each light is
  * filtered over 3x3 texels of its own map (common/punctual_light.h).
  *
+ * Eight pixels of a row per work-item (common/indirect_simd.h loads and stores): the lights'
+ * direction, attenuation and 3x3-filtered shadow lane by lane, the surface model
+ * (rp_brdf_lamp8) once for the eight lanes, only where a lane has a coat.
+ *
  * Variants (-D): RP_LIGHT_SPLIT=1: also adds the direct light to direct_out and its specular
  * part to specular_out (the light pass's split outputs, which hold the lamp's share already).
  */
 #include "shared/types.h"
 #include "common/math.h"
 #include "common/brdf.h"
+#include "common/indirect_simd.h"
 #include "common/punctual_light.h"
 
 #ifndef RP_LIGHT_SPLIT
@@ -22,48 +27,101 @@
 #endif
 
 __kernel void punctual_light_add(__global const FrameConstants* restrict frame,
-                                 __global const float4* restrict albedo_plane,
-                                 __global const float4* restrict normal_depth_plane,
-                                 __global const float4* restrict position_plane,
-                                 __global const float4* restrict emission_plane,
+                                 __global const float* restrict albedo_plane,
+                                 __global const float* restrict normal_depth_plane,
+                                 __global const float* restrict position_plane,
+                                 __global const float* restrict emission_plane,
                                  __global const float* restrict shadow,
                                  __global const float4* restrict brdf_table,
 #if RP_LIGHT_SPLIT
-                                 __global float4* restrict direct_out,
-                                 __global float4* restrict specular_out,
+                                 __global float* restrict direct_out,
+                                 __global float* restrict specular_out,
 #endif
-                                 __global float4* restrict hdr) {
-  const uint x = (uint)get_global_id(0), y = (uint)get_global_id(1);
+                                 __global float* restrict hdr) {
+  const uint x0 = 8u * (uint)get_global_id(0), y = (uint)get_global_id(1);
   const uint width = frame->width;
-  if (x >= width || y >= frame->height) return;
-  const uint pixel = y * width + x;
-  const float4 pos = position_plane[pixel];
-  if (pos.w == 0.0f) return;
-  const float3 p = pos.xyz, n = normal_depth_plane[pixel].xyz;
-  const float3 albedo = albedo_plane[pixel].xyz;
-  const float code = emission_plane[pixel].w;
-  const float3 v = normalize(frame->camera_pos.xyz - p);
-  float3 direct = (float3)(0.0f), spec_direct = (float3)(0.0f);
+  if (x0 >= width || y >= frame->height) return;
+  const uint lanes = min(8u, width - x0);
+  const uint row = 4u * y * width;
+  float8 px, py, pz, cov, nx, ny, nz, depth, ar, ag, ab, aw, er, eg, eb, code;
+  rp_load8_float4(position_plane, row, x0, lanes, &px, &py, &pz, &cov);
+  if (all(cov == 0.0f)) return; /* background only */
+  rp_load8_float4(normal_depth_plane, row, x0, lanes, &nx, &ny, &nz, &depth);
+  rp_load8_float4(albedo_plane, row, x0, lanes, &ar, &ag, &ab, &aw);
+  rp_load8_float4(emission_plane, row, x0, lanes, &er, &eg, &eb, &code);
+  const int8 covered = cov != 0.0f;
+  const bool coated = any(covered & (code != 0.0f));
+  const float3 cam = frame->camera_pos.xyz;
+  float8 vx = cam.x - px, vy = cam.y - py, vz = cam.z - pz;
+  const float8 inv_v = rsqrt(vx * vx + vy * vy + vz * vz);
+  vx *= inv_v;
+  vy *= inv_v;
+  vz *= inv_v;
+  float p_[3][8], n_[3][8], cv[8];
+  vstore8(px, 0, p_[0]);
+  vstore8(py, 0, p_[1]);
+  vstore8(pz, 0, p_[2]);
+  vstore8(nx, 0, n_[0]);
+  vstore8(ny, 0, n_[1]);
+  vstore8(nz, 0, n_[2]);
+  vstore8(cov, 0, cv);
+  const float8 zero = 0.0f;
+  float8 dr = zero, dg = zero, db = zero, sr_sum = zero, sg_sum = zero, sb_sum = zero;
   for (uint i = 0; i < frame->punctual_count; ++i) {
-    float3 l;
-    const float3 k = rp_punctual_direct(frame, shadow, i, p, n, 1, &l);
-    if (all(k == 0.0f)) continue;
-    if (code == 0.0f) {
-      direct += albedo * k;
+    /* lane by lane: the light's irradiance factor k (rgb) and direction l */
+    float k_[3][8], l_[3][8];
+    bool lit = false;
+    for (uint q = 0; q < 8u; ++q) {
+      float3 l = (float3)(0.0f, 1.0f, 0.0f), k = (float3)(0.0f);
+      if (q < lanes && cv[q] != 0.0f)
+        k = rp_punctual_direct(frame, shadow, i, (float3)(p_[0][q], p_[1][q], p_[2][q]),
+                               (float3)(n_[0][q], n_[1][q], n_[2][q]), 1, &l);
+      lit = lit || any(k != 0.0f);
+      k_[0][q] = k.x;
+      k_[1][q] = k.y;
+      k_[2][q] = k.z;
+      l_[0][q] = l.x;
+      l_[1][q] = l.y;
+      l_[2][q] = l.z;
+    }
+    if (!lit) continue;
+    const float8 kr = vload8(0, k_[0]), kg = vload8(0, k_[1]), kb = vload8(0, k_[2]);
+    if (!coated) { /* matte lanes: w_d = 1, no specular */
+      dr += ar * kr;
+      dg += ag * kg;
+      db += ab * kb;
       continue;
     }
-    float8 wr, wg, wb, sr, sg, sb, er, eg, eb;
-    rp_brdf_lamp8(brdf_table, (float8)(code), (float8)(albedo.x), (float8)(albedo.y),
-                  (float8)(albedo.z), (float8)(n.x), (float8)(n.y), (float8)(n.z),
-                  (float8)(v.x), (float8)(v.y), (float8)(v.z), (float8)(l.x), (float8)(l.y),
-                  (float8)(l.z), (float8)(0.0f), &wr, &wg, &wb, &sr, &sg, &sb, &er, &eg, &eb);
-    const float3 spec = (float3)(sr.s0, sg.s0, sb.s0) * k;
-    direct += albedo * (float3)(wr.s0, wg.s0, wb.s0) * k + spec;
-    spec_direct += spec;
+    float8 wr, wg, wb, sr, sg, sb, vr, vg, vb;
+    rp_brdf_lamp8(brdf_table, code, ar, ag, ab, nx, ny, nz, vx, vy, vz, vload8(0, l_[0]),
+                  vload8(0, l_[1]), vload8(0, l_[2]), zero, &wr, &wg, &wb, &sr, &sg, &sb, &vr,
+                  &vg, &vb);
+    /* gloss code 0 (matte): w_d = 1, spec = 0, as the per-pixel form had it */
+    const int8 matte = code == 0.0f;
+    wr = select(wr, (float8)(1.0f), matte);
+    wg = select(wg, (float8)(1.0f), matte);
+    wb = select(wb, (float8)(1.0f), matte);
+    sr = select(sr * kr, zero, matte);
+    sg = select(sg * kg, zero, matte);
+    sb = select(sb * kb, zero, matte);
+    dr += ar * wr * kr + sr;
+    dg += ag * wg * kg + sg;
+    db += ab * wb * kb + sb;
+    sr_sum += sr;
+    sg_sum += sg;
+    sb_sum += sb;
   }
-  hdr[pixel].xyz += direct;
+  /* add to the planes' rgb, alpha kept (rp_store8_float4 writes all four) */
+  float8 hr, hg, hb, ha;
+  rp_load8_float4(hdr, row, x0, lanes, &hr, &hg, &hb, &ha);
+  rp_store8_float4(hdr, row, x0, lanes, hr + select(zero, dr, covered),
+                   hg + select(zero, dg, covered), hb + select(zero, db, covered), ha);
 #if RP_LIGHT_SPLIT
-  direct_out[pixel].xyz += direct;
-  specular_out[pixel].xyz += spec_direct;
+  rp_load8_float4(direct_out, row, x0, lanes, &hr, &hg, &hb, &ha);
+  rp_store8_float4(direct_out, row, x0, lanes, hr + select(zero, dr, covered),
+                   hg + select(zero, dg, covered), hb + select(zero, db, covered), ha);
+  rp_load8_float4(specular_out, row, x0, lanes, &hr, &hg, &hb, &ha);
+  rp_store8_float4(specular_out, row, x0, lanes, hr + select(zero, sr_sum, covered),
+                   hg + select(zero, sg_sum, covered), hb + select(zero, sb_sum, covered), ha);
 #endif
 }

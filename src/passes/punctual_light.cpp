@@ -3,7 +3,9 @@
 namespace rp::passes {
 namespace {
 
-constexpr size_t kGroup = 16;  // 16x16 work-groups, as the light pass
+// 8 pixels of a row per work-item (kernels/punctual_light.cl); work-groups of 16 x 4 such
+// chunks, as the light pass's light_compose.
+constexpr size_t kGroupX = 16, kGroupY = 4;
 
 }  // namespace
 
@@ -30,8 +32,9 @@ void PunctualLightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& 
   kernel.setArg(arg++, hdr);
   const uint32_t w = gbuffer.width, h = gbuffer.height;
   profiler.enqueue("punctual_light", kernel,
-                   ::cl::NDRange(rp::cl::round_up(w, kGroup), rp::cl::round_up(h, kGroup)),
-                   ::cl::NDRange(kGroup, kGroup));
+                   ::cl::NDRange(rp::cl::round_up((w + 7) / 8, kGroupX),
+                                 rp::cl::round_up(h, kGroupY)),
+                   ::cl::NDRange(kGroupX, kGroupY));
 }
 
 }  // namespace rp::passes
