@@ -57,14 +57,40 @@ inline float rp_punctual_linear(__global const ShadowViewGpu* V, float d) {
   return 2.0f * near * far / ((far + near) - z_ndc * (far - near));
 }
 
-/* 1 where texel (tx, ty) of view V (clamped to the map) is farther than `receiver`. */
+/* The stored depth (z_ndc * 0.5 + 0.5) of linear depth `lin` in view V: rp_punctual_linear's
+ * inverse, so a texel is compared as stored (d >= this) instead of converting every tap. */
+inline float rp_punctual_stored(__global const ShadowViewGpu* V, float lin) {
+  const float near = V->depth.x, far = V->depth.y;
+  if (V->depth.z != 0.0f) return (lin - near) / (far - near);
+  if (!(lin > near)) return -INFINITY; /* nearer than anything stored: lit */
+  const float z_ndc = ((far + near) - 2.0f * near * far / lin) / (far - near);
+  return z_ndc * 0.5f + 0.5f;
+}
+
+/* 1 where texel (tx, ty) of view V (clamped to the map) is at or beyond stored depth
+ * `receiver_d` (rp_punctual_stored; an empty texel, 1, always is). */
 inline float rp_punctual_tap(__global const float* shadow, __global const ShadowViewGpu* V,
-                             int tx, int ty, float receiver) {
+                             int tx, int ty, float receiver_d) {
   const int last = (int)V->size - 1;
   tx = clamp(tx, 0, last);
   ty = clamp(ty, 0, last);
   const float d = shadow[V->offset + (uint)ty * V->size + (uint)tx];
-  return receiver <= rp_punctual_linear(V, d) ? 1.0f : 0.0f;
+  return d >= receiver_d || d >= 1.0f ? 1.0f : 0.0f;
+}
+
+/* Four taps of row ty, columns tx .. tx + 3, weighted by w (rp_punctual_tap each; one vector
+ * load where the row lies inside the map). */
+inline float rp_punctual_row4(__global const float* shadow, __global const ShadowViewGpu* V,
+                              int tx, int ty, float receiver_d, float4 w) {
+  const int last = (int)V->size - 1;
+  if (tx < 0 || tx + 3 > last || ty < 0 || ty > last)
+    return w.x * rp_punctual_tap(shadow, V, tx, ty, receiver_d) +
+           w.y * rp_punctual_tap(shadow, V, tx + 1, ty, receiver_d) +
+           w.z * rp_punctual_tap(shadow, V, tx + 2, ty, receiver_d) +
+           w.w * rp_punctual_tap(shadow, V, tx + 3, ty, receiver_d);
+  const float4 d = vload4(0, shadow + V->offset + (uint)ty * V->size + (uint)tx);
+  const float4 lit = select((float4)(0.0f), (float4)(1.0f), (d >= receiver_d) | (d >= 1.0f));
+  return dot(w, lit);
 }
 
 /* Visibility in [0, 1] of light L (l: towards it) at p with unit normal n. */
@@ -99,7 +125,7 @@ inline float rp_punctual_visibility(__global const FrameConstants* frame,
   const float3 ndc = clip.xyz / clip.w;
   if (fabs(ndc.x) > 1.0f || fabs(ndc.y) > 1.0f || ndc.z > 1.0f) return 1.0f;
   const float lin = V->depth.z != 0.0f ? rp_punctual_linear(V, ndc.z * 0.5f + 0.5f) : clip.w;
-  const float receiver = lin - texel * (1.5f + tan_theta);
+  const float receiver = rp_punctual_stored(V, lin - texel * (1.5f + tan_theta));
   const float size = (float)V->size;
   const float x = (ndc.x * 0.5f + 0.5f) * size - 0.5f, y = (0.5f - ndc.y * 0.5f) * size - 0.5f;
   const float fx0 = floor(x), fy0 = floor(y);
@@ -113,14 +139,11 @@ inline float rp_punctual_visibility(__global const FrameConstants* frame,
     return mix(mix(t00, t10, fx), mix(t01, t11, fx), fy);
   }
   /* nine bilinear comparisons around the receiver = 4x4 texels weighted (1 - f, 1, 1, f) */
-  const float wx[4] = {1.0f - fx, 1.0f, 1.0f, fx}, wy[4] = {1.0f - fy, 1.0f, 1.0f, fy};
+  const float4 wx = (float4)(1.0f - fx, 1.0f, 1.0f, fx);
+  const float wy[4] = {1.0f - fy, 1.0f, 1.0f, fy};
   float lit = 0.0f;
-  for (int j = 0; j < 4; ++j) {
-    float row = 0.0f;
-    for (int i = 0; i < 4; ++i)
-      row += wx[i] * rp_punctual_tap(shadow, V, x0 - 1 + i, y0 - 1 + j, receiver);
-    lit += wy[j] * row;
-  }
+  for (int j = 0; j < 4; ++j)
+    lit += wy[j] * rp_punctual_row4(shadow, V, x0 - 1, y0 - 1 + j, receiver, wx);
   return lit * (1.0f / 9.0f);
 }
 
