@@ -149,7 +149,11 @@ LoadedScene load_gltf_from_memory(const std::vector<uint8_t>& bytes, const std::
   ctx.file = path;
   ctx.limits = limits;
   tinygltf::Model model;
+  const auto parse_start = std::chrono::steady_clock::now();
   load_model(ctx, bytes, &model);
+  const double parse_ms = std::chrono::duration<double, std::milli>(
+                              std::chrono::steady_clock::now() - parse_start)
+                              .count();
   ctx.model = &model;
   warn_unsupported(ctx);
 
@@ -244,6 +248,7 @@ LoadedScene load_gltf_from_memory(const std::vector<uint8_t>& bytes, const std::
   out.volume = volume_extra(ctx, scene);
   out.warnings = ctx.warnings.lines();
   out.times.decode_ms = ctx.decode_ms;
+  out.times.parse_ms = parse_ms;
   return out;
 }
 
@@ -256,7 +261,10 @@ LoadedScene load_gltf(const std::string& path) {
   std::string why;
   if (!gltf::read_regular_file(path, limits.max_file_bytes, &bytes, &why))
     throw SceneFileError(path + ": cannot open the scene file: " + why);
+  const double read_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   LoadedScene scene = gltf::load_gltf_from_memory(bytes, path, limits);
+  scene.times.read_ms = read_ms;
   scene.times.total_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return scene;

@@ -101,6 +101,9 @@ int pathtrace_render_command(const CommonOptions& common, const RenderOptions& o
   const scene::SceneAssets assets = file ? file->loaded.assets : load_assets(common);
   auto next_frame = [&] { return simulation ? simulation->next_frame() : file_source->next(); };
   rp::truth::PathTracer tracer(assets);
+  if (file)
+    std::printf("%s\nset-up: path tracer BVHs and textures %.0f ms\n",
+                describe_file_scene(*file).c_str(), tracer.build_ms());
   const rp::truth::PathTraceSettings settings = settings_for(common, w, h, options.sim.seed);
 
   // The tracer calls `progress` from this thread about ten times a second: the place to turn

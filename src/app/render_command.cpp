@@ -50,8 +50,11 @@ int render_frames(const CommonOptions& common, const RenderOptions& options,
   std::printf("device %s\n", describe_device(session.device()).c_str());
   if (file) {
     const render::SetupTimes& t = session.renderer().setup_times();
-    std::printf("%s\nset-up: scene upload %.0f ms (mip chains, buffers), kernels %.0f ms\n",
-                describe_file_scene(*file).c_str(), t.scene_ms, t.kernels_ms);
+    std::printf("%s\nset-up: scene upload %.0f ms (mip chains %.0f, buffers %.0f), ",
+                describe_file_scene(*file).c_str(), t.scene_ms, t.mips_ms,
+                t.scene_ms - t.mips_ms);
+    if (t.bvh_ms > 0.0) std::printf("Embree BVHs %.0f ms, ", t.bvh_ms);
+    std::printf("kernels %.0f ms\n", t.kernels_ms);
   }
   std::fflush(stdout);
 

@@ -29,13 +29,15 @@ std::string describe_file_scene(const FileScene& scene) {
   uint64_t triangles = 0;
   for (const scene::MeshInstance& inst : l.instances)
     triangles += l.assets.meshes[inst.mesh].triangles.size();
-  char text[512];
+  char text[640];
   std::snprintf(text, sizeof text,
                 "scene %s: %llu triangles drawn (%zu instances of %zu meshes), %zu textures, "
-                "%zu lights; loaded in %.0f ms (images decoded in %.0f ms)",
+                "%zu lights; loaded in %.0f ms (read %.0f, parse %.0f, accessors %.0f, images "
+                "decoded %.0f)",
                 scene.path.c_str(), static_cast<unsigned long long>(triangles),
                 l.instances.size(), l.assets.meshes.size(), l.assets.textures.size(),
-                l.lights.size(), l.times.total_ms, l.times.decode_ms);
+                l.lights.size(), l.times.total_ms, l.times.read_ms, l.times.parse_ms,
+                l.times.accessors_ms(), l.times.decode_ms);
   return text;
 }
 

@@ -28,7 +28,7 @@ struct FileScene {
 FileScene open_scene_file(const std::string& path);
 
 // "scene FILE: N triangles drawn (I instances of M meshes), T textures, L lights; loaded in
-// X ms (images decoded in Y ms)"
+// X ms (read R, parse P, accessors A, images decoded D)" (LoadedScene::Times)
 std::string describe_file_scene(const FileScene& scene);
 
 // "host memory: peak N MiB" (the process's peak resident set, getrusage).

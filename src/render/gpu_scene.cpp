@@ -3,6 +3,7 @@
 #include "shading/brdf_tables.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <stdexcept>
 
@@ -191,6 +192,7 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
   }
   std::vector<uint32_t> texel_data;
   std::vector<gpu::TextureInfo> infos;
+  const auto mips_start = std::chrono::steady_clock::now();
   for (const scene::Texture& t : assets.textures) {
     // Each texture with its mip chain (render/texture_mips.h), levels back to back.
     MipChain chain;
@@ -211,6 +213,9 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
     infos.push_back(info);
     texel_data.insert(texel_data.end(), chain.texels.begin(), chain.texels.end());
   }
+  mips_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                      mips_start)
+                .count();
 
   vertices = upload(context, queue_, verts);
   // Only scenes with normal, metallic-roughness or emission maps read the tangents (the

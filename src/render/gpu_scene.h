@@ -74,6 +74,8 @@ class GpuScene {
   // Some material cuts holes (alpha mask): the rasterizer, shadow maps and voxelizer test
   // texture alpha (kernels/common/alpha_mask.h).
   bool has_alpha_masks = false;
+  // Wall-clock milliseconds the constructor spent on the textures' mip chains (set-up times).
+  double mips_ms = 0.0;
   ::cl::Buffer materials;  // gpu::Material[]
   // uint RGBA8 (R in the low byte, sRGB rgb), all textures back to back, each followed by its
   // mip levels (render/texture_mips.h; 4/3 of the level-0 texels for square textures).

@@ -74,10 +74,14 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   };
   scene_ = std::make_unique<GpuScene>(context.context, context.queue, assets);
   setup_times_.scene_ms = ms_since(start);
+  setup_times_.mips_ms = scene_->mips_ms;
   const auto kernels_start = std::chrono::steady_clock::now();
   visibility_ = std::make_unique<passes::VisibilityPass>(context, programs);
-  if (settings_.visibility == VisibilityBackend::kEmbree)
+  if (settings_.visibility == VisibilityBackend::kEmbree) {
+    const auto bvh_start = std::chrono::steady_clock::now();
     embree_ = std::make_unique<passes::EmbreeVisibilityPass>(context, assets);
+    setup_times_.bvh_ms = ms_since(bvh_start);
+  }
   gbuffer_pass_ = std::make_unique<passes::GBufferPass>(context, programs);
   const bool svo = settings_.gi_volume == GiVolume::kSvo;
   if (!gi_resolution_supported(settings_.gi_volume, settings_.voxel_resolution))
@@ -111,7 +115,7 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   motion_blur_ = std::make_unique<passes::MotionBlurPass>(context, programs);
   debug_view_pass_ =
       std::make_unique<passes::DebugViewPass>(context, programs, gi_options);  // builds lazily
-  setup_times_.kernels_ms = ms_since(kernels_start);
+  setup_times_.kernels_ms = ms_since(kernels_start) - setup_times_.bvh_ms;
   shadow_.resize(context.context, settings_.shadow_size);
   if (!svo) voxels_.resize(context.context, settings_.voxel_resolution);
   resize(settings_.width, settings_.height);

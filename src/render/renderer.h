@@ -130,10 +130,14 @@ struct RenderSettings {
   TextureFilter texture_filter = TextureFilter::kTrilinear;  // --texture-filter (issue 15)
 };
 
-// Wall-clock milliseconds of the renderer's set-up: the scene's upload (texture mip chains,
-// buffers) and the kernel builds (the program cache's: 0.5-4 s each when PoCL's cache is cold).
+// Wall-clock milliseconds of the renderer's set-up: the scene's upload (texture mip chains and
+// buffers; mips_ms is the chains' part), the Embree visibility backend's BVHs (0 with the
+// rasterizer) and the kernel builds (the program cache's: 0.5-4 s each when PoCL's cache is
+// cold).
 struct SetupTimes {
   double scene_ms = 0.0;
+  double mips_ms = 0.0;
+  double bvh_ms = 0.0;
   double kernels_ms = 0.0;
 };
 

@@ -406,12 +406,21 @@ float area_lamp_unshadowed(const scene::PointLight& light, glm::vec3 p, glm::vec
 }
 
 struct PathTracer::Impl {
-  explicit Impl(const scene::SceneAssets& a) : assets(a) {}
+  explicit Impl(const scene::SceneAssets& a)
+      : start(std::chrono::steady_clock::now()),
+        assets(a),
+        build_ms(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                           start)
+                     .count()) {}
+  std::chrono::steady_clock::time_point start;
   TraceAssets assets;
+  double build_ms;
 };
 
 PathTracer::PathTracer(const scene::SceneAssets& assets) : impl_(std::make_unique<Impl>(assets)) {}
 PathTracer::~PathTracer() = default;
+
+double PathTracer::build_ms() const { return impl_->build_ms; }
 
 PathTracedImage PathTracer::render(const scene::FrameScene& frame,
                                    const PathTraceSettings& settings, const ProgressFn& progress,

@@ -151,6 +151,9 @@ class PathTracer {
   PathTracer(const PathTracer&) = delete;
   PathTracer& operator=(const PathTracer&) = delete;
 
+  // Wall-clock milliseconds the constructor took (the BVHs and linear textures).
+  double build_ms() const;
+
   // Path traces `frame` (its camera, light, instances and spheres; the previous-frame fields are
   // ignored). `progress` (optional) is called about ten times a second; when `cancel` (optional)
   // becomes true the render stops early and throws Cancelled. Throws std::invalid_argument for
