@@ -46,11 +46,11 @@ inline void rp_span_wrap_taps(rp_spanf c, rp_spanf size, rp_spanu mode, rp_spani
 }
 
 /* The four taps of a bilinear footprint at (u, v) of a w x h texture (or mip level) whose first
- * texel is `offset`: texel indices (offset + row * width + column) and the weights' fractions. */
+ * texel is `offset`: texel indices (offset + row * width + column) per lane, in arrays for the
+ * lane-by-lane reads, and the weights' fractions. */
 inline void rp_span_texture_taps(rp_spani textured, rp_spanf w, rp_spanf h, rp_spanu offset,
-                                 rp_spanu wrap, rp_spanf u, rp_spanf v, rp_spanu* i00,
-                                 rp_spanu* i10, rp_spanu* i01, rp_spanu* i11, rp_spanf* fx,
-                                 rp_spanf* fy) {
+                                 rp_spanu wrap, rp_spanf u, rp_spanf v, uint* i00, uint* i10,
+                                 uint* i01, uint* i11, rp_spanf* fx, rp_spanf* fy) {
   /* Untextured lanes sample (0, 0) of a 1x1 texture (ignored by the callers): no NaN reaches
    * the int conversions. */
   u = select((rp_spanf)(0.0f), u, textured);
@@ -66,10 +66,10 @@ inline void rp_span_texture_taps(rp_spani textured, rp_spanf w, rp_spanf h, rp_s
   const rp_spani wi = rp_span_convert_int(w);
   const rp_spanu row0 = offset + rp_span_convert_uint(y0 * wi);
   const rp_spanu row1 = offset + rp_span_convert_uint(y1 * wi);
-  *i00 = row0 + rp_span_convert_uint(x0);
-  *i10 = row0 + rp_span_convert_uint(x1);
-  *i01 = row1 + rp_span_convert_uint(x0);
-  *i11 = row1 + rp_span_convert_uint(x1);
+  RP_SPAN_TO_ARRAY(row0 + rp_span_convert_uint(x0), i00);
+  RP_SPAN_TO_ARRAY(row0 + rp_span_convert_uint(x1), i10);
+  RP_SPAN_TO_ARRAY(row1 + rp_span_convert_uint(x0), i01);
+  RP_SPAN_TO_ARRAY(row1 + rp_span_convert_uint(x1), i11);
 }
 
 /* Bilinear texture sample of the lanes with `textured` set (the arithmetic of sampling.h's
@@ -81,15 +81,10 @@ inline void rp_span_texture_sample(__global const uint* texels, rp_spani texture
                                    rp_spanf w, rp_spanf h, rp_spanu offset, rp_spanu wrap,
                                    rp_spanf u, rp_spanf v, int n, rp_spanf* r, rp_spanf* g,
                                    rp_spanf* b) {
-  rp_spanu t00, t10, t01, t11;
-  rp_spanf fx, fy;
-  rp_span_texture_taps(textured, w, h, offset, wrap, u, v, &t00, &t10, &t01, &t11, &fx, &fy);
   uint i00[RP_SPAN], i10[RP_SPAN], i01[RP_SPAN], i11[RP_SPAN];
+  rp_spanf fx, fy;
+  rp_span_texture_taps(textured, w, h, offset, wrap, u, v, i00, i10, i01, i11, &fx, &fy);
   int on[RP_SPAN];
-  RP_SPAN_TO_ARRAY(t00, i00);
-  RP_SPAN_TO_ARRAY(t10, i10);
-  RP_SPAN_TO_ARRAY(t01, i01);
-  RP_SPAN_TO_ARRAY(t11, i11);
   RP_SPAN_TO_ARRAY(textured, on);
   /* The four taps per lane, decoded (untextured lanes keep code 0, which decodes to 0). */
   float r00a[RP_SPAN], g00a[RP_SPAN], b00a[RP_SPAN], r10a[RP_SPAN], g10a[RP_SPAN], b10a[RP_SPAN];
@@ -131,15 +126,10 @@ inline void rp_span_texture_sample(__global const uint* texels, rp_spani texture
 inline rp_spanf rp_span_texture_alpha(__global const uint* texels, rp_spani textured,
                                       rp_spanf w, rp_spanf h, rp_spanu offset, rp_spanu wrap,
                                       rp_spanf u, rp_spanf v, int n) {
-  rp_spanu t00, t10, t01, t11;
-  rp_spanf fx, fy;
-  rp_span_texture_taps(textured, w, h, offset, wrap, u, v, &t00, &t10, &t01, &t11, &fx, &fy);
   uint i00[RP_SPAN], i10[RP_SPAN], i01[RP_SPAN], i11[RP_SPAN];
+  rp_spanf fx, fy;
+  rp_span_texture_taps(textured, w, h, offset, wrap, u, v, i00, i10, i01, i11, &fx, &fy);
   int on[RP_SPAN];
-  RP_SPAN_TO_ARRAY(t00, i00);
-  RP_SPAN_TO_ARRAY(t10, i10);
-  RP_SPAN_TO_ARRAY(t01, i01);
-  RP_SPAN_TO_ARRAY(t11, i11);
   RP_SPAN_TO_ARRAY(textured, on);
   float a00[RP_SPAN], a10[RP_SPAN], a01[RP_SPAN], a11[RP_SPAN];
   for (int i = 0; i < RP_SPAN; ++i) {
