@@ -196,27 +196,9 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
   }
 
   // Truths at one gather and at many: truths[0] "one", truths[1] "many".
-  std::vector<Images> truths;
-  for (uint32_t bounces : {1u, options.many_bounces}) {
-    truth::PathTraceSettings s;
-    s.width = w;
-    s.height = h;
-    s.spp = options.spp;
-    s.bounces = bounces;
-    s.seed = options.seed;
-    const CachedTruth t = cached_truth_with_progress(
-        tracer, assets, frame, s, cache,
-        "path tracing (" + std::to_string(bounces) + " bounce" + (bounces == 1 ? "" : "s") + ")");
-    const std::string key = bounces == 1 ? "one" : "many";
-    j["truth"][key] = {{"bounces", bounces},
-                       {"spp", s.spp},
-                       {"seed", s.seed},
-                       {"seconds", t.image.seconds},
-                       {"rays_per_second", t.image.rays_per_second()},
-                       {"from_cache", t.from_cache},
-                       {"file", t.file.string()}};
-    truths.push_back(from_truth("truth_" + key, t.image));
-  }
+  const std::vector<Images> truths =
+      truths_one_and_many(tracer, assets, frame, w, h, options.spp, options.many_bounces,
+                          options.seed, cache, j["truth"]);
   j["truth"]["one"]["indirect_vs_many"] = stats_json(
       compare_region(truths[0].indirect, truths[1].indirect, regions.image, Region::kImage));
 

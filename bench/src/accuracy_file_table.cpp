@@ -124,14 +124,7 @@ std::string file_accuracy_table(const nlohmann::json& j) {
     t << "  materials not seen at this size (no figures): " << unseen << "\n";
 
   const nlohmann::json& cfg = j["configurations"];
-  std::snprintf(line, sizeof line, "\n%-34s", "(rolypoly vs truth)");
-  t << line;
-  for (const AccuracyConfig& c : kAccuracyConfigs) {
-    std::snprintf(line, sizeof line, " %8s", c.column);
-    t << line;
-  }
-  t << "\n  (/N: " << n << " bounces against the " << n
-    << "-bounce truth; /1: --bounces 1 against the 1-bounce truth)\n";
+  t << config_table_head(34, n);
   auto row = [&](const std::string& label, auto get) {
     std::snprintf(line, sizeof line, "%-34s", label.c_str());
     t << line;

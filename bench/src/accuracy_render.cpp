@@ -21,6 +21,18 @@ std::string percent_cell(double v, bool sign) {
   return b;
 }
 
+std::string config_table_head(int label_width, const std::string& n) {
+  char line[128];
+  std::snprintf(line, sizeof line, "\n%-*s", label_width, "(rolypoly vs truth)");
+  std::string t = line;
+  for (const AccuracyConfig& c : kAccuracyConfigs) {
+    std::snprintf(line, sizeof line, " %8s", c.column);
+    t += line;
+  }
+  return t + "\n  (/N: " + n + " bounces against the " + n +
+         "-bounce truth; /1: --bounces 1 against the 1-bounce truth)\n";
+}
+
 std::string db_cell(double v) {
   if (std::isnan(v)) return "     n/a";
   char b[32];
@@ -74,6 +86,36 @@ CachedTruth cached_truth_with_progress(truth::PathTracer& tracer,
       &cancel);
   bar.finish();
   return t;
+}
+
+std::vector<Images> truths_one_and_many(truth::PathTracer& tracer,
+                                        const scene::SceneAssets& assets,
+                                        const scene::FrameScene& frame, uint32_t w, uint32_t h,
+                                        uint32_t spp, uint32_t many_bounces, uint64_t seed,
+                                        const std::filesystem::path& cache,
+                                        nlohmann::json& truth_json) {
+  std::vector<Images> truths;
+  for (uint32_t bounces : {1u, many_bounces}) {
+    truth::PathTraceSettings s;
+    s.width = w;
+    s.height = h;
+    s.spp = spp;
+    s.bounces = bounces;
+    s.seed = seed;
+    const CachedTruth t = cached_truth_with_progress(
+        tracer, assets, frame, s, cache,
+        "path tracing (" + std::to_string(bounces) + " bounce" + (bounces == 1 ? "" : "s") + ")");
+    const std::string key = bounces == 1 ? "one" : "many";
+    truth_json[key] = {{"bounces", bounces},
+                       {"spp", s.spp},
+                       {"seed", s.seed},
+                       {"seconds", t.image.seconds},
+                       {"rays_per_second", t.image.rays_per_second()},
+                       {"from_cache", t.from_cache},
+                       {"file", t.file.string()}};
+    truths.push_back(from_truth("truth_" + key, t.image));
+  }
+  return truths;
 }
 
 }  // namespace rp::app

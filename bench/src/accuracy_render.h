@@ -44,6 +44,9 @@ nlohmann::json stats_json(const ErrorStats& s);
 std::string percent_cell(double v, bool sign);
 // "   12.34" (8 characters); "     n/a" for NaN.
 std::string db_cell(double v);
+// The configurations' table head: "(rolypoly vs truth)" in a label column `label_width` wide,
+// one column per configuration, and the line that says what /N and /1 mean (N = n bounces).
+std::string config_table_head(int label_width, const std::string& n);
 // A JSON number as a double, NaN for null (a figure without pixels).
 inline double json_number(const nlohmann::json& v) {
   return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN();
@@ -81,5 +84,15 @@ CachedTruth cached_truth_with_progress(truth::PathTracer& tracer,
                                        const truth::PathTraceSettings& settings,
                                        const std::filesystem::path& cache,
                                        const std::string& label);
+
+// The truths of `frame` at one gather ([0], "one") and at `many_bounces` ([1], "many"), w x h,
+// `spp` samples, `seed`, each from the cache when it holds it; each one's facts (bounces, spp,
+// seed, seconds, rays per second, from the cache, file) go into truth_json["one"] / ["many"].
+std::vector<Images> truths_one_and_many(truth::PathTracer& tracer,
+                                        const scene::SceneAssets& assets,
+                                        const scene::FrameScene& frame, uint32_t w, uint32_t h,
+                                        uint32_t spp, uint32_t many_bounces, uint64_t seed,
+                                        const std::filesystem::path& cache,
+                                        nlohmann::json& truth_json);
 
 }  // namespace rp::app

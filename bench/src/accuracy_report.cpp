@@ -86,27 +86,9 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   j["height"] = h;
 
   // Truths at one gather and at many: truths[0] "one", truths[1] "many".
-  std::vector<Images> truths;
-  for (uint32_t bounces : {1u, options.many_bounces}) {
-    truth::PathTraceSettings s;
-    s.width = w;
-    s.height = h;
-    s.spp = options.spp;
-    s.bounces = bounces;
-    s.seed = options.seed;
-    const CachedTruth t = cached_truth_with_progress(
-        tracer, assets, frame, s, cache,
-        "path tracing (" + std::to_string(bounces) + " bounce" + (bounces == 1 ? "" : "s") + ")");
-    const std::string key = bounces == 1 ? "one" : "many";
-    j["truth"][key] = {{"bounces", bounces},
-                       {"spp", s.spp},
-                       {"seed", s.seed},
-                       {"seconds", t.image.seconds},
-                       {"rays_per_second", t.image.rays_per_second()},
-                       {"from_cache", t.from_cache},
-                       {"file", t.file.string()}};
-    truths.push_back(from_truth("truth_" + key, t.image));
-  }
+  const std::vector<Images> truths =
+      truths_one_and_many(tracer, assets, frame, w, h, options.spp, options.many_bounces,
+                          options.seed, cache, j["truth"]);
   const Images& truth_one = truths[0];
   const Images& truth_many = truths[1];
   for (const char* key : {"one", "many"})
@@ -334,14 +316,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   }
   t << "  the 1-bounce truth's indirect light against " << n << " bounces: bias"
     << percent_cell(number(j["truth"]["one"]["indirect_vs_many"]["bias"]), true) << "\n";
-  std::snprintf(line, sizeof line, "\n%-32s", "(rolypoly vs truth)");
-  t << line;
-  for (const AccuracyConfig& c : kAccuracyConfigs) {
-    std::snprintf(line, sizeof line, " %8s", c.column);
-    t << line;
-  }
-  t << "\n  (/N: " << n << " bounces against the " << n
-    << "-bounce truth; /1: --bounces 1 against the 1-bounce truth)\n";
+  t << config_table_head(32, n);
   auto row = [&](const std::string& label, auto get) {
     std::snprintf(line, sizeof line, "%-32s", label.c_str());
     t << line;
