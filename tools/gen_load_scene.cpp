@@ -17,6 +17,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene/box_mesh.h"
 #include "scene/gltf_export.h"
 #include "scene/tumbler_shape.h"
 
@@ -51,33 +52,6 @@ rp::scene::Texture make_texture(uint32_t index) {
       p[3] = 255;
     }
   return t;
-}
-
-// An axis-aligned box (outward normals, uv 0..1 on each face) appended to `m`.
-void add_box(rp::scene::Mesh& m, glm::vec3 c, glm::vec3 h, uint32_t mat) {
-  for (int axis = 0; axis < 3; ++axis)
-    for (float s : {-1.0f, 1.0f}) {
-      glm::vec3 n(0.0f), u(0.0f), v(0.0f);
-      n[axis] = s;
-      u[(axis + 1) % 3] = 1.0f;
-      v[(axis + 2) % 3] = 1.0f;
-      const uint32_t b = uint32_t(m.vertices.size());
-      const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-      for (const auto& k : corners)
-        m.vertices.push_back({c + h * (n + k[0] * u + k[1] * v), n,
-                              glm::vec2(0.5f + 0.5f * k[0], 0.5f + 0.5f * k[1])});
-      // tangent along the face's u direction; the bitangent w * cross(n, t) must follow +v
-      const float w = glm::dot(glm::cross(n, u), v) > 0.0f ? 1.0f : -1.0f;
-      for (int k = 0; k < 4; ++k) m.tangents.push_back(glm::vec4(u, w));
-      if (s > 0) {
-        m.triangles.push_back({b, b + 1, b + 2});
-        m.triangles.push_back({b, b + 2, b + 3});
-      } else {
-        m.triangles.push_back({b, b + 2, b + 1});
-        m.triangles.push_back({b, b + 3, b + 2});
-      }
-      m.materials.insert(m.materials.end(), {mat, mat});
-    }
 }
 
 // A 64x64 linear or sRGB texture from f(x, y) -> rgb bytes.
@@ -151,12 +125,12 @@ int write_room(const char* path) {
   lattice->double_sided = true;
   Mesh room;
   room.name = "room";
-  add_box(room, {0, -0.05f, 0}, {5, 0.05f, 5}, 0);
-  add_box(room, {0, 2.5f, -5}, {5, 2.5f, 0.05f}, 1);
-  add_box(room, {-5, 2.5f, 0}, {0.05f, 2.5f, 5}, 2);
-  add_box(room, {-1.5f, 0.75f, -1}, {0.75f, 0.75f, 0.75f}, 3);
-  add_box(room, {1.5f, 1.25f, 0.5f}, {0.5f, 1.25f, 0.5f}, 3);
-  add_box(room, {0, 0.4f, 2}, {0.4f, 0.4f, 0.4f}, 4);
+  append_box(room, {0, -0.05f, 0}, {5, 0.05f, 5}, 0);
+  append_box(room, {0, 2.5f, -5}, {5, 2.5f, 0.05f}, 1);
+  append_box(room, {-5, 2.5f, 0}, {0.05f, 2.5f, 5}, 2);
+  append_box(room, {-1.5f, 0.75f, -1}, {0.75f, 0.75f, 0.75f}, 3);
+  append_box(room, {1.5f, 1.25f, 0.5f}, {0.5f, 1.25f, 0.5f}, 3);
+  append_box(room, {0, 0.4f, 2}, {0.4f, 0.4f, 0.4f}, 4);
   {  // the trellis panel, upright in z = 1, uv 0..2.5 (mirrored)
     const glm::vec3 n(0.0f, 0.0f, 1.0f);
     const uint32_t b = uint32_t(room.vertices.size());

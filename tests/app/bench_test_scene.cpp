@@ -2,40 +2,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene/box_mesh.h"
 #include "scene/frame_scene.h"
 #include "scene/gltf_export.h"
 
 namespace rp::test {
-namespace {
-
-// An axis-aligned box (outward normals, counter-clockwise from outside) around `c` with half
-// sides `h`, appended to `m` with material `mat`; texture coordinates repeat `uv_repeat` times
-// across each face.
-void add_box(scene::Mesh& m, glm::vec3 c, glm::vec3 h, uint32_t mat, float uv_repeat = 1.0f) {
-  for (int axis = 0; axis < 3; ++axis)
-    for (float s : {-1.0f, 1.0f}) {
-      glm::vec3 n(0.0f), u(0.0f), v(0.0f);
-      n[axis] = s;
-      u[(axis + 1) % 3] = 1.0f;
-      v[(axis + 2) % 3] = 1.0f;
-      const uint32_t b = uint32_t(m.vertices.size());
-      const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-      for (const auto& k : corners)
-        m.vertices.push_back({c + h * (n + k[0] * u + k[1] * v), n,
-                              glm::vec2(k[0] * 0.5f + 0.5f, k[1] * 0.5f + 0.5f) * uv_repeat});
-      if (s > 0) {
-        m.triangles.push_back({b, b + 1, b + 2});
-        m.triangles.push_back({b, b + 2, b + 3});
-      } else {
-        m.triangles.push_back({b, b + 2, b + 1});
-        m.triangles.push_back({b, b + 3, b + 2});
-      }
-      m.materials.insert(m.materials.end(), {mat, mat});
-    }
-}
-
-}  // namespace
-
 BenchTestScene write_bench_test_scene(const std::filesystem::path& file, float spot_scale) {
   scene::SceneAssets a;
   const auto material = [&](const char* name, glm::vec3 albedo, glm::vec3 emission, float f0,
@@ -66,14 +37,14 @@ BenchTestScene write_bench_test_scene(const std::filesystem::path& file, float s
 
   scene::Mesh room;  // floor 8 m x 8 m, back wall 3 m high, a glowing patch on the wall
   room.name = "room";
-  add_box(room, {0.0f, -0.05f, 0.0f}, {4.0f, 0.05f, 4.0f}, 0, 4.0f);
-  add_box(room, {0.0f, 1.5f, -3.0f}, {4.0f, 1.5f, 0.05f}, 1);
-  add_box(room, {0.0f, 1.9f, -2.93f}, {0.9f, 0.45f, 0.02f}, 4);
+  scene::append_box(room, {0.0f, -0.05f, 0.0f}, {4.0f, 0.05f, 4.0f}, 0, 4.0f);
+  scene::append_box(room, {0.0f, 1.5f, -3.0f}, {4.0f, 1.5f, 0.05f}, 1);
+  scene::append_box(room, {0.0f, 1.9f, -2.93f}, {0.9f, 0.45f, 0.02f}, 4);
   scene::Mesh red, blue;  // unit cubes, placed and scaled by their instances
   red.name = "red box";
   blue.name = "blue box";
-  add_box(red, glm::vec3(0.0f), glm::vec3(0.5f), 2);
-  add_box(blue, glm::vec3(0.0f), glm::vec3(0.5f), 3);
+  scene::append_box(red, glm::vec3(0.0f), glm::vec3(0.5f), 2);
+  scene::append_box(blue, glm::vec3(0.0f), glm::vec3(0.5f), 3);
   a.meshes = {room, red, blue};
 
   scene::FrameScene f;
