@@ -1,0 +1,199 @@
+#include "shading/spherical_harmonics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace rp::shading {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+void check_bands(int bands) {
+  if (bands < 1 || bands > kShMaxBands)
+    throw std::invalid_argument("spherical harmonics: " + std::to_string(bands) +
+                                " bands (1 to " + std::to_string(kShMaxBands) + ")");
+}
+
+// Nodes and weights of the n-point Gauss-Legendre rule on [-1, 1] (Newton on P_n from the
+// Chebyshev guesses; converges to rounding in a few steps for n <= 64).
+void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weights) {
+  nodes.assign(size_t(n), 0.0);
+  weights.assign(size_t(n), 0.0);
+  for (int i = 0; i < n; ++i) {
+    double x = std::cos(kPi * (double(i) + 0.75) / (double(n) + 0.5));
+    double dp = 1.0;
+    for (int iter = 0; iter < 100; ++iter) {
+      double p0 = 1.0, p1 = x;  // P_0, P_1, then the recurrence up to P_n
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = n * (x * p1 - p0) / (x * x - 1.0);
+      const double step = p1 / dp;
+      x -= step;
+      if (std::abs(step) < 1e-16) break;
+    }
+    nodes[size_t(i)] = x;
+    weights[size_t(i)] = 2.0 / ((1.0 - x * x) * dp * dp);
+  }
+}
+
+// Solves M X = Y for X (M: n x n, Y: n x k, both row-major; overwritten) by Gaussian
+// elimination with partial pivoting.
+std::vector<double> solve(std::vector<double> m, std::vector<double> y, int n, int k) {
+  for (int c = 0; c < n; ++c) {
+    int pivot = c;
+    for (int r = c + 1; r < n; ++r)
+      if (std::abs(m[size_t(r * n + c)]) > std::abs(m[size_t(pivot * n + c)])) pivot = r;
+    if (std::abs(m[size_t(pivot * n + c)]) < 1e-300)
+      throw std::runtime_error("spherical harmonics: singular system");
+    if (pivot != c) {
+      for (int j = 0; j < n; ++j) std::swap(m[size_t(c * n + j)], m[size_t(pivot * n + j)]);
+      for (int j = 0; j < k; ++j) std::swap(y[size_t(c * k + j)], y[size_t(pivot * k + j)]);
+    }
+    for (int r = 0; r < n; ++r) {
+      if (r == c) continue;
+      const double f = m[size_t(r * n + c)] / m[size_t(c * n + c)];
+      if (f == 0.0) continue;
+      for (int j = c; j < n; ++j) m[size_t(r * n + j)] -= f * m[size_t(c * n + j)];
+      for (int j = 0; j < k; ++j) y[size_t(r * k + j)] -= f * y[size_t(c * k + j)];
+    }
+  }
+  for (int r = 0; r < n; ++r)
+    for (int j = 0; j < k; ++j) y[size_t(r * k + j)] /= m[size_t(r * n + r)];
+  return y;
+}
+
+}  // namespace
+
+void sh_eval(glm::dvec3 d, int bands, double* out) {
+  check_bands(bands);
+  const double x = d.x, y = d.y, z = d.z;
+  out[0] = 0.282094791773878143;  // 1 / (2 sqrt(pi))
+  if (bands < 2) return;
+  out[1] = 0.488602511902919921 * y;  // sqrt(3 / (4 pi))
+  out[2] = 0.488602511902919921 * z;
+  out[3] = 0.488602511902919921 * x;
+  if (bands < 3) return;
+  out[4] = 1.092548430592079070 * x * y;  // sqrt(15 / (4 pi))
+  out[5] = 1.092548430592079070 * y * z;
+  out[6] = 0.315391565252520006 * (3.0 * z * z - 1.0);  // sqrt(5 / (16 pi))
+  out[7] = 1.092548430592079070 * x * z;
+  out[8] = 0.546274215296039535 * (x * x - y * y);  // sqrt(15 / (16 pi))
+  if (bands < 4) return;
+  out[9] = 0.590043589926643510 * y * (3.0 * x * x - y * y);  // sqrt(35 / (32 pi))
+  out[10] = 2.890611442640554055 * x * y * z;                // sqrt(105 / (4 pi))
+  out[11] = 0.457045799464465737 * y * (5.0 * z * z - 1.0);  // sqrt(21 / (32 pi))
+  out[12] = 0.373176332590115391 * z * (5.0 * z * z - 3.0);  // sqrt(7 / (16 pi))
+  out[13] = 0.457045799464465737 * x * (5.0 * z * z - 1.0);
+  out[14] = 1.445305721320277027 * z * (x * x - y * y);  // sqrt(105 / (16 pi))
+  out[15] = 0.590043589926643510 * x * (x * x - 3.0 * y * y);
+  if (bands < 5) return;
+  const double x2 = x * x, y2 = y * y, z2 = z * z;
+  out[16] = 2.503342941796704539 * x * y * (x2 - y2);           // 3 sqrt(35 / pi) / 4
+  out[17] = 1.770130769779930531 * y * z * (3.0 * x2 - y2);     // 3 sqrt(35 / (2 pi)) / 4
+  out[18] = 0.946174695757560014 * x * y * (7.0 * z2 - 1.0);    // 3 sqrt(5 / pi) / 4
+  out[19] = 0.669046543557289159 * y * z * (7.0 * z2 - 3.0);    // 3 sqrt(5 / (2 pi)) / 4
+  out[20] = 0.105785546915204322 * (35.0 * z2 * z2 - 30.0 * z2 + 3.0);  // 3 / (16 sqrt(pi))
+  out[21] = 0.669046543557289159 * x * z * (7.0 * z2 - 3.0);
+  out[22] = 0.473087347878780007 * (x2 - y2) * (7.0 * z2 - 1.0);  // 3 sqrt(5 / pi) / 8
+  out[23] = 1.770130769779930531 * x * z * (x2 - 3.0 * y2);
+  out[24] = 0.625835735449176135 * (x2 * (x2 - 3.0 * y2) - y2 * (3.0 * x2 - y2));
+}
+
+std::vector<double> sh_project(const std::function<double(glm::dvec3)>& f, int bands, int rings,
+                               int segments) {
+  check_bands(bands);
+  std::vector<double> nodes, weights;
+  gauss_legendre(rings, nodes, weights);
+  std::vector<double> c(size_t(sh_count(bands)), 0.0);
+  double y[kShMaxCount];
+  const double dphi = 2.0 * kPi / segments;
+  for (int i = 0; i < rings; ++i) {
+    const double z = nodes[size_t(i)], r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    for (int j = 0; j < segments; ++j) {
+      const double phi = (double(j) + 0.5) * dphi;
+      const glm::dvec3 d(r * std::cos(phi), r * std::sin(phi), z);
+      const double w = weights[size_t(i)] * dphi * f(d);
+      sh_eval(d, bands, y);
+      for (size_t k = 0; k < c.size(); ++k) c[k] += w * y[k];
+    }
+  }
+  return c;
+}
+
+double sh_cosine_lobe_zonal(int l) {
+  switch (l) {
+    case 0: return std::sqrt(kPi) / 2.0;
+    case 1: return std::sqrt(kPi / 3.0);
+    case 2: return std::sqrt(5.0 * kPi) / 8.0;
+    case 3: return 0.0;
+    case 4: return -std::sqrt(kPi) / 16.0;
+    default: break;
+  }
+  throw std::invalid_argument("spherical harmonics: band " + std::to_string(l) + " (0 to 4)");
+}
+
+std::vector<double> sh_rotate_zonal(const std::vector<double>& zonal, glm::dvec3 n, int bands) {
+  check_bands(bands);
+  double y[kShMaxCount];
+  sh_eval(n, bands, y);
+  std::vector<double> c(size_t(sh_count(bands)), 0.0);
+  for (int l = 0; l < bands && size_t(l) < zonal.size(); ++l)
+    for (int m = -l; m <= l; ++m)
+      c[size_t(sh_index(l, m))] =
+          zonal[size_t(l)] * std::sqrt(4.0 * kPi / (2.0 * l + 1.0)) * y[sh_index(l, m)];
+  return c;
+}
+
+ShRotation::ShRotation(const glm::dmat3& rotation, int bands) : bands_(bands) {
+  check_bands(bands);
+  const glm::dmat3 inverse = glm::transpose(rotation);  // a rotation's inverse
+  double ya[kShMaxCount], yb[kShMaxCount];
+  for (int l = 0; l < bands; ++l) {
+    const int w = 2 * l + 1, points = 2 * w;
+    // A (points x w): band l at the points; B: band l at the points turned back by R^-1.
+    std::vector<double> a(size_t(points * w)), b(size_t(points * w));
+    for (int k = 0; k < points; ++k) {
+      const double z = 1.0 - (2.0 * k + 1.0) / points;
+      const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+      const double phi = k * 2.39996322972865332;  // the golden angle
+      const glm::dvec3 d(r * std::cos(phi), r * std::sin(phi), z);
+      sh_eval(d, bands, ya);
+      sh_eval(inverse * d, bands, yb);
+      for (int m = 0; m < w; ++m) {
+        a[size_t(k * w + m)] = ya[l * l + m];
+        b[size_t(k * w + m)] = yb[l * l + m];
+      }
+    }
+    // Least squares: (A^T A) D = A^T B; the band's coefficients turn as c' = D c.
+    std::vector<double> ata(size_t(w * w), 0.0), atb(size_t(w * w), 0.0);
+    for (int i = 0; i < w; ++i)
+      for (int j = 0; j < w; ++j)
+        for (int k = 0; k < points; ++k) {
+          ata[size_t(i * w + j)] += a[size_t(k * w + i)] * a[size_t(k * w + j)];
+          atb[size_t(i * w + j)] += a[size_t(k * w + i)] * b[size_t(k * w + j)];
+        }
+    const std::vector<double> d = solve(std::move(ata), std::move(atb), w, w);
+    blocks_.insert(blocks_.end(), d.begin(), d.end());
+  }
+}
+
+void ShRotation::apply(const double* in, double* out) const {
+  size_t block = 0;
+  for (int l = 0; l < bands_; ++l) {
+    const int w = 2 * l + 1, first = l * l;
+    for (int i = 0; i < w; ++i) {
+      double s = 0.0;
+      for (int j = 0; j < w; ++j) s += blocks_[block + size_t(i * w + j)] * in[first + j];
+      out[first + i] = s;
+    }
+    block += size_t(w * w);
+  }
+}
+
+}  // namespace rp::shading

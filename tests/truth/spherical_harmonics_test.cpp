@@ -1,0 +1,125 @@
+// Real spherical harmonics (src/shading/spherical_harmonics.h) against closed forms: the basis
+// is orthonormal, a constant and the clamped cosine lobe project onto their known
+// coefficients, a zonal lobe turned to any axis matches its projection, and rotating
+// coefficients equals projecting the rotated function.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "shading/spherical_harmonics.h"
+
+namespace rp::shading {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+glm::dmat3 rotation(double angle, glm::dvec3 axis) {
+  return glm::dmat3(glm::rotate(glm::dmat4(1.0), angle, glm::normalize(axis)));
+}
+
+TEST(SphericalHarmonics, BasisIsOrthonormalUpToBandFour) {
+  // Products of two band-4 functions are polynomials of degree 8: the product rule with 24
+  // rings and 48 segments integrates them exactly (to rounding).
+  double y[kShMaxCount];
+  for (int j = 0; j < kShMaxCount; ++j) {
+    const std::vector<double> c = sh_project(
+        [&](glm::dvec3 d) {
+          sh_eval(d, kShMaxBands, y);
+          return y[j];
+        },
+        kShMaxBands);
+    for (int i = 0; i < kShMaxCount; ++i)
+      EXPECT_NEAR(c[size_t(i)], i == j ? 1.0 : 0.0, 1e-12) << "<Y_" << i << ", Y_" << j << ">";
+  }
+}
+
+TEST(SphericalHarmonics, BandOneIsTheDirectionScaled) {
+  // The convention: Y_1,-1 = c y, Y_1,0 = c z, Y_1,1 = c x, c = sqrt(3 / (4 pi)).
+  double y[4];
+  const glm::dvec3 d = glm::normalize(glm::dvec3(0.3, -0.5, 0.8));
+  sh_eval(d, 2, y);
+  const double c = std::sqrt(3.0 / (4.0 * kPi));
+  EXPECT_NEAR(y[0], 0.5 / std::sqrt(kPi), 1e-15);
+  EXPECT_NEAR(y[1], c * d.y, 1e-15);
+  EXPECT_NEAR(y[2], c * d.z, 1e-15);
+  EXPECT_NEAR(y[3], c * d.x, 1e-15);
+}
+
+TEST(SphericalHarmonics, ConstantProjectsOntoTheFirstCoefficientOnly) {
+  const std::vector<double> c = sh_project([](glm::dvec3) { return 2.5; }, 5);
+  EXPECT_NEAR(c[0], 2.5 * 2.0 * std::sqrt(kPi), 1e-12);  // 2.5 * integral of Y_0 = 2.5 sqrt(4 pi)
+  for (size_t i = 1; i < c.size(); ++i) EXPECT_NEAR(c[i], 0.0, 1e-12) << i;
+}
+
+TEST(SphericalHarmonics, CosineLobeMatchesItsClosedForm) {
+  // max(0, z) has a kink at the equator: many rings, a looser tolerance.
+  const std::vector<double> c = sh_project([](glm::dvec3 d) { return std::max(0.0, d.z); }, 5,
+                                           400, 16);
+  for (int l = 0; l < 5; ++l)
+    for (int m = -l; m <= l; ++m)
+      EXPECT_NEAR(c[size_t(sh_index(l, m))], m == 0 ? sh_cosine_lobe_zonal(l) : 0.0, 2e-5)
+          << "l " << l << " m " << m;
+  // The irradiance of a unit-radiance sky through the lobe is pi: sqrt(4 pi) * A_0.
+  EXPECT_NEAR(2.0 * std::sqrt(kPi) * sh_cosine_lobe_zonal(0), kPi, 1e-12);
+}
+
+TEST(SphericalHarmonics, ZonalLobeTurnedToAnAxisMatchesItsProjection) {
+  const glm::dvec3 n = glm::normalize(glm::dvec3(-0.4, 0.7, 0.2));
+  std::vector<double> zonal;
+  for (int l = 0; l < 5; ++l) zonal.push_back(sh_cosine_lobe_zonal(l));
+  const std::vector<double> turned = sh_rotate_zonal(zonal, n, 5);
+  const std::vector<double> projected = sh_project(
+      [&](glm::dvec3 d) { return std::max(0.0, glm::dot(n, d)); }, 5, 400, 400);
+  for (size_t i = 0; i < turned.size(); ++i) EXPECT_NEAR(turned[i], projected[i], 2e-4) << i;
+}
+
+TEST(SphericalHarmonics, RotatingCoefficientsEqualsProjectingTheRotatedFunction) {
+  // A smooth, not band-limited function: projection commutes with rotation, so both sides
+  // agree to the quadrature's accuracy.
+  const glm::dvec3 a(0.8, -0.3, 0.5);
+  const auto f = [&](glm::dvec3 d) { return std::exp(glm::dot(a, d)) + 0.3 * d.x * d.y * d.z; };
+  for (const glm::dmat3& r :
+       {rotation(0.7, {1.0, 2.0, 0.5}), rotation(2.9, {0.0, 0.0, 1.0}),
+        rotation(-1.3, {-0.2, 1.0, -0.7}), glm::dmat3(1.0)}) {
+    for (int bands : {3, 5}) {
+      const std::vector<double> c = sh_project(f, bands);
+      std::vector<double> turned(c.size());
+      ShRotation(r, bands).apply(c.data(), turned.data());
+      const glm::dmat3 inverse = glm::transpose(r);
+      const std::vector<double> want =
+          sh_project([&](glm::dvec3 d) { return f(inverse * d); }, bands);
+      for (size_t i = 0; i < c.size(); ++i) EXPECT_NEAR(turned[i], want[i], 1e-10) << i;
+    }
+  }
+}
+
+TEST(SphericalHarmonics, RotationsComposeAndKeepTheEnergy) {
+  const glm::dmat3 r1 = rotation(0.9, {0.3, -1.0, 0.4}), r2 = rotation(-2.1, {1.0, 0.2, 0.1});
+  std::vector<double> c(kShMaxCount);
+  for (int i = 0; i < kShMaxCount; ++i) c[size_t(i)] = std::sin(1.7 * i + 0.3);
+  std::vector<double> once(c.size()), twice(c.size()), direct(c.size());
+  ShRotation(r1, 5).apply(c.data(), once.data());
+  ShRotation(r2, 5).apply(once.data(), twice.data());
+  ShRotation(r2 * r1, 5).apply(c.data(), direct.data());
+  double e0 = 0.0, e1 = 0.0;
+  for (size_t i = 0; i < c.size(); ++i) {
+    EXPECT_NEAR(twice[i], direct[i], 1e-12) << i;
+    e0 += c[i] * c[i];
+    e1 += direct[i] * direct[i];
+  }
+  EXPECT_NEAR(e1, e0, 1e-11);  // rotations are orthogonal on each band
+}
+
+TEST(SphericalHarmonics, RefusesBandsOutsideOneToFive) {
+  double y[kShMaxCount];
+  EXPECT_THROW(sh_eval(glm::dvec3(0, 0, 1), 0, y), std::invalid_argument);
+  EXPECT_THROW(sh_eval(glm::dvec3(0, 0, 1), 6, y), std::invalid_argument);
+  EXPECT_THROW(ShRotation(glm::dmat3(1.0), 6), std::invalid_argument);
+  EXPECT_THROW(sh_cosine_lobe_zonal(5), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rp::shading
