@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/environment.h"
+
 namespace rp::scene {
 
 // Pinhole camera. Angles in degrees, distances in world units (the box spans [-1,1]^3).
@@ -188,6 +190,8 @@ struct FrameScene {
   PointLight light;                    // the demo's ceiling lamp, used only when `lamp` is true
   bool lamp = true;
   std::vector<PunctualLight> lights;   // a loaded scene's lights (the demo has none)
+  Environment environment;             // sky or studio light from afar (none by default; the
+                                       // path tracer's so far, scene/environment.h)
   std::vector<MeshInstance> instances;
   std::vector<Sphere> spheres;
   uint32_t frame_index = 0;

@@ -118,6 +118,16 @@ std::string truth_key(const scene::SceneAssets& assets, const scene::FrameScene&
     coat(s.specular);
     h.value(uint8_t(s.casts_shadow));
   }
+  // An environment light adds its map and settings; frames without one keep their keys.
+  if (frame.environment.enabled()) {
+    const scene::EnvironmentMap& map = *frame.environment.map;
+    h.text("environment");
+    h.value(map.width);
+    h.value(map.height);
+    h.bytes(map.rgb.data(), map.rgb.size() * sizeof(float));
+    h.value(frame.environment.strength);
+    h.value(frame.environment.rotate_deg);
+  }
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.get()));
   return hex;

@@ -13,6 +13,7 @@
 #include "scene/punctual_light.h"
 #include "shading/brdf.h"
 #include "shading/brdf_tables.h"
+#include "truth/environment.h"
 #include "truth/sampling.h"
 #include "truth/trace_scene.h"
 
@@ -72,10 +73,11 @@ struct SampleResult {
 
 class Integrator {
  public:
-  Integrator(const TraceScene& scene, const SphereLights& lights, uint32_t bounces,
-             LampModel model)
+  Integrator(const TraceScene& scene, const SphereLights& lights,
+             const EnvironmentSampler& environment, uint32_t bounces, LampModel model)
       : scene_(scene),
         lights_(lights),
+        env_(environment),
         bounces_(bounces),
         light_(scene.frame().light),
         model_(model),
@@ -97,17 +99,50 @@ class Integrator {
   }
 
   // The direct light leaving `s` towards wo (unit, towards the previous vertex), rolypoly's
-  // units: the demo's lamp (FrameScene::lamp) and every punctual light of the frame.
-  // spec (optional): receives the coat's part of the result (0 for a matte surface).
+  // units: the demo's lamp (FrameScene::lamp), every punctual light of the frame and the
+  // environment's share sampled by the map (the BRDF-sampled share is added where a gather
+  // ray escapes). spec (optional): receives the coat's part of the result (0 for a matte
+  // surface).
   glm::vec3 lamp(const Surface& s, glm::vec3 wo, Pcg32& rng, glm::vec3* spec = nullptr) {
-    if (scene_.frame().lights.empty()) return demo_lamp(s, wo, rng, spec);
+    if (scene_.frame().lights.empty() && !env_.enabled()) return demo_lamp(s, wo, rng, spec);
     glm::vec3 sum = demo_lamp(s, wo, rng, spec);
     glm::vec3 light_spec(0.0f);
     for (const scene::PunctualLight& light : scene_.frame().lights) {
       sum += punctual(light, s, wo, spec ? &light_spec : nullptr);
       if (spec) *spec += light_spec;
     }
+    if (env_.enabled()) {
+      sum += environment_light(s, wo, rng, spec ? &light_spec : nullptr);
+      if (spec) *spec += light_spec;
+    }
     return sum;
+  }
+
+  // The environment's light reflected by `s`, one direction sampled by the map (MIS weighted
+  // against the BRDF's sampler, which the gather's escaping rays stand for). Draws two numbers,
+  // only when there is an environment.
+  glm::vec3 environment_light(const Surface& s, glm::vec3 wo, Pcg32& rng, glm::vec3* spec) {
+    if (spec) *spec = glm::vec3(0.0f);
+    const float u1 = rng.uniform(), u2 = rng.uniform();
+    const EnvironmentSampler::Sample es = env_.sample(u1, u2);
+    if (!(es.pdf > 0.0f)) return glm::vec3(0.0f);
+    const float c = glm::dot(s.ns, es.dir);
+    if (c <= 0.0f || glm::dot(s.ng, es.dir) <= 0.0f) return glm::vec3(0.0f);
+    ++rays;
+    if (scene_.shadowed(s.p + s.ng * kRayOffset, es.dir, kFar)) return glm::vec3(0.0f);
+    const bool glossy = coated(s);
+    const float bsdf_pdf =
+        glossy ? shading::brdf_pdf(bsdf_of(s), s.ns, wo, es.dir, tables_) : c / kPi;
+    // f L cos / pdf with pi f in rolypoly's units: (pi f / pi) L cos / pdf
+    const glm::vec3 li = es.radiance * (c / kPi / es.pdf * power_heuristic(es.pdf, bsdf_pdf));
+    const glm::vec3 f = glossy ? pi_f(s, wo, es.dir, spec) : s.albedo;
+    if (spec) *spec *= li;
+    return f * li;
+  }
+
+  // MIS weight of the environment reached by a gather ray of BRDF density bsdf_pdf.
+  float environment_weight(glm::vec3 wi, float bsdf_pdf) const {
+    return env_.enabled() ? power_heuristic(bsdf_pdf, env_.pdf(wi)) : 1.0f;
   }
 
   // One punctual light's direct light (scene/punctual_light.h), with a shadow ray.
@@ -218,7 +253,10 @@ class Integrator {
     SampleResult r;
     Surface s;
     ++rays;
-    if (!scene_.intersect(org, dir, kFar, s)) return r;
+    if (!scene_.intersect(org, dir, kFar, s)) {
+      r.emission = env_.radiance(dir);  // the sky seen directly (0 without an environment)
+      return r;
+    }
     r.emission = s.emission;
     r.albedo = s.albedo;
     glm::vec3 wo = -dir;  // towards the previous vertex
@@ -271,7 +309,15 @@ class Integrator {
       }
       Surface next;
       ++rays;
-      if (!scene_.intersect(s.p + s.ng * kRayOffset, wi, kFar, next)) break;
+      if (!scene_.intersect(s.p + s.ng * kRayOffset, wi, kFar, next)) {
+        if (env_.enabled()) {  // the environment's BRDF-sampled share (MIS weighted)
+          const glm::vec3 sky = env_.radiance(wi) * environment_weight(wi, pdf);
+          // from the seen surface it is direct light, as the map-sampled share in lamp()
+          (gather == 1 ? r.direct : r.indirect) += beta * sky;
+          r.specular += beta_s * sky;
+        }
+        break;
+      }
       if (next.lights_scene && next.emission != glm::vec3(0.0f)) {
         const float w = next.sphere != 0xFFFFFFFFu ? hit_weight(s, next, pdf) : 1.0f;
         r.indirect += beta * next.emission * w;
@@ -289,6 +335,7 @@ class Integrator {
  private:
   const TraceScene& scene_;
   const SphereLights& lights_;
+  const EnvironmentSampler& env_;
   uint32_t bounces_;
   scene::PointLight light_;
   LampModel model_;
@@ -430,6 +477,7 @@ PathTracedImage PathTracer::render(const scene::FrameScene& frame,
   const auto start = std::chrono::steady_clock::now();
   const TraceScene scene(impl_->assets, frame);
   const SphereLights lights(frame);
+  const EnvironmentSampler environment(frame.environment);
   const CameraRays camera(frame.camera, settings.width, settings.height);
   const uint32_t w = settings.width, h = settings.height;
   PathTracedImage image;
@@ -444,7 +492,7 @@ PathTracedImage PathTracer::render(const scene::FrameScene& frame,
   std::atomic<uint64_t> rays{0};
 
   auto row = [&](uint32_t y) {
-    Integrator integrator(scene, lights, settings.bounces, settings.lamp);
+    Integrator integrator(scene, lights, environment, settings.bounces, settings.lamp);
     for (uint32_t x = 0; x < w; ++x) {
       const uint64_t pixel = uint64_t(y) * w + x;
       Pcg32 rng(settings.seed, pixel);
