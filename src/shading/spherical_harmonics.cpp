@@ -150,6 +150,42 @@ std::vector<double> sh_rotate_zonal(const std::vector<double>& zonal, glm::dvec3
   return c;
 }
 
+std::vector<glm::dvec3> sh_project_environment(const scene::Environment& environment,
+                                               int bands) {
+  check_bands(bands);
+  std::vector<glm::dvec3> c(size_t(sh_count(bands)), glm::dvec3(0.0));
+  if (!environment.enabled()) return c;
+  const scene::EnvironmentMap& map = *environment.map;
+  const int w = map.width, h = map.height;
+  const double turn = double(environment.rotate_deg) * kPi / 180.0;
+  const double ct = std::cos(turn), st = std::sin(turn);
+  double y[kShMaxCount];
+  for (int row = 0; row < h; ++row) {
+    const double t0 = kPi * row / h, t1 = kPi * (row + 1) / h;
+    const double omega = (2.0 * kPi / w) * (std::cos(t0) - std::cos(t1));
+    for (int col = 0; col < w; ++col) {
+      const glm::dvec3 m(scene::environment_direction((float(col) + 0.5f) / float(w),
+                                                      (float(row) + 0.5f) / float(h)));
+      // the map's frame turned about +y into the world's (truth/environment.cpp to_world)
+      const glm::dvec3 d(ct * m.x + st * m.z, m.y, -st * m.x + ct * m.z);
+      sh_eval(glm::normalize(d), bands, y);
+      const float* t = &map.rgb[3 * (size_t(row) * size_t(w) + size_t(col))];
+      const glm::dvec3 radiance = glm::dvec3(t[0], t[1], t[2]) * double(environment.strength);
+      for (size_t i = 0; i < c.size(); ++i) c[i] += radiance * (omega * y[i]);
+    }
+  }
+  return c;
+}
+
+glm::dvec3 sh_irradiance(const std::vector<glm::dvec3>& coefficients, glm::dvec3 n, int bands) {
+  std::vector<double> zonal;
+  for (int l = 0; l < bands; ++l) zonal.push_back(sh_cosine_lobe_zonal(l));
+  const std::vector<double> lobe = sh_rotate_zonal(zonal, n, bands);
+  glm::dvec3 e(0.0);
+  for (size_t i = 0; i < lobe.size() && i < coefficients.size(); ++i) e += coefficients[i] * lobe[i];
+  return e;
+}
+
 ShRotation::ShRotation(const glm::dmat3& rotation, int bands) : bands_(bands) {
   check_bands(bands);
   const glm::dmat3 inverse = glm::transpose(rotation);  // a rotation's inverse

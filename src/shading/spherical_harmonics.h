@@ -15,6 +15,8 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/environment.h"
+
 namespace rp::shading {
 
 inline constexpr int kShMaxBands = 5;
@@ -45,6 +47,17 @@ std::vector<double> sh_rotate_zonal(const std::vector<double>& zonal, glm::dvec3
 // g's coefficients = rotate(f's). Band by band, each band's (2l + 1)^2 matrix is solved from
 // the basis at fixed directions (least squares over 2 (2l + 1) points of a Fibonacci sphere:
 // exact to rounding, as band l of any rotation maps into band l).
+// RGB coefficients of an environment map (scene/environment.h: its layout and direction
+// convention; strength and turn applied): the integral over each texel's exact solid angle,
+// (2 pi / width) (cos theta0 - cos theta1), of its radiance times Y_i at the texel's centre.
+// A constant map of radiance L gives L sqrt(4 pi) in the first coefficient (to rounding).
+std::vector<glm::dvec3> sh_project_environment(const scene::Environment& environment, int bands);
+
+// Irradiance on a surface of unit normal n from RGB coefficients (the integral of
+// L max(0, n . dir) for the band-limited L): the coefficients dotted with the clamped cosine
+// lobe's turned to n (sh_rotate_zonal).
+glm::dvec3 sh_irradiance(const std::vector<glm::dvec3>& coefficients, glm::dvec3 n, int bands);
+
 class ShRotation {
  public:
   ShRotation(const glm::dmat3& rotation, int bands);

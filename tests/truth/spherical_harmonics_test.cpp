@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -119,6 +120,43 @@ TEST(SphericalHarmonics, RefusesBandsOutsideOneToFive) {
   EXPECT_THROW(sh_eval(glm::dvec3(0, 0, 1), 6, y), std::invalid_argument);
   EXPECT_THROW(ShRotation(glm::dmat3(1.0), 6), std::invalid_argument);
   EXPECT_THROW(sh_cosine_lobe_zonal(5), std::invalid_argument);
+}
+
+TEST(SphericalHarmonics, EnvironmentProjectionIntegratesTheMap) {
+  // A constant map: the texels' solid angles sum to 4 pi exactly, so c_0 = L sqrt(4 pi) and
+  // the irradiance is pi L on every normal; the other coefficients vanish up to the texel
+  // rule's error (each texel's Y taken at its centre: O(1 / height^2), 1e-2 at 32x16).
+  auto flat = std::make_shared<scene::EnvironmentMap>();
+  flat->width = 256;
+  flat->height = 128;
+  flat->rgb.assign(256 * 128 * 3, 0.5f);
+  scene::Environment env;
+  env.map = flat;
+  env.strength = 2.0f;
+  const std::vector<glm::dvec3> c = sh_project_environment(env, 5);
+  EXPECT_NEAR(c[0].x, 1.0 * 2.0 * std::sqrt(kPi), 1e-6);
+  for (size_t i = 1; i < c.size(); ++i) EXPECT_NEAR(c[i].y, 0.0, 3e-4) << i;
+  EXPECT_NEAR(sh_irradiance(c, glm::normalize(glm::dvec3(0.3, 0.4, -0.2)), 5).z, kPi, 1e-3);
+
+  // A sky brighter towards +y (L = 1 + y): band-limited (bands 0 and 1), so 9 coefficients
+  // give its irradiance exactly up to the texel quadrature: pi + (2 pi / 3) n.y.
+  auto sky = std::make_shared<scene::EnvironmentMap>();
+  sky->width = 256;
+  sky->height = 128;
+  for (int row = 0; row < 128; ++row)
+    for (int col = 0; col < 256; ++col) {
+      const float y = scene::environment_direction((float(col) + 0.5f) / 256.0f,
+                                                   (float(row) + 0.5f) / 128.0f)
+                          .y;
+      sky->rgb.insert(sky->rgb.end(), {1.0f + y, 1.0f + y, 1.0f + y});
+    }
+  env.map = sky;
+  env.strength = 1.0f;
+  env.rotate_deg = 40.0f;  // a turn about +y changes nothing here
+  const std::vector<glm::dvec3> s = sh_project_environment(env, 3);
+  for (const glm::dvec3 n : {glm::dvec3(0, 1, 0), glm::dvec3(0, -1, 0),
+                             glm::normalize(glm::dvec3(1, 1, 0.5))})
+    EXPECT_NEAR(sh_irradiance(s, n, 3).x, kPi + 2.0 * kPi / 3.0 * n.y, 2e-3) << n.y;
 }
 
 }  // namespace
