@@ -7,7 +7,8 @@
 // - an exception escapes parse_cli;
 // - the same argv parses to a different result the second time (parse_cli keeps no state);
 // - an exit that is not 0 (help text, only when a word asks for help) or 2 (a usage message
-//   "rolypoly...: ...\nRun with --help for more information.\n");
+//   "rolypoly...: ...\nRun with --help for more information.\n", its lines at most 3000 bytes
+//   and free of control bytes whatever the words echoed);
 // - a parsed command whose values break what the commands rely on: sizes 1..16384, voxels
 //   32/64/128 (or 0 = default), shadow map 1..16384 (or 0), bloom strength in [0, 1], a debug
 //   view that exists with --level/--dir only for voxels, render/bench frames >= 1, a bench scene
@@ -118,6 +119,14 @@ void check_exit(const CliExit& e, const std::vector<std::string>& words) {
   require(e.message.rfind("rolypoly", 0) == 0, "usage message does not start with 'rolypoly'");
   require(e.message.find("Run with --help for more information.\n") != std::string::npos,
           "usage message does not point to --help");
+  // Echoed values are cut and escaped (app/printable.h): short lines, no control bytes.
+  size_t line = 0;
+  for (const char c : e.message) {
+    line = c == '\n' ? 0 : line + 1;
+    require(line <= 3000, "usage message line longer than 3000 bytes");
+    require(c == '\n' || static_cast<unsigned char>(c) >= 0x20, "control byte in usage message");
+    require(c != 0x7f, "DEL byte in usage message");
+  }
 }
 
 void check_view(const rp::passes::DebugViewSettings& v) {

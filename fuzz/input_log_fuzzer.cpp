@@ -1,9 +1,11 @@
-// libFuzzer target: the record/replay log parser (scene::parse_input_log) and its writer.
+// libFuzzer target: the record/replay log parser as `--replay` runs it (app::parse_replay_text:
+// scene::parse_input_log after the NUL check) and its writer.
 //
 // Findings are crashes, sanitizer reports, leaks, hangs, and these broken properties:
 // - malformed input throws scene::InputLogError (any other exception escapes and aborts) whose
-//   line() is a line of the input (1..lines; "empty file" is line 1) and whose message starts
-//   with the file name;
+//   line() is a line of the input (1..lines; "empty file" is line 1), whose message starts
+//   with the file name, and which, as shown to the user (app::printable), is one line of at most
+//   3000 bytes without control bytes, however long or binary the log's words;
 // - whatever parses is writable (write_input_log does not reject it) and the written log parses
 //   back to bit-identical events (floats compared by bits, so -0 vs 0 would show), and writing
 //   those again gives the same text.
@@ -16,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "app/printable.h"
+#include "app/replay_text.h"
 #include "scene/input.h"
 
 namespace {
@@ -61,12 +65,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string name = "fuzz.txt";
   std::vector<InputEvent> events;
   try {
-    std::istringstream in(text);
-    events = rp::scene::parse_input_log(in, name);
+    events = rp::app::parse_replay_text(text, name);
   } catch (const rp::scene::InputLogError& e) {
     const size_t lines = count_lines(text);
     if (e.line() < 1 || e.line() > (lines > 0 ? lines : 1)) finding("error names a line outside the input");
     if (std::string(e.what()).rfind(name + ":", 0) != 0) finding("error message does not start with the file name");
+    const std::string shown = rp::app::printable(e.what());
+    if (shown.size() > 3000) finding("the message shown is longer than 3000 bytes");
+    for (const char c : shown)
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) finding("control byte in the message shown");
     return 0;
   }
 

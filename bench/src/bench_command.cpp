@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "app/interrupt.h"
 #include "app/png_output.h"
 #include "app/progress.h"
 #include "bench/src/bench_chart.h"
@@ -33,6 +34,8 @@ namespace rp::app {
 
 namespace {
 
+constexpr const char* kBenchInterrupted = "while benchmarking; no file was written";
+
 // Visibility cost of one backend: the raster pass's device time, or Embree's host tracing plus
 // the device time of uploading its buffer.
 double visibility_ms(const PassStats& stats) {
@@ -54,6 +57,7 @@ PassStats measure(const CommonOptions& common, const BenchOptions& options,
   ProgressBar progress("bench", size_t(options.warmup) + options.frames);
   progress.update(0);
   for (uint32_t i = 0; i < options.warmup + options.frames; ++i) {
+    throw_if_interrupted(kBenchInterrupted);
     double frame_ms = 0.0;
     rp::cl::PassTimes times = frames->render(session, rgba, frame_ms);
     if (i >= options.warmup) stats.add(times, frame_ms);
@@ -105,6 +109,7 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
   ProgressBar progress(label, size_t(options.warmup) + options.frames);
   progress.update(0);
   for (uint32_t i = 0; i < options.warmup + options.frames; ++i) {
+    throw_if_interrupted(kBenchInterrupted);
     double frame_ms = 0.0;
     rp::cl::PassTimes times = frames->render(session, rgba, frame_ms);
     if (i >= options.warmup) stats.add(times, frame_ms);
@@ -207,17 +212,6 @@ void add_efficiency(const CommonOptions& common, const BenchScene& scene,
 }
 #endif
 
-// A device sweep (--devices) always leaves its JSON and chart behind: out/bench.json and
-// out/bench.svg unless --json / --chart name other files.
-BenchOptions with_default_outputs(const BenchOptions& given) {
-  BenchOptions options = given;
-  if (!options.devices.empty()) {
-    if (options.json.empty()) options.json = "out/bench.json";
-    if (options.chart.empty()) options.chart = "out/bench.svg";
-  }
-  return options;
-}
-
 // Every file and folder the bench will write, checked before minutes of measuring: a folder
 // that cannot be created or written, or a path that is a directory, socket or block device.
 void check_outputs(const BenchOptions& given) {
@@ -245,6 +239,17 @@ void write_outputs(const BenchOptions& given, const BenchMatrix& matrix) {
 }
 
 }  // namespace
+
+// A device sweep (--devices) always leaves its JSON and chart behind: out/bench.json and
+// out/bench.svg unless --json / --chart name other files.
+BenchOptions with_default_outputs(const BenchOptions& given) {
+  BenchOptions options = given;
+  if (!options.devices.empty()) {
+    if (options.json.empty()) options.json = "out/bench.json";
+    if (options.chart.empty()) options.chart = "out/bench.svg";
+  }
+  return options;
+}
 
 int bench_command(const CommonOptions& common, const BenchOptions& options) {
   check_outputs(options);
@@ -299,9 +304,18 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
               plan.devices.size(), plan.sizes.size(), plan.voxels.size(), matrix.scene.c_str(),
               render::shadow_mode_name(common.shadows), options.warmup, options.frames);
   std::fflush(stdout);
+  // A signal ends the whole bench, with no file written: a kernel build that LLVM failed on
+  // the signal is the interruption, not a device to skip (whose record would replace the
+  // previous --json).
   MeasureRun measure_cell = [&](const rp::cl::DeviceInfo& d, uint32_t w, uint32_t h,
                                 uint32_t v) {
-    return measure_run(common, options, scene, d, w, h, v);
+    throw_if_interrupted(kBenchInterrupted);
+    try {
+      return measure_run(common, options, scene, d, w, h, v);
+    } catch (const std::exception&) {
+      throw_if_interrupted(kBenchInterrupted);
+      throw;
+    }
   };
   FinishDevice finish;
 #if RP_BENCH_EFFICIENCY
@@ -310,6 +324,7 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
   };
 #endif
   run_matrix(plan, measure_cell, finish, matrix, stderr);
+  throw_if_interrupted(kBenchInterrupted);
   for (DeviceResult& d : matrix.devices)
     for (const RunResult& r : d.runs)
       if (r.timing == "host") d.timing = "host";

@@ -2,16 +2,28 @@
 // exception into one "rolypoly: error: <message>" line and exit code 1.
 #include "app/cli.h"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <new>
 #include <string>
+#include <string_view>
 #include <variant>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include "app/commands.h"
+#include "app/host_memory.h"
 #include "app/interrupt.h"
+#include "app/output_collisions.h"
+#include "app/printable.h"
 #include "cl/context.h"
 #include "cl/error.h"
+#include "scene/asset_error.h"
 #include "scene/gltf_loader.h"
+#include "scene/input.h"
 
 namespace rp::app {
 namespace {
@@ -22,16 +34,54 @@ int report(const std::string& message) {
   return 1;
 }
 
-// An OpenCL failure after SIGINT / SIGTERM is most likely the signal's consequence: LLVM inside
-// PoCL deletes its temporary files on the signal, so the kernel build in progress fails with
-// "failed to build kernels/...cl". Name the interruption, with its exit code (130 / 143),
-// instead. Other errors (a file that cannot be written) are reported as they are.
-int report_opencl(const std::string& message) {
-  if (!InterruptGuard::interrupted()) return report(message);
+// An error while a signal is pending is most likely the signal's consequence: LLVM inside PoCL
+// deletes its temporary files on the signal, so the kernel build in progress fails with
+// "failed to build kernels/...cl"; a wait for input stops (Interrupted). Name the interruption,
+// with its exit code (128 + signal), instead: "interrupted by SIGHUP <while_doing>".
+int report_interruption(const char* while_doing) {
   std::fflush(stdout);
-  std::fprintf(stderr, "rolypoly: error: interrupted by %s while starting up; nothing was "
-               "written\n", interrupt_signal_name());
+  std::fprintf(stderr, "rolypoly: error: interrupted by %s %s\n", interrupt_signal_name(),
+               while_doing);
   return interrupted_exit_code();
+}
+
+// An OpenCL failure: interrupted, or perhaps for lack of memory under a process limit (the ICD
+// loader then finds "no OpenCL platform", a kernel build fails): say so.
+int report_opencl(const std::string& message) {
+  if (InterruptGuard::interrupted()) return report_interruption("while starting up; nothing was written");
+  return report(message + memory_limit_note());
+}
+
+// stb_image, which loads the demo's textures, knows only "can't fopen" when a file does not
+// open; the system knows why ("No such file or directory", "Permission denied"). The loader's
+// message is "cannot load texture 'NAME' from PATH: can't fopen": open PATH again to ask.
+std::string with_open_reason(const std::string& message) {
+  constexpr std::string_view kStb = ": can't fopen";
+  constexpr std::string_view kFrom = "' from ";  // after the texture's name
+  const size_t from = message.find(kFrom);
+  if (from == std::string::npos || message.size() < from + kFrom.size() + kStb.size() ||
+      message.compare(message.size() - kStb.size(), kStb.size(), kStb) != 0)
+    return message;
+  const size_t at = from + kFrom.size();
+  const std::string path = message.substr(at, message.size() - kStb.size() - at);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd >= 0) {
+    ::close(fd);
+    return message;
+  }
+  const int err = errno;
+  return message.substr(0, message.size() - kStb.size()) + ": " + std::strerror(err);
+}
+
+const char* command_name(ParsedCommand::Kind kind) {
+  switch (kind) {
+    case ParsedCommand::Kind::kDevices: return "devices";
+    case ParsedCommand::Kind::kRender: return "render";
+    case ParsedCommand::Kind::kRun: return "run";
+    case ParsedCommand::Kind::kBench: return "bench";
+    case ParsedCommand::Kind::kExport: return "export";
+  }
+  return "";
 }
 
 int execute(const ParsedCommand& command) {
@@ -45,19 +95,12 @@ int execute(const ParsedCommand& command) {
   return report("unknown subcommand kind");
 }
 
-}  // namespace
-
-int run_cli(int argc, char** argv) {
-  const CliParse parsed = parse_cli(argc, argv);
-  if (const CliExit* done = std::get_if<CliExit>(&parsed)) {
-    std::FILE* stream = done->exit_code == 0 ? stdout : stderr;
-    std::fputs(done->message.c_str(), stream);
-    std::fflush(stream);
-    return done->exit_code;
-  }
+int execute_reporting(const ParsedCommand& command) {
   try {
     rp::cl::ensure_pocl_cache_dir();  // before the first OpenCL call
-    return execute(std::get<ParsedCommand>(parsed));
+    return execute(command);
+  } catch (const Interrupted& e) {
+    return report_interruption(e.what());
   } catch (const ::cl::Error& e) {
     // An OpenCL call that the code did not wrap in an rp::cl::Error.
     return report_opencl(std::string("OpenCL call ") + e.what() + " failed with " +
@@ -67,9 +110,49 @@ int run_cli(int argc, char** argv) {
   } catch (const scene::SceneFileError& e) {
     report(e.what());
     return 2;  // a bad input file is a usage error, like a bad option
+  } catch (const scene::AssetError& e) {
+    return report(with_open_reason(e.what()));
+  } catch (const scene::InputLogError& e) {
+    return report(printable(e.what()));  // it quotes the log's words
+  } catch (const std::bad_alloc&) {
+    if (InterruptGuard::interrupted()) return report_interruption("while allocating memory; every file written is complete");
+    return report("ran out of host memory" + memory_limit_note());
   } catch (const std::exception& e) {
+    if (InterruptGuard::interrupted()) return report_interruption("during the work; every file written is complete");
     return report(e.what());
   }
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  // First, so that no signal finds a disposition inherited from the launcher.
+  install_signal_handlers();
+  const CliParse parsed = parse_cli(argc, argv);
+  if (const CliExit* done = std::get_if<CliExit>(&parsed)) {
+    std::FILE* stream = done->exit_code == 0 ? stdout : stderr;
+    std::fputs(done->message.c_str(), stream);
+    std::fflush(stream);
+    return done->exit_code;
+  }
+  const ParsedCommand& command = std::get<ParsedCommand>(parsed);
+  // Before any work: two outputs that are one file, or an output that is an input.
+  if (const std::string why = find_output_collision(command); !why.empty()) {
+    std::fprintf(stderr, "rolypoly %s: %s\nRun with --help for more information.\n",
+                 command_name(command.kind), printable(why).c_str());
+    return 2;
+  }
+  const int code = execute_reporting(command);
+  // A signal that arrived after the last check (the bench's tables printed into a pipe that
+  // closed, an export) still ends the run as a signal does: with its exit code, after the
+  // files, all complete.
+  if (InterruptGuard::interrupted() && code != interrupted_exit_code()) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "rolypoly: error: interrupted by %s at the end; every file written is "
+                 "complete\n", interrupt_signal_name());
+    return interrupted_exit_code();
+  }
+  return code;
 }
 
 }  // namespace rp::app

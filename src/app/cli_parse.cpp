@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/cli.h"
+#include "app/printable.h"
 #include "app/scene_input.h"
 #include "passes/debug_view.h"
 
@@ -348,8 +349,28 @@ void add_view(CLI::App* cmd, ViewArgs& args) {
                         ->check(CLI::IsMember({"+x", "-x", "+y", "-y", "+z", "-z"}));
 }
 
+// --level against the volume --view voxels shows: the dense chain has levels 0 .. log2 R (1^3
+// at the top), the octree 0 .. log2 R - 1. Checked here rather than when the renderer sets the
+// view, after the device and the kernels (exit 1 there). "" when fine.
+std::string check_voxel_level(const CommonOptions& common) {
+  if (common.view.view != passes::DebugView::kVoxels) return "";
+  const bool svo = common.gi_volume == render::GiVolume::kSvo;
+  const uint32_t r = common.voxels != 0 ? common.voxels
+                     : svo              ? CommonOptions::kDefaultSvoVoxels
+                                        : render::RenderSettings{}.voxel_resolution;
+  uint32_t log2 = 0;
+  while ((r >> log2) > 1) ++log2;
+  const uint32_t top = svo ? log2 - 1 : log2;
+  if (common.view.level <= top) return "";
+  return "--level " + std::to_string(common.view.level) + ": --view voxels of the " +
+         (svo ? "octree" : "dense volume") + " at " + std::to_string(r) + "^3 has levels 0 to " +
+         std::to_string(top);
+}
+
+// `why` often echoes the user's value (CLI11's messages too): printable() cuts a long one and
+// escapes control bytes.
 CliExit usage(const std::string& who, const std::string& why) {
-  return {2, who + ": " + why + "\n" + kMoreHelp};
+  return {2, who + ": " + printable(why) + "\n" + kMoreHelp};
 }
 
 // The first option of `cmd` given an empty value ("--voxels ''", "--json=", "--sizes 256,,512"),
@@ -365,11 +386,12 @@ const CLI::Option* option_with_empty_value(const CLI::App* cmd) {
 }
 
 // A comma-separated list with an empty entry ("256,,512", ",32"): CLI11 drops the entry, so
-// such a list used to run with fewer items than written. "" when fine.
+// such a list used to run with fewer items than written; `--devices ,` failed only once the
+// device list was read (exit 1). "" when fine.
 std::string check_list_entries(int argc, const char* const* argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string word = argv[i];
-    for (const std::string name : {"--sizes", "--voxels"}) {
+    for (const std::string name : {"--sizes", "--voxels", "--devices"}) {
       std::string list;
       if (word == name && i + 1 < argc)
         list = argv[i + 1];
@@ -572,8 +594,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
       known += (known.empty() ? "" : ", ") + sub->get_name();
     }
     if (!found)
-      return CliExit{2, "rolypoly: unknown subcommand '" + word + "' (expected one of: " +
-                            known + ")\n" + kMoreHelp};
+      return usage("rolypoly", "unknown subcommand '" + word + "' (expected one of: " + known +
+                                   ")");
   }
 
   try {
@@ -606,6 +628,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
   } else if (render->parsed()) {
     if (std::string why = check_gi_volume(common, {common.voxels}); !why.empty())
       return usage("rolypoly render", why);
+    if (std::string why = check_voxel_level(common); !why.empty())
+      return usage("rolypoly render", why);
     if (std::string why = check_pathtrace(render, common); !why.empty())
       return usage("rolypoly render", why);
     if (!is_demo_scene(common.scene)) {
@@ -631,6 +655,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
   } else if (run->parsed()) {
     if (std::string why = check_bounces(common); !why.empty()) return usage("rolypoly run", why);
     if (std::string why = check_gi_volume(common, {common.voxels}); !why.empty())
+      return usage("rolypoly run", why);
+    if (std::string why = check_voxel_level(common); !why.empty())
       return usage("rolypoly run", why);
     if (!is_demo_scene(common.scene)) {
       for (const char* name :

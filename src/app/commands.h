@@ -96,6 +96,9 @@ int run_command(const CommonOptions& common, const RunOptions& options);
 // Timing tables per device and run, optional JSON, chart and Markdown. Exit code 0 when at
 // least one device completed, 1 when every device was skipped.
 int bench_command(const CommonOptions& common, const BenchOptions& options);
+// The files a bench writes: `given`, with out/bench.json and out/bench.svg for --json and
+// --chart when a device sweep (--devices) named none (bench/src/bench_command.cpp).
+BenchOptions with_default_outputs(const BenchOptions& given);
 // bench --accuracy: the real-time modes against the path-traced truth (bench/src/accuracy_report.h);
 // exit 3 when a threshold (--max-indirect-l1 ... --require-wall-hue) is missed, 130 when
 // interrupted.

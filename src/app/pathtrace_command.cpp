@@ -12,6 +12,7 @@
 
 #include "app/commands.h"
 #include "app/frame_output.h"
+#include "app/host_memory.h"
 #include "app/host_tone_map.h"
 #include "app/interrupt.h"
 #include "bench/src/pass_stats.h"
@@ -78,6 +79,8 @@ void encode_view(const rp::truth::PathTracedImage& image, passes::DebugView view
 
 int pathtrace_render_command(const CommonOptions& common, const RenderOptions& options) {
   InterruptGuard interrupt;
+  // Before anything is loaded or allocated: a size the host cannot hold fails at once.
+  check_pathtrace_memory(options.size.width, options.size.height, host_memory());
   const std::filesystem::path out_dir(options.out_dir);
   ensure_directory(out_dir);
   // Cheap checks first (as the real-time render): the scene file or the replay log, ffmpeg,
@@ -153,6 +156,8 @@ int pathtrace_render_command(const CommonOptions& common, const RenderOptions& o
 
 int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& options,
                             const FileScene* file, const nlohmann::ordered_json* scene_file) {
+  InterruptGuard interrupt;
+  check_pathtrace_memory(options.size.width, options.size.height, host_memory());
   std::unique_ptr<SimulationFrameSource> simulation;
   std::unique_ptr<FileFrameSource> file_source;
   if (file)
@@ -175,14 +180,23 @@ int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& opt
 
   ProgressBar bar("path tracing", size_t(total) * h);
   uint32_t frame = 0;
+  // A signal stops the frame being traced; nothing is written (cli.cpp reports Interrupted).
+  std::atomic<bool> cancel{false};
   const rp::truth::ProgressFn progress = [&](uint32_t rows_done, uint32_t) {
+    if (InterruptGuard::interrupted()) cancel = true;
     bar.update(size_t(frame) * h + rows_done);
   };
   std::vector<double> seconds, mrays;
   std::vector<uint64_t> rays;
   bar.update(0);
   for (; frame < total; ++frame) {
-    const rp::truth::PathTracedImage image = tracer.render(next_frame(), settings, progress);
+    throw_if_interrupted("while path tracing; no file was written");
+    rp::truth::PathTracedImage image;
+    try {
+      image = tracer.render(next_frame(), settings, progress, &cancel);
+    } catch (const rp::truth::PathTracer::Cancelled&) {
+      throw Interrupted("while path tracing; no file was written");
+    }
     seconds.push_back(image.seconds);
     rays.push_back(image.rays);
     mrays.push_back(mrays_per_second(image.rays, image.seconds));

@@ -4,6 +4,7 @@
 
 #include <sys/resource.h>
 
+#include "app/input_file.h"
 #include "render/gpu_types.h"
 
 namespace rp::app {
@@ -11,6 +12,7 @@ namespace rp::app {
 FileScene open_scene_file(const std::string& path) {
   FileScene scene;
   scene.path = path;
+  require_regular_file(path, "--scene");
   scene.loaded = scene::load_gltf(path);
   for (const std::string& warning : scene.loaded.warnings)
     std::fprintf(stderr, "rolypoly: warning: %s: %s\n", path.c_str(), warning.c_str());

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "app/commands.h"
+#include "app/input_file.h"
 #include "scene/particles.h"
 #include "scene/picking.h"
 
@@ -23,7 +24,7 @@ SimulationOptions make_simulation_options(const SimulationArgs& args,
   o.marbles = args.marbles;
   o.fireball = args.fireball;
   o.toggles = {effects.taa, effects.bloom, effects.motion_blur};
-  if (!args.replay.empty()) o.replay = scene::read_input_log_file(args.replay);
+  if (!args.replay.empty()) o.replay = read_replay_log(args.replay);
   return o;
 }
 

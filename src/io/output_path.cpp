@@ -54,10 +54,11 @@ OutputTarget resolve_output(const std::filesystem::path& path) {
       const int err = errno;
       // Nothing there (also at the end of a dangling link): the file will be created, and a
       // missing folder (or a file where a folder should be) is reported by whoever creates it.
-      if (err == ENOENT || err == ENOTDIR) return {OutputTarget::Kind::kReplace, p, false};
+      if (err == ENOENT || err == ENOTDIR)
+        return {OutputTarget::Kind::kReplace, p, false, -1, links > 0};
       throw WriteError(path, std::strerror(err));
     }
-    if (S_ISREG(st.st_mode)) return {OutputTarget::Kind::kReplace, p, true};
+    if (S_ISREG(st.st_mode)) return {OutputTarget::Kind::kReplace, p, true, -1, links > 0};
     if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode))
       return {OutputTarget::Kind::kInPlace, p, true};
     if (!S_ISLNK(st.st_mode)) throw WriteError(path, std::string("it is ") + kind_name(st.st_mode));
@@ -104,6 +105,10 @@ void check_output_file(const std::filesystem::path& path, const std::string& wha
       return;
     }
     const std::filesystem::path dir = target.path.parent_path();
+    std::error_code ec;
+    if (target.via_link && !dir.empty() && !std::filesystem::is_directory(dir, ec))
+      throw WriteError(path, "it is a symbolic link to " + target.path.string() +
+                                 ", whose folder does not exist (it is not created for a link)");
     // A bare "out.json" goes to the current folder, named in full should it refuse files.
     ensure_directory(dir.empty() ? std::filesystem::current_path() : dir);
   } catch (const std::runtime_error& e) {

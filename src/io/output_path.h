@@ -4,6 +4,7 @@
 //   regular file, or nothing yet   replaced atomically: a temporary beside it, renamed over it
 //   symlink                        followed to its final target, which is then replaced (the
 //                                  link stays a link); a dangling link creates its target
+//                                  file, but never the folders the target names
 //   character device, FIFO         written in place (/dev/null, /dev/full, /dev/tty, a pipe
 //                                  whose reader waits): renaming over it would destroy it
 //   /dev/stdout, /dev/fd/N, ...    a link in /proc/<pid>/fd names a file already open (a
@@ -40,6 +41,7 @@ struct OutputTarget {
   // through a dup so the write continues at its offset (reopening would start elsewhere, and
   // our later stdout lines would overwrite the file's); -1 otherwise.
   int fd = -1;
+  bool via_link = false;  // kReplace: `path` was reached by following a symlink
 };
 
 // Classifies `path` (see the table above). Throws WriteError "cannot write PATH: it is
@@ -52,8 +54,9 @@ OutputTarget resolve_output(const std::filesystem::path& path);
 void ensure_directory(const std::filesystem::path& dir);
 
 // Before any work: resolve_output(path), then for kReplace ensure_directory on the folder the
-// file goes to, for kInPlace access(W_OK) (or, for our own descriptor, that it is open for
-// writing). Throws std::runtime_error naming `path` and why.
+// file goes to (a folder named by a symlink's target must exist: a dangling link is no reason
+// to create folders elsewhere), for kInPlace access(W_OK) (or, for our own descriptor, that it
+// is open for writing). Throws std::runtime_error naming `path` and why.
 // `what` names the option in the message ("--json"); empty for none.
 void check_output_file(const std::filesystem::path& path, const std::string& what = "");
 

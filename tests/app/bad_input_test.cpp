@@ -25,6 +25,8 @@
 namespace rp::test {
 namespace {
 
+namespace fs = std::filesystem;
+
 ::testing::AssertionResult Contains(const std::string& text, const std::string& needle) {
   if (text.find(needle) != std::string::npos) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << "'" << needle << "' not found in:\n" << text;
@@ -213,7 +215,82 @@ TEST(BadInput, MissingTextureNamesTheFile) {
   EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
   EXPECT_TRUE(Contains(r.err, "rolypoly: error:"));
   EXPECT_TRUE(Contains(r.err, (assets / "wood.png").string()));
+  // The system's reason, not stb_image's "can't fopen".
+  EXPECT_TRUE(Contains(r.err, (assets / "wood.png").string() + ": No such file or directory"));
   EXPECT_TRUE(files_with_suffix(dir / "out", ".png").empty());
+}
+
+// Usage errors are found before any device work, with exit 2: the voxel view's --level used to
+// fail after the kernel builds (exit 1), `bench --devices ,` once the device list was read.
+TEST(BadInput, UsageErrorsFoundLateBeforeExitTwoAtOnce) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"render --view voxels --level 31 --out /nonexistent/x",
+       "rolypoly render: --level 31: --view voxels of the dense volume at 64^3 has levels 0 to 6"},
+      {"run --view voxels --voxels 32 --level 6",
+       "rolypoly run: --level 6: --view voxels of the dense volume at 32^3 has levels 0 to 5"},
+      {"render --gi-volume svo --view voxels --level 8 --out /nonexistent/x",
+       "--view voxels of the octree at 256^3 has levels 0 to 7"},
+      {"bench --devices ,", "--devices: empty entry in ','"},
+      {"bench --devices 0,", "--devices: empty entry in '0,'"},
+  };
+  for (const auto& [args, why] : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    CommandResult r = run_rolypoly(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_TRUE(Contains(r.err, why)) << args;
+    EXPECT_EQ(r.out, "") << args;
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+              5.0)
+        << args;
+  }
+}
+
+// --replay names what is wrong with the file, with the system's reason, and never echoes more of
+// the log than a terminal can take: a directory said "read error"; a NUL byte cut the message
+// short; a 5 MB word was echoed whole, control characters and all.
+TEST(BadInput, ReplayFileErrorsSayWhatIsWrong) {
+  TempDir dir;
+  const std::string out = " --out " + shell_quote((dir / "out").string());
+  fs::create_directories(dir / "logdir");
+  CommandResult r = run_rolypoly("render --replay " + shell_quote((dir / "logdir").string()) + out);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(Contains(r.err, "rolypoly: error: --replay: cannot read " +
+                                  (dir / "logdir").string() + ": Is a directory"));
+  r = run_rolypoly("render --replay " + shell_quote((dir / "missing.log").string()) + out);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(Contains(r.err, (dir / "missing.log").string() + ": No such file or directory"));
+
+  write_plain(dir / "nul.log", std::string("rolypoly-input 1\nstep 1 key A\nstep 2 ke") + '\0' +
+                                   "y B\n");
+  r = run_rolypoly("render --replay " + shell_quote((dir / "nul.log").string()) + out);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err, "rolypoly: error: " + (dir / "nul.log").string() +
+                       ":3: a NUL byte: this is a binary file, not an input log\n");
+
+  write_plain(dir / "long.log", "rolypoly-input 1\nstep 1 " + std::string(5000000, 'x') +
+                                    "\x1b[31m\x07 key A\n");
+  r = run_rolypoly("render --replay " + shell_quote((dir / "long.log").string()) + out);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_LT(r.err.size(), 1000u);
+  EXPECT_TRUE(Contains(r.err, (dir / "long.log").string() + ":2: unknown event 'xxxx"));
+  EXPECT_TRUE(Contains(r.err, "bytes left out"));
+  EXPECT_TRUE(Contains(r.err, "\\x1b[31m\\x07'"));
+  for (const char c : r.err.substr(0, r.err.size() - 1))
+    EXPECT_TRUE(c >= 0x20 && c < 0x7f) << "byte " << int(c);
+  EXPECT_TRUE(files_with_suffix(dir / "out", ".png").empty());
+}
+
+// Option values are echoed cut and printable too.
+TEST(BadInput, EchoedOptionValuesAreCutAndPrintable) {
+  const std::string value = std::string(100000, '7') + "\x1b[2J";
+  CommandResult r = run_rolypoly("render --out /nonexistent/x --size " + shell_quote(value));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_LT(r.err.size(), 1000u);
+  EXPECT_TRUE(Contains(r.err, "bytes left out"));
+  EXPECT_TRUE(Contains(r.err, "\\x1b[2J"));
+  r = run_rolypoly("render --out /nonexistent/x --texture-filter " + shell_quote("a\x1b[31mb"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << r.err;
 }
 
 // Ctrl-C during a headless render: the frames written so far are whole PNGs, no temporary file

@@ -1,6 +1,6 @@
-// Issue 18: `run --record` keeps its log however the session ends. It used to be written only
-// when the window closed (Esc, close button): SIGINT, SIGTERM and a lost X connection (Xlib
-// ends the process inside its I/O error handler) lost the whole recording. Each case runs
+// `run --record` keeps its log however the session ends. It used to be written only when the
+// window closed (Esc, close button): SIGINT, SIGTERM, SIGHUP, SIGQUIT and a lost X connection
+// (Xlib ends the process inside its I/O error handler) lost the whole recording. Each case runs
 // `run --frames 0 --record` on a private Xvfb until the title shows a frame rate, ends it, and
 // checks the exit code, the one-line message and that the log holds a frame mark per frame.
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "cli_runner.h"
 #include "xvfb_server.h"
@@ -44,10 +45,13 @@ struct Session {
 
 bool have_x_tools() { return have_program("Xvfb") && have_program("xdotool"); }
 
-TEST(RunRecordEnd, SigintAndSigtermWriteTheLogAndExit128PlusSignal) {
+// SIGHUP (the terminal or ssh session closed) and SIGQUIT used to kill the session with no log.
+TEST(RunRecordEnd, SignalsWriteTheLogAndExit128PlusSignal) {
   if (!have_x_tools()) GTEST_SKIP() << "Xvfb or xdotool not installed (tools/setup.sh)";
-  for (const int signal : {SIGINT, SIGTERM}) {
-    const std::string name = signal == SIGINT ? "SIGINT" : "SIGTERM";
+  const std::pair<int, const char*> signals[] = {
+      {SIGINT, "SIGINT"}, {SIGTERM, "SIGTERM"}, {SIGHUP, "SIGHUP"}, {SIGQUIT, "SIGQUIT"}};
+  for (const auto& [signal, signal_name] : signals) {
+    const std::string name = signal_name;
     SCOPED_TRACE(name);
     XvfbServer x;
     ASSERT_FALSE(x.display().empty()) << "Xvfb did not start";
