@@ -9,7 +9,7 @@
 
 #include "scene/gltf_internal.h"
 
-namespace rp::scene::gltf {
+namespace rp::scene {
 
 bool read_file_start(const std::string& path, uint64_t want, std::vector<uint8_t>* out,
                      std::string* why) {
@@ -47,7 +47,7 @@ bool read_file_start(const std::string& path, uint64_t want, std::vector<uint8_t
 bool regular_file_size(const std::string& path, uint64_t* size, std::string* why) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) {
-    *why = errno == ENOENT ? "not found" : std::strerror(errno);
+    *why = std::strerror(errno);  // the system's reason: "No such file or directory", ...
     return false;
   }
   if (S_ISDIR(st.st_mode)) {
@@ -73,6 +73,10 @@ bool read_regular_file(const std::string& path, uint64_t max_bytes, std::vector<
   }
   return read_file_start(path, size, out, why);
 }
+
+}  // namespace rp::scene
+
+namespace rp::scene::gltf {
 
 std::string base_dir_of(const std::string& path) {
   const size_t slash = path.find_last_of('/');

@@ -17,6 +17,7 @@
 
 #include "scene/frame_scene.h"
 #include "scene/gltf_loader.h"
+#include "scene/regular_file.h"
 
 namespace tinygltf {
 class Model;
@@ -77,17 +78,11 @@ struct Context {
 bool fits_float(double v);
 float to_float(const Context& ctx, double v, const std::string& where);
 
-// ---- gltf_files.cpp: reading files, resolving URIs ----
+// ---- gltf_files.cpp: reading files (scene/regular_file.h), resolving URIs ----
 
-// A regular file's size, and its bytes (at most `max_bytes` of them). Directories, FIFOs,
-// devices and sockets are refused after stat() and before open(), so a FIFO never blocks the
-// loader. On failure these return false and say why ("not found", "is a directory", ...).
-bool regular_file_size(const std::string& path, uint64_t* size, std::string* why);
-bool read_regular_file(const std::string& path, uint64_t max_bytes, std::vector<uint8_t>* out,
-                       std::string* why);
-// The first `want` bytes of a regular file (whose size was checked to be at least that).
-bool read_file_start(const std::string& path, uint64_t want, std::vector<uint8_t>* out,
-                     std::string* why);
+using scene::read_file_start;
+using scene::read_regular_file;
+using scene::regular_file_size;
 
 // The directory a relative URI is resolved against, and tinygltf's percent-decoding of URIs.
 std::string base_dir_of(const std::string& path);

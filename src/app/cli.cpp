@@ -52,27 +52,6 @@ int report_opencl(const std::string& message) {
   return report(message + memory_limit_note());
 }
 
-// stb_image, which loads the demo's textures, knows only "can't fopen" when a file does not
-// open; the system knows why ("No such file or directory", "Permission denied"). The loader's
-// message is "cannot load texture 'NAME' from PATH: can't fopen": open PATH again to ask.
-std::string with_open_reason(const std::string& message) {
-  constexpr std::string_view kStb = ": can't fopen";
-  constexpr std::string_view kFrom = "' from ";  // after the texture's name
-  const size_t from = message.find(kFrom);
-  if (from == std::string::npos || message.size() < from + kFrom.size() + kStb.size() ||
-      message.compare(message.size() - kStb.size(), kStb.size(), kStb) != 0)
-    return message;
-  const size_t at = from + kFrom.size();
-  const std::string path = message.substr(at, message.size() - kStb.size() - at);
-  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd >= 0) {
-    ::close(fd);
-    return message;
-  }
-  const int err = errno;
-  return message.substr(0, message.size() - kStb.size()) + ": " + std::strerror(err);
-}
-
 const char* command_name(ParsedCommand::Kind kind) {
   switch (kind) {
     case ParsedCommand::Kind::kDevices: return "devices";
@@ -111,7 +90,7 @@ int execute_reporting(const ParsedCommand& command) {
     report(e.what());
     return 2;  // a bad input file is a usage error, like a bad option
   } catch (const scene::AssetError& e) {
-    return report(with_open_reason(e.what()));
+    return report(e.what());  // names the file and the system's reason (scene/textures.cpp)
   } catch (const scene::InputLogError& e) {
     return report(printable(e.what()));  // it quotes the log's words
   } catch (const std::bad_alloc&) {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -218,6 +219,24 @@ TEST(BadInput, MissingTextureNamesTheFile) {
   // The system's reason, not stb_image's "can't fopen".
   EXPECT_TRUE(Contains(r.err, (assets / "wood.png").string() + ": No such file or directory"));
   EXPECT_TRUE(files_with_suffix(dir / "out", ".png").empty());
+}
+
+// A FIFO where a texture should be used to block the texture loader until a writer came.
+TEST(BadInput, TextureThatIsAFifoIsRefusedWithoutWaiting) {
+  TempDir dir;
+  std::filesystem::path assets = dir / "assets";
+  std::filesystem::copy(scene::default_asset_dir(), assets,
+                        std::filesystem::copy_options::recursive);
+  ASSERT_TRUE(std::filesystem::remove(assets / "wood.png"));
+  ASSERT_EQ(::mkfifo((assets / "wood.png").c_str(), 0600), 0);
+  const auto start = std::chrono::steady_clock::now();
+  CommandResult r = run_rolypoly("render --size 8 --assets " + shell_quote(assets.string()) +
+                                 " --out " + shell_quote((dir / "out").string()));
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_TRUE(Contains(r.err, (assets / "wood.png").string() + ": is not a regular file"));
+  EXPECT_LT(seconds, 30.0);  // no wait for a writer (the device set-up is most of it)
 }
 
 // Usage errors are found before any device work, with exit 2: the voxel view's --level used to

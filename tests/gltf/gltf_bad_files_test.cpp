@@ -48,7 +48,7 @@ GltfBuilder valid() {
 
 TEST(GltfBadFiles, RefusesAMissingFileADirectoryAFifoAndADevice) {
   TempFolder dir;
-  expect_error(dir.file("absent.gltf"), {"not found"});
+  expect_error(dir.file("absent.gltf"), {"No such file or directory"});
   expect_error(dir.path(), {"is a directory"});
   const std::string fifo = dir.file("pipe.gltf");
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
@@ -137,7 +137,7 @@ TEST(GltfBadFiles, RefusesMissingShortAndUnreadableBuffers) {
   const GltfBuilder b = valid();
   const std::string missing =
       b.write_gltf(dir, "missing", [](Json& d) { d["buffers"][0]["uri"] = "gone.bin"; });
-  expect_error(missing, {"buffer 0", "gone.bin", "not found"});
+  expect_error(missing, {"buffer 0", "gone.bin", "No such file or directory"});
   const std::string longer = b.write_gltf(
       dir, "longer", [&](Json& d) { d["buffers"][0]["byteLength"] = b.bin.size() + 1; });
   expect_error(longer, {"buffer 0", "fewer than its byteLength"});
