@@ -7,7 +7,10 @@
 //     a small room with every feature the renderers read from a file, for the tests: a sun, a
 //     spot and a point light, a floor with normal and metallic-roughness maps, a red wall, two
 //     boxes, a cube with an emission map, a trellis panel cut out by an alpha mask (mirrored
-//     texture) (10 m across; tests/app/file_scene_truth_test.cpp, the oclgrind renders).
+//     texture) (10 m across; tests/app/file_scene_truth_test.cpp, the oclgrind renders);
+//   gen_load_scene OUT.glb --atrium
+//     the atrium (scene/atrium.h): a courtyard with two storeys of arcades, about 250k
+//     triangles and 43 textures, what `rolypoly --scene atrium` opens.
 // Deterministic: integer hashing only, so the same arguments write the same bytes.
 #include <cmath>
 #include <cstdint>
@@ -17,6 +20,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene/atrium.h"
 #include "scene/box_mesh.h"
 #include "scene/gltf_export.h"
 #include "scene/tumbler_shape.h"
@@ -179,13 +183,29 @@ int write_room(const char* path) {
   return 0;
 }
 
+int write_atrium(const char* path) {
+  const rp::scene::Atrium atrium = rp::scene::make_atrium();
+  size_t triangles = 0;
+  for (const rp::scene::MeshInstance& inst : atrium.frame.instances)
+    triangles += atrium.assets.meshes[inst.mesh].triangles.size();
+  rp::scene::export_gltf(atrium.assets, atrium.frame, path);
+  std::printf("wrote %s: the atrium (%zu triangles drawn, %zu instances of %zu meshes, %zu "
+              "materials, %zu textures, %zu lights)\n",
+              path, triangles, atrium.frame.instances.size(), atrium.assets.meshes.size(),
+              atrium.assets.materials.size(), atrium.assets.textures.size(),
+              atrium.frame.lights.size());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc == 3 && std::string(argv[2]) == "--room") return write_room(argv[1]);
+  if (argc == 3 && std::string(argv[2]) == "--atrium") return write_atrium(argv[1]);
   if (argc < 2 || argc > 4) {
     std::fprintf(stderr, "usage: gen_load_scene OUT.glb [TRIANGLES] [TEXTURES]\n"
-                         "       gen_load_scene OUT.glb --room\n");
+                         "       gen_load_scene OUT.glb --room\n"
+                         "       gen_load_scene OUT.glb --atrium\n");
     return 2;
   }
   const long triangles = argc > 2 ? std::strtol(argv[2], nullptr, 10) : 250000;
