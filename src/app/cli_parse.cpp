@@ -438,8 +438,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
   add_bounces(render, common);
   add_size(render, render_size);
   render->add_option("--scene", common.scene,
-                     "what to draw: demo (the simulated Cornell box) or a glTF 2.0 file "
-                     "(.gltf or .glb)")
+                     "what to draw: demo (the simulated Cornell box), atrium (a generated "
+                     "courtyard, 250k triangles) or a glTF 2.0 file (.gltf or .glb)")
       ->capture_default_str();
   render->add_option("--frames", render_opts.frames, "number of frames")
       ->capture_default_str()
@@ -459,8 +459,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
   add_bounces(run, common);
   add_size(run, run_size);
   run->add_option("--scene", common.scene,
-                  "what to show: demo (the simulated Cornell box) or a glTF 2.0 file (.gltf or "
-                  ".glb) to fly through")
+                  "what to show: demo (the simulated Cornell box), atrium (a generated "
+                  "courtyard) or a glTF 2.0 file (.gltf or .glb) to fly through")
       ->capture_default_str();
   run->add_option("--frames", run_opts.frames, "frames to show, 0 = until the window is closed")
       ->capture_default_str()
@@ -575,7 +575,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
       ->check(CLI::IsMember({32u, 64u, 128u, 256u, 512u}));
   bench->add_option("--scene", bench_opts.scene,
                     "default or demo (the simulated demo, the simulation options as given), busy "
-                    "(30 marbles, a fireball and the particle budget kept full), or a glTF 2.0 "
+                    "(30 marbles, a fireball and the particle budget kept full), atrium (a "
+                    "generated courtyard, opened as a file), or a glTF 2.0 "
                     "file (.gltf or .glb: its still frame from the file's camera; with "
                     "--accuracy its materials are the regions)")
       ->capture_default_str();

@@ -4,12 +4,15 @@
 
 #include <sys/resource.h>
 
+#include "app/atrium_scene.h"
 #include "app/input_file.h"
 #include "render/gpu_types.h"
 
 namespace rp::app {
 
-FileScene open_scene_file(const std::string& path) {
+FileScene open_scene_file(const std::string& name) {
+  // "atrium": the generated courtyard, written once into the cache (app/atrium_scene.h).
+  const std::string path = is_atrium_scene(name) ? atrium_scene_file().string() : name;
   FileScene scene;
   scene.path = path;
   require_regular_file(path, "--scene");

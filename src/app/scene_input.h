@@ -23,9 +23,10 @@ struct FileScene {
   scene::Camera camera;
 };
 
-// Loads `path` (scene::SceneFileError: the app's exit status 2), prints each warning once on
-// stderr ("rolypoly: warning: FILE: ...") and fits the volume.
-FileScene open_scene_file(const std::string& path);
+// Loads the file `name` (scene::SceneFileError: the app's exit status 2), or for "atrium" the
+// generated courtyard's cached file (app/atrium_scene.h; FileScene::path is that file), prints
+// each warning once on stderr ("rolypoly: warning: FILE: ...") and fits the volume.
+FileScene open_scene_file(const std::string& name);
 
 // "scene FILE: N triangles drawn (I instances of M meshes), T textures, L lights; loaded in
 // X ms (read R, parse P, accessors A, images decoded D)" (LoadedScene::Times)
