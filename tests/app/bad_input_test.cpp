@@ -28,11 +28,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& needle) {
-  if (text.find(needle) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << needle << "' not found in:\n" << text;
-}
-
 // Every entry of `dir` (files and folders, hidden ones included).
 std::vector<std::string> all_entries(const std::filesystem::path& dir) {
   std::vector<std::string> names;

@@ -19,11 +19,6 @@
 namespace rp::test {
 namespace {
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& needle) {
-  if (text.find(needle) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << needle << "' not found in:\n" << text;
-}
-
 app::CliParse parse(const std::vector<std::string>& words) {
   std::vector<const char*> argv = {"rolypoly"};
   for (const std::string& w : words) argv.push_back(w.c_str());

@@ -7,11 +7,6 @@
 namespace rp::test {
 namespace {
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& needle) {
-  if (text.find(needle) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << needle << "' not found in:\n" << text;
-}
-
 TEST(CliErrors, DevicesListsThePoclDevice) {
   CommandResult r = run_rolypoly("devices");
   ASSERT_EQ(r.exit_code, 0) << r.command << "\n" << r.err;

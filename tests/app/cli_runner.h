@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 namespace rp::test {
 
 struct CommandResult {
@@ -15,6 +17,9 @@ struct CommandResult {
 };
 
 // Single-quotes `s` for /bin/sh.
+// A gtest assertion: `needle` occurs in `text` (both printed when it does not).
+::testing::AssertionResult Contains(const std::string& text, const std::string& needle);
+
 std::string shell_quote(const std::string& s);
 
 // `env_prefix` goes before the binary, e.g. "env -u DISPLAY" or "ROLYPOLY_KERNEL_DIR='/x'";

@@ -18,11 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& needle) {
-  if (text.find(needle) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << needle << "' not found in:\n" << text;
-}
-
 TEST(OutputCollisions, SameFileFollowsLinksAndSpellings) {
   TempDir dir;
   write_plain(dir / "f", "x");

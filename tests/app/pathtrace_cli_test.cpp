@@ -28,11 +28,6 @@
 namespace rp::test {
 namespace {
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& needle) {
-  if (text.find(needle) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << needle << "' not found in:\n" << text;
-}
-
 struct Layers {
   uint32_t width = 0, height = 0;
   std::vector<float> combined, direct, indirect, emission, albedo;

@@ -16,11 +16,6 @@
 namespace rp::test {
 namespace {
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& needle) {
-  if (text.find(needle) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << needle << "' not found in:\n" << text;
-}
-
 std::filesystem::path source_kernel_dir() {
   // ROLYPOLY_TEST_DATA_DIR is <source>/tests/data.
   return std::filesystem::path(ROLYPOLY_TEST_DATA_DIR).parent_path().parent_path() / "kernels";
