@@ -10,11 +10,12 @@
 #include <vector>
 
 #include "scene/frame_scene.h"
+#include "scene/integer_hash.h"
 
 namespace rp::scene::atrium {
 
 // Integer hashing: the only source of variation (same bytes on every run).
-uint32_t hash(uint32_t x);
+inline uint32_t hash(uint32_t x) { return integer_hash(x); }
 inline uint32_t hash(uint32_t a, uint32_t b) { return hash(a ^ hash(b + 0x9e3779b9u)); }
 inline uint32_t hash(uint32_t a, uint32_t b, uint32_t c) { return hash(a, hash(b, c)); }
 // A hash mapped to [0, 1).

@@ -5,15 +5,6 @@
 
 namespace rp::scene::atrium {
 
-uint32_t hash(uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
-
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586;

@@ -23,18 +23,12 @@
 #include "scene/atrium.h"
 #include "scene/box_mesh.h"
 #include "scene/gltf_export.h"
+#include "scene/integer_hash.h"
 #include "scene/tumbler_shape.h"
 
 namespace {
 
-uint32_t hash(uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
+uint32_t hash(uint32_t x) { return rp::scene::integer_hash(x); }
 
 // Checks and stripes in a hue of the texture's own (sRGB bytes), with some per-texel noise.
 rp::scene::Texture make_texture(uint32_t index) {
