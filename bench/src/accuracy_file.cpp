@@ -90,59 +90,6 @@ nlohmann::json compare(const Images& rp, const Images& truth, const Regions& reg
   return j;
 }
 
-// The demo report's three PNGs in its layout; returns the "images" object.
-nlohmann::json write_pictures(const std::filesystem::path& out, uint32_t w, uint32_t h,
-                              const std::vector<Images>& truths,
-                              const std::vector<Images>& rendered, const Regions& regions,
-                              const std::vector<uint8_t>& taa_rgba, uint32_t many) {
-  const Images& truth_one = truths[0];
-  const Images& truth_many = truths[1];
-  const Images& fast_many = rendered[0];
-  const Images& ref_many = rendered[1];
-  const Images& fast_one = rendered[2];
-  const Images& ref_one = rendered[3];
-  std::vector<std::vector<uint8_t>> tiles;
-  const Images* order[] = {&truth_one, &fast_one, &ref_one, &truth_many, &fast_many, &ref_many};
-  for (int row = 0; row < 2; ++row)
-    for (const Images* img : order) {
-      tiles.emplace_back();
-      encode_rgba8(row == 0 ? img->combined : img->indirect, true, tiles.back());
-    }
-  const std::filesystem::path side = out / "accuracy_side_by_side.png";
-  write_png_atomic(side, int(w * 6), int(h * 2), tile_rgba8(tiles, w, h, 6));
-  tiles.clear();
-  for (const auto& [mode, t] : {std::pair{&fast_one, &truth_one}, std::pair{&ref_one, &truth_one},
-                                std::pair{&fast_many, &truth_many},
-                                std::pair{&ref_many, &truth_many}}) {
-    tiles.emplace_back();
-    const double eps = leaks_and_misses(mode->indirect, t->indirect, regions.image).epsilon;
-    signed_heat_map(mode->indirect, t->indirect, regions.image, eps, tiles.back());
-  }
-  const std::filesystem::path heat = out / "accuracy_indirect_heat.png";
-  write_png_atomic(heat, int(w * 2), int(h * 2), tile_rgba8(tiles, w, h, 2));
-  tiles.assign(1, {});
-  encode_rgba8(truth_many.combined, true, tiles.back());
-  tiles.push_back(taa_rgba);
-  const std::filesystem::path taa_png = out / "accuracy_final_taa.png";
-  write_png_atomic(taa_png, int(w * 2), int(h), tile_rgba8(tiles, w, h, 2));
-  const std::string n = std::to_string(many);
-  return {
-      {"side_by_side", side.string()},
-      {"side_by_side_layout",
-       "columns: truth (1 bounce), fast (1), reference (1), truth (" + n + " bounces), fast (" +
-           n + "), reference (" + n + "); rows: final (combined radiance), indirect component; "
-           "tone mapped x/(1+x), sRGB"},
-      {"heat_map", heat.string()},
-      {"heat_map_layout",
-       "rows: 1 bounce against the 1-bounce truth, " + n + " against the " + n +
-           "-bounce truth; columns: fast, reference; (rp - truth) / (truth + eps) of indirect "
-           "luminance: blue -1 (too dark), white 0, red +1 (too bright)"},
-      {"final_taa", taa_png.string()},
-      {"final_taa_layout", "truth (" + n + " bounces, tone mapped x/(1+x), sRGB), the fast "
-                           "mode's finished frame with TAA (" + n + " bounces, no bloom or "
-                           "motion blur)"}};
-}
-
 }  // namespace
 
 AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScene& file,
@@ -227,7 +174,7 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
       {"frames", options.converge_frames}, {"taa", true},
       {"bloom", false},     {"motion_blur", false},
       {"truth", "many"},    {"final_psnr_db", rgba8_psnr(taa_rgba, truths[1].combined)}};
-  j["images"] = write_pictures(options.out_dir, w, h, truths, rendered, regions, taa_rgba,
+  j["images"] = write_accuracy_pictures(options.out_dir, w, h, truths, rendered, regions.image, taa_rgba,
                                options.many_bounces);
 
   AccuracyResult result;

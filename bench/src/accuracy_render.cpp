@@ -4,8 +4,11 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
+#include "app/host_tone_map.h"
 #include "app/interrupt.h"
+#include "app/png_output.h"
 #include "app/progress.h"
 
 namespace rp::app {
@@ -116,6 +119,59 @@ std::vector<Images> truths_one_and_many(truth::PathTracer& tracer,
     truths.push_back(from_truth("truth_" + key, t.image));
   }
   return truths;
+}
+
+nlohmann::json write_accuracy_pictures(const std::filesystem::path& out, uint32_t w, uint32_t h,
+                                       const std::vector<Images>& truths,
+                                       const std::vector<Images>& rendered,
+                                       const std::vector<uint16_t>& image_labels,
+                                       const std::vector<uint8_t>& taa_rgba, uint32_t many) {
+  const Images& truth_one = truths[0];
+  const Images& truth_many = truths[1];
+  const Images& fast_many = rendered[0];
+  const Images& ref_many = rendered[1];
+  const Images& fast_one = rendered[2];
+  const Images& ref_one = rendered[3];
+  std::vector<std::vector<uint8_t>> tiles;
+  const Images* order[] = {&truth_one, &fast_one, &ref_one, &truth_many, &fast_many, &ref_many};
+  for (int row = 0; row < 2; ++row)
+    for (const Images* img : order) {
+      tiles.emplace_back();
+      encode_rgba8(row == 0 ? img->combined : img->indirect, true, tiles.back());
+    }
+  const std::filesystem::path side = out / "accuracy_side_by_side.png";
+  write_png_atomic(side, int(w * 6), int(h * 2), tile_rgba8(tiles, w, h, 6));
+  tiles.clear();
+  for (const auto& [mode, t] : {std::pair{&fast_one, &truth_one}, std::pair{&ref_one, &truth_one},
+                                std::pair{&fast_many, &truth_many},
+                                std::pair{&ref_many, &truth_many}}) {
+    tiles.emplace_back();
+    const double eps = leaks_and_misses(mode->indirect, t->indirect, image_labels).epsilon;
+    signed_heat_map(mode->indirect, t->indirect, image_labels, eps, tiles.back());
+  }
+  const std::filesystem::path heat = out / "accuracy_indirect_heat.png";
+  write_png_atomic(heat, int(w * 2), int(h * 2), tile_rgba8(tiles, w, h, 2));
+  tiles.assign(1, {});
+  encode_rgba8(truth_many.combined, true, tiles.back());
+  tiles.push_back(taa_rgba);
+  const std::filesystem::path taa_png = out / "accuracy_final_taa.png";
+  write_png_atomic(taa_png, int(w * 2), int(h), tile_rgba8(tiles, w, h, 2));
+  const std::string n = std::to_string(many);
+  return {
+      {"side_by_side", side.string()},
+      {"side_by_side_layout",
+       "columns: truth (1 bounce), fast (1), reference (1), truth (" + n + " bounces), fast (" +
+           n + "), reference (" + n + "); rows: final (combined radiance), indirect component; "
+           "tone mapped x/(1+x), sRGB"},
+      {"heat_map", heat.string()},
+      {"heat_map_layout",
+       "rows: 1 bounce against the 1-bounce truth, " + n + " against the " + n +
+           "-bounce truth; columns: fast, reference; (rp - truth) / (truth + eps) of indirect "
+           "luminance: blue -1 (too dark), white 0, red +1 (too bright)"},
+      {"final_taa", taa_png.string()},
+      {"final_taa_layout", "truth (" + n + " bounces, tone mapped x/(1+x), sRGB), the fast "
+                           "mode's finished frame with TAA (" + n + " bounces, no bloom or "
+                           "motion blur)"}};
 }
 
 }  // namespace rp::app

@@ -95,4 +95,16 @@ std::vector<Images> truths_one_and_many(truth::PathTracer& tracer,
                                         const std::filesystem::path& cache,
                                         nlohmann::json& truth_json);
 
+// The report's three PNGs in out/: accuracy_side_by_side.png (truth, fast, reference at 1 and
+// at `many` bounces; rows final and indirect), accuracy_indirect_heat.png (the indirect light's
+// signed error against the truth at the same bounces, over the pixels of image_labels) and
+// accuracy_final_taa.png (truth and the fast mode's TAA frame). truths: {one, many};
+// rendered: kAccuracyConfigs' order (fast many, reference many, fast one, reference one).
+// Returns the JSON "images" object (paths and layouts).
+nlohmann::json write_accuracy_pictures(const std::filesystem::path& out, uint32_t w, uint32_t h,
+                                       const std::vector<Images>& truths,
+                                       const std::vector<Images>& rendered,
+                                       const std::vector<uint16_t>& image_labels,
+                                       const std::vector<uint8_t>& taa_rgba, uint32_t many);
+
 }  // namespace rp::app

@@ -134,53 +134,9 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
     for (uint16_t l : labels) n += (l >> r) & 1u;
     j["region_pixels"][region_name(Region(r))] = n;
   }
-  const Images& fast_many = rendered[0];
-  const Images& ref_many = rendered[1];
-  const Images& fast_one = rendered[2];
-  const Images& ref_one = rendered[3];
-
-  // Pictures. Side by side: each bounce count's truth, then fast and reference at that count;
-  // heat maps of the indirect light against the truth at the same count; the TAA frame.
-  std::vector<std::vector<uint8_t>> tiles;
-  const Images* order[] = {&truth_one, &fast_one, &ref_one, &truth_many, &fast_many, &ref_many};
-  for (int row = 0; row < 2; ++row)
-    for (const Images* img : order) {
-      tiles.emplace_back();
-      encode_rgba8(row == 0 ? img->combined : img->indirect, true, tiles.back());
-    }
-  const std::filesystem::path side = options.out_dir / "accuracy_side_by_side.png";
-  write_png_atomic(side, int(w * 6), int(h * 2), tile_rgba8(tiles, w, h, 6));
-  tiles.clear();
-  for (const auto& [mode, t] : {std::pair{&fast_one, &truth_one}, std::pair{&ref_one, &truth_one},
-                                std::pair{&fast_many, &truth_many},
-                                std::pair{&ref_many, &truth_many}}) {
-    tiles.emplace_back();
-    const double eps = leaks_and_misses(mode->indirect, t->indirect, labels).epsilon;
-    signed_heat_map(mode->indirect, t->indirect, labels, eps, tiles.back());
-  }
-  const std::filesystem::path heat = options.out_dir / "accuracy_indirect_heat.png";
-  write_png_atomic(heat, int(w * 2), int(h * 2), tile_rgba8(tiles, w, h, 2));
-  tiles.assign(1, {});
-  encode_rgba8(truth_many.combined, true, tiles.back());
-  tiles.push_back(taa_rgba);
-  const std::filesystem::path taa_png = options.out_dir / "accuracy_final_taa.png";
-  write_png_atomic(taa_png, int(w * 2), int(h), tile_rgba8(tiles, w, h, 2));
+  j["images"] = write_accuracy_pictures(options.out_dir, w, h, truths, rendered, labels,
+                                        taa_rgba, options.many_bounces);
   const std::string n = std::to_string(options.many_bounces);
-  j["images"] = {
-      {"side_by_side", side.string()},
-      {"side_by_side_layout",
-       "columns: truth (1 bounce), fast (1), reference (1), truth (" + n + " bounces), fast (" +
-           n + "), reference (" + n + "); rows: final (combined radiance), indirect component; "
-           "tone mapped x/(1+x), sRGB"},
-      {"heat_map", heat.string()},
-      {"heat_map_layout",
-       "rows: 1 bounce against the 1-bounce truth, " + n + " against the " + n +
-           "-bounce truth; columns: fast, reference; (rp - truth) / (truth + eps) of indirect "
-           "luminance: blue -1 (too dark), white 0, red +1 (too bright)"},
-      {"final_taa", taa_png.string()},
-      {"final_taa_layout", "truth (" + n + " bounces, tone mapped x/(1+x), sRGB), the fast "
-                           "mode's finished frame with TAA (" + n + " bounces, no bloom or "
-                           "motion blur)"}};
 
   // The direct-light section (issue 15), on its own frame with marbles.
   DirectOptions dopt;
@@ -381,7 +337,10 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
                   yes("fast_many"), yes("fast_one"));
     t << line;
   }
-  t << "wrote " << side.string() << ", " << heat.string() << " and " << taa_png.string() << "\n"
+  const nlohmann::json& images = j["images"];
+  t << "wrote " << images["side_by_side"].get<std::string>() << ", "
+    << images["heat_map"].get<std::string>() << " and " << images["final_taa"].get<std::string>()
+    << "\n"
     << direct.table << marbles.table << checks.str();
   result.table = t.str();
   result.json = j;
