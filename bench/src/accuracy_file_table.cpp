@@ -99,14 +99,7 @@ std::string file_accuracy_table(const nlohmann::json& j) {
                 scene["lights"] == 1 ? "" : "s", j["truth_spp"].get<uint32_t>(),
                 static_cast<unsigned long long>(j["truth_seed"].get<uint64_t>()));
   t << line;
-  for (const char* k : {"one", "many"}) {
-    const nlohmann::json& tj = j["truth"][k];
-    std::snprintf(line, sizeof line, "  truth, %u bounce(s): %.1f s, %.1f Mrays/s%s\n",
-                  tj["bounces"].get<uint32_t>(), tj["seconds"].get<double>(),
-                  tj["rays_per_second"].get<double>() / 1e6,
-                  tj["from_cache"].get<bool>() ? " (from the cache)" : "");
-    t << line;
-  }
+  t << truth_lines(j["truth"]);
   const std::string n = std::to_string(j["many_bounces"].get<uint32_t>());
   t << "  the 1-bounce truth's indirect light against " << n << " bounces: bias"
     << percent_cell(json_number(j["truth"]["one"]["indirect_vs_many"]["bias"]), true) << "\n";

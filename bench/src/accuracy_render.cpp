@@ -24,6 +24,20 @@ std::string percent_cell(double v, bool sign) {
   return b;
 }
 
+std::string truth_lines(const nlohmann::json& truth_json) {
+  std::string t;
+  char line[160];
+  for (const char* k : {"one", "many"}) {
+    const nlohmann::json& tj = truth_json[k];
+    std::snprintf(line, sizeof line, "  truth, %u bounce(s): %.1f s, %.1f Mrays/s%s\n",
+                  tj["bounces"].get<uint32_t>(), tj["seconds"].get<double>(),
+                  tj["rays_per_second"].get<double>() / 1e6,
+                  tj["from_cache"].get<bool>() ? " (from the cache)" : "");
+    t += line;
+  }
+  return t;
+}
+
 std::string config_table_head(int label_width, const std::string& n) {
   char line[128];
   std::snprintf(line, sizeof line, "\n%-*s", label_width, "(rolypoly vs truth)");

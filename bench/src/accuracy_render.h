@@ -44,6 +44,9 @@ nlohmann::json stats_json(const ErrorStats& s);
 std::string percent_cell(double v, bool sign);
 // "   12.34" (8 characters); "     n/a" for NaN.
 std::string db_cell(double v);
+// The table's lines on the truths of truths_one_and_many's JSON ("  truth, N bounce(s): S s,
+// R Mrays/s", and whether it came from the cache).
+std::string truth_lines(const nlohmann::json& truth_json);
 // The configurations' table head: "(rolypoly vs truth)" in a label column `label_width` wide,
 // one column per configuration, and the line that says what /N and /1 mean (N = n bounces).
 std::string config_table_head(int label_width, const std::string& n);

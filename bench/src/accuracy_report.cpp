@@ -262,14 +262,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   std::snprintf(line, sizeof line, "accuracy at %ux%u, demo frame at rest; truth %u spp, seed %llu\n",
                 w, h, options.spp, static_cast<unsigned long long>(options.seed));
   t << line;
-  for (const char* k : {"one", "many"}) {
-    const nlohmann::json& tj = j["truth"][k];
-    std::snprintf(line, sizeof line, "  truth, %u bounce(s): %.1f s, %.1f Mrays/s%s\n",
-                  tj["bounces"].get<uint32_t>(), tj["seconds"].get<double>(),
-                  tj["rays_per_second"].get<double>() / 1e6,
-                  tj["from_cache"].get<bool>() ? " (from the cache)" : "");
-    t << line;
-  }
+  t << truth_lines(j["truth"]);
   t << "  the 1-bounce truth's indirect light against " << n << " bounces: bias"
     << percent_cell(number(j["truth"]["one"]["indirect_vs_many"]["bias"]), true) << "\n";
   t << config_table_head(32, n);
