@@ -7,6 +7,9 @@
 #     llvmpipe (34 tests, ~36 s with the frame's cache); the others (visibility, voxelize,
 #     light and the cone tracer: minutes of builds, 35x PoCL's run time) are reached by the
 #     frame test's render instead.
+#   rusticl.visibility_repeats: the compute rasterizer on the demo ten times against the C++
+#     reference (llvmpipe once ran the 8-wide tile layout nondeterministically across its
+#     threads: tiles of whole work-groups came out as garbage in about half the runs).
 #   rusticl.profiler: test_cl's Profiler suite: rusticl's zero timestamps are detected and its
 #     passes host-timed.
 function(rp_rusticl_gtest name binary filter)
@@ -23,4 +26,6 @@ endfunction()
 
 rp_rusticl_gtest(kernel_tests test_passes
   "ToneMap.*:TaaPass.*:TaaHelpers.*:Bloom.*:MotionBlurKernels.*:VoxelMips.*:MipChain.*")
+rp_rusticl_gtest(visibility_repeats test_passes "VisibilityDemo.MatchesReference")
+set_property(TEST rusticl.visibility_repeats APPEND PROPERTY ENVIRONMENT GTEST_REPEAT=10)
 rp_rusticl_gtest(profiler test_cl "Profiler.*")
