@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <new>
 
 #include <stb/stb_image.h>
 #include <tiny_gltf.h>
@@ -244,6 +245,9 @@ std::vector<uint8_t> MaterialTable::decoded_image(int index, int* width, int* he
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (!pixels) {
     const char* reason = stbi_failure_reason();
+    // stb_image's malloc failed: the host's memory, not the file, is at fault (the app says so
+    // and names the scene; a SceneFileError would call the file bad).
+    if (reason != nullptr && std::strcmp(reason, "outofmem") == 0) throw std::bad_alloc();
     ctx_.fail(at + " cannot be decoded: " + (reason ? reason : "unknown error"));
   }
   *width = w;

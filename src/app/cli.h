@@ -6,7 +6,8 @@
 //
 // Exit codes: 0 success; 1 runtime error ("rolypoly: error: <message>": no OpenCL platform,
 // unknown device, kernel build failure with its build log, missing/corrupt texture, no display,
-// unwritable output, a size the device's or the host's memory cannot hold); 2 usage error
+// unwritable output, a size, --voxels or scene the device's or the host's memory cannot hold,
+// an allocation that fails, named by what it was for); 2 usage error
 // (unknown option or subcommand, bad value or an empty one: "rolypoly: error: <CLI11's
 // message>"; outputs that collide, found by run_cli before any work); 128 + N ended by signal N
 // (SIGHUP 129, SIGINT 130, SIGQUIT 131, SIGPIPE 141, SIGTERM 143: app/interrupt.h; checked

@@ -1,19 +1,24 @@
 #include "app/render_session.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <new>
 
 #include "cl/error.h"
 #include "passes/motion_blur.h"
 #include "render/gpu_types.h"  // before raster_types.h, which builds on its types
 #include "kernels/shared/raster_types.h"
+#include "render/gpu_scene.h"
 #include "render/voxel_volume.h"
 #include "scene/demo_scene.h"
 
 namespace rp::app {
 namespace {
 
-// Meshes, textures, draw and sphere lists, frame constants: a few MiB for the demo scene.
+// Meshes, textures, draw and sphere lists, frame constants: a few MiB for the demo scene. A
+// loaded scene counts its own buffers (scene_memory.h) plus kSceneListsBytes for the lists.
 constexpr uint64_t kSceneReserveBytes = uint64_t(64) << 20;
+constexpr uint64_t kSceneListsBytes = uint64_t(16) << 20;
 
 std::string gib(uint64_t bytes) {
   char text[32];
@@ -21,15 +26,24 @@ std::string gib(uint64_t bytes) {
   return text;
 }
 
+std::string mib(uint64_t bytes) {
+  return std::to_string((bytes + (uint64_t(1) << 20) - 1) >> 20) + " MiB";
+}
+
 bool fits(const DeviceMemoryNeed& need, uint64_t global_bytes, uint64_t max_alloc_bytes) {
   return need.total_bytes <= global_bytes && need.largest_buffer_bytes <= max_alloc_bytes;
+}
+
+// The --voxels the app offers for a volume (app/cli_parse.cpp), largest first.
+std::vector<uint32_t> voxel_choices(bool octree) {
+  return octree ? std::vector<uint32_t>{512, 256} : std::vector<uint32_t>{128, 64, 32};
 }
 
 }  // namespace
 
 DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_t shadow_size,
                                         uint32_t voxel_resolution, bool light_components,
-                                        bool octree, bool reference) {
+                                        bool octree, bool reference, const SceneMemory* scene) {
   const uint64_t n = uint64_t(width) * height;
   uint64_t per_pixel_x3 = 3 * (20 + 72 + 16 + 32 + 4 + 32 + 4) + 32;  // bloom's 32/3 exactly
   if (light_components) per_pixel_x3 += 3 * 48;  // direct, indirect, specular float4
@@ -40,29 +54,43 @@ DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_
   const uint64_t blur_tiles = tiles(passes::MotionBlurPass::kTileSize);
   const uint64_t raster_tiles = tiles(RP_RASTER_TILE);
   const uint64_t r = voxel_resolution;
-  // The octree's pools and build scratch grow with the surface area, about R^2 x 1 KiB on the
-  // demo (the busy scene's fragments included).
-  const uint64_t voxel_bytes =
-      octree ? r * r * 1024
-             : uint64_t(gpu::rp_voxel_total(voxel_resolution,
-                                            render::VoxelVolume::levels_for(voxel_resolution))) *
-                       16 +
-                   r * r * r * (16 + 4);
   DeviceMemoryNeed need;
-  need.total_bytes = (n * per_pixel_x3 + 2) / 3 + blur_tiles * 20 + raster_tiles * 2 * 12 +
-                     uint64_t(shadow_size) * shadow_size * 4 + voxel_bytes + kSceneReserveBytes;
-  need.largest_buffer_bytes = n * 16;
+  need.image_bytes =
+      (n * per_pixel_x3 + 2) / 3 + blur_tiles * 20 + raster_tiles * 2 * 12;
+  need.shadow_bytes = uint64_t(shadow_size) * shadow_size * 4;
+  if (octree) {
+    // The octree's pools and build scratch grow with the surface area, about R^2 x 1 KiB on
+    // the demo (the busy scene's fragments included); the pools, one buffer, about 7/8 of it
+    // (189 of 253 MiB measured on the demo at 512^3, 211 of 294 on the busy scene).
+    need.volume_bytes = r * r * 1024;
+    need.volume_buffer_bytes = r * r * 896;
+  } else {
+    // The chain (one float4 buffer) and the voxelizer's sums (8 words) and overflow bits (one
+    // word) per voxel (render/voxel_volume.h).
+    need.volume_buffer_bytes =
+        uint64_t(gpu::rp_voxel_total(voxel_resolution,
+                                     render::VoxelVolume::levels_for(voxel_resolution))) *
+        16;
+    need.volume_bytes = need.volume_buffer_bytes + r * r * r * (RP_VOXEL_ACCUM_WORDS * 4 + 4);
+  }
+  need.scene_bytes = scene ? std::max(kSceneReserveBytes, scene->bytes() + kSceneListsBytes)
+                           : kSceneReserveBytes;
+  need.total_bytes = need.image_bytes + need.shadow_bytes + need.volume_bytes + need.scene_bytes;
+  need.largest_buffer_bytes = std::max(n * 16, need.volume_buffer_bytes);
+  if (scene) need.largest_buffer_bytes = std::max(need.largest_buffer_bytes,
+                                                  scene->largest_buffer_bytes());
   return need;
 }
 
 uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_bytes,
                                   uint32_t shadow_size, uint32_t voxel_resolution,
-                                  bool light_components, bool octree, bool reference) {
+                                  bool light_components, bool octree, bool reference,
+                                  const SceneMemory* scene) {
   uint32_t lo = 0, hi = 1u << 17;  // invariant: lo fits (0 trivially), hi does not
   while (hi - lo > 1) {
     const uint32_t mid = lo + (hi - lo) / 2;
     if (fits(estimate_device_memory(mid, mid, shadow_size, voxel_resolution, light_components,
-                                    octree, reference),
+                                    octree, reference, scene),
              global_bytes, max_alloc_bytes))
       lo = mid;
     else
@@ -71,32 +99,95 @@ uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_byte
   return lo;
 }
 
+uint32_t largest_voxels_that_fit(uint64_t global_bytes, uint64_t max_alloc_bytes, uint32_t width,
+                                 uint32_t height, uint32_t shadow_size, bool light_components,
+                                 bool octree, bool reference, const SceneMemory* scene) {
+  for (uint32_t v : voxel_choices(octree))
+    if (fits(estimate_device_memory(width, height, shadow_size, v, light_components, octree,
+                                    reference, scene),
+             global_bytes, max_alloc_bytes))
+      return v;
+  return 0;
+}
+
 void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint32_t height,
                          uint32_t shadow_size, uint32_t voxel_resolution, bool light_components,
-                         bool octree, bool reference) {
+                         bool octree, bool reference, const SceneMemory* scene,
+                         const std::string& scene_name) {
   const DeviceMemoryNeed need = estimate_device_memory(
-      width, height, shadow_size, voxel_resolution, light_components, octree, reference);
+      width, height, shadow_size, voxel_resolution, light_components, octree, reference, scene);
   if (device.global_mem_bytes == 0 || fits(need, device.global_mem_bytes, device.max_alloc_bytes))
     return;  // 0: the driver did not say; buffer creation failures are still reported
-  std::string size = std::to_string(width) + "x" + std::to_string(height);
+  const uint64_t global = device.global_mem_bytes, max_alloc = device.max_alloc_bytes;
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  const std::string volume = std::string("--gi-volume ") + (octree ? "svo" : "dense") +
+                             " --voxels " + std::to_string(voxel_resolution);
+  const std::string parts = " (the image's buffers " + mib(need.image_bytes) + ", " +
+                            (octree ? "the octree " : "the dense GI volume ") +
+                            mib(need.volume_bytes) + ", the shadow map " +
+                            mib(need.shadow_bytes) + ", the scene " + mib(need.scene_bytes) + ")";
+
+  // A loaded scene that does not fit even with a 1x1 image and the smallest volume: no
+  // setting helps, the scene is the cause.
+  if (scene != nullptr) {
+    const uint32_t smallest = voxel_choices(octree).back();
+    const DeviceMemoryNeed least = estimate_device_memory(1, 1, 1, smallest, false, octree,
+                                                          false, scene);
+    if (!fits(least, global, max_alloc)) {
+      std::string message = "the scene " + scene_name + " needs " + mib(need.scene_bytes) +
+                            " of device memory (" + scene->describe() + ")";
+      if (scene->largest_buffer_bytes() > max_alloc)
+        message += ", one buffer of " + mib(scene->largest_buffer_bytes()) +
+                   ", but the device allows at most " + mib(max_alloc) + " per buffer";
+      else
+        message += ", but the device has " + mib(global);
+      throw rp::cl::Error(message + "; use a smaller scene (fewer triangles, smaller textures)");
+    }
+  }
+
+  // The GI volume decides when a smaller --voxels fits at this image size.
+  const uint32_t voxels = largest_voxels_that_fit(global, max_alloc, width, height, shadow_size,
+                                                  light_components, octree, reference, scene);
+  const uint32_t side = largest_square_that_fits(global, max_alloc, shadow_size, voxel_resolution,
+                                                 light_components, octree, reference, scene);
+  if (voxels != 0 && voxels < voxel_resolution) {
+    std::string message = volume + " at " + size + " needs ";
+    if (need.total_bytes > global)
+      message += mib(need.total_bytes) + " of device memory" + parts + ", the device has " +
+                 mib(global);
+    else
+      message += "one buffer of " + mib(need.volume_buffer_bytes) + " for the " +
+                 (octree ? "octree's pools" : "dense volume's mip chain") +
+                 ", the device allows at most " + mib(max_alloc) + " per buffer";
+    message += "; the largest --voxels that fits at this size is " + std::to_string(voxels) +
+               " (--voxels " + std::to_string(voxels) + ")";
+    if (side != 0)
+      message += ", or at --voxels " + std::to_string(voxel_resolution) +
+                 " the largest square size is about " + std::to_string(side) + " (--size " +
+                 std::to_string(side) + ")";
+    throw rp::cl::Error(message);
+  }
+
   std::string message;
-  if (need.total_bytes > device.global_mem_bytes)
+  if (need.total_bytes > global)
     message = size + " needs " + gib(need.total_bytes) + " of device memory, the device has " +
-              gib(device.global_mem_bytes);
+              gib(global);
+  else if (need.volume_buffer_bytes > max_alloc)
+    message = volume + " needs one buffer of " + mib(need.volume_buffer_bytes) +
+              ", the device allows at most " + mib(max_alloc) + " per buffer";
   else
     message = size + " needs one buffer of " + gib(need.largest_buffer_bytes) +
-              " (a float4 per pixel), the device allows at most " +
-              gib(device.max_alloc_bytes) + " per buffer";
-  const uint32_t side = largest_square_that_fits(device.global_mem_bytes, device.max_alloc_bytes,
-                                                 shadow_size, voxel_resolution, light_components,
-                                                 octree, reference);
+              " (a float4 per pixel), the device allows at most " + gib(max_alloc) +
+              " per buffer";
   if (side == 0)
-    message += "; not even a 1x1 image fits (a smaller --voxels or --shadow-size may help)";
+    message += "; not even a 1x1 image fits" + parts + " (a smaller --voxels or --shadow-size "
+               "may help)";
   else
     message += "; the largest square size that fits is about " + std::to_string(side) +
                " (--size " + std::to_string(side) + ")";
   throw rp::cl::Error(message);
 }
+
 RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint32_t height,
                              bool keep_components, const scene::SceneAssets* assets)
     : assets_(assets ? *assets
@@ -120,30 +211,42 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   settings.bounces = options.bounces;
   settings.shadows = options.shadows;
   settings.texture_filter = options.texture_filter;
-  // Before any allocation or kernel build: a size the device cannot hold fails at once, with
-  // what would fit.
+  // Before any allocation or kernel build: a size, volume or scene the device cannot hold
+  // fails at once, with what would fit. The textures first: their own message names the
+  // largest one.
+  render::check_texture_memory(assets_.textures, context_.info.max_alloc_bytes,
+                               context_.info.global_mem_bytes);
+  const SceneMemory scene = count_scene_memory(assets_);
+  const bool components = passes::needs_light_components(options.view.view) || keep_components;
+  const bool octree = settings.gi_volume == render::GiVolume::kSvo;
+  const bool reference = settings.quality == render::Quality::kReference;
   check_device_memory(context_.info, width, height, settings.shadow_size,
-                      settings.voxel_resolution,
-                      passes::needs_light_components(options.view.view) || keep_components,
-                      settings.gi_volume == render::GiVolume::kSvo,
-                      settings.quality == render::Quality::kReference);
+                      settings.voxel_resolution, components, octree, reference, &scene,
+                      "--scene " + options.scene);
   device_memory_estimate_ =
       estimate_device_memory(width, height, settings.shadow_size, settings.voxel_resolution,
-                             passes::needs_light_components(options.view.view) || keep_components,
-                             settings.gi_volume == render::GiVolume::kSvo,
-                             settings.quality == render::Quality::kReference)
+                             components, octree, reference, &scene)
           .total_bytes;
-  renderer_ = std::make_unique<render::Renderer>(context_, programs_, assets_, settings);
+  try {
+    renderer_ = std::make_unique<render::Renderer>(context_, programs_, assets_, settings);
+  } catch (const std::bad_alloc&) {
+    // The host copies of the scene's buffers (vertices, triangles, mip chains) are the large
+    // allocations of the set-up.
+    throw rp::cl::Error("setting up the renderer ran out of host memory (the scene: " +
+                        scene.describe() + ")");
+  }
   set_view(options.view);
   if (keep_components) renderer_->set_keep_light_components(true);
 }
 
 void RenderSession::set_keep_components(bool keep) {
-  if (keep)
+  if (keep) {
+    const SceneMemory scene = count_scene_memory(assets_);
     check_device_memory(context_.info, width(), height(), renderer_->settings().shadow_size,
                         renderer_->settings().voxel_resolution, true,
                         renderer_->settings().gi_volume == render::GiVolume::kSvo,
-                        renderer_->settings().quality == render::Quality::kReference);
+                        renderer_->settings().quality == render::Quality::kReference, &scene);
+  }
   renderer_->set_keep_light_components(keep);
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "app/scene_memory.h"
 #include "cl/context.h"
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
@@ -108,30 +109,53 @@ class RenderSession {
 // and kSceneReserveBytes for meshes, textures and draw lists.
 struct DeviceMemoryNeed {
   uint64_t total_bytes = 0;
-  uint64_t largest_buffer_bytes = 0;  // one float4 per pixel: the biggest single allocation
+  uint64_t largest_buffer_bytes = 0;  // the biggest single allocation (per pixel, volume, scene)
+  // The parts of total_bytes, for the message: per-pixel buffers and tile lists, the GI volume
+  // (dense chain and voxelizer scratch, or the octree's pools and scratch), the lamp's shadow
+  // map, the scene (a loaded one's counted buffers, at least the reserve).
+  uint64_t image_bytes = 0, volume_bytes = 0, shadow_bytes = 0, scene_bytes = 0;
+  uint64_t volume_buffer_bytes = 0;  // the volume's one large buffer (chain, or octree pools)
 };
 // octree: the GI volume is the sparse voxel octree (its pools counted at kSvoBytesPerArea bytes
 // per R^2: measured on the demo, see bench/results/epyc-2core-pocl-svo-*.md) instead of the
 // dense chain.
 // reference: the reference quality mode, which keeps a copy of the previous frame's light output
 // for its screen-space reflections (16 bytes per pixel).
+// scene: a scene's counted buffers (nullptr: kSceneReserveBytes, enough for the demo).
 DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_t shadow_size,
                                         uint32_t voxel_resolution, bool light_components,
-                                        bool octree = false, bool reference = false);
+                                        bool octree = false, bool reference = false,
+                                        const SceneMemory* scene = nullptr);
 
 // Throws rp::cl::Error before anything is allocated when the estimate exceeds the device's
-// global memory or one buffer exceeds its largest allocation, e.g. "16384x16384 needs 51.2 GiB
-// of device memory, the device has 5.6 GiB; the largest square size that fits is about 5400".
+// global memory or one buffer exceeds its largest allocation, naming what decides:
+// - the scene (`scene_name`, e.g. "--scene big.glb"), when it does not fit even with a 1x1
+//   image and the smallest volume: "the scene --scene big.glb needs 3100 MiB of device memory
+//   (... vertices, ... triangles, ...), but the device has 1024 MiB; use a smaller scene";
+// - the GI volume, when a smaller --voxels fits at this size: "--gi-volume svo --voxels 512 at
+//   2000x2000 needs 1100 MiB of device memory (the image's buffers 764 MiB, ...), the device
+//   has 1024 MiB; the largest --voxels that fits at this size is 256 (--voxels 256), or at
+//   --voxels 512 the largest square size is about 1900 (--size 1900)";
+// - else the image: "16384x16384 needs 51.2 GiB of device memory, the device has 5.6 GiB; the
+//   largest square size that fits is about 5400 (--size 5400)".
 void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint32_t height,
                          uint32_t shadow_size, uint32_t voxel_resolution, bool light_components,
-                         bool octree = false, bool reference = false);
+                         bool octree = false, bool reference = false,
+                         const SceneMemory* scene = nullptr, const std::string& scene_name = "");
 
 // The largest square side s (0 if none) whose estimate fits `global_bytes` with every buffer
 // within `max_alloc_bytes`.
 uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_bytes,
                                   uint32_t shadow_size, uint32_t voxel_resolution,
                                   bool light_components, bool octree = false,
-                                  bool reference = false);
+                                  bool reference = false, const SceneMemory* scene = nullptr);
+
+// The largest --voxels the app offers for the volume (dense 128, 64, 32; octree 512, 256) whose
+// estimate fits at width x height; 0 if none.
+uint32_t largest_voxels_that_fit(uint64_t global_bytes, uint64_t max_alloc_bytes, uint32_t width,
+                                 uint32_t height, uint32_t shadow_size, bool light_components,
+                                 bool octree, bool reference = false,
+                                 const SceneMemory* scene = nullptr);
 
 // "[0] pthread-... (CPU, Portable Computing Language)"
 std::string describe_device(const rp::cl::DeviceInfo& info);

@@ -1,14 +1,29 @@
 #include "app/scene_input.h"
 
 #include <cstdio>
+#include <new>
+#include <stdexcept>
 
 #include <sys/resource.h>
+#include <sys/stat.h>
 
 #include "app/atrium_scene.h"
+#include "app/host_memory.h"
 #include "app/input_file.h"
 #include "render/gpu_types.h"
 
 namespace rp::app {
+
+void check_scene_file_memory(const std::string& path, const HostMemory& memory) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || memory.available_bytes == 0) return;
+  const uint64_t size = uint64_t(st.st_size);
+  if (size <= memory.available_bytes) return;
+  const auto mib = [](uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20); };
+  throw std::runtime_error("--scene " + path + " is " + mib(size) +
+                           " MiB; loading it needs at least that much host memory (the file is "
+                           "read whole, then its textures decoded), " + memory.source);
+}
 
 FileScene open_scene_file(const std::string& name) {
   // "atrium": the generated courtyard, written once into the cache (app/atrium_scene.h).
@@ -16,7 +31,14 @@ FileScene open_scene_file(const std::string& name) {
   FileScene scene;
   scene.path = path;
   require_regular_file(path, "--scene");
-  scene.loaded = scene::load_gltf(path);
+  check_scene_file_memory(path, host_memory());
+  try {
+    scene.loaded = scene::load_gltf(path);
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error("loading --scene " + path +
+                             " ran out of host memory (its buffers and decoded textures)" +
+                             memory_limit_note());
+  }
   for (const std::string& warning : scene.loaded.warnings)
     std::fprintf(stderr, "rolypoly: warning: %s: %s\n", path.c_str(), warning.c_str());
   if (const size_t n = scene.loaded.lights.size(); n > RP_MAX_PUNCTUAL_LIGHTS)

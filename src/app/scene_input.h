@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app/frame_source.h"
+#include "app/host_memory.h"
 #include "scene/file_scene.h"
 #include "scene/gltf_loader.h"
 
@@ -25,8 +26,17 @@ struct FileScene {
 
 // Loads the file `name` (scene::SceneFileError: the app's exit status 2), or for "atrium" the
 // generated courtyard's cached file (app/atrium_scene.h; FileScene::path is that file), prints
-// each warning once on stderr ("rolypoly: warning: FILE: ...") and fits the volume.
+// each warning once on stderr ("rolypoly: warning: FILE: ...") and fits the volume. Checks the
+// host memory first (check_scene_file_memory); a loader that still runs out of it gives
+// std::runtime_error "loading --scene FILE ran out of host memory ..." (exit 1, not 2: the file
+// is not at fault).
 FileScene open_scene_file(const std::string& name);
+
+// Throws std::runtime_error when the file at `path` is larger than what `memory` says the
+// process may still take: the loader reads it whole before anything else ("--scene big.glb is
+// 1536 MiB; loading it needs at least that much host memory (...), the process may take 0.9 GiB
+// more (ulimit -v 1048576)"). Nothing when either size is unknown.
+void check_scene_file_memory(const std::string& path, const HostMemory& memory);
 
 // "scene FILE: N triangles drawn (I instances of M meshes), T textures, L lights; loaded in
 // X ms (read R, parse P, accessors A, images decoded D)" (LoadedScene::Times)

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <string>
 
+#include "cl/buffer.h"
 #include "cl/error.h"
 #include "passes/svo_solid.h"
 #include "render/voxel_volume.h"
@@ -37,6 +38,16 @@ std::string svo_options(bool float_samples) {
 
 size_t items(size_t n) { return rp::cl::round_up(std::max<size_t>(n, 1), kGroup); }
 
+// What the octree's buffers are called in an allocation failure ("the octree's fragment list at
+// 512^3"), and what would need less: the pools grow with the scene's surface at R^2.
+std::string at_resolution(const char* what, uint32_t resolution) {
+  return std::string("the octree's ") + what + " at " + std::to_string(resolution) + "^3";
+}
+std::string svo_advice(uint32_t resolution) {
+  return "the octree grows with the scene's surface and the square of --voxels (" +
+         std::to_string(resolution) + " here): a smaller --voxels or --gi-volume dense needs less";
+}
+
 }  // namespace
 
 SvoPass::SvoPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
@@ -68,8 +79,10 @@ void SvoPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   ::cl::CommandQueue& queue = profiler.queue();
   if (fragment_capacity_ == 0) {
     fragment_capacity_ = 1u << 16;
-    fragments_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
-                              fragment_capacity_ * RP_SVO_FRAGMENT_WORDS * sizeof(cl_uint));
+    fragments_ = rp::cl::make_buffer(
+        context_->context, CL_MEM_READ_WRITE,
+        fragment_capacity_ * RP_SVO_FRAGMENT_WORDS * sizeof(cl_uint),
+        at_resolution("fragment list", resolution), svo_advice(resolution));
   }
   // The voxelizer's static surface cache costs 64 bytes a cached room sample: 36 MiB at 256^3
   // on the demo, 145 MiB at 512^3, where the octree and its build scratch already take 251 MiB
@@ -88,8 +101,11 @@ void SvoPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     // few per cent); released first, so the old and the new list never coexist
     fragment_capacity_ = size_t(count) + count / 16;
     fragments_ = ::cl::Buffer();
-    fragments_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
-                              fragment_capacity_ * RP_SVO_FRAGMENT_WORDS * sizeof(cl_uint));
+    fragments_ = rp::cl::make_buffer(
+        context_->context, CL_MEM_READ_WRITE,
+        fragment_capacity_ * RP_SVO_FRAGMENT_WORDS * sizeof(cl_uint),
+        at_resolution("fragment list", resolution) + " (" + std::to_string(count) + " fragments)",
+        svo_advice(resolution));
   }
   build(profiler, fragments_, count, resolution, svo);
   svo.voxelizer_bytes = voxelize_->device_bytes();
@@ -135,7 +151,11 @@ void SvoPass::allocate(render::SvoVolume& svo, size_t nodes, size_t samples) {
   svo.sample_bytes = float_samples_ ? 16 : 5;
   svo.solid_capacity = solid_ ? svo_solid_bytes(svo.resolution) : 0;
   svo.buffer = ::cl::Buffer();  // the old pools go first (the build restarts anyway)
-  svo.buffer = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, svo.buffer_bytes());
+  svo.buffer = rp::cl::make_buffer(
+      context_->context, CL_MEM_READ_WRITE, svo.buffer_bytes(),
+      at_resolution("node and brick pools", svo.resolution) + " (" + std::to_string(nodes) +
+          " nodes, " + std::to_string(samples) + " brick samples)",
+      svo_advice(svo.resolution));
 }
 
 uint64_t SvoPass::device_bytes(const render::SvoVolume& svo) const {
@@ -146,21 +166,26 @@ uint64_t SvoPass::device_bytes(const render::SvoVolume& svo) const {
   return total;
 }
 
-void SvoPass::ensure_scratch(size_t nodes, size_t fragments) {
+void SvoPass::ensure_scratch(uint32_t resolution, size_t nodes, size_t fragments) {
   const auto& ctx = context_->context;
+  const auto scratch = [&](size_t bytes) {
+    return rp::cl::make_buffer(ctx, CL_MEM_READ_WRITE, bytes,
+                               at_resolution("build scratch", resolution),
+                               svo_advice(resolution));
+  };
   if (nodes > scratch_nodes_) {
     scratch_nodes_ = nodes;
     own_ = ::cl::Buffer();  // released before their successors exist
     coords_ = ::cl::Buffer();
     sums_ = ::cl::Buffer();
-    own_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, nodes * sizeof(cl_uint));
-    coords_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, nodes * sizeof(cl_uint));
-    sums_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, (nodes / kChunk + 1) * sizeof(cl_uint));
+    own_ = scratch(nodes * sizeof(cl_uint));
+    coords_ = scratch(nodes * sizeof(cl_uint));
+    sums_ = scratch((nodes / kChunk + 1) * sizeof(cl_uint));
   }
   if (fragments > scratch_fragments_) {
     scratch_fragments_ = fragments;
     cur_ = ::cl::Buffer();
-    cur_ = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, fragments * sizeof(cl_uint));
+    cur_ = scratch(fragments * sizeof(cl_uint));
   }
 }
 
@@ -187,7 +212,8 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   const uint32_t D = svo.depths;
   // cur: one word per fragment of the list's capacity (not the count), so that a list that
   // grew once is matched at once and a moving scene reallocates neither
-  ensure_scratch(svo.node_capacity, std::max<size_t>(fragment_capacity_, std::max(count, 1u)));
+  ensure_scratch(svo.resolution, svo.node_capacity,
+                 std::max<size_t>(fragment_capacity_, std::max(count, 1u)));
   const cl_uint zero = 0;
   queue.enqueueFillBuffer(coords_, zero, 0, sizeof(cl_uint));  // the root's coordinate
   const cl_uint brick_offset = cl_uint(render::SvoVolume::brick_offset(svo.node_capacity));
@@ -201,7 +227,9 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     if (words > occ_words_) {
       occ_words_ = words;
       occ_ = ::cl::Buffer();
-      occ_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, words * sizeof(cl_uint));
+      occ_ = rp::cl::make_buffer(context_->context, CL_MEM_READ_WRITE, words * sizeof(cl_uint),
+                                 at_resolution("occupancy bits", svo.resolution),
+                                 svo_advice(svo.resolution));
     }
     occ_clear_.setArg(0, occ_);
     occ_clear_.setArg(1, cl_uint(words));

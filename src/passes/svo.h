@@ -51,7 +51,7 @@ class SvoPass {
   bool try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragments, uint32_t count,
                  render::SvoVolume& svo);
   void allocate(render::SvoVolume& svo, size_t nodes, size_t samples);
-  void ensure_scratch(size_t nodes, size_t fragments);
+  void ensure_scratch(uint32_t resolution, size_t nodes, size_t fragments);
   // Bytes of every device buffer of the octree path now: svo's pools and this pass's scratch
   // (CL_MEM_SIZE of each; the voxelizer's own buffers not included).
   uint64_t device_bytes(const render::SvoVolume& svo) const;

@@ -17,6 +17,7 @@
 
 #include <glm/glm.hpp>
 
+#include "cl/buffer.h"
 #include "cl/error.h"
 #include "render/gpu_types.h"  // before raster_types.h, which builds on its types
 #include "kernels/shared/raster_types.h"
@@ -71,7 +72,10 @@ bool ensure(const ::cl::Context& context, ::cl::Buffer& buffer, size_t& capacity
   needed = std::max<size_t>(needed, 1);
   if (capacity >= needed) return false;
   capacity = std::max(needed, capacity + capacity / 2);
-  buffer = ::cl::Buffer(context, CL_MEM_READ_WRITE, capacity * elem);
+  // Lists that grow with the scene's triangles and the image's tiles.
+  buffer = rp::cl::make_buffer(context, CL_MEM_READ_WRITE, capacity * elem,
+                               "the rasterizer's triangle lists (" + std::to_string(needed) +
+                                   " entries)");
   return true;
 }
 

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <string>
 
+#include "cl/buffer.h"
 #include "cl/error.h"
 
 namespace rp::passes {
@@ -170,7 +171,11 @@ void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScen
   }
   if (samples > cache_capacity_) {
     cache_capacity_ = samples + samples / 4;
-    cache_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, cache_capacity_ * kSampleBytes);
+    cache_ = rp::cl::make_buffer(context_->context, CL_MEM_READ_WRITE,
+                                 cache_capacity_ * kSampleBytes,
+                                 "the voxelizer's surface cache (" + std::to_string(samples) +
+                                     " samples of the scene's still surfaces)",
+                                 "it grows with the scene's surface and the square of --voxels");
   }
   queue.enqueueWriteBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &zero);
   if (samples > 0) {

@@ -3,8 +3,11 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include <CL/opencl.hpp>
+
+#include "cl/buffer.h"
 
 namespace rp::render {
 
@@ -44,14 +47,19 @@ struct ShadowMap {
   uint64_t depth_floats = 0;
   void ensure_floats(const ::cl::Context& context, uint64_t floats) {
     if (floats <= depth_floats) return;
-    depth = ::cl::Buffer(context, CL_MEM_READ_WRITE, size_t(floats) * sizeof(float));
+    depth = rp::cl::make_buffer(context, CL_MEM_READ_WRITE, size_t(floats) * sizeof(float),
+                                "the shadow maps of the scene's lights",
+                                "a smaller --shadow-size needs less");
     depth_floats = floats;
   }
 
   void resize(const ::cl::Context& context, uint32_t s) {
     size = s;
     depth_floats = 2 * uint64_t(s) * s;
-    depth = ::cl::Buffer(context, CL_MEM_READ_WRITE, 2 * size_t(s) * s * sizeof(float));
+    depth = rp::cl::make_buffer(context, CL_MEM_READ_WRITE, 2 * size_t(s) * s * sizeof(float),
+                                "the lamp's shadow map at " + std::to_string(s) + "x" +
+                                    std::to_string(s),
+                                "a smaller --shadow-size needs less");
   }
 };
 

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "cl/buffer.h"
 #include "cl/error.h"
 #include "render/texture_mips.h"
 
@@ -16,11 +17,13 @@ namespace rp::render {
 namespace {
 
 // Creates a read-only buffer holding `data` (at least one element: OpenCL has no empty buffers).
+// `what` names it in an allocation failure ("the scene's 2000000 triangles").
 template <typename T>
 ::cl::Buffer upload(const ::cl::Context& context, ::cl::CommandQueue& queue,
-                    const std::vector<T>& data) {
+                    const std::vector<T>& data, const std::string& what) {
   size_t bytes = std::max<size_t>(1, data.size()) * sizeof(T);
-  ::cl::Buffer buffer(context, CL_MEM_READ_ONLY, bytes);
+  ::cl::Buffer buffer = rp::cl::make_buffer(context, CL_MEM_READ_ONLY, bytes, what,
+                                            "a smaller scene needs less");
   if (!data.empty())
     queue.enqueueWriteBuffer(buffer, CL_TRUE, 0, data.size() * sizeof(T), data.data());
   return buffer;
@@ -217,20 +220,24 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
                                                       mips_start)
                 .count();
 
-  vertices = upload(context, queue_, verts);
+  const auto count = [](size_t n, const char* what) {
+    return "the scene's " + std::to_string(n) + " " + what;
+  };
+  vertices = upload(context, queue_, verts, count(verts.size(), "vertices"));
   // Only scenes with normal, metallic-roughness or emission maps read the tangents (the
   // material pass); the others keep one unused element.
   if (!has_material_maps) tangents_host.assign(1, gpu::rp_float4{0.0f, 0.0f, 0.0f, 0.0f});
-  tangents = upload(context, queue_, tangents_host);
-  triangles = upload(context, queue_, tris);
-  materials = upload(context, queue_, mats);
-  texels = upload(context, queue_, texel_data);
-  textures = upload(context, queue_, infos);
+  tangents = upload(context, queue_, tangents_host, count(tangents_host.size(), "tangents"));
+  triangles = upload(context, queue_, tris, count(tris.size(), "triangles"));
+  materials = upload(context, queue_, mats, count(mats.size(), "materials"));
+  texels = upload(context, queue_, texel_data,
+                  count(infos.size(), "textures") + " with their mipmaps");
+  textures = upload(context, queue_, infos, count(infos.size(), "texture records"));
   {  // the surface model's tables (shared/brdf_layout.h), integrated once per process
     const auto& cells = shading::BrdfTables::get().cells();
     std::vector<gpu::rp_float4> table;
     for (const glm::vec4& c : cells) table.push_back(gpu::to_gpu(c));
-    brdf_table = upload(context, queue_, table);
+    brdf_table = upload(context, queue_, table, "the surface model's tables");
   }
   frame = ::cl::Buffer(context, CL_MEM_READ_ONLY, sizeof(gpu::FrameConstants));
 }
@@ -319,7 +326,9 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
     needed = std::max<size_t>(needed, 1);
     if (capacity >= needed) return;
     capacity = std::max(needed, capacity * 2);
-    buf = ::cl::Buffer(context_, CL_MEM_READ_ONLY, capacity * elem);
+    buf = rp::cl::make_buffer(context_, CL_MEM_READ_ONLY, capacity * elem,
+                              "the frame's list of " + std::to_string(needed) +
+                                  " instances or spheres");
   };
   ensure(instances, instance_capacity_, host_instances.size(), sizeof(gpu::Instance));
   ensure(spheres, sphere_capacity_, std::max<size_t>(host_spheres.size(), 64), sizeof(gpu::Sphere));

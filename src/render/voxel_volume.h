@@ -9,6 +9,7 @@
 
 #include <CL/opencl.hpp>
 
+#include "cl/buffer.h"
 #include "cl/error.h"
 #include "kernels/shared/voxel_layout.h"
 
@@ -59,10 +60,15 @@ struct VoxelVolume {
     resolution = r;
     levels = levels_for(r);
     const size_t voxels = size_t(r) * r * r;
-    chain = ::cl::Buffer(context, CL_MEM_READ_WRITE, chain_elements() * 4 * sizeof(float));
-    accum = ::cl::Buffer(context, CL_MEM_READ_WRITE,
-                         voxels * RP_VOXEL_ACCUM_WORDS * sizeof(uint32_t));
-    overflow = ::cl::Buffer(context, CL_MEM_READ_WRITE, voxels * sizeof(uint32_t));
+    const std::string at = " at " + std::to_string(r) + "^3";
+    const std::string advice = "a smaller --voxels needs less (the volume grows as its cube)";
+    chain = rp::cl::make_buffer(context, CL_MEM_READ_WRITE, chain_elements() * 4 * sizeof(float),
+                                "the dense GI volume's mip chain" + at, advice);
+    accum = rp::cl::make_buffer(context, CL_MEM_READ_WRITE,
+                                voxels * RP_VOXEL_ACCUM_WORDS * sizeof(uint32_t),
+                                "the voxelizer's sums" + at, advice);
+    overflow = rp::cl::make_buffer(context, CL_MEM_READ_WRITE, voxels * sizeof(uint32_t),
+                                   "the voxelizer's overflow bits" + at, advice);
   }
 };
 
