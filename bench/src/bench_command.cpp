@@ -145,6 +145,13 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
   RunResult run = make_run_result(width, height, voxels_or_default(voxels), stats);
   run.timing = rp::cl::timing_name(session.timing());
   run.gi_volume = render::gi_volume_name(common.gi_volume);
+  run.render_scale = session.render_scale();
+  run.render_width = session.render_width();
+  run.render_height = session.render_height();
+  if (run.render_width != width || run.render_height != height || common.target_ms > 0.0)
+    std::printf("  render scale %.3f: rendered at %ux%u for the %ux%u output%s\n",
+                double(run.render_scale), run.render_width, run.render_height, width, height,
+                common.target_ms > 0.0 ? " (where --target-ms left it)" : "");
   if (common.gi_volume == render::GiVolume::kSvo) {
     const render::SvoVolume& o = session.renderer().octree();
     run.octree_device_bytes = o.device_bytes;

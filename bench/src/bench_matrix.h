@@ -40,6 +40,10 @@ struct RunResult {
   uint32_t frames = 0;           // measured frames
   std::string timing = "device";  // "device" or "host": how its pass times were taken
   std::string gi_volume = "dense";  // --gi-volume: "dense" or "svo"
+  // The render scale and render size of the last frame (--render-scale, or where --target-ms
+  // left it); 1 and the output size without either.
+  float render_scale = 1.0f;
+  uint32_t render_width = 0, render_height = 0;
   // svo only (0 otherwise): the octree path's device memory after the last frame and its peak
   // (pools + build scratch, CL_MEM_SIZE), the pools alone, in bytes
   uint64_t octree_device_bytes = 0, octree_peak_bytes = 0, octree_pool_bytes = 0;

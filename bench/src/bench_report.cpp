@@ -51,6 +51,8 @@ Json run_json(const RunResult& r) {
   j["frames"] = r.frames;
   j["timing"] = r.timing;
   j["gi_volume"] = r.gi_volume;
+  j["render_scale"] = r.render_scale;
+  j["render_size"] = {r.render_width, r.render_height};
   if (r.gi_volume == "svo")
     j["octree_memory"] = {{"device_bytes", r.octree_device_bytes},
                           {"peak_bytes", r.octree_peak_bytes},
@@ -89,6 +91,9 @@ RunResult parse_run(const Json& j) {
   r.frames = j.at("frames");
   r.timing = j.value("timing", std::string("device"));
   r.gi_volume = j.value("gi_volume", std::string("dense"));  // files before issue 17: dense
+  r.render_scale = j.value("render_scale", 1.0f);  // files before the render scale: 1
+  r.render_width = j.contains("render_size") ? j.at("render_size").at(0).get<uint32_t>() : r.width;
+  r.render_height = j.contains("render_size") ? j.at("render_size").at(1).get<uint32_t>() : r.height;
   if (j.contains("octree_memory")) {
     const Json& m = j.at("octree_memory");
     r.octree_device_bytes = m.at("device_bytes");

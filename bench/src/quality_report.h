@@ -48,6 +48,10 @@ double mean_abs_diff_rgb8(const std::vector<uint8_t>& a, const std::vector<uint8
 // width x height and measures the criteria above. Throws what RenderSession throws.
 QualityReport measure_quality(const CommonOptions& common, uint32_t width, uint32_t height,
                               const QualityOptions& options = {});
+// The same criteria for any two configurations: `fast` takes the report's "fast" figures,
+// `reference` the other's (the render scale: scaled against full scale).
+QualityReport measure_quality(const CommonOptions& fast, const CommonOptions& reference,
+                              uint32_t width, uint32_t height, const QualityOptions& options);
 
 struct BenchOptions;
 // `bench --quality-report`: measure_quality at the bench size, the figures and the pass/fail of

@@ -214,6 +214,16 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
                   "bloom mix factor f: colour * (1 - f) + bloom * f")
       ->capture_default_str()
       ->check(decimal_in(0.0, 1.0));
+  cmd->add_option("--render-scale", common.render_scale,
+                  "render pixels per output pixel along each axis, 0.5 to 1: below 1 the frame "
+                  "is rendered smaller and temporal upsampling reconstructs the output size "
+                  "from the jittered frames (bloom, motion blur and tone map at output size)")
+      ->capture_default_str()
+      ->check(decimal_in(render::RenderSettings::kMinRenderScale, 1.0));
+  cmd->add_option("--target-ms", common.target_ms,
+                  "hold this frame time (ms): the render scale follows the measured frame time "
+                  "(between 0.5 and 1, smoothly, with hysteresis), starting at --render-scale")
+      ->check(decimal_in(1.0, 10000.0));
 }
 
 // --bounces 0 (no indirect light at all) exists only in the path tracer: "" when fine.

@@ -211,6 +211,8 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   settings.bounces = options.bounces;
   settings.shadows = options.shadows;
   settings.texture_filter = options.texture_filter;
+  settings.render_scale = options.render_scale;
+  settings.scale_follows_time = options.target_ms > 0.0;
   // Before any allocation or kernel build: a size, volume or scene the device cannot hold
   // fails at once, with what would fit. The textures first: their own message names the
   // largest one.
@@ -237,6 +239,8 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   }
   set_view(options.view);
   if (keep_components) renderer_->set_keep_light_components(true);
+  if (options.target_ms > 0.0)
+    frame_scale_.emplace(options.target_ms, options.render_scale);
 }
 
 void RenderSession::set_keep_components(bool keep) {
@@ -261,6 +265,7 @@ rp::cl::PassTimes RenderSession::render(const scene::FrameScene& frame,
   rp::cl::PassTimes times = renderer_->render(frame);
   frame_ms = ms_since(start);
   renderer_->read_rgba8(rgba);
+  if (frame_scale_) renderer_->set_render_scale(frame_scale_->update(frame_ms));
   return times;
 }
 

@@ -6,9 +6,11 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "app/frame_time_scale.h"
 #include "app/scene_memory.h"
 #include "cl/context.h"
 #include "cl/profiler.h"
@@ -43,6 +45,8 @@ struct CommonOptions {
   // Issue 15: --shadows and --texture-filter (bench --accuracy loops over the shadow modes).
   render::ShadowMode shadows = render::RenderSettings{}.shadows;
   render::TextureFilter texture_filter = render::RenderSettings{}.texture_filter;
+  float render_scale = 1.0f;  // --render-scale (render::RenderSettings::render_scale)
+  double target_ms = 0.0;     // --target-ms: 0 = a fixed scale; else the scale follows the time
 };
 
 // Not copyable or movable: the program cache and renderer point at the context.
@@ -89,6 +93,12 @@ class RenderSession {
   // What estimate_device_memory counted for this session (bytes).
   uint64_t device_memory_estimate() const { return device_memory_estimate_; }
   uint32_t height() const { return renderer_->settings().height; }
+  // The render scale of the next frame and the size the last one was rendered at (the output
+  // size for debug views); the controller of --target-ms (nullptr without it).
+  float render_scale() const { return renderer_->settings().render_scale; }
+  uint32_t render_width() const { return renderer_->render_width(); }
+  uint32_t render_height() const { return renderer_->render_height(); }
+  const FrameTimeScale* frame_scale() const { return frame_scale_ ? &*frame_scale_ : nullptr; }
 
  private:
   scene::SceneAssets assets_;
@@ -97,6 +107,7 @@ class RenderSession {
   std::unique_ptr<render::Renderer> renderer_;
   passes::DebugViewSettings view_;
   uint64_t device_memory_estimate_ = 0;
+  std::optional<FrameTimeScale> frame_scale_;  // --target-ms
 };
 
 // Device memory the renderer allocates for one width x height image, counted buffer by buffer

@@ -320,8 +320,17 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
     interval.add(times, frame_ms);
     window->poll_events();
     if (double elapsed = ms_since(interval_start); elapsed >= kTitleIntervalMs) {
-      window->set_title(title_text(label, file_view ? file_view->title_part() : "", interval,
-                                   elapsed, session.view(), session.shadows()));
+      std::string extra = file_view ? file_view->title_part() : "";
+      // " 720x720 scale 0.70 (504x504) |": output size, render scale and render size
+      if (session.render_width() != session.width() || session.frame_scale() != nullptr) {
+        char scale[96];
+        std::snprintf(scale, sizeof scale, " %ux%u scale %.2f (%ux%u) |", session.width(),
+                      session.height(), double(session.render_scale()), session.render_width(),
+                      session.render_height());
+        extra += scale;
+      }
+      window->set_title(
+          title_text(label, extra, interval, elapsed, session.view(), session.shadows()));
       interval.clear();
       interval_start = std::chrono::steady_clock::now();
     }

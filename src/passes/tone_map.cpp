@@ -21,12 +21,11 @@ ToneMapPass::ToneMapPass(const rp::cl::Context& context, rp::cl::ProgramCache& p
 }
 
 void ToneMapPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
-                      const ::cl::Buffer& hdr, ::cl::Buffer& rgba8) {
-  const cl_uint pixels = scene.constants.width * scene.constants.height;
+                      const ::cl::Buffer& hdr, uint32_t pixels, ::cl::Buffer& rgba8) {
   if (pixels == 0) return;
   kernel_.setArg(0, hdr);
   kernel_.setArg(1, rgba8);
-  kernel_.setArg(2, pixels);
+  kernel_.setArg(2, cl_uint(pixels));
   kernel_.setArg(3, cl_uint(dither_ ? 1u : 0u));
   kernel_.setArg(4, cl_uint(scene.constants.frame_index));
   const size_t items = (size_t(pixels) + kPixelsPerItem - 1) / kPixelsPerItem;

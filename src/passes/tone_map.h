@@ -13,8 +13,10 @@ class ToneMapPass {
   // dither: add per-pixel, per-frame noise of one code before quantising (no banding); false
   // rounds to nearest (exact comparisons in tests).
   ToneMapPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs, bool dither = true);
+  // hdr and rgba8 hold `pixels` pixels (the output size, which the render scale may make
+  // larger than scene.constants' render size).
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene, const ::cl::Buffer& hdr,
-           ::cl::Buffer& rgba8);
+           uint32_t pixels, ::cl::Buffer& rgba8);
 
  private:
   ::cl::Kernel kernel_;

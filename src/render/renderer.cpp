@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "cl/error.h"
 #include "passes/bounce.h"
@@ -15,6 +16,7 @@
 #include "passes/punctual_light.h"
 #include "passes/shadow_filter.h"
 #include "passes/taa.h"
+#include "passes/taa_upsample.h"
 #include "passes/tone_map.h"
 #include "passes/visibility.h"
 #include "passes/voxel_mips.h"
@@ -62,11 +64,19 @@ passes::ShadowFilter shadow_filter_for(ShadowMode mode) {
 
 }  // namespace
 
+uint32_t scaled_side(uint32_t output_side, float scale) {
+  return std::max<uint32_t>(1, static_cast<uint32_t>(std::lround(double(output_side) * scale)));
+}
+
 Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
                    const scene::SceneAssets& assets, RenderSettings settings)
     : context_(context), settings_(settings), profiler_(context.queue, context.timing) {
   if (settings_.width == 0 || settings_.height == 0 || settings_.shadow_size == 0)
     throw rp::cl::Error("render size must be at least 1x1 pixels");
+  if (!(settings_.render_scale >= RenderSettings::kMinRenderScale &&
+        settings_.render_scale <= 1.0f))
+    throw rp::cl::Error("render scale " + std::to_string(settings_.render_scale) +
+                        " is outside [0.5, 1]");
   const auto start = std::chrono::steady_clock::now();
   const auto ms_since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t)
@@ -111,6 +121,7 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   shadow_filter_ = std::make_unique<passes::ShadowFilterPass>(context, programs);
   tone_map_ = std::make_unique<passes::ToneMapPass>(context, programs);
   taa_ = std::make_unique<passes::TaaPass>(context, programs);
+  taa_upsample_ = std::make_unique<passes::TaaUpsamplePass>(context, programs);
   bloom_ = std::make_unique<passes::BloomPass>(context, programs);
   motion_blur_ = std::make_unique<passes::MotionBlurPass>(context, programs);
   debug_view_pass_ =
@@ -129,19 +140,43 @@ void Renderer::resize(uint32_t width, uint32_t height) {
   settings_.height = height;
   size_t n = size_t(width) * height;
   try {
-    vis_.resize(context_.context, width, height);
-    gbuffer_.resize(context_.context, width, height);
-    hdr_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
-    if (!indirect_) hdr_prev_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
     for (::cl::Buffer& b : post_) b = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
     rgba8_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 4);
   } catch (const ::cl::Error& e) {
     if (out_of_device_memory(e.err())) throw_out_of_memory(e, width, height);
     throw;
   }
+  const bool scaled = view_.view == passes::DebugView::kFinal;
+  const float scale = scaled ? settings_.render_scale : 1.0f;
+  resize_render(scaled_side(width, scale), scaled_side(height, scale));
+}
+
+void Renderer::resize_render(uint32_t width, uint32_t height) {
+  if (width == render_width_ && height == render_height_) return;
+  size_t n = size_t(width) * height;
+  try {
+    vis_.resize(context_.context, width, height);
+    gbuffer_.resize(context_.context, width, height);
+    hdr_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
+    if (!indirect_) hdr_prev_ = ::cl::Buffer(context_.context, CL_MEM_READ_WRITE, n * 16);
+  } catch (const ::cl::Error& e) {
+    if (out_of_device_memory(e.err())) throw_out_of_memory(e, width, height);
+    throw;
+  }
+  render_width_ = width;
+  render_height_ = height;
   components_written_ = false;  // what they hold is of the old size
   hdr_prev_valid_ = false;
   update_light_components();    // reallocate at the new size (when they are needed)
+}
+
+void Renderer::set_render_scale(float scale) {
+  settings_.render_scale = std::clamp(scale, RenderSettings::kMinRenderScale, 1.0f);
+}
+
+bool Renderer::upsampling() const {
+  return view_.view == passes::DebugView::kFinal &&
+         (settings_.render_scale < 1.0f || settings_.scale_follows_time);
 }
 
 void Renderer::set_debug_view(const passes::DebugViewSettings& view) {
@@ -168,7 +203,7 @@ void Renderer::update_light_components() {
     components_written_ = false;
     return;
   }
-  const size_t n = size_t(settings_.width) * settings_.height;
+  const size_t n = size_t(render_width_) * render_height_;
   if (light_components_.direct() != nullptr && components_pixels_ == n) return;  // still fits
   components_written_ = false;
   try {
@@ -179,7 +214,7 @@ void Renderer::update_light_components() {
   } catch (const ::cl::Error& e) {
     light_components_ = {};
     components_pixels_ = 0;
-    if (out_of_device_memory(e.err())) throw_out_of_memory(e, settings_.width, settings_.height);
+    if (out_of_device_memory(e.err())) throw_out_of_memory(e, render_width_, render_height_);
     throw;
   }
 }
@@ -192,9 +227,23 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     const glm::mat4 prev_view = frame.prev_camera.view();
     if (last_view_ && *last_view_ != prev_view) reset_view_history();
     last_view_ = frame.camera.view();
-    scene_->update(frame, settings_.width, settings_.height, settings_.shadow_size,
-                   gi_resolution(),
-                   fx.taa && view_.view == passes::DebugView::kFinal ? 16u : 0u);
+    const bool final_view = view_.view == passes::DebugView::kFinal;
+    const bool upsample = upsampling();
+    {
+      const float scale = final_view ? settings_.render_scale : 1.0f;
+      const uint32_t rw = scaled_side(settings_.width, scale);
+      const uint32_t rh = scaled_side(settings_.height, scale);
+      if (rw != render_width_ || rh != render_height_) {
+        resize_render(rw, rh);
+        if (indirect_) indirect_->reset_history();  // its history is per render pixel
+      }
+    }
+    const uint32_t jitter_frames =
+        fx.taa && final_view
+            ? (upsample ? passes::upsample_jitter_frames(settings_.render_scale) : 16u)
+            : 0u;
+    scene_->update(frame, render_width_, render_height_, settings_.shadow_size, gi_resolution(),
+                   jitter_frames);
     double host_visibility_ms = 0.0;
     if (embree_)
       host_visibility_ms = embree_->render(profiler_, *scene_, vis_);
@@ -213,10 +262,14 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     }
     if (const uint32_t planes = passes::shadow_mip_planes(light_->filter()); planes > 0)
       shadow_filter_->run(profiler_, *scene_, shadow_, planes > 1);
-    gbuffer_pass_->run(
-        profiler_, *scene_, vis_, gbuffer_, texture_filter_code(settings_.texture_filter),
-        settings_.effects.taa ? passes::GBufferPass::kTaaTextureLodBias : 0.0f,
-        settings_.effects.taa);
+    // Texture detail for the output size: a render pixel covers 1 / scale output pixels per
+    // axis, so the levels are log2(scale) finer than the render size alone would pick.
+    const float lod_bias =
+        (settings_.effects.taa ? passes::GBufferPass::kTaaTextureLodBias : 0.0f) +
+        std::log2(float(render_width_) / float(settings_.width));
+    gbuffer_pass_->run(profiler_, *scene_, vis_, gbuffer_,
+                       texture_filter_code(settings_.texture_filter), lod_bias,
+                       settings_.effects.taa);
     build_voxels();
     const bool split = passes::needs_light_components(view_.view) || keep_components_;
     passes::LowResIndirect low_res;
@@ -231,18 +284,26 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     const bool ssr_history = !indirect_ && hdr_prev_valid_;
     if (ssr_history)
       profiler_.queue().enqueueCopyBuffer(hdr_, hdr_prev_, 0, 0,
-                                          size_t(settings_.width) * settings_.height * 16);
+                                          size_t(render_width_) * render_height_ * 16);
     light_->run(profiler_, *scene_, gbuffer_, shadow_, gi_buffer(), gi_resolution(),
                 gi_levels(), hdr_, split ? &light_components_ : nullptr,
                 indirect_ ? &low_res : nullptr, ssr_history ? &ssr_reference : nullptr);
     punctual_->run(profiler_, *scene_, gbuffer_, shadow_, hdr_,
                    split ? &light_components_ : nullptr);
     hdr_prev_valid_ = !indirect_;
-    if (view_.view == passes::DebugView::kFinal) {
+    if (final_view) {
       const uint32_t w = settings_.width, h = settings_.height;
       const ::cl::Buffer* colour = &hdr_;
+      const GBuffer* motion = &gbuffer_;  // velocity and depth at the output size
       int next = 0;
-      if (fx.taa) {
+      if (upsample) {
+        // without TAA: the current frame's reconstruction alone (no jitter, no history)
+        if (!fx.taa) taa_upsample_->reset_history();
+        taa_upsample_->run(profiler_, *scene_, *colour, gbuffer_, w, h, post_[next]);
+        colour = &post_[next];
+        motion = &taa_upsample_->motion();
+        next ^= 1;
+      } else if (fx.taa) {
         taa_->run(profiler_, *scene_, *colour, gbuffer_, vis_.depth, post_[next]);
         colour = &post_[next];
         next ^= 1;
@@ -251,7 +312,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
       const bool blur_on = fx.motion_blur && fx.shutter > 0.0f;
       if (bloom_on && blur_on) {  // the bloom's full-resolution mix fused into motion blur
         bloom_->run_chain(profiler_, *colour, w, h);
-        motion_blur_->run(profiler_, *colour, gbuffer_, w, h, fx.shutter,
+        motion_blur_->run(profiler_, *colour, *motion, w, h, fx.shutter,
                           bloom_->composite(fx.bloom_strength), post_[next]);
         colour = &post_[next];
       } else {
@@ -261,11 +322,11 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
           next ^= 1;
         }
         if (blur_on) {
-          motion_blur_->run(profiler_, *colour, gbuffer_, w, h, fx.shutter, post_[next]);
+          motion_blur_->run(profiler_, *colour, *motion, w, h, fx.shutter, post_[next]);
           colour = &post_[next];
         }
       }
-      tone_map_->run(profiler_, *scene_, *colour, rgba8_);
+      tone_map_->run(profiler_, *scene_, *colour, w * h, rgba8_);
     } else {
       passes::DebugViewInputs in;
       in.gbuffer = &gbuffer_;
@@ -290,7 +351,10 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
 }
 
 void Renderer::set_effects(const Effects& effects) {
-  if (effects.taa && !settings_.effects.taa) taa_->reset_history();
+  if (effects.taa && !settings_.effects.taa) {
+    taa_->reset_history();
+    taa_upsample_->reset_history();
+  }
   settings_.effects = effects;
 }
 
@@ -301,6 +365,7 @@ void Renderer::set_shadows(ShadowMode mode) {
 
 void Renderer::reset_view_history() {
   taa_->reset_history();
+  taa_upsample_->reset_history();
   hdr_prev_valid_ = false;
   if (indirect_) indirect_->reset_history();
 }
@@ -374,7 +439,7 @@ void Renderer::read_components(LinearComponents& out) {
   if (!components_written_)
     throw rp::cl::Error("the light components were not written: keep them "
                         "(set_keep_light_components) before rendering a frame");
-  const uint32_t w = settings_.width, h = settings_.height;
+  const uint32_t w = render_width_, h = render_height_;
   const size_t n = size_t(w) * h;
   std::vector<float> rgba(n * 4), albedo(n * 4);
   // float4 per pixel -> 3 floats; 0 where the GBuffer's albedo.a says background (1 covered,

@@ -27,6 +27,7 @@ class PunctualLightPass;
 class ShadowFilterPass;
 class IndirectPass;
 class ToneMapPass;
+class TaaUpsamplePass;
 class DebugViewPass;
 class VoxelizePass;
 class VoxelMipsPass;
@@ -128,7 +129,20 @@ struct RenderSettings {
   static constexpr uint32_t kDefaultBounces = 64;
   ShadowMode shadows = ShadowMode::kPcss;                  // --shadows (issue 15)
   TextureFilter texture_filter = TextureFilter::kTrilinear;  // --texture-filter (issue 15)
+  // --render-scale: render pixels per output pixel along each axis, in [kMinRenderScale, 1].
+  // Below 1 the final view renders visibility, GBuffer, light and the screen-space passes at
+  // the scaled size and temporal upsampling (passes/taa_upsample.h) reconstructs the output
+  // size; bloom, motion blur and tone map run at the output size. Debug views render at the
+  // output size.
+  float render_scale = 1.0f;
+  // Resolve with temporal upsampling even at scale 1 (the scale follows the frame time, so
+  // the history survives its changes).
+  bool scale_follows_time = false;
+  static constexpr float kMinRenderScale = 0.5f;
 };
+
+// The render size for an output size at a scale: each side scaled and rounded, at least 1.
+uint32_t scaled_side(uint32_t output_side, float scale);
 
 // Wall-clock milliseconds of the renderer's set-up: the scene's upload (texture mip chains and
 // buffers; mips_ms is the chains' part), the Embree visibility backend's BVHs (0 with the
@@ -152,8 +166,16 @@ class Renderer {
 
   const SetupTimes& setup_times() const { return setup_times_; }
 
-  // Reallocates the per-pixel buffers (not per frame: only when the size changes).
+  // Reallocates the per-pixel buffers (not per frame: only when the size changes). width x
+  // height is the output size.
   void resize(uint32_t width, uint32_t height);
+  // Changes the render scale between frames (clamped to [kMinRenderScale, 1]); the render-size
+  // buffers follow on the next frame, the output-size history is kept.
+  void set_render_scale(float scale);
+  // The size the last frame (or the next, before any) was rendered at: the output size scaled
+  // for the final view, the output size for debug views.
+  uint32_t render_width() const { return render_width_; }
+  uint32_t render_height() const { return render_height_; }
 
   // Enqueues all passes for `frame`, waits, and returns the device time per pass in ms.
   // With VisibilityBackend::kEmbree, "visibility" is the device time of the upload and
@@ -221,6 +243,10 @@ class Renderer {
   uint32_t gi_levels() const;
   // Forgets the view-dependent histories (TAA, the fast mode's indirect light): camera cuts.
   void reset_view_history();
+  // True when the final view resolves with temporal upsampling (scale < 1 or following time).
+  bool upsampling() const;
+  // (Re)allocates the buffers at the render size when it changes.
+  void resize_render(uint32_t width, uint32_t height);
 
   const rp::cl::Context& context_;
   RenderSettings settings_;
@@ -240,6 +266,7 @@ class Renderer {
   std::unique_ptr<passes::ShadowFilterPass> shadow_filter_;  // the mips pcss / vssm read
   std::unique_ptr<passes::ToneMapPass> tone_map_;
   std::unique_ptr<passes::TaaPass> taa_;
+  std::unique_ptr<passes::TaaUpsamplePass> taa_upsample_;
   std::unique_ptr<passes::BloomPass> bloom_;
   std::unique_ptr<passes::MotionBlurPass> motion_blur_;
   std::unique_ptr<passes::DebugViewPass> debug_view_pass_;
@@ -266,7 +293,8 @@ class Renderer {
   // a start, resize, reset or camera cut).
   ::cl::Buffer hdr_prev_;
   bool hdr_prev_valid_ = false;
-  ::cl::Buffer post_[2];  // float4 per pixel: post-processing ping-pong
+  ::cl::Buffer post_[2];  // float4 per output pixel: post-processing ping-pong
+  uint32_t render_width_ = 0, render_height_ = 0;  // the size of vis_, gbuffer_, hdr_, ...
   std::optional<glm::mat4> last_view_;  // camera of the previous frame (camera-cut detection)
   ::cl::Buffer rgba8_;  // uint per pixel
 };

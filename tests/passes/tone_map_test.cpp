@@ -39,7 +39,7 @@ std::vector<uint32_t> run_tone_map(const std::vector<float>& hdr_rgba, bool dith
   ctx.queue.enqueueWriteBuffer(hdr, CL_TRUE, 0, hdr_rgba.size() * sizeof(float), hdr_rgba.data());
   rp::cl::Profiler profiler(ctx.queue);
   rp::passes::ToneMapPass pass(ctx, rp::test::programs(), dither);
-  pass.run(profiler, scene, hdr, out);
+  pass.run(profiler, scene, hdr, uint32_t(n), out);
   auto times = profiler.collect();
   EXPECT_EQ(times.count("tone_map"), 1u);
   std::vector<uint32_t> result(n);
@@ -152,7 +152,7 @@ TEST(ToneMap, PartialLastBlockWritesOnlyItsPixels) {
     ctx.queue.enqueueWriteBuffer(buf, CL_TRUE, 0, out.size() * sizeof(uint32_t), out.data());
     rp::cl::Profiler profiler(ctx.queue);
     rp::passes::ToneMapPass pass(ctx, rp::test::programs(), false);
-    pass.run(profiler, scene, in, buf);
+    pass.run(profiler, scene, in, n, buf);
     profiler.collect();
     ctx.queue.enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(uint32_t), out.data());
     for (uint32_t i = 0; i < 64; ++i) {

@@ -1,0 +1,81 @@
+#include "passes/taa_upsample.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "cl/error.h"
+
+namespace rp::passes {
+namespace {
+
+// One work-item per 8 output pixels of a row (kernels/taa_upsample.cl), 16 of them along the
+// row, one row a group (as kernels/taa.cl); blocks past the image return.
+constexpr uint32_t kPixelsPerItem = 8;
+constexpr size_t kGroupX = 16, kGroupY = 1;
+
+}  // namespace
+
+uint32_t upsample_jitter_frames(float scale) {
+  const float s = std::clamp(scale, 0.25f, 1.0f);
+  return std::max(16u, static_cast<uint32_t>(std::ceil(8.0f / (s * s))));
+}
+
+TaaUpsamplePass::TaaUpsamplePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
+    : context_(context.context), kernel_(programs.kernel("taa_upsample.cl", "taa_upsample")) {}
+
+void TaaUpsamplePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                          const ::cl::Buffer& hdr_in, const render::GBuffer& gbuffer,
+                          uint32_t out_width, uint32_t out_height, ::cl::Buffer& hdr_out) {
+  const uint32_t w = scene.constants.width, h = scene.constants.height;
+  if (w == 0 || h == 0 || out_width == 0 || out_height == 0) return;
+  if (gbuffer.width != w || gbuffer.height != h)
+    throw rp::cl::Error("temporal upsampling: GBuffer is " + std::to_string(gbuffer.width) + "x" +
+                        std::to_string(gbuffer.height) + " but the frame is " +
+                        std::to_string(w) + "x" + std::to_string(h));
+  if (out_width < w || out_height < h)
+    throw rp::cl::Error("temporal upsampling: the output " + std::to_string(out_width) + "x" +
+                        std::to_string(out_height) + " is smaller than the render size " +
+                        std::to_string(w) + "x" + std::to_string(h));
+  if (out_width != width_ || out_height != height_) {
+    const size_t n = size_t(out_width) * out_height;
+    history_[0] = ::cl::Buffer(context_, CL_MEM_READ_WRITE, n * 3 * sizeof(float));
+    history_[1] = ::cl::Buffer(context_, CL_MEM_READ_WRITE, n * 3 * sizeof(float));
+    motion_ = {};
+    motion_.width = out_width;
+    motion_.height = out_height;
+    motion_.velocity = ::cl::Buffer(context_, CL_MEM_READ_WRITE, n * 2 * sizeof(float));
+    motion_.normal_depth = ::cl::Buffer(context_, CL_MEM_READ_WRITE, n * 4 * sizeof(float));
+    width_ = out_width;
+    height_ = out_height;
+    history_valid_ = false;
+  }
+  const int next = 1 - current_;
+  cl_uint arg = 0;
+  kernel_.setArg(arg++, hdr_in);
+  kernel_.setArg(arg++, gbuffer.velocity);
+  kernel_.setArg(arg++, gbuffer.normal_depth);
+  kernel_.setArg(arg++, history_[current_]);
+  kernel_.setArg(arg++, history_[next]);
+  kernel_.setArg(arg++, hdr_out);
+  kernel_.setArg(arg++, motion_.velocity);
+  kernel_.setArg(arg++, motion_.normal_depth);
+  kernel_.setArg(arg++, cl_uint(w));
+  kernel_.setArg(arg++, cl_uint(h));
+  kernel_.setArg(arg++, cl_uint(out_width));
+  kernel_.setArg(arg++, cl_uint(out_height));
+  kernel_.setArg(arg++, scene.constants.jitter.x);
+  kernel_.setArg(arg++, scene.constants.jitter.y);
+  kernel_.setArg(arg++, settings_.history_weight);
+  kernel_.setArg(arg++, settings_.gamma);
+  kernel_.setArg(arg++, cl_uint(history_valid_ ? 1u : 0u));
+  profiler.enqueue("taa", kernel_,
+                   ::cl::NDRange(rp::cl::round_up((out_width + kPixelsPerItem - 1) / kPixelsPerItem,
+                                                  kGroupX),
+                                 rp::cl::round_up(out_height, kGroupY)),
+                   ::cl::NDRange(kGroupX, kGroupY));
+  current_ = next;
+  history_valid_ = true;
+}
+
+}  // namespace rp::passes

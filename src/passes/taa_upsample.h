@@ -1,0 +1,59 @@
+// Temporal upsampling (the render scale): resolves a jittered frame rendered at a smaller size
+// into the output size, accumulating the jittered samples of many frames into a history at the
+// output size (kernels/taa_upsample.cl has the algorithm). Pass name "taa", like the same-size
+// resolve (passes/taa.h) it replaces while the render size is below the output size.
+//
+// Use: jitter the camera with GpuScene::update's jitter_frames = upsample_jitter_frames(scale),
+// run() after the light pass every frame, reset_history() on camera cuts. The pass owns its
+// history (three float planes at the output size, two buffers ping-pong: 24 bytes per output
+// pixel) and what motion blur reads at the output size (motion(): velocity in output pixels and
+// the linear depth), allocated on first use and when the output size changes.
+#pragma once
+
+#include <cstdint>
+
+#include "cl/profiler.h"
+#include "cl/program_cache.h"
+#include "passes/taa.h"
+#include "render/frame_buffers.h"
+#include "render/gpu_scene.h"
+
+namespace rp::passes {
+
+// Jitter phases for a render scale (render pixels per output pixel, per axis): at least 16 (the
+// same-size TAA's), and about 8 samples per output pixel at lower scales (32 at 0.5).
+uint32_t upsample_jitter_frames(float scale);
+
+class TaaUpsamplePass {
+ public:
+  TaaUpsamplePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
+
+  // hdr_in: float4 linear HDR of this jittered frame and gbuffer (velocity, normal_depth) at
+  // the render size, scene.constants.width x height. hdr_out: float4 at out_width x out_height
+  // (must not alias hdr_in). The jitter comes from scene.constants.jitter.xy.
+  void run(rp::cl::Profiler& profiler, const render::GpuScene& scene, const ::cl::Buffer& hdr_in,
+           const render::GBuffer& gbuffer, uint32_t out_width, uint32_t out_height,
+           ::cl::Buffer& hdr_out);
+
+  // Forget the history: the next run() outputs the current frame's reconstruction alone.
+  void reset_history() { history_valid_ = false; }
+
+  // What the last run() wrote at the output size for motion blur: velocity (float2, output
+  // pixels) and normal_depth (float4, w the linear depth); the other planes are not allocated.
+  const render::GBuffer& motion() const { return motion_; }
+
+  const TaaSettings& settings() const { return settings_; }
+  void set_settings(const TaaSettings& settings) { settings_ = settings; }
+
+ private:
+  ::cl::Context context_;
+  ::cl::Kernel kernel_;
+  TaaSettings settings_;
+  uint32_t width_ = 0, height_ = 0;  // the output size the buffers have
+  ::cl::Buffer history_[2];          // tone-mapped R, G, B planes; history_[current_] the latest
+  int current_ = 0;
+  bool history_valid_ = false;
+  render::GBuffer motion_;
+};
+
+}  // namespace rp::passes
