@@ -274,6 +274,93 @@ void add_bounces(CLI::App* cmd, CommonOptions& common) {
       ->transform(whole_number(0, 1000));
 }
 
+// --sun AZ,EL: two decimal numbers, azimuth 0 to 360 and elevation 1 to 90 (the clear sky
+// model's range: scene::make_clear_sky), written back as the two numbers for the callback.
+CLI::Validator sun_position() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const std::string why = "'" + text + "' is not AZ,EL in degrees: azimuth 0 to 360 "
+                                "(from -z towards +x), elevation 1 to 90 above the horizon";
+        const size_t comma = text.find(',');
+        if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos)
+          return why;
+        double values[2] = {0.0, 0.0};
+        const std::string parts[2] = {text.substr(0, comma), text.substr(comma + 1)};
+        for (int i = 0; i < 2; ++i) {
+          const std::string& part = parts[i];
+          if (part.empty() || part.size() >= 32 ||
+              part.find_first_not_of("0123456789+-.eE") != std::string::npos)
+            return why;
+          char* end = nullptr;
+          values[i] = std::strtod(part.c_str(), &end);
+          if (end != part.c_str() + part.size() || !std::isfinite(values[i])) return why;
+        }
+        if (values[0] < 0.0 || values[0] > 360.0 || values[1] < 1.0 || values[1] > 90.0)
+          return why;
+        return "";
+      },
+      "AZ,EL");
+}
+
+// --env / --sky clear and their settings (render, run, bench): light from afar.
+void add_sky_options(CLI::App* cmd, CommonOptions& common) {
+  SkyOptions& sky = common.sky;
+  cmd->add_option("--env", sky.env_file,
+                  "--quality pathtraced: light the scene from afar with this equirectangular "
+                  "environment map (.exr or .hdr, width = 2 x height; its top row is +y, its "
+                  "centre towards +z)");
+  cmd->add_option("--env-rotate", sky.rotate_deg,
+                  "--env: turn the map about +y by DEG degrees (counter-clockwise seen from "
+                  "above), -360 to 360")
+      ->check(decimal_in(-360.0, 360.0));
+  cmd->add_option("--env-strength", sky.strength,
+                  "--env or --sky clear: multiply the map's radiance (and the clear sky's sun) "
+                  "by K >= 0 (default 1)")
+      ->check(decimal_in(0.0, 1000000.0));
+  cmd->add_option_function<std::string>(
+         "--sky", [&sky](const std::string&) { sky.clear_sky = true; },
+         "--quality pathtraced: clear (a built-in Preetham clear sky with its sun as a "
+         "directional light; --sun places the sun)")
+      ->check(CLI::IsMember({"clear"}));
+  cmd->add_option_function<std::string>(
+         "--sun",
+         [&sky](const std::string& text) {
+           const size_t comma = text.find(',');  // the validator checked the form
+           sky.sun_azimuth_deg = std::strtof(text.substr(0, comma).c_str(), nullptr);
+           sky.sun_elevation_deg = std::strtof(text.substr(comma + 1).c_str(), nullptr);
+         },
+         "--sky clear: the sun's azimuth (0 to 360 degrees from -z towards +x) and elevation "
+         "(1 to 90 degrees above the horizon), default 135,45")
+      ->check(sun_position());
+}
+
+// Usage checks of --env / --sky and their settings: "" when fine. `pathtraced_here`: the
+// command path traces (render or bench --quality pathtraced), the only mode that lights with
+// the environment so far.
+std::string check_sky(const CLI::App* cmd, const CommonOptions& common, bool pathtraced_here,
+                      bool accuracy = false) {
+  const SkyOptions& sky = common.sky;
+  if (!sky.env_file.empty() && sky.clear_sky)
+    return "--env and --sky clear are two skies; give one";
+  if (cmd->count("--sun") && !sky.clear_sky)
+    return "--sun places the sun of --sky clear (an --env map's sun is part of the map)";
+  if (cmd->count("--env-rotate") && sky.clear_sky)
+    return "--env-rotate turns an --env map; the clear sky's sun is placed with --sun AZ,EL";
+  for (const char* name : {"--env-rotate", "--env-strength"})
+    if (cmd->count(name) && !sky.given())
+      return std::string(name) + " applies to --env FILE" +
+             (std::string(name) == "--env-strength" ? " or --sky clear" : "");
+  if (!sky.given() || pathtraced_here) return "";
+  const std::string option = sky.clear_sky ? "--sky" : "--env";
+  if (accuracy)
+    return "--accuracy holds the real-time modes against the truth, and the real-time modes "
+           "do not take " + option + " yet; bench --quality pathtraced takes it";
+  if (cmd->get_name() == "run")  // the window shows only real-time frames
+    return "the real-time modes do not take " + option + " yet; use render --quality "
+           "pathtraced";
+  return "the real-time modes do not take " + option + " yet; use --quality pathtraced";
+}
+
 // Usage checks of --quality pathtraced and its options (render and bench): "" when fine.
 // Options that pick the OpenCL device or change the real-time image cannot apply to the host
 // path tracer, so they are refused rather than silently ignored; the --no-* switches ask for
@@ -444,6 +531,7 @@ CliParse parse_cli(int argc, const char* const* argv) {
 
   CLI::App* render = app.add_subcommand("render", "render frames headless into numbered PNGs");
   add_common(render, common, true, true);
+  add_sky_options(render, common);
   add_spp(render, common);
   add_bounces(render, common);
   add_size(render, render_size);
@@ -466,6 +554,7 @@ CliParse parse_cli(int argc, const char* const* argv) {
 
   CLI::App* run = app.add_subcommand("run", "show the frames in a window (Esc quits)");
   add_common(run, common, true, false);
+  add_sky_options(run, common);
   add_bounces(run, common);
   add_size(run, run_size);
   run->add_option("--scene", common.scene,
@@ -499,6 +588,7 @@ CliParse parse_cli(int argc, const char* const* argv) {
       "bench", "time every pass over many frames, on one or many devices, sizes and voxel "
                "resolutions");
   add_common(bench, common, false, true);
+  add_sky_options(bench, common);
   add_spp(bench, common);
   add_bounces(bench, common);
   add_size(bench, bench_size);
@@ -643,6 +733,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
       return usage("rolypoly render", why);
     if (std::string why = check_pathtrace(render, common); !why.empty())
       return usage("rolypoly render", why);
+    if (std::string why = check_sky(render, common, common.pathtraced); !why.empty())
+      return usage("rolypoly render", why);
     if (!is_demo_scene(common.scene)) {
       for (const char* name : {"--seed", "--marbles", "--fireball", "--replay", "--assets"})
         if (render->count(name))
@@ -665,6 +757,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
     render_opts.frames_given = render->count("--frames") > 0;
   } else if (run->parsed()) {
     if (std::string why = check_bounces(common); !why.empty()) return usage("rolypoly run", why);
+    if (std::string why = check_sky(run, common, false); !why.empty())
+      return usage("rolypoly run", why);
     if (std::string why = check_gi_volume(common, {common.voxels}); !why.empty())
       return usage("rolypoly run", why);
     if (std::string why = check_voxel_level(common); !why.empty())
@@ -755,6 +849,10 @@ CliParse parse_cli(int argc, const char* const* argv) {
             "--min-direct-psnr-floor, --max-penumbra-error, --min-albedo-psnr) belong to "
             "--accuracy";
     if (why) return usage("rolypoly bench", why);
+    if (std::string sky = check_sky(bench, common, common.pathtraced && !bench_opts.accuracy,
+                                    bench_opts.accuracy);
+        !sky.empty())
+      return usage("rolypoly bench", sky);
     if (std::string gi = check_gi_volume(common, bench_opts.voxels); !gi.empty())
       return usage("rolypoly bench", gi);
     if (common.gi_volume == render::GiVolume::kSvo && bench_opts.voxels.empty())

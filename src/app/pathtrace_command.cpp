@@ -20,6 +20,7 @@
 #include "app/progress.h"
 #include "app/scene_input.h"
 #include "app/simulation_source.h"
+#include "app/sky_input.h"
 #include "app/video_output.h"
 #include "scene/demo_scene.h"
 #include "truth/path_tracer.h"
@@ -102,11 +103,18 @@ int pathtrace_render_command(const CommonOptions& common, const RenderOptions& o
   std::unique_ptr<VideoPipe> video;
   if (!options.video.empty()) video = std::make_unique<VideoPipe>(options.video, w, h, 60);
   const scene::SceneAssets assets = file ? file->loaded.assets : load_assets(common);
-  auto next_frame = [&] { return simulation ? simulation->next_frame() : file_source->next(); };
+  const SkyLight sky = load_sky(common.sky);
+  auto next_frame = [&] {
+    scene::FrameScene f = simulation ? simulation->next_frame() : file_source->next();
+    add_sky(sky, f);
+    return f;
+  };
   rp::truth::PathTracer tracer(assets);
   if (file)
     std::printf("%s\nset-up: path tracer BVHs and textures %.0f ms\n",
                 describe_file_scene(*file).c_str(), tracer.build_ms());
+  if (const std::string line = describe_sky(common.sky, sky); !line.empty())
+    std::printf("%s\n", line.c_str());
   const rp::truth::PathTraceSettings settings = settings_for(common, w, h, options.sim.seed);
 
   // The tracer calls `progress` from this thread about ten times a second: the place to turn
@@ -165,11 +173,18 @@ int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& opt
   else
     simulation = std::make_unique<SimulationFrameSource>(
         make_simulation_options(options.sim, common.effects));
-  auto next_frame = [&] { return simulation ? simulation->next_frame() : file_source->next(); };
   // --json was checked by bench_command before this (the long renders).
   const uint32_t w = options.size.width, h = options.size.height;
   const scene::SceneAssets assets = file ? file->loaded.assets : load_assets(common);
+  const SkyLight sky = load_sky(common.sky);
+  auto next_frame = [&] {
+    scene::FrameScene f = simulation ? simulation->next_frame() : file_source->next();
+    add_sky(sky, f);
+    return f;
+  };
   rp::truth::PathTracer tracer(assets);
+  const std::string sky_line = describe_sky(common.sky, sky);
+  if (!sky_line.empty()) std::printf("%s\n", sky_line.c_str());
   const rp::truth::PathTraceSettings settings = settings_for(common, w, h, options.sim.seed);
   const uint32_t total = options.warmup + options.frames;
   std::printf("bench: path traced %s, seed %llu, %u warm-up + %u measured frames, %u threads\n",
@@ -226,6 +241,7 @@ int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& opt
     j["spp"] = settings.spp;
     j["bounces"] = settings.bounces;
     j["lamp"] = settings.lamp == rp::truth::LampModel::kArea ? "area" : "point";
+    if (!sky_line.empty()) j["sky"] = sky_line;
     j["seed"] = options.sim.seed;
     j["threads"] = hardware_threads();
     j["warmup"] = options.warmup;

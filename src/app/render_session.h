@@ -21,6 +21,19 @@
 
 namespace rp::app {
 
+// --env / --sky clear and their settings: light from afar (scene/environment.h) for the path
+// tracer. Only the path tracer lights with it so far; parse_cli refuses it elsewhere.
+// app/sky_input.h turns it into the frame's environment (and the clear sky's sun).
+struct SkyOptions {
+  std::string env_file;     // --env: an equirectangular .exr or .hdr ("" = none)
+  bool clear_sky = false;   // --sky clear: scene/clear_sky.h's Preetham sky and its sun
+  float rotate_deg = 0.0f;  // --env-rotate: turn about +y (counter-clockwise seen from above)
+  float strength = 1.0f;    // --env-strength: multiplies the map (the clear sky's sun too)
+  float sun_azimuth_deg = 135.0f;   // --sun AZ,EL: compass angle from -z towards +x,
+  float sun_elevation_deg = 45.0f;  // and degrees above the horizon (scene::ClearSkySettings)
+  bool given() const { return !env_file.empty() || clear_sky; }
+};
+
 struct CommonOptions {
   std::string device;      // --device: index or name substring ("" = first GPU, else CPU)
   std::string asset_dir;   // --assets: folder with the demo's textures
@@ -47,6 +60,7 @@ struct CommonOptions {
   render::TextureFilter texture_filter = render::RenderSettings{}.texture_filter;
   float render_scale = 1.0f;  // --render-scale (render::RenderSettings::render_scale)
   double target_ms = 0.0;     // --target-ms: 0 = a fixed scale; else the scale follows the time
+  SkyOptions sky;             // --env, --env-rotate, --env-strength, --sky clear, --sun
 };
 
 // Not copyable or movable: the program cache and renderer point at the context.

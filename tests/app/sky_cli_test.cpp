@@ -1,0 +1,310 @@
+// --env, --env-rotate, --env-strength, --sky clear and --sun: how they parse and what they
+// refuse (parse_cli in process, exit 2), a missing or corrupt map through the built binary
+// (exit 1 with the system's or the decoder's reason), and what the path tracer makes of a map
+// given on the command line: a white floor under a uniform map is as bright as the map (the
+// furnace test), a map bright on one side lights the face turned towards that side, and
+// --env-rotate 180 moves that light to the other side.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <stb/stb_image_write.h>
+
+#include "app/cli.h"
+#include "cli_runner.h"
+#include "scene/box_mesh.h"
+#include "scene/frame_scene.h"
+#include "scene/gltf_export.h"
+#include "truth/exr_io.h"
+
+namespace rp::test {
+namespace {
+
+app::CliParse parse(std::vector<std::string> words) {
+  std::vector<const char*> argv = {"rolypoly"};
+  for (const std::string& w : words) argv.push_back(w.c_str());
+  argv.push_back(nullptr);
+  return app::parse_cli(int(argv.size() - 1), argv.data());
+}
+
+app::SkyOptions sky_of(const std::vector<std::string>& words) {
+  app::CliParse r = parse(words);
+  if (const app::CliExit* e = std::get_if<app::CliExit>(&r)) {
+    ADD_FAILURE() << "expected a command, got exit " << e->exit_code << ": " << e->message;
+    return {};
+  }
+  return std::get<app::ParsedCommand>(r).common.sky;
+}
+
+// The usage message of a refused command line ("" and a failure when it parsed).
+std::string refusal(const std::vector<std::string>& words) {
+  app::CliParse r = parse(words);
+  const app::CliExit* e = std::get_if<app::CliExit>(&r);
+  if (e == nullptr) {
+    ADD_FAILURE() << "expected a usage error, got a command";
+    return "";
+  }
+  EXPECT_EQ(e->exit_code, 2) << e->message;
+  return e->message;
+}
+
+TEST(SkyCli, OptionsResolve) {
+  app::SkyOptions s = sky_of({"render", "--quality", "pathtraced", "--env", "sky.hdr",
+                              "--env-rotate", "-90", "--env-strength", "2.5"});
+  EXPECT_EQ(s.env_file, "sky.hdr");
+  EXPECT_FALSE(s.clear_sky);
+  EXPECT_FLOAT_EQ(s.rotate_deg, -90.0f);
+  EXPECT_FLOAT_EQ(s.strength, 2.5f);
+  EXPECT_TRUE(s.given());
+
+  s = sky_of({"render", "--quality", "pathtraced", "--sky", "clear", "--sun", "200,30"});
+  EXPECT_TRUE(s.clear_sky);
+  EXPECT_TRUE(s.env_file.empty());
+  EXPECT_FLOAT_EQ(s.sun_azimuth_deg, 200.0f);
+  EXPECT_FLOAT_EQ(s.sun_elevation_deg, 30.0f);
+  EXPECT_FLOAT_EQ(s.strength, 1.0f);
+
+  s = sky_of({"render", "--quality", "pathtraced", "--sky", "clear"});  // the default sun
+  EXPECT_FLOAT_EQ(s.sun_azimuth_deg, 135.0f);
+  EXPECT_FLOAT_EQ(s.sun_elevation_deg, 45.0f);
+  EXPECT_FALSE(sky_of({"render"}).given());
+
+  s = sky_of({"bench", "--quality", "pathtraced", "--env=sky.exr", "--env-strength", "0"});
+  EXPECT_EQ(s.env_file, "sky.exr");
+  EXPECT_FLOAT_EQ(s.strength, 0.0f);
+}
+
+TEST(SkyCli, CombinationsAndValuesAreRefusedWithAReason) {
+  const std::vector<std::string> pt = {"render", "--quality", "pathtraced"};
+  const auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> w = pt;
+    w.insert(w.end(), more.begin(), more.end());
+    return w;
+  };
+  EXPECT_TRUE(Contains(refusal(with({"--sun", "10,20"})),
+                       "rolypoly render: --sun places the sun of --sky clear (an --env map's sun "
+                       "is part of the map)"));
+  EXPECT_TRUE(Contains(refusal(with({"--env", "a.hdr", "--sun", "10,20"})),
+                       "--sun places the sun of --sky clear"));
+  EXPECT_TRUE(Contains(refusal(with({"--env", "a.hdr", "--sky", "clear"})),
+                       "rolypoly render: --env and --sky clear are two skies; give one"));
+  EXPECT_TRUE(Contains(refusal(with({"--sky", "clear", "--env-rotate", "90"})),
+                       "--env-rotate turns an --env map; the clear sky's sun is placed with "
+                       "--sun AZ,EL"));
+  EXPECT_TRUE(Contains(refusal(with({"--env-rotate", "90"})),
+                       "rolypoly render: --env-rotate applies to --env FILE\n"));
+  EXPECT_TRUE(Contains(refusal(with({"--env-strength", "2"})),
+                       "--env-strength applies to --env FILE or --sky clear"));
+  EXPECT_TRUE(Contains(refusal(with({"--sky", "cloudy"})), "--sky: cloudy not in {clear}"));
+  for (const char* bad : {"-1", "nan", "inf", "1e9", "x"})
+    EXPECT_TRUE(Contains(refusal(with({"--env", "a.hdr", "--env-strength", bad})),
+                         "is not a number from 0 to 1e+06"))
+        << bad;
+  for (const char* bad : {"361", "-400", "nan"})
+    EXPECT_TRUE(Contains(refusal(with({"--env", "a.hdr", "--env-rotate", bad})),
+                         "is not a number from -360 to 360"))
+        << bad;
+  for (const char* bad : {"10", "10,", ",20", "10,20,30", "10,0", "10,91", "400,20", "a,b",
+                          "10,nan"})
+    EXPECT_TRUE(Contains(refusal(with({"--sky", "clear", "--sun", bad})),
+                         "' is not AZ,EL in degrees: azimuth 0 to 360 (from -z towards +x), "
+                         "elevation 1 to 90 above the horizon"))
+        << bad;
+  EXPECT_TRUE(Contains(refusal(with({"--env", ""})), "--env needs a value"));
+}
+
+TEST(SkyCli, RealTimeModesRefuseTheSkyBeforeAnyDeviceWork) {
+  EXPECT_TRUE(Contains(refusal({"render", "--env", "a.hdr"}),
+                       "rolypoly render: the real-time modes do not take --env yet; use "
+                       "--quality pathtraced\n"));
+  EXPECT_TRUE(Contains(refusal({"render", "--quality", "reference", "--sky", "clear"}),
+                       "rolypoly render: the real-time modes do not take --sky yet; use "
+                       "--quality pathtraced\n"));
+  EXPECT_TRUE(Contains(refusal({"run", "--env", "a.hdr"}),
+                       "rolypoly run: the real-time modes do not take --env yet; use render "
+                       "--quality pathtraced\n"));
+  EXPECT_TRUE(Contains(refusal({"bench", "--env", "a.hdr"}),
+                       "rolypoly bench: the real-time modes do not take --env yet; use "
+                       "--quality pathtraced\n"));
+  EXPECT_TRUE(Contains(refusal({"bench", "--accuracy", "--sky", "clear"}),
+                       "rolypoly bench: --accuracy holds the real-time modes against the truth, "
+                       "and the real-time modes do not take --sky yet; bench --quality "
+                       "pathtraced takes it"));
+}
+
+TEST(SkyCli, MissingOrCorruptMapIsOneMessageWithTheReason) {
+  TempDir dir;
+  const std::string out = " --out " + shell_quote((dir / "out").string());
+  const std::string base = "render --quality pathtraced --size 8 --spp 1 --bounces 1";
+  CommandResult r =
+      run_rolypoly(base + " --env " + shell_quote((dir / "none.hdr").string()) + out);
+  EXPECT_EQ(r.exit_code, 1) << r.command << "\n" << r.out << r.err;
+  EXPECT_EQ(r.err, "rolypoly: error: --env: cannot read environment map " +
+                       (dir / "none.hdr").string() + ": No such file or directory\n");
+
+  write_plain(dir / "bad.hdr", "not a Radiance file\n");
+  r = run_rolypoly(base + " --env " + shell_quote((dir / "bad.hdr").string()) + out);
+  EXPECT_EQ(r.exit_code, 1) << r.command << "\n" << r.out << r.err;
+  EXPECT_TRUE(Contains(r.err, "rolypoly: error: --env: environment map " +
+                                  (dir / "bad.hdr").string() +
+                                  ": cannot read it as Radiance HDR ("));
+
+  write_plain(dir / "bad.exr", "not an OpenEXR file\n");
+  r = run_rolypoly(base + " --env " + shell_quote((dir / "bad.exr").string()) + out);
+  EXPECT_EQ(r.exit_code, 1) << r.command << "\n" << r.out << r.err;
+  EXPECT_TRUE(Contains(r.err, "rolypoly: error: --env: cannot read EXR " +
+                                  (dir / "bad.exr").string() + ": "));
+
+  r = run_rolypoly(base + " --env " + shell_quote(dir.path().string()) + out);
+  EXPECT_EQ(r.exit_code, 1) << r.command << "\n" << r.out << r.err;
+  EXPECT_TRUE(Contains(r.err, ": Is a directory\n"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "frame_0000.png"));
+}
+
+// A white matte material (no coat) and a scene of `meshes` seen by `camera`, written as a
+// .gltf: no lamp and no lights, so only the environment lights it.
+void write_white_scene(const std::filesystem::path& file, const scene::Mesh& mesh,
+                       const scene::Camera& camera) {
+  scene::SceneAssets a;
+  scene::Material white;
+  white.name = "white";
+  white.albedo = glm::vec3(1.0f);
+  white.specular = {1.0f, 0.0f, false};
+  a.materials.push_back(white);
+  a.meshes.push_back(mesh);
+  scene::FrameScene f;
+  f.lamp = false;
+  f.camera = f.prev_camera = camera;
+  f.instances.push_back(scene::MeshInstance{});
+  scene::export_gltf(a, f, file);
+}
+
+// The combined layer of frame_0000.exr that `args` renders into `dir`.
+std::vector<float> path_trace(const std::string& args, const std::filesystem::path& dir,
+                              uint32_t& w, uint32_t& h) {
+  CommandResult r = run_rolypoly("render --quality pathtraced --out " +
+                                 shell_quote(dir.string()) + " " + args);
+  EXPECT_EQ(r.exit_code, 0) << r.command << "\n" << r.out << r.err;
+  if (r.exit_code != 0) return {};
+  return truth::read_exr_layer(dir / "frame_0000.exr", "", w, h);
+}
+
+TEST(SkyCli, WhiteFloorUnderAUniformMapIsAsBrightAsTheMap) {
+  TempDir dir;
+  // 0.75 is exact in Radiance's shared-exponent format (192 / 256).
+  const int mw = 32, mh = 16;
+  std::vector<float> rgb(size_t(mw) * mh * 3, 0.75f);
+  ASSERT_NE(stbi_write_hdr((dir / "grey.hdr").c_str(), mw, mh, 3, rgb.data()), 0);
+  scene::Mesh floor;  // a slab far wider than the view: every pixel sees its top face
+  floor.name = "floor";
+  scene::append_box(floor, {0.0f, -0.05f, 0.0f}, {50.0f, 0.05f, 50.0f}, 0);
+  scene::Camera camera;
+  camera.position = {0.0f, 3.0f, 0.5f};
+  camera.target = {0.0f, 0.0f, 0.0f};
+  camera.fov_y_deg = 40.0f;
+  write_white_scene(dir / "floor.gltf", floor, camera);
+
+  uint32_t w = 0, h = 0;
+  const std::vector<float> img =
+      path_trace("--scene " + shell_quote((dir / "floor.gltf").string()) + " --env " +
+                     shell_quote((dir / "grey.hdr").string()) +
+                     " --size 12 --spp 64 --bounces 2",
+                 dir / "out", w, h);
+  ASSERT_EQ(img.size(), size_t(12) * 12 * 3);
+  double sum = 0.0;
+  for (size_t i = 0; i < img.size(); ++i) {
+    ASSERT_NEAR(img[i], 0.75f, 0.15f) << "float " << i;  // one pixel's noise at 64 spp
+    sum += img[i];
+  }
+  // The image's mean: 432 floats of 64 samples each, noise well under 1 %.
+  EXPECT_NEAR(sum / double(img.size()), 0.75, 0.0075);
+
+  // --env-strength scales it.
+  const std::vector<float> twice =
+      path_trace("--scene " + shell_quote((dir / "floor.gltf").string()) + " --env " +
+                     shell_quote((dir / "grey.hdr").string()) +
+                     " --env-strength 2 --size 12 --spp 64 --bounces 2",
+                 dir / "out2", w, h);
+  ASSERT_EQ(twice.size(), img.size());
+  double sum2 = 0.0;
+  for (float v : twice) sum2 += v;
+  EXPECT_NEAR(sum2 / double(twice.size()), 1.5, 0.015);
+}
+
+TEST(SkyCli, RotatingTheMapHalfTurnMovesItsLightToTheOtherSide) {
+  TempDir dir;
+  // Bright (1) where the map's direction has z > 0 (u in [0.25, 0.75): the map's middle
+  // half), dark (0) towards -z. Written as OpenEXR, the other format --env reads.
+  const uint32_t mw = 64, mh = 32;
+  std::vector<float> rgb(size_t(mw) * mh * 3, 0.0f);
+  for (uint32_t y = 0; y < mh; ++y)
+    for (uint32_t x = mw / 4; x < 3 * mw / 4; ++x)
+      for (int c = 0; c < 3; ++c) rgb[(size_t(y) * mw + x) * 3 + c] = 1.0f;
+  truth::write_exr_atomic(dir / "half.exr", mw, mh, {{"", &rgb}});
+  scene::Mesh cube;  // seen from +z: the face towards +z in the middle, the sky around it
+  cube.name = "cube";
+  scene::append_box(cube, glm::vec3(0.0f), glm::vec3(0.5f), 0);
+  scene::Camera camera;
+  camera.position = {0.0f, 0.0f, 4.0f};
+  camera.target = {0.0f, 0.0f, 0.0f};
+  camera.fov_y_deg = 30.0f;
+  write_white_scene(dir / "cube.gltf", cube, camera);
+
+  const std::string common = "--scene " + shell_quote((dir / "cube.gltf").string()) +
+                             " --env " + shell_quote((dir / "half.exr").string()) +
+                             " --size 16 --spp 64 --bounces 1";
+  uint32_t w = 0, h = 0;
+  const std::vector<float> before = path_trace(common, dir / "a", w, h);
+  const std::vector<float> after = path_trace(common + " --env-rotate 180", dir / "b", w, h);
+  ASSERT_EQ(before.size(), size_t(16) * 16 * 3);
+  ASSERT_EQ(after.size(), before.size());
+  // The middle 4x4 pixels see the face towards +z, whose hemisphere is the map's z > 0 half:
+  // radiance 1 (white), then 0 once that half is turned to -z. A corner pixel sees the sky
+  // behind the cube, towards -z: 0, then 1.
+  const auto mean = [&](const std::vector<float>& img, uint32_t x0, uint32_t y0, uint32_t n) {
+    double s = 0.0;
+    for (uint32_t y = y0; y < y0 + n; ++y)
+      for (uint32_t x = x0; x < x0 + n; ++x)
+        for (int c = 0; c < 3; ++c) s += img[(size_t(y) * w + x) * 3 + c];
+    return s / (3.0 * n * n);
+  };
+  EXPECT_NEAR(mean(before, 6, 6, 4), 1.0, 0.05);
+  EXPECT_NEAR(mean(after, 6, 6, 4), 0.0, 1e-6);
+  EXPECT_NEAR(mean(before, 0, 0, 2), 0.0, 1e-6);
+  EXPECT_NEAR(mean(after, 0, 0, 2), 1.0, 1e-6);
+}
+
+TEST(SkyCli, ClearSkyLightsAFloorWithSkyAndSun) {
+  TempDir dir;
+  scene::Mesh floor;
+  floor.name = "floor";
+  scene::append_box(floor, {0.0f, -0.05f, 0.0f}, {50.0f, 0.05f, 50.0f}, 0);
+  scene::Camera camera;
+  camera.position = {0.0f, 3.0f, 0.5f};
+  camera.target = {0.0f, 0.0f, 0.0f};
+  camera.fov_y_deg = 40.0f;
+  write_white_scene(dir / "floor.gltf", floor, camera);
+  CommandResult r = run_rolypoly(
+      "render --quality pathtraced --scene " + shell_quote((dir / "floor.gltf").string()) +
+      " --sky clear --sun 90,30 --size 8 --spp 16 --bounces 1 --out " +
+      shell_quote((dir / "out").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.command << "\n" << r.out << r.err;
+  EXPECT_TRUE(Contains(r.out, "clear sky (Preetham, turbidity 2.5) with its sun at azimuth 90, "
+                              "elevation 30 degrees"));
+  uint32_t w = 0, h = 0;
+  const std::vector<float> img = truth::read_exr_layer(dir / "out" / "frame_0000.exr", "", w, h);
+  const std::vector<float> direct =
+      truth::read_exr_layer(dir / "out" / "frame_0000.exr", "direct", w, h);
+  ASSERT_EQ(img.size(), size_t(8) * 8 * 3);
+  for (size_t i = 0; i < img.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(img[i]) && img[i] > 0.0f) << "float " << i;
+    ASSERT_GT(direct[i], 0.0f) << "float " << i;
+  }
+}
+
+}  // namespace
+}  // namespace rp::test
