@@ -361,6 +361,21 @@ std::string check_sky(const CLI::App* cmd, const CommonOptions& common, bool pat
   return "the real-time modes do not take " + option + " yet; use --quality pathtraced";
 }
 
+// --render-scale and --target-ms change how the real-time final image is made: "" when fine.
+// `components_option`: the option of this command that reads the light pass's terms at the
+// output size (render --exr, bench --accuracy), which the render scale does not reconstruct;
+// nullptr when none.
+std::string check_render_scale(const CommonOptions& common, const char* components_option) {
+  if (common.render_scale >= 1.0f && common.target_ms <= 0.0) return "";
+  const std::string name = common.target_ms > 0.0 ? "--target-ms" : "--render-scale";
+  if (common.pathtraced)
+    return name + " applies to the real-time modes (the path tracer renders every output pixel)";
+  if (components_option != nullptr)
+    return name + " applies to the final image; " + components_option +
+           " reads the light pass's terms at the output size";
+  return "";
+}
+
 // Usage checks of --quality pathtraced and its options (render and bench): "" when fine.
 // Options that pick the OpenCL device or change the real-time image cannot apply to the host
 // path tracer, so they are refused rather than silently ignored; the --no-* switches ask for
@@ -735,6 +750,9 @@ CliParse parse_cli(int argc, const char* const* argv) {
       return usage("rolypoly render", why);
     if (std::string why = check_sky(render, common, common.pathtraced); !why.empty())
       return usage("rolypoly render", why);
+    if (std::string why = check_render_scale(common, render_opts.exr ? "--exr" : nullptr);
+        !why.empty())
+      return usage("rolypoly render", why);
     if (!is_demo_scene(common.scene)) {
       for (const char* name : {"--seed", "--marbles", "--fireball", "--replay", "--assets"})
         if (render->count(name))
@@ -853,6 +871,10 @@ CliParse parse_cli(int argc, const char* const* argv) {
                                     bench_opts.accuracy);
         !sky.empty())
       return usage("rolypoly bench", sky);
+    if (std::string scale =
+            check_render_scale(common, bench_opts.accuracy ? "--accuracy" : nullptr);
+        !scale.empty())
+      return usage("rolypoly bench", scale);
     if (std::string gi = check_gi_volume(common, bench_opts.voxels); !gi.empty())
       return usage("rolypoly bench", gi);
     if (common.gi_volume == render::GiVolume::kSvo && bench_opts.voxels.empty())
