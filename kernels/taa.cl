@@ -225,14 +225,8 @@ __kernel void taa_resolve(__global const float4* restrict hdr_in,
     const rp_ycocg8 hc = rp_rgb_to_ycocg8(hr, hg, hb);
 
     /* 5. Clip toward the box centre (rp_taa_clip, lane by lane), back to rgb, blend. */
-    const float8 dy = hc.y - my, dco = hc.co - mo, dcg = hc.cg - mg;
-    const float8 ay = fabs(dy) / ey, ao = fabs(dco) / eo, ag = fabs(dcg) / eg;
-    const float8 m1 = select(ao, ay, ay > ao), m = select(ag, m1, m1 > ag);
-    const int8 outside = m > 1.0f;
-    const float8 s = 1.0f / m;
-    const float8 qy = select(hc.y, my + dy * s, outside);
-    const float8 qo = select(hc.co, mo + dco * s, outside);
-    const float8 qg = select(hc.cg, mg + dcg * s, outside);
+    float8 qy, qo, qg;
+    RP_TAA_CLIP8(hc, my, mo, mg, ey, eo, eg, qy, qo, qg);
     const float8 t = qy - qg;
     const float f = history_weight, g = 1.0f - history_weight;
     rr = select(cr, rp_clamp8((t + qo) * f + cr * g, 0.0f, 1.0f), on_screen);

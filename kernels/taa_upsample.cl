@@ -239,14 +239,8 @@ __kernel void taa_upsample(__global const float4* restrict hdr_in,
   eo = rp_max8(eo, RP_TAA_MIN_EXTENT);
   eg = rp_max8(eg, RP_TAA_MIN_EXTENT);
   const rp_ycocg8 hc = rp_rgb_to_ycocg8(hr, hg, hb);
-  const float8 dly = hc.y - my, dlo = hc.co - mo, dlg = hc.cg - mg;
-  const float8 ay = fabs(dly) / ey, ao = fabs(dlo) / eo, ag = fabs(dlg) / eg;
-  const float8 m1 = select(ao, ay, ay > ao), m = select(ag, m1, m1 > ag);
-  const int8 outside = m > 1.0f;
-  const float8 s = 1.0f / m;
-  const float8 qy = select(hc.y, my + dly * s, outside);
-  const float8 qo = select(hc.co, mo + dlo * s, outside);
-  const float8 qg = select(hc.cg, mg + dlg * s, outside);
+  float8 qy, qo, qg;
+  RP_TAA_CLIP8(hc, my, mo, mg, ey, eo, eg, qy, qo, qg);
   const float8 t = qy - qg;
   const float8 qr = t + qo, qgreen = qy + qg, qb = t - qo;
   const float8 k = (1.0f - history_weight) * max_w;

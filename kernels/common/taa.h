@@ -40,6 +40,21 @@ inline float3 rp_taa_clip(float3 q, float3 centre, float3 extent) {
   return m > 1.0f ? centre + v / m : q;
 }
 
+/* rp_taa_clip for eight lanes, written as a macro (PoCL does not inline helpers that return
+ * structs): the history HC (rp_ycocg8) moved toward the box centre (MY, MO, MG) onto the surface
+ * of the box of half-extents (EY, EO, EG) where it lies outside; the result in QY, QO, QG. */
+#define RP_TAA_CLIP8(HC, MY, MO, MG, EY, EO, EG, QY, QO, QG)                              \
+  do {                                                                                   \
+    const float8 dy_ = (HC).y - (MY), dco_ = (HC).co - (MO), dcg_ = (HC).cg - (MG);      \
+    const float8 ay_ = fabs(dy_) / (EY), ao_ = fabs(dco_) / (EO), ag_ = fabs(dcg_) / (EG); \
+    const float8 m1_ = select(ao_, ay_, ay_ > ao_), m_ = select(ag_, m1_, m1_ > ag_);    \
+    const int8 outside_ = m_ > 1.0f;                                                     \
+    const float8 s_ = 1.0f / m_;                                                         \
+    QY = select((HC).y, (MY) + dy_ * s_, outside_);                                      \
+    QO = select((HC).co, (MO) + dco_ * s_, outside_);                                    \
+    QG = select((HC).cg, (MG) + dcg_ * s_, outside_);                                    \
+  } while (0)
+
 /* ---- Eight pixels at once: one float8 per channel (lane k = pixel x0 + k of a row) ----------
  * PoCL vectorizes straight-line scalar code across work-items, but per-pixel rgb code gets
  * SLP-packed into 2-wide vectors inside the work-item first, which blocks that (measured on

@@ -183,6 +183,18 @@ void write_white_scene(const std::filesystem::path& file, const scene::Mesh& mes
   scene::export_gltf(a, f, file);
 }
 
+// A white slab far wider than the view, seen from 3 m above: every pixel sees its top face.
+void write_white_floor(const std::filesystem::path& file) {
+  scene::Mesh floor;
+  floor.name = "floor";
+  scene::append_box(floor, {0.0f, -0.05f, 0.0f}, {50.0f, 0.05f, 50.0f}, 0);
+  scene::Camera camera;
+  camera.position = {0.0f, 3.0f, 0.5f};
+  camera.target = {0.0f, 0.0f, 0.0f};
+  camera.fov_y_deg = 40.0f;
+  write_white_scene(file, floor, camera);
+}
+
 // The combined layer of frame_0000.exr that `args` renders into `dir`.
 std::vector<float> path_trace(const std::string& args, const std::filesystem::path& dir,
                               uint32_t& w, uint32_t& h) {
@@ -199,14 +211,7 @@ TEST(SkyCli, WhiteFloorUnderAUniformMapIsAsBrightAsTheMap) {
   const int mw = 32, mh = 16;
   std::vector<float> rgb(size_t(mw) * mh * 3, 0.75f);
   ASSERT_NE(stbi_write_hdr((dir / "grey.hdr").c_str(), mw, mh, 3, rgb.data()), 0);
-  scene::Mesh floor;  // a slab far wider than the view: every pixel sees its top face
-  floor.name = "floor";
-  scene::append_box(floor, {0.0f, -0.05f, 0.0f}, {50.0f, 0.05f, 50.0f}, 0);
-  scene::Camera camera;
-  camera.position = {0.0f, 3.0f, 0.5f};
-  camera.target = {0.0f, 0.0f, 0.0f};
-  camera.fov_y_deg = 40.0f;
-  write_white_scene(dir / "floor.gltf", floor, camera);
+  write_white_floor(dir / "floor.gltf");
 
   uint32_t w = 0, h = 0;
   const std::vector<float> img =
@@ -280,14 +285,7 @@ TEST(SkyCli, RotatingTheMapHalfTurnMovesItsLightToTheOtherSide) {
 
 TEST(SkyCli, ClearSkyLightsAFloorWithSkyAndSun) {
   TempDir dir;
-  scene::Mesh floor;
-  floor.name = "floor";
-  scene::append_box(floor, {0.0f, -0.05f, 0.0f}, {50.0f, 0.05f, 50.0f}, 0);
-  scene::Camera camera;
-  camera.position = {0.0f, 3.0f, 0.5f};
-  camera.target = {0.0f, 0.0f, 0.0f};
-  camera.fov_y_deg = 40.0f;
-  write_white_scene(dir / "floor.gltf", floor, camera);
+  write_white_floor(dir / "floor.gltf");
   CommandResult r = run_rolypoly(
       "render --quality pathtraced --scene " + shell_quote((dir / "floor.gltf").string()) +
       " --sky clear --sun 90,30 --size 8 --spp 16 --bounces 1 --out " +
