@@ -62,19 +62,6 @@
 #define RP_TAA_STORE_PLANE(plane, V) RP_STORE_PLANE8(plane, row, x0, V)
 #endif
 
-/* Bilinear history of lane k in plane P (scalar taps at the four indices, weights fx, fy). */
-#define RP_TAA_HISTORY_LANE(P, k)                                                          \
-  mix(mix(P[ia.s##k], P[ib.s##k], fx.s##k), mix(P[ic.s##k], P[id.s##k], fx.s##k), fy.s##k)
-#define RP_TAA_HISTORY_LANES(P)                                                            \
-  (float8)(RP_TAA_HISTORY_LANE(P, 0), RP_TAA_HISTORY_LANE(P, 1), RP_TAA_HISTORY_LANE(P, 2), \
-           RP_TAA_HISTORY_LANE(P, 3), RP_TAA_HISTORY_LANE(P, 4), RP_TAA_HISTORY_LANE(P, 5), \
-           RP_TAA_HISTORY_LANE(P, 6), RP_TAA_HISTORY_LANE(P, 7))
-/* The same when the lanes' taps are consecutive pixels (ia = ia.s0 + lane, ib = ia + 1,
- * ic = ia + one row, id = ic + 1): four vector loads per plane. */
-#define RP_TAA_HISTORY_ROWS(P)                                                             \
-  mix(mix(vload8(0, P + ia.s0), vload8(0, P + ia.s0 + 1), fx),                             \
-      mix(vload8(0, P + ic.s0), vload8(0, P + ic.s0 + 1), fx), fy)
-
 /* Unjittered current sample of lane k: bilinear in HDR at the pixel centre + jitter. */
 #define RP_TAA_UNJITTER_LANE(k)                                                            \
   rp_plane_bilinear_clamp(hdr_in, w, h, (float2)(cx.s##k + jitter_x, cy + jitter_y))
@@ -208,20 +195,8 @@ __kernel void taa_resolve(__global const float4* restrict hdr_in,
     /* (vector bounds, not min(int8, int): oclgrind 21.10 evaluates that form wrongly) */
     const int8 ix1 = min(ix0 + 1, (int8)(w - 1)), iy1 = min(iy0 + 1, (int8)(h - 1));
     const int8 ia = iy0 * w + ix0, ib = iy0 * w + ix1, ic = iy1 * w + ix0, id = iy1 * w + ix1;
-    __global const float* hist_r = history_in;
-    __global const float* hist_g = history_in + plane;
-    __global const float* hist_b = history_in + 2 * plane;
     float8 hr, hg, hb;
-    if (all(ix0 == ix0.s0 + (int8)(0, 1, 2, 3, 4, 5, 6, 7)) && all(iy0 == iy0.s0) &&
-        ix0.s0 + 8 <= w - 1) {
-      hr = RP_TAA_HISTORY_ROWS(hist_r);
-      hg = RP_TAA_HISTORY_ROWS(hist_g);
-      hb = RP_TAA_HISTORY_ROWS(hist_b);
-    } else {
-      hr = RP_TAA_HISTORY_LANES(hist_r);
-      hg = RP_TAA_HISTORY_LANES(hist_g);
-      hb = RP_TAA_HISTORY_LANES(hist_b);
-    }
+    RP_TAA_HISTORY8(history_in, plane, w, hr, hg, hb);
     const rp_ycocg8 hc = rp_rgb_to_ycocg8(hr, hg, hb);
 
     /* 5. Clip toward the box centre (rp_taa_clip, lane by lane), back to rgb, blend. */

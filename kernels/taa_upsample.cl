@@ -66,20 +66,6 @@ inline float8 rp_taau_weight(float8 d2) {
     E = 0.5f * (hi_ - lo_);                                                              \
   } while (0)
 
-/* Bilinear history of lane k in plane P (scalar taps at indices ia, ib, ic, id). */
-#define RP_TAAU_HISTORY_LANE(P, k)                                                         \
-  mix(mix(P[ia.s##k], P[ib.s##k], fx.s##k), mix(P[ic.s##k], P[id.s##k], fx.s##k), fy.s##k)
-#define RP_TAAU_HISTORY_LANES(P)                                                           \
-  (float8)(RP_TAAU_HISTORY_LANE(P, 0), RP_TAAU_HISTORY_LANE(P, 1),                         \
-           RP_TAAU_HISTORY_LANE(P, 2), RP_TAAU_HISTORY_LANE(P, 3),                         \
-           RP_TAAU_HISTORY_LANE(P, 4), RP_TAAU_HISTORY_LANE(P, 5),                         \
-           RP_TAAU_HISTORY_LANE(P, 6), RP_TAAU_HISTORY_LANE(P, 7))
-/* The same when the lanes' taps are consecutive pixels of one row (a still view). */
-#define RP_TAAU_HISTORY_ROWS(P)                                                            \
-  mix(mix(vload8(0, P + ia.s0), vload8(0, P + ia.s0 + 1), fx),                             \
-      mix(vload8(0, P + ic.s0), vload8(0, P + ic.s0 + 1), fx), fy)
-
-
 /* lane k = x[at.sk], through private memory (measured as fast as OpenCL's shuffle() with a
  * run-time mask on PoCL) */
 inline float8 rp_pick8(float16 x, uint8 at) {
@@ -209,19 +195,8 @@ __kernel void taa_upsample(__global const float4* restrict hdr_in,
   const int8 ix1 = min(ix0 + 1, (int8)(ow - 1)), iy1 = min(iy0 + 1, (int8)(oh - 1));
   const int8 ia = iy0 * ow + ix0, ib = iy0 * ow + ix1, ic = iy1 * ow + ix0, id = iy1 * ow + ix1;
   const int plane = ow * oh;
-  __global const float* hist_r = history_in;
-  __global const float* hist_g = history_in + plane;
-  __global const float* hist_b = history_in + 2 * plane;
   float8 hr, hg, hb;
-  if (all(ix0 == ix0.s0 + lane) && all(iy0 == iy0.s0) && ix0.s0 + 8 <= ow - 1) {
-    hr = RP_TAAU_HISTORY_ROWS(hist_r);
-    hg = RP_TAAU_HISTORY_ROWS(hist_g);
-    hb = RP_TAAU_HISTORY_ROWS(hist_b);
-  } else {
-    hr = RP_TAAU_HISTORY_LANES(hist_r);
-    hg = RP_TAAU_HISTORY_LANES(hist_g);
-    hb = RP_TAAU_HISTORY_LANES(hist_b);
-  }
+  RP_TAA_HISTORY8(history_in, plane, ow, hr, hg, hb);
 
   /* clip toward the box centre in YCoCg (rp_taa_clip, lane by lane), then blend */
   const float ninth = 1.0f / 9.0f;

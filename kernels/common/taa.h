@@ -40,6 +40,40 @@ inline float3 rp_taa_clip(float3 q, float3 centre, float3 extent) {
   return m > 1.0f ? centre + v / m : q;
 }
 
+/* Bilinear history of lane k in plane P: scalar taps at the int8 indices ia, ib (row iy0,
+ * columns ix0 and ix0 + 1), ic, id (row iy1), weights fx, fy (float8); the caller names them so. */
+#define RP_TAA_HISTORY_LANE(P, k)                                                          \
+  mix(mix(P[ia.s##k], P[ib.s##k], fx.s##k), mix(P[ic.s##k], P[id.s##k], fx.s##k), fy.s##k)
+#define RP_TAA_HISTORY_LANES(P)                                                            \
+  (float8)(RP_TAA_HISTORY_LANE(P, 0), RP_TAA_HISTORY_LANE(P, 1), RP_TAA_HISTORY_LANE(P, 2), \
+           RP_TAA_HISTORY_LANE(P, 3), RP_TAA_HISTORY_LANE(P, 4), RP_TAA_HISTORY_LANE(P, 5), \
+           RP_TAA_HISTORY_LANE(P, 6), RP_TAA_HISTORY_LANE(P, 7))
+/* The same when the lanes' taps are consecutive pixels (ia = ia.s0 + lane, ib = ia + 1,
+ * ic = ia + one row, id = ic + 1): four vector loads per plane. */
+#define RP_TAA_HISTORY_ROWS(P)                                                             \
+  mix(mix(vload8(0, P + ia.s0), vload8(0, P + ia.s0 + 1), fx),                             \
+      mix(vload8(0, P + ic.s0), vload8(0, P + ic.s0 + 1), fx), fy)
+/* The three tone-mapped history planes (R, G, B, `plane` floats apart from HISTORY) of eight
+ * lanes of an image WIDTH wide into HR, HG, HB: four vector loads per plane where the lanes'
+ * taps are consecutive pixels of one row (a still view, an object moving as a whole) and not
+ * at the right border, scalar taps otherwise. Needs ix0, iy0 and the names above. */
+#define RP_TAA_HISTORY8(HISTORY, PLANE, WIDTH, HR, HG, HB)                                 \
+  do {                                                                                   \
+    __global const float* r_ = (HISTORY);                                                \
+    __global const float* g_ = (HISTORY) + (PLANE);                                      \
+    __global const float* b_ = (HISTORY) + 2 * (PLANE);                                  \
+    if (all(ix0 == ix0.s0 + (int8)(0, 1, 2, 3, 4, 5, 6, 7)) && all(iy0 == iy0.s0) &&     \
+        ix0.s0 + 8 <= (WIDTH) - 1) {                                                     \
+      HR = RP_TAA_HISTORY_ROWS(r_);                                                      \
+      HG = RP_TAA_HISTORY_ROWS(g_);                                                      \
+      HB = RP_TAA_HISTORY_ROWS(b_);                                                      \
+    } else {                                                                             \
+      HR = RP_TAA_HISTORY_LANES(r_);                                                     \
+      HG = RP_TAA_HISTORY_LANES(g_);                                                     \
+      HB = RP_TAA_HISTORY_LANES(b_);                                                     \
+    }                                                                                    \
+  } while (0)
+
 /* rp_taa_clip for eight lanes, written as a macro (PoCL does not inline helpers that return
  * structs): the history HC (rp_ycocg8) moved toward the box centre (MY, MO, MG) onto the surface
  * of the box of half-extents (EY, EO, EG) where it lies outside; the result in QY, QO, QG. */

@@ -22,7 +22,7 @@ uint32_t upsample_jitter_frames(float scale) {
 }
 
 TaaUpsamplePass::TaaUpsamplePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
-    : context_(context.context), kernel_(programs.kernel("taa_upsample.cl", "taa_upsample")) {}
+    : context_(context.context), programs_(&programs) {}
 
 void TaaUpsamplePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                           const ::cl::Buffer& hdr_in, const render::GBuffer& gbuffer,
@@ -50,6 +50,8 @@ void TaaUpsamplePass::run(rp::cl::Profiler& profiler, const render::GpuScene& sc
     height_ = out_height;
     history_valid_ = false;
   }
+  // built on first use: renders at scale 1 never pay for its compilation
+  if (!kernel_()) kernel_ = programs_->kernel("taa_upsample.cl", "taa_upsample");
   const int next = 1 - current_;
   cl_uint arg = 0;
   kernel_.setArg(arg++, hdr_in);

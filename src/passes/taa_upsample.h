@@ -47,7 +47,8 @@ class TaaUpsamplePass {
 
  private:
   ::cl::Context context_;
-  ::cl::Kernel kernel_;
+  rp::cl::ProgramCache* programs_;
+  ::cl::Kernel kernel_;  // built by the first run()
   TaaSettings settings_;
   uint32_t width_ = 0, height_ = 0;  // the output size the buffers have
   ::cl::Buffer history_[2];          // tone-mapped R, G, B planes; history_[current_] the latest
