@@ -6,8 +6,8 @@
 # test's time is the time from an empty cache.
 
 # ---- The thresholds: change them here and only here. ----------------------------------------
-# Fractions (0.15 = 15 %) as bench --accuracy takes them, PSNR in dB; README "Accuracy against
-# the ground truth" says what each measures.
+# Fractions (0.15 = 15 %) as bench --accuracy takes them, PSNR in dB; docs/accuracy.md
+# ("Accuracy report") says what each measures.
 # Measured at 128x128, 512 spp on the 2-core PoCL machine after issue 14's kernels (one-sided
 # voxels, exit term, near-field occlusion, bounce grid): fast/N L1 0.119, bias -0.032, worst
 # region floor_in_shadow +0.377 (at this size the fast mode's 4x4 blocks are 32 across the
