@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Set up, build and (optionally) run rolypoly on Debian/Ubuntu.
 #
-#   bash tools/setup.sh            check/install packages, build Release into build/
-#   bash tools/setup.sh demo       ... then render the demo headless: out/frame_0000.png
+#   bash tools/setup.sh            check/install packages, build Release into build/ (every target)
+#   bash tools/setup.sh demo       ... building only build/rolypoly, then render the demo headless:
+#                                  out/frame_0000.png
 #   bash tools/setup.sh test       ... then run the whole test suite (ctest, all labels)
 #   bash tools/setup.sh test-sanitize  build with AddressSanitizer + UBSan into build-asan/
 #                                  and run the tests except the oclgrind and soak labels
@@ -36,7 +37,7 @@ for arg in "$@"; do
   case "$arg" in
     build|demo|test|test-sanitize) mode="$arg" ;;
     --werror) werror=ON ;;
-    -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "setup.sh: unknown argument '$arg' (expected build, demo, test, test-sanitize or --werror)" >&2; exit 2 ;;
   esac
 done
@@ -78,11 +79,16 @@ if [[ "$mode" == test-sanitize ]]; then
   cmake --build build-asan -j"$jobs"
 else
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DROLYPOLY_WERROR="$werror"
-  cmake --build build -j"$jobs"
+  # The demo needs the binary alone; the tests and tools are built by `build` and `test`.
+  targets=()
+  [[ "$mode" == demo ]] && targets=(--target rolypoly)
+  cmake --build build -j"$jobs" ${targets[@]+"${targets[@]}"}
 fi
 
 case "$mode" in
   demo)
+    echo "setup.sh: rendering the demo (the first run compiles the OpenCL kernels, about half a" \
+         "minute on 2 cores; later runs reuse them)"
     build/rolypoly render --size 720 --frames 1 --out out/
     ;;
   test)

@@ -59,11 +59,12 @@ void expand(const std::string& file, std::set<std::string>& seen, std::string& o
   }
 }
 
-// Clang inside PoCL prints its diagnostics' summary ("1 error generated.") on the process's
-// stderr, besides the build log that BuildError carries. A build that fails because SIGINT
-// made LLVM delete its temporary files would otherwise leave that line above the one-line
-// "interrupted" message. Held for the build only: a successful build's output is passed on
-// unchanged; a failed build's is dropped (the build log has it).
+// Clang inside PoCL prints its diagnostics' summary ("12 warnings generated.") on the process's
+// stderr, besides the build log. Held for the build only: a failed build's output is dropped
+// (BuildError carries the full build log), and a successful build's is dropped too unless
+// ROLYPOLY_VERBOSE is set, so a first run does not print compiler chatter. (A build that fails
+// because SIGINT made LLVM delete its temporary files would otherwise also leave that line
+// above the one-line "interrupted" message.)
 class StderrHold {
  public:
   StderrHold() {
@@ -100,6 +101,12 @@ class StderrHold {
   int saved_ = -1;
 };
 
+// ROLYPOLY_VERBOSE set to anything but "" or "0": show what kernel builds print, and their logs.
+bool verbose_builds() {
+  const char* v = std::getenv("ROLYPOLY_VERBOSE");
+  return v != nullptr && *v != '\0' && std::string(v) != "0";
+}
+
 }  // namespace
 
 std::string kernel_source(const std::string& file) {
@@ -119,7 +126,17 @@ const ::cl::Program& ProgramCache::program(const std::string& file, const std::s
   StderrHold hold;
   try {
     program.build(std::vector<::cl::Device>{context_->info.device}, all_options.c_str());
-    hold.release(true);
+    const bool verbose = verbose_builds();
+    hold.release(verbose);
+    if (verbose) {
+      std::string log;
+      try {
+        log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(context_->info.device);
+      } catch (const ::cl::Error&) {
+      }
+      if (log.find_first_not_of(" \t\r\n") != std::string::npos)
+        std::fprintf(stderr, "--- build log of kernels/%s ---\n%s\n", file.c_str(), log.c_str());
+    }
   } catch (const ::cl::Error&) {
     hold.release(false);
     std::string log;
