@@ -1,8 +1,8 @@
 // The light from afar that --env FILE / --sky clear ask for (SkyOptions in app/render_session.h),
 // made once before the frames and given to every frame: the equirectangular map loaded (or the
 // clear sky rendered into one: scene/clear_sky.h) and, for the clear sky, its sun as a
-// directional light. Only the path tracer lights with it so far (parse_cli refuses it in the
-// real-time modes).
+// directional light. The path tracer takes it with every frame (add_sky), the real-time modes
+// through RenderSession (which adds it to the frames it renders).
 #pragma once
 
 #include <optional>
@@ -21,7 +21,7 @@ struct SkyLight {
 
 // Throws scene::AssetError (exit 1) naming the --env file and the system's reason ("--env:
 // cannot read environment map sky.hdr: No such file or directory") or the decoder's (a corrupt
-// or non-2:1 map, negative or non-finite texels: truth::load_environment_map).
+// or non-2:1 map, non-finite texels: truth::load_environment_map).
 SkyLight load_sky(const SkyOptions& options);
 
 // Gives `frame` the environment and appends the sun to its lights (nothing when none).

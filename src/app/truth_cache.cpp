@@ -121,7 +121,7 @@ std::string truth_key(const scene::SceneAssets& assets, const scene::FrameScene&
   // An environment light adds its map and settings; frames without one keep their keys.
   if (frame.environment.enabled()) {
     const scene::EnvironmentMap& map = *frame.environment.map;
-    h.text("environment");
+    h.text("environment/2");  // /2: its light at the seen surface counts as indirect
     h.value(map.width);
     h.value(map.height);
     h.bytes(map.rgb.data(), map.rgb.size() * sizeof(float));

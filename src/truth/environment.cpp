@@ -145,10 +145,13 @@ scene::EnvironmentMap load_environment_map(const std::filesystem::path& path) {
     throw std::runtime_error("environment map " + name + ": " + std::to_string(map.width) + "x" +
                              std::to_string(map.height) +
                              " is not an equirectangular map (width = 2 x height)");
-  for (float v : map.rgb)
-    if (!std::isfinite(v) || v < 0.0f)
-      throw std::runtime_error("environment map " + name +
-                               ": has negative or non-finite radiance");
+  // Lossy EXR codecs (DWAA/DWAB, as Blender's studio lights use) ring slightly below zero next
+  // to bright texels: such values are read as 0 (no light), while NaN and infinity are refused.
+  for (float& v : map.rgb) {
+    if (!std::isfinite(v))
+      throw std::runtime_error("environment map " + name + ": has non-finite radiance");
+    v = std::max(v, 0.0f);
+  }
   return map;
 }
 

@@ -52,7 +52,7 @@ class EnvironmentSampler {
 
 // Reads an equirectangular map: OpenEXR (.exr, its R, G, B) or Radiance HDR (.hdr, through
 // stb_image). Throws std::runtime_error naming the file and what is wrong (unreadable, not an
-// image, negative or non-finite texels, not 2:1).
+// image, non-finite texels, not 2:1); negative texels (a lossy codec's ringing) read as 0.
 scene::EnvironmentMap load_environment_map(const std::filesystem::path& path);
 
 }  // namespace rp::truth

@@ -104,15 +104,23 @@ class Integrator {
   // ray escapes). spec (optional): receives the coat's part of the result (0 for a matte
   // surface).
   glm::vec3 lamp(const Surface& s, glm::vec3 wo, Pcg32& rng, glm::vec3* spec = nullptr) {
-    if (scene_.frame().lights.empty() && !env_.enabled()) return demo_lamp(s, wo, rng, spec);
+    glm::vec3 sum = lights(s, wo, rng, spec);
+    if (env_.enabled()) {
+      glm::vec3 env_spec(0.0f);
+      sum += environment_light(s, wo, rng, spec ? &env_spec : nullptr);
+      if (spec) *spec += env_spec;
+    }
+    return sum;
+  }
+
+  // lamp() without the environment: the demo's lamp and the punctual lights, what the
+  // real-time passes light directly (draws the same numbers first).
+  glm::vec3 lights(const Surface& s, glm::vec3 wo, Pcg32& rng, glm::vec3* spec = nullptr) {
+    if (scene_.frame().lights.empty()) return demo_lamp(s, wo, rng, spec);
     glm::vec3 sum = demo_lamp(s, wo, rng, spec);
     glm::vec3 light_spec(0.0f);
     for (const scene::PunctualLight& light : scene_.frame().lights) {
       sum += punctual(light, s, wo, spec ? &light_spec : nullptr);
-      if (spec) *spec += light_spec;
-    }
-    if (env_.enabled()) {
-      sum += environment_light(s, wo, rng, spec ? &light_spec : nullptr);
       if (spec) *spec += light_spec;
     }
     return sum;
@@ -260,7 +268,14 @@ class Integrator {
     r.emission = s.emission;
     r.albedo = s.albedo;
     glm::vec3 wo = -dir;  // towards the previous vertex
-    r.direct = lamp(s, wo, rng, &r.specular);
+    // The environment's light at the seen surface is gathered light (the real-time passes
+    // bring it through their cones): indirect, sampled right after the lights as lamp() does.
+    r.direct = lights(s, wo, rng, &r.specular);
+    if (env_.enabled()) {
+      glm::vec3 env_spec(0.0f);
+      r.indirect += environment_light(s, wo, rng, &env_spec);
+      r.specular += env_spec;
+    }
     glm::vec3 beta(1.0f);  // throughput from the camera to s: f cos / pdf of the gathers so far
     // beta_s: the part of beta whose first gather went through the seen surface's specular
     // lobe (f_spec cos / pdf; the same factors after it), so r.specular collects the coat's
@@ -312,8 +327,8 @@ class Integrator {
       if (!scene_.intersect(s.p + s.ng * kRayOffset, wi, kFar, next)) {
         if (env_.enabled()) {  // the environment's BRDF-sampled share (MIS weighted)
           const glm::vec3 sky = env_.radiance(wi) * environment_weight(wi, pdf);
-          // from the seen surface it is direct light, as the map-sampled share in lamp()
-          (gather == 1 ? r.direct : r.indirect) += beta * sky;
+          // gathered light at every vertex, as the map-sampled share
+          r.indirect += beta * sky;
           r.specular += beta_s * sky;
         }
         break;

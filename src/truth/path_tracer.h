@@ -63,9 +63,12 @@
 //             lamp-lit surfaces seen from the camera's surface), as the real-time passes model
 //             today. Russian roulette only after the third gather (unbiased).
 //   components (per pixel, the mean over its samples, linear radiance in the renderer's units):
-//             direct   = the lamp's direct light at the surface the camera sees
-//             emission = that surface's own emission
-//             indirect = everything else reaching the camera from it (gathered light)
+//             direct   = the lamp's and the punctual lights' direct light at the surface the
+//                        camera sees
+//             emission = that surface's own emission, or the environment where no surface is
+//             indirect = everything else reaching the camera from it (gathered light), the
+//                        environment's light included (the real-time passes gather the sky
+//                        through their cones)
 //             combined = direct + indirect + emission
 //             albedo   = that surface's albedo (0 where no surface: background)
 //             specular = the part of direct + indirect that the seen surface's coat reflects:
