@@ -16,6 +16,8 @@
  *               a running mean for the first 16 gathers (so after 32 frames the face is the
  *               mean of the whole set), then exponentially with weight RP_BOUNCE_ALPHA (the
  *               fast mode).
+ * Cones that leave the volume bring the sky they let through (common/sky.h), so sky light
+ * bounces too.
  * No atomics: bit-identical runs.
  */
 #include "shared/voxel_layout.h"
@@ -38,7 +40,9 @@ inline bool bounce_cell_occupied(__global const float4* voxels, uint resolution,
 }
 
 __kernel void bounce_gather(__global const float4* voxels, uint resolution, uint levels,
-                            __global float4* bounce, uint frame, uint cones) {
+                            __global float4* bounce, uint frame, uint cones,
+                            __global const FrameConstants* constants,
+                            __global const float4* sky) {
   const uint cells = rp_bounce_cells(resolution);
   /* one cone: half the faces per frame (those of the frame's parity), the other half next */
   const uint gid = cones >= RP_CONE_SET_SIZE ? (uint)get_global_id(0)
@@ -67,17 +71,20 @@ __kernel void bounce_gather(__global const float4* voxels, uint resolution, uint
     float3 sum = (float3)(0.0f);
     for (uint k = 0; k < RP_CONE_SET_SIZE; ++k) {
       const float up = u_pos + 0.618034f * (float)k, ul = u_level + 0.754877666f * (float)k;
-      sum += rp_cone_trace_coarse(voxels, resolution, levels, origin,
-                                  rp_cone_set16_dir(n, t, b, k), up - floor(up),
-                                  ul - floor(ul)).xyz;
+      const float3 dir = rp_cone_set16_dir(n, t, b, k);
+      sum += rp_sky_behind_cone(constants, sky,
+                                rp_cone_trace_coarse(voxels, resolution, levels, origin, dir,
+                                                     up - floor(up), ul - floor(ul)),
+                                dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE_COARSE);
     }
     bounce[gid] = (float4)(sum * (1.0f / (float)RP_CONE_SET_SIZE), 1.0f);
     return;
   }
   const uint k = ((frame >> 1) + h) & (RP_CONE_SET_SIZE - 1u);
-  const float3 s =
-      rp_cone_trace_coarse(voxels, resolution, levels, origin, rp_cone_set16_dir(n, t, b, k),
-                           u_pos, u_level).xyz;
+  const float3 dir = rp_cone_set16_dir(n, t, b, k);
+  const float3 s = rp_sky_behind_cone(
+      constants, sky, rp_cone_trace_coarse(voxels, resolution, levels, origin, dir, u_pos, u_level),
+      dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE_COARSE);
   const float4 old = bounce[gid];
   const float age = old.w;
   const float alpha = fmax(1.0f / (age + 1.0f), RP_BOUNCE_ALPHA);

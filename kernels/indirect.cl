@@ -100,18 +100,21 @@
 
 /* Radiance of one cone of the set from sample (i, j)'s surface point p (normal n) in frame f,
  * with the block's position and level jitters. */
-inline float3 indirect_cone(__global const float4* voxels, uint voxel_resolution,
+inline float3 indirect_cone(__global const FrameConstants* frame, __global const float4* sky,
+                            __global const float4* voxels, uint voxel_resolution,
                             uint voxel_levels, float3 p, float3 n, float3 dir, uint i, uint j,
                             uint f) {
 #if RP_INDIRECT_COARSE
-  return rp_cone_trace_coarse(voxels, voxel_resolution, voxel_levels,
-                              rp_cone_apex(p, n, voxel_resolution), dir,
-                              rp_indirect_position_jitter(i, j, f),
-                              rp_indirect_level_jitter(i, j, f)).xyz;
+  const float4 cone = rp_cone_trace_coarse(voxels, voxel_resolution, voxel_levels,
+                                           rp_cone_apex(p, n, voxel_resolution), dir,
+                                           rp_indirect_position_jitter(i, j, f),
+                                           rp_indirect_level_jitter(i, j, f));
+  return rp_sky_behind_cone(frame, sky, cone, dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE_COARSE);
 #else
-  return rp_cone_trace_jittered(voxels, voxel_resolution, voxel_levels,
-                                rp_cone_apex(p, n, voxel_resolution), dir,
-                                rp_indirect_level_jitter(i, j, f)).xyz;
+  const float4 cone = rp_cone_trace_jittered(voxels, voxel_resolution, voxel_levels,
+                                             rp_cone_apex(p, n, voxel_resolution), dir,
+                                             rp_indirect_level_jitter(i, j, f));
+  return rp_sky_behind_cone(frame, sky, cone, dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE);
 #endif
 }
 
@@ -122,6 +125,7 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
                              __global const float4* voxels,
                              const uint voxel_resolution,
                              const uint voxel_levels,
+                             __global const float4* sky,
                              const uint lr_width,
                              const uint lr_height,
                              const uint stride,
@@ -158,11 +162,11 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
     /* No history yet (first frame, reset, camera cut, resize): every cone of the set, so the
      * first frame shows the whole estimate instead of one cone per block. */
     for (uint k = 0u; k < 16u; ++k)
-      c += indirect_cone(voxels, voxel_resolution, voxel_levels, p, n,
+      c += indirect_cone(frame, sky, voxels, voxel_resolution, voxel_levels, p, n,
                          rp_cone_set16_dir(n, t, b, k), i, j, f);
     c *= 1.0f / 16.0f;
 #else
-    c = indirect_cone(voxels, voxel_resolution, voxel_levels, p, n,
+    c = indirect_cone(frame, sky, voxels, voxel_resolution, voxel_levels, p, n,
                       rp_cone_set16_dir(n, t, b, rp_indirect_cone_index(i, j, f)), i, j, f);
 #endif
     c *= 1.0f - rp_cone_near_occlusion(voxels, voxel_resolution, voxel_levels, p, n);
@@ -184,7 +188,7 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
         if (ssr.w >= 1.0f) {
           sc = ssr.xyz;
         } else {
-          sc = rp_spec_cone(frame, voxels, voxel_resolution, voxel_levels, code, p, n, 0);
+          sc = rp_spec_cone(frame, sky, voxels, voxel_resolution, voxel_levels, code, p, n, 0);
           sc += ssr.w * (ssr.xyz - sc);
         }
       }

@@ -128,6 +128,7 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
                           __global const float4* restrict voxels,
                           const uint voxel_resolution,
                           const uint voxel_levels,
+                          __global const float4* restrict sky,
                           __global const float* restrict ssr_depth,
                           __global const float4* restrict ssr_prev_hdr,
                           __global const float2* restrict ssr_velocity,
@@ -171,7 +172,8 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
   const float3 lamp = frame->light_intensity.xyz * k;
   const float3 spec_direct = (float3)(sp[0].s0, sp[1].s0, sp[2].s0) * lamp;
   const float3 direct = albedo * (float3)(w[0].s0, w[1].s0, w[2].s0) * lamp + spec_direct;
-  const float3 irr = rp_cone_diffuse16(voxels, voxel_resolution, voxel_levels, p, n);
+  const float3 irr =
+      rp_cone_diffuse16(frame, sky, voxels, voxel_resolution, voxel_levels, p, n);
   /* the coat's share, weighted by E_spec(mu_o): the screen-space reflection (common/ssr.h,
    * level 0, the previous frame's output at the hit) with confidence c, and the reflection cone
    * (common/spec_cone.h) for the rest, cone + c (ssr - cone), as in the fast mode's
@@ -186,7 +188,7 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
     float3 refl = ssr.xyz;
     if (ssr.w < 1.0f) {
       const float3 cone =
-          rp_spec_cone(frame, voxels, voxel_resolution, voxel_levels, emission.w, p, n, 1);
+          rp_spec_cone(frame, sky, voxels, voxel_resolution, voxel_levels, emission.w, p, n, 1);
       refl = cone + ssr.w * (ssr.xyz - cone);
     }
     spec_indirect = (float3)(e[0].s0, e[1].s0, e[2].s0) * refl;

@@ -8,6 +8,9 @@
 //     spot and a point light, a floor with normal and metallic-roughness maps, a red wall, two
 //     boxes, a cube with an emission map, a trellis panel cut out by an alpha mask (mirrored
 //     texture) (10 m across; tests/app/file_scene_truth_test.cpp, the oclgrind renders);
+//   gen_load_scene OUT.glb --yard
+//     the room's geometry in matte colours without lights: only a sky (--env, --sky) lights it
+//     (the sky's accuracy table in bench/results);
 //   gen_load_scene OUT.glb --atrium
 //     the atrium (scene/atrium.h): a courtyard with two storeys of arcades, about 250k
 //     triangles and 43 textures, what `rolypoly --scene atrium` opens.
@@ -177,6 +180,44 @@ int write_room(const char* path) {
   return 0;
 }
 
+// The room's geometry without its lights, maps and coats: matte surfaces that only the sky
+// lights, for measuring the sky's light (bench --accuracy --scene yard.glb --env FILE).
+int write_yard(const char* path) {
+  using namespace rp::scene;
+  SceneAssets a;
+  const auto material = [&](const char* name, glm::vec3 albedo) {
+    Material m;
+    m.name = name;
+    m.albedo = albedo;
+    a.materials.push_back(m);
+  };
+  material("ground", glm::vec3(0.6f));
+  material("wall", glm::vec3(0.8f, 0.75f, 0.7f));
+  material("red", glm::vec3(0.7f, 0.2f, 0.15f));
+  material("blue", glm::vec3(0.25f, 0.45f, 0.75f));
+  material("green", glm::vec3(0.2f, 0.6f, 0.25f));
+  Mesh yard;
+  yard.name = "yard";
+  append_box(yard, {0, -0.05f, 0}, {5, 0.05f, 5}, 0);
+  append_box(yard, {0, 2.5f, -5}, {5, 2.5f, 0.05f}, 1);
+  append_box(yard, {-5, 2.5f, 0}, {0.05f, 2.5f, 5}, 2);
+  append_box(yard, {-1.5f, 0.75f, -1}, {0.75f, 0.75f, 0.75f}, 3);
+  append_box(yard, {1.5f, 1.25f, 0.5f}, {0.5f, 1.25f, 0.5f}, 1);
+  append_box(yard, {0, 0.4f, 2}, {0.4f, 0.4f, 0.4f}, 4);
+  a.meshes.push_back(yard);
+  FrameScene f;
+  f.lamp = false;
+  f.camera.position = {0.0f, 3.0f, 9.0f};
+  f.camera.target = {0.0f, 0.9f, 2.0f};
+  f.camera.fov_y_deg = 52.0f;
+  f.camera.near_plane = 0.05f;
+  f.camera.far_plane = 50.0f;
+  f.instances.push_back(MeshInstance{});
+  export_gltf(a, f, path);
+  std::printf("wrote %s: the yard (%zu triangles, no lights)\n", path, yard.triangles.size());
+  return 0;
+}
+
 int write_atrium(const char* path) {
   const rp::scene::Atrium atrium = rp::scene::make_atrium();
   size_t triangles = 0;
@@ -196,10 +237,12 @@ int write_atrium(const char* path) {
 int main(int argc, char** argv) {
   if (argc == 3 && std::string(argv[2]) == "--room") return write_room(argv[1]);
   if (argc == 3 && std::string(argv[2]) == "--atrium") return write_atrium(argv[1]);
+  if (argc == 3 && std::string(argv[2]) == "--yard") return write_yard(argv[1]);
   if (argc < 2 || argc > 4) {
     std::fprintf(stderr, "usage: gen_load_scene OUT.glb [TRIANGLES] [TEXTURES]\n"
                          "       gen_load_scene OUT.glb --room\n"
-                         "       gen_load_scene OUT.glb --atrium\n");
+                         "       gen_load_scene OUT.glb --atrium\n"
+                         "       gen_load_scene OUT.glb --yard\n");
     return 2;
   }
   const long triangles = argc > 2 ? std::strtol(argv[2], nullptr, 10) : 250000;

@@ -8,6 +8,7 @@
 
 #include "app/host_tone_map.h"
 #include "app/png_output.h"
+#include "app/sky_input.h"
 #include "app/truth_cache.h"
 #include "bench/src/accuracy_materials.h"
 #include "bench/src/accuracy_metrics.h"
@@ -109,7 +110,11 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
     frame.frame_index = index;
     return frame;
   };
-  const scene::FrameScene frame = frame_fn(assets, 0);
+  // The truth's frame carries the options' sky; the real-time renders get it from their
+  // RenderSession (app/render_session.h), so frame_fn stays without it.
+  scene::FrameScene frame = frame_fn(assets, 0);
+  const SkyLight sky = load_sky(common.sky);
+  add_sky(sky, frame);
   const std::filesystem::path cache =
       (options.cache_dir.empty() ? default_truth_cache_dir() : options.cache_dir) /
       ("scene-" + facts.content_hash);
@@ -122,6 +127,7 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
   j["command"] = options.command_line;
   j["gi_volume"] = render::gi_volume_name(common.gi_volume);
   j["scene"] = scene_file_json<nlohmann::json>(facts);
+  if (const std::string line = describe_sky(common.sky, sky); !line.empty()) j["sky"] = line;
   j["width"] = w;
   j["height"] = h;
   j["many_bounces"] = options.many_bounces;

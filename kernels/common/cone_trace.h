@@ -99,6 +99,7 @@
 #define ROLYPOLY_COMMON_CONE_TRACE_H
 
 #include "shared/voxel_layout.h"
+#include "common/sky.h"
 #include "common/voxel.h"
 #ifdef RP_GI_SVO
 #include "common/svo.h"
@@ -609,16 +610,23 @@ inline float rp_cone_near_occlusion(__global const float4* voxels, uint resoluti
 }
 
 /* Mean radiance of the 16 diffuse cones (quarter-diameter steps) around unit normal n at
- * surface point p: irradiance / pi (see the header). The reference mode's per-pixel estimate. */
-inline float3 rp_cone_diffuse16(__global const float4* voxels, uint resolution, uint levels,
+ * surface point p, each with the sky it lets through (common/sky.h; `sky`: the frame's
+ * environment texels): irradiance / pi (see the header). The reference mode's per-pixel
+ * estimate. */
+inline float3 rp_cone_diffuse16(__global const FrameConstants* restrict frame,
+                                __global const float4* restrict sky,
+                                __global const float4* voxels, uint resolution, uint levels,
                                 float3 p, float3 n) {
   float3 t, b;
   rp_cone_basis(n, &t, &b);
   const float3 o = rp_cone_apex(p, n, resolution);
   float3 sum = (float3)(0.0f);
 #pragma unroll
-  for (uint k = 0; k < RP_CONE_SET_SIZE; ++k)
-    sum += rp_cone_trace_fine(voxels, resolution, levels, o, rp_cone_set16_dir(n, t, b, k)).xyz;
+  for (uint k = 0; k < RP_CONE_SET_SIZE; ++k) {
+    const float3 dir = rp_cone_set16_dir(n, t, b, k);
+    sum += rp_sky_behind_cone(frame, sky, rp_cone_trace_fine(voxels, resolution, levels, o, dir),
+                              dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE);
+  }
   return sum * ((1.0f - rp_cone_near_occlusion(voxels, resolution, levels, p, n)) /
                 (float)RP_CONE_SET_SIZE);
 }

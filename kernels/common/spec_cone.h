@@ -10,7 +10,8 @@
  * incoming light approximated by the light's mean over the cone times the coat's albedo).
  * The volume is read only through rp_cone_trace_aperture (common/cone_trace.h: origin,
  * direction, aperture), the cone-tracing contract another volume can implement.
- * fine: rp_cone_trace_aperture's mode (1 the reference mode, 0 the fast mode).
+ * fine: rp_cone_trace_aperture's mode (1 the reference mode, 0 the fast mode). The sky the cone
+ * lets through is added (common/sky.h; `sky`: the frame's environment texels).
  */
 #ifndef ROLYPOLY_COMMON_SPEC_CONE_H
 #define ROLYPOLY_COMMON_SPEC_CONE_H
@@ -26,16 +27,18 @@
 #endif
 
 inline float3 rp_spec_cone(__global const FrameConstants* restrict frame,
+                           __global const float4* restrict sky,
                            __global const float4* restrict voxels, uint voxel_resolution,
                            uint voxel_levels, float code, float3 p, float3 n, const int fine) {
   const float3 v = normalize(frame->camera_pos.xyz - p);
   const float3 r = 2.0f * fmax(dot(n, v), 0.0f) * n - v;
-  return rp_cone_trace_aperture(voxels, voxel_resolution, voxel_levels,
-                                rp_cone_apex(p, n, voxel_resolution), r,
-                                fmax(rp_brdf_spec_cone_tan(rp_brdf_code_roughness(code)),
-                                     fine ? 0.0f : RP_SPEC_CONE_MIN_TAN_FAST),
-                                fine)
-      .xyz;
+  const float tan_half = fmax(rp_brdf_spec_cone_tan(rp_brdf_code_roughness(code)),
+                              fine ? 0.0f : RP_SPEC_CONE_MIN_TAN_FAST);
+  const float4 cone = rp_cone_trace_aperture(voxels, voxel_resolution, voxel_levels,
+                                             rp_cone_apex(p, n, voxel_resolution), r, tan_half,
+                                             fine);
+  return rp_sky_behind_cone(frame, sky, cone, r, tan_half,
+                            fine ? RP_CONE_OPAQUE : RP_CONE_SPEC_OPAQUE_FAST);
 }
 
 #endif

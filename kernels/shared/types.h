@@ -70,6 +70,19 @@ typedef struct {
   rp_uint pad0;
 } PunctualLightGpu;
 
+/* The environment light as the real-time modes see it (scene/environment.h; host:
+ * src/render/sky_texture.h): an equirectangular map and its mip chain in one float4 buffer
+ * (rgb radiance, w unused), level l of width >> l by height >> l texels (at least 1) at
+ * texel level_offset[l], rows top to bottom as in the map. Directions turn into the map's frame
+ * by (x, z) -> (c x - s z, s x + c z) with (c, s) = turn.xy (the path tracer's rotation);
+ * radiance is texel x turn.z (the strength). levels == 0: no environment (black). */
+#define RP_SKY_MAX_LEVELS 12u
+typedef struct {
+  rp_float4 turn;  /* x cos, y sin of the turn about +y, z strength, w unused */
+  rp_uint width, height, levels, pad0;
+  rp_uint level_offset[RP_SKY_MAX_LEVELS];
+} SkyGpu;
+
 /* 96 bytes. */
 typedef struct {
   rp_mat4 view_proj;        /* render space -> this view's clip space */
@@ -104,6 +117,7 @@ typedef struct {
   rp_uint pad_punctual0, pad_punctual1;
   PunctualLightGpu punctual[RP_MAX_PUNCTUAL_LIGHTS];
   ShadowViewGpu shadow_views[RP_MAX_SHADOW_VIEWS];
+  SkyGpu sky;
 } FrameConstants;
 
 /* One vertex of a mesh in object space. 32 bytes. */

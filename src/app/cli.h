@@ -47,7 +47,8 @@ using CliParse = std::variant<ParsedCommand, CliExit>;
 // Builds the options, parses argv (argv[0] is the program name) and runs every usage check:
 // unknown subcommand, CLI11's errors and validators, --level/--dir without --view voxels, bench
 // option conflicts, --spp without --quality pathtraced (or bench --accuracy), --bounces 0
-// without it, and what that mode cannot do; --env / --sky outside it and their combinations.
+// without it, and what that mode cannot do; --env / --sky combinations (and on the demo's
+// --accuracy).
 // No OpenCL, no file, no output, no global state: the same argv always gives the same result. Never throws for any argv (only std::bad_alloc can escape).
 CliParse parse_cli(int argc, const char* const* argv);
 

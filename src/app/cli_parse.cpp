@@ -306,9 +306,9 @@ CLI::Validator sun_position() {
 void add_sky_options(CLI::App* cmd, CommonOptions& common) {
   SkyOptions& sky = common.sky;
   cmd->add_option("--env", sky.env_file,
-                  "--quality pathtraced: light the scene from afar with this equirectangular "
-                  "environment map (.exr or .hdr, width = 2 x height; its top row is +y, its "
-                  "centre towards +z)");
+                  "light the scene from afar with this equirectangular environment map "
+                  "(.exr or .hdr, width = 2 x height; its top row is +y, its centre towards "
+                  "+z), seen as the background and through the cones (every mode)");
   cmd->add_option("--env-rotate", sky.rotate_deg,
                   "--env: turn the map about +y by DEG degrees (counter-clockwise seen from "
                   "above), -360 to 360")
@@ -319,8 +319,8 @@ void add_sky_options(CLI::App* cmd, CommonOptions& common) {
       ->check(decimal_in(0.0, 1000000.0));
   cmd->add_option_function<std::string>(
          "--sky", [&sky](const std::string&) { sky.clear_sky = true; },
-         "--quality pathtraced: clear (a built-in Preetham clear sky with its sun as a "
-         "directional light; --sun places the sun)")
+         "clear: a built-in Preetham clear sky with its sun as a directional light (--sun "
+         "places the sun; every mode)")
       ->check(CLI::IsMember({"clear"}));
   cmd->add_option_function<std::string>(
          "--sun",
@@ -334,11 +334,10 @@ void add_sky_options(CLI::App* cmd, CommonOptions& common) {
       ->check(sun_position());
 }
 
-// Usage checks of --env / --sky and their settings: "" when fine. `pathtraced_here`: the
-// command path traces (render or bench --quality pathtraced), the only mode that lights with
-// the environment so far.
-std::string check_sky(const CLI::App* cmd, const CommonOptions& common, bool pathtraced_here,
-                      bool accuracy = false) {
+// Usage checks of --env / --sky and their settings: "" when fine. Every mode lights with the
+// sky; `accuracy_demo`: bench --accuracy on the demo, whose sections (the lamp's direct light,
+// the marbles) are measured without one.
+std::string check_sky(const CLI::App* cmd, const CommonOptions& common, bool accuracy_demo) {
   const SkyOptions& sky = common.sky;
   if (!sky.env_file.empty() && sky.clear_sky)
     return "--env and --sky clear are two skies; give one";
@@ -350,15 +349,10 @@ std::string check_sky(const CLI::App* cmd, const CommonOptions& common, bool pat
     if (cmd->count(name) && !sky.given())
       return std::string(name) + " applies to --env FILE" +
              (std::string(name) == "--env-strength" ? " or --sky clear" : "");
-  if (!sky.given() || pathtraced_here) return "";
-  const std::string option = sky.clear_sky ? "--sky" : "--env";
-  if (accuracy)
-    return "--accuracy holds the real-time modes against the truth, and the real-time modes "
-           "do not take " + option + " yet; bench --quality pathtraced takes it";
-  if (cmd->get_name() == "run")  // the window shows only real-time frames
-    return "the real-time modes do not take " + option + " yet; use render --quality "
-           "pathtraced";
-  return "the real-time modes do not take " + option + " yet; use --quality pathtraced";
+  if (sky.given() && accuracy_demo)
+    return std::string(sky.clear_sky ? "--sky" : "--env") +
+           " with --accuracy needs --scene FILE: the demo's report measures its closed box";
+  return "";
 }
 
 // --render-scale and --target-ms change how the real-time final image is made: "" when fine.
@@ -748,7 +742,7 @@ CliParse parse_cli(int argc, const char* const* argv) {
       return usage("rolypoly render", why);
     if (std::string why = check_pathtrace(render, common); !why.empty())
       return usage("rolypoly render", why);
-    if (std::string why = check_sky(render, common, common.pathtraced); !why.empty())
+    if (std::string why = check_sky(render, common, false); !why.empty())
       return usage("rolypoly render", why);
     if (std::string why = check_render_scale(common, render_opts.exr ? "--exr" : nullptr);
         !why.empty())
@@ -867,8 +861,9 @@ CliParse parse_cli(int argc, const char* const* argv) {
             "--min-direct-psnr-floor, --max-penumbra-error, --min-albedo-psnr) belong to "
             "--accuracy";
     if (why) return usage("rolypoly bench", why);
-    if (std::string sky = check_sky(bench, common, common.pathtraced && !bench_opts.accuracy,
-                                    bench_opts.accuracy);
+    const bool demo_scene = bench_opts.scene == "default" || bench_opts.scene == "busy" ||
+                            is_demo_scene(bench_opts.scene);
+    if (std::string sky = check_sky(bench, common, bench_opts.accuracy && demo_scene);
         !sky.empty())
       return usage("rolypoly bench", sky);
     if (std::string scale =

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <new>
 
+#include "app/sky_input.h"
 #include "cl/error.h"
 #include "passes/motion_blur.h"
 #include "render/gpu_types.h"  // before raster_types.h, which builds on its types
@@ -196,6 +197,7 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
                                                    : options.asset_dir)),
       context_(rp::cl::Context::create(options.device)),
       programs_(context_) {
+  if (options.sky.given()) sky_ = std::make_unique<SkyLight>(load_sky(options.sky));
   render::RenderSettings settings;
   settings.width = width;
   settings.height = height;
@@ -259,10 +261,19 @@ void RenderSession::set_view(const passes::DebugViewSettings& view) {
   view_ = view;
 }
 
+RenderSession::~RenderSession() = default;
+
 rp::cl::PassTimes RenderSession::render(const scene::FrameScene& frame,
                                         std::vector<uint8_t>& rgba, double& frame_ms) {
   auto start = std::chrono::steady_clock::now();
-  rp::cl::PassTimes times = renderer_->render(frame);
+  rp::cl::PassTimes times;
+  if (sky_) {
+    scene::FrameScene lit = frame;
+    add_sky(*sky_, lit);
+    times = renderer_->render(lit);
+  } else {
+    times = renderer_->render(frame);
+  }
   frame_ms = ms_since(start);
   renderer_->read_rgba8(rgba);
   if (frame_scale_) renderer_->set_render_scale(frame_scale_->update(frame_ms));

@@ -63,6 +63,8 @@ struct CommonOptions {
   SkyOptions sky;             // --env, --env-rotate, --env-strength, --sky clear, --sun
 };
 
+struct SkyLight;  // app/sky_input.h
+
 // Not copyable or movable: the program cache and renderer point at the context.
 class RenderSession {
  public:
@@ -74,8 +76,11 @@ class RenderSession {
                 bool keep_components = false, const scene::SceneAssets* assets = nullptr);
   RenderSession(const RenderSession&) = delete;
   RenderSession& operator=(const RenderSession&) = delete;
+  ~RenderSession();
 
-  // Renders `frame` (blocking) and reads the RGBA8 result into `rgba` (top row first).
+  // Renders `frame` (blocking) and reads the RGBA8 result into `rgba` (top row first), lit by
+  // the options' sky too (--env / --sky clear: app/sky_input.h's add_sky; frames come without
+  // it).
   // Returns the device ms per pass; `frame_ms` gets the wall-clock ms of Renderer::render
   // (enqueue of every pass until all finished; the read-back is not included).
   rp::cl::PassTimes render(const scene::FrameScene& frame, std::vector<uint8_t>& rgba,
@@ -122,6 +127,7 @@ class RenderSession {
   passes::DebugViewSettings view_;
   uint64_t device_memory_estimate_ = 0;
   std::optional<FrameTimeScale> frame_scale_;  // --target-ms
+  std::unique_ptr<SkyLight> sky_;              // --env / --sky clear; nullptr: none
 };
 
 // Device memory the renderer allocates for one width x height image, counted buffer by buffer

@@ -11,15 +11,16 @@ BouncePass::BouncePass(const rp::cl::Context& context, rp::cl::ProgramCache& pro
                        const std::string& gi_options)
     : context_(&context), gather_(programs.kernel("bounce.cl", "bounce_gather", gi_options)) {}
 
-void BouncePass::run(rp::cl::Profiler& profiler, const render::VoxelVolume& volume,
-                     uint32_t frame, Cones cones) {
+void BouncePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                     const render::VoxelVolume& volume, uint32_t frame, Cones cones) {
   if (!render::VoxelVolume::valid_resolution(volume.resolution) || volume.chain() == nullptr)
     throw rp::cl::Error("bounce pass: the voxel volume has not been allocated (resize it)");
-  run(profiler, volume.chain, volume.resolution, volume.levels, frame, cones);
+  run(profiler, scene, volume.chain, volume.resolution, volume.levels, frame, cones);
 }
 
-void BouncePass::run(rp::cl::Profiler& profiler, const ::cl::Buffer& voxels, uint32_t resolution,
-                     uint32_t levels, uint32_t frame, Cones cones) {
+void BouncePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                     const ::cl::Buffer& voxels, uint32_t resolution, uint32_t levels,
+                     uint32_t frame, Cones cones) {
   const size_t g = cells(resolution);
   const size_t faces = 6 * g * g * g;
   if (resolution_ != resolution || grid_() == nullptr) {
@@ -36,6 +37,8 @@ void BouncePass::run(rp::cl::Profiler& profiler, const ::cl::Buffer& voxels, uin
   gather_.setArg(3, grid_);
   gather_.setArg(4, cl_uint(frame));
   gather_.setArg(5, cl_uint(cones == Cones::kAll ? 16 : 1));
+  gather_.setArg(6, scene.frame);
+  gather_.setArg(7, scene.sky);
   const size_t items = cones == Cones::kAll ? faces : faces / 2;  // one cone: half a frame
   profiler.enqueue("bounce", gather_, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
                    ::cl::NDRange(kGroup));

@@ -10,6 +10,7 @@
 
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
+#include "render/gpu_scene.h"
 #include "render/voxel_volume.h"
 
 namespace rp::passes {
@@ -25,14 +26,15 @@ class BouncePass {
   BouncePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
              const std::string& gi_options = "");
 
-  // Gathers into the grid from volume.chain (levels built). frame: the frame index (jitters and
-  // the cone rotation). Enqueues only.
-  void run(rp::cl::Profiler& profiler, const render::VoxelVolume& volume, uint32_t frame,
-           Cones cones);
+  // Gathers into the grid from volume.chain (levels built); cones that leave the volume take
+  // the sky of `scene`'s frame (its FrameConstants and environment texels). frame: the frame
+  // index (jitters and the cone rotation). Enqueues only.
+  void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+           const render::VoxelVolume& volume, uint32_t frame, Cones cones);
   // The same from any GI volume buffer (the dense chain or, with RP_GI_SVO, the octree) of
   // `resolution` voxels per side and `levels` levels.
-  void run(rp::cl::Profiler& profiler, const ::cl::Buffer& voxels, uint32_t resolution,
-           uint32_t levels, uint32_t frame, Cones cones);
+  void run(rp::cl::Profiler& profiler, const render::GpuScene& scene, const ::cl::Buffer& voxels,
+           uint32_t resolution, uint32_t levels, uint32_t frame, Cones cones);
 
   // The grid the voxelizer reads (float4 per cell face), sized for the last volume run with;
   // valid() is false until a gather has run since the last reset.

@@ -135,6 +135,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   trace.setArg(arg++, voxels);
   trace.setArg(arg++, cl_uint(voxel_resolution));
   trace.setArg(arg++, cl_uint(voxel_levels));
+  trace.setArg(arg++, scene.sky);
   trace.setArg(arg++, cl_uint(lw));
   trace.setArg(arg++, cl_uint(lh));
   trace.setArg(arg++, cl_uint(stride));

@@ -192,6 +192,7 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     k.setArg(arg++, voxels);
     k.setArg(arg++, cl_uint(voxel_resolution));
     k.setArg(arg++, cl_uint(voxel_levels));
+    k.setArg(arg++, scene.sky);
     // the screen-space reflections (light_shade reads none of these when ssr_history is 0)
     if (ssr != nullptr && ssr->prev_hdr == &hdr)
       throw rp::cl::Error("light pass: the reflections' previous frame must not be the output");

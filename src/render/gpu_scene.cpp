@@ -11,6 +11,7 @@
 
 #include "cl/buffer.h"
 #include "cl/error.h"
+#include "render/sky_texture.h"
 #include "render/texture_mips.h"
 
 namespace rp::render {
@@ -240,6 +241,20 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
     brdf_table = upload(context, queue_, table, "the surface model's tables");
   }
   frame = ::cl::Buffer(context, CL_MEM_READ_ONLY, sizeof(gpu::FrameConstants));
+  sky = upload(context, queue_, std::vector<gpu::rp_float4>(1, gpu::rp_float4{}), "no sky");
+}
+
+void GpuScene::update_sky(const scene::Environment& environment) {
+  if (environment.enabled() && environment.map != sky_map_) {
+    const SkyTexture texture = build_sky_texture(*environment.map);
+    sky = upload(context_, queue_, texture.texels,
+                 "the environment map's " + std::to_string(texture.info.levels) + " levels (" +
+                     std::to_string(texture.info.width) + "x" +
+                     std::to_string(texture.info.height) + " and halvings)");
+    sky_map_ = environment.map;
+    sky_info_ = texture.info;
+  }
+  constants.sky = sky_record(sky_info_, environment);
 }
 
 void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t height,
@@ -280,6 +295,7 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
   c.shadow_view_count = uint32_t(punctual.views.size());
   std::copy(punctual.lights.begin(), punctual.lights.end(), c.punctual);
   std::copy(punctual.views.begin(), punctual.views.end(), c.shadow_views);
+  update_sky(f.environment);
 
   host_instances.clear();
   instance_triangle_count = 0;

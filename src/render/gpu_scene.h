@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <CL/opencl.hpp>
@@ -96,6 +97,9 @@ class GpuScene {
   ::cl::Buffer frame;      // gpu::FrameConstants (one)
   ::cl::Buffer instances;  // gpu::Instance[instance_count] (capacity may be larger)
   ::cl::Buffer spheres;    // gpu::Sphere[sphere_count] (capacity may be larger)
+  // The frame's environment map and its mip chain (render/sky_texture.h; one unused texel
+  // without one), uploaded when the frame's map changes; FrameConstants.sky places its levels.
+  ::cl::Buffer sky;
   uint32_t instance_count = 0, sphere_count = 0;
   uint32_t instance_triangle_count = 0;  // sum of triangle_count over instances
   uint32_t voxel_triangle_count = 0;     // sum of voxel_triangle_count over instances
@@ -109,6 +113,9 @@ class GpuScene {
   ::cl::Context context_;
   ::cl::CommandQueue queue_;
   size_t instance_capacity_ = 0, sphere_capacity_ = 0;
+  void update_sky(const scene::Environment& environment);
+  std::shared_ptr<const scene::EnvironmentMap> sky_map_;  // the map `sky` holds (nullptr: none)
+  gpu::SkyGpu sky_info_{};
   glm::vec2 last_jitter_px_{0.0f};  // the jitter the previous update() used (0 before the first)
 };
 

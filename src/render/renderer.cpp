@@ -15,6 +15,7 @@
 #include "passes/motion_blur.h"
 #include "passes/punctual_light.h"
 #include "passes/shadow_filter.h"
+#include "passes/sky_background.h"
 #include "passes/taa.h"
 #include "passes/taa_upsample.h"
 #include "passes/tone_map.h"
@@ -118,6 +119,7 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
                                                shadow_filter_for(settings_.shadows), gi_options);
   light_->prepare(indirect_ != nullptr);
   punctual_ = std::make_unique<passes::PunctualLightPass>(programs);
+  sky_background_ = std::make_unique<passes::SkyBackgroundPass>(programs);
   shadow_filter_ = std::make_unique<passes::ShadowFilterPass>(context, programs);
   tone_map_ = std::make_unique<passes::ToneMapPass>(context, programs);
   taa_ = std::make_unique<passes::TaaPass>(context, programs);
@@ -290,6 +292,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
                 indirect_ ? &low_res : nullptr, ssr_history ? &ssr_reference : nullptr);
     punctual_->run(profiler_, *scene_, gbuffer_, shadow_, hdr_,
                    split ? &light_components_ : nullptr);
+    sky_background_->run(profiler_, *scene_, gbuffer_, hdr_);
     hdr_prev_valid_ = !indirect_;
     if (final_view) {
       const uint32_t w = settings_.width, h = settings_.height;
@@ -421,7 +424,7 @@ void Renderer::build_voxels() {
     const uint32_t iterations =
         std::min(settings_.bounces - 1, reference ? kWarmGathersReference : kWarmGathersFast);
     for (uint32_t i = 0; i < iterations; ++i) {
-      bounce_->run(profiler_, gi_buffer(), gi_resolution(), gi_levels(), frame,
+      bounce_->run(profiler_, *scene_, gi_buffer(), gi_resolution(), gi_levels(), frame,
                    passes::BouncePass::Cones::kAll);
       voxelize(true);
     }
@@ -431,7 +434,7 @@ void Renderer::build_voxels() {
     voxelize(true, reference ? 1u : kBounceRefreshFast);
   }
   // This frame's gather, for the next frame's voxels.
-  bounce_->run(profiler_, gi_buffer(), gi_resolution(), gi_levels(), frame,
+  bounce_->run(profiler_, *scene_, gi_buffer(), gi_resolution(), gi_levels(), frame,
                reference ? passes::BouncePass::Cones::kAll : passes::BouncePass::Cones::kOne);
 }
 
@@ -442,24 +445,33 @@ void Renderer::read_components(LinearComponents& out) {
   const uint32_t w = render_width_, h = render_height_;
   const size_t n = size_t(w) * h;
   std::vector<float> rgba(n * 4), albedo(n * 4);
-  // float4 per pixel -> 3 floats; 0 where the GBuffer's albedo.a says background (1 covered,
-  // 0 background), whatever the buffer holds there.
-  const auto read_rgb = [&](const ::cl::Buffer& buffer, std::vector<float>& rgb) {
+  // float4 per pixel -> 3 floats; where the GBuffer's albedo.a says background (1 covered,
+  // 0 background) the value of `background` (the sky seen directly: the combined image's), or
+  // 0 without one, whatever the buffer holds there. The path tracer's layers hold the sky the
+  // same way: in the combined image and in the emission (what the camera sees emitted).
+  const auto read_rgb = [&](const ::cl::Buffer& buffer, std::vector<float>& rgb,
+                            const std::vector<float>* background = nullptr) {
     context_.queue.enqueueReadBuffer(buffer, CL_TRUE, 0, n * 16, rgba.data());
     rgb.resize(n * 3);
     for (size_t i = 0; i < n; ++i)
       for (size_t c = 0; c < 3; ++c)
-        rgb[3 * i + c] = albedo[4 * i + 3] != 0.0f ? rgba[4 * i + c] : 0.0f;
+        rgb[3 * i + c] = albedo[4 * i + 3] != 0.0f ? rgba[4 * i + c]
+                         : background            ? (*background)[3 * i + c]
+                                                 : 0.0f;
   };
   try {
     context_.queue.enqueueReadBuffer(gbuffer_.albedo, CL_TRUE, 0, n * 16, albedo.data());
     out.width = w;
     out.height = h;
-    read_rgb(hdr_, out.combined);
+    // the light pass writes the sky (or 0) into background pixels: its own background
+    context_.queue.enqueueReadBuffer(hdr_, CL_TRUE, 0, n * 16, rgba.data());
+    out.combined.resize(n * 3);
+    for (size_t i = 0; i < n; ++i)
+      for (size_t c = 0; c < 3; ++c) out.combined[3 * i + c] = rgba[4 * i + c];
     read_rgb(light_components_.direct, out.direct);
     read_rgb(light_components_.indirect, out.indirect);
     read_rgb(light_components_.specular, out.specular);
-    read_rgb(gbuffer_.emission, out.emission);
+    read_rgb(gbuffer_.emission, out.emission, &out.combined);
     read_rgb(gbuffer_.albedo, out.albedo);
   } catch (const ::cl::Error& e) {
     throw rp::cl::Error(std::string("OpenCL call failed while reading the light components: ") +

@@ -24,6 +24,7 @@ class EmbreeVisibilityPass;
 class GBufferPass;
 class LightPass;
 class PunctualLightPass;
+class SkyBackgroundPass;
 class ShadowFilterPass;
 class IndirectPass;
 class ToneMapPass;
@@ -103,7 +104,8 @@ ShadowMode next_shadow_mode(ShadowMode mode);
 enum class TextureFilter { kBilinear, kTrilinear, kAnisotropic };
 
 // The light pass's linear images read back to the host (Renderer::read_components): RGB, 3
-// floats per pixel, row-major, top row first; background pixels 0. The same meaning as
+// floats per pixel, row-major, top row first; background pixels 0, but for the sky seen
+// directly (0 without one) in combined and emission. The same meaning as
 // rp::truth::PathTracedImage's fields: combined = the light pass's HDR output (direct + indirect
 // + emission, before post-processing), direct = albedo x lamp light (shadowed), indirect =
 // albedo x gathered (cone traced) light, emission and albedo from the GBuffer.
@@ -261,6 +263,7 @@ class Renderer {
   std::unique_ptr<passes::IndirectPass> indirect_;  // set with Quality::kFast
   std::unique_ptr<passes::LightPass> light_;
   std::unique_ptr<passes::PunctualLightPass> punctual_;  // a file scene's lights
+  std::unique_ptr<passes::SkyBackgroundPass> sky_background_;  // the environment seen directly
   bool lamp_map_drawn_ = false;  // the lamp's shadow map holds a drawing (see render())
   SetupTimes setup_times_;
   std::unique_ptr<passes::ShadowFilterPass> shadow_filter_;  // the mips pcss / vssm read

@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -18,6 +20,8 @@
 #include "cl/program_cache.h"
 #include "cone_reference.h"
 #include "kernels/shared/voxel_layout.h"
+#include "render/gpu_types.h"
+#include "render/sky_texture.h"
 #include "support/cl_fixture.h"
 
 namespace {
@@ -75,11 +79,14 @@ __kernel void cone_test_set16(__global const float4* voxels, uint resolution, ui
   rp_cone_basis(n, &t, &b);
   for (uint k = 0; k < 16u; ++k) out[16 * i + k] = (float4)(rp_cone_set16_dir(n, t, b, k), 0.0f);
 }
+/* frame: FrameConstants, zero (no sky) */
 __kernel void cone_test_diffuse(__global const float4* voxels, uint resolution, uint levels,
                                 __global const float4* points, __global const float4* normals,
-                                __global float4* out) {
+                                __global const FrameConstants* frame,
+                                __global const float4* sky, __global float4* out) {
   const size_t i = get_global_id(0);
-  out[i] = (float4)(rp_cone_diffuse16(voxels, resolution, levels, points[i].xyz, normals[i].xyz),
+  out[i] = (float4)(rp_cone_diffuse16(frame, sky, voxels, resolution, levels, points[i].xyz,
+                                      normals[i].xyz),
                     0.0f);
 }
 )CLC";
@@ -100,11 +107,13 @@ const ::cl::Program& test_program() {
   return program;
 }
 
-// Runs test kernel `name` (voxels, resolution, `param`, inputs..., out) over the elements of the
-// input arrays (all the same length); returns one float4 per element.
+// Runs test kernel `name` (voxels, resolution, `param`, inputs..., extras..., out) over the
+// elements of the input arrays (all the same length; extras: buffers of any length); returns
+// one float4 per element.
 std::vector<glm::vec4> run_kernel(const char* name, const Chain& chain, uint32_t param,
                                   const std::vector<const std::vector<glm::vec4>*>& inputs,
-                                  size_t outputs_per_element = 1) {
+                                  size_t outputs_per_element = 1,
+                                  const std::vector<const std::vector<glm::vec4>*>& extras = {}) {
   auto& ctx = rp::test::context();
   const size_t n = inputs[0]->size();
   ::cl::Buffer voxels(ctx.context, CL_MEM_READ_ONLY, chain.voxels.size() * 16);
@@ -119,6 +128,11 @@ std::vector<glm::vec4> run_kernel(const char* name, const Chain& chain, uint32_t
     EXPECT_EQ(input->size(), n);
     buffers.emplace_back(ctx.context, CL_MEM_READ_ONLY, n * 16);
     ctx.queue.enqueueWriteBuffer(buffers.back(), CL_TRUE, 0, n * 16, input->data());
+    kernel.setArg(arg++, buffers.back());
+  }
+  for (const std::vector<glm::vec4>* extra : extras) {
+    buffers.emplace_back(ctx.context, CL_MEM_READ_ONLY, extra->size() * 16);
+    ctx.queue.enqueueWriteBuffer(buffers.back(), CL_TRUE, 0, extra->size() * 16, extra->data());
     kernel.setArg(arg++, buffers.back());
   }
   const size_t m = n * outputs_per_element;
@@ -142,10 +156,39 @@ std::vector<glm::vec4> run_trace_mode(const Chain& chain, const std::vector<glm:
   return run_kernel("cone_test_trace_mode", chain, chain.levels, {&origins, &dirs});
 }
 
-// The diffuse cone set per (point, normal) pair.
+// FrameConstants as float4s, with `sky` as its environment.
+std::vector<glm::vec4> frame_with_sky(const rp::gpu::SkyGpu& sky) {
+  rp::gpu::FrameConstants frame{};
+  frame.sky = sky;
+  std::vector<glm::vec4> out(sizeof frame / 16);
+  std::memcpy(out.data(), &frame, sizeof frame);
+  return out;
+}
+
+// The diffuse cone set per (point, normal) pair, under `environment` (none by default).
 std::vector<glm::vec4> run_diffuse(const Chain& chain, const std::vector<glm::vec4>& points,
-                                   const std::vector<glm::vec4>& normals) {
-  return run_kernel("cone_test_diffuse", chain, chain.levels, {&points, &normals});
+                                   const std::vector<glm::vec4>& normals,
+                                   const rp::scene::Environment& environment = {}) {
+  std::vector<glm::vec4> frame = frame_with_sky({}), texels(1, glm::vec4(0.0f));
+  if (environment.enabled()) {
+    const rp::render::SkyTexture sky = rp::render::build_sky_texture(*environment.map);
+    frame = frame_with_sky(rp::render::sky_record(sky.info, environment));
+    texels.resize(sky.texels.size());
+    std::memcpy(texels.data(), sky.texels.data(), texels.size() * 16);
+  }
+  return run_kernel("cone_test_diffuse", chain, chain.levels, {&points, &normals}, 1,
+                    {&frame, &texels});
+}
+
+// An environment of constant radiance `l` (an 8x4 map).
+rp::scene::Environment constant_sky(glm::vec3 l) {
+  auto map = std::make_shared<rp::scene::EnvironmentMap>();
+  map->width = 8;
+  map->height = 4;
+  for (int i = 0; i < 32; ++i) map->rgb.insert(map->rgb.end(), {l.x, l.y, l.z});
+  rp::scene::Environment e;
+  e.map = std::move(map);
+  return e;
 }
 
 // Quadrilinear samples over the whole chain (top = levels - 1).
@@ -500,6 +543,23 @@ TEST(ConeTrace, EmptyVolumeGivesZero) {
     EXPECT_EQ(v, glm::vec4(0.0f));
 }
 
+// Under a constant sky an empty volume lets every cone through: each of the 16 brings the sky's
+// radiance, so their mean (irradiance / pi) is the sky's radiance (the furnace test of the
+// cones: a white Lambertian surface there would be as bright as the sky).
+TEST(ConeTrace, EmptyVolumeUnderAConstantSkyGivesTheSky) {
+  Chain chain(16, 5);
+  const glm::vec3 l(0.5f, 1.0f, 2.0f);
+  std::vector<glm::vec4> points, normals;
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<double> u(-0.8, 0.8);
+  for (int i = 0; i < 32; ++i) {
+    points.push_back(v4(glm::dvec3(u(rng), u(rng), u(rng))));
+    normals.push_back(v4(random_unit(rng)));
+  }
+  for (const glm::vec4& v : run_diffuse(chain, points, normals, constant_sky(l)))
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[c], l[c], 1e-5f * l[c]);
+}
+
 // A black opaque wall (x in [0, 0.5]) in front of a red emitter (x in [0.5, 1]), aligned with
 // every mip level: a +x cone from the left sees almost nothing of the red; without the wall it
 // sees it brightly. What leaks is trilinear filtering across the wall's back face: a coarse
@@ -671,6 +731,8 @@ TEST(ConeTrace, ClosedBoxOfOneSidedWallsGivesTheirRadiance) {
     expect_near4(got[i], glm::dvec4(rp::test::cone::diffuse(chain, ps[i], ns[i]), 0.0), 1e-5,
                  what + " vs reference");
   }
+  // Every cone ends on a wall (occlusion 1), so a bright sky outside changes nothing.
+  EXPECT_EQ(run_diffuse(chain, points, normals, constant_sky(glm::vec3(1000.0f))), got);
 }
 
 }  // namespace

@@ -1,0 +1,23 @@
+#include "passes/sky_background.h"
+
+namespace rp::passes {
+namespace {
+constexpr size_t kGroupX = 16, kGroupY = 4;
+}  // namespace
+
+void SkyBackgroundPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                            const render::GBuffer& gbuffer, ::cl::Buffer& hdr) {
+  const gpu::FrameConstants& c = scene.constants;
+  if (c.sky.levels == 0 || c.width == 0 || c.height == 0) return;
+  if (!kernel_()) kernel_ = programs_->kernel("sky.cl", "sky_background");
+  kernel_.setArg(0, scene.frame);
+  kernel_.setArg(1, scene.sky);
+  kernel_.setArg(2, gbuffer.position);
+  kernel_.setArg(3, hdr);
+  profiler.enqueue("sky", kernel_,
+                   ::cl::NDRange(rp::cl::round_up(c.width, kGroupX),
+                                 rp::cl::round_up(c.height, kGroupY)),
+                   ::cl::NDRange(kGroupX, kGroupY));
+}
+
+}  // namespace rp::passes
