@@ -11,19 +11,21 @@
  * Through the cones: a cone that ends with occlusion A takes the sky in its direction weighted
  * by what the volume left of it, 1 - A / opaque (clamped to [0, 1]): a cone that stopped at its
  * opacity threshold `opaque` counts as closed, so sky light does not leak through walls by the
- * few per cent a marching cone never accumulates. The diffuse set's 16 cones each stand for
- * 1/16 of the cosine-weighted hemisphere, a cell about twice as wide as the cone the volume is
- * sampled with, so they read the sky prefiltered for RP_SKY_DIFFUSE_TAN: the mean of the 16
- * then tracks the irradiance of a smooth sky instead of 16 point samples of it.
+ * few per cent a marching cone never accumulates. The diffuse cones read the sky prefiltered
+ * for their own aperture (RP_SKY_DIFFUSE_TAN = RP_CONE_TAN_HALF: 16 caps of 21.8 degrees cover
+ * 7.2 of the hemisphere's 6.3 sr). A wider prefilter smooths the 16 samples but lets a bright
+ * patch of sky leak around what blocks it: measured on gen_load_scene --yard under Blender's
+ * eight studio-light maps (bench --accuracy, 128x128), 36.9 degrees gave indirect L1 20-115 %
+ * where 21.8 gives 14-65 % (bench/results/zen3-2core-pocl-sky.md).
  */
 #ifndef ROLYPOLY_COMMON_SKY_H
 #define ROLYPOLY_COMMON_SKY_H
 
 #include "shared/types.h"
 
-/* tan of the half-angle the diffuse cones read the sky with (36.9 degrees). */
+/* tan of the half-angle the diffuse cones read the sky with: their own (21.8 degrees). */
 #ifndef RP_SKY_DIFFUSE_TAN
-#define RP_SKY_DIFFUSE_TAN 0.75f
+#define RP_SKY_DIFFUSE_TAN 0.4f
 #endif
 
 /* A world direction in the map's frame (the path tracer's EnvironmentSampler::to_map). */

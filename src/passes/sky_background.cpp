@@ -2,7 +2,8 @@
 
 namespace rp::passes {
 namespace {
-constexpr size_t kGroupX = 16, kGroupY = 4;
+// eight pixels of a row per work-item (kernels/sky.cl)
+constexpr size_t kGroupX = 8, kGroupY = 4;
 }  // namespace
 
 void SkyBackgroundPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
@@ -15,7 +16,7 @@ void SkyBackgroundPass::run(rp::cl::Profiler& profiler, const render::GpuScene& 
   kernel_.setArg(2, gbuffer.position);
   kernel_.setArg(3, hdr);
   profiler.enqueue("sky", kernel_,
-                   ::cl::NDRange(rp::cl::round_up(c.width, kGroupX),
+                   ::cl::NDRange(rp::cl::round_up((c.width + 7) / 8, kGroupX),
                                  rp::cl::round_up(c.height, kGroupY)),
                    ::cl::NDRange(kGroupX, kGroupY));
 }
