@@ -10,6 +10,7 @@
 #include "render/gpu_types.h"  // before raster_types.h, which builds on its types
 #include "kernels/shared/raster_types.h"
 #include "render/gpu_scene.h"
+#include "render/sky_texture.h"
 #include "render/voxel_volume.h"
 #include "scene/demo_scene.h"
 
@@ -220,7 +221,7 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   // largest one.
   render::check_texture_memory(assets_.textures, context_.info.max_alloc_bytes,
                                context_.info.global_mem_bytes);
-  const SceneMemory scene = count_scene_memory(assets_);
+  const SceneMemory scene = scene_memory();
   const bool components = passes::needs_light_components(options.view.view) || keep_components;
   const bool octree = settings.gi_volume == render::GiVolume::kSvo;
   const bool reference = settings.quality == render::Quality::kReference;
@@ -247,7 +248,7 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
 
 void RenderSession::set_keep_components(bool keep) {
   if (keep) {
-    const SceneMemory scene = count_scene_memory(assets_);
+    const SceneMemory scene = scene_memory();
     check_device_memory(context_.info, width(), height(), renderer_->settings().shadow_size,
                         renderer_->settings().voxel_resolution, true,
                         renderer_->settings().gi_volume == render::GiVolume::kSvo,
@@ -262,6 +263,14 @@ void RenderSession::set_view(const passes::DebugViewSettings& view) {
 }
 
 RenderSession::~RenderSession() = default;
+
+SceneMemory RenderSession::scene_memory() const {
+  SceneMemory memory = count_scene_memory(assets_);
+  if (sky_ && sky_->environment.enabled())
+    memory.sky_texels = render::sky_texel_count(sky_->environment.map->width,
+                                                sky_->environment.map->height);
+  return memory;
+}
 
 rp::cl::PassTimes RenderSession::render(const scene::FrameScene& frame,
                                         std::vector<uint8_t>& rgba, double& frame_ms) {

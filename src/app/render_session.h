@@ -120,6 +120,9 @@ class RenderSession {
   const FrameTimeScale* frame_scale() const { return frame_scale_ ? &*frame_scale_ : nullptr; }
 
  private:
+  // The scene's device memory (app/scene_memory.h), the sky's map included.
+  SceneMemory scene_memory() const;
+
   scene::SceneAssets assets_;
   rp::cl::Context context_;
   rp::cl::ProgramCache programs_;

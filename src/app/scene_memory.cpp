@@ -8,7 +8,8 @@
 namespace rp::app {
 
 uint64_t SceneMemory::largest_buffer_bytes() const {
-  return std::max({vertices * 32, triangles * kTriangleBytes, texels * kTexelBytes});
+  return std::max({vertices * 32, triangles * kTriangleBytes, texels * kTexelBytes,
+                   sky_texels * kSkyTexelBytes});
 }
 
 std::string SceneMemory::describe() const {
@@ -20,7 +21,12 @@ std::string SceneMemory::describe() const {
                 static_cast<unsigned long long>(triangles),
                 static_cast<unsigned long long>(textures),
                 double(texels * kTexelBytes) / double(1 << 20));
-  return text;
+  std::string out = text;
+  if (sky_texels > 0)
+    out += ", the sky's map (" +
+           std::to_string((sky_texels * kSkyTexelBytes + (1u << 20) - 1) >> 20) +
+           " MiB with its mipmaps)";
+  return out;
 }
 
 SceneMemory count_scene_memory(const scene::SceneAssets& assets) {

@@ -75,6 +75,22 @@ SkyTexture build_sky_texture(const scene::EnvironmentMap& map) {
   return out;
 }
 
+uint64_t sky_texel_count(int width, int height) {
+  int w = std::max(width, 1), h = std::max(height, 1);
+  while (w > kSkyMaxWidth) {
+    w = std::max(w / 2, 1);
+    h = std::max(h / 2, 1);
+  }
+  uint64_t texels = 0;
+  for (uint32_t l = 0; l < RP_SKY_MAX_LEVELS; ++l) {
+    texels += uint64_t(w) * uint64_t(h);
+    if (h == 1) break;
+    w = std::max(w / 2, 1);
+    h = std::max(h / 2, 1);
+  }
+  return texels;
+}
+
 gpu::SkyGpu sky_record(const gpu::SkyGpu& levels, const scene::Environment& environment) {
   if (!environment.enabled()) return gpu::SkyGpu{};
   gpu::SkyGpu info = levels;

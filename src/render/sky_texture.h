@@ -28,6 +28,9 @@ struct SkyTexture {
 // odd edge), each row weighted by its solid angle (cos theta0 - cos theta1).
 SkyTexture build_sky_texture(const scene::EnvironmentMap& map);
 
+// The texels build_sky_texture makes of a width x height map (what the device holds).
+uint64_t sky_texel_count(int width, int height);
+
 // `levels` (a SkyTexture's info) with the environment's turn and strength (the path tracer's
 // convention: truth::EnvironmentSampler), or all zero (no sky) when `environment` is disabled.
 gpu::SkyGpu sky_record(const gpu::SkyGpu& levels, const scene::Environment& environment);

@@ -10,6 +10,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -120,6 +121,16 @@ TEST(SkyTexture, MapsWiderThanTheCapAreHalvedFirst) {
   const rp::render::SkyTexture t = rp::render::build_sky_texture(*map);
   EXPECT_EQ(t.info.width, uint32_t(rp::render::kSkyMaxWidth));
   EXPECT_EQ(t.info.height, uint32_t(rp::render::kSkyMaxWidth / 2));
+  EXPECT_EQ(rp::render::sky_texel_count(map->width, map->height), t.texels.size());
+}
+
+// The memory estimate counts what the chain holds, odd sizes included.
+TEST(SkyTexture, TexelCountIsTheChainsSize) {
+  for (const auto& [w, h] : {std::pair{64, 32}, {100, 50}, {6, 3}, {2, 1}}) {
+    const auto map = random_map(w, h, 5);
+    EXPECT_EQ(rp::render::sky_texel_count(w, h), rp::render::build_sky_texture(*map).texels.size())
+        << w << "x" << h;
+  }
 }
 
 // At texel centres the bilinear lookup is the texel itself, which is what the path tracer's
