@@ -264,6 +264,12 @@ void RenderSession::set_view(const passes::DebugViewSettings& view) {
 
 RenderSession::~RenderSession() = default;
 
+std::optional<float> RenderSession::turn_sky(float degrees) {
+  if (!sky_) return std::nullopt;
+  app::turn_sky(*sky_, degrees);
+  return sky_->environment.rotate_deg;
+}
+
 SceneMemory RenderSession::scene_memory() const {
   SceneMemory memory = count_scene_memory(assets_);
   if (sky_ && sky_->environment.enabled())

@@ -91,6 +91,10 @@ class RenderSession {
   void set_view(const passes::DebugViewSettings& view);
   const passes::DebugViewSettings& view() const { return view_; }
 
+  // Turns the sky (--env / --sky clear) about +y by `degrees` for the next frames (key O in
+  // the window); returns the map's turn now in degrees, or nothing without a sky.
+  std::optional<float> turn_sky(float degrees);
+
   // Post-processing switches for the next frames (keys T, B, M in the window).
   void set_effects(const render::Effects& effects) { renderer_->set_effects(effects); }
   // The shadow mode for the next frames (key H in the window).

@@ -29,6 +29,8 @@ namespace {
 
 constexpr double kTitleIntervalMs = 500.0;  // window title refresh: about twice per second
 constexpr char kShadowsKey = 'H';  // cycles --shadows: hard, pcf, pcss, vssm (not recorded)
+constexpr char kSkyTurnKey = 'O';  // turns --env / --sky clear 15 degrees about +y (not recorded)
+constexpr float kSkyTurnDeg = 15.0f;
 
 // "rolypoly | 4.1 fps | shadows pcss | visibility 3.20 ms, gbuffer 1.10 ms, ..." (means over
 // the interval); a debug view is named after the shadows: "... | view voxels 2 +x | ...".
@@ -277,6 +279,14 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
       if (e.type == display::WindowEvent::Type::Key && e.key == kShadowsKey) {
         session.set_shadows(render::next_shadow_mode(session.shadows()));
         std::printf("shadows %s\n", render::shadow_mode_name(session.shadows()));
+        std::fflush(stdout);
+        continue;
+      }
+      if (e.type == display::WindowEvent::Type::Key && e.key == kSkyTurnKey) {
+        if (const std::optional<float> turn = session.turn_sky(kSkyTurnDeg))
+          std::printf("sky turned to %g degrees\n", double(*turn));
+        else
+          std::printf("no sky to turn (--env FILE or --sky clear)\n");
         std::fflush(stdout);
         continue;
       }

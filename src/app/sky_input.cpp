@@ -1,6 +1,7 @@
 #include "app/sky_input.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -70,6 +71,15 @@ void add_sky(const SkyLight& sky, scene::FrameScene& frame) {
   if (!sky.environment.enabled()) return;
   frame.environment = sky.environment;
   if (sky.sun) frame.lights.push_back(*sky.sun);
+}
+
+void turn_sky(SkyLight& sky, float degrees) {
+  sky.environment.rotate_deg = std::fmod(sky.environment.rotate_deg + degrees, 360.0f);
+  if (!sky.sun) return;
+  // the path tracer's map-to-world turn (truth::EnvironmentSampler::to_world) by `degrees`
+  const float a = degrees * 0.0174532925f, c = std::cos(a), s = std::sin(a);
+  const glm::vec3 d = sky.sun->direction;
+  sky.sun->direction = glm::vec3(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
 }
 
 std::string describe_sky(const SkyOptions& options, const SkyLight& sky) {

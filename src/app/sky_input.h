@@ -27,6 +27,11 @@ SkyLight load_sky(const SkyOptions& options);
 // Gives `frame` the environment and appends the sun to its lights (nothing when none).
 void add_sky(const SkyLight& sky, scene::FrameScene& frame);
 
+// Turns the sky about +y by `degrees` (counter-clockwise seen from above, as --env-rotate):
+// the map's turn and, for the clear sky, its sun's direction, so the sun stays where the map
+// shows it. The turn is kept within (-360, 360).
+void turn_sky(SkyLight& sky, float degrees);
+
 // One line for the log, "" when none: "environment: sky.hdr (1024x512), turned 90 degrees,
 // strength 2" or "clear sky (Preetham, turbidity 2.5) with its sun at azimuth 135, elevation 45
 // degrees".

@@ -15,10 +15,12 @@
 #include <stb/stb_image_write.h>
 
 #include "app/cli.h"
+#include "app/sky_input.h"
 #include "cli_runner.h"
 #include "scene/box_mesh.h"
 #include "scene/frame_scene.h"
 #include "scene/gltf_export.h"
+#include "truth/environment.h"
 #include "truth/exr_io.h"
 
 namespace rp::test {
@@ -128,6 +130,28 @@ TEST(SkyCli, EveryModeTakesTheSkyButTheDemosAccuracyReport) {
   EXPECT_TRUE(Contains(refusal({"bench", "--accuracy", "--sky", "clear"}),
                        "rolypoly bench: --sky with --accuracy needs --scene FILE: the demo's "
                        "report measures its closed box"));
+}
+
+// Key O in the window turns the sky: the clear sky's sun turns with its map, so the map's glow
+// around the sun stays in the sun's direction.
+TEST(SkyCli, TurningTheClearSkyTurnsItsSunWithTheMap) {
+  app::SkyOptions options;
+  options.clear_sky = true;
+  options.sun_azimuth_deg = 30.0f;
+  options.sun_elevation_deg = 40.0f;
+  app::SkyLight sky = app::load_sky(options);
+  ASSERT_TRUE(sky.sun.has_value());
+  const glm::vec3 before = sky.sun->direction;  // the direction the sunlight travels
+  const glm::vec3 glow = truth::EnvironmentSampler(sky.environment).radiance(-before);
+  app::turn_sky(sky, 90.0f);
+  EXPECT_FLOAT_EQ(sky.environment.rotate_deg, 90.0f);
+  const glm::vec3 after = sky.sun->direction;
+  EXPECT_NEAR(after.y, before.y, 1e-6f);  // the same elevation
+  EXPECT_NEAR(after.x * before.x + after.z * before.z, 0.0f, 1e-6f);  // a quarter turn
+  const glm::vec3 turned = truth::EnvironmentSampler(sky.environment).radiance(-after);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(turned[c], glow[c], 0.05f * glow[c]) << c;
+  app::turn_sky(sky, 300.0f);
+  EXPECT_NEAR(sky.environment.rotate_deg, 30.0f, 1e-4f);  // kept within a turn
 }
 
 TEST(SkyCli, MissingOrCorruptMapIsOneMessageWithTheReason) {
