@@ -75,6 +75,17 @@ rp::scene::Texture pattern(const char* name, bool srgb, F f) {
   return t;
 }
 
+// The room's (and the yard's) frame: no lamp, one instance of mesh 0, the camera from the front.
+void room_frame(rp::scene::FrameScene& f) {
+  f.lamp = false;
+  f.camera.position = {0.0f, 3.0f, 9.0f};
+  f.camera.target = {0.0f, 0.9f, 2.0f};
+  f.camera.fov_y_deg = 52.0f;
+  f.camera.near_plane = 0.05f;
+  f.camera.far_plane = 50.0f;
+  f.instances.push_back(rp::scene::MeshInstance{});
+}
+
 int write_room(const char* path) {
   using namespace rp::scene;
   SceneAssets a;
@@ -146,13 +157,7 @@ int write_room(const char* path) {
   }
   a.meshes.push_back(room);
   FrameScene f;
-  f.lamp = false;
-  f.camera.position = {0.0f, 3.0f, 9.0f};
-  f.camera.target = {0.0f, 0.9f, 2.0f};
-  f.camera.fov_y_deg = 52.0f;
-  f.camera.near_plane = 0.05f;
-  f.camera.far_plane = 50.0f;
-  f.instances.push_back(MeshInstance{});
+  room_frame(f);
   constexpr float kInvPi = 0.318309886f;  // glTF intensity / pi: the renderer's units
   PunctualLight sun;
   sun.name = "sun";
@@ -206,13 +211,7 @@ int write_yard(const char* path) {
   append_box(yard, {0, 0.4f, 2}, {0.4f, 0.4f, 0.4f}, 4);
   a.meshes.push_back(yard);
   FrameScene f;
-  f.lamp = false;
-  f.camera.position = {0.0f, 3.0f, 9.0f};
-  f.camera.target = {0.0f, 0.9f, 2.0f};
-  f.camera.fov_y_deg = 52.0f;
-  f.camera.near_plane = 0.05f;
-  f.camera.far_plane = 50.0f;
-  f.instances.push_back(MeshInstance{});
+  room_frame(f);
   export_gltf(a, f, path);
   std::printf("wrote %s: the yard (%zu triangles, no lights)\n", path, yard.triangles.size());
   return 0;

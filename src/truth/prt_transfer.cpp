@@ -72,20 +72,6 @@ glm::dvec3 to_world(glm::dvec3 n, glm::dvec3 v) {
   return v.x * t + v.y * bt + v.z * n;
 }
 
-RTCRay make_ray(glm::vec3 org, glm::vec3 dir) {
-  RTCRay r{};
-  r.org_x = org.x;
-  r.org_y = org.y;
-  r.org_z = org.z;
-  r.dir_x = dir.x;
-  r.dir_y = dir.y;
-  r.dir_z = dir.z;
-  r.tnear = 0.0f;
-  r.tfar = std::numeric_limits<float>::infinity();
-  r.mask = 0xFFFFFFFFu;
-  return r;
-}
-
 // Runs fn(v) for v in [0, n) on `threads` workers in chunks (each v writes only its own
 // outputs), reporting done / n through `report` on this thread about ten times a second.
 template <class Fn>
@@ -292,12 +278,12 @@ PrtTransfer compute_prt_transfer(const scene::SceneAssets& assets, const scene::
       bool blocked = false;
       rtcInitIntersectContext(&context);
       if (row == nullptr) {
-        RTCRay ray = make_ray(pv.origin, wf);
+        RTCRay ray = make_ray(pv.origin, wf, std::numeric_limits<float>::infinity());
         rtcOccluded1(scene.get(), &context, &ray);
         blocked = ray.tfar < 0.0f;
       } else {
         RTCRayHit rh{};
-        rh.ray = make_ray(pv.origin, wf);
+        rh.ray = make_ray(pv.origin, wf, std::numeric_limits<float>::infinity());
         rh.hit.geomID = kInvalid;
         rh.hit.instID[0] = kInvalid;
         rtcIntersect1(scene.get(), &context, &rh);

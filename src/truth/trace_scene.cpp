@@ -19,6 +19,8 @@ float srgb8_to_linear(uint8_t code) {
   return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
 }
 
+}  // namespace
+
 RTCRay make_ray(glm::vec3 org, glm::vec3 dir, float t_max) {
   RTCRay r{};
   r.org_x = org.x;
@@ -34,8 +36,6 @@ RTCRay make_ray(glm::vec3 org, glm::vec3 dir, float t_max) {
   r.time = 0.0f;
   return r;
 }
-
-}  // namespace
 
 glm::vec3 LinearTexture::sample(glm::vec2 uv) const {
   const scene::BilinearTaps f = scene::bilinear_taps(width, height, wrap_u, wrap_v, uv);

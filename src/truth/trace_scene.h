@@ -22,6 +22,9 @@
 
 namespace rp::truth {
 
+// An Embree ray from `org` along `dir` (not normalised here) up to t_max, every mask bit set.
+RTCRay make_ray(glm::vec3 org, glm::vec3 dir, float t_max);
+
 // A mesh as Embree and the shading read it (object space).
 struct TraceMesh {
   std::vector<float> positions;      // x, y, z, 0 per vertex (+ one padding vertex: Embree)

@@ -269,17 +269,17 @@ TEST(SkyCli, WhiteFloorUnderAUniformMapIsAsBrightAsTheMap) {
   EXPECT_NEAR(sum2 / double(twice.size()), 1.5, 0.015);
 }
 
-TEST(SkyCli, RotatingTheMapHalfTurnMovesItsLightToTheOtherSide) {
-  TempDir dir;
-  // Bright (1) where the map's direction has z > 0 (u in [0.25, 0.75): the map's middle
-  // half), dark (0) towards -z. Written as OpenEXR, the other format --env reads.
+// In `dir`: half.exr, bright (1) where the map's direction has z > 0 (u in [0.25, 0.75): the
+// map's middle half) and dark (0) towards -z, written as OpenEXR (the other format --env reads);
+// cube.gltf, a white cube seen from +z (the face towards +z in the middle, the sky around it).
+void write_half_bright_map_and_cube(const std::filesystem::path& dir) {
   const uint32_t mw = 64, mh = 32;
   std::vector<float> rgb(size_t(mw) * mh * 3, 0.0f);
   for (uint32_t y = 0; y < mh; ++y)
     for (uint32_t x = mw / 4; x < 3 * mw / 4; ++x)
       for (int c = 0; c < 3; ++c) rgb[(size_t(y) * mw + x) * 3 + c] = 1.0f;
   truth::write_exr_atomic(dir / "half.exr", mw, mh, {{"", &rgb}});
-  scene::Mesh cube;  // seen from +z: the face towards +z in the middle, the sky around it
+  scene::Mesh cube;
   cube.name = "cube";
   scene::append_box(cube, glm::vec3(0.0f), glm::vec3(0.5f), 0);
   scene::Camera camera;
@@ -287,6 +287,21 @@ TEST(SkyCli, RotatingTheMapHalfTurnMovesItsLightToTheOtherSide) {
   camera.target = {0.0f, 0.0f, 0.0f};
   camera.fov_y_deg = 30.0f;
   write_white_scene(dir / "cube.gltf", cube, camera);
+}
+
+// The mean over the rgb of the n x n pixels from (x0, y0) of a `w` pixels wide image.
+double square_mean(const std::vector<float>& img, uint32_t w, uint32_t x0, uint32_t y0,
+                   uint32_t n) {
+  double s = 0.0;
+  for (uint32_t y = y0; y < y0 + n; ++y)
+    for (uint32_t x = x0; x < x0 + n; ++x)
+      for (int c = 0; c < 3; ++c) s += img[(size_t(y) * w + x) * 3 + c];
+  return s / (3.0 * n * n);
+}
+
+TEST(SkyCli, RotatingTheMapHalfTurnMovesItsLightToTheOtherSide) {
+  TempDir dir;
+  write_half_bright_map_and_cube(dir.path());
 
   const std::string common = "--scene " + shell_quote((dir / "cube.gltf").string()) +
                              " --env " + shell_quote((dir / "half.exr").string()) +
@@ -300,11 +315,7 @@ TEST(SkyCli, RotatingTheMapHalfTurnMovesItsLightToTheOtherSide) {
   // radiance 1 (white), then 0 once that half is turned to -z. A corner pixel sees the sky
   // behind the cube, towards -z: 0, then 1.
   const auto mean = [&](const std::vector<float>& img, uint32_t x0, uint32_t y0, uint32_t n) {
-    double s = 0.0;
-    for (uint32_t y = y0; y < y0 + n; ++y)
-      for (uint32_t x = x0; x < x0 + n; ++x)
-        for (int c = 0; c < 3; ++c) s += img[(size_t(y) * w + x) * 3 + c];
-    return s / (3.0 * n * n);
+    return square_mean(img, w, x0, y0, n);
   };
   EXPECT_NEAR(mean(before, 6, 6, 4), 1.0, 0.05);
   EXPECT_NEAR(mean(after, 6, 6, 4), 0.0, 1e-6);
@@ -359,20 +370,7 @@ TEST(SkyCli, RealTimeWhiteFloorUnderAUniformMapIsAsBrightAsTheMap) {
 // as the background; a half turn swaps the two, as in the path tracer (the test above).
 TEST(SkyCli, RealTimeRotatingTheMapHalfTurnMovesItsLightToTheOtherSide) {
   TempDir dir;
-  const uint32_t mw = 64, mh = 32;
-  std::vector<float> rgb(size_t(mw) * mh * 3, 0.0f);
-  for (uint32_t y = 0; y < mh; ++y)
-    for (uint32_t x = mw / 4; x < 3 * mw / 4; ++x)
-      for (int c = 0; c < 3; ++c) rgb[(size_t(y) * mw + x) * 3 + c] = 1.0f;
-  truth::write_exr_atomic(dir / "half.exr", mw, mh, {{"", &rgb}});
-  scene::Mesh cube;
-  cube.name = "cube";
-  scene::append_box(cube, glm::vec3(0.0f), glm::vec3(0.5f), 0);
-  scene::Camera camera;
-  camera.position = {0.0f, 0.0f, 4.0f};
-  camera.target = {0.0f, 0.0f, 0.0f};
-  camera.fov_y_deg = 30.0f;
-  write_white_scene(dir / "cube.gltf", cube, camera);
+  write_half_bright_map_and_cube(dir.path());
   const std::string common = "--scene " + shell_quote((dir / "cube.gltf").string()) +
                              " --env " + shell_quote((dir / "half.exr").string()) +
                              " --size 16";
@@ -382,11 +380,7 @@ TEST(SkyCli, RealTimeRotatingTheMapHalfTurnMovesItsLightToTheOtherSide) {
   ASSERT_EQ(before.size(), size_t(16) * 16 * 3);
   ASSERT_EQ(after.size(), before.size());
   const auto mean = [&](const std::vector<float>& img, uint32_t x0, uint32_t y0, uint32_t n) {
-    double s = 0.0;
-    for (uint32_t y = y0; y < y0 + n; ++y)
-      for (uint32_t x = x0; x < x0 + n; ++x)
-        for (int c = 0; c < 3; ++c) s += img[(size_t(y) * w + x) * 3 + c];
-    return s / (3.0 * n * n);
+    return square_mean(img, w, x0, y0, n);
   };
   // The face's cones straddle the map's edge only at the rim of its hemisphere (the diffuse
   // cones read the sky prefiltered over about 37 degrees): within 10 % of 1 and of 0.
