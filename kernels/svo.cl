@@ -19,9 +19,13 @@
  *                     descent)
  *   svo_count, svo_scan, svo_allocate
  *                     prefix sums over the depth's nodes in index order (fixed chunks, a
- *                     serial scan of the chunk sums): existing node i of rank r gets brick
- *                     brick_first + r * brick size and, above the leaves, child block
- *                     child_first + 8 r; its children's coordinates 2a + o are recorded
+ *                     serial scan of the chunk sums; two counts: existing nodes and nodes
+ *                     with own voxels): existing node i of rank r gets brick brick_first + r
+ *                     (a brick-table entry) and, above the leaves, child block
+ *                     child_first + 8 r; the samples of its occupied own voxels (the flags'
+ *                     voxel bits) at own_first + directions * (occupied own voxels of the
+ *                     nodes before it) (none for a node without: its own voxels are empty);
+ *                     its children's coordinates 2a + o are recorded
  * Nothing here depends on the order of the fragments or of the work-items: flags are ORed,
  * ranks come from prefix sums over node indices, sums are integers. So the pools are
  * bit-identical run to run (DESIGN.md).
@@ -37,13 +41,15 @@
  *                     the 8 own samples (the dense resolve), and, being the only reader of
  *                     its facing sums, writes its parent's level-1 own sample for it (the
  *                     anisotropic mip step from the 8 samples and their facing coverage)
- *   svo_border        one work-item per node of a depth: border samples (index 2 on some
- *                     axis) = the own samples of the neighbour a + e, 0 where it has none
- *                     (seed 001's "value transfer": after it, every level-l voxel has the
- *                     same value in every brick holding it)
- *   svo_mips          one work-item per node at brick level l >= 2: own sample o (level-l
- *                     voxel 2a + o) in the 6 directions = common/voxel_composite.h over
- *                     the own samples of child o, then svo_border.
+ *   svo_border        one work-item per node of a depth: brick-table words 1..3 = the bricks
+ *                     of the face neighbours a + x, a + y, a + z (none where they do not
+ *                     exist): the border samples (index 2 on some axis) are read through them
+ *                     (seed 001's "value transfer" without the copies: every level-l voxel
+ *                     is stored once)
+ *   svo_mips          one work-item per node with own samples at brick level l >= 2: own
+ *                     sample o (level-l voxel 2a + o) in the 6 directions =
+ *                     common/voxel_composite.h over the own samples of child o, then
+ *                     svo_border.
  * The values are those of the dense chain (voxelize.cl resolve, voxel_mips.cl), computed by
  * the same functions in the same order; with float samples bit-identical.
  */
@@ -120,6 +126,10 @@ inline void svo_clear_sample(__global uint* pool, __global uchar* alpha, uint s)
 #define svo_pool_load rp_svo_pool_load
 #define SVO_POOL(svo, brick_offset) ((svo) + 4u * (brick_offset))
 #define SVO_ALPHA(svo, alpha_offset) ((__global uchar*)(svo) + (alpha_offset))
+#define SVO_TABLE(svo, table_offset) ((svo) + (table_offset))
+/* Brick table word 0 (the node's own samples) of the brick at address `brick`. */
+#define SVO_OWN_FIRST(table, brick) \
+  ((table)[RP_SVO_TABLE_WORDS * ((brick) >> RP_SVO_BRICK_SHIFT)])
 
 __kernel void svo_clear_nodes(__global uint* svo, __global uint* own, uint first,
                               uint count) {
@@ -168,7 +178,9 @@ __kernel void svo_flag(__global const uint* fragments, uint fragment_count, __gl
     const uint m = ((v.x & 1u) == 0u && a.x > 0u ? 1u : 0u) |
                    ((v.y & 1u) == 0u && a.y > 0u ? 2u : 0u) |
                    ((v.z & 1u) == 0u && a.z > 0u ? 4u : 0u);
-    uint bits = RP_SVO_FLAG_OWN;
+    uint bits = RP_SVO_FLAG_OWN |
+                (1u << (RP_SVO_FLAG_VOXELS_SHIFT + ((v.x & 1u) | ((v.y & 1u) << 1) |
+                                                    ((v.z & 1u) << 2))));
     for (uint e = 1u; e < 8u; ++e)
       if ((e & m) == e) bits |= 1u << e;
     if (node != last) {
@@ -250,7 +262,7 @@ __kernel void svo_flag_bits(__global uint* own, __global const uint* coords,
     if (((occ[offset + (s >> 5)] >> (s & 31u)) & 1u) == 0u) continue;
     const uint m = (ov.x == 0u && a.x > 0u ? 1u : 0u) | (ov.y == 0u && a.y > 0u ? 2u : 0u) |
                    (ov.z == 0u && a.z > 0u ? 4u : 0u);
-    bits |= RP_SVO_FLAG_OWN;
+    bits |= RP_SVO_FLAG_OWN | (1u << (RP_SVO_FLAG_VOXELS_SHIFT + o));
     for (uint e = 1u; e < 8u; ++e)
       if ((e & m) == e) bits |= 1u << e;
   }
@@ -310,29 +322,38 @@ inline bool svo_exists(__global const uint* svo, __global const uint* own, uint 
   return (own[i] & RP_SVO_FLAG_OWN) != 0u || (SVO_NODE_WORDS(svo)[2u * i] & RP_SVO_NODE_BRICK) != 0u;
 }
 
-/* Existing nodes in chunk g of [first, first + count). */
+/* Existing nodes (sums[2g]) and occupied own voxels (sums[2g + 1]: the samples stored per
+ * direction) in chunk g of [first, first + count). */
 __kernel void svo_count(__global const uint* svo, __global const uint* own, uint first,
                         uint count, uint chunk, __global uint* sums) {
   const uint g = (uint)get_global_id(0);
   const uint begin = g * chunk;
   if (begin >= count) return;
   const uint end = min(begin + chunk, count);
-  uint n = 0u;
-  for (uint i = begin; i < end; ++i) n += svo_exists(svo, own, first + i) ? 1u : 0u;
-  sums[g] = n;
+  uint n = 0u, o = 0u;
+  for (uint i = begin; i < end; ++i) {
+    n += svo_exists(svo, own, first + i) ? 1u : 0u;
+    o += rp_svo_popcount8((own[first + i] >> RP_SVO_FLAG_VOXELS_SHIFT) & 255u);
+  }
+  sums[2u * g] = n;
+  sums[2u * g + 1u] = o;
 }
 
-/* Exclusive prefix sum over the chunk sums, in place; the total into totals[slot]. One
- * work-item: the chunks number nodes / chunk (a few thousand). */
+/* Exclusive prefix sums over the chunk sums (both counts), in place; the totals into
+ * totals[2 slot], totals[2 slot + 1]. One work-item: the chunks number nodes / chunk (a few
+ * thousand). */
 __kernel void svo_scan(__global uint* sums, uint chunks, __global uint* totals, uint slot) {
   if (get_global_id(0) != 0) return;
-  uint run = 0u;
+  uint run = 0u, run_own = 0u;
   for (uint g = 0; g < chunks; ++g) {
-    const uint s = sums[g];
-    sums[g] = run;
+    const uint s = sums[2u * g], o = sums[2u * g + 1u];
+    sums[2u * g] = run;
+    sums[2u * g + 1u] = run_own;
     run += s;
+    run_own += o;
   }
-  totals[slot] = run;
+  totals[2u * slot] = run;
+  totals[2u * slot + 1u] = run_own;
 }
 
 /* At the leaf depth the flag words are then zeroed: they become the leaves' list heads
@@ -340,13 +361,15 @@ __kernel void svo_scan(__global uint* sums, uint chunks, __global uint* totals, 
 __kernel void svo_allocate(__global uint* svo, __global uint* own, __global uint* coords,
                            uint first,
                            uint count, uint chunk, __global const uint* sums, uint child_first,
-                           uint brick_first, uint brick_size, uint leaf) {
+                           uint brick_first, uint own_first, uint directions, uint leaf,
+                           uint table_offset) {
   const uint g = (uint)get_global_id(0);
   const uint begin = g * chunk;
   if (begin >= count) return;
   const uint end = min(begin + chunk, count);
   __global uint* nodes = SVO_NODE_WORDS(svo);
-  uint rank = sums[g];
+  __global uint* table = SVO_TABLE(svo, table_offset);
+  uint rank = sums[2u * g], own_rank = sums[2u * g + 1u];
   for (uint k = begin; k < end; ++k) {
     const uint i = first + k;
     const uint flags = own[i];
@@ -355,7 +378,15 @@ __kernel void svo_allocate(__global uint* svo, __global uint* own, __global uint
       continue; /* does not exist: as svo_clear_nodes left it */
     const uint child = leaf != 0u ? 0u : child_first + 8u * rank;
     nodes[2u * i] = child | RP_SVO_NODE_BRICK | ((flags & RP_SVO_FLAG_OWN) ? RP_SVO_NODE_OWN : 0u);
-    nodes[2u * i + 1u] = brick_first + rank * brick_size;
+    const uint b = brick_first + rank;
+    nodes[2u * i + 1u] = b << RP_SVO_BRICK_SHIFT;
+    __global uint* entry = table + RP_SVO_TABLE_WORDS * b;
+    const uint mask = (flags >> RP_SVO_FLAG_VOXELS_SHIFT) & 255u;
+    entry[0] = mask != 0u ? own_first + directions * own_rank : RP_SVO_NO_BRICK;
+    own_rank += rp_svo_popcount8(mask);
+    entry[1] = RP_SVO_NO_LINK | (mask << RP_SVO_MASK_SHIFT);
+    entry[2] = RP_SVO_NO_LINK;
+    entry[3] = RP_SVO_NO_LINK;
     if (leaf == 0u) {
       const uint3 a2 = 2u * svo_unpack(coords[i]);
       for (uint o = 0; o < 8u; ++o)
@@ -382,21 +413,34 @@ __kernel void svo_link(uint fragment_count, __global uint* cur, volatile __globa
 __kernel void svo_leaves(__global const uint* fragments, __global const uint* next,
                          __global const uint* heads, __global uint* svo, uint first, uint count,
                          uint brick_offset, uint alpha_offset, uint parent_brick_first,
-                         uint resolution_log2) {
+                         uint resolution_log2, uint table_offset) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   const uint D = resolution_log2;
   const uint brick = SVO_NODE_WORDS(svo)[2u * (first + i) + 1u];
   __global uint* pool = SVO_POOL(svo, brick_offset);
   __global uchar* alpha = SVO_ALPHA(svo, alpha_offset);
-  const bool parent = parent_brick_first != RP_SVO_NO_BRICK;
-  const uint pdst = parent_brick_first + (i >> 3) * rp_svo_brick_size(1u) +
-                    rp_svo_sample(i & 1u, (i >> 1) & 1u, (i >> 2) & 1u);
-  if (brick == RP_SVO_NO_BRICK) {
+  __global const uint* table = SVO_TABLE(svo, table_offset);
+  /* the parent's own voxel i & 7, stored when it is occupied (then this leaf has fragments) */
+  uint pdst = RP_SVO_NO_BRICK, pstride = 0u;
+  if (parent_brick_first != RP_SVO_NO_BRICK) {
+    __global const uint* pe = table + RP_SVO_TABLE_WORDS * (parent_brick_first + (i >> 3));
+    const uint pmask = pe[1] >> RP_SVO_MASK_SHIFT;
+    const uint slot = rp_svo_own_slot(pmask, i & 7u);
+    if (pe[0] != RP_SVO_NO_BRICK && slot != RP_SVO_NO_BRICK) {
+      pdst = pe[0] + slot;
+      pstride = rp_svo_popcount8(pmask);
+    }
+  }
+  const bool parent = pdst != RP_SVO_NO_BRICK;
+  const uint mine = brick == RP_SVO_NO_BRICK ? RP_SVO_NO_BRICK : SVO_OWN_FIRST(table, brick);
+  if (mine == RP_SVO_NO_BRICK) { /* no fragments here: the parent's sample is empty */
     if (parent)
-      for (uint d = 0; d < 6u; ++d) svo_clear_sample(pool, alpha, pdst + RP_SVO_BRICK_SAMPLES * d);
+      for (uint d = 0; d < 6u; ++d) svo_clear_sample(pool, alpha, pdst + pstride * d);
     return;
   }
+  const uint mask = table[RP_SVO_TABLE_WORDS * (brick >> RP_SVO_BRICK_SHIFT) + 1u] >>
+                    RP_SVO_MASK_SHIFT;
   /* per own voxel o: sums r, g, b, a and facing x, y, z (the dense accumulator's words 0-6),
    * overflow bits (its word 7) */
   uint acc[8][7], over[8];
@@ -417,93 +461,101 @@ __kernel void svo_leaves(__global const uint* fragments, __global const uint* ne
     }
     for (uint a = 0; a < 3u; ++a) acc[o][4u + a] += rp_svo_cover_facing(cover, a);
   }
+  /* own voxel o: resolved as the dense voxelizer does; stored when occupied (else it is 0) */
+  float4 iso[8];
   for (uint o = 0; o < 8u; ++o) {
-    svo_store(pool, alpha, brick + rp_svo_sample(o & 1u, (o >> 1) & 1u, o >> 2),
+    const uint slot = rp_svo_own_slot(mask, o);
+    if (slot == RP_SVO_NO_BRICK) {
+      iso[o] = (float4)(0.0f);
+      continue;
+    }
+    svo_store(pool, alpha, mine + slot,
               rp_voxel_resolve((uint4)(acc[o][0], acc[o][1], acc[o][2], acc[o][3]), over[o]));
+    iso[o] = svo_pool_load(pool, alpha, mine + slot);
   }
   if (!parent) return;
   /* level 1: the samples as stored (packed: rounded), as svo_mips reads its children */
-  float4 iso[8];
   uint4 facing[8];
-  for (uint c = 0; c < 8u; ++c) {
-    iso[c] = svo_pool_load(pool, alpha, brick + rp_svo_sample(c & 1u, (c >> 1) & 1u, c >> 2));
-    facing[c] = (uint4)(acc[c][4], acc[c][5], acc[c][6], over[c]);
-  }
+  for (uint c = 0; c < 8u; ++c) facing[c] = (uint4)(acc[c][4], acc[c][5], acc[c][6], over[c]);
   for (uint d = 0; d < 6u; ++d) {
     float4 c8[8];
     for (uint c = 0; c < 8u; ++c) c8[c] = mips_facing(iso[c], facing[c], d);
-    svo_store(pool, alpha, pdst + RP_SVO_BRICK_SAMPLES * d, mips_composite(c8, d));
+    svo_store(pool, alpha, pdst + pstride * d, mips_composite(c8, d));
   }
 }
 
-/* Border samples of the nodes of `depth` (directions: 1 at the leaves, 6 above). */
+/* Brick-table words 1..3 of the nodes of `depth`: the brick index of the face neighbour a + x,
+ * a + y, a + z (RP_SVO_NO_LINK where it does not exist or lies outside the grid). */
 __kernel void svo_border(__global uint* svo, __global const uint* coords, uint first,
-                         uint count, uint depth, uint directions, uint brick_offset,
-                         uint alpha_offset) {
+                         uint count, uint depth, uint table_offset) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   __global const uint* nodes = SVO_NODE_WORDS(svo);
   const uint brick = nodes[2u * (first + i) + 1u];
   if (brick == RP_SVO_NO_BRICK) return;
-  __global uint* pool = SVO_POOL(svo, brick_offset);
-  __global uchar* alpha = SVO_ALPHA(svo, alpha_offset);
+  __global uint* table = SVO_TABLE(svo, table_offset);
+  __global uint* entry = table + RP_SVO_TABLE_WORDS * (brick >> RP_SVO_BRICK_SHIFT);
   const uint3 a = svo_unpack(coords[first + i]);
   const uint side = 1u << depth;
   /* the node's ancestors, so that a neighbour's descent starts at the deepest ancestor they
    * share instead of the root (usually the parent) */
   uint path[RP_SVO_MAX_DEPTHS];
   svo_path(nodes, depth, a, path);
-  for (uint e = 1u; e < 8u; ++e) {
-    const uint3 ev = (uint3)(e & 1u, (e >> 1) & 1u, e >> 2);
-    const uint3 b = a + ev;
-    uint src = RP_SVO_NO_BRICK;
+  for (uint axis = 0u; axis < 3u; ++axis) {
+    const uint e = 1u << axis;
+    const uint3 b = a + (uint3)(e & 1u, (e >> 1) & 1u, e >> 2);
+    uint link = RP_SVO_NO_LINK;
     if (b.x < side && b.y < side && b.z < side) {
       const uint idx = svo_find_near(nodes, path, depth, a, b);
-      if (idx != 0xFFFFFFFFu) src = nodes[2u * idx + 1u];
-    }
-    /* the samples with index 2 exactly on the axes of e: per axis 2 if e_i else 0..1 */
-    for (uint s = 0; s < 8u; ++s) {
-      const uint3 q = (uint3)(s & 1u, (s >> 1) & 1u, s >> 2); /* own-sample index */
-      if ((q.x & ev.x) | (q.y & ev.y) | (q.z & ev.z)) continue; /* each border sample once */
-      const uint dst = rp_svo_sample(ev.x ? 2u : q.x, ev.y ? 2u : q.y, ev.z ? 2u : q.z);
-      const uint from = rp_svo_sample(q.x, q.y, q.z); /* = dst - 2e in the neighbour */
-      for (uint d = 0; d < directions; ++d) {
-        if (src == RP_SVO_NO_BRICK)
-          svo_clear_sample(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst);
-        else
-          svo_copy(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst,
-                   src + RP_SVO_BRICK_SAMPLES * d + from);
+      if (idx != 0xFFFFFFFFu) {
+        const uint nb = nodes[2u * idx + 1u];
+        if (nb != RP_SVO_NO_BRICK) link = nb >> RP_SVO_BRICK_SHIFT;
       }
     }
+    /* word 1 keeps its own-voxel mask (bits 24-31) */
+    entry[1u + axis] = (entry[1u + axis] & ~RP_SVO_LINK_MASK) | link;
   }
 }
 
 /* Own samples of the nodes of `depth` (brick level `level` >= 2) from their children (level 1:
  * svo_leaves). */
 __kernel void svo_mips(__global uint* svo, uint first, uint count, uint brick_offset,
-                       uint alpha_offset) {
+                       uint alpha_offset, uint table_offset) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   __global const uint* nodes = SVO_NODE_WORDS(svo);
   const uint brick = nodes[2u * (first + i) + 1u];
   if (brick == RP_SVO_NO_BRICK) return;
+  __global const uint* table = SVO_TABLE(svo, table_offset);
+  const uint mine = SVO_OWN_FIRST(table, brick);
+  if (mine == RP_SVO_NO_BRICK) return; /* own voxels empty: nothing stored */
+  const uint mask =
+      table[RP_SVO_TABLE_WORDS * (brick >> RP_SVO_BRICK_SHIFT) + 1u] >> RP_SVO_MASK_SHIFT;
+  const uint stride = rp_svo_popcount8(mask);
   __global uint* pool = SVO_POOL(svo, brick_offset);
   __global uchar* alpha = SVO_ALPHA(svo, alpha_offset);
   const uint children = nodes[2u * (first + i)] & RP_SVO_NODE_CHILD_MASK;
   for (uint o = 0; o < 8u; ++o) {
-    const uint dst = rp_svo_sample(o & 1u, (o >> 1) & 1u, o >> 2);
+    const uint slot = rp_svo_own_slot(mask, o);
+    if (slot == RP_SVO_NO_BRICK) continue; /* own voxel o empty: 0, not stored */
+    const uint dst = mine + slot;
     const uint cb = children == 0u ? RP_SVO_NO_BRICK : nodes[2u * (children + o) + 1u];
-    if (cb == RP_SVO_NO_BRICK) { /* all eight children empty: the composite is 0 */
-      for (uint d = 0; d < 6u; ++d)
-        svo_clear_sample(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst);
+    const uint src = cb == RP_SVO_NO_BRICK ? RP_SVO_NO_BRICK : SVO_OWN_FIRST(table, cb);
+    if (src == RP_SVO_NO_BRICK) { /* child o's own voxels all empty: the composite is 0 */
+      for (uint d = 0; d < 6u; ++d) svo_clear_sample(pool, alpha, dst + stride * d);
       continue;
     }
+    const uint cmask =
+        table[RP_SVO_TABLE_WORDS * (cb >> RP_SVO_BRICK_SHIFT) + 1u] >> RP_SVO_MASK_SHIFT;
+    const uint cstride = rp_svo_popcount8(cmask);
     for (uint d = 0; d < 6u; ++d) {
       float4 c8[8];
-      for (uint c = 0; c < 8u; ++c)
-        c8[c] = svo_pool_load(pool, alpha, cb + RP_SVO_BRICK_SAMPLES * d +
-                                               rp_svo_sample(c & 1u, (c >> 1) & 1u, c >> 2));
-      svo_store(pool, alpha, brick + RP_SVO_BRICK_SAMPLES * d + dst, mips_composite(c8, d));
+      for (uint c = 0; c < 8u; ++c) {
+        const uint cs = rp_svo_own_slot(cmask, c);
+        c8[c] = cs == RP_SVO_NO_BRICK ? (float4)(0.0f)
+                                      : svo_pool_load(pool, alpha, src + cstride * d + cs);
+      }
+      svo_store(pool, alpha, dst + stride * d, mips_composite(c8, d));
     }
   }
 }

@@ -120,13 +120,16 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
   if (common.gi_volume == render::GiVolume::kSvo) {
     const render::SvoVolume& o = session.renderer().octree();
     const double mb = 1.0 / (1024.0 * 1024.0);
-    std::printf("  octree %u^3 (last frame): %u fragments, %llu nodes (node pool %.1f MiB), "
-                "%llu brick samples of %u bytes (brick pool %.1f MiB), buffer %.1f MiB, build "
-                "scratch %.1f MiB; the dense chain at %u^3 would be %.1f MiB\n",
-                o.resolution, o.fragments, (unsigned long long)o.nodes(),
-                double(o.node_bytes()) * mb,
-                (unsigned long long)o.samples, o.sample_bytes, double(o.brick_bytes()) * mb,
-                double(o.buffer_bytes()) * mb, double(o.scratch_bytes) * mb, o.resolution,
+    std::printf("  octree %u^3 (last frame): %u fragments (list %.1f MiB), %llu nodes (node "
+                "pool %.1f MiB), %llu bricks (table %.1f MiB) and %llu samples of %u bytes "
+                "(%.1f MiB): pools in use %.1f MiB, buffer %.1f MiB, build scratch %.1f MiB; "
+                "the dense chain at %u^3 would be %.1f MiB\n",
+                o.resolution, o.fragments, double(o.fragment_bytes) * mb,
+                (unsigned long long)o.nodes(), double(o.node_bytes()) * mb,
+                (unsigned long long)o.bricks(), double(o.table_bytes()) * mb,
+                (unsigned long long)o.samples, o.sample_bytes, double(o.sample_pool_bytes()) * mb,
+                double(o.node_bytes() + o.brick_bytes()) * mb, double(o.buffer_bytes()) * mb,
+                double(o.scratch_bytes) * mb, o.resolution,
                 double(render::SvoVolume::dense_bytes(o.resolution)) * mb);
     std::printf("  octree device memory (CL_MEM_SIZE of its buffers): pools + build scratch "
                 "%.1f MiB after the last frame, peak %.1f MiB (pools %.1f with the solid grid "
@@ -137,9 +140,10 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
                 double(o.scratch_bytes) * mb, double(o.voxelizer_bytes) * mb);
     std::printf("  solid grid (last frame): %.2f ms on the host while the device builds\n",
                 o.solid_host_ms);
-    std::printf("  nodes / bricks per depth:");
+    std::printf("  nodes / bricks / occupied own voxels per depth:");
     for (size_t k = 0; k < o.nodes_per_depth.size(); ++k)
-      std::printf(" %u/%u", o.nodes_per_depth[k], o.bricks_per_depth[k]);
+      std::printf(" %u/%u/%u", o.nodes_per_depth[k], o.bricks_per_depth[k],
+                  k < o.own_per_depth.size() ? o.own_per_depth[k] : 0u);
     std::printf("\n");
   }
   RunResult run = make_run_result(width, height, voxels_or_default(voxels), stats);
@@ -157,6 +161,10 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
     run.octree_device_bytes = o.device_bytes;
     run.octree_peak_bytes = o.peak_device_bytes;
     run.octree_pool_bytes = o.buffer_bytes();
+    run.octree_node_bytes = o.node_bytes();
+    run.octree_brick_bytes = o.brick_bytes();
+    run.octree_fragments = o.fragments;
+    run.octree_fragment_bytes = o.fragment_bytes;
   }
   const scene::FrameScene last = frames->last();
   run.spheres = static_cast<uint32_t>(last.spheres.size());

@@ -47,6 +47,10 @@ struct RunResult {
   // svo only (0 otherwise): the octree path's device memory after the last frame and its peak
   // (pools + build scratch, CL_MEM_SIZE), the pools alone, in bytes
   uint64_t octree_device_bytes = 0, octree_peak_bytes = 0, octree_pool_bytes = 0;
+  // Of the octree (issue 31): the node pool, the brick pool (table + own samples) in use, the
+  // fragments and the fragment list's bytes.
+  uint64_t octree_node_bytes = 0, octree_brick_bytes = 0, octree_fragments = 0,
+           octree_fragment_bytes = 0;
   std::vector<PassResult> passes;  // pipeline order (pipeline_rank)
   TimeSummary frame;             // wall clock of Renderer::render per frame
   // What the measured frames drew (the last one; every device draws the same frames).

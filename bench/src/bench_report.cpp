@@ -56,7 +56,11 @@ Json run_json(const RunResult& r) {
   if (r.gi_volume == "svo")
     j["octree_memory"] = {{"device_bytes", r.octree_device_bytes},
                           {"peak_bytes", r.octree_peak_bytes},
-                          {"pool_bytes", r.octree_pool_bytes}};
+                          {"pool_bytes", r.octree_pool_bytes},
+                          {"node_bytes", r.octree_node_bytes},
+                          {"brick_bytes", r.octree_brick_bytes},
+                          {"fragments", r.octree_fragments},
+                          {"fragment_bytes", r.octree_fragment_bytes}};
   j["scene"] = {{"spheres", r.spheres},
                 {"instances", r.instances},
                 {"instance_triangles", r.instance_triangles},
@@ -99,6 +103,10 @@ RunResult parse_run(const Json& j) {
     r.octree_device_bytes = m.at("device_bytes");
     r.octree_peak_bytes = m.at("peak_bytes");
     r.octree_pool_bytes = m.at("pool_bytes");
+    r.octree_node_bytes = m.value("node_bytes", uint64_t(0));
+    r.octree_brick_bytes = m.value("brick_bytes", uint64_t(0));
+    r.octree_fragments = m.value("fragments", uint64_t(0));
+    r.octree_fragment_bytes = m.value("fragment_bytes", uint64_t(0));
   }
   r.spheres = j.at("scene").at("spheres");
   r.instances = j.at("scene").at("instances");

@@ -32,7 +32,7 @@ inline float3 rp_svo_unpack_rgb(uint w) {
          scale;
 }
 
-/* Sample s of a brick pool whose rgb plane starts at `pool` and opacity plane at `alpha`. */
+/* Sample s of a sample pool whose rgb plane starts at `pool` and opacity plane at `alpha`. */
 inline float4 rp_svo_pool_load(__global const uint* pool, __global const uchar* alpha, uint s) {
 #if RP_SVO_FLOAT_SAMPLES
   (void)alpha;
@@ -42,13 +42,33 @@ inline float4 rp_svo_pool_load(__global const uint* pool, __global const uchar* 
 #endif
 }
 
-/* Brick-pool sample s (premultiplied rgb, opacity). */
+/* The brick table (RP_SVO_TABLE_WORDS uints per brick, shared/svo_layout.h). */
+inline __global const uint* rp_svo_table(__global const float4* svo) {
+  return (__global const uint*)svo + rp_svo_header(svo, RP_SVO_HDR_TABLE_OFFSET);
+}
+
+/* Sample s = brick address + 27 d + rp_svo_sample(i, j, k) (premultiplied rgb, opacity): the
+ * own sample of the brick's node or, for a border sample, of its neighbour a + e, reached by
+ * the table's face links (x, then y, then z); 0 where a link or the own samples are missing
+ * (shared/svo_layout.h: then the sample is empty). */
 inline float4 rp_svo_load(__global const float4* svo, uint s) {
+  uint own;
+  const uint e = rp_svo_locate(s & ((1u << RP_SVO_BRICK_SHIFT) - 1u), &own);
+  __global const uint* table = rp_svo_table(svo);
+  uint b = s >> RP_SVO_BRICK_SHIFT;
+  for (uint axis = 0u; axis < 3u && b != RP_SVO_NO_LINK; ++axis)
+    if ((e >> axis) & 1u) b = table[RP_SVO_TABLE_WORDS * b + 1u + axis] & RP_SVO_LINK_MASK;
+  if (b == RP_SVO_NO_LINK) return (float4)(0.0f);
+  const uint first = table[RP_SVO_TABLE_WORDS * b];
+  if (first == RP_SVO_NO_BRICK) return (float4)(0.0f);
+  const uint slot =
+      rp_svo_own_slot(table[RP_SVO_TABLE_WORDS * b + 1u] >> RP_SVO_MASK_SHIFT, own);
+  if (slot == RP_SVO_NO_BRICK) return (float4)(0.0f);
   __global const uint* pool =
       (__global const uint*)(svo + rp_svo_header(svo, RP_SVO_HDR_BRICK_OFFSET));
   __global const uchar* alpha =
       (__global const uchar*)svo + rp_svo_header(svo, RP_SVO_HDR_ALPHA_OFFSET);
-  return rp_svo_pool_load(pool, alpha, s);
+  return rp_svo_pool_load(pool, alpha, first + slot);
 }
 
 /* The node at `depth` with coordinate a (0 <= a < 2^depth per axis, unchecked): its index, or

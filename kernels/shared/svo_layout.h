@@ -33,26 +33,45 @@
  *       word 0: child block index (first of 8 children; 0 = no children: the root is node 0,
  *               never a child) in bits 0-29 | RP_SVO_NODE_OWN (bit 30: own voxels non-empty)
  *               | RP_SVO_NODE_BRICK (bit 31: the node exists and has a brick)
- *       word 1: the brick's first sample in the brick pool (RP_SVO_NO_BRICK: none)
+ *       word 1: the brick's address (RP_SVO_NO_BRICK: none): brick b's address is
+ *               b << RP_SVO_BRICK_SHIFT, and sample (i,j,k) of direction d of the brick (i, j, k
+ *               in 0..2) is read at address + 27 d + (k*3 + j)*3 + i (rp_svo_sample): the
+ *               cone tracer's view, a 3^3 brick per direction, 27 samples, own and border.
  *     nodes of one depth are contiguous, depth by depth: depth 0 is node 0, depth k+1 holds
  *     8 children per existing depth-k node, in the order of their parents (prefix sums).
- *   brick pool: samples of 5 bytes (header[RP_SVO_HDR_SAMPLE_BYTES] = 5): rgb (premultiplied
+ *   brick table: at uint header[RP_SVO_HDR_TABLE_OFFSET], RP_SVO_TABLE_WORDS = 4 uints per
+ *     brick b (node a): word 0 the first own sample of the node in the sample pool
+ *     (RP_SVO_NO_BRICK: it has none); words 1, 2, 3 in bits 0-23 (RP_SVO_LINK_MASK) the brick
+ *     index of the face neighbour a + x, a + y, a + z at the same depth (RP_SVO_NO_LINK where
+ *     it does not exist); word 1 bits 24-31: the node's own-voxel mask, bit o (o = ox | oy << 1
+ *     | oz << 2) set when own voxel 2a + o holds a fragment (its samples are stored).
+ *     Sample (i,j,k) of a brick is own sample (i & 1, j & 1, k & 1) of node a + e,
+ *     e = (i >> 1, j >> 1, k >> 1) (rp_svo_locate): its borders (an index 2) are its
+ *     neighbours' own samples, read through the table instead of stored a second time (the
+ *     values of seed 001's border transfer, each stored once). An edge or corner neighbour
+ *     a + e is reached by face links, x then y then z (rp_svo_load); where a link is missing
+ *     the sample is 0, which is its value: a border sample v = 2(a + e) on the low faces of
+ *     a + e along e is non-empty only if a fragment lies in v, and then the dilation (below:
+ *     the "face" flags) made every node a + e - e' (e' a subset of e) exist, so every node on
+ *     the path exists.
+ *   sample pool: the samples of occupied own voxels only (an own voxel without a fragment is
+ *     0 in every direction; nodes that exist only for a neighbour's border store none): with
+ *     own-voxel mask m (n = popcount m), own voxel o of direction d at
+ *     first + d n + popcount(m & ((1 << o) - 1)) (rp_svo_own_slot);
+ *       brick level 0 (leaves):  1 direction (isotropic), n samples (at most 40 bytes packed)
+ *       brick level >= 1:        6 directions (RP_DIR_* order), 6n samples (at most 240 bytes)
+ *     samples of 5 bytes (header[RP_SVO_HDR_SAMPLE_BYTES] = 5): rgb (premultiplied
  *     radiance) as one uint in the shared-exponent format RGB9E5 (9-bit mantissas, 5-bit
  *     exponent, bias 15: values up to 65408, relative precision 2^-9 of the largest channel)
  *     at uint s of the plane starting at float4 header[RP_SVO_HDR_BRICK_OFFSET], and the opacity
  *     as one byte round(255 a) at byte header[RP_SVO_HDR_ALPHA_OFFSET] + s of the buffer; or,
  *     when header[RP_SVO_HDR_SAMPLE_BYTES] is 16 (kernels built with RP_SVO_FLOAT_SAMPLES=1,
  *     the tests' bit-exact comparison with the dense chain), float4 samples at that float4.
- *     A brick is 27 samples per direction, sample (i,j,k) at (k*3 + j)*3 + i:
- *       brick level 0 (leaves):  1 direction (isotropic), 27 samples (135 bytes packed)
- *       brick level >= 1:        6 directions (RP_DIR_* order), 162 samples (810 bytes),
- *                                direction d's 27 samples at brick + 27 d
- *     (half floats, 8 bytes, would put 512^3 of the demo at 267 MiB of bricks: over the
- *     256 MB budget; 5 bytes: 167 MiB)
- *     samples with an index 2 along some axis are borders: copies of the neighbour node's own
- *     samples (the border transfer, svo.cl), 0 where that neighbour does not exist.
+ *     (Bricks that stored their 27 samples per direction, borders copied from the
+ *     neighbours, took 135 / 810 bytes: 167 MiB of bricks for the 512^3 demo. A table entry
+ *     is 16 bytes; a brick's samples 5 bytes per occupied own voxel and direction.)
  *   solid grid (optional; header[RP_SVO_HDR_SOLID_OFFSET] != 0, 16-byte aligned, after the
- *     brick pool): for levels l = header[RP_SVO_HDR_SOLID_LEVEL] .. D-1, back to back, one byte
+ *     sample pool): for levels l = header[RP_SVO_HDR_SOLID_LEVEL] .. D-1, back to back, one byte
  *     per level-l cell (x fastest, (R >> l)^3 cells, dense: the grid is small): round(255 x the
  *     fraction of the cell inside a closed object), written per frame by the host
  *     (src/passes/svo_solid.h). Cone samples at those levels take at least that opacity
@@ -92,6 +111,7 @@
 #define RP_SVO_HDR_SOLID_OFFSET 28u /* byte offset of the solid grid, 0: none (below) */
 #define RP_SVO_HDR_SOLID_LEVEL 29u  /* its first level */
 #define RP_SVO_HDR_ALPHA_OFFSET 30u /* byte offset of the opacity plane (packed samples) */
+#define RP_SVO_HDR_TABLE_OFFSET 18u /* first uint of the brick table (after LEVEL_START) */
 #define RP_SVO_MAX_DEPTHS 10u      /* R <= 1024 (voxel keys: 10 bits per axis) */
 
 #define RP_SVO_NODE_CHILD_MASK 0x3FFFFFFFu
@@ -99,7 +119,14 @@
 #define RP_SVO_NODE_BRICK 0x80000000u
 #define RP_SVO_NO_BRICK 0xFFFFFFFFu
 
-#define RP_SVO_BRICK_SAMPLES 27u  /* one direction */
+#define RP_SVO_BRICK_SAMPLES 27u  /* one direction, as the cone tracer addresses them */
+#define RP_SVO_BRICK_SHIFT 8u     /* brick address = brick index << 8 (27 x 6 = 162 < 256) */
+#define RP_SVO_MAX_BRICKS 0xFFFFFEu /* brick indices: below RP_SVO_NO_LINK */
+#define RP_SVO_TABLE_WORDS 4u     /* brick table words per brick: own samples, +x, +y, +z */
+#define RP_SVO_OWN_SAMPLES 8u     /* own voxels per node */
+#define RP_SVO_LINK_MASK 0x00FFFFFFu /* table words 1-3: the face link's bits */
+#define RP_SVO_NO_LINK 0x00FFFFFFu   /* no face neighbour */
+#define RP_SVO_MASK_SHIFT 24u        /* table word 1: the own-voxel mask's first bit */
 #define RP_SVO_FRAGMENT_WORDS 5u
 #define RP_SVO_FRAGMENT_COVER 3u  /* word holding the opacity and the facing words */
 #define RP_SVO_FRAGMENT_KEY 4u    /* word holding the voxel index */
@@ -111,6 +138,7 @@
  * writes the word). The node exists iff bit 0 or that mark is set. */
 #define RP_SVO_FLAG_OWN 1u
 #define RP_SVO_FLAG_FACES 0xFEu
+#define RP_SVO_FLAG_VOXELS_SHIFT 8u /* bits 8-15: own voxel o holds a fragment (bit 8 + o) */
 
 #ifdef __OPENCL_VERSION__
 #define RP_SVO_FN static inline
@@ -125,6 +153,35 @@ namespace rp::gpu {
 /* Samples of a brick at brick level l (1 direction at level 0, 6 above). */
 RP_SVO_FN RP_SVO_UINT rp_svo_brick_size(RP_SVO_UINT level) {
   return level == 0u ? RP_SVO_BRICK_SAMPLES : 6u * RP_SVO_BRICK_SAMPLES;
+}
+
+/* Directions stored at brick level l: 1 at level 0, 6 above. */
+RP_SVO_FN RP_SVO_UINT rp_svo_directions(RP_SVO_UINT level) { return level == 0u ? 1u : 6u; }
+
+/* Set bits of an 8-bit mask. */
+RP_SVO_FN RP_SVO_UINT rp_svo_popcount8(RP_SVO_UINT x) {
+  x = x - ((x >> 1) & 0x55u);
+  x = (x & 0x33u) + ((x >> 2) & 0x33u);
+  return (x + (x >> 4)) & 0x0Fu;
+}
+
+/* Index, after a node's first own sample, of own sample `own` (8 d + o: direction d, own voxel
+ * o) for own-voxel mask m; RP_SVO_NO_BRICK when voxel o is not stored (it is 0). */
+RP_SVO_FN RP_SVO_UINT rp_svo_own_slot(RP_SVO_UINT mask, RP_SVO_UINT own) {
+  const RP_SVO_UINT o = own & 7u;
+  if (((mask >> o) & 1u) == 0u) return RP_SVO_NO_BRICK;
+  return (own >> 3) * rp_svo_popcount8(mask) + rp_svo_popcount8(mask & ((1u << o) - 1u));
+}
+
+/* Where sample `slot` (27 d + rp_svo_sample(i, j, k), below 256) of a brick lies: returns the
+ * offset e = ex | ey << 1 | ez << 2 of the node holding it (0: the brick's own node, else the
+ * neighbour a + e) and sets *own to its index among that node's own samples (8 d + (i & 1) +
+ * 2 (j & 1) + 4 (k & 1)). */
+RP_SVO_FN RP_SVO_UINT rp_svo_locate(RP_SVO_UINT slot, RP_SVO_UINT* own) {
+  const RP_SVO_UINT d = slot / 27u, t = slot - 27u * d;
+  const RP_SVO_UINT k = t / 9u, j = (t - 9u * k) / 3u, i = t - 9u * k - 3u * j;
+  *own = 8u * d + (i & 1u) + 2u * (j & 1u) + 4u * (k & 1u);
+  return (i >> 1) | ((j >> 1) << 1) | ((k >> 1) << 2);
 }
 
 /* Sample index of brick coordinate (i, j, k) in 0..2 (one direction). */

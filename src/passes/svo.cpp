@@ -70,7 +70,8 @@ SvoPass::SvoPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
   border_ = programs.kernel("svo.cl", "svo_border", o);
   mips_ = programs.kernel("svo.cl", "svo_mips", o);
   counter_ = ::cl::Buffer(context.context, CL_MEM_READ_WRITE, 2 * sizeof(cl_uint));
-  totals_ = ::cl::Buffer(context.context, CL_MEM_READ_WRITE, RP_SVO_MAX_DEPTHS * sizeof(cl_uint));
+  totals_ = ::cl::Buffer(context.context, CL_MEM_READ_WRITE,
+                         2 * RP_SVO_MAX_DEPTHS * sizeof(cl_uint));
 }
 
 void SvoPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
@@ -85,9 +86,10 @@ void SvoPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
         at_resolution("fragment list", resolution), svo_advice(resolution));
   }
   // The voxelizer's static surface cache costs 64 bytes a cached room sample: 36 MiB at 256^3
-  // on the demo, 145 MiB at 512^3, where the octree and its build scratch already take 251 MiB
-  // of the 256 MB budget (issue 17). So from 512^3 on the room is voxelized every frame like
-  // the moving objects (the same fragments; the cost: bench/results/epyc-2core-pocl-svo2.md).
+  // on the demo, 145 MiB at 512^3, where the octree and its build scratch took 251 MiB of the
+  // 256 MB budget (issue 17; 97 MiB since issue 31, 142 MiB on the atrium). So from 512^3 on
+  // the room is voxelized every frame like the moving objects (the same fragments; the cost:
+  // bench/results/epyc-2core-pocl-svo2.md).
   voxelize_->set_cache_limit(resolution >= 512 ? 0 : UINT64_MAX);
   cl_uint count = 0;
   for (;;) {
@@ -145,8 +147,13 @@ void SvoPass::enable_solid(uint32_t tumbler_first_triangle, const scene::Tumbler
   solid_tumbler_ = tumbler;
 }
 
-void SvoPass::allocate(render::SvoVolume& svo, size_t nodes, size_t samples) {
+void SvoPass::allocate(render::SvoVolume& svo, size_t nodes, size_t bricks, size_t samples) {
+  if (bricks > RP_SVO_MAX_BRICKS)
+    throw rp::cl::Error(at_resolution("brick table", svo.resolution) + " would need " +
+                        std::to_string(bricks) + " bricks, more than the layout addresses (" +
+                        std::to_string(RP_SVO_MAX_BRICKS) + "): " + svo_advice(svo.resolution));
   svo.node_capacity = nodes;
+  svo.brick_capacity = bricks;
   svo.sample_capacity = samples;
   svo.sample_bytes = float_samples_ ? 16 : 5;
   svo.solid_capacity = solid_ ? svo_solid_bytes(svo.resolution) : 0;
@@ -154,7 +161,8 @@ void SvoPass::allocate(render::SvoVolume& svo, size_t nodes, size_t samples) {
   svo.buffer = rp::cl::make_buffer(
       context_->context, CL_MEM_READ_WRITE, svo.buffer_bytes(),
       at_resolution("node and brick pools", svo.resolution) + " (" + std::to_string(nodes) +
-          " nodes, " + std::to_string(samples) + " brick samples)",
+          " nodes, " + std::to_string(bricks) + " bricks, " + std::to_string(samples) +
+          " samples)",
       svo_advice(svo.resolution));
 }
 
@@ -180,7 +188,7 @@ void SvoPass::ensure_scratch(uint32_t resolution, size_t nodes, size_t fragments
     sums_ = ::cl::Buffer();
     own_ = scratch(nodes * sizeof(cl_uint));
     coords_ = scratch(nodes * sizeof(cl_uint));
-    sums_ = scratch((nodes / kChunk + 1) * sizeof(cl_uint));
+    sums_ = scratch((nodes / kChunk + 1) * 2 * sizeof(cl_uint));
   }
   if (fragments > scratch_fragments_) {
     scratch_fragments_ = fragments;
@@ -197,10 +205,20 @@ void SvoPass::build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragments, u
   svo.resolution = resolution;
   svo.depths = gpu::rp_svo_log2(resolution);
   svo.fragments = count;
-  if (svo.buffer() == nullptr || svo.sample_bytes != (float_samples_ ? 16u : 5u) ||
-      svo.solid_capacity != (solid_ ? svo_solid_bytes(resolution) : 0))
-    allocate(svo, std::max<size_t>(4096, size_t(count) / 2),
-             std::max<size_t>(1 << 16, size_t(count) * 8));
+  // A first guess below what the scenes measured (the 512^3 demo: 0.59 nodes, 0.30 bricks and
+  // 2.5 samples a fragment; the atrium 0.47, 0.25, 1.6); a build that needs more grows the
+  // pools to what it counted plus 1/64 and restarts (try_build: the first frame's few restarts
+  // repeat only the top-down steps), so the pools end at the counts, not at a fraction of the
+  // worst case.
+  const bool fresh = svo.buffer() == nullptr ||
+                     svo.sample_bytes != (float_samples_ ? 16u : 5u) ||
+                     svo.solid_capacity != (solid_ ? svo_solid_bytes(resolution) : 0);
+  if (fresh) {
+    allocate(svo, std::max<size_t>(4096, size_t(count) / 8),
+             std::max<size_t>(512, size_t(count) / 16),
+             std::max<size_t>(4096, size_t(count) / 2));
+    fitted_ = false;
+  }
   for (int attempt = 0; attempt < 16; ++attempt)
     if (try_build(profiler, fragments, count, svo)) return;
   throw rp::cl::Error("octree build: the pools kept growing (16 attempts)");
@@ -216,8 +234,9 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
                  std::max<size_t>(fragment_capacity_, std::max(count, 1u)));
   const cl_uint zero = 0;
   queue.enqueueFillBuffer(coords_, zero, 0, sizeof(cl_uint));  // the root's coordinate
-  const cl_uint brick_offset = cl_uint(render::SvoVolume::brick_offset(svo.node_capacity));
+  const cl_uint brick_offset = cl_uint(svo.brick_offset());
   const cl_uint alpha_offset = cl_uint(svo.alpha_offset());
+  const cl_uint table_offset = cl_uint(svo.table_offset());
 
   // Occupancy bits for the depths whose brick level is >= kBitsLevel (last_bits_depth and
   // above; none when D - 1 < kBitsLevel).
@@ -255,13 +274,14 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     }
   }
 
-  std::vector<uint32_t> first(D + 1, 0), nodes(D, 0), bricks(D, 0), brick_first(D, 0);
+  std::vector<uint32_t> first(D + 1, 0), nodes(D, 0), bricks(D, 0), owns(D, 0),
+      brick_first(D, 0);
   nodes[0] = 1;
-  uint64_t samples = 0;
+  uint64_t samples = 0, brick_count = 0;
   for (uint32_t k = 0; k < D; ++k) {
     const cl_uint n = nodes[k], f0 = first[k];
     if (size_t(f0) + n > svo.node_capacity) {  // cannot happen: checked before allocating
-      allocate(svo, (size_t(f0) + n) * 2, svo.sample_capacity);
+      allocate(svo, (size_t(f0) + n) * 2, svo.brick_capacity, svo.sample_capacity);
       return false;
     }
     clear_nodes_.setArg(0, svo.buffer);
@@ -312,25 +332,30 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     scan_.setArg(2, totals_);
     scan_.setArg(3, cl_uint(k));
     profiler.enqueue("svo_nodes", scan_, ::cl::NDRange(1), ::cl::NullRange);
-    cl_uint exist = 0;
-    queue.enqueueReadBuffer(totals_, CL_TRUE, k * sizeof(cl_uint), sizeof(cl_uint), &exist);
+    cl_uint totals[2] = {0, 0};  // existing nodes, occupied own voxels
+    queue.enqueueReadBuffer(totals_, CL_TRUE, 2 * k * sizeof(cl_uint), sizeof(totals), totals);
+    const cl_uint exist = totals[0], own = totals[1];
     const bool leaf = k + 1 == D;
-    const uint32_t size = gpu::rp_svo_brick_size(D - 1 - k);
+    const uint32_t size = gpu::rp_svo_directions(D - 1 - k);  // samples per occupied voxel
     const size_t need_nodes = size_t(f0) + n + (leaf ? 0 : 8 * size_t(exist));
-    const size_t need_samples = samples + size_t(exist) * size;
-    if (need_nodes > svo.node_capacity || need_samples > svo.sample_capacity) {
-      // 1/16 slack: a moving scene does not reallocate every frame; the first frame's few
-      // rounds each grow one depth's worth
-      const size_t grow_nodes =
-          need_nodes > svo.node_capacity ? need_nodes + need_nodes / 16 : svo.node_capacity;
-      const size_t grow_samples = need_samples > svo.sample_capacity
-                                      ? need_samples + need_samples / 16
-                                      : svo.sample_capacity;
-      allocate(svo, grow_nodes, grow_samples);
+    const size_t need_bricks = brick_count + exist;
+    const size_t need_samples = samples + size_t(own) * size;
+    if (need_nodes > svo.node_capacity || need_bricks > svo.brick_capacity ||
+        need_samples > svo.sample_capacity) {
+      // Slack: 1/64 while the pools are still growing from the first guess (a static scene
+      // keeps them), 1/16 when a later frame outgrows pools that held an earlier one (a moving
+      // scene then does not reallocate every frame)
+      const size_t slack = fitted_ ? 16 : 64;
+      const auto grow = [slack](size_t need, size_t have) {
+        return need > have ? need + need / slack : have;
+      };
+      allocate(svo, grow(need_nodes, svo.node_capacity), grow(need_bricks, svo.brick_capacity),
+               grow(need_samples, svo.sample_capacity));
       return false;
     }
     bricks[k] = exist;
-    brick_first[k] = cl_uint(samples);
+    owns[k] = own;
+    brick_first[k] = cl_uint(brick_count);
     allocate_.setArg(0, svo.buffer);
     allocate_.setArg(1, own_);
     allocate_.setArg(2, coords_);
@@ -339,11 +364,14 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     allocate_.setArg(5, cl_uint(kChunk));
     allocate_.setArg(6, sums_);
     allocate_.setArg(7, cl_uint(f0 + n));
-    allocate_.setArg(8, cl_uint(samples));
-    allocate_.setArg(9, cl_uint(size));
-    allocate_.setArg(10, cl_uint(leaf ? 1 : 0));
+    allocate_.setArg(8, cl_uint(brick_count));
+    allocate_.setArg(9, cl_uint(samples));
+    allocate_.setArg(10, cl_uint(size));
+    allocate_.setArg(11, cl_uint(leaf ? 1 : 0));
+    allocate_.setArg(12, table_offset);
     profiler.enqueue("svo_nodes", allocate_, ::cl::NDRange(items(chunks)), ::cl::NDRange(kGroup));
-    samples += size_t(exist) * size;
+    samples += size_t(own) * size;
+    brick_count += exist;
     first[k + 1] = f0 + n;
     if (!leaf) nodes[k + 1] = 8 * exist;
   }
@@ -366,19 +394,21 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   leaves_.setArg(7, alpha_offset);
   leaves_.setArg(8, L > 0 ? cl_uint(brick_first[L - 1]) : cl_uint(RP_SVO_NO_BRICK));
   leaves_.setArg(9, cl_uint(D));
+  leaves_.setArg(10, table_offset);
   profiler.enqueue("svo_inject", leaves_, ::cl::NDRange(items(nodes[L])), ::cl::NDRange(kGroup));
-  const auto border = [&](uint32_t k, cl_uint directions, const char* pass) {
+  // The borders: the brick table's face links to the neighbours' bricks (no values are copied,
+  // so every depth's links could be made right after its allocation; kept here, per depth).
+  const auto border = [&](uint32_t k) {
     border_.setArg(0, svo.buffer);
     border_.setArg(1, coords_);
     border_.setArg(2, cl_uint(first[k]));
     border_.setArg(3, cl_uint(nodes[k]));
     border_.setArg(4, cl_uint(k));
-    border_.setArg(5, directions);
-    border_.setArg(6, brick_offset);
-    border_.setArg(7, alpha_offset);
-    profiler.enqueue(pass, border_, ::cl::NDRange(items(nodes[k])), ::cl::NDRange(kGroup));
+    border_.setArg(5, table_offset);
+    profiler.enqueue("svo_border", border_, ::cl::NDRange(items(nodes[k])),
+                     ::cl::NDRange(kGroup));
   };
-  border(L, 1, "svo_border");
+  border(L);
   for (uint32_t level = 1; level < D; ++level) {
     const uint32_t k = D - 1 - level;
     if (level >= 2) {
@@ -387,9 +417,10 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
       mips_.setArg(2, cl_uint(nodes[k]));
       mips_.setArg(3, brick_offset);
       mips_.setArg(4, alpha_offset);
+      mips_.setArg(5, table_offset);
       profiler.enqueue("svo_mips", mips_, ::cl::NDRange(items(nodes[k])), ::cl::NDRange(kGroup));
     }
-    border(k, 6, "svo_border");
+    border(k);
   }
 
   // The header (svo_layout.h).
@@ -402,6 +433,7 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   header_[RP_SVO_HDR_SAMPLE_BYTES] = svo.sample_bytes;
   header_[RP_SVO_HDR_FRAGMENTS] = count;
   header_[RP_SVO_HDR_ALPHA_OFFSET] = alpha_offset;
+  header_[RP_SVO_HDR_TABLE_OFFSET] = table_offset;
   for (uint32_t k = 0; k <= D; ++k) header_[RP_SVO_HDR_LEVEL_START + k] = first[k];
   queue.enqueueWriteBuffer(svo.buffer, CL_FALSE, 0, header_.size() * sizeof(cl_uint),
                            header_.data());
@@ -411,9 +443,12 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   svo.device_bytes = device_bytes(svo);
   peak_bytes_ = std::max(peak_bytes_, svo.device_bytes);
   svo.scratch_bytes = svo.device_bytes - svo.buffer.getInfo<CL_MEM_SIZE>();
+  svo.fragment_bytes = fragments_() != nullptr ? fragments_.getInfo<CL_MEM_SIZE>() : 0;
   svo.peak_device_bytes = peak_bytes_;
+  fitted_ = true;
   svo.nodes_per_depth = nodes;
   svo.bricks_per_depth = bricks;
+  svo.own_per_depth = owns;
   svo.samples = samples;
   return true;
 }

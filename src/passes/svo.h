@@ -50,7 +50,7 @@ class SvoPass {
   // One attempt; false when a pool was too small (grown, try again).
   bool try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragments, uint32_t count,
                  render::SvoVolume& svo);
-  void allocate(render::SvoVolume& svo, size_t nodes, size_t samples);
+  void allocate(render::SvoVolume& svo, size_t nodes, size_t bricks, size_t samples);
   void ensure_scratch(uint32_t resolution, size_t nodes, size_t fragments);
   // Bytes of every device buffer of the octree path now: svo's pools and this pass's scratch
   // (CL_MEM_SIZE of each; the voxelizer's own buffers not included).
@@ -71,6 +71,7 @@ class SvoPass {
   ::cl::Buffer occ_;  // occupancy bits of the top levels (svo.cl svo_occ_*)
   uint32_t occ_words_ = 0;
   size_t scratch_nodes_ = 0, scratch_fragments_ = 0;
+  bool fitted_ = false;  // a build has completed since the pools started from the first guess
   uint64_t peak_bytes_ = 0;
   // Solid grid (enable_solid).
   bool solid_ = false;

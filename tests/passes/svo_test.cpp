@@ -125,21 +125,45 @@ struct Octree {
     }
     return idx;
   }
-  float sample(uint32_t brick, uint32_t s, int c) const {
+  // Brick-table word w of brick index b (svo_layout.h).
+  uint32_t table(uint32_t b, uint32_t w) const {
+    return words[header(RP_SVO_HDR_TABLE_OFFSET) + RP_SVO_TABLE_WORDS * size_t(b) + w];
+  }
+  // Own sample `own` of the sample pool, channel c.
+  float own_sample(uint32_t own, int c) const {
     const size_t base = size_t(header(RP_SVO_HDR_BRICK_OFFSET)) * 4;
     if (vol.sample_bytes == 16) {
       float f;
-      std::memcpy(&f, &words[base + 4 * size_t(brick + s) + size_t(c)], 4);
+      std::memcpy(&f, &words[base + 4 * size_t(own) + size_t(c)], 4);
       return f;
     }
     // packed: RGB9E5 (mantissa * 2^(e - 15 - 9)) and an opacity byte (svo_layout.h)
     if (c == 3) {
       const uint8_t* a = reinterpret_cast<const uint8_t*>(words.data()) +
                          header(RP_SVO_HDR_ALPHA_OFFSET);
-      return float(a[brick + s]) / 255.0f;
+      return float(a[own]) / 255.0f;
     }
-    const uint32_t w = words[base + brick + s];
+    const uint32_t w = words[base + own];
     return std::ldexp(float((w >> (9 * c)) & 511u), int(w >> 27) - 24);
+  }
+  // Sample s (27 d + (k*3 + j)*3 + i) of the brick at address `brick`, as the cone tracer reads
+  // it: the own sample of the node, or for a border sample of its neighbour a + e reached by
+  // the face links (x, y, z); 0 where a link, the own samples or that voxel's are missing.
+  float sample(uint32_t brick, uint32_t s, int c) const {
+    const uint32_t slot = (brick & ((1u << RP_SVO_BRICK_SHIFT) - 1)) + s;
+    const uint32_t d = slot / 27, t = slot % 27, i = t % 3, j = (t / 3) % 3, k = t / 9;
+    const uint32_t e = (i >> 1) | ((j >> 1) << 1) | ((k >> 1) << 2);
+    uint32_t b = brick >> RP_SVO_BRICK_SHIFT;
+    for (uint32_t axis = 0; axis < 3 && b != RP_SVO_NO_LINK; ++axis)
+      if ((e >> axis) & 1) b = table(b, 1 + axis) & RP_SVO_LINK_MASK;
+    if (b == RP_SVO_NO_LINK || table(b, 0) == RP_SVO_NO_BRICK) return 0.0f;
+    // occupied own voxels only, direction by direction (svo_layout.h)
+    const uint32_t mask = table(b, 1) >> RP_SVO_MASK_SHIFT;
+    const uint32_t o = (i & 1) + 2 * (j & 1) + 4 * (k & 1);
+    if (((mask >> o) & 1) == 0) return 0.0f;
+    const uint32_t n = uint32_t(__builtin_popcount(mask));
+    const uint32_t index = d * n + uint32_t(__builtin_popcount(mask & ((1u << o) - 1)));
+    return own_sample(table(b, 0) + index, c);
   }
 };
 
@@ -304,12 +328,14 @@ TEST(Svo, GrowsTooSmallPools) {
   passes::SvoPass pass(context(), programs(), true);
   Octree o;
   o.vol.node_capacity = 9;
+  o.vol.brick_capacity = 3;
   o.vol.sample_capacity = 10;
   o.vol.sample_bytes = 16;
   o.vol.buffer = ::cl::Buffer(context().context, CL_MEM_READ_WRITE, o.vol.buffer_bytes());
   pass.run(s.profiler, *s.gpu, s.shadow, r, o.vol);
   s.profiler.collect();
   EXPECT_GT(o.vol.node_capacity, 9u);
+  EXPECT_GT(o.vol.brick_capacity, 3u);
   EXPECT_GT(o.vol.sample_capacity, 10u);
   o.words.resize(o.vol.buffer_bytes() / 4);
   context().queue.enqueueReadBuffer(o.vol.buffer, CL_TRUE, 0, o.words.size() * 4, o.words.data());
@@ -334,9 +360,14 @@ TEST(Svo, BitIdenticalRepeats) {
   const Octree b = build_octree(s, r, false);
   ASSERT_EQ(a.vol.nodes(), b.vol.nodes());
   ASSERT_EQ(a.vol.samples, b.vol.samples);
+  ASSERT_EQ(a.vol.bricks(), b.vol.bricks());
   const size_t used = (size_t(a.header(RP_SVO_HDR_BRICK_OFFSET)) * 16 + a.vol.samples * 4) / 4;
   const size_t nodes_end = 4 * RP_SVO_HEADER_FLOAT4S + 2 * a.vol.nodes();
   EXPECT_TRUE(std::equal(a.words.begin(), a.words.begin() + long(nodes_end), b.words.begin()));
+  const size_t table = a.header(RP_SVO_HDR_TABLE_OFFSET);
+  const size_t table_end = table + RP_SVO_TABLE_WORDS * a.vol.bricks();
+  EXPECT_TRUE(std::equal(a.words.begin() + long(table), a.words.begin() + long(table_end),
+                         b.words.begin() + long(table)));
   const size_t bricks = size_t(a.header(RP_SVO_HDR_BRICK_OFFSET)) * 4;
   EXPECT_TRUE(std::equal(a.words.begin() + long(bricks), a.words.begin() + long(used),
                          b.words.begin() + long(bricks)));
@@ -346,7 +377,7 @@ TEST(Svo, BitIdenticalRepeats) {
 // stays within what its counts allow: per fragment of the list's capacity (the count plus
 // 1/16 slack, at least the first list of 65536) the fragment's 20 bytes and one 4-byte
 // owner/link word; per node of the pool's capacity a flag word and a coordinate; the chunk
-// sums (1 word per 256 nodes), the occupancy bits of levels >= 3 and two small fixed buffers.
+// sums (2 words per 256 nodes), the occupancy bits of levels >= 3 and two small fixed buffers.
 // Nothing per leaf voxel (the
 // accumulators this replaced took 256 bytes a leaf: 107 MiB of the 512^3 demo).
 TEST(Svo, BuildScratchWithinBoundOfCounts) {
@@ -358,8 +389,8 @@ TEST(Svo, BuildScratchWithinBoundOfCounts) {
   const uint64_t list = std::max<uint64_t>(65536, f + f / 16);
   uint64_t occupancy = 0;  // the top levels' occupancy bits: levels 3 .. log2 R - 1, in words
   for (uint32_t n = r >> 3; n >= 2; n /= 2) occupancy += (uint64_t(n) * n * n + 31) / 32 * 4;
-  const uint64_t bound = list * (RP_SVO_FRAGMENT_WORDS * 4 + 4) + cap * 8 + (cap / 256 + 1) * 4 +
-                         (2 + RP_SVO_MAX_DEPTHS) * 4 + occupancy;
+  const uint64_t bound = list * (RP_SVO_FRAGMENT_WORDS * 4 + 4) + cap * 8 + (cap / 256 + 1) * 8 +
+                         (2 + 2 * RP_SVO_MAX_DEPTHS) * 4 + occupancy;
   EXPECT_LE(o.vol.scratch_bytes, bound);
   // the node pool's capacity: the first guess (4096 or fragments / 2) or the nodes + 1/16
   EXPECT_LE(cap, std::max<uint64_t>({4096, f / 2, nodes + nodes / 16}));
