@@ -61,11 +61,12 @@ DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_
       (n * per_pixel_x3 + 2) / 3 + blur_tiles * 20 + raster_tiles * 2 * 12;
   need.shadow_bytes = uint64_t(shadow_size) * shadow_size * 4;
   if (octree) {
-    // The octree's pools and build scratch grow with the surface area, about R^2 x 1 KiB on
-    // the demo (the busy scene's fragments included); the pools, one buffer, about 7/8 of it
-    // (189 of 253 MiB measured on the demo at 512^3, 211 of 294 on the busy scene).
-    need.volume_bytes = r * r * 1024;
-    need.volume_buffer_bytes = r * r * 896;
+    // The octree's pools, fragment list and build scratch grow with the surface area: at
+    // peak 502-567 bytes per R^2 measured on the demo, the busy scene and the atrium at 512^3
+    // (141.9 MiB on the atrium), 508 on the atrium at 1024^3; the largest buffer, the fragment
+    // list, 209-268 bytes per R^2 (bench/results/zen3-2core-pocl-svo-memory.md). Counted high.
+    need.volume_bytes = r * r * 640;
+    need.volume_buffer_bytes = r * r * 320;
   } else {
     // The chain (one float4 buffer) and the voxelizer's sums (8 words) and overflow bits (one
     // word) per voxel (render/voxel_volume.h).
@@ -159,7 +160,7 @@ void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint3
                  mib(global);
     else
       message += "one buffer of " + mib(need.volume_buffer_bytes) + " for the " +
-                 (octree ? "octree's pools" : "dense volume's mip chain") +
+                 (octree ? "octree's fragment list" : "dense volume's mip chain") +
                  ", the device allows at most " + mib(max_alloc) + " per buffer";
     message += "; the largest --voxels that fits at this size is " + std::to_string(voxels) +
                " (--voxels " + std::to_string(voxels) + ")";

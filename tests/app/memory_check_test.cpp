@@ -44,12 +44,12 @@ std::string check_message(const cl::DeviceInfo& device, uint32_t size, uint32_t 
 // What PoCL reports under POCL_MEMORY_LIMIT=1: 1 GiB of global memory, 256 MiB per buffer.
 TEST(MemoryCheck, OctreeTooLargeAtThisSizeNamesTheLargestVoxelsThatFit) {
   const cl::DeviceInfo device = device_with(1024, 256);
-  // 2000^2: the image's buffers take about 730 MiB; the octree at 512^3 256 MiB more does not
-  // fit, at 256^3 (64 MiB) it does.
-  const std::string m = check_message(device, 2000, 512, true);
-  EXPECT_TRUE(Contains(m, "--gi-volume svo --voxels 512 at 2000x2000 needs "));
+  // 2200^2: the image's buffers take about 880 MiB; the octree at 512^3 160 MiB more does not
+  // fit, at 256^3 (40 MiB) it does.
+  const std::string m = check_message(device, 2200, 512, true);
+  EXPECT_TRUE(Contains(m, "--gi-volume svo --voxels 512 at 2200x2200 needs "));
   EXPECT_TRUE(Contains(m, " MiB of device memory (the image's buffers "));
-  EXPECT_TRUE(Contains(m, "the octree 256 MiB"));
+  EXPECT_TRUE(Contains(m, "the octree 160 MiB"));
   EXPECT_TRUE(Contains(m, "the device has 1024 MiB"));
   EXPECT_TRUE(Contains(m, "the largest --voxels that fits at this size is 256 (--voxels 256)"));
   const uint32_t side = app::largest_square_that_fits(device.global_mem_bytes,
@@ -58,7 +58,7 @@ TEST(MemoryCheck, OctreeTooLargeAtThisSizeNamesTheLargestVoxelsThatFit) {
   ASSERT_GT(side, 0u);
   EXPECT_TRUE(Contains(m, "or at --voxels 512 the largest square size is about " +
                               std::to_string(side) + " (--size " + std::to_string(side) + ")"));
-  EXPECT_EQ(check_message(device, 2000, 256, true), "");
+  EXPECT_EQ(check_message(device, 2200, 256, true), "");
 }
 
 TEST(MemoryCheck, DenseVolumeTooLargeNamesTheLargestVoxelsThatFit) {
@@ -75,10 +75,10 @@ TEST(MemoryCheck, DenseVolumeTooLargeNamesTheLargestVoxelsThatFit) {
 }
 
 TEST(MemoryCheck, VolumeBufferAboveTheLargestAllocationNamesIt) {
-  // The octree's pools at 512^3 are one buffer of about 224 MiB: above a 128 MiB limit.
-  const std::string m = check_message(device_with(8192, 128), 64, 512, true);
-  EXPECT_TRUE(Contains(m, "--gi-volume svo --voxels 512 at 64x64 needs one buffer of 224 MiB "
-                          "for the octree's pools, the device allows at most 128 MiB per "
+  // The octree's fragment list at 512^3 is one buffer of about 80 MiB: above a 64 MiB limit.
+  const std::string m = check_message(device_with(8192, 64), 64, 512, true);
+  EXPECT_TRUE(Contains(m, "--gi-volume svo --voxels 512 at 64x64 needs one buffer of 80 MiB "
+                          "for the octree's fragment list, the device allows at most 64 MiB per "
                           "buffer; the largest --voxels that fits at this size is 256"));
 }
 
@@ -160,11 +160,11 @@ TEST(MemoryCheck, CliOctreeBeyondTheDeviceNamesVoxels) {
   if (!device_zero_is_pocl()) GTEST_SKIP() << "POCL_MEMORY_LIMIT needs PoCL as device 0";
   TempDir dir;
   const CommandResult r = run_rolypoly(
-      "render --gi-volume svo --voxels 512 --size 2000 --out " +
+      "render --gi-volume svo --voxels 512 --size 2200 --out " +
           shell_quote((dir / "out").string()),
       "POCL_MEMORY_LIMIT=1");
   EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_TRUE(Contains(r.err, "rolypoly: error: --gi-volume svo --voxels 512 at 2000x2000 needs "));
+  EXPECT_TRUE(Contains(r.err, "rolypoly: error: --gi-volume svo --voxels 512 at 2200x2200 needs "));
   EXPECT_TRUE(Contains(r.err, "the device has 1024 MiB; the largest --voxels that fits at this "
                               "size is 256 (--voxels 256)"));
   EXPECT_EQ(r.err.find("kernel"), std::string::npos) << r.err;
