@@ -1,4 +1,4 @@
-/* Bounce gather (issue 14: several bounces): the irradiance every face of the bounce grid
+/* Bounce gather (several bounces): the irradiance every face of the bounce grid
  * receives (layout and meaning: common/bounce.h), gathered by cone tracing the voxel chain the
  * frame has just built. The voxelizer adds albedo x this light to the voxels' radiance the next
  * time it runs, so the chain's light has bounced once more with every gather: the grid

@@ -130,7 +130,7 @@ inline void gb_uv_derivatives(rp_mat4 m, float4 p0, float4 p1, float4 p2, float 
  * then averages frames whose sample points move over the whole pixel, so each frame's texture
  * footprint should be narrower than the pixel or the average blurs twice. Measured against the
  * path tracer's pixel-averaged albedo (360, demo frame, anisotropic, 16 jittered frames
- * averaged): floor 36.7 dB at bias 0, 46.2 dB at -1 (bench --accuracy, issue 15 note). */
+ * averaged): floor 36.7 dB at bias 0, 46.2 dB at -1 (bench --accuracy). */
 
 /* Most taps of the anisotropic filter (the footprint's axis ratio is capped there). */
 #ifndef RP_TEXTURE_MAX_ANISO

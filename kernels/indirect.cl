@@ -1,4 +1,4 @@
-/* Indirect light at reduced resolution (the fast quality mode, issue 9): one cone per 4x4 pixel
+/* Indirect light at reduced resolution (the fast quality mode): one cone per 4x4 pixel
  * block per frame, a geometry-aware spatial filter over the 16 interleaved cone directions, and
  * temporal accumulation. The light pass upsamples the result (light.cl, light_compose).
  * Grid, sample pixel, cone and jitter choice, geometry weight, padded planar layout:

@@ -5,12 +5,12 @@
  *         + albedo * w_i * D(p, n) + E_spec(mu_o) * R(p, r)                (indirect, cone traced)
  *         + emission
  *
- * The surface model (issue 16, common/brdf.h; the GBuffer's emission.w carries the gloss code):
+ * The surface model (common/brdf.h; the GBuffer's emission.w carries the gloss code):
  * w_d the lamp's diffuse weight, spec = pi f_spec toward the view (lamp-widened GGX + Kulla-
  * Conty), E_spec(mu_o) the coat's albedo toward the view and w_i = 1 - E_spec(mu_o) (0 for a
  * metal). Matte pixels (code 0): w_d = w_i = 1, spec = E_spec = 0, the Lambertian pass as it
  * was. R(p, r) is the radiance arriving along the mirror direction r = reflect(-v, n) through
- * one cone as wide as the coat's lobe (common/spec_cone.h; issue 16 part 2): per pixel in
+ * one cone as wide as the coat's lobe (common/spec_cone.h): per pixel in
  * light_shade (quadrilinear, half-diameter steps), from the indirect pass's low-resolution
  * samples in light_compose (upsampled like D, this frame's cones only). For sharp coats
  * (roughness < 0.34) both modes first try a screen-space reflection (common/ssr.h; in
@@ -61,7 +61,7 @@
 #include "common/indirect_simd.h"
 #include "common/brdf.h"
 #include "common/spec_cone.h"
-/* The reference mode's screen-space reflections (light_shade; issue 16): the march of
+/* The reference mode's screen-space reflections (light_shade): the march of
  * common/ssr.h at level 0 only (the reference mode builds no min-Z pyramid), so every pixel the
  * ray crosses is tested, one pixel per step: enough steps to cross a 2048-pixel screen
  * diagonally; every ray is marched, also those turned towards the camera; the colour at a hit

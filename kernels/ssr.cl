@@ -1,4 +1,4 @@
-/* Screen-space reflections' min-Z pyramid (issue 16 part 2; layout and use in common/ssr.h).
+/* Screen-space reflections' min-Z pyramid (layout and use in common/ssr.h).
  * ssr_min_z: level k >= 1 from level k - 1, one cell per work-item: the smallest z01 of its
  * 2x2 children (children past the edge of an odd-sized level repeat the edge). src + src_off:
  * level k - 1 of src_w x src_h (the visibility buffer's depth for k = 1), dst + dst_off: level k

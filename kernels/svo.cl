@@ -1,4 +1,4 @@
-/* Sparse voxel octree build (issue 17, seed 001). Host side: src/passes/svo.cpp. Layout,
+/* Sparse voxel octree build (seed 001). Host side: src/passes/svo.cpp. Layout,
  * node and brick meaning: shared/svo_layout.h; reading: common/svo.h.
  *
  * Input: the voxelizer's fragment list at resolution R = 2^D (kernels/voxelize.cl built with

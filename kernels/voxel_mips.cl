@@ -8,7 +8,7 @@
  * l = 1 from the isotropic level 0 as a cone travelling along that direction sees it
  * (mips_facing: the voxelizer's facing coverage, shared/voxel_layout.h, makes each voxel
  * one-sided: opacity = the coverage of what faces the cone, radiance scaled alike), so a wall
- * is opaque to cones that look at its front and transparent to cones leaving it (issue 14: a
+ * is opaque to cones that look at its front and transparent to cones leaving it (a
  * cone never gathers the light of the surface it starts from).
  *
  * For direction d along axis A, the children form two slabs across A. The FRONT slab is the

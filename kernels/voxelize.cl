@@ -53,7 +53,7 @@
  * the whole sphere, its mean over all directions = 1/4 of the light at the point facing the
  * lamp (the mean of max(cos, 0) over a sphere; shadow looked up at that point).
  *
- * Coated surfaces (issue 16): "albedo" above is the material's or sphere's albedo times its
+ * Coated surfaces: "albedo" above is the material's or sphere's albedo times its
  * albedo.w, the layered base's weight 1 - E_spec_avg (shading::voxel_base_weight; 1 without a
  * coat and for metals): the base's diffuse outgoing radiance averaged over the directions the
  * cones look from. The coat's own reflection of the lamp is view dependent and is left out

@@ -37,7 +37,7 @@ inline constexpr uint32_t kFloorMaterial = 0, kCeilingMaterial = 1, kBackMateria
 inline constexpr uint32_t kWoodTexture = 0, kTumblerTexture = 1;
 inline constexpr int kTumblerCount = 5;
 
-// The demo's surfaces (issue 16; model in src/shading/brdf.h): every gloss of the scene is set
+// The demo's surfaces (model in src/shading/brdf.h): every gloss of the scene is set
 // here. Dielectric coats with F0 = ((n - 1) / (n + 1))^2: lacquer and varnish n ~ 1.5 (0.04),
 // glass n ~ 1.55 (0.046). Walls and ceiling stay matte (no coat).
 inline constexpr Specular kFloorSpecular{0.38f, 0.04f, false};    // varnished wood

@@ -65,7 +65,7 @@ struct Mesh {
   uint32_t proxy_max_shadow_texels = 0;
 };
 
-// The specular coat over a surface's Lambertian base (issue 16; the model and its formulas are
+// The specular coat over a surface's Lambertian base (the model and its formulas are
 // src/shading/brdf.h). The default is no coat: plain Lambert.
 struct Specular {
   float roughness = 1.0f;  // perceptual roughness in [0, 1]; GGX alpha = roughness^2

@@ -1,5 +1,5 @@
 // Input events stamped with the simulation step they apply at, and their record/replay log, so
-// a headless render reproduces an interactive session frame for frame (issue 3 item 6).
+// a headless render reproduces an interactive session frame for frame.
 //
 // Log format (text, one event per line, '#' comments and blank lines ignored):
 //   rolypoly-input 1

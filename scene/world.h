@@ -1,4 +1,4 @@
-// The simulated world (SPEC.md sections 3-5, issue 3): five tumblers, marbles (key S),
+// The simulated world (SPEC.md sections 3-5): five tumblers, marbles (key S),
 // fireballs (key F) and their particles, advanced by a fixed time step, deterministic for a
 // seed and a sequence of calls. It produces the FrameScene the renderer draws.
 //
@@ -37,7 +37,7 @@ struct WorldConfig {
 
 // Values and the reasons for them (tumbler mass and friction are in TumblerParams).
 namespace world_constants {
-inline constexpr int kMarbleCount = 30;            // SPEC / issue 3
+inline constexpr int kMarbleCount = 30;            // SPEC
 inline constexpr float kMarbleRadius = 0.04f;      // m: 8 cm marbles beside 60 cm tumblers
 inline constexpr float kMarbleMass = 0.005f;       // kg: a fast marble (5 m/s) tips a 0.25 kg
                                                    // tumbler by ~8 degrees: visible, not wild

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# libFuzzer runs (issue 8 item 5): builds fuzz/ with clang into build-fuzz/ and runs every target
+# libFuzzer runs: builds fuzz/ with clang into build-fuzz/ and runs every target
 # for SECONDS (default 30) from its seed corpus fuzz/corpus/<target>/.
 #
 #   bash tools/fuzz.sh [SECONDS] [TARGET...]     targets: input_log cli_devices cli gltf_loader

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs rolypoly on a GPU (issue 19): the kernel tests and the bench on the machine's NVIDIA GPU,
+# Runs rolypoly on a GPU: the kernel tests and the bench on the machine's NVIDIA GPU,
 # from binaries built elsewhere. Two steps:
 #
 #   bash tools/gpu_check.sh bundle [BUILD_DIR] [BUNDLE.tar.gz]

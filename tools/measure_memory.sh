@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Resident memory of a long headless render (issue 8 item 6): runs
+# Resident memory of a long headless render: runs
 #   rolypoly render --size 32 --frames N --marbles --fireball --out DIR [EXTRA ARGS...]
 # and samples VmRSS from /proc/PID/status every INTERVAL seconds together with the newest frame
 # written so far. DIR is a fresh folder on tmpfs (/dev/shm when it exists); every frame but the

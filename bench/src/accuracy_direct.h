@@ -1,9 +1,9 @@
-// The direct-light section of `rolypoly bench --accuracy` (issue 15): how close each shadow mode
+// The direct-light section of `rolypoly bench --accuracy`: how close each shadow mode
 // (RenderSettings::shadows) and the texture filter come to the area-lamp truth.
 //
 // Scene: the demo frame at rest plus two marbles at rest on the floor in front of the tumblers
 // (direct_frame), so there is a penumbra under a tumbler and under a marble; the indirect
-// section keeps the plain demo frame (issue 14's figures stay comparable).
+// section keeps the plain demo frame (so its figures stay comparable).
 // Truth: the path tracer with LampModel::kArea at 0 bounces (direct light + seen emission), at
 // the report's size, cached like the other truths; its own noise is stated (PSNR of two seeds).
 // Real time: per shadow mode, the fast mode at 1 bounce (the direct term does not depend on the

@@ -1,4 +1,4 @@
-// The marble section of `rolypoly bench --accuracy --marbles` (issue 17): how the GI volume
+// The marble section of `rolypoly bench --accuracy --marbles`: how the GI volume
 // treats marbles, which the plain demo frame of the main section has none of. At 64^3 a marble
 // (r 0.04) is under three voxels across, the cause of its contact leaks and over-darkening that
 // the octree (256^3, 512^3) is meant to cure.

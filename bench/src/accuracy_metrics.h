@@ -93,7 +93,7 @@ double tone_mapped_psnr(const std::vector<float>& a, const std::vector<float>& b
 // final image after TAA, which the renderer hands out only as RGBA8.
 double rgba8_psnr(const std::vector<uint8_t>& rgba, const std::vector<float>& radiance);
 
-// ---- The direct-light section (issue 15) ----
+// ---- The direct-light section ----
 
 // PSNR (dB, peak 1) of `a` against `truth` after multiplying both by `scale`, over the RGB
 // channels of the pixels where mask != 0 (1 byte per pixel); +inf when equal there, NaN when the

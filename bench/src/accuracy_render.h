@@ -59,7 +59,7 @@ inline double json_number(const nlohmann::json& v) {
 struct Images {
   std::string name;
   std::vector<float> combined, direct, indirect, albedo;
-  std::vector<float> specular;  // the coat's part of direct + indirect (issue 16)
+  std::vector<float> specular;  // the coat's part of direct + indirect
 };
 
 Images from_truth(const std::string& name, const truth::PathTracedImage& t);

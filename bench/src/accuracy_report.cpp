@@ -138,7 +138,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
                                         taa_rgba, options.many_bounces);
   const std::string n = std::to_string(options.many_bounces);
 
-  // The direct-light section (issue 15), on its own frame with marbles.
+  // The direct-light section, on its own frame with marbles.
   DirectOptions dopt;
   dopt.width = w;
   dopt.height = h;
@@ -150,7 +150,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   const DirectResult direct = measure_direct(common, assets, tracer, dopt);
   j["direct"] = direct.json;
 
-  // The marble section (issue 17), on its own frame, only when asked (--marbles).
+  // The marble section, on its own frame, only when asked (--marbles).
   MarbleResult marbles;
   if (options.marbles) {
     MarbleOptions mopt;

@@ -15,11 +15,11 @@
 // tone map, the direct component's error, the indirect component's relative L1 and bias over the
 // image and per named region (bench/src/accuracy_metrics.h), the hue of the indirect light arriving on
 // each side wall, the leak / missing pixel counts, and the specular component (the coat's part
-// of direct + indirect, issue 16: relative L1 and bias over the image, the floor and the
-// tumblers). Then the direct-light section (issue 15,
-// bench/src/accuracy_direct.h): every shadow mode's direct component against the area-lamp truth,
-// penumbra widths, the albedo view. With `marbles` (--marbles), the marble section (issue 17,
-// bench/src/accuracy_marbles.h): a second frame with 16 marbles at rest, fast/N and ref/N
+// of direct + indirect: relative L1 and bias over the image, the floor and the
+// tumblers). Then the direct-light section
+// (bench/src/accuracy_direct.h): every shadow mode's direct component against the area-lamp truth,
+// penumbra widths, the albedo view. With `marbles` (--marbles), the marble section
+// (bench/src/accuracy_marbles.h): a second frame with 16 marbles at rest, fast/N and ref/N
 // against its many-bounce truth, per region (marbles and the floor beside them included);
 // the main section's frame, regions and figures stay as without it. Writes a JSON (schema rolypoly-accuracy/4: /3 plus
 // "specular" per configuration, and "marbles" only with --marbles; /3 was /2 plus "direct";

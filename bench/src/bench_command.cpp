@@ -20,7 +20,7 @@
 #include "render/renderer.h"
 #include "scene/demo_scene.h"
 
-// The efficiency columns (issue 7 item 3) need the work counts and the peak probe; built without
+// The efficiency columns need the work counts and the peak probe; built without
 // them the bench reports times only.
 #if __has_include("bench/src/pass_work.h") && __has_include("bench/src/peak_probe.h")
 #include "bench/src/pass_work.h"

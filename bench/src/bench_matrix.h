@@ -47,7 +47,7 @@ struct RunResult {
   // svo only (0 otherwise): the octree path's device memory after the last frame and its peak
   // (pools + build scratch, CL_MEM_SIZE), the pools alone, in bytes
   uint64_t octree_device_bytes = 0, octree_peak_bytes = 0, octree_pool_bytes = 0;
-  // Of the octree (issue 31): the node pool, the brick pool (table + own samples) in use, the
+  // Of the octree: the node pool, the brick pool (table + own samples) in use, the
   // fragments and the fragment list's bytes.
   uint64_t octree_node_bytes = 0, octree_brick_bytes = 0, octree_fragments = 0,
            octree_fragment_bytes = 0;
@@ -125,7 +125,7 @@ struct BenchMatrix {
   std::string scene;       // "default", "busy" or "file" (then `file` says which)
   std::optional<SceneFileFacts> file;
   uint64_t seed = 1;
-  // --bounces of the real-time modes (1 = single bounce); files from before issue 14 have no
+  // --bounces of the real-time modes (1 = single bounce); older files have no
   // field and read as 1, the only count the renderer had then.
   uint32_t bounces = 1;
   uint32_t frames = 0, warmup = 0;

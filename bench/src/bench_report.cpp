@@ -94,7 +94,7 @@ RunResult parse_run(const Json& j) {
   r.voxels = j.at("voxels");
   r.frames = j.at("frames");
   r.timing = j.value("timing", std::string("device"));
-  r.gi_volume = j.value("gi_volume", std::string("dense"));  // files before issue 17: dense
+  r.gi_volume = j.value("gi_volume", std::string("dense"));  // older files: dense
   r.render_scale = j.value("render_scale", 1.0f);  // files before the render scale: 1
   r.render_width = j.contains("render_size") ? j.at("render_size").at(0).get<uint32_t>() : r.width;
   r.render_height = j.contains("render_size") ? j.at("render_size").at(1).get<uint32_t>() : r.height;

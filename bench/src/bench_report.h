@@ -1,6 +1,6 @@
 // Bench output: the human-readable timing tables and the JSON document (schema
 // "rolypoly-bench/3" for the device x size x voxels matrix, documented in README.md; keep it
-// stable, add a new schema id to change it). /3 (issue 19) added the timing method, the
+// stable, add a new schema id to change it). /3 added the timing method, the
 // bandwidth levels and the per-pass footprint and ceiling, and measures bandwidth_fraction
 // against the pass's cache-aware ceiling; a fraction the model would put above 1 is null.
 #pragma once

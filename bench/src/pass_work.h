@@ -50,7 +50,7 @@ struct BandwidthLevel {
   double gbps = 0;
 };
 
-// Work done and the share of the ceiling it reached (issue 7 item 3, issue 19). Fractions:
+// Work done and the share of the ceiling it reached. Fractions:
 // 0 = not counted (pass not modelled, no time, or the device's peak not measured); NaN = the
 // model would put the pass above its ceiling (a work bound too loose or bytes served from a
 // closer level than the footprint implies): the model cannot be right there, so no figure is

@@ -128,7 +128,7 @@ QualityReport measure_quality(const CommonOptions& fast, const CommonOptions& re
   return report;
 }
 
-// Issue 9's quality criteria at the bench size: both quality modes render the static demo and
+// The fast mode's quality criteria at the bench size: both quality modes render the static demo and
 // the busy animation; prints the figures and the pass/fail of each threshold, and writes them
 // as JSON with --json.
 // With --render-scale below 1 or --target-ms, the fast mode as given against the fast mode at

@@ -1,6 +1,6 @@
 // How close the fast quality mode (reduced-resolution, temporally accumulated indirect light)
 // comes to the reference mode (16 cones per pixel at full resolution, no temporal reuse):
-// issue 9's criteria, measured on final 8-bit images rendered through RenderSession.
+// the fast mode's quality criteria, measured on final 8-bit images rendered through RenderSession.
 //   static:  the demo at rest (scene::make_demo_frame, camera and scene still, frame_index
 //            counting up so TAA jitter, shadow noise and the fast mode's interleaving rotate);
 //            PSNR of the last frame (TAA converged), fast against reference; and the flicker

@@ -1,4 +1,4 @@
-/* The bounce grid (issue 14: several bounces): the indirect light the voxels receive, so that
+/* The bounce grid (several bounces): the indirect light the voxels receive, so that
  * the voxelizer can add it to their radiance and the cones gather light that has bounced more
  * than once. Written by kernels/bounce.cl, read by kernels/voxelize.cl (OpenCL C only).
  *

@@ -1,4 +1,4 @@
-/* The surface model on the device (issue 16): GGX specular coat with Kulla-Conty multiple
+/* The surface model on the device: GGX specular coat with Kulla-Conty multiple
  * scattering over an energy-conserving Lambertian base. The formulas, their sources and the
  * units are in src/shading/brdf.h (the C++ reference the tests hold this against); the table
  * layout and the per-pixel gloss code in shared/brdf_layout.h. OpenCL C only; eight pixels at
@@ -9,9 +9,9 @@
  *   specular        pi (D Vis F + f_ms)  (rolypoly's units: the lamp's radiance is this times
  *                   I * cos / (d^2 + a^2) * falloff * shadow, as albedo is for the diffuse)
  *   view albedo     E_spec(mu_o): the coat's share of light uniform over the hemisphere (the
- *                   indirect light's split until part 2's reflection cone)
+ *                   indirect light's split until the reflection cone)
  * Lanes with gloss code 0 (no coat) get w_d = 1 and nothing else, so matte surfaces shade as
- * before issue 16.
+ * before the coats existed.
  *
  * The lamp's size widens the single-scattering lobe (the lamp is a disk of radius a at distance
  * d, so the light direction spans an angle ~a / d and the half vector half that, w = a / 2d):
@@ -79,7 +79,7 @@ inline void rp_brdf_coat8(float8 f0, float8 eo, float8 so, float8 ei, float8 si,
   *spec_avg = f0 * (e_avg - s_avg) + s_avg + (1.0f - e_avg) * *f_add;
 }
 
-/* Specular cone aperture (issue 16 part 2): tan of the half-angle of the cone that stands for
+/* Specular cone aperture: tan of the half-angle of the cone that stands for
  * the coat's reflection lobe at roughness `rough` (GGX alpha = rough^2). GGX D falls to half
  * its peak at tan(theta_h) = alpha sqrt(sqrt 2 - 1) = 0.6436 alpha (D ~ 1 / (alpha^2 +
  * tan^2 theta_h)^2 near the peak); the reflected direction turns by twice the half vector's

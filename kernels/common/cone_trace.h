@@ -55,7 +55,7 @@
  * The result is (c, A): c the radiance arriving along the cone (mean over its cross-section),
  * A its occlusion.
  *
- * Issue 14 (measured with bench --accuracy against the path tracer, 360x360): level 1 is built
+ * Measured with bench --accuracy against the path tracer (360x360): level 1 is built
  * from one-sided (facing) voxels (voxel_mips.cl), so cones leaving a wall do not see it; a cone
  * that leaves the box takes the wall it leaves through (rp_cone_exit); and the diffuse estimate
  * is scaled by the near-field occlusion at the apex (rp_cone_near_occlusion). Together: fast
@@ -85,7 +85,7 @@
  * rp_cone_diffuse16 traces all 16 with quarter-diameter steps (the reference mode, per pixel);
  * the fast mode (kernels/indirect.cl) traces one cone of the set per low-resolution pixel.
  *
- * The GI volume (issue 17). Everything above reads the volume through three functions:
+ * The GI volume. Everything above reads the volume through three functions:
  * rp_cone_volume (trilinear sample of one volume: a level and direction), rp_cone_directional
  * (the three facing volumes of a level, rows behind the apex empty) and rp_cone_fetch (one
  * voxel). By default they read the dense chain; built with -DRP_GI_SVO, `voxels` is the sparse
@@ -480,7 +480,7 @@ inline float4 rp_cone_trace_coarse(__global const float4* voxels, uint resolutio
   return acc;
 }
 
-/* Specular cones (issue 16 part 2): one cone of any aperture, tan_half = tan of its half-angle
+/* Specular cones: one cone of any aperture, tan_half = tan of its half-angle
  * (the caller maps the coat's roughness to it: common/brdf.h, rp_brdf_spec_cone_tan), from
  * `origin` (its apex) along unit `dir`. The diameter at distance t is
  * d(t) = max(2 t tan_half, v0): a cone thinner than one level-0 voxel samples level 0 (the

@@ -1,4 +1,4 @@
-/* Reduced-resolution indirect light (the fast quality mode, issue 9), shared by the indirect
+/* Reduced-resolution indirect light (the fast quality mode), shared by the indirect
  * pass (kernels/indirect.cl: trace, filter + accumulate) and the light pass's upsampling
  * (kernels/light.cl, light_compose). OpenCL C only.
  *

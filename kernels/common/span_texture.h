@@ -4,7 +4,7 @@
  * level; render/texture_mips.h): a tap is one 4-byte load and its rgb goes through the exact
  * 256-entry sRGB table (common/colour.h RP_SRGB8_TO_LINEAR), so the values are those of
  * rp_unpack_rgba8_srgb, bit for bit, and the filtering is vector arithmetic across the span.
- * (Until issue 15's budget work each pass kept a linear float4 copy, decoded once: 16 bytes a
+ * (Each pass once kept a linear float4 copy, decoded once: 16 bytes a
  * texel, 8 MiB per pass for the demo's textures. Per-tap decoding measured the same time on
  * the busy 720 frame and saves that memory and the decode kernels.) */
 #ifndef ROLYPOLY_COMMON_SPAN_TEXTURE_H

@@ -1,4 +1,4 @@
-/* The specular indirect light's cone (issue 16 part 2), shared by the light pass's reference
+/* The specular indirect light's cone, shared by the light pass's reference
  * mode (kernels/light.cl, light_shade: per pixel) and the fast mode's low-resolution trace
  * (kernels/indirect.cl, indirect_trace: one per 4x4 block). OpenCL C only.
  *

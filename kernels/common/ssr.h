@@ -1,4 +1,4 @@
-/* Screen-space reflections (issue 16 part 2, seed 003: a hierarchical min-Z depth march), used
+/* Screen-space reflections (seed 003: a hierarchical min-Z depth march), used
  * by the fast mode's low-resolution trace (kernels/indirect.cl) and by the reference mode per
  * pixel (kernels/light.cl, light_shade) for the sharp coats; the reflection cone
  * (common/spec_cone.h) is the fallback and is blended in where the screen has no answer.

@@ -1,4 +1,4 @@
-/* Layout of the sparse voxel octree (issue 17, seed 001), shared by host and kernels. The
+/* Layout of the sparse voxel octree (seed 001), shared by host and kernels. The
  * octree stores the SAME values as the dense chain of shared/voxel_layout.h (level 0
  * isotropic, levels >= 1 six directional volumes, x-fastest voxel coordinates, box [-1,1]^3),
  * but only where something is, in 3^3 bricks that a trilinear lookup reads without touching a

@@ -194,7 +194,7 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
          "(default: mipmaps, level from the pixel's footprint) or anisotropic (up to 4 "
          "trilinear taps along the footprint's long axis: sharper at grazing angles)")
       ->check(CLI::IsMember({"bilinear", "trilinear", "anisotropic"}));
-  // --shadows (issue 15): the light pass's shadow filter; key H cycles it in the window.
+  // --shadows: the light pass's shadow filter; key H cycles it in the window.
   cmd->add_option_function<std::string>(
          "--shadows",
          [&common](const std::string& name) {
@@ -614,7 +614,7 @@ CliParse parse_cli(int argc, const char* const* argv) {
   bench->add_flag("--quality-report", bench_opts.quality_report,
                   "measure how close the fast quality mode comes to the reference mode at the "
                   "bench size: PSNR on the static demo after TAA converged, per frame on the "
-                  "busy animation, and the flicker of both (issue 9's criteria)");
+                  "busy animation, and the flicker of both");
   bench->add_flag("--accuracy", bench_opts.accuracy,
                   "hold the fast and reference modes against the path-traced truth of the demo "
                   "frame or the --scene file's (cached on disk): each at 64 bounces against the 64-bounce truth and at "

@@ -65,9 +65,9 @@ struct BenchOptions {
   // Thresholds (exit 3 when missed; bench/src/accuracy_report.h): fractions, PSNR in dB.
   std::optional<double> max_indirect_l1, max_indirect_bias, max_region_bias;
   std::optional<double> max_indirect_l1_single, min_psnr_taa;
-  std::optional<double> min_direct_psnr_floor, max_penumbra_error, min_albedo_psnr;  // issue 15
+  std::optional<double> min_direct_psnr_floor, max_penumbra_error, min_albedo_psnr;
   bool require_wall_hue = false;
-  // The matrix (issue 7): every device x size x voxel resolution.
+  // The matrix: every device x size x voxel resolution.
   std::string devices;           // --devices all|LIST ("" = the one --device, or the default)
   std::vector<uint32_t> sizes;   // --sizes: square sizes (empty = `size`)
   std::vector<uint32_t> voxels;  // --voxels: resolutions (empty = the renderer's default)

@@ -40,7 +40,7 @@ struct CommonOptions {
   std::string scene = "demo";  // --scene (render): "demo" or a glTF 2.0 file (app/scene_input.h)
   uint32_t shadow_size = 0;  // --shadow-size: shadow map texels per side (0 = renderer default)
   uint32_t voxels = 0;       // --voxels: GI volume voxels per side (0 = renderer default, 64)
-  render::GiVolume gi_volume = render::GiVolume::kDense;  // --gi-volume dense|svo (issue 17)
+  render::GiVolume gi_volume = render::GiVolume::kDense;  // --gi-volume dense|svo
   static constexpr uint32_t kDefaultSvoVoxels = 256;  // --gi-volume svo without --voxels
   render::Effects effects;   // --no-taa, --no-bloom, --no-motion-blur, --bloom-strength
   passes::DebugViewSettings view;  // --view / --level / --dir (render, run): what is shown
@@ -55,7 +55,7 @@ struct CommonOptions {
   // render::RenderSettings::bounces (1..1000: 1 = single bounce, >= 2 = multi-bounce, which
   // converges to all bounces). Default 64, "all bounces", in every mode.
   uint32_t bounces = render::RenderSettings::kDefaultBounces;
-  // Issue 15: --shadows and --texture-filter (bench --accuracy loops over the shadow modes).
+  // --shadows and --texture-filter (bench --accuracy loops over the shadow modes).
   render::ShadowMode shadows = render::RenderSettings{}.shadows;
   render::TextureFilter texture_filter = render::RenderSettings{}.texture_filter;
   float render_scale = 1.0f;  // --render-scale (render::RenderSettings::render_scale)

@@ -18,7 +18,7 @@ namespace {
 using io::Fnv1a;
 
 const char* const kLayers[] = {"", "direct", "indirect", "emission", "albedo", "specular"};
-constexpr int kLayerCount = 6;  // an entry without the specular layer (before issue 16 part 2)
+constexpr int kLayerCount = 6;  // an entry without the specular layer (older)
                                 // does not load and is rendered anew
 
 std::vector<float>* layer(truth::PathTracedImage& img, int i) {
@@ -74,7 +74,7 @@ std::string truth_key(const scene::SceneAssets& assets, const scene::FrameScene&
     h.bytes(m.triangles.data(), m.triangles.size() * sizeof(glm::uvec3));
     h.bytes(m.materials.data(), m.materials.size() * sizeof(uint32_t));
   }
-  // The surface model (issue 16): a coated surface adds its coat and the model's name, so a
+  // The surface model: a coated surface adds its coat and the model's name, so a
   // scene of matte surfaces keeps its key; a change to the model's formulas must rename it.
   auto coat = [&h](const scene::Specular& sp) {
     if (!sp.metal && !(sp.f0 > 0.0f)) return;

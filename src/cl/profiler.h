@@ -24,7 +24,7 @@ inline size_t round_up(size_t n, size_t local) { return (n + local - 1) / local 
 
 // Milliseconds per pass name for one frame (sum over the pass's launches), in name order.
 // The part of std::map<std::string, double>'s interface the app and tests use, stored inline:
-// a frame's times cost no heap allocation (issue 8.6), as long as pass names stay within
+// a frame's times cost no heap allocation, as long as pass names stay within
 // std::string's short-string buffer (15 characters in libstdc++). At most kCapacity passes;
 // one more throws std::length_error.
 class PassTimes {

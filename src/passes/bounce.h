@@ -1,4 +1,4 @@
-// Bounce pass (issue 14: several bounces): gathers, by cone tracing the frame's voxel chain,
+// Bounce pass (several bounces): gathers, by cone tracing the frame's voxel chain,
 // the irradiance that a coarse grid of cells receives (kernels/bounce.cl; layout and lookup in
 // kernels/common/bounce.h). The voxelizer adds albedo x that light to the voxels' radiance the
 // next time it runs, so every gather adds a bounce and the grid converges to all bounces.

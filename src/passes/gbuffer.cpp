@@ -15,7 +15,7 @@ constexpr size_t kGroup = 16;
 
 // Pixels per work-item: the CPU's native float vector width (rp::cl::cpu_span_lanes: spans map
 // onto PoCL's SIMD code), 1 on GPUs. Measured on the 2-core AVX-512 EPYC, busy 720: before the
-// texture footprint (issue 15) 8 was best (3.6 ms against 4.2 ms with 16, 6.5 ms with 4); the
+// texture footprint 8 was best (3.6 ms against 4.2 ms with 16, 6.5 ms with 4); the
 // footprint's per-primitive set-up (gb_uv_derivatives) and the trilinear taps made 16 the better
 // choice there: 8.9 against 11.0 CPU ms a frame (perf cpu-clock samples, both threads; 15.0
 // with 4). On the 2-core AVX2 EPYC 8 is: 32.1 against 42.3 CPU ms.

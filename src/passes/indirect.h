@@ -1,7 +1,7 @@
-// Indirect light at reduced resolution (the fast quality mode, issue 9; kernels/indirect.cl):
+// Indirect light at reduced resolution (the fast quality mode; kernels/indirect.cl):
 // one cone of the 16-cone set per 4x4 pixel block per frame (directions interleaved over the
 // blocks, rotated per frame), a geometry-aware spatial filter, and temporal accumulation; on
-// coated surfaces also one reflection cone per block (issue 16 part 2, not accumulated). The
+// coated surfaces also one reflection cone per block (not accumulated). The
 // light pass upsamples the result (LightPass::run with a LowResIndirect). Pass names
 // "indirect_trace" and "indirect_filter".
 #pragma once

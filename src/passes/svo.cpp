@@ -87,7 +87,7 @@ void SvoPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   }
   // The voxelizer's static surface cache costs 64 bytes a cached room sample: 36 MiB at 256^3
   // on the demo, 145 MiB at 512^3, where the octree and its build scratch took 251 MiB of the
-  // 256 MB budget (issue 17; 97 MiB since issue 31, 142 MiB on the atrium). So from 512^3 on
+  // 256 MB budget (now 97 MiB, 142 MiB on the atrium). So from 512^3 on
   // the room is voxelized every frame like the moving objects (the same fragments; the cost:
   // bench/results/epyc-2core-pocl-svo2.md).
   voxelize_->set_cache_limit(resolution >= 512 ? 0 : UINT64_MAX);

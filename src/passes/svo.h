@@ -1,4 +1,4 @@
-// Sparse voxel octree pass (issue 17, seed 001): the frame's fragment list at the octree's
+// Sparse voxel octree pass (seed 001): the frame's fragment list at the octree's
 // resolution (the voxelizer in fragment mode), then the octree built top-down level by level
 // (flags, prefix-sum allocation), leaf injection, the bottom-up anisotropic mips and the
 // border transfer (kernels/svo.cl). Pass names: "voxelize" (the fragments), "svo_nodes" (the

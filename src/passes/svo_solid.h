@@ -1,4 +1,4 @@
-// Solid occupancy of the closed objects for the octree's coarse cone samples (issue 17).
+// Solid occupancy of the closed objects for the octree's coarse cone samples.
 //
 // The voxelizer writes surfaces: at 256^3 and 512^3 a tumbler (51 / 102 voxels across) is a
 // hollow shell one voxel thick, and from level 2 on a cone's trilinear samples mix that shell

@@ -59,7 +59,7 @@ uint32_t gpu_wrap(scene::TextureWrap wrap) {
 // textures, which the gbuffer and voxelize kernels read directly, decoding per tap). A texture
 // too large for that failed only at clCreateBuffer, after 45 s and 12 GiB of host memory spent
 // on mip chains, and the renderer's out-of-memory message then named the frame size ("a 16x16
-// image"). (Until issue 15's budget work both passes also kept a linear float4 copy, 16 bytes a
+// image"). (Both passes once also kept a linear float4 copy, 16 bytes a
 // texel each.)
 void check_texture_memory(const std::vector<scene::Texture>& textures, uint64_t max_alloc,
                           uint64_t global) {

@@ -60,7 +60,7 @@ struct Effects {
 // the shadow map is rasterized with either.
 enum class VisibilityBackend { kRaster, kEmbree };
 
-// How indirect (cone traced) light is computed (issue 9):
+// How indirect (cone traced) light is computed:
 //   kFast:      the real-time default: cones traced at reduced resolution with interleaved
 //               directions, filtered spatially and accumulated over frames, upsampled with
 //               depth- and normal-aware weights.
@@ -69,7 +69,7 @@ enum class VisibilityBackend { kRaster, kEmbree };
 //               measured against.
 enum class Quality { kFast, kReference };
 
-// Which volume holds the voxels the cones trace (issue 17, --gi-volume):
+// Which volume holds the voxels the cones trace (--gi-volume):
 //   kDense: the dense anisotropic mip chain (render/voxel_volume.h), 32^3 .. 128^3;
 //   kSvo:   the sparse voxel octree of seed 001 (render/svo_volume.h, passes/svo.h), 256^3 or
 //           512^3: the same values where it has nodes, memory for the surfaces only.
@@ -82,7 +82,7 @@ std::optional<GiVolume> parse_gi_volume(std::string_view name);
 // two 2..1024 (the app: 256, 512; tests smaller).
 bool gi_resolution_supported(GiVolume volume, uint32_t resolution);
 
-// How the lamp's shadow is filtered (issue 15, --shadows). The lamp is a half sphere of radius
+// How the lamp's shadow is filtered (--shadows). The lamp is a half sphere of radius
 // 0.35, so real shadows are soft: their penumbra widens with the blocker-receiver distance.
 //   kHard: one shadow-map tap per pixel (a point lamp's hard shadow);
 //   kPcf:  percentage-closer filtering over a fixed radius (soft edges of one width);
@@ -96,7 +96,7 @@ std::optional<ShadowMode> parse_shadow_mode(std::string_view name);
 // The next mode in the order above, wrapping (key H).
 ShadowMode next_shadow_mode(ShadowMode mode);
 
-// How surface textures are sampled (issue 15, --texture-filter; default kTrilinear: kAnisotropic
+// How surface textures are sampled (--texture-filter; default kTrilinear: kAnisotropic
 // is closer to the path tracer's pixel-averaged albedo but costs 1.2 ms more at 720 busy, past
 // the 33 ms budget): kBilinear: the base level only
 // (aliases when minified); kTrilinear: mipmaps, level from the pixel's UV footprint;
@@ -120,7 +120,7 @@ struct RenderSettings {
   uint32_t shadow_size = 1024;  // shadow map texels per side
   uint32_t voxel_resolution = 64;  // GI volume: voxels per side over the box (dense: 32, 64 or
                                    // 128; svo: 256 or 512)
-  GiVolume gi_volume = GiVolume::kDense;  // --gi-volume dense|svo (issue 17)
+  GiVolume gi_volume = GiVolume::kDense;  // --gi-volume dense|svo
   Effects effects;
   VisibilityBackend visibility = VisibilityBackend::kRaster;  // --visibility raster|embree
   Quality quality = Quality::kFast;  // --quality fast|reference
@@ -129,8 +129,8 @@ struct RenderSettings {
   // receive (passes/bounce.h), which converges to all bounces (the truth at 64).
   uint32_t bounces = kDefaultBounces;
   static constexpr uint32_t kDefaultBounces = 64;
-  ShadowMode shadows = ShadowMode::kPcss;                  // --shadows (issue 15)
-  TextureFilter texture_filter = TextureFilter::kTrilinear;  // --texture-filter (issue 15)
+  ShadowMode shadows = ShadowMode::kPcss;                  // --shadows
+  TextureFilter texture_filter = TextureFilter::kTrilinear;  // --texture-filter
   // --render-scale: render pixels per output pixel along each axis, in [kMinRenderScale, 1].
   // Below 1 the final view renders visibility, GBuffer, light and the screen-space passes at
   // the scaled size and temporal upsampling (passes/taa_upsample.h) reconstructs the output
@@ -290,7 +290,7 @@ class Renderer {
   SvoVolume svo_;                       // kSvo
   std::unique_ptr<passes::SvoPass> svo_pass_;  // kSvo
   ::cl::Buffer hdr_;    // float4 per pixel: the light pass's output
-  // The reference mode's screen-space reflections (issue 16): the previous frame's hdr_, copied
+  // The reference mode's screen-space reflections: the previous frame's hdr_, copied
   // before the light pass overwrites it (float4 per pixel; not allocated in the fast mode, whose
   // indirect pass reads hdr_ before the light pass), and whether it holds that frame (not after
   // a start, resize, reset or camera cut).

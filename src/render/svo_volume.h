@@ -1,4 +1,4 @@
-// The sparse voxel octree on the device (issue 17): one buffer with header, node pool, brick
+// The sparse voxel octree on the device: one buffer with header, node pool, brick
 // table and sample pool (kernels/shared/svo_layout.h), handed to the cone tracer in place of the
 // dense chain, plus what the last build measured. Built by passes::SvoPass.
 #pragma once

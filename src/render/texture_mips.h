@@ -1,4 +1,4 @@
-// Mip chains of the scene's textures, built once at load on the host (issue 15).
+// Mip chains of the scene's textures, built once at load on the host.
 //
 // Level k of a W x H texture is max(1, W >> k) x max(1, H >> k) texels (the OpenGL / D3D
 // size rule, so a texel of every level covers the same uv rectangle fraction: level k's texel

@@ -1,4 +1,4 @@
-// The surface model (issue 16): a GGX microfacet specular coat with Kulla-Conty multiple
+// The surface model: a GGX microfacet specular coat with Kulla-Conty multiple
 // scattering over a Lambertian base. C++ reference of kernels/common/brdf.h (same formulas, same
 // table lookup), used by the path tracer (truth/), the renderer (the tables it uploads) and the
 // tests. Physical units: f is in 1/sr; rolypoly's light units put a pi in front (DESIGN.md
@@ -8,7 +8,7 @@
 // Parameters (scene::Specular): roughness r in [0, 1] (perceptual), GGX alpha = r^2 (clamped to
 // kMinAlpha); f0 = the dielectric coat's reflectance at normal incidence (((n - 1) / (n + 1))^2,
 // 0.04 for n = 1.5), or for a metal (metal = true) F0 = the albedo colour and no diffuse base.
-// f0 = 0 and not metal: no coat, plain Lambert (the walls), bit for bit as before issue 16.
+// f0 = 0 and not metal: no coat, plain Lambert (the walls), bit for bit as before coats.
 //
 // With mu_o = n.v, mu_i = n.l, h = normalize(v + l), alpha = r^2:
 //   D(h)      = alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2)                      (GGX)
@@ -82,7 +82,7 @@ inline float schlick_weight(float v_dot_h) {
 inline glm::vec3 fresnel_avg(glm::vec3 f0) { return f0 + (1.0f - f0) * (1.0f / 21.0f); }
 
 // Tan of the half-angle of the reflection cone that stands for the GGX lobe at `roughness`
-// (issue 16 part 2; kernels/common/brdf.h, rp_brdf_spec_cone_tan, has the derivation): the
+// (kernels/common/brdf.h, rp_brdf_spec_cone_tan, has the derivation): the
 // reflected lobe's half width at half maximum, 2 atan(0.6436 alpha) (GGX D halves at
 // tan(theta_h) = alpha sqrt(sqrt 2 - 1)), clamped to [0.1, 1].
 inline constexpr float kSpecConeMinTan = 0.1f, kSpecConeMaxTan = 1.0f;

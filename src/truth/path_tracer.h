@@ -1,4 +1,4 @@
-// Ground truth (issue 13): an unbiased Monte Carlo path tracer of a scene::FrameScene on the
+// Ground truth: an unbiased Monte Carlo path tracer of a scene::FrameScene on the
 // host's cores with Embree, with exactly rolypoly's conventions, so that every real-time mode can
 // be held against it pixel by pixel (bench/src/accuracy_report.h).
 //
@@ -9,7 +9,7 @@
 //   surfaces  Lambertian, albedo = material albedo x bilinear texture (wrap, texel centres at
 //             +0.5, rows top to bottom, v up; sRGB decoded exactly), emission = material
 //             emission (meshes) or Sphere::emission. With a specular coat (Material::specular,
-//             Sphere::specular; issue 16) the BRDF of src/shading/brdf.h (GGX + Kulla-Conty over
+//             Sphere::specular) the BRDF of src/shading/brdf.h (GGX + Kulla-Conty over
 //             the weighted Lambertian base): the lamp and the sphere lights evaluate it
 //             (pi f in place of albedo below), gathers sample it (GGX visible normals or cosine,
 //             chosen by the coat's share of the reflected energy; MIS with the mixture's pdf). Shading normal: mesh vertex normals
@@ -21,7 +21,7 @@
 //             s (0.446 + 0.204 s) for s = clamp(l.y, 0, 1), V = 1 unless a shadow caster (an
 //             instance or sphere with casts_shadow) lies between p and the lamp centre. I is pi
 //             times a physical radiant intensity, so no 1/pi appears (DESIGN.md "Light units").
-//   lamp, area  (PathTraceSettings::lamp = LampModel::kArea, issue 15, the truth for soft
+//   lamp, area  (PathTraceSettings::lamp = LampModel::kArea, the truth for soft
 //             shadows) the lamp cap itself emits: the part below the ceiling y = 1 of the sphere
 //             of radius r = light.lamp_radius around light.position (truth::LampCap), a
 //             Lambertian emitter of constant radiance L_e = I / a^2, a^2 = r^2 - h^2 = 0.1125 for

@@ -138,7 +138,7 @@ TEST(AccuracyMetrics, HeatMapSigns) {
 }
 
 
-// ---- The direct section's measures (issue 15) ----
+// ---- The direct section's measures ----
 
 // A linear ramp from 0 at s = a to 1 at s = b (flat outside), sampled every `step`: its 10-90 %
 // width is 0.8 (b - a) wherever the samples fall, since the crossings are interpolated linearly.

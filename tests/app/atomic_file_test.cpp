@@ -1,6 +1,6 @@
 // io::write_file and the output path rules (src/io): whole files or none on a full disk,
 // devices and FIFOs written in place (never replaced), symlinks followed, directories and
-// sockets refused. Issue 18.
+// sockets refused.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Bad input (issue 8, item 4): each case gives one "rolypoly: error: ..." message, a non-zero
+// Bad input: each case gives one "rolypoly: error: ..." message, a non-zero
 // exit code and leaves no half-written file. Cases already covered elsewhere (unknown option,
 // unknown device, corrupt texture, kernel build failure, malformed replay, no ffmpeg) live in
 // cli_errors_test.cpp, renderer_cli_test.cpp and simulation_cli_test.cpp.

@@ -63,7 +63,7 @@ TEST(BenchCli, MatrixOfTwoSizesWritesJsonChartAndMarkdown) {
   EXPECT_TRUE(Contains(read_text(md), "| 16x16 | 32^3 |"));
 }
 
-// Issue 19: no efficiency figure above 100 % for any pass on this machine. The busy scene at
+// No efficiency figure above 100 % for any pass on this machine. The busy scene at
 // the sizes the issue found impossible figures at (gbuffer and bloom running out of cache at
 // 256 and 720), every effect on: every fraction is null (not shown) or within [0, 1], the
 // peak's bandwidth levels are measured, and the table shows no figure above 100 %.

@@ -60,7 +60,7 @@ TEST(CliErrors, UnknownDeviceListsTheDevices) {
   EXPECT_TRUE(files_with_suffix(dir / "out", ".png").empty());
 }
 
-// Issue 18: an index too large for size_t printed "stoul" (exit 1); a large index that fits
+// An index too large for size_t printed "stoul" (exit 1); a large index that fits
 // is an unknown device like any other.
 TEST(CliErrors, HugeDeviceIndexNamesTheOption) {
   TempDir dir;
@@ -75,7 +75,7 @@ TEST(CliErrors, HugeDeviceIndexNamesTheOption) {
   EXPECT_TRUE(Contains(big.err, "no OpenCL device with index 123456789"));
 }
 
-// Issue 18: empty values were accepted silently (--record "" recorded nothing).
+// Empty values were once accepted silently (--record "" recorded nothing).
 TEST(CliErrors, EmptyValuesAreUsageErrors) {
   for (const char* args : {"render --voxels ''", "bench --json ''", "run --record ''",
                            "render --video ''", "render --out ''"}) {

@@ -111,7 +111,7 @@ TEST(ParseCli, UsageErrorsAndHelp) {
 }
 
 TEST(ParseCli, TextureFilterReachesTheCommonOptions) {
-  // The default is the renderer's (trilinear: anisotropic costs past the budget, issue 15).
+  // The default is the renderer's (trilinear: anisotropic costs past the budget).
   EXPECT_EQ(command({"render"}).common.texture_filter, render::RenderSettings{}.texture_filter);
   EXPECT_EQ(render::RenderSettings{}.texture_filter, render::TextureFilter::kTrilinear);
   EXPECT_EQ(command({"render", "--texture-filter", "bilinear"}).common.texture_filter,
@@ -287,7 +287,7 @@ TEST(ParseCli, HugeNumbersAreUsageErrorsWithoutOverflow) {
     EXPECT_EQ(exit_of({"render", "--size", digits}).exit_code, 2) << digits;
 }
 
-// Issue 18: every option that takes a value refuses an empty one (--voxels "" became 0, --json ""
+// Every option that takes a value refuses an empty one (--voxels "" became 0, --json ""
 // and --record "" wrote nothing, silently). The options come from each subcommand's help, so a
 // new option is covered without touching this test.
 TEST(ParseCli, EmptyValuesAreUsageErrors) {
@@ -320,7 +320,7 @@ TEST(ParseCli, EmptyValuesAreUsageErrors) {
   EXPECT_EQ(exit_of({"bench", "--voxels=32,,64"}).exit_code, 2);
 }
 
-// Issue 18: a device index beyond any device list is a usage error naming the option (it used
+// A device index beyond any device list is a usage error naming the option (it used
 // to reach std::stoul and print its bare message "stoul"); a plausible index or a name part
 // still parses (whether that device exists is checked once the devices are listed).
 TEST(ParseCli, HugeDeviceIndexIsAUsageError) {
@@ -342,7 +342,7 @@ TEST(ParseCli, HugeDeviceIndexIsAUsageError) {
 namespace rp::app {
 namespace {
 
-// --gi-volume (issue 17): dense by default; svo takes --voxels 256 or 512 (256 when not
+// --gi-volume: dense by default; svo takes --voxels 256 or 512 (256 when not
 // given, also as bench's list); mismatched resolutions and unknown volumes are usage errors
 // that say what to use.
 TEST(ParseCli, GiVolumeAndItsResolutions) {

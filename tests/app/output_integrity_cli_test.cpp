@@ -1,4 +1,4 @@
-// Issue 18, "nothing lost, nothing destroyed", through the binary: a full disk (injected with
+// "Nothing lost, nothing destroyed", through the binary: a full disk (injected with
 // ROLYPOLY_FAIL_WRITE_AFTER everywhere, real on a tiny tmpfs where root may mount one) stops
 // render, bench and run with the file and the reason, keeps complete files and leaves no partial
 // one; bench checks its outputs before measuring; devices, FIFOs and symlinks given as outputs

@@ -36,7 +36,7 @@ TEST(PassWork, EveryModelledPassIsPositiveAndFinite) {
   EXPECT_EQ(modelled_passes().size(), 10u);
 }
 
-// ---- cache-aware roofline (issue 19) -------------------------------------------------------
+// ---- cache-aware roofline -------------------------------------------------------
 const std::vector<BandwidthLevel> kLevels = {
     {32 << 10, 200.0}, {2 << 20, 150.0}, {16 << 20, 100.0}, {512 << 20, 30.0}};
 

@@ -1,4 +1,4 @@
-// Issue 18: PoCL's kernel cache folder. An unusable one (a path under a file, HOME without a
+// PoCL's kernel cache folder. An unusable one (a path under a file, HOME without a
 // cache, read-only) used to lose the device ("OpenCL platforms were found but none has a
 // device"); POCL_CACHE_DIR="" made PoCL abort (exit 134); every run left an empty
 // tempfile_XXXXXX (PoCL's writability probe) in the cache. `rolypoly devices` initialises PoCL

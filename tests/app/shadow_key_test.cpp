@@ -1,4 +1,4 @@
-// Issue 15: the `H` key cycles `run`'s shadow mode (hard, pcf, pcss, vssm, hard, ...), and the
+// The `H` key cycles `run`'s shadow mode (hard, pcf, pcss, vssm, hard, ...), and the
 // window title names the mode in use ("rolypoly | 4.1 fps | shadows pcss | ..."). Driven on a
 // private Xvfb with xdotool: start on pcss (the default), press H twice, read the title after
 // each press, then close the window with Esc.

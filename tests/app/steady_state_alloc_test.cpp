@@ -1,4 +1,4 @@
-// Issue 8.6: no per-frame host allocations after warm-up. Runs the app's frame loop in process
+// No per-frame host allocations after warm-up. Runs the app's frame loop in process
 // (SimulationFrameSource: input, World steps and fill_frame; RenderSession: Renderer::render and
 // the RGBA8 read-back, exactly what `rolypoly render` does per frame before writing the PNG)
 // and counts every C++ heap allocation (global operator new, all threads: alloc_counter.h) over

@@ -1,4 +1,4 @@
-// Issue 18: `render --video` with the real ffmpeg (the shell used to mangle its command line:
+// `render --video` with the real ffmpeg (the shell used to mangle its command line:
 // exit 141, no video), and failures that must leave no file: an unwritable folder, an ffmpeg
 // that cannot encode the container, and an ffmpeg that quits while frames are still coming.
 #include <gtest/gtest.h>

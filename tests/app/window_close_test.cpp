@@ -1,4 +1,4 @@
-// Issue 8.4, "the window closed mid-run": `rolypoly run --frames 0 --record` in a window on a
+// "The window closed mid-run": `rolypoly run --frames 0 --record` in a window on a
 // private Xvfb server is closed the way a window manager closes it (WM_DELETE_WINDOW, sent to
 // the window that xdotool finds), after it has shown frames for a while. Checks: exit code 0,
 // "window closed after N frames", the --record log is complete (N frame marks) and replays to

@@ -105,7 +105,7 @@ TEST(ConeAccuracy, SkippingRowsBehindTheApexHalvesTheErrorInACornellBox) {
     // Each point on its own: never much worse than the truth's own magnitude.
     EXPECT_LT(glm::length(skip - want), 0.7 * glm::length(want) + 0.05) << pt.name;
   }
-  // The rule on its own, as measured when it came: the tracer without issue 14's exit term and
+  // The rule on its own, as measured when it came: the tracer without the exit term and
   // near-field occlusion (two-sided voxels here too), which change the error for other reasons.
   // Measured when the rule was introduced (six 60-degree cones): skip 0.133, plain 0.276; with
   // the 16-cone set (21.8-degree cones, quarter-diameter steps): skip 0.103, plain 0.217.
@@ -117,7 +117,7 @@ TEST(ConeAccuracy, SkippingRowsBehindTheApexHalvesTheErrorInACornellBox) {
 // A lone lit floor: the true indirect light is zero. The normal cone sees nothing of it; the
 // tilted cones, whose footprints graze the floor at coarse levels, see it through the averaged
 // x/z volumes (2^-level of a coarse voxel): measured with the 16-cone set 0.16-0.21 with the
-// rule, 0.60-0.75 without (six 60-degree cones: 0.29 and 0.87). Without issue 14's exit term and
+// rule, 0.60-0.75 without (six 60-degree cones: 0.29 and 0.87). Without the exit term and
 // near-field occlusion, to measure the rule on its own (one-sided voxels would hide the floor
 // from its own cones altogether).
 TEST(ConeAccuracy, ALoneFloorSeesLittleOfItself) {

@@ -62,7 +62,7 @@ struct March {
   // `levels` samples, stops at opacity 0.9.
   bool coarse = false;
   double position_jitter = 0.0;
-  bool exit_term = true;  // false: a cone leaving the box just stops (before issue 14)
+  bool exit_term = true;  // false: a cone leaving the box just stops (the first tracer)
 };
 // What a cone from `origin` along unit `dir` sees where it leaves the box (rp_cone_exit): the
 // face it leaves through is the nearest of the three faces ahead of it (ties: x, then y, then
@@ -76,7 +76,7 @@ glm::dvec4 exit_sample(const Chain& c, const glm::dvec3& origin, const glm::dvec
 // has gathered (rp_cone_march, rp_cone_trace_coarse).
 glm::dvec4 trace(const Chain& c, const glm::dvec3& origin, const glm::dvec3& dir,
                  const March& march = {});
-// A cone of any aperture (rp_cone_trace_aperture, issue 16's reflection cone), tan_half the
+// A cone of any aperture (rp_cone_trace_aperture, the reflection cone), tan_half the
 // tan of its half-angle: diameter d(t) = max(2 t tan_half, d_min) (d_min one level-0 voxel, or
 // min_diameter voxels in the fast mode), first sample at t0 = 1.25 v0, sampled level
 // L = log2(d / v0); fine: quadrilinear at L, steps of d / 2 (opacity and radiance corrected to
@@ -98,7 +98,7 @@ constexpr double kNearOcclusion = 0.6;
 double near_occlusion(const Chain& c, const glm::dvec3& p, const glm::dvec3& n);
 // The 16 diffuse cones (quarter-diameter steps, quadrilinear) at surface point p with unit
 // normal n: their mean radiance = irradiance / pi, times 1 - near_occlusion(p, n). issue14 =
-// false leaves out the exit term and the near-field occlusion (the tracer before issue 14, for
+// false leaves out the exit term and the near-field occlusion (the first tracer, for
 // the tests that measure the rows-behind-the-apex rule on its own); the kernel has both.
 glm::dvec3 diffuse(const Chain& c, const glm::dvec3& p, const glm::dvec3& n,
                    bool skip_behind_apex = true, bool issue14 = true);

@@ -431,7 +431,7 @@ TEST(ConeTrace, OneConeMatchesReferenceTrace) {
   }
 }
 
-// The reflection cone of any aperture (rp_cone_trace_aperture, issue 16 part 2) against the
+// The reflection cone of any aperture (rp_cone_trace_aperture) against the
 // reference on random sparse chains: narrow cones (clamped to one voxel's diameter at first),
 // the demo's floor lobe (0.187), the diffuse width and a rough coat's, in both modes (fine:
 // quadrilinear half-diameter steps; fast: nearest level, full-diameter steps).
@@ -663,7 +663,7 @@ TEST(ConeTrace, DiffuseConeSetGeometry) {
   }
 }
 
-// A closed box whose walls radiate L (issue 14). The old premise here, "every voxel opaque L,
+// A closed box whose walls radiate L. The old premise here, "every voxel opaque L,
 // so every cone sees exactly L", no longer holds: with that chain the level-1 volumes facing n
 // are opaque at the apex, and the near-field occlusion scales the estimate by 1 - 0.6. What is
 // exactly true now, for one-sided walls (the outermost layer of level-0 voxels, opaque, each

@@ -502,7 +502,7 @@ TEST(Indirect, ComposeUpsamplesTheBlocksAndMatchesTheDirectTerm) {
   EXPECT_GE(lit, 40);
 }
 
-// The fast mode's reflection cones (issue 16 part 2) on the glossy fixture: indirect_trace's
+// The fast mode's reflection cones on the glossy fixture: indirect_trace's
 // specular planes against the C++ cone (nearest-level, full-diameter steps; tan from the roughness,
 // at least 0.1) from the sample pixel's apex along its mirror direction (no SSR: the pass runs
 // without SsrInputs), the odd checkerboard samples left as holes (-1), uncoated ones -2, the

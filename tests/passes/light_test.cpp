@@ -469,7 +469,7 @@ TEST(Light, GlossySurfacesMatchTheBrdfReference) {
   EXPECT_GT(specular[3 * 4 + 1], direct[3 * 4 + 1] * 0.5f);
 }
 
-// The specular indirect light of the reference mode (light_shade, issue 16 part 2) against its
+// The specular indirect light of the reference mode (light_shade) against its
 // C++ reference on a random 16^3 chain: indirect = albedo * w_i * cones16 + E_spec(mu_o) *
 // cone(r), r = reflect(-v, n), the cone's tan from the roughness (shading::spec_cone_tan),
 // quadrilinear half-diameter steps from the diffuse apex (cone_reference's trace_aperture);

@@ -1,4 +1,4 @@
-// Sparse voxel octree (issue 17): the octree built from the demo scene's fragments against a
+// Sparse voxel octree: the octree built from the demo scene's fragments against a
 // straightforward C++ reference of its definition (kernels/shared/svo_layout.h) and against the
 // dense volume built by the dense passes at the same resolution:
 //   - structure: per depth, the nodes with a brick are exactly those whose 27 samples hold an

@@ -1,4 +1,4 @@
-// TAA behaviour on a static scene (issue 5): a hard-edged disc rendered on the host with the
+// TAA behaviour on a static scene: a hard-edged disc rendered on the host with the
 // pass's own Halton jitter sequence (pixel p of frame k sees the scene at p - jitter_k, as the
 // jittered view_proj does), fed through the pass frame after frame. The output settles (the
 // difference between consecutive frames drops well below that of the raw jittered input within

@@ -1,4 +1,4 @@
-// Filtered textures (issue 15) against straightforward C++ references:
+// Filtered textures against straightforward C++ references:
 //   - the mip chain (render/texture_mips.h): level sizes, counts and offsets; every level of
 //     odd-sized textures against an explicit 2D area box filter of the previous level (in
 //     double, linear light); alpha linear; a hand-computed 2x1 case;

@@ -1,4 +1,4 @@
-// The voxelizer's texture level (issue 15): a triangle samples the mip level matching the voxel
+// The voxelizer's texture level: a triangle samples the mip level matching the voxel
 // size, lod = log2(voxel side * texels per world unit along the plane's most stretched
 // direction), trilinear. Checked on a floor triangle with a known texel density: the reference's
 // rule against hand-computed values (uniform, rotated and stretched uv), the device's lit voxels

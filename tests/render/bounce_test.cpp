@@ -1,4 +1,4 @@
-// The bounce grid (issue 14: several bounces, passes/bounce.h) in the full renderer on the
+// The bounce grid (several bounces, passes/bounce.h) in the full renderer on the
 // demo: with one bounce the voxels are exactly the no-bounce voxelizer's, a gathered but dark
 // grid adds nothing; with several bounces the gathered light converges and stays below the
 // geometric-series bound that albedos < 1 give.

@@ -1,4 +1,4 @@
-// Determinism of the whole app (issue 8 item 3): the same busy animation (30 marbles, a fireball
+// Determinism of the whole app: the same busy animation (30 marbles, a fireball
 // and its particles, a replayed mouse drag on the centre tumbler) rendered several times by
 // separate `rolypoly render` processes gives byte-identical PNGs, frame for frame (identical
 // bytes: a stronger check than identical SHA-256 hashes). DESIGN.md forbids float atomics and

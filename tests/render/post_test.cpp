@@ -111,7 +111,7 @@ TEST(PostProcessing, CameraCutResetsTheHistory) {
   EXPECT_EQ(after_cut, expected);
 }
 
-// Several bounces (issue 14): a cut resets the view's histories (TAA, the fast mode's indirect
+// Several bounces: a cut resets the view's histories (TAA, the fast mode's indirect
 // light) but keeps the bounce grid, which is world-space and view-independent; only the world
 // reset (reset_history) forgets it. Comparing with a reset renderer, as the test above does, no
 // longer holds here: that one warm-starts its grid from nothing. What holds instead:

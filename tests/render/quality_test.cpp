@@ -1,4 +1,4 @@
-// Issue 9's quality criteria for the fast mode (reduced-resolution, temporally accumulated
+// The quality criteria of the fast mode (reduced-resolution, temporally accumulated
 // indirect light) against the reference mode (16 cones per pixel at full resolution), measured
 // by app::measure_quality at 128x128 on final 8-bit images: PSNR >= 35 dB on the static demo
 // after TAA has converged, >= 30 dB on every busy frame (marbles, fireball, fire particles)
@@ -54,14 +54,14 @@ TEST(Quality, EveryBusyFrameAfterTheFirst16IsWithin30dB) {
 
 TEST(Quality, FastModeFlickersNoMoreThanTheReference) {
   EXPECT_GT(report().flicker_reference, 0.0) << "TAA jitter and shadow noise move every frame";
-  // Issue 14's near-field occlusion is evaluated once per 4x4 block in the fast mode (per pixel
+  // The near-field occlusion is evaluated once per 4x4 block in the fast mode (per pixel
   // in the reference) and the TAA jitter turns that into flicker: fast 0.638 vs reference 0.636
-  // codes here (+0.3 %; both were 0.643 / 0.645 before issue 14). Allowed as a KNOWN MISS of
-  // issue 9's criterion until the occlusion moves into light_compose per pixel: at most +1 %.
-  // Issue 15 (PCSS 0.479 vs 0.477, +0.4 %) and its thick-blocker PCSS with the lamp's disk
+  // codes here (+0.3 %; both were 0.643 / 0.645 before it). Allowed as a KNOWN MISS of
+  // the criterion until the occlusion moves into light_compose per pixel: at most +1 %.
+  // PCSS (0.479 vs 0.477, +0.4 %) and its thick-blocker PCSS with the lamp's disk
   // model (0.497 vs 0.492, +0.9 %: the brighter floor's bounce light carries the per-block
   // occlusion's flicker; the shadows themselves are the same in both modes).
-  // Issue 16 part 2 (the reflections): 0.510 vs 0.480 at the merge. The reference's reflection
+  // The reflections: 0.510 vs 0.480 at the merge. The reference's reflection
   // is one deterministic cone per pixel: a steady term that lowers the flicker of the 8-bit
   // codes (0.4995 with the reflections zeroed in both modes, fast 0.502: +0.5 %, the same
   // +0.5..0.9 % as before; the "0.502 without reflections" was compared with the reference's
@@ -73,7 +73,7 @@ TEST(Quality, FastModeFlickersNoMoreThanTheReference) {
   // current frame: 0.4845 vs 0.4803 (+0.9 %); with the reference mode's own screen-space
   // reflections (which read the previous, noisier frame) the reference measures 0.4825: +0.4 %.
   // What is left is about 40 pixels (the lamp's lower rim, the image corners, tumbler
-  // silhouettes) where the per-block light meets the TAA jitter. KNOWN MISS of issue 9's
+  // silhouettes) where the per-block light meets the TAA jitter. KNOWN MISS of the
   // criterion: at most +1 %.
   EXPECT_LE(report().flicker_fast, report().flicker_reference * 1.01);
 }

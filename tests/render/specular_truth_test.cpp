@@ -1,4 +1,4 @@
-// Issue 16 part 2: the specular indirect light against the path tracer on a mirror-like floor. The
+// The specular indirect light against the path tracer on a mirror-like floor. The
 // demo's room without tumblers, its floor a polished grey metal (roughness 0.15, F0 0.9: every bit
 // of its indirect light is the coat's reflection), the back wall emitting (the bright object it
 // mirrors), walls and ceiling black, the lamp off, one bounce in both (the floor sees the emitting
@@ -144,7 +144,7 @@ TEST(SpecularTruth, MirrorFloorReflectsTheBrightWallLikeThePathTracer) {
 }
 
 
-// Stability under motion (issue 16: temporal reuse must not smear reflections). The fast mode's
+// Stability under motion (temporal reuse must not smear reflections). The fast mode's
 // reflections are this frame's: cones traced from this frame's GBuffer, never accumulated, and
 // screen-space reflections that read the previous frame's radiance at the hit (moved back by
 // the hit's own velocity). With the camera moving (a dolly and pan over 8 frames, the demo with

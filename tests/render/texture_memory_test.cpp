@@ -1,4 +1,4 @@
-// Issue 18: a texture too large for the device is named before any mip chain is built. A
+// A texture too large for the device is named before any mip chain is built. A
 // 16384x16384 wood.png used to fail at clCreateBuffer after 45 s and 12 GiB of host memory,
 // reported as "the device ran out of memory for a 16x16 image" (the frame size). The check
 // reads only the textures' sizes, so the textures here hold no pixels.

@@ -1,4 +1,4 @@
-// A second OpenCL implementation in CI (issue 19): Mesa's rusticl on llvmpipe (Debian package
+// A second OpenCL implementation in CI: Mesa's rusticl on llvmpipe (Debian package
 // mesa-opencl-icd, devices only with RUSTICL_ENABLE=llvmpipe, which this test's environment
 // sets) renders the same small frame as PoCL, to PSNR >= 60 dB. Label `rusticl`, run by the
 // plain ctest. Without the package the test is skipped, except under CI=true (tools/setup.sh

@@ -148,7 +148,7 @@ TEST(InputLog, EachMalformedLineNamesFileLineAndProblem) {
       {"step -1 key S\n", 2, "step number"},
       {"step 1.5 key S\n", 2, "step number"},
       {"step 99999999999999999999 key S\n", 2, "step 99999999999999999999 is out of range"},
-      // Issue 18: steps the world cannot count to (int) are errors, not truncated (this one
+      // Steps the world cannot count to (int) are errors, not truncated (this one
       // used to replay as step 4).
       {"step 4294967300 frame\n", 2, "step 4294967300 is out of range: steps go up to 2147483647"},
       {"step 2147483648 key S\n", 2, "out of range"},

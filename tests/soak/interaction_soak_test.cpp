@@ -1,4 +1,4 @@
-// 20k-step soak of the simulation under seeded random interaction (issue 8 item 6): drags that
+// 20k-step soak of the simulation under seeded random interaction: drags that
 // start on a random point of a random tumbler (rays from the camera eye through it), slow drags
 // and flicks (large cursor jumps over a few steps), translate drags (hits below the centre of
 // mass) and toggles of marbles, fireball and reset, in a random order. After every step:

@@ -1,5 +1,5 @@
 // The same tiny frame on the default OpenCL device (PoCL here) and on oclgrind's simulated device
-// agrees (issue 8 item 3). Metric: the largest absolute difference of any RGB channel of the
+// agrees. Metric: the largest absolute difference of any RGB channel of the
 // tone-mapped 8-bit PNG, and PSNR. Threshold: max abs diff <= 1 (one 8-bit step), i.e. a PSNR
 // far above 48 dB; measured with PoCL 3.1 / oclgrind 21.10 at 16x16: identical, 0 (see
 // bench/results/reliability-epyc-2core-pocl.md). One step of tolerance leaves room for a

@@ -1,4 +1,4 @@
-// The area lamp of the path tracer (issue 15, LampModel::kArea) against answers computed
+// The area lamp of the path tracer (LampModel::kArea) against answers computed
 // independently: far from the lamp it gives the point model's light; at the floor centre the
 // closed form of a Lambertian disc; the cone sampling's density integrates to 1 and the cap's
 // solid angle and projected solid angle match brute-force sampling of the cap's surface; a point

@@ -1,4 +1,4 @@
-// The surface model (src/shading/brdf.h, issue 16) against its defining properties: the white
+// The surface model (src/shading/brdf.h) against its defining properties: the white
 // furnace (a rough white metal keeps its energy with Kulla-Conty, and how much it loses
 // without), reciprocity, the sampler's densities, the E table against an independent Monte
 // Carlo estimate, and the energy-conserving layered diffuse.

@@ -1,4 +1,4 @@
-// The path tracer (src/truth) against answers known in closed form (issue 13): the direct-only
+// The path tracer (src/truth) against answers known in closed form: the direct-only
 // image against the analytic lamp light on the walls, a closed emitting box with one and with
 // unlimited gathers, a sphere light over a plane (next-event estimation + MIS), error falling as
 // 1 / sqrt(spp), and bit-identical images for any thread count.
@@ -302,7 +302,7 @@ TEST(PathTracer, BitIdenticalForAnyThreadCount) {
   s.seed = 2;
   EXPECT_NE(0, std::memcmp(one.combined.data(), tracer.render(frame, s).combined.data(),
                            one.combined.size() * 4));
-  // The area lamp (issue 15) draws from the same per-pixel streams.
+  // The area lamp draws from the same per-pixel streams.
   s.seed = 1;
   s.lamp = LampModel::kArea;
   s.threads = 1;
