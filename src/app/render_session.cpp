@@ -284,9 +284,9 @@ rp::cl::PassTimes RenderSession::render(const scene::FrameScene& frame,
   auto start = std::chrono::steady_clock::now();
   rp::cl::PassTimes times;
   if (sky_) {
-    scene::FrameScene lit = frame;
-    add_sky(*sky_, lit);
-    times = renderer_->render(lit);
+    lit_frame_ = frame;  // copy assignment keeps the vectors' capacity: no per-frame allocation
+    add_sky(*sky_, lit_frame_);
+    times = renderer_->render(lit_frame_);
   } else {
     times = renderer_->render(frame);
   }

@@ -135,6 +135,7 @@ class RenderSession {
   uint64_t device_memory_estimate_ = 0;
   std::optional<FrameTimeScale> frame_scale_;  // --target-ms
   std::unique_ptr<SkyLight> sky_;              // --env / --sky clear; nullptr: none
+  scene::FrameScene lit_frame_;                // with sky_: the frame render() adds it to
 };
 
 // Device memory the renderer allocates for one width x height image, counted buffer by buffer
