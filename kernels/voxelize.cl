@@ -9,9 +9,10 @@
  *                       each (common/span.h: 16 on CPUs, 1 on GPUs): set-up, the small
  *                       triangles' shading and voxels as vector arithmetic across the lanes;
  *                       large triangles are appended to a list instead
- *   voxelize_large      one work-item per listed large triangle, lanes = RP_SPAN neighbouring
- *                       voxel columns of one row of its candidate rectangle
- *   voxelize_spheres    one work-item per sphere: every voxel it overlaps
+ *   voxelize_large      one work-item (CPUs) or several (GPUs) per listed large triangle,
+ *                       lanes = RP_SPAN neighbouring voxel columns of its candidate rectangle
+ *   voxelize_spheres    one work-item (CPUs) or several (GPUs) per sphere: every voxel it
+ *                       overlaps
  *   voxelize_resolve    sums -> level-0 float4 (one work-item per voxel)
  *   (textures are read as the scene's packed RGBA8 sRGB texels, decoded per tap:
  *   common/span_texture.h)
@@ -1148,8 +1149,9 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
 
 /* One large triangle (flat instance-triangle index `flat`): its set-up is computed for every
  * lane (all lanes the same triangle), the lanes then take RP_SPAN neighbouring columns of a
- * row at a time. Each voxel is shaded at its centre projected onto the plane, barycentrics
- * clamped into the triangle. */
+ * row at a time: the work-item's share, groups number `slice` (0 .. slices - 1) of every
+ * `slices` consecutive groups. Each voxel is shaded at its centre projected onto the plane,
+ * barycentrics clamped into the triangle. */
 inline void vx_large_triangle(__global const FrameConstants* frame,
                               __global const Instance* instances, uint instance_count,
                               __global const Vertex* vertices,
@@ -1162,7 +1164,7 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
                               uint flat, __global const uint* cached_instances, uint record,
                               volatile __global uint* cache_count, __global float4* cache,
                               uint cache_capacity, __global const float4* bounce,
-                              uint bounce_cells) {
+                              uint bounce_cells, uint slice, uint slices) {
   const int R = (int)resolution;
   uint hint_index = 0, hint_start = 0;
   const VxTriangle t = vx_fetch_triangle(instances, instance_count, vertices, triangles,
@@ -1191,7 +1193,7 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
   /* The columns of the candidate rectangle numbered row by row (k = (iv - rv0) * width +
    * iu - ru0), RP_SPAN consecutive numbers at a time, so narrow rectangles fill the lanes. */
   const int width = ru1[0] - ru0[0] + 1, columns = width * (rv1[0] - rv0[0] + 1);
-  for (int k0 = 0; k0 < columns; k0 += RP_SPAN) {
+  for (int k0 = (int)slice * RP_SPAN; k0 < columns; k0 += (int)slices * RP_SPAN) {
     {  /* (one block: the loop body of the row-by-row layout) */
       const rp_spani k = k0 + lane;
       /* k / width without a per-lane integer division (exact: k, width < 2^12) */
@@ -1248,15 +1250,20 @@ __kernel void voxelize_large(__global const FrameConstants* frame,
                              __global const uint* cached_instances, uint record,
                              volatile __global uint* cache_count, __global float4* cache,
                              uint cache_capacity,
-                             __global const float4* bounce, uint bounce_cells) {
+                             __global const float4* bounce, uint bounce_cells,
+                             uint slices) {
   /* A fixed number of work-items strides over the frame's list (its length is only known on
-   * the device). */
+   * the device), `slices` consecutive work-items sharing each triangle's columns (1 on CPUs;
+   * on GPUs a wall at 512^3 is 131k columns, far too many for one thread). The global size
+   * is a multiple of `slices`. */
+  const uint id = (uint)get_global_id(0), slice = id % slices;
+  const uint stride = (uint)get_global_size(0) / slices;
   const uint count = large_count[0];
-  for (uint entry = (uint)get_global_id(0); entry < count; entry += (uint)get_global_size(0))
+  for (uint entry = id / slices; entry < count; entry += stride)
     vx_large_triangle(frame, instances, instance_count, vertices, triangles, materials, textures,
                       texels, shadow, resolution, accum, overflow, large_list[entry],
                       cached_instances, record, cache_count, cache, cache_capacity, bounce,
-                      bounce_cells);
+                      bounce_cells, slice, slices);
 }
 
 /* The frame's light on the cached samples: RP_SPAN samples per work-item. */
@@ -1341,10 +1348,13 @@ __kernel void voxelize_spheres(__global const FrameConstants* frame,
                                uint resolution,
                                volatile __global uint* accum,
                                volatile __global uint* overflow,
-                               __global const float4* bounce, uint bounce_cells) {
-  const uint gid = (uint)get_global_id(0);
-  if (gid >= sphere_count) return;
-  __global const Sphere* s = spheres + gid;
+                               __global const float4* bounce, uint bounce_cells,
+                               uint slices) {
+  /* `slices` consecutive work-items share a sphere's voxel rows (1 on CPUs; on GPUs a marble
+   * at 512^3 is thousands of rows, too many for one thread). */
+  const uint gid = (uint)get_global_id(0), slice = gid % slices;
+  if (gid / slices >= sphere_count) return;
+  __global const Sphere* s = spheres + gid / slices;
   const float3 cw = s->center_radius.xyz;
   const float rw = s->center_radius.w;
   if (!(rw > 0.0f)) return;
@@ -1372,11 +1382,14 @@ __kernel void voxelize_spheres(__global const FrameConstants* frame,
         albedo * (vx_direct(frame, shadow, cw + l * rw, l) * 0.25f + e) + emission;
   }
 
-  for (int k = rz.x; k <= rz.y; ++k) {
+  /* The rows (j, k) of the bounding box numbered k-major; this work-item's share. */
+  const int ny = max(ry.y - ry.x + 1, 0), rows = max(rz.y - rz.x + 1, 0) * ny;
+  for (int row = (int)slice; row < rows; row += (int)slices) {
+    const int k = rz.x + row / ny, j = ry.x + row % ny;
     const float fk = (float)k;
     const float dz = fmax(fmax(fk - cg.z, cg.z - (fk + 1.0f)), 0.0f);
     const float fz = (fmin(hi.z, fk + 1.0f) - fmax(lo.z, fk)) * inv_extent;
-    for (int j = ry.x; j <= ry.y; ++j) {
+    {
       const float fj = (float)j;
       const float dy = fmax(fmax(fj - cg.y, cg.y - (fj + 1.0f)), 0.0f);
       const float fy = (fmin(hi.y, fj + 1.0f) - fmax(lo.y, fj)) * inv_extent;

@@ -34,6 +34,33 @@ int choose_span(const rp::cl::Context& context) {
   return context.info.is_cpu ? rp::cl::cpu_span_lanes(context.info) : 1;
 }
 
+// Work-items that share one large triangle's voxel columns (voxelize_large) and one sphere's
+// voxel rows (voxelize_spheres): 1 on CPUs (few cores, each busy with other triangles). On
+// GPUs a triangle gets R^2 / 1024 up to 256, so a wall's triangle (R^2 / 2 columns) gives a
+// thread at most about 512 columns, and a sphere R / 8 up to 64 (a marble of radius 0.05 is
+// about R^2 / 200 rows). Powers of two. ROLYPOLY_VOXELIZE_SLICES (a power of two, 1 to 1024)
+// sets both (tests compare).
+struct Slices {
+  cl_uint triangle = 1, sphere = 1;
+};
+Slices choose_slices(const rp::cl::Context& context, uint32_t resolution) {
+  if (const char* env = std::getenv("ROLYPOLY_VOXELIZE_SLICES"); env && *env) {
+    const std::string s = env;
+    const unsigned long v = std::strtoul(s.c_str(), nullptr, 10);
+    if (s.find_first_not_of("0123456789") != std::string::npos || v < 1 || v > 1024 ||
+        (v & (v - 1)) != 0)
+      throw rp::cl::Error("ROLYPOLY_VOXELIZE_SLICES must be a power of two from 1 to 1024, not '" +
+                          s + "'");
+    return {cl_uint(v), cl_uint(v)};
+  }
+  Slices n;
+  if (context.info.is_cpu) return n;
+  while (n.triangle < 256 && uint64_t(n.triangle) * 2 * 1024 <= uint64_t(resolution) * resolution)
+    n.triangle *= 2;
+  while (n.sphere < 64 && n.sphere * 2 * 8 <= resolution) n.sphere *= 2;
+  return n;
+}
+
 // voxelize_large's modes (VX_ACCUMULATE, VX_COUNT, VX_RECORD in voxelize.cl).
 constexpr cl_uint kAccumulate = 0, kCount = 1, kRecord = 2;
 constexpr size_t kSampleBytes = 4 * 4 * sizeof(float);  // one cache sample: 4 float4
@@ -144,6 +171,7 @@ void VoxelizePass::set_large_args(const render::GpuScene& scene, const render::S
   large_.setArg(arg++, cl_uint(cache_capacity_));
   large_.setArg(arg++, *bounce_);
   large_.setArg(arg++, bounce_cells_);
+  large_.setArg(arg++, large_slices_);
 }
 
 void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScene& scene,
@@ -273,8 +301,16 @@ void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& 
   }
   const bool scene_changed = update_texels(scene);
   const bool rebuild = update_cache_plan(scene, r, scene_changed);
-  large_items_ = std::min(rp::cl::round_up(std::max<size_t>(triangles, 1), kSpanGroup),
-                          context_->info.is_cpu ? size_t(128) : size_t(8192));
+  const Slices slices = choose_slices(*context_, r);
+  large_slices_ = slices.triangle;
+  sphere_slices_ = slices.sphere;
+  // Few work-items on CPUs, where every work-group costs a few microseconds even when it has
+  // nothing to do; on GPUs enough for a few hundred triangles in flight at any slicing.
+  const size_t max_items = context_->info.is_cpu ? 128 : 65536;
+  const size_t in_flight =
+      std::clamp<size_t>(triangles, 1, std::max<size_t>(max_items / large_slices_, 1));
+  // A multiple of both the group and the slices (both powers of two).
+  large_items_ = rp::cl::round_up(in_flight * large_slices_, kSpanGroup);
 
   if (triangles > 0) {
     cl_uint arg = 0;
@@ -346,8 +382,9 @@ void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& 
     spheres_.setArg(arg++, target_overflow_);
     spheres_.setArg(arg++, *bounce_);
     spheres_.setArg(arg++, bounce_cells_);
+    spheres_.setArg(arg++, sphere_slices_);
     profiler.enqueue("voxelize", spheres_,
-                     ::cl::NDRange(rp::cl::round_up(scene.sphere_count, kGroup)),
+                     ::cl::NDRange(rp::cl::round_up(size_t(scene.sphere_count) * sphere_slices_, kGroup)),
                      ::cl::NDRange(kGroup));
   }
 }

@@ -105,6 +105,8 @@ class VoxelizePass {
   ::cl::Buffer large_count_, large_list_;
   size_t large_capacity_ = 0;
   size_t large_items_ = 0;  // work-items of voxelize_large (a fixed number strides the list)
+  cl_uint large_slices_ = 1;   // work-items sharing one large triangle (choose_slices)
+  cl_uint sphere_slices_ = 1;  // work-items sharing one sphere (choose_slices)
 
   // Static surface cache (kernels/voxelize.cl voxelize_cached): per-voxel samples of the large
   // triangles of instances that have not changed (model, triangle range, voxelize flag) since

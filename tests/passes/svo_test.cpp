@@ -304,17 +304,19 @@ TEST(Svo, MatchesDenseVolumeFloatSamples) {
 }
 
 // The GPU layouts (one triangle / voxel per work-item: ROLYPOLY_VOXELIZE_SPAN=1,
-// ROLYPOLY_VOXEL_MIPS_SPAN=1) and the voxelizer without its static cache give the same octree.
+// ROLYPOLY_VOXEL_MIPS_SPAN=1; a large triangle's columns over 4 work-items:
+// ROLYPOLY_VOXELIZE_SLICES=4) and the voxelizer without its static cache give the same octree.
 TEST(Svo, GpuLayoutsAndUncachedMatchDense) {
   const uint32_t r = 16;
   Scene s(r);
   for (const char* var : {"ROLYPOLY_VOXELIZE_SPAN", "ROLYPOLY_VOXEL_MIPS_SPAN"})
     setenv(var, "1", 1);
+  setenv("ROLYPOLY_VOXELIZE_SLICES", "4", 1);
   setenv("ROLYPOLY_VOXELIZE_CACHE", "0", 1);
   const Dense d = build_dense(s, r);
   const Octree o = build_octree(s, r, true);
   for (const char* var : {"ROLYPOLY_VOXELIZE_SPAN", "ROLYPOLY_VOXEL_MIPS_SPAN",
-                          "ROLYPOLY_VOXELIZE_CACHE"})
+                          "ROLYPOLY_VOXELIZE_SLICES", "ROLYPOLY_VOXELIZE_CACHE"})
     unsetenv(var);
   check_octree(o, d, true);
 }

@@ -313,9 +313,14 @@ TEST(Voxelize, SoftShadowMatchesReference) {
 
 // Many triangles over several instances (more than the 16 lanes of a CPU work-item, a mix of
 // small and large ones, an instance that is not voxelized in between): the sums at every lane
-// count (ROLYPOLY_VOXELIZE_SPAN: 1 is the GPU layout) equal the reference exactly for emission
-// and agree to rounding when lit.
-class VoxelizeSpans : public ::testing::TestWithParam<const char*> {};
+// count (ROLYPOLY_VOXELIZE_SPAN: 1 is the GPU layout) and with a large triangle's columns shared
+// by several work-items (ROLYPOLY_VOXELIZE_SLICES, as on GPUs) equal the reference exactly for
+// emission and agree to rounding when lit.
+struct SpanLayout {
+  const char* span;
+  const char* slices;
+};
+class VoxelizeSpans : public ::testing::TestWithParam<SpanLayout> {};
 
 Scene many_triangles_scene() {
   Scene s;
@@ -343,8 +348,14 @@ Scene many_triangles_scene() {
 
 TEST_P(VoxelizeSpans, SumsMatchTheReference) {
   struct SpanEnv {
-    explicit SpanEnv(const char* v) { setenv("ROLYPOLY_VOXELIZE_SPAN", v, 1); }
-    ~SpanEnv() { unsetenv("ROLYPOLY_VOXELIZE_SPAN"); }
+    explicit SpanEnv(const SpanLayout& l) {
+      setenv("ROLYPOLY_VOXELIZE_SPAN", l.span, 1);
+      setenv("ROLYPOLY_VOXELIZE_SLICES", l.slices, 1);
+    }
+    ~SpanEnv() {
+      unsetenv("ROLYPOLY_VOXELIZE_SPAN");
+      unsetenv("ROLYPOLY_VOXELIZE_SLICES");
+    }
   } env(GetParam());
   for (int which = 0; which < 2; ++which) {
     Scene s = which == 0 ? exact_scene() : many_triangles_scene();
@@ -368,13 +379,20 @@ TEST_P(VoxelizeSpans, SumsMatchTheReference) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Spans, VoxelizeSpans, ::testing::Values("1", "4", "8", "16"));
+INSTANTIATE_TEST_SUITE_P(Spans, VoxelizeSpans,
+                         ::testing::Values(SpanLayout{"1", "1"}, SpanLayout{"4", "1"},
+                                           SpanLayout{"8", "1"}, SpanLayout{"16", "1"},
+                                           SpanLayout{"1", "16"}, SpanLayout{"8", "4"}),
+                         [](const ::testing::TestParamInfo<SpanLayout>& p) {
+                           return std::string("span") + p.param.span + "_slices" +
+                                  p.param.slices;
+                         });
 
 // The static surface cache (voxelize_large's samples of instances that have not moved) across
 // frames of one pass: all instances still (all cached), one moved (rebuilt without it, its
 // large triangles shaded directly), the same frame again (cache reused), a resolution change
 // (tracking restarts). Every frame's sums equal the reference exactly (emission only) and the
-// lit levels agree with the pass run without the cache bit for bit.
+// lit levels agree with the pass run without the cache (and without shared columns) bit for bit.
 TEST(Voxelize, StaticCacheGivesTheSameSumsAsFrameByFrame) {
   Scene s = many_triangles_scene();
   const std::vector<float> shadow = uniform_shadow(1.0f);
@@ -392,7 +410,11 @@ TEST(Voxelize, StaticCacheGivesTheSameSumsAsFrameByFrame) {
     for (float intensity : {0.0f, 5.0f}) {
       s.frame.light.intensity = glm::vec3(intensity);
       s.gpu->update(s.frame, 16, 16, kShadowSize);
+      // The cached pass shares each large triangle's columns among 4 work-items (as GPUs do),
+      // the direct one does not.
+      setenv("ROLYPOLY_VOXELIZE_SLICES", "4", 1);
       const VoxelGpuOutput got = run_voxelize(pass, vol, *s.gpu, shadow, step.r);
+      unsetenv("ROLYPOLY_VOXELIZE_SLICES");
       if (intensity == 0.0f) {
         const VoxelSums want =
             reference_voxelize(reference_input(s.assets, s.frame, *s.gpu, shadow), step.r);
