@@ -72,7 +72,7 @@ __kernel void bounce_gather(__global const float4* voxels, uint resolution, uint
     for (uint k = 0; k < RP_CONE_SET_SIZE; ++k) {
       const float up = u_pos + 0.618034f * (float)k, ul = u_level + 0.754877666f * (float)k;
       const float3 dir = rp_cone_set16_dir(n, t, b, k);
-      sum += rp_sky_behind_cone(constants, sky,
+      sum += rp_sky_behind_diffuse_cone(constants, sky,
                                 rp_cone_trace_coarse(voxels, resolution, levels, origin, dir,
                                                      up - floor(up), ul - floor(ul)),
                                 dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE_COARSE);
@@ -82,7 +82,7 @@ __kernel void bounce_gather(__global const float4* voxels, uint resolution, uint
   }
   const uint k = ((frame >> 1) + h) & (RP_CONE_SET_SIZE - 1u);
   const float3 dir = rp_cone_set16_dir(n, t, b, k);
-  const float3 s = rp_sky_behind_cone(
+  const float3 s = rp_sky_behind_diffuse_cone(
       constants, sky, rp_cone_trace_coarse(voxels, resolution, levels, origin, dir, u_pos, u_level),
       dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE_COARSE);
   const float4 old = bounce[gid];

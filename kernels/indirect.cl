@@ -109,12 +109,13 @@ inline float3 indirect_cone(__global const FrameConstants* frame, __global const
                                            rp_cone_apex(p, n, voxel_resolution), dir,
                                            rp_indirect_position_jitter(i, j, f),
                                            rp_indirect_level_jitter(i, j, f));
-  return rp_sky_behind_cone(frame, sky, cone, dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE_COARSE);
+  return rp_sky_behind_diffuse_cone(frame, sky, cone, dir, RP_SKY_DIFFUSE_TAN,
+                                    RP_CONE_OPAQUE_COARSE);
 #else
   const float4 cone = rp_cone_trace_jittered(voxels, voxel_resolution, voxel_levels,
                                              rp_cone_apex(p, n, voxel_resolution), dir,
                                              rp_indirect_level_jitter(i, j, f));
-  return rp_sky_behind_cone(frame, sky, cone, dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE);
+  return rp_sky_behind_diffuse_cone(frame, sky, cone, dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE);
 #endif
 }
 

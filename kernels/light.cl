@@ -37,6 +37,9 @@
  * 8-wide on PoCL; light_shade is per-pixel code (its cost is the cones).
  *
  * Variants (-D):
+ *   RP_LIGHT_PRT=1: the sky's diffuse light comes from precomputed radiance transfer
+ *     (kernels/prt.cl): `prt_irradiance` (float4 per pixel, rgb E / pi) is added to D, whose
+ *     cones then carry no diffuse sky (SkyGpu.diffuse_cones = 0); reflection cones keep it.
  *   RP_LIGHT_SPLIT=1: also writes the direct lamp term (rgb, a = covered), the indirect term
  *     (rgb, a = covered) and the specular part of both (rgb, a = covered) into three extra
  *     float4 buffers, for the debug views and the accuracy report; emission is in none. The
@@ -73,6 +76,9 @@
 
 #ifndef RP_LIGHT_SPLIT
 #define RP_LIGHT_SPLIT 0
+#endif
+#ifndef RP_LIGHT_PRT
+#define RP_LIGHT_PRT 0
 #endif
 
 inline float8 light_direct8(__global const FrameConstants* restrict frame, float8 px, float8 py,
@@ -133,6 +139,9 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
                           __global const float4* restrict ssr_prev_hdr,
                           __global const float2* restrict ssr_velocity,
                           const uint ssr_history,
+#if RP_LIGHT_PRT
+                          __global const float4* restrict prt_irradiance,
+#endif
 #if RP_LIGHT_SPLIT
                           __global float4* restrict direct_out,
                           __global float4* restrict indirect_out,
@@ -172,8 +181,10 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
   const float3 lamp = frame->light_intensity.xyz * k;
   const float3 spec_direct = (float3)(sp[0].s0, sp[1].s0, sp[2].s0) * lamp;
   const float3 direct = albedo * (float3)(w[0].s0, w[1].s0, w[2].s0) * lamp + spec_direct;
-  const float3 irr =
-      rp_cone_diffuse16(frame, sky, voxels, voxel_resolution, voxel_levels, p, n);
+  float3 irr = rp_cone_diffuse16(frame, sky, voxels, voxel_resolution, voxel_levels, p, n);
+#if RP_LIGHT_PRT
+  irr += prt_irradiance[pixel].xyz;
+#endif
   /* the coat's share, weighted by E_spec(mu_o): the screen-space reflection (common/ssr.h,
    * level 0, the previous frame's output at the hit) with confidence c, and the reflection cone
    * (common/spec_cone.h) for the rest, cone + c (ssr - cone), as in the fast mode's
@@ -239,6 +250,9 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
                             const uint lr_stride,
                             const uint lr_plane,
                             const float pixel_scale,
+#if RP_LIGHT_PRT
+                            __global const float* restrict prt_irradiance,
+#endif
 #if RP_LIGHT_SPLIT
                             __global float* restrict direct_out,
                             __global float* restrict indirect_out,
@@ -323,6 +337,15 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
     RP_LIGHT_TAPS(lr_irradiance + q * pl, r1, t01, t11);
     irr[q] = w00 * t00 + w10 * t10 + w01 * t01 + w11 * t11;
   }
+#if RP_LIGHT_PRT
+  {
+    float8 pr, pg, pb, pw;
+    rp_load8_float4(prt_irradiance, row, x0, lanes, &pr, &pg, &pb, &pw);
+    irr[0] += pr;
+    irr[1] += pg;
+    irr[2] += pb;
+  }
+#endif
 
   float8 ar, ag, ab, aw, er, eg, eb, ew;
   rp_load8_float4(albedo, row, x0, lanes, &ar, &ag, &ab, &aw);

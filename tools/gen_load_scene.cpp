@@ -9,8 +9,8 @@
 //     boxes, a cube with an emission map, a trellis panel cut out by an alpha mask (mirrored
 //     texture) (10 m across; tests/app/file_scene_truth_test.cpp, the oclgrind renders);
 //   gen_load_scene OUT.glb --yard
-//     the room's geometry in matte colours without lights: only a sky (--env, --sky) lights it
-//     (the sky's accuracy table in bench/results);
+//     the room's geometry in matte colours without lights, its faces split into 0.25 m cells:
+//     only a sky (--env, --sky) lights it (the sky's accuracy tables in bench/results);
 //   gen_load_scene OUT.glb --atrium
 //     the atrium (scene/atrium.h): a courtyard with two storeys of arcades, about 250k
 //     triangles and 43 textures, what `rolypoly --scene atrium` opens.
@@ -203,12 +203,15 @@ int write_yard(const char* path) {
   material("green", glm::vec3(0.2f, 0.6f, 0.25f));
   Mesh yard;
   yard.name = "yard";
-  append_box(yard, {0, -0.05f, 0}, {5, 0.05f, 5}, 0);
-  append_box(yard, {0, 2.5f, -5}, {5, 2.5f, 0.05f}, 1);
-  append_box(yard, {-5, 2.5f, 0}, {0.05f, 2.5f, 5}, 2);
-  append_box(yard, {-1.5f, 0.75f, -1}, {0.75f, 0.75f, 0.75f}, 3);
-  append_box(yard, {1.5f, 1.25f, 0.5f}, {0.5f, 1.25f, 0.5f}, 1);
-  append_box(yard, {0, 0.4f, 2}, {0.4f, 0.4f, 0.4f}, 4);
+  // Faces split into cells of at most 0.25 m: vertices for per-vertex PRT transfer to resolve
+  // the boxes' contact shadows (the same surfaces as whole quads, for every other mode).
+  constexpr float kCell = 0.25f;
+  append_box(yard, {0, -0.05f, 0}, {5, 0.05f, 5}, 0, 1.0f, kCell);
+  append_box(yard, {0, 2.5f, -5}, {5, 2.5f, 0.05f}, 1, 1.0f, kCell);
+  append_box(yard, {-5, 2.5f, 0}, {0.05f, 2.5f, 5}, 2, 1.0f, kCell);
+  append_box(yard, {-1.5f, 0.75f, -1}, {0.75f, 0.75f, 0.75f}, 3, 1.0f, kCell);
+  append_box(yard, {1.5f, 1.25f, 0.5f}, {0.5f, 1.25f, 0.5f}, 1, 1.0f, kCell);
+  append_box(yard, {0, 0.4f, 2}, {0.4f, 0.4f, 0.4f}, 4, 1.0f, kCell);
   a.meshes.push_back(yard);
   FrameScene f;
   room_frame(f);

@@ -624,8 +624,8 @@ inline float3 rp_cone_diffuse16(__global const FrameConstants* restrict frame,
 #pragma unroll
   for (uint k = 0; k < RP_CONE_SET_SIZE; ++k) {
     const float3 dir = rp_cone_set16_dir(n, t, b, k);
-    sum += rp_sky_behind_cone(frame, sky, rp_cone_trace_fine(voxels, resolution, levels, o, dir),
-                              dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE);
+    sum += rp_sky_behind_diffuse_cone(frame, sky,
+                                      rp_cone_trace_fine(voxels, resolution, levels, o, dir), dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE);
   }
   return sum * ((1.0f - rp_cone_near_occlusion(voxels, resolution, levels, p, n)) /
                 (float)RP_CONE_SET_SIZE);

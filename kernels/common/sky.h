@@ -96,4 +96,14 @@ inline float3 rp_sky_behind_cone(__global const FrameConstants* restrict frame,
          rp_sky_weight(cone.w, opaque) * rp_sky_radiance(frame, texels, dir, tan_half);
 }
 
+/* The same for a diffuse cone (the lit surfaces' cones, the bounce grid's): no sky where
+ * precomputed radiance transfer carries the diffuse sky light instead (SkyGpu.diffuse_cones
+ * 0; kernels/prt.cl), so it is not counted twice. */
+inline float3 rp_sky_behind_diffuse_cone(__global const FrameConstants* restrict frame,
+                                         __global const float4* restrict texels, float4 cone,
+                                         float3 dir, float tan_half, float opaque) {
+  if (frame->sky.diffuse_cones == 0u) return cone.xyz;
+  return rp_sky_behind_cone(frame, texels, cone, dir, tan_half, opaque);
+}
+
 #endif

@@ -79,7 +79,8 @@ typedef struct {
 #define RP_SKY_MAX_LEVELS 12u
 typedef struct {
   rp_float4 turn;  /* x cos, y sin of the turn about +y, z strength, w unused */
-  rp_uint width, height, levels, pad0;
+  rp_uint width, height, levels;
+  rp_uint diffuse_cones; /* 1: diffuse cones (and the bounce grid) add the sky; 0: PRT does */
   rp_uint level_offset[RP_SKY_MAX_LEVELS];
 } SkyGpu;
 

@@ -332,13 +332,56 @@ void add_sky_options(CLI::App* cmd, CommonOptions& common) {
          "--sky clear: the sun's azimuth (0 to 360 degrees from -z towards +x) and elevation "
          "(1 to 90 degrees above the horizon), default 135,45")
       ->check(sun_position());
+  cmd->add_option_function<std::string>(
+         "--sky-light", [&sky](const std::string& v) { sky.prt = v == "prt"; },
+         "how the sky's diffuse light reaches surfaces: cones (default: through the voxel "
+         "cones, with what they pass by) or prt (precomputed radiance transfer: per-vertex "
+         "transfer of a still scene file, computed on the first frame and cached on disk, "
+         "dotted with the sky's spherical harmonics; reflections keep the cones)")
+      ->check(CLI::IsMember({"cones", "prt"}));
+  truth::PrtSettings& prt = sky.prt_settings;
+  cmd->add_option_function<int>(
+         "--prt-bands", [&prt](int v) { prt.bands = v; },
+         "--sky-light prt: spherical-harmonic bands, 3 (9 coefficients, default) or 5 (25)")
+      ->check(CLI::IsMember({3, 5}));
+  cmd->add_option_function<std::string>(
+         "--prt-transfer",
+         [&prt](const std::string& v) {
+           prt.kind = v == "unshadowed" ? truth::PrtKind::kUnshadowed
+                      : v == "shadowed" ? truth::PrtKind::kShadowed
+                                        : truth::PrtKind::kInterreflected;
+         },
+         "--sky-light prt: unshadowed (the cosine lobe alone), shadowed (what the scene hides "
+         "of the sky) or interreflected (default: also the sky's light bounced off the scene)")
+      ->check(CLI::IsMember({"unshadowed", "shadowed", "interreflected"}));
+  cmd->add_option_function<uint32_t>(
+         "--prt-bounces", [&prt](uint32_t v) { prt.bounces = v; },
+         "--prt-transfer interreflected: diffuse bounces, 1 to 16 (default 3)")
+      ->transform(whole_number(1, 16));
+  cmd->add_option_function<uint32_t>(
+         "--prt-samples", [&prt](uint32_t v) { prt.samples = v; },
+         "--sky-light prt: ray directions per vertex, 16 to 65536 (default 512)")
+      ->transform(whole_number(16, 65536));
 }
 
-// Usage checks of --env / --sky and their settings: "" when fine. Every mode lights with the
+// Usage checks of --env / --sky, --sky-light and their settings: "" when fine (`demo_scene`:
+// the simulated demo, whose moving toys PRT cannot hold). Every mode lights with the
 // sky; `accuracy_demo`: bench --accuracy on the demo, whose sections (the lamp's direct light,
 // the marbles) are measured without one.
-std::string check_sky(const CLI::App* cmd, const CommonOptions& common, bool accuracy_demo) {
+std::string check_sky(const CLI::App* cmd, const CommonOptions& common, bool accuracy_demo,
+                      bool demo_scene) {
   const SkyOptions& sky = common.sky;
+  for (const char* name : {"--prt-bands", "--prt-transfer", "--prt-bounces", "--prt-samples"})
+    if (cmd->count(name) && !sky.prt) return std::string(name) + " applies to --sky-light prt";
+  if (cmd->count("--prt-bounces") && sky.prt_settings.kind != truth::PrtKind::kInterreflected)
+    return "--prt-bounces applies to --prt-transfer interreflected";
+  if (sky.prt && !sky.given())
+    return "--sky-light prt lights with the sky of --env FILE or --sky clear; give one";
+  if (sky.prt && demo_scene)
+    return "--sky-light prt needs a still scene file (--scene FILE or atrium): its transfer is "
+           "computed once, and the demo's toys move";
+  if (sky.prt && common.pathtraced)
+    return "--sky-light applies to the real-time modes (the path tracer samples the sky itself)";
   if (!sky.env_file.empty() && sky.clear_sky)
     return "--env and --sky clear are two skies; give one";
   if (cmd->count("--sun") && !sky.clear_sky)
@@ -742,7 +785,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
       return usage("rolypoly render", why);
     if (std::string why = check_pathtrace(render, common); !why.empty())
       return usage("rolypoly render", why);
-    if (std::string why = check_sky(render, common, false); !why.empty())
+    if (std::string why = check_sky(render, common, false, is_demo_scene(common.scene));
+        !why.empty())
       return usage("rolypoly render", why);
     if (std::string why = check_render_scale(common, render_opts.exr ? "--exr" : nullptr);
         !why.empty())
@@ -769,7 +813,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
     render_opts.frames_given = render->count("--frames") > 0;
   } else if (run->parsed()) {
     if (std::string why = check_bounces(common); !why.empty()) return usage("rolypoly run", why);
-    if (std::string why = check_sky(run, common, false); !why.empty())
+    if (std::string why = check_sky(run, common, false, is_demo_scene(common.scene));
+        !why.empty())
       return usage("rolypoly run", why);
     if (std::string why = check_gi_volume(common, {common.voxels}); !why.empty())
       return usage("rolypoly run", why);
@@ -863,7 +908,7 @@ CliParse parse_cli(int argc, const char* const* argv) {
     if (why) return usage("rolypoly bench", why);
     const bool demo_scene = bench_opts.scene == "default" || bench_opts.scene == "busy" ||
                             is_demo_scene(bench_opts.scene);
-    if (std::string sky = check_sky(bench, common, bench_opts.accuracy && demo_scene);
+    if (std::string sky = check_sky(bench, common, bench_opts.accuracy && demo_scene, demo_scene);
         !sky.empty())
       return usage("rolypoly bench", sky);
     if (std::string scale =

@@ -1,18 +1,23 @@
 #include "app/render_session.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <new>
 
+#include "app/interrupt.h"
+#include "app/progress.h"
 #include "app/sky_input.h"
 #include "cl/error.h"
 #include "passes/motion_blur.h"
+#include "passes/prt_sky.h"
 #include "render/gpu_types.h"  // before raster_types.h, which builds on its types
 #include "kernels/shared/raster_types.h"
 #include "render/gpu_scene.h"
 #include "render/sky_texture.h"
 #include "render/voxel_volume.h"
 #include "scene/demo_scene.h"
+#include "truth/prt_cache.h"
 
 namespace rp::app {
 namespace {
@@ -200,6 +205,7 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
       context_(rp::cl::Context::create(options.device)),
       programs_(context_) {
   if (options.sky.given()) sky_ = std::make_unique<SkyLight>(load_sky(options.sky));
+  if (sky_ && options.sky.prt) prt_ = options.sky.prt_settings;
   render::RenderSettings settings;
   settings.width = width;
   settings.height = height;
@@ -286,6 +292,10 @@ rp::cl::PassTimes RenderSession::render(const scene::FrameScene& frame,
   if (sky_) {
     lit_frame_ = frame;  // copy assignment keeps the vectors' capacity: no per-frame allocation
     add_sky(*sky_, lit_frame_);
+    if (prt_) {
+      prepare_prt(lit_frame_);
+      start = std::chrono::steady_clock::now();  // the frame's time, not the transfer's
+    }
     times = renderer_->render(lit_frame_);
   } else {
     times = renderer_->render(frame);
@@ -294,6 +304,46 @@ rp::cl::PassTimes RenderSession::render(const scene::FrameScene& frame,
   renderer_->read_rgba8(rgba);
   if (frame_scale_) renderer_->set_render_scale(frame_scale_->update(frame_ms));
   return times;
+}
+
+void RenderSession::prepare_prt(const scene::FrameScene& frame) {
+  const truth::PrtSettings settings = *prt_;
+  const size_t kSteps = 1000;
+  std::atomic<bool> cancel{false};
+  truth::CachedPrt cached;
+  {
+    ProgressBar bar("PRT transfer", kSteps);
+    try {
+      cached = truth::cached_prt_transfer(
+          assets_, frame, settings, truth::default_prt_cache_dir(),
+          [&](double fraction) {
+            bar.update(size_t(fraction * double(kSteps)));
+            if (InterruptGuard::interrupted()) cancel = true;
+          },
+          &cancel);
+    } catch (const truth::PrtCancelled&) {
+      throw Interrupted("while computing the PRT transfer; nothing was cached");
+    }
+  }
+  const truth::PrtTransfer& t = cached.transfer;
+  passes::PrtShading shading;
+  shading.bands = t.bands;
+  shading.channels = t.channels;
+  shading.coefficients = t.coefficients;
+  for (size_t i = 0; i < frame.instances.size(); ++i) {
+    const bool has = i < t.instances.size() && t.instances[i].count > 0;
+    shading.instances.push_back(
+        {frame.instances[i].mesh, has ? t.instances[i].first : passes::PrtShading::kNoTransfer});
+  }
+  renderer_->set_prt(shading);
+  std::fprintf(stderr, "rolypoly: PRT sky light: %d coefficients, %s%s, %u vertices (%s %s)\n",
+               t.count(), truth::prt_kind_name(t.kind),
+               t.kind == truth::PrtKind::kInterreflected
+                   ? (", " + std::to_string(t.bounces) + " bounces").c_str()
+                   : "",
+               t.vertex_count(), cached.from_cache ? "cached in" : "written to",
+               cached.file.string().c_str());
+  prt_.reset();
 }
 
 std::string describe_device(const rp::cl::DeviceInfo& info) {

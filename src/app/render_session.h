@@ -18,6 +18,7 @@
 #include "passes/debug_view.h"
 #include "render/renderer.h"
 #include "scene/frame_scene.h"
+#include "truth/prt_transfer.h"
 
 namespace rp::app {
 
@@ -32,6 +33,18 @@ struct SkyOptions {
   float sun_azimuth_deg = 135.0f;   // --sun AZ,EL: compass angle from -z towards +x,
   float sun_elevation_deg = 45.0f;  // and degrees above the horizon (scene::ClearSkySettings)
   bool given() const { return !env_file.empty() || clear_sky; }
+  // --sky-light prt: the sky's diffuse light by precomputed radiance transfer (passes/
+  // prt_sky.h) instead of through the cones; the transfer of the scene's (static) instances
+  // computed on the first frame (truth/prt_transfer.h) and cached on disk (truth/prt_cache.h).
+  // --prt-bands, --prt-transfer, --prt-bounces, --prt-samples set it.
+  bool prt = false;
+  truth::PrtSettings prt_settings = default_prt_settings();
+  static truth::PrtSettings default_prt_settings() {
+    truth::PrtSettings s;
+    s.kind = truth::PrtKind::kInterreflected;
+    s.bounces = 3;
+    return s;
+  }
 };
 
 struct CommonOptions {
@@ -126,6 +139,10 @@ class RenderSession {
  private:
   // The scene's device memory (app/scene_memory.h), the sky's map included.
   SceneMemory scene_memory() const;
+  // --sky-light prt: the transfer of `frame`'s instances (from the cache or computed, with a
+  // progress bar on a terminal and one line on stderr), handed to the renderer. Throws
+  // Interrupted when a signal stops the computation.
+  void prepare_prt(const scene::FrameScene& frame);
 
   scene::SceneAssets assets_;
   rp::cl::Context context_;
@@ -136,6 +153,7 @@ class RenderSession {
   std::optional<FrameTimeScale> frame_scale_;  // --target-ms
   std::unique_ptr<SkyLight> sky_;              // --env / --sky clear; nullptr: none
   scene::FrameScene lit_frame_;                // with sky_: the frame render() adds it to
+  std::optional<truth::PrtSettings> prt_;      // --sky-light prt, until prepare_prt ran
 };
 
 // Device memory the renderer allocates for one width x height image, counted buffer by buffer

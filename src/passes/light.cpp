@@ -71,10 +71,11 @@ LightPass::LightPass(const rp::cl::Context& context, rp::cl::ProgramCache& progr
     : context_(&context), programs_(&programs), filter_(filter),
       gi_options_(std::move(gi_options)) {}
 
-::cl::Kernel& LightPass::variant(bool upsample, bool split) {
-  std::optional<::cl::Kernel>& k = kernels_[upsample][split];
+::cl::Kernel& LightPass::variant(bool upsample, bool split, bool prt) {
+  std::optional<::cl::Kernel>& k = kernels_[upsample][split][prt];
   if (!k) {
     std::string options = split ? "-DRP_LIGHT_SPLIT=1" : "";
+    if (prt) options += std::string(options.empty() ? "" : " ") + "-DRP_LIGHT_PRT=1";
     if (!gi_options_.empty()) options += (options.empty() ? "" : " ") + gi_options_;
     k = programs_->kernel("light.cl", upsample ? "light_compose" : "light_shade", options);
   }
@@ -150,7 +151,8 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                     const render::GBuffer& gbuffer, const render::ShadowMap& shadow,
                     const ::cl::Buffer& voxels, uint32_t voxel_resolution,
                     uint32_t voxel_levels, ::cl::Buffer& hdr, LightComponents* components,
-                    const LowResIndirect* indirect, const SsrInputs* ssr) {
+                    const LowResIndirect* indirect, const SsrInputs* ssr,
+                    const ::cl::Buffer* prt) {
   check_sizes(scene, gbuffer, shadow);
   check_voxel_chain("light pass", voxels, voxel_resolution, voxel_levels, !gi_options_.empty());
   const uint32_t w = scene.constants.width, h = scene.constants.height;
@@ -177,7 +179,11 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                           std::to_string(h) + " float4)");
   }
   run_visibility(profiler, scene, gbuffer, shadow);
-  ::cl::Kernel& k = variant(indirect != nullptr, components != nullptr);
+  if (prt != nullptr && prt->getInfo<CL_MEM_SIZE>() < size_t(w) * h * 16)
+    throw rp::cl::Error("light pass: the PRT sky light must hold " +
+                        std::to_string(size_t(w) * h * 16) + " bytes (" + std::to_string(w) +
+                        "x" + std::to_string(h) + " float4)");
+  ::cl::Kernel& k = variant(indirect != nullptr, components != nullptr, prt != nullptr);
   cl_uint arg = bind_common(k, scene, gbuffer, visibility_);
   if (indirect != nullptr) {
     k.setArg(arg++, *indirect->irradiance);
@@ -201,6 +207,7 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     k.setArg(arg++, ssr != nullptr ? *ssr->velocity : gbuffer.velocity);
     k.setArg(arg++, cl_uint(ssr != nullptr ? 1 : 0));
   }
+  if (prt != nullptr) k.setArg(arg++, *prt);
   if (components != nullptr) {
     k.setArg(arg++, components->direct);
     k.setArg(arg++, components->indirect);

@@ -72,6 +72,9 @@ class LightPass {
   // ssr (the reference mode, without `indirect`): the screen-space reflections' inputs;
   // ssr->prev_hdr must not be `hdr` (the previous frame's output, copied). nullptr: no previous
   // frame, the reflection cone alone.
+  // prt: the PRT pass's sky light (PrtSkyPass::output(), float4 E / pi per pixel), added to
+  // the diffuse indirect light (a separate kernel variant); the cones must then carry no
+  // diffuse sky (SkyGpu.diffuse_cones 0). nullptr: the cones' sky alone.
   // shadow.mips must hold at least shadow_mip_planes(filter()) planes (the shadow filter pass).
   // Builds the hdr-only kernel of one variant now (the renderer builds its kernels up front).
   void prepare(bool upsample) {
@@ -83,15 +86,16 @@ class LightPass {
            const render::GBuffer& gbuffer, const render::ShadowMap& shadow,
            const ::cl::Buffer& voxels, uint32_t voxel_resolution, uint32_t voxel_levels,
            ::cl::Buffer& hdr, LightComponents* components = nullptr,
-           const LowResIndirect* indirect = nullptr, const SsrInputs* ssr = nullptr);
+           const LowResIndirect* indirect = nullptr, const SsrInputs* ssr = nullptr,
+           const ::cl::Buffer* prt = nullptr);
 
  private:
   void check_sizes(const render::GpuScene& scene, const render::GBuffer& gbuffer,
                    const render::ShadowMap& shadow) const;
 
-  // Light kernel variant [upsample][split] and the visibility kernel of filter_, built on
+  // Light kernel variant [upsample][split][prt] and the visibility kernel of filter_, built on
   // first use.
-  ::cl::Kernel& variant(bool upsample, bool split);
+  ::cl::Kernel& variant(bool upsample, bool split, bool prt = false);
   ::cl::Kernel& shadow_kernel();
   // The lamp's visibility per pixel (kernels/shadow_visibility.cl) into visibility_.
   void run_visibility(rp::cl::Profiler& profiler, const render::GpuScene& scene,
@@ -101,7 +105,7 @@ class LightPass {
   rp::cl::ProgramCache* programs_;
   ShadowFilter filter_;
   std::string gi_options_;  // -DRP_GI_SVO... for the light kernels ("" = the dense chain)
-  std::optional<::cl::Kernel> kernels_[2][2];
+  std::optional<::cl::Kernel> kernels_[2][2][2];
   std::optional<::cl::Kernel> shadow_kernels_[4];
   // width x height floats in [0, 1] (one per pixel, row-major), grown on demand
   ::cl::Buffer visibility_;

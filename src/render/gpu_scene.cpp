@@ -142,6 +142,8 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
                     static_cast<uint32_t>(mesh.triangles.size()), mesh.proxy,
                     mesh.proxy_max_voxels, mesh.proxy_max_shadow_texels};
     uint32_t base = static_cast<uint32_t>(verts.size());
+    range.first_vertex = base;
+    range.vertex_count = static_cast<uint32_t>(mesh.vertices.size());
     for (const scene::Vertex& v : mesh.vertices)
       verts.push_back({gpu::to_gpu(v.position, v.uv.x), gpu::to_gpu(v.normal, v.uv.y)});
     if (!mesh.tangents.empty() && mesh.tangents.size() != mesh.vertices.size())
@@ -255,6 +257,7 @@ void GpuScene::update_sky(const scene::Environment& environment) {
     sky_info_ = texture.info;
   }
   constants.sky = sky_record(sky_info_, environment);
+  if (!sky_diffuse_cones_) constants.sky.diffuse_cones = 0;
 }
 
 void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t height,

@@ -36,6 +36,8 @@ struct MeshRange {
   int proxy = -1;  // scene::Mesh::proxy, proxy_max_voxels and proxy_max_shadow_texels
   uint32_t proxy_max_voxels = 0;
   uint32_t proxy_max_shadow_texels = 0;
+  uint32_t first_vertex = 0;  // the mesh's first vertex in the shared vertex buffer
+  uint32_t vertex_count = 0;
 };
 
 // Throws rp::cl::Error naming the largest texture, the need and the limit when the textures
@@ -100,6 +102,9 @@ class GpuScene {
   // The frame's environment map and its mip chain (render/sky_texture.h; one unused texel
   // without one), uploaded when the frame's map changes; FrameConstants.sky places its levels.
   ::cl::Buffer sky;
+  // Whether the diffuse cones add the sky (FrameConstants.sky.diffuse_cones; on by default):
+  // off where precomputed radiance transfer carries the diffuse sky (passes/prt_sky.h).
+  void set_sky_diffuse_cones(bool on) { sky_diffuse_cones_ = on; }
   uint32_t instance_count = 0, sphere_count = 0;
   uint32_t instance_triangle_count = 0;  // sum of triangle_count over instances
   uint32_t voxel_triangle_count = 0;     // sum of voxel_triangle_count over instances
@@ -114,6 +119,7 @@ class GpuScene {
   ::cl::CommandQueue queue_;
   size_t instance_capacity_ = 0, sphere_capacity_ = 0;
   void update_sky(const scene::Environment& environment);
+  bool sky_diffuse_cones_ = true;
   std::shared_ptr<const scene::EnvironmentMap> sky_map_;  // the map `sky` holds (nullptr: none)
   gpu::SkyGpu sky_info_{};
   glm::vec2 last_jitter_px_{0.0f};  // the jitter the previous update() used (0 before the first)

@@ -15,6 +15,7 @@
 #include "passes/motion_blur.h"
 #include "passes/punctual_light.h"
 #include "passes/shadow_filter.h"
+#include "passes/prt_sky.h"
 #include "passes/sky_background.h"
 #include "passes/taa.h"
 #include "passes/taa_upsample.h"
@@ -71,7 +72,8 @@ uint32_t scaled_side(uint32_t output_side, float scale) {
 
 Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
                    const scene::SceneAssets& assets, RenderSettings settings)
-    : context_(context), settings_(settings), profiler_(context.queue, context.timing) {
+    : context_(context), programs_(programs), settings_(settings),
+      profiler_(context.queue, context.timing) {
   if (settings_.width == 0 || settings_.height == 0 || settings_.shadow_size == 0)
     throw rp::cl::Error("render size must be at least 1x1 pixels");
   if (!(settings_.render_scale >= RenderSettings::kMinRenderScale &&
@@ -198,6 +200,11 @@ void Renderer::set_keep_light_components(bool keep) {
   update_light_components();
 }
 
+void Renderer::set_prt(const passes::PrtShading& prt) {
+  prt_ = std::make_unique<passes::PrtSkyPass>(context_, programs_, *scene_, prt);
+  scene_->set_sky_diffuse_cones(false);
+}
+
 void Renderer::update_light_components() {
   if (!passes::needs_light_components(view_.view) && !keep_components_) {
     light_components_ = {};
@@ -287,9 +294,11 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     if (ssr_history)
       profiler_.queue().enqueueCopyBuffer(hdr_, hdr_prev_, 0, 0,
                                           size_t(render_width_) * render_height_ * 16);
+    if (prt_) prt_->run(profiler_, *scene_, vis_, frame.environment);
     light_->run(profiler_, *scene_, gbuffer_, shadow_, gi_buffer(), gi_resolution(),
                 gi_levels(), hdr_, split ? &light_components_ : nullptr,
-                indirect_ ? &low_res : nullptr, ssr_history ? &ssr_reference : nullptr);
+                indirect_ ? &low_res : nullptr, ssr_history ? &ssr_reference : nullptr,
+                prt_ ? &prt_->output() : nullptr);
     punctual_->run(profiler_, *scene_, gbuffer_, shadow_, hdr_,
                    split ? &light_components_ : nullptr);
     sky_background_->run(profiler_, *scene_, gbuffer_, hdr_);

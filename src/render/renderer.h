@@ -25,6 +25,8 @@ class GBufferPass;
 class LightPass;
 class PunctualLightPass;
 class SkyBackgroundPass;
+class PrtSkyPass;
+struct PrtShading;
 class ShadowFilterPass;
 class IndirectPass;
 class ToneMapPass;
@@ -196,6 +198,11 @@ class Renderer {
   // Keeps the light pass writing its direct and indirect terms whatever is shown (allocates the
   // two float4 buffers, 32 bytes per pixel, now and on resize), for read_components.
   void set_keep_light_components(bool keep);
+  // Sky light by precomputed radiance transfer from now on (passes/prt_sky.h): `prt` holds the
+  // transfer of the frames' instances (the same instances, in the same order, every frame);
+  // the diffuse cones and the bounce grid then carry no sky, the reflection cones still do.
+  // Throws rp::cl::Error when the transfer does not fit the scene.
+  void set_prt(const passes::PrtShading& prt);
   // Reads the last frame's HDR output, light components and GBuffer emission / albedo back
   // (blocking). Throws rp::cl::Error unless the components were written (a direct / indirect
   // view or set_keep_light_components(true) before the frame).
@@ -251,6 +258,7 @@ class Renderer {
   void resize_render(uint32_t width, uint32_t height);
 
   const rp::cl::Context& context_;
+  rp::cl::ProgramCache& programs_;  // kernels built after construction (set_prt)
   RenderSettings settings_;
   rp::cl::Profiler profiler_;
   std::unique_ptr<GpuScene> scene_;
@@ -264,6 +272,7 @@ class Renderer {
   std::unique_ptr<passes::LightPass> light_;
   std::unique_ptr<passes::PunctualLightPass> punctual_;  // a file scene's lights
   std::unique_ptr<passes::SkyBackgroundPass> sky_background_;  // the environment seen directly
+  std::unique_ptr<passes::PrtSkyPass> prt_;  // set_prt: the sky's diffuse light by PRT
   bool lamp_map_drawn_ = false;  // the lamp's shadow map holds a drawing (see render())
   SetupTimes setup_times_;
   std::unique_ptr<passes::ShadowFilterPass> shadow_filter_;  // the mips pcss / vssm read

@@ -95,6 +95,7 @@ gpu::SkyGpu sky_record(const gpu::SkyGpu& levels, const scene::Environment& envi
   if (!environment.enabled()) return gpu::SkyGpu{};
   gpu::SkyGpu info = levels;
   constexpr float kDegree = float(kPi / 180.0);
+  info.diffuse_cones = 1;
   info.turn = {std::cos(environment.rotate_deg * kDegree),
                std::sin(environment.rotate_deg * kDegree), environment.strength, 0.0f};
   return info;

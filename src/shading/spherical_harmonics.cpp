@@ -186,6 +186,28 @@ glm::dvec3 sh_irradiance(const std::vector<glm::dvec3>& coefficients, glm::dvec3
   return e;
 }
 
+std::vector<glm::dvec3> sh_turn_environment(const std::vector<glm::dvec3>& unturned,
+                                            float rotate_deg, float strength) {
+  int bands = 0;
+  while (sh_count(bands) < int(unturned.size())) ++bands;
+  if (sh_count(bands) != int(unturned.size()))
+    throw std::invalid_argument("sh_turn_environment: " + std::to_string(unturned.size()) +
+                                " coefficients are not a whole number of bands");
+  // The map's frame turned into the world's (sh_project_environment): columns R e_x, e_y, R e_z.
+  const double turn = double(rotate_deg) * kPi / 180.0;
+  const double ct = std::cos(turn), st = std::sin(turn);
+  const glm::dmat3 r(glm::dvec3(ct, 0.0, -st), glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(st, 0.0, ct));
+  const ShRotation rotation(r, bands);
+  std::vector<glm::dvec3> out(unturned.size());
+  double in_c[kShMaxCount], out_c[kShMaxCount];
+  for (int c = 0; c < 3; ++c) {
+    for (size_t i = 0; i < unturned.size(); ++i) in_c[i] = unturned[i][c];
+    rotation.apply(in_c, out_c);
+    for (size_t i = 0; i < unturned.size(); ++i) out[i][c] = out_c[i] * double(strength);
+  }
+  return out;
+}
+
 ShRotation::ShRotation(const glm::dmat3& rotation, int bands) : bands_(bands) {
   check_bands(bands);
   const glm::dmat3 inverse = glm::transpose(rotation);  // a rotation's inverse

@@ -58,6 +58,14 @@ std::vector<glm::dvec3> sh_project_environment(const scene::Environment& environ
 // lobe's turned to n (sh_rotate_zonal).
 glm::dvec3 sh_irradiance(const std::vector<glm::dvec3>& coefficients, glm::dvec3 n, int bands);
 
+// The coefficients of an environment turned by rotate_deg about +y and scaled by strength (as
+// sh_project_environment applies scene::Environment's), from those of the same map projected
+// unturned at strength 1: one rotation per band (ShRotation), cheap enough for every frame.
+// Equal to projecting the turned map where the turn maps texel centres onto texel centres
+// (multiples of 360 / width degrees), to rounding; otherwise to the projection's quadrature.
+std::vector<glm::dvec3> sh_turn_environment(const std::vector<glm::dvec3>& unturned,
+                                            float rotate_deg, float strength);
+
 class ShRotation {
  public:
   ShRotation(const glm::dmat3& rotation, int bands);

@@ -21,6 +21,7 @@
 #include "scene/frame_scene.h"
 #include "scene/gltf_export.h"
 #include "truth/environment.h"
+#include "truth/prt_transfer.h"
 #include "truth/exr_io.h"
 
 namespace rp::test {
@@ -130,6 +131,44 @@ TEST(SkyCli, EveryModeTakesTheSkyButTheDemosAccuracyReport) {
   EXPECT_TRUE(Contains(refusal({"bench", "--accuracy", "--sky", "clear"}),
                        "rolypoly bench: --sky with --accuracy needs --scene FILE: the demo's "
                        "report measures its closed box"));
+}
+
+TEST(SkyCli, PrtOptionsResolveAndAreRefusedWithAReason) {
+  const app::SkyOptions s =
+      sky_of({"render", "--scene", "room.glb", "--env", "a.hdr", "--sky-light", "prt",
+              "--prt-bands", "5", "--prt-transfer", "interreflected", "--prt-bounces", "2",
+              "--prt-samples", "64"});
+  EXPECT_TRUE(s.prt);
+  EXPECT_EQ(s.prt_settings.bands, 5);
+  EXPECT_EQ(s.prt_settings.kind, truth::PrtKind::kInterreflected);
+  EXPECT_EQ(s.prt_settings.bounces, 2u);
+  EXPECT_EQ(s.prt_settings.samples, 64u);
+  EXPECT_FALSE(sky_of({"bench", "--scene", "room.glb", "--env", "a.hdr"}).prt);
+  EXPECT_TRUE(sky_of({"bench", "--accuracy", "--scene", "room.glb", "--sky", "clear",
+                      "--sky-light", "prt"}).prt);
+  EXPECT_TRUE(Contains(refusal({"render", "--env", "a.hdr", "--sky-light", "prt"}),
+                       "rolypoly render: --sky-light prt needs a still scene file (--scene FILE "
+                       "or atrium): its transfer is computed once, and the demo's toys move"));
+  EXPECT_TRUE(Contains(refusal({"bench", "--scene", "busy", "--env", "a.hdr", "--sky-light",
+                                "prt"}),
+                       "--sky-light prt needs a still scene file"));
+  EXPECT_TRUE(Contains(refusal({"render", "--scene", "room.glb", "--sky-light", "prt"}),
+                       "--sky-light prt lights with the sky of --env FILE or --sky clear"));
+  EXPECT_TRUE(Contains(refusal({"render", "--scene", "room.glb", "--env", "a.hdr",
+                                "--prt-bands", "5"}),
+                       "rolypoly render: --prt-bands applies to --sky-light prt"));
+  EXPECT_TRUE(Contains(refusal({"run", "--scene", "room.glb", "--env", "a.hdr", "--sky-light",
+                                "prt", "--prt-transfer", "shadowed", "--prt-bounces", "2"}),
+                       "--prt-bounces applies to --prt-transfer interreflected"));
+  EXPECT_TRUE(Contains(refusal({"render", "--quality", "pathtraced", "--scene", "room.glb",
+                                "--env", "a.hdr", "--sky-light", "prt"}),
+                       "--sky-light applies to the real-time modes"));
+  EXPECT_TRUE(Contains(refusal({"render", "--scene", "room.glb", "--env", "a.hdr",
+                                "--sky-light", "prt", "--prt-bands", "4"}),
+                       "--prt-bands"));
+  EXPECT_TRUE(Contains(refusal({"render", "--scene", "room.glb", "--env", "a.hdr",
+                                "--sky-light", "sh"}),
+                       "--sky-light: sh not in {cones,prt}"));
 }
 
 // Key O in the window turns the sky: the clear sky's sun turns with its map, so the map's glow
@@ -388,6 +427,64 @@ TEST(SkyCli, RealTimeRotatingTheMapHalfTurnMovesItsLightToTheOtherSide) {
   EXPECT_NEAR(mean(after, 6, 6, 4), 0.0, 0.1);
   EXPECT_NEAR(mean(before, 0, 0, 2), 0.0, 1e-6);
   EXPECT_NEAR(mean(after, 0, 0, 2), 1.0, 1e-6);
+}
+
+// --sky-light prt's furnace test: the white floor's transfer (its top face sees the whole sky)
+// dotted with a uniform map's coefficients is pi L, so the floor is as bright as the map; the
+// second run finds the transfer in the cache (XDG_CACHE_HOME) instead of computing it.
+TEST(SkyCli, RealTimePrtWhiteFloorUnderAUniformMapIsAsBrightAsTheMap) {
+  TempDir dir;
+  const int mw = 32, mh = 16;
+  std::vector<float> rgb(size_t(mw) * mh * 3, 0.75f);
+  ASSERT_NE(stbi_write_hdr((dir / "grey.hdr").c_str(), mw, mh, 3, rgb.data()), 0);
+  write_white_floor(dir / "floor.gltf");
+  const std::string cache = "XDG_CACHE_HOME=" + shell_quote((dir / "cache").string());
+  const std::string args = "render --exr --frames 2 --bounces 1 --size 16 --sky-light prt "
+                           "--prt-samples 64 --scene " +
+                           shell_quote((dir / "floor.gltf").string()) + " --env " +
+                           shell_quote((dir / "grey.hdr").string()) + " --out ";
+  for (const char* run : {"first", "second"}) {
+    const CommandResult r = run_rolypoly(args + shell_quote((dir / run).string()), cache);
+    ASSERT_EQ(r.exit_code, 0) << r.command << "\n" << r.out << r.err;
+    EXPECT_TRUE(Contains(r.err, std::string("PRT sky light: 9 coefficients, interreflected, 3 "
+                                            "bounces, ")))
+        << r.err;
+    EXPECT_TRUE(Contains(r.err, std::string(run) == "first" ? "written to" : "cached in"))
+        << run << ": " << r.err;
+    uint32_t w = 0, h = 0;
+    const std::vector<float> img = truth::read_exr_layer(dir / run / "frame_0001.exr", "", w, h);
+    ASSERT_EQ(img.size(), size_t(16) * 16 * 3);
+    double sum = 0.0;
+    for (float v : img) sum += v;
+    EXPECT_NEAR(sum / double(img.size()), 0.75, 0.01) << run;
+  }
+}
+
+// The cube's +z face under the map bright towards +z, lit by PRT (9 coefficients of a step:
+// the face's irradiance within its ringing), and dark after --env-rotate 180: the transfer is
+// fixed, the turn rotates the sky's coefficients.
+TEST(SkyCli, RealTimePrtRotatingTheMapHalfTurnMovesItsLightToTheOtherSide) {
+  TempDir dir;
+  write_half_bright_map_and_cube(dir.path());
+  const std::string common = "--scene " + shell_quote((dir / "cube.gltf").string()) +
+                             " --env " + shell_quote((dir / "half.exr").string()) +
+                             " --size 16 --sky-light prt --prt-transfer unshadowed";
+  const std::string cache = "XDG_CACHE_HOME=" + shell_quote((dir / "cache").string());
+  std::vector<float> img[2];
+  uint32_t w = 0, h = 0;
+  int k = 0;
+  for (const char* turn : {"", " --env-rotate 180"}) {
+    const std::filesystem::path out = dir / (k == 0 ? "a" : "b");
+    const CommandResult r = run_rolypoly("render --exr --frames 2 --bounces 1 --out " +
+                                             shell_quote(out.string()) + " " + common + turn,
+                                         cache);
+    ASSERT_EQ(r.exit_code, 0) << r.command << "\n" << r.out << r.err;
+    img[k++] = truth::read_exr_layer(out / "frame_0001.exr", "", w, h);
+  }
+  ASSERT_EQ(img[0].size(), size_t(16) * 16 * 3);
+  ASSERT_EQ(img[1].size(), img[0].size());
+  EXPECT_GT(square_mean(img[0], w, 6, 6, 4), 0.8);
+  EXPECT_LT(square_mean(img[1], w, 6, 6, 4), 0.2);
 }
 
 }  // namespace

@@ -1,0 +1,77 @@
+/* Precomputed radiance transfer, shading (seeds 002/003): the sky's irradiance at every pixel
+ * from per-vertex transfer vectors (computed on the host: src/truth/prt_transfer.h) and the
+ * environment's spherical-harmonic coefficients (src/shading/spherical_harmonics.h), as the
+ * dot product
+ *     E_c(x) = sum_i T_{c,i}(x) L_{c,i},
+ * T interpolated over the pixel's triangle with the visibility buffer's barycentrics. Host side:
+ * src/passes/prt_sky.h.
+ *
+ * Inputs:
+ *   ids, bary       the visibility buffer (render/frame_buffers.h): (instance, primitive) and
+ *                   the barycentrics (b1, b2) of the triangle's 2nd and 3rd vertex
+ *   transfer        floats, vertex-major: vertex v, channel c, coefficient i at
+ *                   (v * channels + c) * count + i (channels 1: grey, the same T for r, g, b;
+ *                   3: RGB)
+ *   vertex_offset   int per instance: the PRT vertex of the shared vertex buffer's vertex g is
+ *                   g + vertex_offset[instance]; RP_PRT_NO_TRANSFER: the instance has none
+ *   env             float4 per coefficient (count of them): rgb L_i / pi, turned and scaled
+ *                   for this frame on the host
+ * Output: float4 per pixel, rgb = E / pi (the light pass's D, irradiance over pi: albedo times
+ * it is the Lambertian radiance), a = 1 where a transfer was found, 0 elsewhere (background,
+ * spheres, instances without transfer). One pixel per work-item: the cost is `count` x 3
+ * loads per channel, far below the cones'.
+ */
+#include "shared/types.h"
+
+#define RP_PRT_NO_TRANSFER ((int)0x80000000)
+
+__kernel void prt_shade(__global const FrameConstants* restrict frame,
+                        __global const uint2* restrict ids,
+                        __global const float2* restrict bary,
+                        __global const Instance* restrict instances,
+                        __global const Triangle* restrict triangles,
+                        __global const float* restrict transfer,
+                        __global const int* restrict vertex_offset,
+                        const uint offset_count,
+                        __global const float4* restrict env,
+                        const uint channels,
+                        const uint count,
+                        __global float4* restrict out) {
+  const uint x = (uint)get_global_id(0), y = (uint)get_global_id(1);
+  const uint width = frame->width;
+  if (x >= width || y >= frame->height) return;
+  const uint pixel = y * width + x;
+  const uint2 id = ids[pixel];
+  if (id.x == RP_ID_NONE || (id.x & RP_ID_SPHERE_BIT) != 0u || id.x >= offset_count ||
+      id.x >= frame->instance_count || id.y >= instances[id.x].triangle_count) {
+    out[pixel] = (float4)(0.0f);
+    return;
+  }
+  const int offset = vertex_offset[id.x];
+  if (offset == RP_PRT_NO_TRANSFER) {
+    out[pixel] = (float4)(0.0f);
+    return;
+  }
+  const Triangle tri = triangles[instances[id.x].first_triangle + id.y];
+  const float2 b = bary[pixel];
+  const float b0 = 1.0f - b.x - b.y;
+  const uint stride = channels * count;
+  __global const float* t0 = transfer + (uint)((int)tri.x + offset) * stride;
+  __global const float* t1 = transfer + (uint)((int)tri.y + offset) * stride;
+  __global const float* t2 = transfer + (uint)((int)tri.z + offset) * stride;
+  float3 e = (float3)(0.0f);
+  if (channels == 1u) {
+    for (uint i = 0; i < count; ++i)
+      e += (b0 * t0[i] + b.x * t1[i] + b.y * t2[i]) * env[i].xyz;
+  } else {
+    for (uint i = 0; i < count; ++i) {
+      const float4 l = env[i];
+      e.x += (b0 * t0[i] + b.x * t1[i] + b.y * t2[i]) * l.x;
+      e.y += (b0 * t0[count + i] + b.x * t1[count + i] + b.y * t2[count + i]) * l.y;
+      e.z += (b0 * t0[2u * count + i] + b.x * t1[2u * count + i] + b.y * t2[2u * count + i]) *
+             l.z;
+    }
+  }
+  /* a negative sum (ringing of a band-limited sky, or a shadowed transfer's noise) is no light */
+  out[pixel] = (float4)(fmax(e, 0.0f), 1.0f);
+}

@@ -1,0 +1,136 @@
+#include "passes/prt_sky.h"
+
+#include <cmath>
+#include <string>
+
+#include "cl/buffer.h"
+#include "cl/error.h"
+#include "shading/spherical_harmonics.h"
+
+namespace rp::passes {
+namespace {
+
+constexpr size_t kGroup = 16;  // 16x16 work-groups, one pixel each
+constexpr int32_t kNoOffset = INT32_MIN;  // RP_PRT_NO_TRANSFER in kernels/prt.cl
+constexpr double kInvPi = 0.318309886183790671538;
+
+template <typename T>
+::cl::Buffer upload(const rp::cl::Context& context, const std::vector<T>& data,
+                    const std::string& what) {
+  const size_t bytes = std::max<size_t>(1, data.size()) * sizeof(T);
+  ::cl::Buffer buffer = rp::cl::make_buffer(context.context, CL_MEM_READ_ONLY, bytes, what,
+                                            "fewer SH bands (--prt-bands 3) need less");
+  if (!data.empty())
+    context.queue.enqueueWriteBuffer(buffer, CL_TRUE, 0, data.size() * sizeof(T), data.data());
+  return buffer;
+}
+
+}  // namespace
+
+PrtSkyPass::PrtSkyPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+                       const render::GpuScene& scene, const PrtShading& prt)
+    : context_(&context), bands_(prt.bands), channels_(prt.channels) {
+  if (prt.bands != 3 && prt.bands != 5)
+    throw rp::cl::Error("prt pass: " + std::to_string(prt.bands) + " SH bands (3 or 5 expected)");
+  if (prt.channels != 1 && prt.channels != 3)
+    throw rp::cl::Error("prt pass: " + std::to_string(prt.channels) +
+                        " colour channels (1 or 3 expected)");
+  const uint32_t vertices = prt.vertex_count();
+  std::vector<int32_t> offsets;
+  offsets.reserve(prt.instances.size());
+  for (size_t i = 0; i < prt.instances.size(); ++i) {
+    const PrtShading::Instance& inst = prt.instances[i];
+    if (inst.first == PrtShading::kNoTransfer) {
+      offsets.push_back(kNoOffset);
+      continue;
+    }
+    if (inst.mesh >= scene.meshes.size())
+      throw rp::cl::Error("prt pass: instance " + std::to_string(i) + " has mesh " +
+                          std::to_string(inst.mesh) + ", which the scene does not have");
+    const render::MeshRange& mesh = scene.meshes[inst.mesh];
+    if (uint64_t(inst.first) + mesh.vertex_count > vertices)
+      throw rp::cl::Error("prt pass: instance " + std::to_string(i) + "'s " +
+                          std::to_string(mesh.vertex_count) + " vertices from " +
+                          std::to_string(inst.first) + " lie past the transfer's " +
+                          std::to_string(vertices));
+    offsets.push_back(int32_t(int64_t(inst.first) - int64_t(mesh.first_vertex)));
+  }
+  offset_count_ = uint32_t(offsets.size());
+  transfer_ = upload(context, prt.coefficients,
+                     "the PRT transfer (" + std::to_string(vertices) + " vertices x " +
+                         std::to_string(prt.channels * prt.bands * prt.bands) + " floats)");
+  offsets_ = upload(context, offsets, "the PRT instance offsets");
+  env_ = rp::cl::make_buffer(context.context, CL_MEM_READ_ONLY,
+                             size_t(shading::kShMaxCount) * 4 * sizeof(float),
+                             "the environment's SH coefficients");
+  kernel_ = programs.kernel("prt.cl", "prt_shade");
+}
+
+PrtSkyPass::~PrtSkyPass() = default;
+
+uint64_t PrtSkyPass::device_bytes() const {
+  uint64_t bytes = 0;
+  for (const ::cl::Buffer* b : {&transfer_, &offsets_, &env_, &out_})
+    if ((*b)() != nullptr) bytes += b->getInfo<CL_MEM_SIZE>();
+  return bytes;
+}
+
+void PrtSkyPass::update_environment(const scene::Environment& environment) {
+  const bool enabled = environment.enabled();
+  if (enabled && environment.map != projected_map_) {
+    scene::Environment unturned{environment.map, 1.0f, 0.0f};
+    unturned_ = shading::sh_project_environment(unturned, bands_);
+    projected_map_ = environment.map;
+    uploaded_strength_ = -1.0f;  // force the upload
+  }
+  if (enabled == uploaded_enabled_ &&
+      (!enabled || (environment.rotate_deg == uploaded_turn_ &&
+                    environment.strength == uploaded_strength_)))
+    return;
+  std::vector<float> env(size_t(shading::kShMaxCount) * 4, 0.0f);
+  if (enabled) {
+    const std::vector<glm::dvec3> turned =
+        shading::sh_turn_environment(unturned_, environment.rotate_deg, environment.strength);
+    for (size_t i = 0; i < turned.size(); ++i)
+      for (int c = 0; c < 3; ++c) env[4 * i + size_t(c)] = float(turned[i][c] * kInvPi);
+  }
+  context_->queue.enqueueWriteBuffer(env_, CL_TRUE, 0, env.size() * sizeof(float), env.data());
+  uploaded_enabled_ = enabled;
+  uploaded_turn_ = environment.rotate_deg;
+  uploaded_strength_ = environment.strength;
+}
+
+void PrtSkyPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                     const render::VisibilityBuffer& vis, const scene::Environment& environment) {
+  const uint32_t w = scene.constants.width, h = scene.constants.height;
+  if (vis.width != w || vis.height != h)
+    throw rp::cl::Error("prt pass: frame size " + std::to_string(w) + "x" + std::to_string(h) +
+                        " does not match the visibility buffer (" + std::to_string(vis.width) +
+                        "x" + std::to_string(vis.height) + ")");
+  const size_t bytes = std::max<size_t>(1, size_t(w) * h) * 16;
+  if (out_bytes_ < bytes) {
+    out_ = rp::cl::make_buffer(context_->context, CL_MEM_READ_WRITE, bytes,
+                               "the PRT sky light (float4 per pixel)");
+    out_bytes_ = bytes;
+  }
+  if (w == 0 || h == 0) return;
+  update_environment(environment);
+  cl_uint arg = 0;
+  kernel_.setArg(arg++, scene.frame);
+  kernel_.setArg(arg++, vis.ids);
+  kernel_.setArg(arg++, vis.bary);
+  kernel_.setArg(arg++, scene.instances);
+  kernel_.setArg(arg++, scene.triangles);
+  kernel_.setArg(arg++, transfer_);
+  kernel_.setArg(arg++, offsets_);
+  kernel_.setArg(arg++, cl_uint(offset_count_));
+  kernel_.setArg(arg++, env_);
+  kernel_.setArg(arg++, cl_uint(channels_));
+  kernel_.setArg(arg++, cl_uint(bands_ * bands_));
+  kernel_.setArg(arg++, out_);
+  profiler.enqueue("prt", kernel_,
+                   ::cl::NDRange(rp::cl::round_up(w, kGroup), rp::cl::round_up(h, kGroup)),
+                   ::cl::NDRange(kGroup, kGroup));
+}
+
+}  // namespace rp::passes

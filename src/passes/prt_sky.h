@@ -1,0 +1,81 @@
+// Sky light by precomputed radiance transfer (seeds 002/003): per pixel, the environment's
+// spherical-harmonic coefficients dotted with the transfer vectors of the pixel's triangle's
+// vertices, interpolated by the visibility buffer's barycentrics (kernels/prt.cl). The output,
+// E / pi per pixel (float4: rgb, a = 1 where a transfer was found), is what the light pass adds
+// to its diffuse indirect term (LightPass::run's prt) in place of the cones' sky. The
+// transfer itself is computed on the host (truth/prt_transfer.h) by the caller; this pass holds
+// it on the device, turns the environment's coefficients each frame (shading::
+// sh_turn_environment: a rotation, no re-projection) and shades. Pass name "prt".
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cl/profiler.h"
+#include "cl/program_cache.h"
+#include "render/frame_buffers.h"
+#include "render/gpu_scene.h"
+#include "scene/environment.h"
+
+namespace rp::passes {
+
+// Per-vertex transfer for the device: truth::PrtTransfer's numbers without its host-only parts.
+struct PrtShading {
+  int bands = 3;          // 3 (9 coefficients) or 5 (25)
+  uint32_t channels = 1;  // 1: grey (the same T for r, g, b); 3: RGB
+  // Vertex-major: vertex v, channel c, coefficient i at (v * channels + c) * bands^2 + i;
+  // E_c = sum_i T_{c,i} L_{c,i} (irradiance; the receiver's albedo not included).
+  std::vector<float> coefficients;
+  // Per frame instance, in the frame's order: its mesh (scene::MeshInstance::mesh) and its
+  // first PRT vertex (vertex v of the mesh is PRT vertex first + v); kNoTransfer: none.
+  struct Instance {
+    uint32_t mesh = 0, first = 0;
+  };
+  static constexpr uint32_t kNoTransfer = 0xFFFFFFFFu;
+  std::vector<Instance> instances;
+
+  uint32_t vertex_count() const {
+    const size_t per = size_t(channels) * size_t(bands) * size_t(bands);
+    return per == 0 ? 0 : uint32_t(coefficients.size() / per);
+  }
+};
+
+class PrtSkyPass {
+ public:
+  // Uploads the transfer. Throws rp::cl::Error when it does not fit `scene` (an instance's
+  // mesh that does not exist, vertices past the transfer's end, bands other than 3 or 5).
+  PrtSkyPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
+             const render::GpuScene& scene, const PrtShading& prt);
+  ~PrtSkyPass();
+
+  // E / pi of the frame's environment (turned and scaled as `environment` says; black without
+  // one) at every pixel of `vis` into output() (grown to vis' size). Enqueues only.
+  void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+           const render::VisibilityBuffer& vis, const scene::Environment& environment);
+
+  const ::cl::Buffer& output() const { return out_; }
+  int bands() const { return bands_; }
+  // Bytes of the pass's device buffers (transfer, offsets, coefficients, output).
+  uint64_t device_bytes() const;
+
+ private:
+  void update_environment(const scene::Environment& environment);
+
+  const rp::cl::Context* context_;
+  ::cl::Kernel kernel_;
+  int bands_ = 3;
+  uint32_t channels_ = 1;
+  ::cl::Buffer transfer_, offsets_, env_, out_;
+  uint32_t offset_count_ = 0;
+  size_t out_bytes_ = 0;
+  // The map's coefficients unturned at strength 1 (projected once per map), and what env_ holds.
+  std::shared_ptr<const scene::EnvironmentMap> projected_map_;
+  std::vector<glm::dvec3> unturned_;
+  float uploaded_turn_ = 0.0f, uploaded_strength_ = -1.0f;
+  bool uploaded_enabled_ = false;
+};
+
+}  // namespace rp::passes

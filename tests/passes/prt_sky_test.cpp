@@ -1,0 +1,166 @@
+// The PRT sky pass (passes/prt_sky.h, kernels/prt.cl) against a plain C++ reference: the
+// transfer of the visibility buffer's triangle interpolated by its barycentrics, dotted with
+// the environment's coefficients. The reference projects the turned map itself
+// (sh_project_environment at the frame's turn and strength), so the pass's per-frame rotation
+// (sh_turn_environment) is checked too: the turn is a whole number of texel columns, where
+// rotating and re-projecting agree to rounding.
+//
+// Tolerance: 1e-4 of the largest value plus 1e-4 relative (float sums of 9 or 25 products of
+// numbers near 1, and the two coefficient paths' rounding).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "cl/error.h"
+#include "passes/prt_sky.h"
+#include "passes/reference_raster.h"
+#include "passes/visibility.h"
+#include "render/gpu_scene.h"
+#include "shading/spherical_harmonics.h"
+#include "support/cl_fixture.h"
+
+namespace rp::test {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A smooth, coloured 16 x 8 map (no texel is negative).
+std::shared_ptr<scene::EnvironmentMap> test_map() {
+  auto map = std::make_shared<scene::EnvironmentMap>();
+  map->width = 16;
+  map->height = 8;
+  for (int y = 0; y < map->height; ++y)
+    for (int x = 0; x < map->width; ++x) {
+      const double u = (x + 0.5) / map->width, v = (y + 0.5) / map->height;
+      map->rgb.push_back(float(1.0 + 0.8 * std::cos(2 * kPi * u) * std::sin(kPi * v)));
+      map->rgb.push_back(float(0.6 + 0.5 * std::cos(kPi * v)));
+      map->rgb.push_back(float(0.4 + 0.3 * std::sin(4 * kPi * u) + (y == 1 && x == 3 ? 4.0 : 0.0)));
+    }
+  return map;
+}
+
+struct Readback {
+  std::vector<glm::uvec2> ids;
+  std::vector<glm::vec2> bary;
+  std::vector<glm::vec4> out;
+};
+
+void check_pass(int bands, uint32_t channels) {
+  // Mesh 0: a quad of two triangles; mesh 1: one triangle. Instances: the quad, the triangle in
+  // front of it, a second quad to the right, and a third quad without transfer.
+  const std::vector<glm::vec3> quad = {{-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f},
+                                       {0.5f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}};
+  const std::vector<glm::vec3> tri = {{-0.3f, -0.2f, 0.2f}, {0.3f, -0.3f, 0.2f},
+                                      {0.0f, 0.35f, 0.2f}};
+  scene::SceneAssets assets = make_test_assets(
+      {make_test_mesh(quad, {{0, 1, 2}, {0, 2, 3}}), make_test_mesh(tri, {{0, 1, 2}})});
+  scene::FrameScene frame = make_test_frame();
+  scene::MeshInstance a, b, right, d;
+  a.model = glm::translate(glm::mat4(1.0f), glm::vec3(-0.4f, 0.0f, 0.0f));
+  b.mesh = 1;
+  right.model = glm::translate(glm::mat4(1.0f), glm::vec3(0.6f, 0.1f, -0.1f));
+  d.model = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -0.75f, 0.05f));
+  frame.instances = {a, b, right, d};
+  for (scene::MeshInstance& i : frame.instances) i.prev_model = i.model;
+  frame.environment.map = test_map();
+  frame.environment.rotate_deg = 3 * 360.0f / 16.0f;  // three texel columns
+  frame.environment.strength = 1.5f;
+
+  // Transfer: random numbers per PRT vertex (instance a: 0..3, b: 4..6, c: 7..10).
+  passes::PrtShading prt;
+  prt.bands = bands;
+  prt.channels = channels;
+  const int count = bands * bands;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> t(-0.3f, 1.0f);
+  prt.coefficients.resize(size_t(11) * channels * size_t(count));
+  for (float& v : prt.coefficients) v = t(rng);
+  prt.instances = {{0, 0}, {1, 4}, {0, 7}, {0, passes::PrtShading::kNoTransfer}};
+
+  const uint32_t w = 96, h = 80;
+  render::GpuScene gpu(context().context, context().queue, assets);
+  gpu.update(frame, w, h, 64);
+  render::VisibilityBuffer vis;
+  vis.resize(context().context, w, h);
+  rp::cl::Profiler profiler(context().queue);
+  passes::VisibilityPass visibility(context(), programs());
+  visibility.render(profiler, gpu, vis);
+  passes::PrtSkyPass pass(context(), programs(), gpu, prt);
+  pass.run(profiler, gpu, vis, frame.environment);
+  profiler.collect();
+
+  Readback r;
+  const size_t n = size_t(w) * h;
+  r.ids.resize(n);
+  r.bary.resize(n);
+  r.out.resize(n);
+  ::cl::CommandQueue& q = context().queue;
+  q.enqueueReadBuffer(vis.ids, CL_TRUE, 0, n * 8, r.ids.data());
+  q.enqueueReadBuffer(vis.bary, CL_TRUE, 0, n * 8, r.bary.data());
+  q.enqueueReadBuffer(pass.output(), CL_TRUE, 0, n * 16, r.out.data());
+
+  const std::vector<glm::dvec3> env = shading::sh_project_environment(frame.environment, bands);
+  // Vertex indices of each instance's triangles, local to its mesh.
+  const auto local = [&](uint32_t instance, uint32_t primitive) {
+    return assets.meshes[frame.instances[instance].mesh].triangles.at(primitive);
+  };
+  size_t shaded[4] = {0, 0, 0, 0}, bad = 0;
+  for (size_t p = 0; p < n; ++p) {
+    const glm::uvec2 id = r.ids[p];
+    if (id.x == 0xFFFFFFFFu || id.x == 3u) {
+      EXPECT_EQ(r.out[p], glm::vec4(0.0f)) << "pixel " << p << " without transfer";
+      if (id.x == 3u) ++shaded[3];
+      continue;
+    }
+    ASSERT_LT(id.x, 3u);
+    ++shaded[id.x];
+    const glm::uvec3 v = local(id.x, id.y);
+    const uint32_t first = prt.instances[id.x].first;
+    const double b1 = r.bary[p].x, b2 = r.bary[p].y, b0 = 1.0 - b1 - b2;
+    glm::dvec3 e(0.0);
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t ch = channels == 1 ? 0u : uint32_t(c);
+      for (int i = 0; i < count; ++i) {
+        const auto at = [&](uint32_t vertex) {
+          return double(prt.coefficients[(size_t(first + vertex) * channels + ch) * count + i]);
+        };
+        e[c] += (b0 * at(v.x) + b1 * at(v.y) + b2 * at(v.z)) * env[size_t(i)][c];
+      }
+    }
+    e = glm::max(e / kPi, glm::dvec3(0.0));
+    for (int c = 0; c < 3; ++c)
+      if (!(std::abs(r.out[p][c] - e[c]) <= 1e-4 + 1e-4 * std::abs(e[c])) && bad++ < 5)
+        ADD_FAILURE() << "pixel " << p << " channel " << c << ": " << r.out[p][c] << " vs " << e[c];
+    EXPECT_EQ(r.out[p].w, 1.0f);
+  }
+  EXPECT_EQ(bad, 0u);
+  for (int i = 0; i < 4; ++i) EXPECT_GT(shaded[i], 100u) << "instance " << i << " barely seen";
+}
+
+TEST(PrtSkyPass, NineGreyCoefficientsMatchTheReference) { check_pass(3, 1); }
+TEST(PrtSkyPass, TwentyFiveRgbCoefficientsMatchTheReference) { check_pass(5, 3); }
+
+TEST(PrtSkyPass, RejectsTransferThatDoesNotFitTheScene) {
+  scene::SceneAssets assets =
+      make_test_assets({make_test_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}})});
+  render::GpuScene gpu(context().context, context().queue, assets);
+  passes::PrtShading prt;
+  prt.coefficients.resize(2 * 9);  // two vertices: the mesh has three
+  prt.instances = {{0, 0}};
+  EXPECT_THROW(passes::PrtSkyPass(context(), programs(), gpu, prt), rp::cl::Error);
+  prt.coefficients.resize(3 * 9);
+  prt.instances = {{1, 0}};  // no mesh 1
+  EXPECT_THROW(passes::PrtSkyPass(context(), programs(), gpu, prt), rp::cl::Error);
+  prt.instances = {{0, 0}};
+  prt.bands = 4;
+  EXPECT_THROW(passes::PrtSkyPass(context(), programs(), gpu, prt), rp::cl::Error);
+}
+
+}  // namespace
+}  // namespace rp::test
