@@ -9,6 +9,7 @@
 #include "app/host_tone_map.h"
 #include "app/png_output.h"
 #include "app/sky_input.h"
+#include "shading/spherical_harmonics.h"
 #include "app/truth_cache.h"
 #include "bench/src/accuracy_materials.h"
 #include "bench/src/accuracy_metrics.h"
@@ -128,6 +129,22 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
   j["gi_volume"] = render::gi_volume_name(common.gi_volume);
   j["scene"] = scene_file_json<nlohmann::json>(facts);
   if (const std::string line = describe_sky(common.sky, sky); !line.empty()) j["sky"] = line;
+  if (sky.environment.enabled()) {
+    // how the real-time modes take the sky's diffuse light, and the floor of PRT on the map
+    const truth::PrtSettings& prt = common.sky.prt_settings;
+    j["sky_light"] =
+        common.sky.prt
+            ? "prt, " + std::to_string(prt.bands * prt.bands) + " coefficients, " +
+                  truth::prt_kind_name(prt.kind) +
+                  (prt.kind == truth::PrtKind::kInterreflected
+                       ? " (" + std::to_string(prt.bounces) + " bounces)"
+                       : std::string()) +
+                  ", " + std::to_string(prt.samples) + " directions"
+            : "cones";
+    for (const int bands : {3, 5})
+      j["sky_sh_irradiance_error"][std::to_string(bands * bands)] =
+          shading::sh_irradiance_error(sky.environment, bands);
+  }
   j["width"] = w;
   j["height"] = h;
   j["many_bounces"] = options.many_bounces;

@@ -99,6 +99,19 @@ std::string file_accuracy_table(const nlohmann::json& j) {
                 scene["lights"] == 1 ? "" : "s", j["truth_spp"].get<uint32_t>(),
                 static_cast<unsigned long long>(j["truth_seed"].get<uint64_t>()));
   t << line;
+  if (j.contains("sky_light")) {
+    t << "  sky light: " << j["sky_light"].get<std::string>();
+    if (j.contains("sky_sh_irradiance_error")) {
+      char e[160];
+      std::snprintf(e, sizeof e,
+                    "; the map's SH irradiance error (PRT's floor): %.1f %% with 9 "
+                    "coefficients, %.1f %% with 25",
+                    100.0 * json_number(j["sky_sh_irradiance_error"]["9"]),
+                    100.0 * json_number(j["sky_sh_irradiance_error"]["25"]));
+      t << e;
+    }
+    t << "\n";
+  }
   t << truth_lines(j["truth"]);
   const std::string n = std::to_string(j["many_bounces"].get<uint32_t>());
   t << "  the 1-bounce truth's indirect light against " << n << " bounces: bias"

@@ -16,7 +16,7 @@
  * 7.2 of the hemisphere's 6.3 sr). A wider prefilter smooths the 16 samples but lets a bright
  * patch of sky leak around what blocks it: measured on gen_load_scene --yard under Blender's
  * eight studio-light maps (bench --accuracy, 128x128), 36.9 degrees gave indirect L1 20-115 %
- * where 21.8 gives 14-65 % (bench/results/zen3-2core-pocl-sky.md).
+ * where 21.8 gives 14-65 % (bench/results/zen3-2core-pocl-sky-prt.md).
  */
 #ifndef ROLYPOLY_COMMON_SKY_H
 #define ROLYPOLY_COMMON_SKY_H

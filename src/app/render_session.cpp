@@ -282,6 +282,11 @@ SceneMemory RenderSession::scene_memory() const {
   if (sky_ && sky_->environment.enabled())
     memory.sky_texels = render::sky_texel_count(sky_->environment.map->width,
                                                 sky_->environment.map->height);
+  if (prt_) {
+    const uint64_t per_vertex = uint64_t(prt_->bands * prt_->bands) *
+                                (prt_->kind == truth::PrtKind::kInterreflected ? 3u : 1u);
+    memory.prt_floats = memory.vertices * per_vertex;
+  }
   return memory;
 }
 
@@ -292,7 +297,7 @@ rp::cl::PassTimes RenderSession::render(const scene::FrameScene& frame,
   if (sky_) {
     lit_frame_ = frame;  // copy assignment keeps the vectors' capacity: no per-frame allocation
     add_sky(*sky_, lit_frame_);
-    if (prt_) {
+    if (prt_ && !prt_ready_) {
       prepare_prt(lit_frame_);
       start = std::chrono::steady_clock::now();  // the frame's time, not the transfer's
     }
@@ -343,7 +348,7 @@ void RenderSession::prepare_prt(const scene::FrameScene& frame) {
                    : "",
                t.vertex_count(), cached.from_cache ? "cached in" : "written to",
                cached.file.string().c_str());
-  prt_.reset();
+  prt_ready_ = true;
 }
 
 std::string describe_device(const rp::cl::DeviceInfo& info) {

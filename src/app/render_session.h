@@ -153,7 +153,8 @@ class RenderSession {
   std::optional<FrameTimeScale> frame_scale_;  // --target-ms
   std::unique_ptr<SkyLight> sky_;              // --env / --sky clear; nullptr: none
   scene::FrameScene lit_frame_;                // with sky_: the frame render() adds it to
-  std::optional<truth::PrtSettings> prt_;      // --sky-light prt, until prepare_prt ran
+  std::optional<truth::PrtSettings> prt_;      // --sky-light prt
+  bool prt_ready_ = false;                     // prepare_prt ran: the renderer has the transfer
 };
 
 // Device memory the renderer allocates for one width x height image, counted buffer by buffer

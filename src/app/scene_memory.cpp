@@ -9,7 +9,7 @@ namespace rp::app {
 
 uint64_t SceneMemory::largest_buffer_bytes() const {
   return std::max({vertices * 32, triangles * kTriangleBytes, texels * kTexelBytes,
-                   sky_texels * kSkyTexelBytes});
+                   sky_texels * kSkyTexelBytes, prt_floats * 4});
 }
 
 std::string SceneMemory::describe() const {
@@ -26,6 +26,9 @@ std::string SceneMemory::describe() const {
     out += ", the sky's map (" +
            std::to_string((sky_texels * kSkyTexelBytes + (1u << 20) - 1) >> 20) +
            " MiB with its mipmaps)";
+  if (prt_floats > 0)
+    out += ", the PRT transfer (" + std::to_string((prt_floats * 4 + (1u << 20) - 1) >> 20) +
+           " MiB)";
   return out;
 }
 

@@ -186,6 +186,44 @@ glm::dvec3 sh_irradiance(const std::vector<glm::dvec3>& coefficients, glm::dvec3
   return e;
 }
 
+double sh_irradiance_error(const scene::Environment& environment, int bands, int normals) {
+  check_bands(bands);
+  if (!environment.enabled() || normals < 1) return 0.0;
+  const std::vector<glm::dvec3> c = sh_project_environment(environment, bands);
+  const scene::EnvironmentMap& map = *environment.map;
+  const int w = map.width, h = map.height;
+  const double turn = double(environment.rotate_deg) * kPi / 180.0;
+  const double ct = std::cos(turn), st = std::sin(turn);
+  // The texels as (world direction, luminance x solid angle): what the exact sums need.
+  std::vector<glm::dvec4> texels;
+  texels.reserve(size_t(w) * size_t(h));
+  for (int row = 0; row < h; ++row) {
+    const double t0 = kPi * row / h, t1 = kPi * (row + 1) / h;
+    const double omega = (2.0 * kPi / w) * (std::cos(t0) - std::cos(t1));
+    for (int col = 0; col < w; ++col) {
+      const glm::dvec3 m(scene::environment_direction((float(col) + 0.5f) / float(w),
+                                                      (float(row) + 0.5f) / float(h)));
+      const glm::dvec3 d(ct * m.x + st * m.z, m.y, -st * m.x + ct * m.z);
+      const float* t = &map.rgb[3 * (size_t(row) * size_t(w) + size_t(col))];
+      const double lum = 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
+      texels.emplace_back(glm::normalize(d), lum * omega * double(environment.strength));
+    }
+  }
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
+  double diff = 0.0, sum = 0.0;
+  for (int k = 0; k < normals; ++k) {
+    const double z = 1.0 - (2.0 * k + 1.0) / normals, r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const glm::dvec3 n(r * std::cos(golden * k), z, r * std::sin(golden * k));
+    double exact = 0.0;
+    for (const glm::dvec4& t : texels)
+      exact += t.w * std::max(0.0, n.x * t.x + n.y * t.y + n.z * t.z);
+    const glm::dvec3 e = sh_irradiance(c, n, bands);
+    diff += std::abs(0.2126 * e.x + 0.7152 * e.y + 0.0722 * e.z - exact);
+    sum += exact;
+  }
+  return sum > 0.0 ? diff / sum : 0.0;
+}
+
 std::vector<glm::dvec3> sh_turn_environment(const std::vector<glm::dvec3>& unturned,
                                             float rotate_deg, float strength) {
   int bands = 0;

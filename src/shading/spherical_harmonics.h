@@ -66,6 +66,13 @@ glm::dvec3 sh_irradiance(const std::vector<glm::dvec3>& coefficients, glm::dvec3
 std::vector<glm::dvec3> sh_turn_environment(const std::vector<glm::dvec3>& unturned,
                                             float rotate_deg, float strength);
 
+// How far the irradiance from the environment's first bands^2 coefficients (sh_irradiance)
+// is from the exact irradiance (the sum over every texel of L max(0, n . d) times its solid
+// angle), over `normals` directions spread evenly over the sphere (a Fibonacci set):
+// sum |E_sh - E| / sum E of the luminance (Rec. 709 weights). The floor unshadowed precomputed
+// radiance transfer of that many bands cannot beat on a diffuse surface. 0 without a map.
+double sh_irradiance_error(const scene::Environment& environment, int bands, int normals = 256);
+
 class ShRotation {
  public:
   ShRotation(const glm::dmat3& rotation, int bands);

@@ -197,5 +197,34 @@ TEST(SphericalHarmonics, TurningTheEnvironmentEqualsProjectingItTurned) {
   EXPECT_THROW(sh_turn_environment(std::vector<glm::dvec3>(7), 10.0f, 1.0f), std::invalid_argument);
 }
 
+// The SH irradiance's own error: none to speak of for a map of the first two bands (1 + y),
+// clearly some for a small bright sun, less with 25 coefficients than with 9.
+TEST(SphericalHarmonics, IrradianceErrorIsTheBandLimitsFloor) {
+  const auto make = [](auto f) {
+    auto map = std::make_shared<scene::EnvironmentMap>();
+    map->width = 128;
+    map->height = 64;
+    for (int row = 0; row < 64; ++row)
+      for (int col = 0; col < 128; ++col) {
+        const glm::vec3 d = scene::environment_direction((float(col) + 0.5f) / 128.0f,
+                                                         (float(row) + 0.5f) / 64.0f);
+        const float v = f(d);
+        map->rgb.insert(map->rgb.end(), {v, v, v});
+      }
+    scene::Environment env;
+    env.map = map;
+    return env;
+  };
+  const scene::Environment smooth = make([](glm::vec3 d) { return 1.0f + d.y; });
+  EXPECT_LT(sh_irradiance_error(smooth, 3), 2e-3);
+  const scene::Environment sun = make([](glm::vec3 d) {
+    return 0.2f + (glm::dot(d, glm::normalize(glm::vec3(0.3f, 0.8f, 0.2f))) > 0.98f ? 50.0f : 0.0f);
+  });
+  const double e9 = sh_irradiance_error(sun, 3), e25 = sh_irradiance_error(sun, 5);
+  EXPECT_GT(e9, 0.02);
+  EXPECT_LT(e25, e9);
+  EXPECT_EQ(sh_irradiance_error(scene::Environment{}, 3), 0.0);
+}
+
 }  // namespace
 }  // namespace rp::shading
