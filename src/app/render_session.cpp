@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdio>
 #include <new>
+#include <utility>
 
 #include "app/interrupt.h"
 #include "app/progress.h"
@@ -330,11 +331,11 @@ void RenderSession::prepare_prt(const scene::FrameScene& frame) {
       throw Interrupted("while computing the PRT transfer; nothing was cached");
     }
   }
-  const truth::PrtTransfer& t = cached.transfer;
+  truth::PrtTransfer& t = cached.transfer;
   passes::PrtShading shading;
   shading.bands = t.bands;
   shading.channels = t.channels;
-  shading.coefficients = t.coefficients;
+  shading.coefficients = std::move(t.coefficients);  // tens of MB on a large scene
   for (size_t i = 0; i < frame.instances.size(); ++i) {
     const bool has = i < t.instances.size() && t.instances[i].count > 0;
     shading.instances.push_back(
