@@ -11,7 +11,8 @@
 #       OpenCL ICD when no ICD file names it (in /etc/OpenCL/vendors when writable, else in a
 #       private vendors folder passed to the loader with OCL_ICD_VENDORS), lists the devices,
 #       runs `rolypoly bench --scene busy --sizes 720,1080` on the GPU in both real-time modes
-#       (fast, reference) at render scales 1 and 0.5, then the kernel tests (test_cl,
+#       (fast, reference) at render scales 1 and 0.5, the atrium at the same sizes, the octree
+#       (busy and atrium at 720, 256^3 and 512^3), then the kernel tests (test_cl,
 #       test_passes, test_render; each at most 180 s), writing into OUT_DIR (default
 #       gpu-check-<host>): devices.txt, bench-<mode>-s<scale>.json/.md/.svg/.log,
 #       tests-<binary>.log and summary.txt. --device picks the device (index or part of its
@@ -150,28 +151,43 @@ run() {
   echo "device: $device" | tee -a "$summary"
 
   local failed=0
-  local sizes="720,1080" frames=(--frames 30 --warmup 5) filter="*" test_limit=180
+  local sizes="720,1080" frames=(--frames 30 --warmup 5) test_limit=180 svo_voxels="256,512"
+  # every test, but the voxelizer's CPU layouts at 8 and 16 lanes (GPUs never build them, and
+  # NVIDIA's compiler takes 10-25 s for each)
+  local filter="*-*VoxelizeSpans*span8_*:*VoxelizeSpans*span16_*"
   if (( quick )); then
     sizes=64; frames=(--frames 2 --warmup 1); filter="Profiler.*:ToneMap.*:Golden*"
+    svo_voxels=256
   fi
+  # bench_step TAG ARGS...: one bench into bench-TAG.{json,md,svg,log}, recorded in the summary
+  bench_step() {
+    local tag="$1"
+    shift
+    if "$rp" bench --devices "$device" "$@" --json "$out/bench-$tag.json" \
+        --markdown "$out/bench-$tag.md" --chart "$out/bench-$tag.svg" \
+        > "$out/bench-$tag.log" 2>&1; then
+      echo "bench $tag: written (bench-$tag.json, .md, .svg)" | tee -a "$summary"
+    else
+      echo "bench $tag: FAILED (see bench-$tag.log)" | tee -a "$summary"
+      tail -n 20 "$out/bench-$tag.log" >> "$summary"
+      failed=1
+    fi
+  }
   # The benches first (the figures this run exists for), then the kernel tests, each under a
   # time limit so that one slow binary cannot eat a short lease.
-  local quality scale tag
+  local quality scale
   for quality in fast reference; do
     for scale in 1 0.5; do
-      tag="$quality-s$scale"
-      if "$rp" bench --devices "$device" --scene busy --sizes "$sizes" "${frames[@]}" \
-          --quality "$quality" --render-scale "$scale" --json "$out/bench-$tag.json" \
-          --markdown "$out/bench-$tag.md" --chart "$out/bench-$tag.svg" \
-          > "$out/bench-$tag.log" 2>&1; then
-        echo "bench $tag: written (bench-$tag.json, .md, .svg)" | tee -a "$summary"
-      else
-        echo "bench $tag: FAILED (see bench-$tag.log)" | tee -a "$summary"
-        tail -n 20 "$out/bench-$tag.log" >> "$summary"
-        failed=1
-      fi
+      bench_step "$quality-s$scale" --scene busy --sizes "$sizes" "${frames[@]}" \
+        --quality "$quality" --render-scale "$scale"
     done
   done
+  bench_step atrium --scene atrium --sizes "$sizes" "${frames[@]}"
+  # the octree: what the voxelizer's GPU layout must keep fast (spheres, large triangles)
+  bench_step svo-busy --scene busy --gi-volume svo --voxels "$svo_voxels" \
+    --size "${sizes%%,*}" "${frames[@]}"
+  bench_step svo-atrium --scene atrium --gi-volume svo --voxels "$svo_voxels" \
+    --size "${sizes%%,*}" "${frames[@]}"
   for t in test_cl test_passes test_render; do
     if ROLYPOLY_TEST_DEVICE="$device" ROLYPOLY_TEST_BINARY="$rp" timeout "$test_limit" "$root/bin/$t" \
         --gtest_filter="$filter" > "$out/tests-$t.log" 2>&1; then

@@ -68,13 +68,6 @@ PrtSkyPass::PrtSkyPass(const rp::cl::Context& context, rp::cl::ProgramCache& pro
 
 PrtSkyPass::~PrtSkyPass() = default;
 
-uint64_t PrtSkyPass::device_bytes() const {
-  uint64_t bytes = 0;
-  for (const ::cl::Buffer* b : {&transfer_, &offsets_, &env_, &out_})
-    if ((*b)() != nullptr) bytes += b->getInfo<CL_MEM_SIZE>();
-  return bytes;
-}
-
 void PrtSkyPass::update_environment(const scene::Environment& environment) {
   const bool enabled = environment.enabled();
   if (enabled && environment.map != projected_map_) {

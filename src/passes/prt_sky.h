@@ -58,8 +58,6 @@ class PrtSkyPass {
 
   const ::cl::Buffer& output() const { return out_; }
   int bands() const { return bands_; }
-  // Bytes of the pass's device buffers (transfer, offsets, coefficients, output).
-  uint64_t device_bytes() const;
 
  private:
   void update_environment(const scene::Environment& environment);
