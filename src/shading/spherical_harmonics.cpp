@@ -150,16 +150,17 @@ std::vector<double> sh_rotate_zonal(const std::vector<double>& zonal, glm::dvec3
   return c;
 }
 
-std::vector<glm::dvec3> sh_project_environment(const scene::Environment& environment,
-                                               int bands) {
-  check_bands(bands);
-  std::vector<glm::dvec3> c(size_t(sh_count(bands)), glm::dvec3(0.0));
-  if (!environment.enabled()) return c;
+namespace {
+
+// Calls f(world direction, radiance, solid angle) for every texel of the enabled environment
+// (its turn and strength applied): the texel's exact solid angle, (2 pi / width)
+// (cos theta0 - cos theta1), and its centre's direction.
+template <class F>
+void for_each_texel(const scene::Environment& environment, F f) {
   const scene::EnvironmentMap& map = *environment.map;
   const int w = map.width, h = map.height;
   const double turn = double(environment.rotate_deg) * kPi / 180.0;
   const double ct = std::cos(turn), st = std::sin(turn);
-  double y[kShMaxCount];
   for (int row = 0; row < h; ++row) {
     const double t0 = kPi * row / h, t1 = kPi * (row + 1) / h;
     const double omega = (2.0 * kPi / w) * (std::cos(t0) - std::cos(t1));
@@ -168,12 +169,24 @@ std::vector<glm::dvec3> sh_project_environment(const scene::Environment& environ
                                                       (float(row) + 0.5f) / float(h)));
       // the map's frame turned about +y into the world's (truth/environment.cpp to_world)
       const glm::dvec3 d(ct * m.x + st * m.z, m.y, -st * m.x + ct * m.z);
-      sh_eval(glm::normalize(d), bands, y);
       const float* t = &map.rgb[3 * (size_t(row) * size_t(w) + size_t(col))];
-      const glm::dvec3 radiance = glm::dvec3(t[0], t[1], t[2]) * double(environment.strength);
-      for (size_t i = 0; i < c.size(); ++i) c[i] += radiance * (omega * y[i]);
+      f(glm::normalize(d), glm::dvec3(t[0], t[1], t[2]) * double(environment.strength), omega);
     }
   }
+}
+
+}  // namespace
+
+std::vector<glm::dvec3> sh_project_environment(const scene::Environment& environment,
+                                               int bands) {
+  check_bands(bands);
+  std::vector<glm::dvec3> c(size_t(sh_count(bands)), glm::dvec3(0.0));
+  if (!environment.enabled()) return c;
+  double y[kShMaxCount];
+  for_each_texel(environment, [&](glm::dvec3 d, glm::dvec3 radiance, double omega) {
+    sh_eval(d, bands, y);
+    for (size_t i = 0; i < c.size(); ++i) c[i] += radiance * (omega * y[i]);
+  });
   return c;
 }
 
@@ -190,25 +203,13 @@ double sh_irradiance_error(const scene::Environment& environment, int bands, int
   check_bands(bands);
   if (!environment.enabled() || normals < 1) return 0.0;
   const std::vector<glm::dvec3> c = sh_project_environment(environment, bands);
-  const scene::EnvironmentMap& map = *environment.map;
-  const int w = map.width, h = map.height;
-  const double turn = double(environment.rotate_deg) * kPi / 180.0;
-  const double ct = std::cos(turn), st = std::sin(turn);
   // The texels as (world direction, luminance x solid angle): what the exact sums need.
   std::vector<glm::dvec4> texels;
-  texels.reserve(size_t(w) * size_t(h));
-  for (int row = 0; row < h; ++row) {
-    const double t0 = kPi * row / h, t1 = kPi * (row + 1) / h;
-    const double omega = (2.0 * kPi / w) * (std::cos(t0) - std::cos(t1));
-    for (int col = 0; col < w; ++col) {
-      const glm::dvec3 m(scene::environment_direction((float(col) + 0.5f) / float(w),
-                                                      (float(row) + 0.5f) / float(h)));
-      const glm::dvec3 d(ct * m.x + st * m.z, m.y, -st * m.x + ct * m.z);
-      const float* t = &map.rgb[3 * (size_t(row) * size_t(w) + size_t(col))];
-      const double lum = 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
-      texels.emplace_back(glm::normalize(d), lum * omega * double(environment.strength));
-    }
-  }
+  texels.reserve(size_t(environment.map->width) * size_t(environment.map->height));
+  for_each_texel(environment, [&](glm::dvec3 d, glm::dvec3 radiance, double omega) {
+    const double lum = 0.2126 * radiance.x + 0.7152 * radiance.y + 0.0722 * radiance.z;
+    texels.emplace_back(d, lum * omega);
+  });
   const double golden = kPi * (3.0 - std::sqrt(5.0));
   double diff = 0.0, sum = 0.0;
   for (int k = 0; k < normals; ++k) {
