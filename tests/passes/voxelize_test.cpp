@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <ostream>
 #include <random>
 #include <set>
 #include <vector>
@@ -320,6 +321,9 @@ struct SpanLayout {
   const char* span;
   const char* slices;
 };
+void PrintTo(const SpanLayout& l, std::ostream* os) {
+  *os << "span " << l.span << ", slices " << l.slices;
+}
 class VoxelizeSpans : public ::testing::TestWithParam<SpanLayout> {};
 
 Scene many_triangles_scene() {
