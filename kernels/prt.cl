@@ -3,7 +3,8 @@
  * environment's spherical-harmonic coefficients (src/shading/spherical_harmonics.h), as the
  * dot product
  *     E_c(x) = sum_i T_{c,i}(x) L_{c,i},
- * T interpolated over the pixel's triangle with the visibility buffer's barycentrics. Host side:
+ * with x's T interpolated over the pixel's triangle with the visibility buffer's barycentrics
+ * (computed as E per vertex, then interpolated: the same sum). Host side:
  * src/passes/prt_sky.h.
  *
  * Inputs:
@@ -18,24 +19,49 @@
  *                   for this frame on the host
  * Output: float4 per pixel, rgb = E / pi (the light pass's D, irradiance over pi: albedo times
  * it is the Lambertian radiance), a = 1 where a transfer was found, 0 elsewhere (background,
- * spheres, instances without transfer). One pixel per work-item: the cost is `count` x 3
- * loads per channel, far below the cones'.
+ * spheres, instances without transfer). Two kernels: prt_vertex_irradiance dots every vertex's
+ * transfer with the coefficients once a frame, prt_shade interpolates the result per pixel.
  */
 #include "shared/types.h"
 
 #define RP_PRT_NO_TRANSFER ((int)0x80000000)
 
+/* Per PRT vertex: E / pi of its transfer (float4: rgb, a unused). One vertex per work-item;
+ * vertex_count of them. Dotting per vertex and interpolating the result per pixel is the same
+ * sum as interpolating the transfer (both are linear), and reads 3 float4 a pixel instead of
+ * 3 x channels x count floats. */
+__kernel void prt_vertex_irradiance(__global const float* restrict transfer,
+                                    const uint vertex_count,
+                                    __global const float4* restrict env,
+                                    const uint channels,
+                                    const uint count,
+                                    __global float4* restrict vertex_e) {
+  const uint v = (uint)get_global_id(0);
+  if (v >= vertex_count) return;
+  __global const float* t = transfer + v * channels * count;
+  float3 e = (float3)(0.0f);
+  if (channels == 1u) {
+    for (uint i = 0; i < count; ++i) e += t[i] * env[i].xyz;
+  } else {
+    for (uint i = 0; i < count; ++i) {
+      const float4 l = env[i];
+      e.x += t[i] * l.x;
+      e.y += t[count + i] * l.y;
+      e.z += t[2u * count + i] * l.z;
+    }
+  }
+  vertex_e[v] = (float4)(e, 0.0f);
+}
+
+/* Per pixel: the vertices' E / pi interpolated by the visibility buffer's barycentrics. */
 __kernel void prt_shade(__global const FrameConstants* restrict frame,
                         __global const uint2* restrict ids,
                         __global const float2* restrict bary,
                         __global const Instance* restrict instances,
                         __global const Triangle* restrict triangles,
-                        __global const float* restrict transfer,
+                        __global const float4* restrict vertex_e,
                         __global const int* restrict vertex_offset,
                         const uint offset_count,
-                        __global const float4* restrict env,
-                        const uint channels,
-                        const uint count,
                         __global float4* restrict out) {
   const uint x = (uint)get_global_id(0), y = (uint)get_global_id(1);
   const uint width = frame->width;
@@ -55,23 +81,9 @@ __kernel void prt_shade(__global const FrameConstants* restrict frame,
   const Triangle tri = triangles[instances[id.x].first_triangle + id.y];
   const float2 b = bary[pixel];
   const float b0 = 1.0f - b.x - b.y;
-  const uint stride = channels * count;
-  __global const float* t0 = transfer + (uint)((int)tri.x + offset) * stride;
-  __global const float* t1 = transfer + (uint)((int)tri.y + offset) * stride;
-  __global const float* t2 = transfer + (uint)((int)tri.z + offset) * stride;
-  float3 e = (float3)(0.0f);
-  if (channels == 1u) {
-    for (uint i = 0; i < count; ++i)
-      e += (b0 * t0[i] + b.x * t1[i] + b.y * t2[i]) * env[i].xyz;
-  } else {
-    for (uint i = 0; i < count; ++i) {
-      const float4 l = env[i];
-      e.x += (b0 * t0[i] + b.x * t1[i] + b.y * t2[i]) * l.x;
-      e.y += (b0 * t0[count + i] + b.x * t1[count + i] + b.y * t2[count + i]) * l.y;
-      e.z += (b0 * t0[2u * count + i] + b.x * t1[2u * count + i] + b.y * t2[2u * count + i]) *
-             l.z;
-    }
-  }
+  const float3 e = b0 * vertex_e[(int)tri.x + offset].xyz +
+                   b.x * vertex_e[(int)tri.y + offset].xyz +
+                   b.y * vertex_e[(int)tri.z + offset].xyz;
   /* a negative sum (ringing of a band-limited sky, or a shadowed transfer's noise) is no light */
   out[pixel] = (float4)(fmax(e, 0.0f), 1.0f);
 }

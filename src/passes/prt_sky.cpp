@@ -10,7 +10,8 @@
 namespace rp::passes {
 namespace {
 
-constexpr size_t kGroup = 16;  // 16x16 work-groups, one pixel each
+constexpr size_t kGroup = 16;        // 16x16 work-groups, one pixel each
+constexpr size_t kVertexGroup = 64;  // prt_vertex_irradiance: one vertex a work-item
 constexpr int32_t kNoOffset = INT32_MIN;  // RP_PRT_NO_TRANSFER in kernels/prt.cl
 constexpr double kInvPi = 0.318309886183790671538;
 
@@ -63,6 +64,14 @@ PrtSkyPass::PrtSkyPass(const rp::cl::Context& context, rp::cl::ProgramCache& pro
   env_ = rp::cl::make_buffer(context.context, CL_MEM_READ_ONLY,
                              size_t(shading::kShMaxCount) * 4 * sizeof(float),
                              "the environment's SH coefficients");
+  const std::vector<float> no_sky(size_t(shading::kShMaxCount) * 4, 0.0f);  // until a sky comes
+  context.queue.enqueueWriteBuffer(env_, CL_TRUE, 0, no_sky.size() * sizeof(float),
+                                   no_sky.data());
+  vertex_count_ = vertices;
+  vertex_e_ = rp::cl::make_buffer(context.context, CL_MEM_READ_WRITE,
+                                  std::max<size_t>(1, vertices) * 16,
+                                  "the PRT vertices' sky light (float4 per vertex)");
+  vertex_kernel_ = programs.kernel("prt.cl", "prt_vertex_irradiance");
   kernel_ = programs.kernel("prt.cl", "prt_shade");
 }
 
@@ -80,6 +89,7 @@ void PrtSkyPass::update_environment(const scene::Environment& environment) {
       (!enabled || (environment.rotate_deg == uploaded_turn_ &&
                     environment.strength == uploaded_strength_)))
     return;
+  vertex_e_fresh_ = false;
   std::vector<float> env(size_t(shading::kShMaxCount) * 4, 0.0f);
   if (enabled) {
     const std::vector<glm::dvec3> turned =
@@ -108,18 +118,29 @@ void PrtSkyPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   }
   if (w == 0 || h == 0) return;
   update_environment(environment);
+  if (vertex_count_ > 0 && !vertex_e_fresh_) {
+    // the vertices' E / pi: again only when the sky's coefficients changed (a turn, a strength)
+    cl_uint arg = 0;
+    vertex_kernel_.setArg(arg++, transfer_);
+    vertex_kernel_.setArg(arg++, cl_uint(vertex_count_));
+    vertex_kernel_.setArg(arg++, env_);
+    vertex_kernel_.setArg(arg++, cl_uint(channels_));
+    vertex_kernel_.setArg(arg++, cl_uint(bands_ * bands_));
+    vertex_kernel_.setArg(arg++, vertex_e_);
+    profiler.enqueue("prt", vertex_kernel_,
+                     ::cl::NDRange(rp::cl::round_up(vertex_count_, kVertexGroup)),
+                     ::cl::NDRange(kVertexGroup));
+    vertex_e_fresh_ = true;
+  }
   cl_uint arg = 0;
   kernel_.setArg(arg++, scene.frame);
   kernel_.setArg(arg++, vis.ids);
   kernel_.setArg(arg++, vis.bary);
   kernel_.setArg(arg++, scene.instances);
   kernel_.setArg(arg++, scene.triangles);
-  kernel_.setArg(arg++, transfer_);
+  kernel_.setArg(arg++, vertex_e_);
   kernel_.setArg(arg++, offsets_);
   kernel_.setArg(arg++, cl_uint(offset_count_));
-  kernel_.setArg(arg++, env_);
-  kernel_.setArg(arg++, cl_uint(channels_));
-  kernel_.setArg(arg++, cl_uint(bands_ * bands_));
   kernel_.setArg(arg++, out_);
   profiler.enqueue("prt", kernel_,
                    ::cl::NDRange(rp::cl::round_up(w, kGroup), rp::cl::round_up(h, kGroup)),

@@ -1,6 +1,6 @@
-// Sky light by precomputed radiance transfer (seeds 002/003): per pixel, the environment's
-// spherical-harmonic coefficients dotted with the transfer vectors of the pixel's triangle's
-// vertices, interpolated by the visibility buffer's barycentrics (kernels/prt.cl). The output,
+// Sky light by precomputed radiance transfer (seeds 002/003): the environment's
+// spherical-harmonic coefficients dotted with every vertex's transfer vector, then per pixel
+// interpolated over its triangle by the visibility buffer's barycentrics (kernels/prt.cl). The output,
 // E / pi per pixel (float4: rgb, a = 1 where a transfer was found), is what the light pass adds
 // to its diffuse indirect term (LightPass::run's prt) in place of the cones' sky. The
 // transfer itself is computed on the host (truth/prt_transfer.h) by the caller; this pass holds
@@ -63,11 +63,13 @@ class PrtSkyPass {
   void update_environment(const scene::Environment& environment);
 
   const rp::cl::Context* context_;
-  ::cl::Kernel kernel_;
+  ::cl::Kernel vertex_kernel_, kernel_;  // prt_vertex_irradiance, prt_shade
   int bands_ = 3;
   uint32_t channels_ = 1;
   ::cl::Buffer transfer_, offsets_, env_, out_;
-  uint32_t offset_count_ = 0;
+  ::cl::Buffer vertex_e_;        // float4 per PRT vertex: E / pi of the coefficients in env_
+  bool vertex_e_fresh_ = false;  // vertex_e_ holds env_'s E (recomputed after each upload)
+  uint32_t vertex_count_ = 0, offset_count_ = 0;
   size_t out_bytes_ = 0;
   // The map's coefficients unturned at strength 1 (projected once per map), and what env_ holds.
   std::shared_ptr<const scene::EnvironmentMap> projected_map_;
