@@ -31,6 +31,7 @@
 #include "render/gpu_scene.h"
 #include "render/svo_volume.h"
 #include "scene/demo_scene.h"
+#include "passes/svo_readback.h"
 #include "support/cl_fixture.h"
 
 namespace rp::test {
@@ -41,21 +42,10 @@ constexpr uint64_t kMiB = 1024 * 1024;
 // The pools (node pool + brick table + sample pool) at 512^3, demo and atrium.
 constexpr uint64_t kPoolLimit512 = 64 * kMiB;
 
-struct Built {
-  render::SvoVolume vol;
-  std::vector<uint32_t> words;      // the whole buffer
-  std::vector<uint32_t> fragments;  // RP_SVO_FRAGMENT_WORDS each
-  double build_ms = 0.0;            // voxelize + build, wall clock (the last frame)
-  std::string passes;               // the last frame's device time per pass
+struct Built : SvoReadback {
+  double build_ms = 0.0;  // voxelize + build, wall clock (the last frame)
+  std::string passes;     // the last frame's device time per pass
 
-  uint32_t header(uint32_t w) const { return words[w]; }
-  uint32_t node_word(uint32_t node, uint32_t w) const {
-    return words[4 * RP_SVO_HEADER_FLOAT4S + 2 * size_t(node) + w];
-  }
-  // Brick-table word w of brick index b.
-  uint32_t table(uint32_t b, uint32_t w) const {
-    return words[header(RP_SVO_HDR_TABLE_OFFSET) + RP_SVO_TABLE_WORDS * size_t(b) + w];
-  }
   // Own sample s of the sample pool as stored: the rgb word and the opacity byte (packed).
   uint64_t stored(uint32_t s) const {
     const size_t base = size_t(header(RP_SVO_HDR_BRICK_OFFSET)) * 4;
@@ -79,17 +69,6 @@ struct Built {
       if ((e >> axis) & 1) b = table(b, 1 + axis) & RP_SVO_LINK_MASK;
     return b;
   }
-  // Descent from the root (independent of the kernels' helpers); -1 when not in the tree.
-  int64_t find(uint32_t depth, uint32_t ax, uint32_t ay, uint32_t az) const {
-    uint32_t idx = 0;
-    for (uint32_t j = 1; j <= depth; ++j) {
-      const uint32_t child = node_word(idx, 0) & RP_SVO_NODE_CHILD_MASK;
-      if (child == 0) return -1;
-      const uint32_t s = depth - j;
-      idx = child + (((ax >> s) & 1) | (((ay >> s) & 1) << 1) | (((az >> s) & 1) << 2));
-    }
-    return idx;
-  }
 };
 
 // `frames` builds of the same frame (the first grows the pools from their first guess; a static
@@ -112,18 +91,13 @@ Built build(const render::GpuScene& gpu, const render::ShadowMap& shadow,
       b.passes += buf;
     }
   }
-  b.words.resize(b.vol.buffer_bytes() / 4);
-  context().queue.enqueueReadBuffer(b.vol.buffer, CL_TRUE, 0, b.words.size() * 4, b.words.data());
-  b.fragments.resize(size_t(b.vol.fragments) * RP_SVO_FRAGMENT_WORDS);
-  if (!b.fragments.empty())
-    context().queue.enqueueReadBuffer(pass.fragments(), CL_TRUE, 0, b.fragments.size() * 4,
-                                      b.fragments.data());
+  b.read(pass);
   return b;
 }
 
-Built build_demo(uint32_t r, int frames = 1) {
-  const scene::SceneAssets assets = scene::make_demo_assets(scene::default_asset_dir());
-  const scene::FrameScene frame = scene::make_demo_frame(assets);
+// The octree of `frame` (its lamp's shadow map drawn first), built `frames` times.
+Built build_frame(const scene::SceneAssets& assets, const scene::FrameScene& frame, uint32_t r,
+                  int frames) {
   render::GpuScene gpu(context().context, context().queue, assets);
   gpu.update(frame, 64, 64, kShadow, r);
   rp::cl::Profiler profiler(context().queue);
@@ -134,18 +108,15 @@ Built build_demo(uint32_t r, int frames = 1) {
   return build(gpu, shadow, profiler, r, frames);
 }
 
+Built build_demo(uint32_t r, int frames = 1) {
+  const scene::SceneAssets assets = scene::make_demo_assets(scene::default_asset_dir());
+  return build_frame(assets, scene::make_demo_frame(assets), r, frames);
+}
+
 Built build_atrium(uint32_t r, int frames = 1) {
   const app::FileScene file = app::open_scene_file("atrium");
   app::FileFrameSource source(file);
-  const scene::FrameScene frame = source.next();
-  render::GpuScene gpu(context().context, context().queue, file.loaded.assets);
-  gpu.update(frame, 64, 64, kShadow, r);
-  rp::cl::Profiler profiler(context().queue);
-  passes::VisibilityPass visibility(context(), programs());
-  render::ShadowMap shadow;
-  shadow.resize(context().context, kShadow);
-  visibility.render_shadow(profiler, gpu, shadow);
-  return build(gpu, shadow, profiler, r, frames);
+  return build_frame(file.loaded.assets, source.next(), r, frames);
 }
 
 void print(const char* what, const Built& b) {

@@ -42,6 +42,7 @@
 #include "render/svo_volume.h"
 #include "render/voxel_volume.h"
 #include "scene/demo_scene.h"
+#include "passes/svo_readback.h"
 #include "support/cl_fixture.h"
 #include "support/image_metrics.h"
 
@@ -106,29 +107,7 @@ Dense build_dense(Scene& s, uint32_t r) {
   return d;
 }
 
-struct Octree {
-  render::SvoVolume vol;
-  std::vector<uint32_t> words;  // the whole buffer
-  std::vector<uint32_t> fragments;
-  uint32_t header(uint32_t w) const { return words[w]; }
-  uint32_t node_word(uint32_t node, uint32_t w) const {
-    return words[4 * RP_SVO_HEADER_FLOAT4S + 2 * node + w];
-  }
-  // Straightforward descent (independent of the kernels' helpers).
-  int64_t find(uint32_t depth, uint32_t ax, uint32_t ay, uint32_t az) const {
-    uint32_t idx = 0;
-    for (uint32_t j = 1; j <= depth; ++j) {
-      const uint32_t child = node_word(idx, 0) & RP_SVO_NODE_CHILD_MASK;
-      if (child == 0) return -1;
-      const uint32_t s = depth - j;
-      idx = child + (((ax >> s) & 1) | (((ay >> s) & 1) << 1) | (((az >> s) & 1) << 2));
-    }
-    return idx;
-  }
-  // Brick-table word w of brick index b (svo_layout.h).
-  uint32_t table(uint32_t b, uint32_t w) const {
-    return words[header(RP_SVO_HDR_TABLE_OFFSET) + RP_SVO_TABLE_WORDS * size_t(b) + w];
-  }
+struct Octree : SvoReadback {
   // Own sample `own` of the sample pool, channel c.
   float own_sample(uint32_t own, int c) const {
     const size_t base = size_t(header(RP_SVO_HDR_BRICK_OFFSET)) * 4;
@@ -181,12 +160,7 @@ Octree build_octree(Scene& s, uint32_t r, bool float_samples, bool solid = false
   Octree o;
   pass.run(s.profiler, *s.gpu, s.shadow, r, o.vol);
   s.profiler.collect();
-  o.words.resize(o.vol.buffer_bytes() / 4);
-  context().queue.enqueueReadBuffer(o.vol.buffer, CL_TRUE, 0, o.words.size() * 4, o.words.data());
-  o.fragments.resize(size_t(o.vol.fragments) * RP_SVO_FRAGMENT_WORDS);
-  if (!o.fragments.empty())
-    context().queue.enqueueReadBuffer(pass.fragments(), CL_TRUE, 0, o.fragments.size() * 4,
-                                      o.fragments.data());
+  o.read(pass);
   return o;
 }
 
@@ -339,11 +313,7 @@ TEST(Svo, GrowsTooSmallPools) {
   EXPECT_GT(o.vol.node_capacity, 9u);
   EXPECT_GT(o.vol.brick_capacity, 3u);
   EXPECT_GT(o.vol.sample_capacity, 10u);
-  o.words.resize(o.vol.buffer_bytes() / 4);
-  context().queue.enqueueReadBuffer(o.vol.buffer, CL_TRUE, 0, o.words.size() * 4, o.words.data());
-  o.fragments.resize(size_t(o.vol.fragments) * RP_SVO_FRAGMENT_WORDS);
-  context().queue.enqueueReadBuffer(pass.fragments(), CL_TRUE, 0, o.fragments.size() * 4,
-                                    o.fragments.data());
+  o.read(pass);
   check_octree(o, d, true);
 }
 
