@@ -5,8 +5,10 @@
 // or a message that blames the image size.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include <CL/opencl.hpp>
 
@@ -27,5 +29,18 @@ std::string allocation_failure(const ::cl::Context& context, size_t bytes, const
 // clCreateBuffer when it succeeds (the limits are only asked after a failure).
 ::cl::Buffer make_buffer(const ::cl::Context& context, cl_mem_flags flags, size_t bytes,
                          const std::string& what, const std::string& advice = "");
+
+// A read-only buffer holding `data` (at least one element: OpenCL has no empty buffers),
+// written with a blocking copy on `queue`; make_buffer's message when memory runs out.
+template <typename T>
+::cl::Buffer upload_buffer(const ::cl::Context& context, const ::cl::CommandQueue& queue,
+                           const std::vector<T>& data, const std::string& what,
+                           const std::string& advice = "") {
+  const size_t bytes = std::max<size_t>(1, data.size()) * sizeof(T);
+  ::cl::Buffer buffer = make_buffer(context, CL_MEM_READ_ONLY, bytes, what, advice);
+  if (!data.empty())
+    queue.enqueueWriteBuffer(buffer, CL_TRUE, 0, data.size() * sizeof(T), data.data());
+  return buffer;
+}
 
 }  // namespace rp::cl

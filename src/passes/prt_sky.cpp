@@ -15,16 +15,7 @@ constexpr size_t kVertexGroup = 64;  // prt_vertex_irradiance: one vertex a work
 constexpr int32_t kNoOffset = INT32_MIN;  // RP_PRT_NO_TRANSFER in kernels/prt.cl
 constexpr double kInvPi = 0.318309886183790671538;
 
-template <typename T>
-::cl::Buffer upload(const rp::cl::Context& context, const std::vector<T>& data,
-                    const std::string& what) {
-  const size_t bytes = std::max<size_t>(1, data.size()) * sizeof(T);
-  ::cl::Buffer buffer = rp::cl::make_buffer(context.context, CL_MEM_READ_ONLY, bytes, what,
-                                            "fewer SH bands (--prt-bands 3) need less");
-  if (!data.empty())
-    context.queue.enqueueWriteBuffer(buffer, CL_TRUE, 0, data.size() * sizeof(T), data.data());
-  return buffer;
-}
+constexpr const char* kLessMemory = "fewer SH bands (--prt-bands 3) need less";
 
 }  // namespace
 
@@ -57,10 +48,12 @@ PrtSkyPass::PrtSkyPass(const rp::cl::Context& context, rp::cl::ProgramCache& pro
     offsets.push_back(int32_t(int64_t(inst.first) - int64_t(mesh.first_vertex)));
   }
   offset_count_ = uint32_t(offsets.size());
-  transfer_ = upload(context, prt.coefficients,
-                     "the PRT transfer (" + std::to_string(vertices) + " vertices x " +
-                         std::to_string(prt.channels * prt.bands * prt.bands) + " floats)");
-  offsets_ = upload(context, offsets, "the PRT instance offsets");
+  const std::string what = "the PRT transfer (" + std::to_string(vertices) + " vertices x " +
+                           std::to_string(prt.channels * prt.bands * prt.bands) + " floats)";
+  transfer_ =
+      rp::cl::upload_buffer(context.context, context.queue, prt.coefficients, what, kLessMemory);
+  offsets_ = rp::cl::upload_buffer(context.context, context.queue, offsets,
+                                   "the PRT instance offsets");
   env_ = rp::cl::make_buffer(context.context, CL_MEM_READ_ONLY,
                              size_t(shading::kShMaxCount) * 4 * sizeof(float),
                              "the environment's SH coefficients");

@@ -57,7 +57,6 @@ class PrtSkyPass {
            const render::VisibilityBuffer& vis, const scene::Environment& environment);
 
   const ::cl::Buffer& output() const { return out_; }
-  int bands() const { return bands_; }
 
  private:
   void update_environment(const scene::Environment& environment);

@@ -17,17 +17,12 @@
 namespace rp::render {
 namespace {
 
-// Creates a read-only buffer holding `data` (at least one element: OpenCL has no empty buffers).
-// `what` names it in an allocation failure ("the scene's 2000000 triangles").
+// A read-only buffer holding `data`; `what` names it in an allocation failure ("the scene's
+// 2000000 triangles").
 template <typename T>
 ::cl::Buffer upload(const ::cl::Context& context, ::cl::CommandQueue& queue,
                     const std::vector<T>& data, const std::string& what) {
-  size_t bytes = std::max<size_t>(1, data.size()) * sizeof(T);
-  ::cl::Buffer buffer = rp::cl::make_buffer(context, CL_MEM_READ_ONLY, bytes, what,
-                                            "a smaller scene needs less");
-  if (!data.empty())
-    queue.enqueueWriteBuffer(buffer, CL_TRUE, 0, data.size() * sizeof(T), data.data());
-  return buffer;
+  return rp::cl::upload_buffer(context, queue, data, what, "a smaller scene needs less");
 }
 
 std::string mib(uint64_t bytes) {
