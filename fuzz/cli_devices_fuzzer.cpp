@@ -59,7 +59,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::vector<rp::cl::DeviceInfo>& all = fake_devices();
   std::vector<rp::cl::DeviceInfo> chosen;
   try {
-    chosen = rp::app::select_devices(spec, all);
+    chosen = rp::bench::select_devices(spec, all);
   } catch (const rp::cl::Error& e) {
     if (std::string(e.what()).find("--devices") == std::string::npos)
       finding("error message does not name --devices");

@@ -31,13 +31,13 @@
 #include <variant>
 #include <vector>
 
-#include "app/cli.h"
+#include "cli/cli.h"
 
 namespace {
 
-using rp::app::CliExit;
-using rp::app::CliParse;
-using rp::app::ParsedCommand;
+using rp::cli::CliExit;
+using rp::cli::CliParse;
+using rp::cli::ParsedCommand;
 
 [[noreturn]] void finding(const std::string& what) {
   std::fprintf(stderr, "fuzz_cli: %s\n", what.c_str());
@@ -89,7 +89,7 @@ std::string describe(const CliParse& result) {
   add("run", std::to_string(p.run.size.width) + "x" + std::to_string(p.run.size.height) + " " +
                  std::to_string(p.run.frames) + " " + p.run.capture + " " + p.run.record);
   sim(p.run.sim);
-  const rp::app::BenchOptions& b = p.bench;
+  const rp::bench::BenchOptions& b = p.bench;
   add("bench", std::to_string(b.size.width) + "x" + std::to_string(b.size.height) + " " +
                    std::to_string(b.frames) + " " + std::to_string(b.warmup) + " " + b.json +
                    " " + std::to_string(b.compare_visibility) + " " + b.devices + " " +
@@ -190,7 +190,7 @@ void check_command(const ParsedCommand& p, const std::vector<std::string>& words
       break;
     }
     case ParsedCommand::Kind::kBench: {
-      const rp::app::BenchOptions& b = p.bench;
+      const rp::bench::BenchOptions& b = p.bench;
       require(valid_size(b.size.width) && valid_size(b.size.height), "bench size out of range");
       for (uint32_t s : b.sizes) require(valid_size(s), "bench --sizes entry out of range");
       for (uint32_t v : b.voxels) require(valid_voxels(v), "bench --voxels entry not 32/64/128");
@@ -252,8 +252,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
   CliParse first, second;
   try {
-    first = rp::app::parse_cli(argc, argv.data());
-    second = rp::app::parse_cli(argc, argv.data());
+    first = rp::cli::parse_cli(argc, argv.data());
+    second = rp::cli::parse_cli(argc, argv.data());
   } catch (const std::exception& e) {
     finding(std::string("parse_cli threw: ") + e.what());
   } catch (...) {

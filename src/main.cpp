@@ -1,4 +1,4 @@
-// rolypoly: see README.md for the subcommands, src/app/cli.h for exit codes.
-#include "app/cli.h"
+// rolypoly: see README.md for the subcommands, src/cli/cli.h for exit codes.
+#include "cli/cli.h"
 
-int main(int argc, char** argv) { return rp::app::run_cli(argc, argv); }
+int main(int argc, char** argv) { return rp::cli::run_cli(argc, argv); }

@@ -16,7 +16,18 @@
 #include "app/truth_cache.h"
 #include "scene/demo_scene.h"
 
-namespace rp::app {
+namespace rp::bench {
+
+using app::CachedTruth;
+using app::CommonOptions;
+using app::InterruptGuard;
+using app::ProgressBar;
+using app::RenderSession;
+using app::cached_path_trace;
+using app::encode_rgba8;
+using app::ensure_directory;
+using app::write_png_atomic;
+
 namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
@@ -471,4 +482,4 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
   return {j, table};
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

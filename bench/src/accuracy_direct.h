@@ -37,7 +37,7 @@
 #include "app/render_session.h"
 #include "truth/path_tracer.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 struct DirectOptions {
   uint32_t width = 360, height = 360;
@@ -58,7 +58,7 @@ scene::FrameScene direct_frame(const scene::SceneAssets& assets, uint32_t frame_
 
 // Renders the truth (or takes it from the cache) and every shadow mode, measures, writes the
 // PNGs. Throws truth::PathTracer::Cancelled on Ctrl-C (as measure_accuracy).
-DirectResult measure_direct(const CommonOptions& common, const scene::SceneAssets& assets,
+DirectResult measure_direct(const app::CommonOptions& common, const scene::SceneAssets& assets,
                             truth::PathTracer& tracer, const DirectOptions& options);
 
-}  // namespace rp::app
+}  // namespace rp::bench

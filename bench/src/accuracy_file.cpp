@@ -17,7 +17,19 @@
 #include "bench/src/scene_file_facts.h"
 #include "render/renderer.h"
 
-namespace rp::app {
+namespace rp::bench {
+
+using app::CommonOptions;
+using app::FileFrameSource;
+using app::FileScene;
+using app::SkyLight;
+using app::add_sky;
+using app::default_truth_cache_dir;
+using app::describe_sky;
+using app::ensure_directory;
+using app::load_sky;
+using app::write_text_atomic;
+
 namespace {
 
 // The regions' labels, built once: the whole image, then each material the camera sees.
@@ -208,4 +220,4 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
   return result;
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

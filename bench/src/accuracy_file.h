@@ -32,13 +32,13 @@
 #include "bench/src/accuracy_report.h"
 #include "bench/src/bench_matrix.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 // Renders everything, measures, writes the PNGs (and the JSON when asked). Throws
 // std::invalid_argument for an option that needs the demo (require_wall_hue,
 // min_direct_psnr_floor, max_penumbra_error, marbles), what RenderSession and the path tracer
 // throw, and truth::PathTracer::Cancelled after Ctrl-C / SIGTERM.
-AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScene& scene,
+AccuracyResult measure_file_accuracy(const app::CommonOptions& common, const app::FileScene& scene,
                                      const SceneFileFacts& facts, const AccuracyOptions& options);
 
 // ---- The report's text and thresholds (accuracy_file_table.cpp), from its JSON ----
@@ -51,4 +51,4 @@ std::string check_file_thresholds(const AccuracyOptions& options, nlohmann::json
 // The printed table of a file's report.
 std::string file_accuracy_table(const nlohmann::json& j);
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -10,7 +10,7 @@
 #include "bench/src/accuracy_metrics.h"
 #include "bench/src/accuracy_render.h"
 
-namespace rp::app {
+namespace rp::bench {
 namespace {
 
 // Material names can be long: the table's label column keeps their first characters.
@@ -185,4 +185,4 @@ std::string file_accuracy_table(const nlohmann::json& j) {
   return t.str();
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -12,7 +12,13 @@
 #include "scene/demo_scene.h"
 #include "scene/world.h"
 
-namespace rp::app {
+namespace rp::bench {
+
+using app::CachedTruth;
+using app::CommonOptions;
+using app::encode_rgba8;
+using app::write_png_atomic;
+
 namespace {
 
 // Floor positions (x, z) of the marbles' contact points. The open floor in front of the
@@ -208,4 +214,4 @@ MarbleResult measure_marbles(const CommonOptions& common, const scene::SceneAsse
   return {j, t};
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

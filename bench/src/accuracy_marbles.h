@@ -27,7 +27,7 @@
 #include "app/render_session.h"
 #include "truth/path_tracer.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 inline constexpr uint32_t kMarbleFrameCount = 16;
 
@@ -53,7 +53,7 @@ struct MarbleResult {
 
 // Renders the truth (or takes it from the cache) and both modes, measures, writes the PNGs.
 // Throws truth::PathTracer::Cancelled on Ctrl-C (as measure_accuracy).
-MarbleResult measure_marbles(const CommonOptions& common, const scene::SceneAssets& assets,
+MarbleResult measure_marbles(const app::CommonOptions& common, const scene::SceneAssets& assets,
                              truth::PathTracer& tracer, const MarbleOptions& options);
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -4,7 +4,7 @@
 #include <set>
 #include <stdexcept>
 
-namespace rp::app {
+namespace rp::bench {
 
 MaterialPixels classify_materials(const std::vector<truth::PrimaryHit>& hits, uint32_t width,
                                   uint32_t height, size_t material_count) {
@@ -69,4 +69,4 @@ std::vector<std::string> material_region_names(const std::vector<scene::Material
   return names;
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -15,7 +15,7 @@
 #include "scene/frame_scene.h"
 #include "truth/path_tracer.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 inline constexpr uint32_t kNoMaterial = truth::PrimaryHit::kNone;
 
@@ -48,4 +48,4 @@ std::vector<uint8_t> material_mask(const MaterialPixels& pixels, uint32_t materi
 // name, "material_<i>" for an unnamed one, "<name>#<i>" for a name already taken.
 std::vector<std::string> material_region_names(const std::vector<scene::Material>& materials);
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -9,7 +9,10 @@
 #include "app/host_tone_map.h"
 #include "scene/demo_scene.h"
 
-namespace rp::app {
+namespace rp::bench {
+
+using app::tone_map_srgb;
+
 namespace {
 
 uint16_t bit(Region r) { return uint16_t(1u << unsigned(r)); }
@@ -307,4 +310,4 @@ std::vector<uint8_t> tile_rgba8(const std::vector<std::vector<uint8_t>>& images,
   return out;
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -12,7 +12,7 @@
 #include "scene/frame_scene.h"
 #include "truth/path_tracer.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 // Named regions of the demo frame, from what the camera sees at each pixel centre (the path
 // tracer's primary hits) and whether the lamp reaches that point. kImage is every covered pixel;
@@ -142,4 +142,4 @@ std::vector<uint8_t> tile_rgba8(const std::vector<std::vector<uint8_t>>& images,
 void signed_heat_map(const std::vector<float>& a, const std::vector<float>& truth,
                      const std::vector<uint16_t>& labels, double eps, std::vector<uint8_t>& rgba);
 
-}  // namespace rp::app
+}  // namespace rp::bench

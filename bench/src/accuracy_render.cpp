@@ -11,7 +11,16 @@
 #include "app/png_output.h"
 #include "app/progress.h"
 
-namespace rp::app {
+namespace rp::bench {
+
+using app::CachedTruth;
+using app::CommonOptions;
+using app::InterruptGuard;
+using app::ProgressBar;
+using app::RenderSession;
+using app::cached_path_trace;
+using app::encode_rgba8;
+using app::write_png_atomic;
 
 nlohmann::json stats_json(const ErrorStats& s) {
   return {{"rel_l1", s.rel_l1}, {"bias", s.bias}, {"pixels", s.pixels}};
@@ -188,4 +197,4 @@ nlohmann::json write_accuracy_pictures(const std::filesystem::path& out, uint32_
                            "motion blur)"}};
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -18,7 +18,7 @@
 #include "scene/demo_scene.h"
 #include "truth/path_tracer.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 // One real-time configuration of the report (accuracy_report.h): a quality mode at many
 // bounces against the many-bounce truth, or at --bounces 1 against the 1-bounce truth.
@@ -73,15 +73,15 @@ using FrameFn =
 // the fast mode's interleaving, the shadow noise and TAA's jitter rotate as in the app), no
 // bloom or motion blur, TAA only when asked. `final_rgba` gets the last finished frame.
 // `assets`: what the frames draw from (a scene file's); nullptr = the demo's (--assets).
-Images render_mode(const CommonOptions& common, const std::string& name, render::Quality quality,
-                   uint32_t bounces, bool taa, uint32_t w, uint32_t h, uint32_t frames,
+Images render_mode(const app::CommonOptions& common, const std::string& name,
+                   render::Quality quality, uint32_t bounces, bool taa, uint32_t w, uint32_t h, uint32_t frames,
                    std::vector<uint8_t>& final_rgba,
                    const FrameFn& frame_fn = scene::make_demo_frame,
                    const scene::SceneAssets* assets = nullptr);
 
 // cached_path_trace with a progress bar named `label`; Ctrl-C / SIGTERM (InterruptGuard) stops
 // the render between rows (truth::PathTracer::Cancelled).
-CachedTruth cached_truth_with_progress(truth::PathTracer& tracer,
+app::CachedTruth cached_truth_with_progress(truth::PathTracer& tracer,
                                        const scene::SceneAssets& assets,
                                        const scene::FrameScene& frame,
                                        const truth::PathTraceSettings& settings,
@@ -110,4 +110,4 @@ nlohmann::json write_accuracy_pictures(const std::filesystem::path& out, uint32_
                                        const std::vector<uint16_t>& image_labels,
                                        const std::vector<uint8_t>& taa_rgba, uint32_t many);
 
-}  // namespace rp::app
+}  // namespace rp::bench

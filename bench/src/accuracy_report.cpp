@@ -15,7 +15,7 @@
 #include "bench/src/accuracy_render.h"
 #include "bench/src/bench_scene.h"
 #include "bench/src/scene_file_facts.h"
-#include "app/commands.h"
+#include "bench/src/bench_commands.h"
 #include "app/host_tone_map.h"
 #include "app/interrupt.h"
 #include "app/png_output.h"
@@ -23,7 +23,17 @@
 #include "render/renderer.h"
 #include "scene/demo_scene.h"
 
-namespace rp::app {
+namespace rp::bench {
+
+using app::CommonOptions;
+using app::FileScene;
+using app::InterruptGuard;
+using app::default_truth_cache_dir;
+using app::ensure_directory;
+using app::interrupted_exit_code;
+using app::open_scene_file;
+using app::write_text_atomic;
+
 namespace {
 
 // The regions whose surfaces are coated in the demo (the floor, the tumblers): the specular
@@ -382,4 +392,4 @@ int accuracy_command(const CommonOptions& common, const BenchOptions& options) {
   return r.passed ? 0 : 3;
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

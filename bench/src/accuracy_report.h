@@ -37,7 +37,7 @@
 
 #include "app/render_session.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 struct AccuracyOptions {
   uint32_t width = 360, height = 360;
@@ -85,6 +85,6 @@ struct AccuracyResult {
 // Renders everything, measures, writes the PNGs (and the JSON when asked). Throws what
 // RenderSession and the path tracer throw; truth::PathTracer::Cancelled after Ctrl-C / SIGTERM
 // (InterruptGuard, app/interrupt.h), before any report file is written.
-AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptions& options);
+AccuracyResult measure_accuracy(const app::CommonOptions& common, const AccuracyOptions& options);
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -6,7 +6,10 @@
 #include <functional>
 #include <set>
 
-namespace rp::app {
+namespace rp::bench {
+
+using app::pipeline_rank;
+
 namespace {
 
 // Ten distinguishable colours (passes, then devices).
@@ -288,4 +291,4 @@ std::string matrix_svg(const BenchMatrix& m) {
   return svg.finish();
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

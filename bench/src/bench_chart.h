@@ -10,7 +10,7 @@
 
 #include "bench/src/bench_matrix.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 // Minimal SVG 1.1 document builder: coordinates in px, y down; text is XML-escaped.
 class SvgWriter {
@@ -39,4 +39,4 @@ std::string xml_escape(const std::string& s);
 // The chart of every device that ran (skipped devices are listed as such in the title block).
 std::string matrix_svg(const BenchMatrix& matrix);
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "app/commands.h"
+#include "bench/src/bench_commands.h"
 #include "app/interrupt.h"
 #include "app/png_output.h"
 #include "app/progress.h"
@@ -13,7 +13,7 @@
 #include "bench/src/bench_matrix.h"
 #include "bench/src/bench_report.h"
 #include "bench/src/bench_scene.h"
-#include "bench/src/pass_stats.h"
+#include "app/pass_stats.h"
 #include "bench/src/quality_report.h"
 #include "bench/src/scene_file_facts.h"
 #include "io/output_path.h"
@@ -30,7 +30,16 @@
 #define RP_BENCH_EFFICIENCY 0
 #endif
 
-namespace rp::app {
+namespace rp::bench {
+
+using app::CommonOptions;
+using app::PassStats;
+using app::ProgressBar;
+using app::RenderSession;
+using app::describe_device;
+using app::ensure_directory;
+using app::throw_if_interrupted;
+using app::write_text_atomic;
 
 namespace {
 
@@ -358,4 +367,4 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
   return 0;
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -9,7 +9,10 @@
 
 #include "cl/error.h"
 
-namespace rp::app {
+namespace rp::bench {
+
+using app::PassStats;
+
 namespace {
 
 std::string lower(std::string s) {
@@ -191,4 +194,4 @@ void run_matrix(const MatrixPlan& plan, const MeasureRun& measure, const FinishD
   }
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

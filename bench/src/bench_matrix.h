@@ -12,11 +12,11 @@
 #include <utility>
 #include <vector>
 
-#include "bench/src/pass_stats.h"
+#include "app/pass_stats.h"
 #include "bench/src/pass_work.h"  // PassEfficiency, BandwidthLevel
 #include "cl/context.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 // Concatenation by appends: `"literal" + std::string(...)` trips GCC 12's -Wrestrict false
 // positive under -O2 -Werror.
@@ -29,7 +29,7 @@ std::string str_cat(const Parts&... parts) {
 
 struct PassResult {
   std::string name;
-  TimeSummary ms;
+  app::TimeSummary ms;
   PassEfficiency efficiency;
 };
 
@@ -52,7 +52,7 @@ struct RunResult {
   uint64_t octree_node_bytes = 0, octree_brick_bytes = 0, octree_fragments = 0,
            octree_fragment_bytes = 0;
   std::vector<PassResult> passes;  // pipeline order (pipeline_rank)
-  TimeSummary frame;             // wall clock of Renderer::render per frame
+  app::TimeSummary frame;             // wall clock of Renderer::render per frame
   // What the measured frames drew (the last one; every device draws the same frames).
   uint32_t spheres = 0, instances = 0, instance_triangles = 0;
   // Of those, the triangles the voxelizer and the shadow map took (mesh proxies, casters).
@@ -66,7 +66,7 @@ struct RunResult {
 
 // From the frames' statistics (needs at least one frame).
 RunResult make_run_result(uint32_t width, uint32_t height, uint32_t voxels,
-                          const PassStats& stats);
+                          const app::PassStats& stats);
 
 // time ~ a * x^k, fitted by least squares on (log x, log time).
 struct PowerFit {
@@ -167,4 +167,4 @@ using FinishDevice = std::function<void(const rp::cl::DeviceInfo& device, Device
 void run_matrix(const MatrixPlan& plan, const MeasureRun& measure, const FinishDevice& finish,
                 BenchMatrix& matrix, std::FILE* log);
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -10,7 +10,11 @@
 
 #include "bench/src/scene_file_facts.h"
 
-namespace rp::app {
+namespace rp::bench {
+
+using app::TimeSummary;
+using app::pipeline_rank;
+
 namespace {
 
 nlohmann::ordered_json summary_json(const TimeSummary& s) {
@@ -404,15 +408,4 @@ std::string matrix_markdown(const BenchMatrix& m) {
   return out;
 }
 
-std::string median_line(const PassStats& stats) {
-  std::string out;
-  for (const std::string& name : stats.pass_names()) {
-    char part[96];
-    std::snprintf(part, sizeof part, "%s%s %.2f ms", out.empty() ? "" : ", ", name.c_str(),
-                  stats.pass(name).median_ms);
-    out += part;
-  }
-  return out;
-}
-
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "bench/src/bench_matrix.h"
-#include "bench/src/pass_stats.h"
+#include "app/pass_stats.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 inline constexpr const char* kBenchMatrixSchema = "rolypoly-bench/3";
 // The previous layout, still read by parse_matrix_json (its fractions are of the DRAM stream).
@@ -32,7 +32,4 @@ std::string matrix_table(const BenchMatrix& matrix);
 // median ms, the frame median/min/max and fps; then the scaling exponents.
 std::string matrix_markdown(const BenchMatrix& matrix);
 
-// One line "visibility 1.23 ms, gbuffer 0.45 ms, ..." of per-pass medians.
-std::string median_line(const PassStats& stats);
-
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -6,7 +6,18 @@
 #include "scene/particles.h"
 #include "scene/world.h"
 
-namespace rp::app {
+namespace rp::bench {
+
+using app::CommonOptions;
+using app::FileFrameSource;
+using app::FileScene;
+using app::FrameSource;
+using app::RenderSession;
+using app::SimulationFrameSource;
+using app::make_simulation_options;
+using app::open_scene_file;
+using app::render_next_frame;
+
 namespace {
 
 // --scene busy: 30 marbles and a fireball (World with both on, seed --seed), settled for
@@ -124,4 +135,4 @@ std::unique_ptr<BenchFrames> BenchScene::frames() const {
   return std::make_unique<SimulationFrames>(common_, options_);
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -10,15 +10,15 @@
 #include <string>
 #include <vector>
 
-#include "app/commands.h"
+#include "bench/src/bench_options.h"
 #include "app/scene_input.h"
 #include "bench/src/bench_matrix.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 // --scene names a file: anything but the demo's names ("demo" became "default" in parse_cli).
 inline bool is_bench_scene_file(const std::string& scene) {
-  return scene != "default" && scene != "busy" && !is_demo_scene(scene);
+  return scene != "default" && scene != "busy" && !app::is_demo_scene(scene);
 }
 
 // The frames of one run.
@@ -27,7 +27,7 @@ class BenchFrames {
   virtual ~BenchFrames() = default;
   // Renders the next frame (with the command line's effects; the demo's as its toggles leave
   // them) into `rgba`; returns the pass times, frame_ms as RenderSession::render.
-  virtual rp::cl::PassTimes render(RenderSession& session, std::vector<uint8_t>& rgba,
+  virtual rp::cl::PassTimes render(app::RenderSession& session, std::vector<uint8_t>& rgba,
                                    double& frame_ms) = 0;
   // What the last rendered frame drew.
   virtual scene::FrameScene last() const = 0;
@@ -37,10 +37,10 @@ class BenchScene {
  public:
   // Opens the scene file when --scene names one (scene::SceneFileError: exit 2, before any
   // device is opened) and records its facts; the demo's names open nothing.
-  BenchScene(const CommonOptions& common, const BenchOptions& options);
+  BenchScene(const app::CommonOptions& common, const BenchOptions& options);
 
   // The loaded file, or nullptr for the demo and the busy animation.
-  const FileScene* file() const { return file_.get(); }
+  const app::FileScene* file() const { return file_.get(); }
   // What RenderSession draws from: the file's assets, or nullptr (the demo's, from --assets).
   const scene::SceneAssets* assets() const { return file_ ? &file_->loaded.assets : nullptr; }
   const std::optional<SceneFileFacts>& facts() const { return facts_; }
@@ -51,10 +51,10 @@ class BenchScene {
   std::unique_ptr<BenchFrames> frames() const;
 
  private:
-  const CommonOptions& common_;
+  const app::CommonOptions& common_;
   const BenchOptions& options_;
-  std::unique_ptr<FileScene> file_;
+  std::unique_ptr<app::FileScene> file_;
   std::optional<SceneFileFacts> facts_;
 };
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <functional>
 
-namespace rp::app {
+namespace rp::bench {
 namespace {
 
 constexpr double kFloat = 4, kFloat2 = 8, kFloat4 = 16;
@@ -306,4 +306,4 @@ const std::vector<std::string>& modelled_passes() {
   return names;
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-namespace rp::app {
+namespace rp::bench {
 
 struct WorkParams {
   uint32_t width, height;      // render size in pixels
@@ -85,4 +85,4 @@ PassWork pass_work(const std::string& pass, const WorkParams& p);
 // The pass names pass_work models, in pipeline order.
 const std::vector<std::string>& modelled_passes();
 
-}  // namespace rp::app
+}  // namespace rp::bench

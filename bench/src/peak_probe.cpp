@@ -7,7 +7,7 @@
 
 #include "cl/profiler.h"
 
-namespace rp::app {
+namespace rp::bench {
 namespace {
 
 constexpr size_t kGroup = 64;
@@ -206,4 +206,4 @@ DevicePeak measure_peak(const rp::cl::Context& context, rp::cl::ProgramCache& pr
   return peak;
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -22,7 +22,7 @@
 #include "cl/error.h"
 #include "cl/program_cache.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 // A probe launch that could not be timed (zero or implausibly short time): the figure would be
 // meaningless. measure_peak turns it into a "not measured" note.
@@ -78,4 +78,4 @@ std::vector<size_t> cache_working_sets(size_t stream_buffer_bytes);
 // (`amount` per launch: bytes or flops) is at most `max_rate` per second.
 bool plausible_launch(double ms, double amount, double max_rate);
 
-}  // namespace rp::app
+}  // namespace rp::bench

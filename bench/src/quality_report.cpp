@@ -7,12 +7,21 @@
 #include <limits>
 #include <stdexcept>
 
-#include "app/commands.h"
+#include "bench/src/bench_commands.h"
 #include "app/png_output.h"
 #include "app/simulation_source.h"
 #include "scene/demo_scene.h"
 
-namespace rp::app {
+namespace rp::bench {
+
+using app::CommonOptions;
+using app::RenderSession;
+using app::SimulationArgs;
+using app::SimulationFrameSource;
+using app::make_simulation_options;
+using app::render_next_frame;
+using app::write_text_atomic;
+
 namespace {
 
 void check_same_size(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
@@ -196,4 +205,4 @@ int quality_report_command(const CommonOptions& common, const BenchOptions& opti
   return static_ok && busy_ok && flicker_ok ? 0 : 3;
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

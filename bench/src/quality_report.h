@@ -17,7 +17,7 @@
 
 #include "app/render_session.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 struct QualityOptions {
   uint32_t static_frames = 48;   // frames of the static scene (TAA converges in ~30 at f = 0.9)
@@ -46,17 +46,17 @@ double mean_abs_diff_rgb8(const std::vector<uint8_t>& a, const std::vector<uint8
 
 // Renders both modes (common.quality is ignored; common.view must be the final image) at
 // width x height and measures the criteria above. Throws what RenderSession throws.
-QualityReport measure_quality(const CommonOptions& common, uint32_t width, uint32_t height,
+QualityReport measure_quality(const app::CommonOptions& common, uint32_t width, uint32_t height,
                               const QualityOptions& options = {});
 // The same criteria for any two configurations: `fast` takes the report's "fast" figures,
 // `reference` the other's (the render scale: scaled against full scale).
-QualityReport measure_quality(const CommonOptions& fast, const CommonOptions& reference,
+QualityReport measure_quality(const app::CommonOptions& fast, const app::CommonOptions& reference,
                               uint32_t width, uint32_t height, const QualityOptions& options);
 
 struct BenchOptions;
 // `bench --quality-report`: measure_quality at the bench size, the figures and the pass/fail of
 // each criterion printed (and written as JSON with --json). Exit code 0 when all are met, 3
 // when not.
-int quality_report_command(const CommonOptions& common, const BenchOptions& options);
+int quality_report_command(const app::CommonOptions& common, const BenchOptions& options);
 
-}  // namespace rp::app
+}  // namespace rp::bench

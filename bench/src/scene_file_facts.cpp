@@ -12,7 +12,10 @@
 
 #include "io/fnv1a.h"
 
-namespace rp::app {
+namespace rp::bench {
+
+using app::FileScene;
+
 namespace {
 
 using io::Fnv1a;
@@ -137,4 +140,4 @@ SceneFileFacts parse_scene_file_json(const nlohmann::ordered_json& j) {
   return f;
 }
 
-}  // namespace rp::app
+}  // namespace rp::bench

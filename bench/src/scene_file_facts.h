@@ -12,7 +12,7 @@
 #include "app/scene_input.h"
 #include "bench/src/bench_matrix.h"
 
-namespace rp::app {
+namespace rp::bench {
 
 // 64-bit FNV-1a, as 16 hex digits, of the file's bytes and, for a .gltf or .glb whose JSON
 // names external buffers or images (relative URIs, not data: URIs), of each such URI and the
@@ -21,7 +21,7 @@ namespace rp::app {
 std::string scene_file_hash(const std::string& path);
 
 // The counts of a loaded scene and scene_file_hash of its path.
-SceneFileFacts scene_file_facts(const FileScene& scene);
+SceneFileFacts scene_file_facts(const app::FileScene& scene);
 
 // "FILE (12 triangles, 3 materials, 0 textures, 2 lights; content 0123456789abcdef)"
 std::string describe_scene_file(const SceneFileFacts& facts);
@@ -47,4 +47,4 @@ Json scene_file_json(const SceneFileFacts& f) {
 // for a missing path or hash.
 SceneFileFacts parse_scene_file_json(const nlohmann::ordered_json& j);
 
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -4,12 +4,11 @@
 #include <filesystem>
 #include <memory>
 
-#include "bench/src/bench_report.h"
 #include "app/commands.h"
 #include "app/frame_output.h"
 #include "app/frame_source.h"
 #include "app/interrupt.h"
-#include "bench/src/pass_stats.h"
+#include "app/pass_stats.h"
 #include "app/png_output.h"
 #include "app/progress.h"
 #include "app/scene_input.h"

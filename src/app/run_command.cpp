@@ -11,12 +11,11 @@
 #include <utility>
 #include <vector>
 
-#include "bench/src/bench_report.h"
 #include "app/commands.h"
 #include "app/fly_camera.h"
 #include "app/frame_source.h"
 #include "app/interrupt.h"
-#include "bench/src/pass_stats.h"
+#include "app/pass_stats.h"
 #include "app/png_output.h"
 #include "app/scene_input.h"
 #include "app/simulation_source.h"

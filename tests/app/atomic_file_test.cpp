@@ -19,7 +19,7 @@
 #include <unistd.h>
 
 #include "app/png_output.h"
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "io/atomic_file.h"
 #include "io/output_path.h"
 #include "tiny_tmpfs.h"

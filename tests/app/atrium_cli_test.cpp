@@ -8,7 +8,7 @@
 #include <string>
 
 #include "cl/pocl_cache.h"
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 
 namespace rp::test {
 namespace {

@@ -21,7 +21,7 @@
 #include <stb/stb_image.h>
 
 #include "app/render_session.h"
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "scene/demo_scene.h"
 
 namespace rp::test {

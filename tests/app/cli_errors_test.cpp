@@ -2,7 +2,7 @@
 // no display. Each runs `rolypoly` as a user would and checks exit code and message.
 #include <gtest/gtest.h>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 
 namespace rp::test {
 namespace {

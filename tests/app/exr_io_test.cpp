@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "truth/exr_io.h"
 
 namespace rp::test {

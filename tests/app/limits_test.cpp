@@ -14,7 +14,7 @@
 #include <string>
 #include <thread>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "xvfb_server.h"  // spawn_shell, wait_exit, read_text
 
 namespace rp::test {

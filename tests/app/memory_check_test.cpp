@@ -14,7 +14,7 @@
 #include "app/scene_input.h"
 #include "cl/buffer.h"
 #include "cl/error.h"
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "support/cl_fixture.h"
 
 namespace rp::test {

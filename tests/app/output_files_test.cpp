@@ -5,9 +5,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bench/src/bench_report.h"
 #include "app/png_output.h"
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "support/image_metrics.h"
 
 namespace rp::app {

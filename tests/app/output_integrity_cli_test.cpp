@@ -20,7 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "support/image_metrics.h"
 #include "tiny_tmpfs.h"
 #include "xvfb_server.h"

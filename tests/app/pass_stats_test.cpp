@@ -3,8 +3,7 @@
 
 #include <stdexcept>
 
-#include "bench/src/bench_report.h"
-#include "bench/src/pass_stats.h"
+#include "app/pass_stats.h"
 #include "app/progress.h"
 
 namespace rp::app {

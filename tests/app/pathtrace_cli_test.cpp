@@ -21,7 +21,7 @@
 #include "app/progress.h"
 #include "app/render_session.h"
 #include "cl/context.h"
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "support/image_metrics.h"
 #include "truth/exr_io.h"
 

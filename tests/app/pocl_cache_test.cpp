@@ -14,7 +14,7 @@
 #include <regex>
 #include <string>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 
 namespace rp::test {
 namespace {

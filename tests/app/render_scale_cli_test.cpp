@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "support/image_metrics.h"
 
 namespace rp::test {

@@ -13,7 +13,7 @@
 #include <string>
 #include <utility>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "xvfb_server.h"
 
 namespace rp::test {

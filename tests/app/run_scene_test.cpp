@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "support/image_metrics.h"
 #include "xvfb_server.h"
 

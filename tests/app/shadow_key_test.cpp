@@ -8,7 +8,7 @@
 #include <string>
 #include <thread>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "xvfb_server.h"
 
 namespace rp::test {

@@ -23,7 +23,7 @@
 #include <thread>
 #include <vector>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "xvfb_server.h"  // wait_exit, read_text
 
 namespace rp::test {

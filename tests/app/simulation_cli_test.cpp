@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/cli_runner.h"
+#include "support/cli_runner.h"
 #include "support/image_metrics.h"
 
 namespace {

@@ -14,9 +14,9 @@
 #include <glm/glm.hpp>
 #include <stb/stb_image_write.h>
 
-#include "app/cli.h"
+#include "cli/cli.h"
 #include "app/sky_input.h"
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "scene/box_mesh.h"
 #include "scene/frame_scene.h"
 #include "scene/gltf_export.h"
@@ -27,26 +27,26 @@
 namespace rp::test {
 namespace {
 
-app::CliParse parse(std::vector<std::string> words) {
+cli::CliParse parse(std::vector<std::string> words) {
   std::vector<const char*> argv = {"rolypoly"};
   for (const std::string& w : words) argv.push_back(w.c_str());
   argv.push_back(nullptr);
-  return app::parse_cli(int(argv.size() - 1), argv.data());
+  return cli::parse_cli(int(argv.size() - 1), argv.data());
 }
 
 app::SkyOptions sky_of(const std::vector<std::string>& words) {
-  app::CliParse r = parse(words);
-  if (const app::CliExit* e = std::get_if<app::CliExit>(&r)) {
+  cli::CliParse r = parse(words);
+  if (const cli::CliExit* e = std::get_if<cli::CliExit>(&r)) {
     ADD_FAILURE() << "expected a command, got exit " << e->exit_code << ": " << e->message;
     return {};
   }
-  return std::get<app::ParsedCommand>(r).common.sky;
+  return std::get<cli::ParsedCommand>(r).common.sky;
 }
 
 // The usage message of a refused command line ("" and a failure when it parsed).
 std::string refusal(const std::vector<std::string>& words) {
-  app::CliParse r = parse(words);
-  const app::CliExit* e = std::get_if<app::CliExit>(&r);
+  cli::CliParse r = parse(words);
+  const cli::CliExit* e = std::get_if<cli::CliExit>(&r);
   if (e == nullptr) {
     ADD_FAILURE() << "expected a usage error, got a command";
     return "";

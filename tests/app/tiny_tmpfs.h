@@ -11,7 +11,7 @@
 #include <sys/mount.h>
 #include <unistd.h>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 
 namespace rp::test {
 

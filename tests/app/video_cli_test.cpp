@@ -16,7 +16,7 @@
 #include <string>
 #include <thread>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 
 namespace rp::test {
 namespace {

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "support/image_metrics.h"
 #include "x11_close.h"
 #include "xvfb_server.h"

@@ -23,17 +23,17 @@ int main() {
     // A launch time the simulator reports as implausible is not an error here (Unmeasurable is
     // thrown after the output was verified).
     try {
-      rp::app::measure_bandwidth_gbps(*context, *programs, 4096, 1);
-    } catch (const rp::app::Unmeasurable&) {
+      rp::bench::measure_bandwidth_gbps(*context, *programs, 4096, 1);
+    } catch (const rp::bench::Unmeasurable&) {
     }
     // 4 KiB buffers wrapped twice: 512 work-items.
     try {
-      rp::app::measure_cached_bandwidth_gbps(*context, *programs, 4096, 16384, 1);
-    } catch (const rp::app::Unmeasurable&) {
+      rp::bench::measure_cached_bandwidth_gbps(*context, *programs, 4096, 16384, 1);
+    } catch (const rp::bench::Unmeasurable&) {
     }
     try {
-      rp::app::measure_gflops(*context, *programs, 64, 1, 0.001);
-    } catch (const rp::app::Unmeasurable&) {
+      rp::bench::measure_gflops(*context, *programs, 64, 1, 0.001);
+    } catch (const rp::bench::Unmeasurable&) {
     }
     std::printf("probe kernels: outputs verified\n");
     return 0;

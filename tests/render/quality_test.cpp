@@ -21,15 +21,15 @@ namespace {
 
 constexpr uint32_t kSize = 128;
 
-const rp::app::QualityReport& report() {
-  static const rp::app::QualityReport r = [] {
-    rp::app::QualityOptions options;
+const rp::bench::QualityReport& report() {
+  static const rp::bench::QualityReport r = [] {
+    rp::bench::QualityOptions options;
     options.static_frames = 32;  // TAA (history weight 0.9) keeps 0.9^32 = 3 % of frame 0
     options.flicker_frames = 12;
     options.busy_warmup = 16;
     options.busy_frames = 8;
-    rp::app::QualityReport q =
-        rp::app::measure_quality(rp::app::CommonOptions{}, kSize, kSize, options);
+    rp::bench::QualityReport q =
+        rp::bench::measure_quality(rp::app::CommonOptions{}, kSize, kSize, options);
     std::printf("quality %ux%u: static %.2f dB, busy min %.2f / median %.2f dB, flicker fast "
                 "%.3f reference %.3f\n",
                 kSize, kSize, q.static_psnr_db, q.busy_min_psnr_db, q.busy_median_psnr_db,
@@ -86,15 +86,15 @@ TEST(Quality, ImageMeasuresMatchIndependentDefinitions) {
     a[i] = uint8_t(rng() & 255u);
     b[i] = i % 4 == 3 ? uint8_t(rng() & 255u) : uint8_t(std::clamp(int(a[i]) + int(rng() % 7) - 3, 0, 255));
   }
-  EXPECT_NEAR(rp::app::psnr_rgb8(a, b), rp::test::psnr_rgb8(a, b), 1e-9);
-  EXPECT_TRUE(std::isinf(rp::app::psnr_rgb8(a, a)));
+  EXPECT_NEAR(rp::bench::psnr_rgb8(a, b), rp::test::psnr_rgb8(a, b), 1e-9);
+  EXPECT_TRUE(std::isinf(rp::bench::psnr_rgb8(a, a)));
   // One pixel differs by 9 in red and 3 in blue; alpha is ignored: (9 + 3) / (4 pixels * 3).
   std::vector<uint8_t> c(16, 100), d(16, 100);
   d[4] = 109;
   d[6] = 97;
   d[7] = 0;
-  EXPECT_DOUBLE_EQ(rp::app::mean_abs_diff_rgb8(c, d), 12.0 / 12.0);
-  EXPECT_THROW(rp::app::mean_abs_diff_rgb8(c, std::vector<uint8_t>(8)), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(rp::bench::mean_abs_diff_rgb8(c, d), 12.0 / 12.0);
+  EXPECT_THROW(rp::bench::mean_abs_diff_rgb8(c, std::vector<uint8_t>(8)), std::invalid_argument);
 }
 
 }  // namespace

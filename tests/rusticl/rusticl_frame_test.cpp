@@ -16,7 +16,7 @@
 #include <cstdio>
 #include <string>
 
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "support/image_metrics.h"
 
 namespace rp::test {

@@ -1,7 +1,8 @@
-#include "bench/src/pass_stats.h"
+#include "app/pass_stats.h"
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <stdexcept>
 #include <string_view>
 
@@ -67,6 +68,17 @@ std::map<std::string, double> PassStats::pass_means() const {
 void PassStats::clear() {
   pass_ms_.clear();
   frame_ms_.clear();
+}
+
+std::string median_line(const PassStats& stats) {
+  std::string out;
+  for (const std::string& name : stats.pass_names()) {
+    char part[96];
+    std::snprintf(part, sizeof part, "%s%s %.2f ms", out.empty() ? "" : ", ", name.c_str(),
+                  stats.pass(name).median_ms);
+    out += part;
+  }
+  return out;
 }
 
 }  // namespace rp::app

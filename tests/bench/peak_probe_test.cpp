@@ -8,7 +8,7 @@
 #include "cl/error.h"
 #include "support/cl_fixture.h"
 
-namespace rp::app {
+namespace rp::bench {
 namespace {
 
 TEST(PeakProbe, BufferSizeFollowsTheDevice) {
@@ -93,4 +93,4 @@ TEST(PeakProbe, MeasurePeakIsInAPlausibleRange) {
 }
 
 }  // namespace
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -7,15 +7,16 @@
 #include <nlohmann/json.hpp>
 
 #include "app/truth_cache.h"
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 #include "scene/demo_scene.h"
 
-namespace rp::app {
+namespace rp::bench {
 namespace {
 
 using rp::test::run_rolypoly;
 using rp::test::shell_quote;
 using rp::test::TempDir;
+using app::truth_key;
 
 TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
   TempDir dir;
@@ -204,4 +205,4 @@ TEST(TruthCache, KeyFollowsEverythingTheImageDependsOn) {
 }
 
 }  // namespace
-}  // namespace rp::app
+}  // namespace rp::bench

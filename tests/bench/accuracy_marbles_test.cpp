@@ -16,7 +16,7 @@
 #include "scene/demo_scene.h"
 #include "truth/path_tracer.h"
 
-namespace rp::app {
+namespace rp::bench {
 namespace {
 
 uint16_t bit(Region r) { return uint16_t(1u << unsigned(r)); }
@@ -176,4 +176,4 @@ TEST(AccuracyMarbles, EveryMarbleOfTheMarbleFrameIsMeasured) {
 }
 
 }  // namespace
-}  // namespace rp::app
+}  // namespace rp::bench

@@ -1,4 +1,4 @@
-#include "app/output_collisions.h"
+#include "cli/output_collisions.h"
 
 #include <optional>
 #include <system_error>
@@ -7,9 +7,10 @@
 #include <sys/stat.h>
 
 #include "app/scene_input.h"
+#include "bench/src/bench_commands.h"
 #include "io/output_path.h"
 
-namespace rp::app {
+namespace rp::cli {
 namespace {
 
 namespace fs = std::filesystem;
@@ -80,10 +81,10 @@ void add(std::vector<Named>& list, const char* option, const std::string& path) 
 }
 
 // render and run: the replayed log, the scene file.
-std::vector<Named> inputs_of(const CommonOptions& common, const SimulationArgs& sim) {
+std::vector<Named> inputs_of(const app::CommonOptions& common, const app::SimulationArgs& sim) {
   std::vector<Named> inputs;
   add(inputs, "--replay", sim.replay);
-  if (!is_demo_scene(common.scene)) add(inputs, "--scene", common.scene);
+  if (!app::is_demo_scene(common.scene)) add(inputs, "--scene", common.scene);
   return inputs;
 }
 
@@ -107,8 +108,8 @@ std::string find_output_collision(const ParsedCommand& command) {
       add(outputs, "--capture", command.run.capture);
       return first_collision(outputs, inputs_of(command.common, command.run.sim));
     case ParsedCommand::Kind::kBench: {
-      const BenchOptions& given = command.bench;
-      const BenchOptions b = with_default_outputs(given);
+      const bench::BenchOptions& given = command.bench;
+      const bench::BenchOptions b = bench::with_default_outputs(given);
       add(outputs, given.json.empty() ? "--json (the default with --devices)" : "--json", b.json);
       add(outputs, "--markdown", b.markdown);
       add(outputs, given.chart.empty() ? "--chart (the default with --devices)" : "--chart",
@@ -124,4 +125,4 @@ std::string find_output_collision(const ParsedCommand& command) {
   return "";
 }
 
-}  // namespace rp::app
+}  // namespace rp::cli

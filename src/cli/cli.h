@@ -1,6 +1,6 @@
-// Command line of `rolypoly` (CLI11), in two steps: parse_cli (src/app/cli_parse.cpp) builds the
+// Command line of `rolypoly` (CLI11), in two steps: parse_cli (src/cli/cli_parse.cpp) builds the
 // options, parses and runs every usage check without touching OpenCL, files or the terminal;
-// run_cli (src/app/cli.cpp) prints what parse_cli says or dispatches to the subcommand, and
+// run_cli (src/cli/cli.cpp) prints what parse_cli says or dispatches to the subcommand, and
 // turns every error into one message on stderr. The split lets fuzz/ fuzz the whole command
 // line without opening devices or rendering.
 //
@@ -18,8 +18,9 @@
 #include <variant>
 
 #include "app/commands.h"
+#include "bench/src/bench_options.h"
 
-namespace rp::app {
+namespace rp::cli {
 
 // A command line that parsed: the subcommand and every option's value, checked and resolved
 // (--size/--width/--height into `size`, --view/--level/--dir into common.view). Only the
@@ -27,11 +28,11 @@ namespace rp::app {
 struct ParsedCommand {
   enum class Kind { kDevices, kRender, kRun, kBench, kExport };
   Kind kind = Kind::kDevices;
-  CommonOptions common;
-  RenderOptions render;  // frames_given set from the command line
-  RunOptions run;
-  BenchOptions bench;    // command_line: "rolypoly" and the arguments joined by spaces
-  ExportOptions exporting;
+  app::CommonOptions common;
+  app::RenderOptions render;  // frames_given set from the command line
+  app::RunOptions run;
+  bench::BenchOptions bench;    // command_line: "rolypoly" and the arguments joined by spaces
+  app::ExportOptions exporting;
 };
 
 // A command line that ends before running anything: --help (exit code 0, the help text for
@@ -55,4 +56,4 @@ CliParse parse_cli(int argc, const char* const* argv);
 // parse_cli, then the PoCL cache folder and the subcommand; returns the process exit code.
 int run_cli(int argc, char** argv);
 
-}  // namespace rp::app
+}  // namespace rp::cli

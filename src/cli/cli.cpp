@@ -1,6 +1,6 @@
-// run_cli (app/cli.h): prints what parse_cli decided or runs the subcommand, and turns every
+// run_cli (cli/cli.h): prints what parse_cli decided or runs the subcommand, and turns every
 // exception into one "rolypoly: error: <message>" line and exit code 1.
-#include "app/cli.h"
+#include "cli/cli.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -17,16 +17,24 @@
 #include "app/commands.h"
 #include "app/host_memory.h"
 #include "app/interrupt.h"
-#include "app/output_collisions.h"
 #include "app/printable.h"
+#include "bench/src/bench_commands.h"
 #include "cl/context.h"
+#include "cli/output_collisions.h"
 #include "cl/error.h"
 #include "scene/asset_error.h"
 #include "scene/gltf_loader.h"
 #include "scene/input.h"
 
-namespace rp::app {
+namespace rp::cli {
 namespace {
+
+using app::interrupt_signal_name;
+using app::interrupted_exit_code;
+using app::Interrupted;
+using app::InterruptGuard;
+using app::memory_limit_note;
+using app::printable;
 
 int report(const std::string& message) {
   std::fflush(stdout);
@@ -65,11 +73,12 @@ const char* command_name(ParsedCommand::Kind kind) {
 
 int execute(const ParsedCommand& command) {
   switch (command.kind) {
-    case ParsedCommand::Kind::kDevices: return devices_command();
-    case ParsedCommand::Kind::kRender: return render_command(command.common, command.render);
-    case ParsedCommand::Kind::kRun: return run_command(command.common, command.run);
-    case ParsedCommand::Kind::kBench: return bench_command(command.common, command.bench);
-    case ParsedCommand::Kind::kExport: return export_command(command.common, command.exporting);
+    case ParsedCommand::Kind::kDevices: return app::devices_command();
+    case ParsedCommand::Kind::kRender: return app::render_command(command.common, command.render);
+    case ParsedCommand::Kind::kRun: return app::run_command(command.common, command.run);
+    case ParsedCommand::Kind::kBench: return bench::bench_command(command.common, command.bench);
+    case ParsedCommand::Kind::kExport:
+      return app::export_command(command.common, command.exporting);
   }
   return report("unknown subcommand kind");
 }
@@ -106,7 +115,7 @@ int execute_reporting(const ParsedCommand& command) {
 
 int run_cli(int argc, char** argv) {
   // First, so that no signal finds a disposition inherited from the launcher.
-  install_signal_handlers();
+  app::install_signal_handlers();
   const CliParse parsed = parse_cli(argc, argv);
   if (const CliExit* done = std::get_if<CliExit>(&parsed)) {
     std::FILE* stream = done->exit_code == 0 ? stdout : stderr;
@@ -134,4 +143,4 @@ int run_cli(int argc, char** argv) {
   return code;
 }
 
-}  // namespace rp::app
+}  // namespace rp::cli

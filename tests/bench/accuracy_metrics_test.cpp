@@ -9,7 +9,7 @@
 #include "bench/src/accuracy_metrics.h"
 #include "scene/demo_scene.h"
 
-namespace rp::app {
+namespace rp::bench {
 namespace {
 
 uint16_t bit(Region r) { return uint16_t(1u << unsigned(r)); }
@@ -214,4 +214,4 @@ TEST(AccuracyMetrics, BilinearLumaBetweenPixelCentres) {
 }
 
 }  // namespace
-}  // namespace rp::app
+}  // namespace rp::bench

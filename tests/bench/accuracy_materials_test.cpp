@@ -7,7 +7,7 @@
 
 #include "bench/src/accuracy_materials.h"
 
-namespace rp::app {
+namespace rp::bench {
 namespace {
 
 // A 6x4 frame: the left half material 0, the right half material 1, the top row background,
@@ -73,4 +73,4 @@ TEST(AccuracyMaterials, RegionNamesAreUniqueAndNeverTheImage) {
 }
 
 }  // namespace
-}  // namespace rp::app
+}  // namespace rp::bench

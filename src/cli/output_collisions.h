@@ -10,9 +10,9 @@
 #include <filesystem>
 #include <string>
 
-#include "app/cli.h"
+#include "cli/cli.h"
 
-namespace rp::app {
+namespace rp::cli {
 
 // Whether writing `output` (an output option's value) would replace `other` (another output or
 // an input file). False when either cannot be resolved: the usual checks report that later.
@@ -23,4 +23,4 @@ bool same_file(const std::filesystem::path& output, const std::filesystem::path&
 // name r.json; each output needs a file of its own".
 std::string find_output_collision(const ParsedCommand& command);
 
-}  // namespace rp::app
+}  // namespace rp::cli

@@ -10,20 +10,20 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/cli.h"
+#include "cli/cli.h"
 #include "bench/src/bench_report.h"
 #include "bench/src/scene_file_facts.h"
 #include "bench_test_scene.h"
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 
 namespace rp::test {
 namespace {
 
-app::CliParse parse(const std::vector<std::string>& words) {
+cli::CliParse parse(const std::vector<std::string>& words) {
   std::vector<const char*> argv = {"rolypoly"};
   for (const std::string& w : words) argv.push_back(w.c_str());
   argv.push_back(nullptr);
-  return app::parse_cli(int(argv.size() - 1), argv.data());
+  return cli::parse_cli(int(argv.size() - 1), argv.data());
 }
 
 void expect_scene_fields(const nlohmann::json& f, const std::filesystem::path& file,
@@ -93,15 +93,15 @@ TEST(BenchFileScene, CompareVisibilityAndPathTracedBenchTakeAFile) {
 }
 
 TEST(BenchFileScene, DemoIsTheDefaultScene) {
-  const app::CliParse r = parse({"bench", "--scene", "demo", "--size", "16"});
-  ASSERT_TRUE(std::holds_alternative<app::ParsedCommand>(r));
-  EXPECT_EQ(std::get<app::ParsedCommand>(r).bench.scene, "default");
+  const cli::CliParse r = parse({"bench", "--scene", "demo", "--size", "16"});
+  ASSERT_TRUE(std::holds_alternative<cli::ParsedCommand>(r));
+  EXPECT_EQ(std::get<cli::ParsedCommand>(r).bench.scene, "default");
   // The demo keeps its simulation options and its report's thresholds.
   for (const std::vector<std::string>& ok :
        {std::vector<std::string>{"bench", "--scene", "demo", "--seed", "3", "--marbles"},
         {"bench", "--accuracy", "--scene", "default", "--require-wall-hue"},
         {"bench", "--scene", "busy", "--fireball"}})
-    EXPECT_TRUE(std::holds_alternative<app::ParsedCommand>(parse(ok))) << ok.back();
+    EXPECT_TRUE(std::holds_alternative<cli::ParsedCommand>(parse(ok))) << ok.back();
 }
 
 TEST(BenchFileScene, OptionsOfTheDemoAreRefusedForAFile) {
@@ -120,9 +120,9 @@ TEST(BenchFileScene, OptionsOfTheDemoAreRefusedForAFile) {
   for (const auto& [extra, name] : refused) {
     std::vector<std::string> words = {"bench", "--scene", "room.gltf"};
     words.insert(words.end(), extra.begin(), extra.end());
-    const app::CliParse r = parse(words);
-    ASSERT_TRUE(std::holds_alternative<app::CliExit>(r)) << name;
-    const app::CliExit& e = std::get<app::CliExit>(r);
+    const cli::CliParse r = parse(words);
+    ASSERT_TRUE(std::holds_alternative<cli::CliExit>(r)) << name;
+    const cli::CliExit& e = std::get<cli::CliExit>(r);
     EXPECT_EQ(e.exit_code, 2) << name;
     EXPECT_TRUE(Contains(e.message, name + " ")) << name;
     EXPECT_TRUE(Contains(e.message, "scene file")) << name;
@@ -137,11 +137,11 @@ TEST(BenchFileScene, OptionsOfTheDemoAreRefusedForAFile) {
          "--min-albedo-psnr", "20"}}) {
     std::vector<std::string> words = {"bench", "--scene", "room.gltf"};
     words.insert(words.end(), ok.begin(), ok.end());
-    EXPECT_TRUE(std::holds_alternative<app::ParsedCommand>(parse(words))) << ok.front();
+    EXPECT_TRUE(std::holds_alternative<cli::ParsedCommand>(parse(words))) << ok.front();
   }
   // Still refused: the busy animation in the reports that take one scene frame.
   for (const char* mode : {"--accuracy", "--quality=pathtraced"})
-    EXPECT_TRUE(std::holds_alternative<app::CliExit>(parse({"bench", "--scene", "busy", mode})))
+    EXPECT_TRUE(std::holds_alternative<cli::CliExit>(parse({"bench", "--scene", "busy", mode})))
         << mode;
 
   // End to end: the message on stderr, exit 2, before the file is even opened.
@@ -162,11 +162,11 @@ TEST(BenchFileScene, AMissingOrMalformedFileIsAUsageError) {
 }
 
 TEST(BenchFileScene, SceneFileFieldsRoundTripThroughTheJson) {
-  app::BenchMatrix m;
+  bench::BenchMatrix m;
   m.command = "rolypoly bench --scene a.glb";
   m.scene = "file";
-  m.file = app::SceneFileFacts{"a.glb", "0123456789abcdef", 60, 3, 3, 5, 1, 2, true};
-  const app::BenchMatrix back = app::parse_matrix_json(app::matrix_json(m));
+  m.file = bench::SceneFileFacts{"a.glb", "0123456789abcdef", 60, 3, 3, 5, 1, 2, true};
+  const bench::BenchMatrix back = bench::parse_matrix_json(bench::matrix_json(m));
   EXPECT_EQ(back.scene, "file");
   ASSERT_TRUE(back.file.has_value());
   EXPECT_EQ(back.file->path, "a.glb");
@@ -176,11 +176,11 @@ TEST(BenchFileScene, SceneFileFieldsRoundTripThroughTheJson) {
   EXPECT_EQ(back.file->textures, 1u);
   EXPECT_EQ(back.file->lights, 2u);
   EXPECT_TRUE(back.file->lamp);
-  EXPECT_TRUE(Contains(app::matrix_markdown(m), "Scene: a.glb (60 triangles, 5 materials, 1 "
+  EXPECT_TRUE(Contains(bench::matrix_markdown(m), "Scene: a.glb (60 triangles, 5 materials, 1 "
                                                 "texture, 2 lights and the demo's lamp"));
   m.file.reset();  // the demo's documents have no such field
-  EXPECT_FALSE(nlohmann::json::parse(app::matrix_json(m)).contains("scene_file"));
-  EXPECT_FALSE(app::parse_matrix_json(app::matrix_json(m)).file.has_value());
+  EXPECT_FALSE(nlohmann::json::parse(bench::matrix_json(m)).contains("scene_file"));
+  EXPECT_FALSE(bench::parse_matrix_json(bench::matrix_json(m)).file.has_value());
 }
 
 TEST(BenchFileScene, ContentHashFollowsTheFileAndTheFilesItNames) {
@@ -189,15 +189,15 @@ TEST(BenchFileScene, ContentHashFollowsTheFileAndTheFilesItNames) {
   write_plain(dir / "data.bin", "0123");
   write_plain(gltf, R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "data.bin",
                        "byteLength": 4}], "images": [{"uri": "data:image/png;base64,AAAA"}]})");
-  const std::string first = app::scene_file_hash(gltf.string());
+  const std::string first = bench::scene_file_hash(gltf.string());
   EXPECT_EQ(first.size(), 16u);
-  EXPECT_EQ(first, app::scene_file_hash(gltf.string()));
+  EXPECT_EQ(first, bench::scene_file_hash(gltf.string()));
   write_plain(dir / "data.bin", "0124");  // the same .gltf, another buffer
-  const std::string second = app::scene_file_hash(gltf.string());
+  const std::string second = bench::scene_file_hash(gltf.string());
   EXPECT_NE(first, second);
   std::filesystem::remove(dir / "data.bin");
-  EXPECT_NE(second, app::scene_file_hash(gltf.string()));
-  EXPECT_THROW(app::scene_file_hash((dir / "none.gltf").string()), std::runtime_error);
+  EXPECT_NE(second, bench::scene_file_hash(gltf.string()));
+  EXPECT_THROW(bench::scene_file_hash((dir / "none.gltf").string()), std::runtime_error);
 }
 
 }  // namespace

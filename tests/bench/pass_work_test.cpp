@@ -6,7 +6,7 @@
 
 #include "bench/src/pass_work.h"
 
-namespace rp::app {
+namespace rp::bench {
 namespace {
 
 WorkParams base() {
@@ -209,4 +209,4 @@ TEST(PassWork, TaaByHand) {
 }
 
 }  // namespace
-}  // namespace rp::app
+}  // namespace rp::bench

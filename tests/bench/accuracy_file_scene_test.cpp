@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_test_scene.h"
-#include "cli_runner.h"
+#include "support/cli_runner.h"
 
 namespace rp::test {
 namespace {

@@ -1,4 +1,4 @@
-// app::parse_cli in process: what a command line resolves to, and which lines are usage errors
+// cli::parse_cli in process: what a command line resolves to, and which lines are usage errors
 // (exit code 2) or help (exit code 0), without running anything. The built binary's messages
 // are checked end to end in cli_errors_test.cpp and bad_input_test.cpp.
 #include <gtest/gtest.h>
@@ -8,9 +8,9 @@
 #include <variant>
 #include <vector>
 
-#include "app/cli.h"
+#include "cli/cli.h"
 
-namespace rp::app {
+namespace rp::cli {
 namespace {
 
 CliParse parse(std::vector<std::string> words) {
@@ -336,10 +336,10 @@ TEST(ParseCli, HugeDeviceIndexIsAUsageError) {
 }
 
 }  // namespace
-}  // namespace rp::app
+}  // namespace rp::cli
 
 
-namespace rp::app {
+namespace rp::cli {
 namespace {
 
 // --gi-volume: dense by default; svo takes --voxels 256 or 512 (256 when not
@@ -378,4 +378,4 @@ TEST(ParseCli, GiVolumeAndItsResolutions) {
 }
 
 }  // namespace
-}  // namespace rp::app
+}  // namespace rp::cli

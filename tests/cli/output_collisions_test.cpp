@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <string>
 
-#include "app/output_collisions.h"
-#include "cli_runner.h"
+#include "cli/output_collisions.h"
+#include "support/cli_runner.h"
 
 namespace rp::test {
 namespace {
@@ -26,18 +26,18 @@ TEST(OutputCollisions, SameFileFollowsLinksAndSpellings) {
   fs::create_symlink("f", dir / "relative_link");
   fs::create_hard_link(dir / "f", dir / "hard");
   fs::create_symlink(dir / "not_yet", dir / "dangling");
-  EXPECT_TRUE(app::same_file(dir / "f", dir / "f"));
-  EXPECT_TRUE(app::same_file(dir / "link", dir / "f"));
-  EXPECT_TRUE(app::same_file(dir / "relative_link", dir / "f"));
-  EXPECT_TRUE(app::same_file(dir / "hard", dir / "f"));
-  EXPECT_TRUE(app::same_file(dir / "sub" / ".." / "f", dir / "f"));
+  EXPECT_TRUE(cli::same_file(dir / "f", dir / "f"));
+  EXPECT_TRUE(cli::same_file(dir / "link", dir / "f"));
+  EXPECT_TRUE(cli::same_file(dir / "relative_link", dir / "f"));
+  EXPECT_TRUE(cli::same_file(dir / "hard", dir / "f"));
+  EXPECT_TRUE(cli::same_file(dir / "sub" / ".." / "f", dir / "f"));
   // Files that do not exist yet: the same name after resolving, including a dangling link.
-  EXPECT_TRUE(app::same_file(dir / "new", dir / "sub" / ".." / "new"));
-  EXPECT_TRUE(app::same_file(dir / "dangling", dir / "not_yet"));
-  EXPECT_FALSE(app::same_file(dir / "f", dir / "other"));
-  EXPECT_FALSE(app::same_file(dir / "new", dir / "f"));
+  EXPECT_TRUE(cli::same_file(dir / "new", dir / "sub" / ".." / "new"));
+  EXPECT_TRUE(cli::same_file(dir / "dangling", dir / "not_yet"));
+  EXPECT_FALSE(cli::same_file(dir / "f", dir / "other"));
+  EXPECT_FALSE(cli::same_file(dir / "new", dir / "f"));
   // Written in place, appended to: never a collision.
-  EXPECT_FALSE(app::same_file("/dev/null", "/dev/null"));
+  EXPECT_FALSE(cli::same_file("/dev/null", "/dev/null"));
 }
 
 struct Case {

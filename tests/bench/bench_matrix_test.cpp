@@ -12,8 +12,10 @@
 #include "bench/src/bench_report.h"
 #include "cl/error.h"
 
-namespace rp::app {
+namespace rp::bench {
 namespace {
+
+using app::TimeSummary;
 
 TEST(BenchFit, ExactPowerLawGivesItsExponentAndFactor) {
   // time = 3 ms * x^1.5 at four points.
@@ -354,4 +356,4 @@ TEST(BenchChart, XmlEscape) {
 }
 
 }  // namespace
-}  // namespace rp::app
+}  // namespace rp::bench
