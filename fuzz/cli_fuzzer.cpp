@@ -10,7 +10,8 @@
 //   "rolypoly...: ...\nRun with --help for more information.\n", its lines at most 3000 bytes
 //   and free of control bytes whatever the words echoed);
 // - a parsed command whose values break what the commands rely on: sizes 1..16384, voxels
-//   32/64/128 (or 0 = default), shadow map 1..16384 (or 0), bloom strength in [0, 1], a debug
+//   32/64/128 for the dense volume and 256/512 for the octree, shadow map 1..16384, bloom
+//   strength in [0, 1], a debug
 //   view that exists with --level/--dir only for voxels, render/bench frames >= 1, a bench scene
 //   that exists, no conflicting bench options, command_line = "rolypoly" + the words; --spp
 //   1..1000000, at its default unless --quality pathtraced (or bench --accuracy), which only
@@ -50,7 +51,11 @@ void require(bool ok, const char* what) {
 
 bool valid_size(uint32_t side) { return side >= 1 && side <= 16384; }
 
-bool valid_voxels(uint32_t r) { return r == 32 || r == 64 || r == 128; }
+bool valid_voxels(uint32_t r) { return r == 32 || r == 64 || r == 128 || r == 256 || r == 512; }
+// The octree takes 256 or 512, the dense volume 32, 64 or 128.
+bool voxels_fit_volume(uint32_t r, rp::render::GiVolume volume) {
+  return (r >= 256) == (volume == rp::render::GiVolume::kSvo);
+}
 
 // Every field a command reads, as text: two parses of one argv must give the same string.
 std::string describe(const CliParse& result) {
@@ -70,17 +75,17 @@ std::string describe(const CliParse& result) {
   };
   add("device", c.device);
   add("assets", c.asset_dir);
-  add("shadow", std::to_string(c.shadow_size));
-  add("voxels", std::to_string(c.voxels));
-  add("fx", std::to_string(c.effects.taa) + std::to_string(c.effects.bloom) +
-                std::to_string(c.effects.motion_blur) + " " +
-                std::to_string(c.effects.bloom_strength));
+  add("shadow", std::to_string(c.render.shadow_size));
+  add("voxels", std::to_string(c.render.voxel_resolution));
+  add("fx", std::to_string(c.render.effects.taa) + std::to_string(c.render.effects.bloom) +
+                std::to_string(c.render.effects.motion_blur) + " " +
+                std::to_string(c.render.effects.bloom_strength));
   add("view", std::to_string(int(c.view.view)) + " " + std::to_string(c.view.level) + " " +
                   std::to_string(c.view.dir));
-  add("visibility", std::to_string(int(c.visibility)));
-  add("quality", std::to_string(int(c.quality)));
+  add("visibility", std::to_string(int(c.render.visibility)));
+  add("quality", std::to_string(int(c.render.quality)));
   add("pathtraced", std::to_string(c.pathtraced) + " " + std::to_string(c.spp) + " " +
-                        std::to_string(c.bounces));
+                        std::to_string(c.render.bounces));
   add("render", std::to_string(p.render.size.width) + "x" + std::to_string(p.render.size.height) +
                     " " + std::to_string(p.render.frames) + " " +
                     std::to_string(p.render.frames_given) + " " + p.render.out_dir + " " +
@@ -138,23 +143,27 @@ void check_view(const rp::passes::DebugViewSettings& v) {
 
 void check_command(const ParsedCommand& p, const std::vector<std::string>& words) {
   const rp::app::CommonOptions& c = p.common;
-  require(c.shadow_size == 0 || valid_size(c.shadow_size), "--shadow-size out of range");
-  require(c.voxels == 0 || valid_voxels(c.voxels), "--voxels not 32/64/128");
-  const float f = c.effects.bloom_strength;
+  require(valid_size(c.render.shadow_size), "--shadow-size out of range");
+  require(valid_voxels(c.render.voxel_resolution), "--voxels not 32/64/128/256/512");
+  if (p.kind == ParsedCommand::Kind::kRender || p.kind == ParsedCommand::Kind::kRun)
+    require(voxels_fit_volume(c.render.voxel_resolution, c.render.gi_volume),
+            "--voxels that the --gi-volume does not take");
+  const float f = c.render.effects.bloom_strength;
   require(f >= 0.0f && f <= 1.0f, "--bloom-strength outside [0, 1] (or NaN)");
-  require(c.visibility == rp::render::VisibilityBackend::kRaster ||
-              c.visibility == rp::render::VisibilityBackend::kEmbree,
+  require(c.render.visibility == rp::render::VisibilityBackend::kRaster ||
+              c.render.visibility == rp::render::VisibilityBackend::kEmbree,
           "--visibility out of range");
-  require(c.quality == rp::render::Quality::kFast || c.quality == rp::render::Quality::kReference,
+  require(c.render.quality == rp::render::Quality::kFast ||
+              c.render.quality == rp::render::Quality::kReference,
           "--quality out of range");
   require(c.spp >= 1 && c.spp <= 1000000, "--spp out of range");
-  require(c.bounces <= 1000, "--bounces out of range");
+  require(c.render.bounces <= 1000, "--bounces out of range");
   const bool accuracy = p.kind == ParsedCommand::Kind::kBench && p.bench.accuracy;
   if (accuracy)
-    require(c.bounces == rp::render::RenderSettings::kDefaultBounces,
+    require(c.render.bounces == rp::render::RenderSettings::kDefaultBounces,
             "bench --accuracy took --bounces (it renders 1 and 64 itself)");
   if (!c.pathtraced)
-    require((c.spp == 256 || accuracy) && c.bounces >= 1,
+    require((c.spp == 256 || accuracy) && c.render.bounces >= 1,
             "--spp without --quality pathtraced or --accuracy, or --bounces 0 in a real-time mode");
   else
     require(c.device.empty() && (p.kind == ParsedCommand::Kind::kRender ||
@@ -193,7 +202,9 @@ void check_command(const ParsedCommand& p, const std::vector<std::string>& words
       const rp::bench::BenchOptions& b = p.bench;
       require(valid_size(b.size.width) && valid_size(b.size.height), "bench size out of range");
       for (uint32_t s : b.sizes) require(valid_size(s), "bench --sizes entry out of range");
-      for (uint32_t v : b.voxels) require(valid_voxels(v), "bench --voxels entry not 32/64/128");
+      for (uint32_t v : b.voxels)
+        require(valid_voxels(v) && voxels_fit_volume(v, c.render.gi_volume),
+                "bench --voxels entry not one the --gi-volume takes");
       require(b.frames >= 1 && b.frames <= 1000000, "bench --frames out of range");
       require(b.warmup <= 1000000, "bench --warmup out of range");
       // default, busy or a scene file's path ("demo" reads as default)

@@ -49,23 +49,6 @@ constexpr MarbleSpot kMarbles[] = {
 // falls towards the camera and the right wall.
 constexpr size_t kMeasuredTumbler = 4;
 
-struct ShadowName {
-  render::ShadowMode mode;
-  const char* name;
-};
-constexpr ShadowName kShadowModes[] = {{render::ShadowMode::kHard, "hard"},
-                                       {render::ShadowMode::kPcf, "pcf"},
-                                       {render::ShadowMode::kPcss, "pcss"},
-                                       {render::ShadowMode::kVssm, "vssm"}};
-const char* texture_filter_name(render::TextureFilter f) {
-  switch (f) {
-    case render::TextureFilter::kBilinear: return "bilinear";
-    case render::TextureFilter::kTrilinear: return "trilinear";
-    case render::TextureFilter::kAnisotropic: return "anisotropic";
-  }
-  return "?";
-}
-
 double luminance(glm::vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 // A line on the floor from a contact point directly away from the lamp's foot.
@@ -137,12 +120,12 @@ struct RealTime {
 RealTime render_real_time(const CommonOptions& common, render::ShadowMode mode, uint32_t w,
                           uint32_t h, uint32_t jitter_frames, const std::string& label) {
   CommonOptions c = common;
-  c.quality = render::Quality::kFast;
-  c.bounces = 1;
-  c.shadows = mode;
+  c.render.quality = render::Quality::kFast;
+  c.render.bounces = 1;
+  c.render.shadows = mode;
   c.view = {};
-  c.effects.bloom = c.effects.motion_blur = false;
-  c.effects.taa = false;
+  c.render.effects.bloom = c.render.effects.motion_blur = false;
+  c.render.effects.taa = false;
   RenderSession session(c, w, h, true);
   RealTime rt;
   std::vector<uint8_t> rgba;
@@ -152,7 +135,7 @@ RealTime render_real_time(const CommonOptions& common, render::ShadowMode mode, 
   for (uint32_t i = 0; i <= jitter_frames; ++i) {
     if (InterruptGuard::interrupted()) throw truth::PathTracer::Cancelled();
     if (i == 1) {
-      render::Effects e = c.effects;
+      render::Effects e = c.render.effects;
       e.taa = true;  // from now on the projection is jittered (Halton, 16 per cycle)
       session.set_effects(e);
     }
@@ -405,10 +388,12 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
                   100.0 * dnum(pj["direct_bias_floor"]));
     table += line;
   }
-  for (const ShadowName& m : kShadowModes) {
-    if (m.mode == default_mode) default_name = m.name;
-    const RealTime rt = render_real_time(common, m.mode, w, h, o.jitter_frames,
-                                         std::string("fast, shadows ") + m.name);
+  for (const NamedValue<render::ShadowMode>& mode : names(render::ShadowMode{})) {
+    // The table's names are string literals: .data() is NUL-terminated.
+    const char* mode_name = mode.name.data();
+    if (mode.value == default_mode) default_name = mode_name;
+    const RealTime rt = render_real_time(common, mode.value, w, h, o.jitter_frames,
+                                         std::string("fast, shadows ") + mode_name);
     nlohmann::json mj;
     mj["frames"] = o.jitter_frames;
     mj["median_frame_ms"] = rt.median_frame_ms;
@@ -429,7 +414,7 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
       const std::vector<ProfileSample> p =
           profile(lines[k], rt.direct_avg, rt.albedo_avg, false, frame, hits, w, h);
       const double width = transition_width(p);
-      j["profiles"][lines[k].name][m.name] = profile_json(p);
+      j["profiles"][lines[k].name][mode_name] = profile_json(p);
       ratio[k] = width / truth_width[k];
       mj["penumbra"][lines[k].name] = {{"width", num(width)},
                                        {"ratio_to_truth", num(ratio[k])},
@@ -442,12 +427,12 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
         {"floor", num(srgb_psnr(rt.albedo_avg, truth.albedo, floor))}};
     const auto& d = dnum;
     std::snprintf(line, sizeof line, "%-8s %9.2f %9.2f %9.2f %+8.1f%% %9.4f %9.2f %9.4f %9.2f\n",
-                  m.name, d(mj["direct_psnr_db"]["floor"]), d(mj["direct_psnr_db"]["penumbra"]),
+                  mode_name, d(mj["direct_psnr_db"]["floor"]), d(mj["direct_psnr_db"]["penumbra"]),
                   d(mj["direct_psnr_db"]["image"]), 100.0 * d(mj["direct_bias_floor"]),
                   d(mj["penumbra"]["tumbler"]["width"]), ratio[0],
                   d(mj["penumbra"]["marble"]["width"]), ratio[1]);
     table += line;
-    j["modes"][m.name] = mj;
+    j["modes"][mode_name] = mj;
     top.emplace_back();
     encode_rgba8(rt.direct_avg, true, top.back());
     bottom.emplace_back();
@@ -455,12 +440,12 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
   }
   j["default_shadows"] = default_name;
   j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  j["texture_filter"] = texture_filter_name(common.texture_filter);
+  j["texture_filter"] = name_of(common.render.texture_filter).data();
   const nlohmann::json& dm = j["modes"][default_name];
   std::snprintf(line, sizeof line,
                 "albedo view (%s, one unjittered frame) against the truth's pixel-averaged "
                 "albedo: %.2f dB image, %.2f dB floor (jittered average: %.2f / %.2f dB)\n",
-                texture_filter_name(common.texture_filter),
+                name_of(common.render.texture_filter).data(),
                 dnum(dm["albedo_psnr_db"]["image"]), dnum(dm["albedo_psnr_db"]["floor"]),
                 dnum(dm["albedo_psnr_db_jittered_average"]["image"]),
                 dnum(dm["albedo_psnr_db_jittered_average"]["floor"]));

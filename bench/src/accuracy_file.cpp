@@ -138,7 +138,7 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
   nlohmann::json j;
   j["schema"] = "rolypoly-accuracy-file/1";
   j["command"] = options.command_line;
-  j["gi_volume"] = render::gi_volume_name(common.gi_volume);
+  j["gi_volume"] = name_of(common.render.gi_volume);
   j["scene"] = scene_file_json<nlohmann::json>(facts);
   if (const std::string line = describe_sky(common.sky, sky); !line.empty()) j["sky"] = line;
   if (sky.environment.enabled()) {
@@ -147,7 +147,7 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
     j["sky_light"] =
         common.sky.prt
             ? "prt, " + std::to_string(prt.bands * prt.bands) + " coefficients, " +
-                  truth::prt_kind_name(prt.kind) +
+                  std::string(name_of(prt.kind)) +
                   (prt.kind == truth::PrtKind::kInterreflected
                        ? " (" + std::to_string(prt.bounces) + " bounces)"
                        : std::string()) +
@@ -194,7 +194,7 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
     rendered.push_back(render_mode(common, c.key, c.quality, bounces, false, w, h, frames, rgba,
                                    frame_fn, &assets));
     nlohmann::json m = compare(rendered.back(), truths[c.many ? 1 : 0], regions, assets);
-    m["quality"] = c.quality == render::Quality::kFast ? "fast" : "reference";
+    m["quality"] = name_of(c.quality);
     m["bounces"] = bounces;
     m["frames"] = frames;
     m["taa"] = false;

@@ -75,11 +75,11 @@ Images render_mode(const CommonOptions& common, const std::string& name, render:
                    std::vector<uint8_t>& final_rgba, const FrameFn& frame_fn,
                    const scene::SceneAssets* assets) {
   CommonOptions c = common;
-  c.quality = quality;
-  c.bounces = bounces;
+  c.render.quality = quality;
+  c.render.bounces = bounces;
   c.view = {};
-  c.effects.bloom = c.effects.motion_blur = false;
-  c.effects.taa = taa;
+  c.render.effects.bloom = c.render.effects.motion_blur = false;
+  c.render.effects.taa = taa;
   RenderSession session(c, w, h, false, assets);
   session.set_keep_components(true);
   ProgressBar bar(name, frames);

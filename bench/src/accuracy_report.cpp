@@ -90,7 +90,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   nlohmann::json j;
   j["schema"] = "rolypoly-accuracy/4";
   j["command"] = options.command_line;
-  j["gi_volume"] = render::gi_volume_name(common.gi_volume);
+  j["gi_volume"] = name_of(common.render.gi_volume);
   j["scene"] = "demo frame at rest (scene::make_demo_frame)";
   j["width"] = w;
   j["height"] = h;
@@ -121,7 +121,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
                                                                 : 1u;
     rendered.push_back(render_mode(common, c.key, c.quality, bounces, false, w, h, frames, rgba));
     nlohmann::json m = compare(rendered.back(), c.many ? truth_many : truth_one, labels);
-    m["quality"] = c.quality == render::Quality::kFast ? "fast" : "reference";
+    m["quality"] = name_of(c.quality);
     m["bounces"] = bounces;
     m["frames"] = frames;
     m["taa"] = false;

@@ -45,10 +45,10 @@ BenchCli::BenchCli(CLI::App& app, app::CommonOptions& common, BenchOptions& opti
                   "busy animation, and the flicker of both");
   bench->add_flag("--accuracy", options_.accuracy,
                   "hold the fast and reference modes against the path-traced truth of the demo "
-                  "frame or the --scene file's (cached on disk): each at 64 bounces against the 64-bounce truth and at "
-                  "--bounces 1 against the 1-bounce truth, plus the fast mode's final image with "
-                  "TAA; PSNR, indirect L1 and bias per region (a file's: per material), "
-                  "side-wall hue, leaks; default size 360, --spp 1024");
+                  "frame or the --scene file's (cached on disk): each at 64 bounces against the "
+                  "64-bounce truth and at --bounces 1 against the 1-bounce truth, plus the fast "
+                  "mode's final image with TAA; PSNR, indirect L1 and bias per region (a file's: "
+                  "per material), side-wall hue, leaks; default size 360, --spp 1024");
   bench->add_option("--out", options_.out_dir,
                     "--accuracy: folder for the side-by-side PNGs and the heat maps")
       ->capture_default_str();
@@ -107,7 +107,7 @@ BenchCli::BenchCli(CLI::App& app, app::CommonOptions& common, BenchOptions& opti
                     "comma-separated GI voxel resolutions per side, each 32, 64 or 128 (default " +
                         std::to_string(render::RenderSettings{}.voxel_resolution) +
                         "), or 256 or 512 with --gi-volume svo (default " +
-                        std::to_string(app::CommonOptions::kDefaultSvoVoxels) + ")")
+                        std::to_string(render::RenderSettings::kDefaultSvoResolution) + ")")
       ->delimiter(',')
       ->check(CLI::IsMember({32u, 64u, 128u, 256u, 512u}));
   bench->add_option("--scene", options_.scene,
@@ -200,8 +200,8 @@ std::string BenchCli::finish(int argc, const char* const* argv) {
     return scale;
   if (std::string gi = app::check_gi_volume(common, bench_opts.voxels); !gi.empty())
     return gi;
-  if (common.gi_volume == render::GiVolume::kSvo && bench_opts.voxels.empty())
-    bench_opts.voxels = {app::CommonOptions::kDefaultSvoVoxels};
+  if (common.render.gi_volume == render::GiVolume::kSvo && bench_opts.voxels.empty())
+    bench_opts.voxels = {render::RenderSettings::kDefaultSvoResolution};
   if (bench_opts.accuracy) {
     if (bench->count("--lamp"))
       return "--lamp applies to --quality pathtraced (--accuracy uses both lamp models)";

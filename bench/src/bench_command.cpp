@@ -84,8 +84,8 @@ int compare_visibility(const CommonOptions& common, const BenchOptions& options,
               options.size.height, options.warmup, options.frames);
   rp::cl::DeviceInfo info;
   CommonOptions raster = common, embree = common;
-  raster.visibility = render::VisibilityBackend::kRaster;
-  embree.visibility = render::VisibilityBackend::kEmbree;
+  raster.render.visibility = render::VisibilityBackend::kRaster;
+  embree.render.visibility = render::VisibilityBackend::kEmbree;
   PassStats r = measure(raster, options, scene, info);
   std::printf("device %s\n", describe_device(info).c_str());
   PassStats e = measure(embree, options, scene, info);
@@ -106,7 +106,7 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
                       uint32_t height, uint32_t voxels) {
   CommonOptions c = common;
   c.device = std::to_string(device.index);
-  c.voxels = voxels;
+  c.render.voxel_resolution = voxels_or_default(voxels);
   RenderSession session(c, width, height, false, scene.assets());
   std::unique_ptr<BenchFrames> frames = scene.frames();
 
@@ -126,7 +126,7 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
   }
   progress.finish();
 
-  if (common.gi_volume == render::GiVolume::kSvo) {
+  if (common.render.gi_volume == render::GiVolume::kSvo) {
     const render::SvoVolume& o = session.renderer().octree();
     const double mb = 1.0 / (1024.0 * 1024.0);
     std::printf("  octree %u^3 (last frame): %u fragments (list %.1f MiB), %llu nodes (node "
@@ -157,7 +157,7 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
   }
   RunResult run = make_run_result(width, height, voxels_or_default(voxels), stats);
   run.timing = rp::cl::timing_name(session.timing());
-  run.gi_volume = render::gi_volume_name(common.gi_volume);
+  run.gi_volume = name_of(common.render.gi_volume);
   run.render_scale = session.render_scale();
   run.render_width = session.render_width();
   run.render_height = session.render_height();
@@ -165,7 +165,7 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
     std::printf("  render scale %.3f: rendered at %ux%u for the %ux%u output%s\n",
                 double(run.render_scale), run.render_width, run.render_height, width, height,
                 common.target_ms > 0.0 ? " (where --target-ms left it)" : "");
-  if (common.gi_volume == render::GiVolume::kSvo) {
+  if (common.render.gi_volume == render::GiVolume::kSvo) {
     const render::SvoVolume& o = session.renderer().octree();
     run.octree_device_bytes = o.device_bytes;
     run.octree_peak_bytes = o.peak_device_bytes;
@@ -179,8 +179,7 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
   run.spheres = static_cast<uint32_t>(last.spheres.size());
   run.instances = static_cast<uint32_t>(last.instances.size());
   const std::vector<scene::Mesh>& meshes = session.assets().meshes;
-  const uint32_t shadow_size =
-      common.shadow_size ? common.shadow_size : render::RenderSettings{}.shadow_size;
+  const uint32_t shadow_size = common.render.shadow_size;
   auto triangles = [&](uint32_t mesh) {
     return mesh < meshes.size() ? static_cast<uint32_t>(meshes[mesh].triangles.size()) : 0u;
   };
@@ -219,16 +218,16 @@ void add_efficiency(const CommonOptions& common, const BenchScene& scene,
     p.width = run.width;
     p.height = run.height;
     p.voxel_resolution = run.voxels;
-    p.shadow_size = common.shadow_size ? common.shadow_size : render::RenderSettings{}.shadow_size;
+    p.shadow_size = common.render.shadow_size;
     p.triangles = triangles;
     p.instance_triangles = run.instance_triangles;
     p.voxel_triangles = run.voxel_triangles;
     p.shadow_triangles = run.shadow_triangles;
     p.spheres = run.spheres;
-    p.taa = common.effects.taa;
-    p.bloom = common.effects.bloom;
-    p.motion_blur = common.effects.motion_blur;
-    p.reference_quality = common.quality == render::Quality::kReference;
+    p.taa = common.render.effects.taa;
+    p.bloom = common.render.effects.bloom;
+    p.motion_blur = common.render.effects.motion_blur;
+    p.reference_quality = common.render.quality == render::Quality::kReference;
     for (PassResult& pass : run.passes)
       pass.efficiency =
           pass_efficiency(pass_work(pass.name, p), pass.ms.median_ms, peak.levels, peak.gflops);
@@ -279,12 +278,12 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
   check_outputs(options);
   if (options.accuracy) {  // opens the scene itself: the demo's or the file's report
     CommonOptions c = common;
-    if (!options.voxels.empty()) c.voxels = options.voxels.front();
+    if (!options.voxels.empty()) c.render.voxel_resolution = options.voxels.front();
     return accuracy_command(c, options);
   }
   if (options.quality_report) {  // the demo only (parse_cli refuses a file)
     CommonOptions c = common;
-    if (!options.voxels.empty()) c.voxels = options.voxels.front();
+    if (!options.voxels.empty()) c.render.voxel_resolution = options.voxels.front();
     return quality_report_command(c, options);
   }
   // A malformed scene file fails here, before any device is opened or anything is traced.
@@ -297,7 +296,7 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
   }
   if (options.compare_visibility) {
     CommonOptions c = common;
-    if (!options.voxels.empty()) c.voxels = options.voxels.front();
+    if (!options.voxels.empty()) c.render.voxel_resolution = options.voxels.front();
     return compare_visibility(c, options, scene);
   }
 
@@ -317,7 +316,7 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
   matrix.scene = scene.kind();
   matrix.file = scene.facts();
   matrix.seed = options.sim.seed;
-  matrix.bounces = common.bounces;
+  matrix.bounces = common.render.bounces;
   matrix.frames = options.frames;
   matrix.warmup = options.warmup;
   matrix.sizes = plan.sizes;
@@ -326,7 +325,7 @@ int bench_command(const CommonOptions& common, const BenchOptions& options) {
   std::printf("bench: %zu device(s) x %zu size(s) x %zu voxel resolution(s), scene %s, "
               "shadows %s, %u warm-up + %u measured frames each\n",
               plan.devices.size(), plan.sizes.size(), plan.voxels.size(), matrix.scene.c_str(),
-              render::shadow_mode_name(common.shadows), options.warmup, options.frames);
+              name_of(common.render.shadows).data(), options.warmup, options.frames);
   std::fflush(stdout);
   // A signal ends the whole bench, with no file written: a kernel build that LLVM failed on
   // the signal is the interruption, not a device to skip (whose record would replace the

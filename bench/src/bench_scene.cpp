@@ -75,8 +75,8 @@ class BusyFrameSource final : public FrameSource {
 class SimulationFrames final : public BenchFrames {
  public:
   SimulationFrames(const CommonOptions& common, const BenchOptions& options)
-      : effects_(common.effects),
-        source_(make_simulation_options(options.sim, common.effects)) {}
+      : effects_(common.render.effects),
+        source_(make_simulation_options(options.sim, common.render.effects)) {}
   rp::cl::PassTimes render(RenderSession& session, std::vector<uint8_t>& rgba,
                            double& frame_ms) override {
     return render_next_frame(session, source_, effects_, rgba, frame_ms);
@@ -127,11 +127,11 @@ std::string BenchScene::kind() const {
 
 std::unique_ptr<BenchFrames> BenchScene::frames() const {
   if (file_)
-    return std::make_unique<SourceFrames>(common_.effects,
+    return std::make_unique<SourceFrames>(common_.render.effects,
                                           std::make_unique<FileFrameSource>(*file_));
   if (options_.scene == "busy")
     return std::make_unique<SourceFrames>(
-        common_.effects, std::make_unique<BusyFrameSource>(options_.sim.seed));
+        common_.render.effects, std::make_unique<BusyFrameSource>(options_.sim.seed));
   return std::make_unique<SimulationFrames>(common_, options_);
 }
 

@@ -58,7 +58,7 @@ int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& opt
     file_source = std::make_unique<FileFrameSource>(*file);
   else
     simulation = std::make_unique<SimulationFrameSource>(
-        make_simulation_options(options.sim, common.effects));
+        make_simulation_options(options.sim, common.render.effects));
   // --json was checked by bench_command before this (the long renders).
   const uint32_t w = options.size.width, h = options.size.height;
   const scene::SceneAssets assets = file ? file->loaded.assets : app::load_demo_assets(common);
@@ -71,7 +71,8 @@ int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& opt
   rp::truth::PathTracer tracer(assets);
   const std::string sky_line = describe_sky(common.sky, sky);
   if (!sky_line.empty()) std::printf("%s\n", sky_line.c_str());
-  const rp::truth::PathTraceSettings settings = app::pathtrace_settings(common, w, h, options.sim.seed);
+  const rp::truth::PathTraceSettings settings =
+      app::pathtrace_settings(common, w, h, options.sim.seed);
   const uint32_t total = options.warmup + options.frames;
   std::printf("bench: path traced %s, seed %llu, %u warm-up + %u measured frames, %u threads\n",
               describe_settings(settings).c_str(),

@@ -31,7 +31,7 @@ void check_same_size(const std::vector<uint8_t>& a, const std::vector<uint8_t>& 
 
 CommonOptions with_quality(const CommonOptions& common, render::Quality quality) {
   CommonOptions c = common;
-  c.quality = quality;
+  c.render.quality = quality;
   c.view = {};  // the final image
   return c;
 }
@@ -117,13 +117,13 @@ QualityReport measure_quality(const CommonOptions& fast, const CommonOptions& re
   args.fireball = true;
   RenderSession fast_session(fast, width, height);
   RenderSession ref_session(reference, width, height);
-  SimulationFrameSource fast_source(make_simulation_options(args, common.effects));
-  SimulationFrameSource ref_source(make_simulation_options(args, common.effects));
+  SimulationFrameSource fast_source(make_simulation_options(args, common.render.effects));
+  SimulationFrameSource ref_source(make_simulation_options(args, common.render.effects));
   std::vector<uint8_t> fast_rgba, ref_rgba;
   double frame_ms = 0.0;
   for (uint32_t i = 0; i < options.busy_warmup + options.busy_frames; ++i) {
-    render_next_frame(fast_session, fast_source, common.effects, fast_rgba, frame_ms);
-    render_next_frame(ref_session, ref_source, common.effects, ref_rgba, frame_ms);
+    render_next_frame(fast_session, fast_source, common.render.effects, fast_rgba, frame_ms);
+    render_next_frame(ref_session, ref_source, common.render.effects, ref_rgba, frame_ms);
     if (i >= options.busy_warmup) report.busy_psnr_db.push_back(psnr_rgb8(fast_rgba, ref_rgba));
   }
   if (!report.busy_psnr_db.empty()) {
@@ -146,12 +146,13 @@ int quality_report_command(const CommonOptions& common, const BenchOptions& opti
   const uint32_t w = options.size.width, h = options.size.height;
   QualityOptions q;
   q.seed = options.sim.seed;
-  const bool scaled = common.render_scale < 1.0f || common.target_ms > 0.0;
+  const bool scaled = common.render.render_scale < 1.0f || common.target_ms > 0.0;
   char what[96];
   if (scaled && common.target_ms > 0.0)
     std::snprintf(what, sizeof what, "the scale holding %.1f ms vs full scale", common.target_ms);
   else if (scaled)
-    std::snprintf(what, sizeof what, "render scale %.2f vs full scale", double(common.render_scale));
+    std::snprintf(what, sizeof what, "render scale %.2f vs full scale",
+                  double(common.render.render_scale));
   else
     std::snprintf(what, sizeof what, "fast vs reference");
   std::printf("quality: %s at %ux%u (static demo %u frames, busy animation %u + %u frames, seed "
@@ -162,7 +163,7 @@ int quality_report_command(const CommonOptions& common, const BenchOptions& opti
   QualityReport r;
   if (scaled) {
     CommonOptions full = with_quality(common, render::Quality::kFast);
-    full.render_scale = 1.0f;
+    full.render.render_scale = 1.0f;
     full.target_ms = 0.0;
     r = measure_quality(with_quality(common, render::Quality::kFast), full, w, h, q);
   } else {
@@ -196,7 +197,7 @@ int quality_report_command(const CommonOptions& common, const BenchOptions& opti
                   "  \"busy_min_psnr_db\": %.3f, \"busy_median_psnr_db\": %.3f,\n"
                   "  \"flicker_fast\": %.4f, \"flicker_reference\": %.4f,\n"
                   "  \"busy_psnr_db\": ",
-                  options.command_line.c_str(), w, h, common.bounces, what, r.static_psnr_db,
+                  options.command_line.c_str(), w, h, common.render.bounces, what, r.static_psnr_db,
                   r.busy_min_psnr_db,
                   r.busy_median_psnr_db, r.flicker_fast, r.flicker_reference);
     write_text_atomic(options.json, std::string(text) + busy + "\n}\n");

@@ -44,7 +44,7 @@ double psnr_rgb8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
 // Mean absolute difference of two RGBA8 images over the RGB channels, in 8-bit codes.
 double mean_abs_diff_rgb8(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b);
 
-// Renders both modes (common.quality is ignored; common.view must be the final image) at
+// Renders both modes (common.render.quality is ignored; common.view must be the final image) at
 // width x height and measures the criteria above. Throws what RenderSession throws.
 QualityReport measure_quality(const app::CommonOptions& common, uint32_t width, uint32_t height,
                               const QualityOptions& options = {});

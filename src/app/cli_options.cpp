@@ -131,41 +131,30 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
                   "(case-insensitive); default: first GPU, else first CPU");
   cmd->add_option("--assets", common.asset_dir,
                   "folder with the scene's textures (default: the built-in asset folder)");
-  cmd->add_option("--shadow-size", common.shadow_size,
-                  "shadow map texels per side (default: the renderer's, " +
-                      std::to_string(render::RenderSettings{}.shadow_size) + ")")
+  cmd->add_option("--shadow-size", common.render.shadow_size, "shadow map texels per side")
+      ->capture_default_str()
       ->transform(whole_number(1, kMaxSize));
   if (voxel_option)
-    cmd->add_option("--voxels", common.voxels,
+    cmd->add_option("--voxels", common.render.voxel_resolution,
                     "GI voxel volume resolution per side: 32, 64 or 128 for --gi-volume dense "
                     "(default " +
                         std::to_string(render::RenderSettings{}.voxel_resolution) +
                         "), 256 or 512 for --gi-volume svo (default " +
-                        std::to_string(CommonOptions::kDefaultSvoVoxels) + ")")
+                        std::to_string(render::RenderSettings::kDefaultSvoResolution) + ")")
         ->check(CLI::IsMember({32u, 64u, 128u, 256u, 512u}));
-  cmd->add_option_function<std::string>(
-         "--gi-volume",
-         [&common](const std::string& name) {
-           common.gi_volume = *render::parse_gi_volume(name);  // IsMember checked the name
-         },
-         "the volume the GI cones trace: dense (the anisotropic mip chain, 32^3 to 128^3; "
-         "default) or svo (the sparse voxel octree with 3^3 bricks, 256^3 or 512^3: finer "
-         "contacts for more build time, memory only where surfaces are)")
-      ->check(CLI::IsMember({"dense", "svo"}));
-  cmd->add_option_function<std::string>(
-         "--visibility",
-         [&common](const std::string& name) {
-           common.visibility = name == "embree" ? render::VisibilityBackend::kEmbree
-                                                : render::VisibilityBackend::kRaster;
-         },
-         "where the visibility buffer comes from: raster (compute rasterizer on the OpenCL "
-         "device, default) or embree (Embree primary rays on the host's cores, uploaded)")
-      ->check(CLI::IsMember({"raster", "embree"}));
+  add_named_option(cmd, "--gi-volume", common.render.gi_volume,
+                   "the volume the GI cones trace: dense (the anisotropic mip chain, 32^3 to "
+                   "128^3; default) or svo (the sparse voxel octree with 3^3 bricks, 256^3 or "
+                   "512^3: finer contacts for more build time, memory only where surfaces are)");
+  add_named_option(cmd, "--visibility", common.render.visibility,
+                   "where the visibility buffer comes from: raster (compute rasterizer on the "
+                   "OpenCL device, default) or embree (Embree primary rays on the host's cores, "
+                   "uploaded)");
   std::string quality_help =
       "indirect light: fast (real-time default: reduced resolution, interleaved cones, "
       "temporal accumulation), reference (per-pixel 16 cones at full resolution, twice the "
       "steps, no temporal reuse)";
-  std::vector<std::string> qualities = {"fast", "reference"};
+  std::vector<std::string> qualities = name_list<render::Quality>();
   if (pathtraced) {
     quality_help += " or pathtraced (the ground truth: Monte Carlo path tracing of the same "
                     "frame on the host's cores with Embree, no OpenCL device; --spp, --bounces)";
@@ -176,44 +165,35 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
   cmd->add_option_function<std::string>(
          "--quality",
          [&common](const std::string& name) {
-           common.quality =
-               name == "reference" ? render::Quality::kReference : render::Quality::kFast;
+           // pathtraced is not a render::Quality: the host path tracer replaces the renderer.
            common.pathtraced = name == "pathtraced";
+           if (!common.pathtraced) common.render.quality = *parse_name<render::Quality>(name);
          },
          quality_help)
       ->check(CLI::IsMember(qualities));
-  cmd->add_option_function<std::string>(
-         "--texture-filter",
-         [&common](const std::string& name) {
-           common.texture_filter = name == "bilinear"    ? render::TextureFilter::kBilinear
-                                   : name == "anisotropic" ? render::TextureFilter::kAnisotropic
-                                                           : render::TextureFilter::kTrilinear;
-         },
-         "surface textures: bilinear (level 0 only: aliases in the distance), trilinear "
-         "(default: mipmaps, level from the pixel's footprint) or anisotropic (up to 4 "
-         "trilinear taps along the footprint's long axis: sharper at grazing angles)")
-      ->check(CLI::IsMember({"bilinear", "trilinear", "anisotropic"}));
+  add_named_option(cmd, "--texture-filter", common.render.texture_filter,
+                   "surface textures: bilinear (level 0 only: aliases in the distance), "
+                   "trilinear (default: mipmaps, level from the pixel's footprint) or anisotropic "
+                   "(up to 4 trilinear taps along the footprint's long axis: sharper at grazing "
+                   "angles)");
   // --shadows: the light pass's shadow filter; key H cycles it in the window.
-  cmd->add_option_function<std::string>(
-         "--shadows",
-         [&common](const std::string& name) {
-           common.shadows = *render::parse_shadow_mode(name);  // IsMember checked the name
-         },
-         "how the lamp's shadow is filtered: hard (one tap: a point lamp's hard edge), pcf "
-         "(fixed-width soft edge), pcss (penumbra from the lamp's size and the blocker and "
-         "receiver depths; default) or vssm (the same from filtered depth moments)")
-      ->check(CLI::IsMember({"hard", "pcf", "pcss", "vssm"}));
+  add_named_option(cmd, "--shadows", common.render.shadows,
+                   "how the lamp's shadow is filtered: hard (one tap: a point lamp's hard edge), "
+                   "pcf (fixed-width soft edge), pcss (penumbra from the lamp's size and the "
+                   "blocker and receiver depths; default) or vssm (the same from filtered depth "
+                   "moments)");
   auto off = [&](const char* name, bool& flag, const char* what) {
     cmd->add_flag_callback(name, [&flag] { flag = false; }, what);
   };
-  off("--no-taa", common.effects.taa, "temporal anti-aliasing off (key T toggles it)");
-  off("--no-bloom", common.effects.bloom, "bloom off (key B toggles it)");
-  off("--no-motion-blur", common.effects.motion_blur, "motion blur off (key M toggles it)");
-  cmd->add_option("--bloom-strength", common.effects.bloom_strength,
+  off("--no-taa", common.render.effects.taa, "temporal anti-aliasing off (key T toggles it)");
+  off("--no-bloom", common.render.effects.bloom, "bloom off (key B toggles it)");
+  off("--no-motion-blur", common.render.effects.motion_blur,
+      "motion blur off (key M toggles it)");
+  cmd->add_option("--bloom-strength", common.render.effects.bloom_strength,
                   "bloom mix factor f: colour * (1 - f) + bloom * f")
       ->capture_default_str()
       ->check(decimal_in(0.0, 1.0));
-  cmd->add_option("--render-scale", common.render_scale,
+  cmd->add_option("--render-scale", common.render.render_scale,
                   "render pixels per output pixel along each axis, 0.5 to 1: below 1 the frame "
                   "is rendered smaller and temporal upsampling reconstructs the output size "
                   "from the jittered frames (bloom, motion blur and tone map at output size)")
@@ -228,8 +208,8 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
 std::string check_gi_volume(const CommonOptions& common, const std::vector<uint32_t>& voxels) {
   for (uint32_t v : voxels) {
     const bool svo_size = v == 256 || v == 512;  // the app's sizes (the renderer takes more)
-    if (v == 0 || svo_size == (common.gi_volume == render::GiVolume::kSvo)) continue;
-    if (common.gi_volume == render::GiVolume::kSvo)
+    if (v == 0 || svo_size == (common.render.gi_volume == render::GiVolume::kSvo)) continue;
+    if (common.render.gi_volume == render::GiVolume::kSvo)
       return "--gi-volume svo takes --voxels 256 or 512, not " + std::to_string(v);
     return "--voxels " + std::to_string(v) + " needs --gi-volume svo (the dense volume takes 32, "
            "64 or 128)";
@@ -237,8 +217,14 @@ std::string check_gi_volume(const CommonOptions& common, const std::vector<uint3
   return "";
 }
 
+std::string resolve_gi_volume(const CLI::App* cmd, CommonOptions& common) {
+  if (common.render.gi_volume == render::GiVolume::kSvo && cmd->count("--voxels") == 0)
+    common.render.voxel_resolution = render::RenderSettings::kDefaultSvoResolution;
+  return check_gi_volume(common, {common.render.voxel_resolution});
+}
+
 std::string check_bounces(const CommonOptions& common) {
-  if (!common.pathtraced && common.bounces == 0)
+  if (!common.pathtraced && common.render.bounces == 0)
     return "--bounces 0 applies to --quality pathtraced; the fast and reference modes take 1 "
            "(single bounce) to 1000";
   return "";
@@ -256,7 +242,7 @@ void add_spp(CLI::App* cmd, CommonOptions& common) {
 }
 
 void add_bounces(CLI::App* cmd, CommonOptions& common) {
-  cmd->add_option("--bounces", common.bounces,
+  cmd->add_option("--bounces", common.render.bounces,
                   "indirect bounces: light that left an emitter or a lamp-lit surface reaches "
                   "the camera after at most N reflections besides the surface the camera sees. "
                   "fast and reference: 1 = single-bounce indirect light, any N >= 2 = "
@@ -308,16 +294,10 @@ void add_sky_options(CLI::App* cmd, CommonOptions& common) {
          "--prt-bands", [&prt](int v) { prt.bands = v; },
          "--sky-light prt: spherical-harmonic bands, 3 (9 coefficients, default) or 5 (25)")
       ->check(CLI::IsMember({3, 5}));
-  cmd->add_option_function<std::string>(
-         "--prt-transfer",
-         [&prt](const std::string& v) {
-           prt.kind = v == "unshadowed" ? truth::PrtKind::kUnshadowed
-                      : v == "shadowed" ? truth::PrtKind::kShadowed
-                                        : truth::PrtKind::kInterreflected;
-         },
-         "--sky-light prt: unshadowed (the cosine lobe alone), shadowed (what the scene hides "
-         "of the sky) or interreflected (default: also the sky's light bounced off the scene)")
-      ->check(CLI::IsMember({"unshadowed", "shadowed", "interreflected"}));
+  add_named_option(cmd, "--prt-transfer", prt.kind,
+                   "--sky-light prt: unshadowed (the cosine lobe alone), shadowed (what the "
+                   "scene hides of the sky) or interreflected (default: also the sky's light "
+                   "bounced off the scene)");
   cmd->add_option_function<uint32_t>(
          "--prt-bounces", [&prt](uint32_t v) { prt.bounces = v; },
          "--prt-transfer interreflected: diffuse bounces, 1 to 16 (default 3)")
@@ -359,7 +339,7 @@ std::string check_sky(const CLI::App* cmd, const CommonOptions& common, bool acc
 }
 
 std::string check_render_scale(const CommonOptions& common, const char* components_option) {
-  if (common.render_scale >= 1.0f && common.target_ms <= 0.0) return "";
+  if (common.render.render_scale >= 1.0f && common.target_ms <= 0.0) return "";
   const std::string name = common.target_ms > 0.0 ? "--target-ms" : "--render-scale";
   if (common.pathtraced)
     return name + " applies to the real-time modes (the path tracer renders every output pixel)";
@@ -404,7 +384,7 @@ void add_simulation(CLI::App* cmd, SimulationArgs& sim) {
 }
 
 std::string ViewArgs::resolve(passes::DebugViewSettings& out) const {
-  const auto view_kind = passes::parse_debug_view(view);
+  const auto view_kind = parse_name<passes::DebugView>(view);
   const auto dir_index = passes::parse_voxel_dir(dir);
   if (!view_kind) return "unknown --view '" + view + "'";
   if (!dir_index) return "unknown --dir '" + dir + "'";
@@ -422,7 +402,7 @@ void add_view(CLI::App* cmd, ViewArgs& args) {
                   "what to show: final (the image), or a debug view: albedo, normal, depth, "
                   "velocity, shadow-map, direct, indirect, voxels")
       ->capture_default_str()
-      ->check(CLI::IsMember(passes::debug_view_names()));
+      ->check(CLI::IsMember(name_list<passes::DebugView>()));
   args.level_option =
       cmd->add_option("--level", args.level,
                       "--view voxels: mip level (0 = the isotropic level 0, up to log2 of the "
@@ -439,10 +419,8 @@ void add_view(CLI::App* cmd, ViewArgs& args) {
 
 std::string check_voxel_level(const CommonOptions& common) {
   if (common.view.view != passes::DebugView::kVoxels) return "";
-  const bool svo = common.gi_volume == render::GiVolume::kSvo;
-  const uint32_t r = common.voxels != 0 ? common.voxels
-                     : svo              ? CommonOptions::kDefaultSvoVoxels
-                                        : render::RenderSettings{}.voxel_resolution;
+  const bool svo = common.render.gi_volume == render::GiVolume::kSvo;
+  const uint32_t r = common.render.voxel_resolution;
   uint32_t log2 = 0;
   while ((r >> log2) > 1) ++log2;
   const uint32_t top = svo ? log2 - 1 : log2;

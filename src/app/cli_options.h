@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
+#include "util/named_enum.h"
 #include "passes/debug_view.h"
 
 namespace rp::app {
@@ -33,6 +34,17 @@ CLI::Validator whole_number(uint64_t lo, uint64_t hi);
 // false), so --bloom-strength nan used to be accepted.
 CLI::Validator decimal_in(double lo, double hi);
 
+// An option whose value is one of E's names (util/named_enum.h): CLI11 lists and checks the
+// choices, then the callback stores the value in `field`.
+template <typename E>
+CLI::Option* add_named_option(CLI::App* cmd, const std::string& flag, E& field,
+                              const std::string& help) {
+  return cmd
+      ->add_option_function<std::string>(
+          flag, [&field](const std::string& name) { field = *parse_name<E>(name); }, help)
+      ->check(CLI::IsMember(name_list<E>()));
+}
+
 // --size sets both sides; --width / --height override one of them.
 struct SizeArgs {
   uint32_t size = 720;
@@ -46,6 +58,10 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
 
 // --voxels against --gi-volume (each resolution list entry): "" when fine.
 std::string check_gi_volume(const CommonOptions& common, const std::vector<uint32_t>& voxels);
+
+// render and run: --gi-volume svo without --voxels takes the octree's default resolution
+// (render::RenderSettings::kDefaultSvoResolution); then check_gi_volume. "" when fine.
+std::string resolve_gi_volume(const CLI::App* cmd, CommonOptions& common);
 
 // --bounces 0 (no indirect light at all) exists only in the path tracer: "" when fine.
 std::string check_bounces(const CommonOptions& common);

@@ -11,7 +11,7 @@ namespace rp::app {
 int export_command(const CommonOptions& common, const ExportOptions& options) {
   const scene::SceneAssets assets = scene::make_demo_assets(
       common.asset_dir.empty() ? scene::default_asset_dir() : common.asset_dir);
-  SimulationFrameSource source(make_simulation_options(options.sim, common.effects));
+  SimulationFrameSource source(make_simulation_options(options.sim, common.render.effects));
   const scene::FrameScene frame = source.next_frame();
   scene::ExportOptions exporting;
   // The demo's GI volume is its box: a loaded export voxelizes on the same grid.

@@ -50,7 +50,7 @@ int pathtrace_render_command(const CommonOptions& common, const RenderOptions& o
   std::unique_ptr<SimulationFrameSource> simulation;
   if (is_demo_scene(common.scene)) {
     simulation = std::make_unique<SimulationFrameSource>(
-        make_simulation_options(options.sim, common.effects));
+        make_simulation_options(options.sim, common.render.effects));
   } else {
     file = std::make_unique<FileScene>(open_scene_file(common.scene));
     file_source = std::make_unique<FileFrameSource>(*file);

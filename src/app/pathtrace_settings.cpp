@@ -15,7 +15,7 @@ rp::truth::PathTraceSettings pathtrace_settings(const CommonOptions& common, uin
   s.width = width;
   s.height = height;
   s.spp = common.spp;
-  s.bounces = common.bounces;
+  s.bounces = common.render.bounces;
   s.seed = seed;  // the same streams every frame: a still scene gives the same image
   s.threads = 0;  // every hardware thread
   s.lamp = common.area_lamp ? rp::truth::LampModel::kArea : rp::truth::LampModel::kPoint;

@@ -71,7 +71,7 @@ int render_frames(const CommonOptions& common, const RenderOptions& options,
     }
     double frame_ms = 0.0;
     rp::cl::PassTimes times =
-        simulation ? render_next_frame(session, *simulation, common.effects, rgba, frame_ms)
+        simulation ? render_next_frame(session, *simulation, common.render.effects, rgba, frame_ms)
                    : session.render(file_source->next(), rgba, frame_ms);
     stats.add(times, frame_ms);
     if (options.exr) {  // before the PNG: a frame counts as written once its PNG is there
@@ -114,7 +114,7 @@ int render_command(const CommonOptions& common, const RenderOptions& options) {
   uint32_t frames = options.frames;
   if (is_demo_scene(common.scene)) {
     simulation = std::make_unique<SimulationFrameSource>(
-        make_simulation_options(options.sim, common.effects));
+        make_simulation_options(options.sim, common.render.effects));
     if (!options.frames_given && simulation->replay_frames() > 0)
       frames = simulation->replay_frames();
     show_long_steps(*simulation);

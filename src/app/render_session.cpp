@@ -207,22 +207,9 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
       programs_(context_) {
   if (options.sky.given()) sky_ = std::make_unique<SkyLight>(load_sky(options.sky));
   if (sky_ && options.sky.prt) prt_ = options.sky.prt_settings;
-  render::RenderSettings settings;
+  render::RenderSettings settings = options.render;
   settings.width = width;
   settings.height = height;
-  if (options.shadow_size != 0) settings.shadow_size = options.shadow_size;
-  settings.gi_volume = options.gi_volume;
-  if (options.voxels != 0)
-    settings.voxel_resolution = options.voxels;
-  else if (options.gi_volume == render::GiVolume::kSvo)
-    settings.voxel_resolution = CommonOptions::kDefaultSvoVoxels;
-  settings.effects = options.effects;
-  settings.visibility = options.visibility;
-  settings.quality = options.quality;
-  settings.bounces = options.bounces;
-  settings.shadows = options.shadows;
-  settings.texture_filter = options.texture_filter;
-  settings.render_scale = options.render_scale;
   settings.scale_follows_time = options.target_ms > 0.0;
   // Before any allocation or kernel build: a size, volume or scene the device cannot hold
   // fails at once, with what would fit. The textures first: their own message names the
@@ -251,7 +238,7 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   set_view(options.view);
   if (keep_components) renderer_->set_keep_light_components(true);
   if (options.target_ms > 0.0)
-    frame_scale_.emplace(options.target_ms, options.render_scale);
+    frame_scale_.emplace(options.target_ms, options.render.render_scale);
 }
 
 void RenderSession::set_keep_components(bool keep) {
@@ -343,7 +330,7 @@ void RenderSession::prepare_prt(const scene::FrameScene& frame) {
   }
   renderer_->set_prt(shading);
   std::fprintf(stderr, "rolypoly: PRT sky light: %d coefficients, %s%s, %u vertices (%s %s)\n",
-               t.count(), truth::prt_kind_name(t.kind),
+               t.count(), name_of(t.kind).data(),
                t.kind == truth::PrtKind::kInterreflected
                    ? (", " + std::to_string(t.bounces) + " bounces").c_str()
                    : "",

@@ -51,27 +51,18 @@ struct CommonOptions {
   std::string device;      // --device: index or name substring ("" = first GPU, else CPU)
   std::string asset_dir;   // --assets: folder with the demo's textures
   std::string scene = "demo";  // --scene (render): "demo" or a glTF 2.0 file (app/scene_input.h)
-  uint32_t shadow_size = 0;  // --shadow-size: shadow map texels per side (0 = renderer default)
-  uint32_t voxels = 0;       // --voxels: GI volume voxels per side (0 = renderer default, 64)
-  render::GiVolume gi_volume = render::GiVolume::kDense;  // --gi-volume dense|svo
-  static constexpr uint32_t kDefaultSvoVoxels = 256;  // --gi-volume svo without --voxels
-  render::Effects effects;   // --no-taa, --no-bloom, --no-motion-blur, --bloom-strength
+  // What the real-time modes render: --shadow-size, --voxels, --gi-volume, --no-taa /
+  // --no-bloom / --no-motion-blur / --bloom-strength, --visibility, --quality fast|reference,
+  // --bounces, --shadows, --texture-filter, --render-scale. Its size is the command's (--size;
+  // the session sets it) and scale_follows_time follows target_ms.
+  render::RenderSettings render;
   passes::DebugViewSettings view;  // --view / --level / --dir (render, run): what is shown
-  render::VisibilityBackend visibility = render::VisibilityBackend::kRaster;  // --visibility
-  render::Quality quality = render::Quality::kFast;                          // --quality
   // --quality pathtraced (render, bench): the host path tracer (truth/path_tracer.h) instead of
-  // the OpenCL renderer; `quality` is then unused. --spp is its samples per pixel.
+  // the OpenCL renderer; render.quality is then unused. --spp is its samples per pixel and
+  // render.bounces its gathers (0..1000; the real-time modes take 1..1000).
   bool pathtraced = false;
   uint32_t spp = 256;  // --spp: samples per pixel, 1..1000000
   bool area_lamp = false;  // --lamp area (pathtraced): the emitting cap (truth::LampModel::kArea)
-  // --bounces (every mode): the path tracer's gathers (0..1000) or the real-time modes'
-  // render::RenderSettings::bounces (1..1000: 1 = single bounce, >= 2 = multi-bounce, which
-  // converges to all bounces). Default 64, "all bounces", in every mode.
-  uint32_t bounces = render::RenderSettings::kDefaultBounces;
-  // --shadows and --texture-filter (bench --accuracy loops over the shadow modes).
-  render::ShadowMode shadows = render::RenderSettings{}.shadows;
-  render::TextureFilter texture_filter = render::RenderSettings{}.texture_filter;
-  float render_scale = 1.0f;  // --render-scale (render::RenderSettings::render_scale)
   double target_ms = 0.0;     // --target-ms: 0 = a fixed scale; else the scale follows the time
   SkyOptions sky;             // --env, --env-rotate, --env-strength, --sky clear, --sun
 };

@@ -45,11 +45,11 @@ std::string title_text(const std::string& label, const std::string& extra,
   title += fps;
   title += extra;
   title += " shadows ";
-  title += render::shadow_mode_name(shadows);
+  title += name_of(shadows);
   title += " |";
   if (view.view != passes::DebugView::kFinal) {
     title += " view ";
-    title += passes::debug_view_name(view.view);
+    title += name_of(view.view);
     if (view.view == passes::DebugView::kVoxels) {
       title += ' ';  // appends, not operator+ chains: GCC 12 -Wrestrict false positive
       title += std::to_string(view.level);
@@ -232,7 +232,7 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
   std::unique_ptr<FileScene> file;
   std::string label = "rolypoly";
   if (is_demo_scene(common.scene)) {
-    SimulationOptions sim = make_simulation_options(options.sim, common.effects);
+    SimulationOptions sim = make_simulation_options(options.sim, common.render.effects);
     sim.record = !options.record.empty();
     simulation = std::make_unique<SimulationFrameSource>(std::move(sim));
   } else {
@@ -248,7 +248,7 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
                         file ? &file->loaded.assets : nullptr);
   std::optional<FileSceneView> file_view;
   if (file) {
-    file_view.emplace(*file, common.effects);
+    file_view.emplace(*file, common.render.effects);
     window->set_look_drag(true);
   }
   std::printf("device %s\n", describe_device(session.device()).c_str());
@@ -277,7 +277,7 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
     for (const display::WindowEvent& e : window->take_events()) {
       if (e.type == display::WindowEvent::Type::Key && e.key == kShadowsKey) {
         session.set_shadows(render::next_shadow_mode(session.shadows()));
-        std::printf("shadows %s\n", render::shadow_mode_name(session.shadows()));
+        std::printf("shadows %s\n", name_of(session.shadows()).data());
         std::fflush(stdout);
         continue;
       }
@@ -298,7 +298,7 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
         try {
           session.set_view(settings);
         } catch (const std::exception& error) {  // keep showing the current view
-          std::fprintf(stderr, "rolypoly: view %s: %s\n", passes::debug_view_name(*view),
+          std::fprintf(stderr, "rolypoly: view %s: %s\n", name_of(*view).data(),
                        error.what());
         }
         continue;
@@ -321,7 +321,7 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
       times = file_view->render(session, *window, elapsed_s, rgba, frame_ms);
     } else {
       simulation->set_elapsed_seconds(elapsed_s);
-      times = render_next_frame(session, *simulation, common.effects, rgba, frame_ms);
+      times = render_next_frame(session, *simulation, common.render.effects, rgba, frame_ms);
     }
     window->present(rgba.data(), int(session.width()), int(session.height()));
     ++presented;

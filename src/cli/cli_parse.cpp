@@ -29,11 +29,11 @@ using app::add_sky_options;
 using app::add_spp;
 using app::add_view;
 using app::check_bounces;
-using app::check_gi_volume;
 using app::check_pathtrace;
 using app::check_render_scale;
 using app::check_sky;
 using app::check_voxel_level;
+using app::resolve_gi_volume;
 using app::CommonOptions;
 using app::is_demo_scene;
 using app::printable;
@@ -208,7 +208,7 @@ CliParse parse_cli(int argc, const char* const* argv) {
   if (devices->parsed()) {
     parsed.kind = ParsedCommand::Kind::kDevices;
   } else if (render->parsed()) {
-    if (std::string why = check_gi_volume(common, {common.voxels}); !why.empty())
+    if (std::string why = resolve_gi_volume(render, common); !why.empty())
       return usage("rolypoly render", why);
     if (std::string why = check_voxel_level(common); !why.empty())
       return usage("rolypoly render", why);
@@ -245,7 +245,7 @@ CliParse parse_cli(int argc, const char* const* argv) {
     if (std::string why = check_sky(run, common, false, is_demo_scene(common.scene));
         !why.empty())
       return usage("rolypoly run", why);
-    if (std::string why = check_gi_volume(common, {common.voxels}); !why.empty())
+    if (std::string why = resolve_gi_volume(run, common); !why.empty())
       return usage("rolypoly run", why);
     if (std::string why = check_voxel_level(common); !why.empty())
       return usage("rolypoly run", why);

@@ -11,9 +11,6 @@ namespace {
 
 constexpr size_t kGroup = 16;  // 16x16 work-groups, like the other per-pixel passes
 
-constexpr std::array<const char*, 10> kViewNames = {
-    "final", "albedo", "normal", "depth", "velocity", "shadow-map", "direct", "indirect", "voxels",
-    "specular"};
 constexpr std::array<const char*, 6> kDirNames = {"+x", "-x", "+y", "-y", "+z", "-z"};
 
 std::string frame_size(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
@@ -28,19 +25,6 @@ bool holds(const ::cl::Buffer& buffer, size_t bytes) {
 }
 
 }  // namespace
-
-const char* debug_view_name(DebugView view) { return kViewNames[size_t(view)]; }
-
-std::optional<DebugView> parse_debug_view(std::string_view name) {
-  for (size_t i = 0; i < kViewNames.size(); ++i)
-    if (name == kViewNames[i]) return DebugView(i);
-  return std::nullopt;
-}
-
-const std::vector<std::string>& debug_view_names() {
-  static const std::vector<std::string> names(kViewNames.begin(), kViewNames.end());
-  return names;
-}
 
 const char* voxel_dir_name(uint32_t dir) { return dir < kDirNames.size() ? kDirNames[dir] : "?"; }
 
@@ -74,7 +58,7 @@ void DebugViewPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scen
                         ::cl::Buffer& rgba8) {
   const uint32_t w = scene.constants.width, h = scene.constants.height;
   const size_t pixels = size_t(w) * h;
-  const std::string view = debug_view_name(settings.view);
+  const std::string view(name_of(settings.view));
   require(settings.view != DebugView::kFinal, "'final' is the normal image, not a debug view");
   require(holds(rgba8, pixels * 4), "the output buffer is smaller than " + frame_size(w, h) +
                                         " RGBA8 pixels");

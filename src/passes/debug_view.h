@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "passes/light.h"
 #include "render/frame_buffers.h"
 #include "render/gpu_scene.h"
+#include "util/named_enum.h"
 
 namespace rp::passes {
 
@@ -29,11 +31,14 @@ struct DebugViewSettings {
   uint32_t dir = 0;  // RP_DIR_POS_X
 };
 
-// Command-line names: "final", "albedo", "normal", "depth", "velocity", "shadow-map", "direct",
-// "indirect", "voxels", "specular" (in DebugView order).
-const char* debug_view_name(DebugView view);
-std::optional<DebugView> parse_debug_view(std::string_view name);
-const std::vector<std::string>& debug_view_names();
+// Command-line names (--view, the window title), in DebugView order (util/named_enum.h).
+constexpr NamedValue<DebugView> kDebugViewNames[] = {
+    {DebugView::kFinal, "final"},         {DebugView::kAlbedo, "albedo"},
+    {DebugView::kNormal, "normal"},       {DebugView::kDepth, "depth"},
+    {DebugView::kVelocity, "velocity"},   {DebugView::kShadowMap, "shadow-map"},
+    {DebugView::kDirect, "direct"},       {DebugView::kIndirect, "indirect"},
+    {DebugView::kVoxels, "voxels"},       {DebugView::kSpecular, "specular"}};
+constexpr std::span<const NamedValue<DebugView>> names(DebugView) { return kDebugViewNames; }
 // Voxel directions "+x", "-x", "+y", "-y", "+z", "-z" <-> RP_DIR_* (0..5).
 const char* voxel_dir_name(uint32_t dir);
 std::optional<uint32_t> parse_voxel_dir(std::string_view name);

@@ -67,7 +67,7 @@ void check_voxel_chain(const char* pass, const ::cl::Buffer& voxels, uint32_t vo
 }
 
 LightPass::LightPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
-                     ShadowFilter filter, std::string gi_options)
+                     render::ShadowMode filter, std::string gi_options)
     : context_(&context), programs_(&programs), filter_(filter),
       gi_options_(std::move(gi_options)) {}
 
@@ -111,7 +111,7 @@ void LightPass::run_visibility(rp::cl::Profiler& profiler, const render::GpuScen
   const size_t chunks_x = (w + 3) / 4, chunks_y = (h + 1) / 2;
   const ::cl::NDRange local(kComposeGroupX, kComposeGroupY);
   const size_t rows = rp::cl::round_up(chunks_y, kComposeGroupY);
-  if (!checkerboard_ || filter_ != ShadowFilter::kPcss) {
+  if (!checkerboard_ || filter_ != render::ShadowMode::kPcss) {
     k.setArg(arg++, cl_uint(kShadowPassAll));
     k.setArg(arg, visibility_);  // not read in this pass
     profiler.enqueue("light", k, ::cl::NDRange(rp::cl::round_up(chunks_x, kComposeGroupX), rows),

@@ -1,7 +1,7 @@
 // Light pass: direct light from the lamp (the surface model of kernels/common/brdf.h: GGX coat
-// over Lambert; directional falloff, the shadow filtered as ShadowFilter says) + indirect
+// over Lambert; directional falloff, the shadow filtered as render::ShadowMode says) + indirect
 // diffuse light + emission -> HDR float4 per pixel. Two kernels: the lamp's visibility per
-// pixel (kernels/shadow_visibility.cl, in the ShadowFilter's mode), then the light itself. The
+// pixel (kernels/shadow_visibility.cl, in the shadow mode's filter), then the light itself. The
 // indirect light is either the 16-cone set traced per pixel through the voxel radiance chain
 // (kernels/common/cone_trace.h; the reference quality mode) or the indirect pass's accumulated
 // low-resolution result upsampled with depth- and normal-aware weights (passes/indirect.h; the
@@ -16,18 +16,9 @@
 #include "render/frame_buffers.h"
 #include "passes/indirect.h"
 #include "render/gpu_scene.h"
+#include "render/render_settings.h"
 
 namespace rp::passes {
-
-// How the shadow map is filtered (render::ShadowMode's values, kernels/common/soft_shadow.h):
-// hard (one tap at the receiver), pcf (fixed-radius rotated Poisson disk), pcss (blocker search,
-// penumbra from the lamp cap's size, PCF over it; reads ShadowMap::mips' MIN plane) and vssm
-// (depth moments from ShadowMap::mips' MEAN / MEAN2 planes, Chebyshev bound).
-enum class ShadowFilter { kHard, kPcf, kPcss, kVssm };
-// Mip planes the shadow filter pass must build for `filter` (0: none).
-inline uint32_t shadow_mip_planes(ShadowFilter filter) {
-  return filter == ShadowFilter::kPcss ? 1u : filter == ShadowFilter::kVssm ? 3u : 0u;
-}
 
 // Extra outputs for the direct / indirect / specular debug views and the accuracy report,
 // width x height float4 each (16 bytes per pixel): direct = the lamp's light (shadowed; diffuse
@@ -47,11 +38,11 @@ class LightPass {
   // gi_options: "-DRP_GI_SVO" when the voxels given to run are the sparse voxel octree
   // (kernels/shared/svo_layout.h) instead of the dense chain; "" otherwise.
   LightPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
-            ShadowFilter filter = ShadowFilter::kPcss, std::string gi_options = "");
+            render::ShadowMode filter = render::ShadowMode::kPcss, std::string gi_options = "");
 
   // Switches the shadow filter for the next run (its kernels build on first use).
-  void set_filter(ShadowFilter filter) { filter_ = filter; }
-  ShadowFilter filter() const { return filter_; }
+  void set_filter(render::ShadowMode filter) { filter_ = filter; }
+  render::ShadowMode filter() const { return filter_; }
 
   // The pcss visibility's chunk checkerboard (kernels/shadow_visibility.cl): half the 4x2
   // chunks computed, the others filled where all their neighbours agree on lit or umbra (on by
@@ -103,7 +94,7 @@ class LightPass {
 
   const rp::cl::Context* context_;
   rp::cl::ProgramCache* programs_;
-  ShadowFilter filter_;
+  render::ShadowMode filter_;
   std::string gi_options_;  // -DRP_GI_SVO... for the light kernels ("" = the dense chain)
   std::optional<::cl::Kernel> kernels_[2][2][2];
   std::optional<::cl::Kernel> shadow_kernels_[4];

@@ -54,21 +54,7 @@ uint32_t texture_filter_code(TextureFilter filter) {
   return RP_TEXTURE_FILTER_TRILINEAR;
 }
 
-passes::ShadowFilter shadow_filter_for(ShadowMode mode) {
-  switch (mode) {
-    case ShadowMode::kHard: return passes::ShadowFilter::kHard;
-    case ShadowMode::kPcf: return passes::ShadowFilter::kPcf;
-    case ShadowMode::kPcss: return passes::ShadowFilter::kPcss;
-    case ShadowMode::kVssm: return passes::ShadowFilter::kVssm;
-  }
-  return passes::ShadowFilter::kPcss;
-}
-
 }  // namespace
-
-uint32_t scaled_side(uint32_t output_side, float scale) {
-  return std::max<uint32_t>(1, static_cast<uint32_t>(std::lround(double(output_side) * scale)));
-}
 
 Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
                    const scene::SceneAssets& assets, RenderSettings settings)
@@ -98,7 +84,7 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   gbuffer_pass_ = std::make_unique<passes::GBufferPass>(context, programs);
   const bool svo = settings_.gi_volume == GiVolume::kSvo;
   if (!gi_resolution_supported(settings_.gi_volume, settings_.voxel_resolution))
-    throw rp::cl::Error(std::string("the ") + gi_volume_name(settings_.gi_volume) +
+    throw rp::cl::Error("the " + std::string(name_of(settings_.gi_volume)) +
                         " GI volume does not take " + std::to_string(settings_.voxel_resolution) +
                         " voxels per side (dense: 32, 64 or 128; svo: 256 or 512)");
   const std::string gi_options = svo ? "-DRP_GI_SVO" : "";
@@ -118,7 +104,7 @@ Renderer::Renderer(const rp::cl::Context& context, rp::cl::ProgramCache& program
   if (settings_.quality == Quality::kFast)
     indirect_ = std::make_unique<passes::IndirectPass>(context, programs, gi_options);
   light_ = std::make_unique<passes::LightPass>(context, programs,
-                                               shadow_filter_for(settings_.shadows), gi_options);
+                                               settings_.shadows, gi_options);
   light_->prepare(indirect_ != nullptr);
   punctual_ = std::make_unique<passes::PunctualLightPass>(programs);
   sky_background_ = std::make_unique<passes::SkyBackgroundPass>(programs);
@@ -269,7 +255,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
       visibility_->render_shadow(profiler_, *scene_, shadow_);
       lamp_map_drawn_ = true;
     }
-    if (const uint32_t planes = passes::shadow_mip_planes(light_->filter()); planes > 0)
+    if (const uint32_t planes = shadow_mip_planes(light_->filter()); planes > 0)
       shadow_filter_->run(profiler_, *scene_, shadow_, planes > 1);
     // Texture detail for the output size: a render pixel covers 1 / scale output pixels per
     // axis, so the levels are log2(scale) finer than the render size alone would pick.
@@ -372,7 +358,7 @@ void Renderer::set_effects(const Effects& effects) {
 
 void Renderer::set_shadows(ShadowMode mode) {
   settings_.shadows = mode;
-  light_->set_filter(shadow_filter_for(mode));
+  light_->set_filter(mode);
 }
 
 void Renderer::reset_view_history() {

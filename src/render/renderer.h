@@ -14,6 +14,7 @@
 #include "passes/light.h"
 #include "render/frame_buffers.h"
 #include "render/gpu_scene.h"
+#include "render/render_settings.h"
 #include "render/svo_volume.h"
 #include "render/voxel_volume.h"
 #include "scene/frame_scene.h"
@@ -43,68 +44,6 @@ class MotionBlurPass;
 
 namespace rp::render {
 
-// Post-processing after the light pass, in this order (SPEC 6.6-6.9): TAA on tone-mapped values
-// (its output is inverse tone mapped back to HDR), bloom mixed into that HDR, motion blur, then
-// tone map + sRGB + dither. Each can be switched off; the others keep their place.
-struct Effects {
-  bool taa = true;            // 16-sample Halton jitter + history (key T, --no-taa)
-  bool bloom = true;          // (key B, --no-bloom)
-  bool motion_blur = true;    // (key M, --no-motion-blur)
-  float bloom_strength = 0.1f;  // f in colour * (1 - f) + bloom * f
-  // Fraction of the frame interval the virtual shutter is open (a 180 degree shutter): the blur
-  // streak is velocity * shutter, where velocity is the screen motion since the previous frame.
-  float shutter = 0.5f;
-  bool operator==(const Effects&) const = default;
-};
-
-// Where the visibility buffer comes from: the compute rasterizer on the OpenCL device, or Embree
-// primary rays traced on the host and uploaded (passes/embree_visibility.h). Same buffer format;
-// the shadow map is rasterized with either.
-enum class VisibilityBackend { kRaster, kEmbree };
-
-// How indirect (cone traced) light is computed:
-//   kFast:      the real-time default: cones traced at reduced resolution with interleaved
-//               directions, filtered spatially and accumulated over frames, upsampled with
-//               depth- and normal-aware weights.
-//   kReference: per-pixel cones at full resolution, 16 cones and twice the steps, no temporal
-//               reuse of indirect light (--quality reference): the yardstick the fast mode is
-//               measured against.
-enum class Quality { kFast, kReference };
-
-// Which volume holds the voxels the cones trace (--gi-volume):
-//   kDense: the dense anisotropic mip chain (render/voxel_volume.h), 32^3 .. 128^3;
-//   kSvo:   the sparse voxel octree of seed 001 (render/svo_volume.h, passes/svo.h), 256^3 or
-//           512^3: the same values where it has nodes, memory for the surfaces only.
-// Both are traced by the same cone functions (kernels/common/cone_trace.h, RP_GI_SVO).
-enum class GiVolume { kDense, kSvo };
-// Command-line names "dense", "svo"; nullopt for others.
-const char* gi_volume_name(GiVolume volume);
-std::optional<GiVolume> parse_gi_volume(std::string_view name);
-// Resolutions each volume takes: dense powers of two 2..256 (the app: 32, 64, 128), svo powers of
-// two 2..1024 (the app: 256, 512; tests smaller).
-bool gi_resolution_supported(GiVolume volume, uint32_t resolution);
-
-// How the lamp's shadow is filtered (--shadows). The lamp is a half sphere of radius
-// 0.35, so real shadows are soft: their penumbra widens with the blocker-receiver distance.
-//   kHard: one shadow-map tap per pixel (a point lamp's hard shadow);
-//   kPcf:  percentage-closer filtering over a fixed radius (soft edges of one width);
-//   kPcss: percentage-closer soft shadows: blocker search, then PCF over the penumbra width
-//          the blocker and receiver depths and the lamp size imply;
-//   kVssm: variance soft shadow maps: filtered depth moments, Chebyshev bound.
-enum class ShadowMode { kHard, kPcf, kPcss, kVssm };
-// Command-line names "hard", "pcf", "pcss", "vssm" (render/shadow_mode.cpp); nullopt for others.
-const char* shadow_mode_name(ShadowMode mode);
-std::optional<ShadowMode> parse_shadow_mode(std::string_view name);
-// The next mode in the order above, wrapping (key H).
-ShadowMode next_shadow_mode(ShadowMode mode);
-
-// How surface textures are sampled (--texture-filter; default kTrilinear: kAnisotropic
-// is closer to the path tracer's pixel-averaged albedo but costs 1.2 ms more at 720 busy, past
-// the 33 ms budget): kBilinear: the base level only
-// (aliases when minified); kTrilinear: mipmaps, level from the pixel's UV footprint;
-// kAnisotropic: several trilinear taps along the footprint's major axis.
-enum class TextureFilter { kBilinear, kTrilinear, kAnisotropic };
-
 // The light pass's linear images read back to the host (Renderer::read_components): RGB, 3
 // floats per pixel, row-major, top row first; background pixels 0, but for the sky seen
 // directly (0 without one) in combined and emission. The same meaning as
@@ -117,36 +56,6 @@ struct LinearComponents {
   std::vector<float> specular;  // the coat's part of direct + indirect (LightComponents)
 };
 
-struct RenderSettings {
-  uint32_t width = 720, height = 720;
-  uint32_t shadow_size = 1024;  // shadow map texels per side
-  uint32_t voxel_resolution = 64;  // GI volume: voxels per side over the box (dense: 32, 64 or
-                                   // 128; svo: 256 or 512)
-  GiVolume gi_volume = GiVolume::kDense;  // --gi-volume dense|svo
-  Effects effects;
-  VisibilityBackend visibility = VisibilityBackend::kRaster;  // --visibility raster|embree
-  Quality quality = Quality::kFast;  // --quality fast|reference
-  // --bounces: 1 = single-bounce indirect light (cones gather the voxels' direct light and
-  // emission); >= 2 = multi-bounce: the voxels' radiance also carries the indirect light they
-  // receive (passes/bounce.h), which converges to all bounces (the truth at 64).
-  uint32_t bounces = kDefaultBounces;
-  static constexpr uint32_t kDefaultBounces = 64;
-  ShadowMode shadows = ShadowMode::kPcss;                  // --shadows
-  TextureFilter texture_filter = TextureFilter::kTrilinear;  // --texture-filter
-  // --render-scale: render pixels per output pixel along each axis, in [kMinRenderScale, 1].
-  // Below 1 the final view renders visibility, GBuffer, light and the screen-space passes at
-  // the scaled size and temporal upsampling (passes/taa_upsample.h) reconstructs the output
-  // size; bloom, motion blur and tone map run at the output size. Debug views render at the
-  // output size.
-  float render_scale = 1.0f;
-  // Resolve with temporal upsampling even at scale 1 (the scale follows the frame time, so
-  // the history survives its changes).
-  bool scale_follows_time = false;
-  static constexpr float kMinRenderScale = 0.5f;
-};
-
-// The render size for an output size at a scale: each side scaled and rounded, at least 1.
-uint32_t scaled_side(uint32_t output_side, float scale);
 
 // Wall-clock milliseconds of the renderer's set-up: the scene's upload (texture mip chains and
 // buffers; mips_ms is the chains' part), the Embree visibility backend's BVHs (0 with the

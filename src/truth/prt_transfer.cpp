@@ -201,15 +201,6 @@ std::vector<PrtVertex> build_vertices(const scene::SceneAssets& assets,
 
 }  // namespace
 
-const char* prt_kind_name(PrtKind kind) {
-  switch (kind) {
-    case PrtKind::kUnshadowed: return "unshadowed";
-    case PrtKind::kShadowed: return "shadowed";
-    case PrtKind::kInterreflected: return "interreflected";
-  }
-  return "unknown";
-}
-
 glm::dvec3 PrtTransfer::irradiance(uint32_t vertex, const std::vector<glm::dvec3>& env) const {
   glm::dvec3 e(0.0);
   for (uint32_t c = 0; c < 3; ++c) {

@@ -57,17 +57,22 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "scene/frame_scene.h"
+#include "util/named_enum.h"
 
 namespace rp::truth {
 
 enum class PrtKind : uint32_t { kUnshadowed = 0, kShadowed = 1, kInterreflected = 2 };
 
-const char* prt_kind_name(PrtKind kind);  // "unshadowed", "shadowed", "interreflected"
+constexpr NamedValue<PrtKind> kPrtKindNames[] = {{PrtKind::kUnshadowed, "unshadowed"},
+                                                 {PrtKind::kShadowed, "shadowed"},
+                                                 {PrtKind::kInterreflected, "interreflected"}};
+constexpr std::span<const NamedValue<PrtKind>> names(PrtKind) { return kPrtKindNames; }
 
 struct PrtSettings {
   int bands = 3;                      // 3 (9 coefficients) or 5 (25)

@@ -68,9 +68,9 @@ TEST(FileSceneTruth, LoadedRoomMatchesItsPathTracedTruth) {
   const truth::PathTracedImage truth = tracer.render(truth_source.next(), settings);
 
   app::CommonOptions common;
-  common.effects.taa = false;  // one frame against the truth: no history to converge
-  common.effects.bloom = false;
-  common.effects.motion_blur = false;
+  common.render.effects.taa = false;  // one frame against the truth: no history to converge
+  common.render.effects.bloom = false;
+  common.render.effects.motion_blur = false;
   app::RenderSession session(common, kSize, kSize, true, &file.loaded.assets);
   app::FileFrameSource source(file);
   std::vector<uint8_t> rgba;

@@ -53,7 +53,7 @@ void export_demo(const std::filesystem::path& file) {
 
 std::vector<uint8_t> render_realtime(render::Quality quality, const app::FileScene* file) {
   app::CommonOptions common;
-  common.quality = quality;
+  common.render.quality = quality;
   std::vector<uint8_t> rgba;
   double ms = 0.0;
   if (file) {

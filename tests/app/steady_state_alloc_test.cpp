@@ -37,23 +37,23 @@ TEST(SteadyStateAllocations, AppFrameLoopAllocatesNothingAfterWarmUp) {
     GTEST_SKIP() << "operator new is AddressSanitizer's in this build; nothing to count";
   rp::cl::ensure_pocl_cache_dir();
   app::CommonOptions common;  // every effect on, the default (fast) quality
-  common.voxels = 32;
-  common.shadow_size = 128;
+  common.render.voxel_resolution = 32;
+  common.render.shadow_size = 128;
   app::RenderSession session(common, 48, 40);
   app::SimulationArgs args;
   args.marbles = true;
   args.fireball = true;
   args.seed = 3;
-  app::SimulationFrameSource source(app::make_simulation_options(args, common.effects));
+  app::SimulationFrameSource source(app::make_simulation_options(args, common.render.effects));
   std::vector<uint8_t> rgba;
   double frame_ms = 0.0;
   for (int i = 0; i < kWarmupFrames; ++i)
-    app::render_next_frame(session, source, common.effects, rgba, frame_ms);
+    app::render_next_frame(session, source, common.render.effects, rgba, frame_ms);
 
   AllocationCounter::start_recording();
   const uint64_t before = AllocationCounter::count();
   for (int i = 0; i < kMeasuredFrames; ++i)
-    app::render_next_frame(session, source, common.effects, rgba, frame_ms);
+    app::render_next_frame(session, source, common.render.effects, rgba, frame_ms);
   const uint64_t allocations = AllocationCounter::count() - before;
   AllocationCounter::stop_recording();
 

@@ -50,9 +50,9 @@ TEST(ParseCli, RenderOptionsResolve) {
   EXPECT_TRUE(p.render.sim.marbles);
   EXPECT_EQ(p.render.sim.seed, 9u);
   EXPECT_EQ(p.render.out_dir, "d");
-  EXPECT_FALSE(p.common.effects.taa);
-  EXPECT_TRUE(p.common.effects.bloom);
-  EXPECT_EQ(p.common.voxels, 32u);
+  EXPECT_FALSE(p.common.render.effects.taa);
+  EXPECT_TRUE(p.common.render.effects.bloom);
+  EXPECT_EQ(p.common.render.voxel_resolution, 32u);
   EXPECT_EQ(p.common.view.view, passes::DebugView::kVoxels);
   EXPECT_EQ(p.common.view.level, 2u);
   EXPECT_EQ(p.common.view.dir, 3u);  // -y
@@ -76,10 +76,11 @@ TEST(ParseCli, IntegersAreDecimalOnly) {
 }
 
 TEST(ParseCli, BloomStrengthIsAFiniteFraction) {
-  EXPECT_FLOAT_EQ(command({"render", "--bloom-strength", "0.25"}).common.effects.bloom_strength,
-                  0.25f);
-  EXPECT_FLOAT_EQ(command({"render", "--bloom-strength", "1"}).common.effects.bloom_strength,
-                  1.0f);
+  const auto strength = [](const char* value) {
+    return command({"render", "--bloom-strength", value}).common.render.effects.bloom_strength;
+  };
+  EXPECT_FLOAT_EQ(strength("0.25"), 0.25f);
+  EXPECT_FLOAT_EQ(strength("1"), 1.0f);
   for (const char* bad : {"nan", "NaN", "inf", "-0.5", "1.5", "0x1p-1", "0.5x", ""}) {
     const CliExit e = exit_of({"render", "--bloom-strength", bad});
     EXPECT_EQ(e.exit_code, 2) << bad;
@@ -112,22 +113,44 @@ TEST(ParseCli, UsageErrorsAndHelp) {
 
 TEST(ParseCli, TextureFilterReachesTheCommonOptions) {
   // The default is the renderer's (trilinear: anisotropic costs past the budget).
-  EXPECT_EQ(command({"render"}).common.texture_filter, render::RenderSettings{}.texture_filter);
+  EXPECT_EQ(command({"render"}).common.render.texture_filter,
+            render::RenderSettings{}.texture_filter);
   EXPECT_EQ(render::RenderSettings{}.texture_filter, render::TextureFilter::kTrilinear);
-  EXPECT_EQ(command({"render", "--texture-filter", "bilinear"}).common.texture_filter,
+  EXPECT_EQ(command({"render", "--texture-filter", "bilinear"}).common.render.texture_filter,
             render::TextureFilter::kBilinear);
-  EXPECT_EQ(command({"run", "--texture-filter", "anisotropic"}).common.texture_filter,
+  EXPECT_EQ(command({"run", "--texture-filter", "anisotropic"}).common.render.texture_filter,
             render::TextureFilter::kAnisotropic);
-  EXPECT_EQ(command({"bench", "--texture-filter", "trilinear"}).common.texture_filter,
+  EXPECT_EQ(command({"bench", "--texture-filter", "trilinear"}).common.render.texture_filter,
             render::TextureFilter::kTrilinear);
   EXPECT_EQ(exit_of({"bench", "--texture-filter", "box"}).exit_code, 2);
+}
+
+// The enum options take exactly the names of their enum's table (render/render_settings.h), in
+// every real-time command, and each name reaches the embedded render settings.
+template <typename E>
+void expect_every_name_reaches(const char* option, E render::RenderSettings::*field) {
+  for (const char* sub : {"render", "run", "bench"}) {
+    for (const NamedValue<E>& entry : names(E{})) {
+      const ParsedCommand p = command({sub, option, std::string(entry.name)});
+      EXPECT_EQ(p.common.render.*field, entry.value) << sub << " " << entry.name;
+    }
+    EXPECT_EQ(exit_of({sub, option, "nonsense"}).exit_code, 2) << sub << " " << option;
+  }
+}
+
+TEST(ParseCli, EveryNameOfAnEnumOptionReachesTheSettings) {
+  expect_every_name_reaches("--visibility", &render::RenderSettings::visibility);
+  expect_every_name_reaches("--quality", &render::RenderSettings::quality);
+  expect_every_name_reaches("--texture-filter", &render::RenderSettings::texture_filter);
+  expect_every_name_reaches("--shadows", &render::RenderSettings::shadows);
+  expect_every_name_reaches("--gi-volume", &render::RenderSettings::gi_volume);
 }
 
 TEST(ParseCli, PathtracedQualityAndItsOptions) {
   const ParsedCommand defaults = command({"render"});
   EXPECT_FALSE(defaults.common.pathtraced);
   EXPECT_EQ(defaults.common.spp, 256u);
-  EXPECT_EQ(defaults.common.bounces, 64u) << "all bounces, in every mode";
+  EXPECT_EQ(defaults.common.render.bounces, 64u) << "all bounces, in every mode";
   EXPECT_FALSE(defaults.render.exr);
   EXPECT_TRUE(command({"render", "--exr"}).render.exr);
 
@@ -135,11 +158,12 @@ TEST(ParseCli, PathtracedQualityAndItsOptions) {
                                    "--bounces", "0", "--view", "indirect"});
   EXPECT_TRUE(p.common.pathtraced);
   EXPECT_EQ(p.common.spp, 1000000u);
-  EXPECT_EQ(p.common.bounces, 0u);
+  EXPECT_EQ(p.common.render.bounces, 0u);
   EXPECT_TRUE(p.render.exr) << "the path-traced frames always come with their EXR";
   EXPECT_EQ(p.common.view.view, passes::DebugView::kIndirect);
-  EXPECT_EQ(command({"render", "--quality", "pathtraced", "--bounces", "1000"}).common.bounces,
-            1000u);
+  EXPECT_EQ(
+      command({"render", "--quality", "pathtraced", "--bounces", "1000"}).common.render.bounces,
+      1000u);
   const ParsedCommand b = command({"bench", "--quality", "pathtraced", "--spp", "8", "--json",
                                    "x.json", "--frames", "2"});
   EXPECT_TRUE(b.common.pathtraced);
@@ -154,7 +178,7 @@ TEST(ParseCli, PathtracedQualityAndItsOptions) {
     EXPECT_NE(e.message.find("--spp applies to --quality pathtraced"), std::string::npos)
         << e.message;
   }
-  EXPECT_EQ(command({"render", "--quality", "pathtraced"}).common.bounces, 64u);
+  EXPECT_EQ(command({"render", "--quality", "pathtraced"}).common.render.bounces, 64u);
   for (const char* bad : {"0", "1000001", "-1", "0x10", "four"})
     EXPECT_EQ(exit_of({"render", "--quality", "pathtraced", "--spp", bad}).exit_code, 2) << bad;
   EXPECT_EQ(exit_of({"render", "--quality", "pathtraced", "--bounces", "1001"}).exit_code, 2);
@@ -199,12 +223,12 @@ TEST(ParseCli, PathtracedQualityAndItsOptions) {
 // --shadows (render, run, bench): each name parses to its mode; the default is the renderer's.
 TEST(ParseCli, ShadowsInEveryRealTimeCommand) {
   for (const char* sub : {"render", "run", "bench"}) {
-    EXPECT_EQ(command({sub}).common.shadows, render::RenderSettings{}.shadows) << sub;
+    EXPECT_EQ(command({sub}).common.render.shadows, render::RenderSettings{}.shadows) << sub;
     for (render::ShadowMode m : {render::ShadowMode::kHard, render::ShadowMode::kPcf,
                                  render::ShadowMode::kPcss, render::ShadowMode::kVssm}) {
-      EXPECT_EQ(command({sub, "--shadows", render::shadow_mode_name(m)}).common.shadows, m)
+      EXPECT_EQ(command({sub, "--shadows", std::string(name_of(m))}).common.render.shadows, m)
           << sub;
-      EXPECT_EQ(render::parse_shadow_mode(render::shadow_mode_name(m)), m);
+      EXPECT_EQ(parse_name<render::ShadowMode>(std::string(name_of(m))), m);
     }
     EXPECT_EQ(exit_of({sub, "--shadows", "soft"}).exit_code, 2) << sub;
   }
@@ -216,11 +240,13 @@ TEST(ParseCli, ShadowsInEveryRealTimeCommand) {
 // multi-bounce in the real-time modes; 0 only for the path tracer.
 TEST(ParseCli, BouncesInEveryMode) {
   for (const char* sub : {"render", "run", "bench"}) {
-    EXPECT_EQ(command({sub}).common.bounces, 64u) << sub;
+    EXPECT_EQ(command({sub}).common.render.bounces, 64u) << sub;
     for (const char* quality : {"fast", "reference"}) {
-      EXPECT_EQ(command({sub, "--quality", quality, "--bounces", "1"}).common.bounces, 1u) << sub;
-      EXPECT_EQ(command({sub, "--quality", quality, "--bounces", "1000"}).common.bounces, 1000u)
-          << sub;
+      const auto bounces = [&](const char* n) {
+        return command({sub, "--quality", quality, "--bounces", n}).common.render.bounces;
+      };
+      EXPECT_EQ(bounces("1"), 1u) << sub;
+      EXPECT_EQ(bounces("1000"), 1000u) << sub;
       const CliExit zero = exit_of({sub, "--quality", quality, "--bounces", "0"});
       EXPECT_EQ(zero.exit_code, 2) << sub;
       EXPECT_NE(zero.message.find("--bounces 0 applies to --quality pathtraced"),
@@ -233,9 +259,9 @@ TEST(ParseCli, BouncesInEveryMode) {
     EXPECT_NE(help.message.find("--bounces"), std::string::npos) << sub;
     EXPECT_NE(help.message.find("multi-bounce"), std::string::npos) << sub;
   }
-  EXPECT_EQ(command({"bench", "--bounces", "2", "--quality-report"}).common.bounces, 2u);
-  EXPECT_EQ(command({"bench", "--bounces", "3", "--sizes", "16,32"}).common.bounces, 3u);
-  EXPECT_EQ(command({"bench", "--bounces", "1", "--compare-visibility"}).common.bounces, 1u);
+  EXPECT_EQ(command({"bench", "--bounces", "2", "--quality-report"}).common.render.bounces, 2u);
+  EXPECT_EQ(command({"bench", "--bounces", "3", "--sizes", "16,32"}).common.render.bounces, 3u);
+  EXPECT_EQ(command({"bench", "--bounces", "1", "--compare-visibility"}).common.render.bounces, 1u);
   // bench --accuracy renders both counts itself.
   EXPECT_EQ(exit_of({"bench", "--accuracy", "--bounces", "1"}).exit_code, 2);
 }
@@ -346,17 +372,19 @@ namespace {
 // given, also as bench's list); mismatched resolutions and unknown volumes are usage errors
 // that say what to use.
 TEST(ParseCli, GiVolumeAndItsResolutions) {
-  EXPECT_EQ(command({"render"}).common.gi_volume, render::GiVolume::kDense);
+  EXPECT_EQ(command({"render"}).common.render.gi_volume, render::GiVolume::kDense);
   const ParsedCommand svo = command({"render", "--gi-volume", "svo", "--voxels", "512"});
-  EXPECT_EQ(svo.common.gi_volume, render::GiVolume::kSvo);
-  EXPECT_EQ(svo.common.voxels, 512u);
-  EXPECT_EQ(command({"run", "--gi-volume", "svo"}).common.voxels, 0u);  // session: 256
+  EXPECT_EQ(svo.common.render.gi_volume, render::GiVolume::kSvo);
+  EXPECT_EQ(svo.common.render.voxel_resolution, 512u);
+  EXPECT_EQ(command({"render"}).common.render.voxel_resolution, 64u);
+  EXPECT_EQ(command({"run", "--gi-volume", "svo"}).common.render.voxel_resolution, 256u);
   EXPECT_EQ(command({"bench", "--gi-volume", "svo"}).bench.voxels,
             (std::vector<uint32_t>{256}));
   EXPECT_EQ(command({"bench", "--gi-volume", "svo", "--voxels", "256,512"}).bench.voxels,
             (std::vector<uint32_t>{256, 512}));
-  EXPECT_EQ(command({"render", "--gi-volume", "dense", "--voxels", "128"}).common.gi_volume,
-            render::GiVolume::kDense);
+  EXPECT_EQ(
+      command({"render", "--gi-volume", "dense", "--voxels", "128"}).common.render.gi_volume,
+      render::GiVolume::kDense);
 
   const CliExit dense512 = exit_of({"render", "--voxels", "512"});
   EXPECT_EQ(dense512.exit_code, 2);

@@ -197,7 +197,7 @@ TEST(DebugView, DirectIndirectAndSpecularAreToneMapped) {
     for (uint32_t i = 0; i < kW * kH; ++i) {
       const glm::dvec4 c(src[i]);
       expect_rgb(got[i], q(srgb(tone(c.x))), q(srgb(tone(c.y))), q(srgb(tone(c.z))),
-                 std::string(rp::passes::debug_view_name(view)) + " pixel " + std::to_string(i));
+                 std::string(rp::name_of(view)) + " pixel " + std::to_string(i));
     }
   }
 }
@@ -284,11 +284,15 @@ TEST(DebugView, VoxelsViewMatchesAnExactGridTraversal) {
 }
 
 TEST(DebugView, NamesKeysAndErrors) {
-  EXPECT_EQ(rp::passes::parse_debug_view("shadow-map"), DebugView::kShadowMap);
-  EXPECT_EQ(rp::passes::parse_debug_view("final"), DebugView::kFinal);
-  EXPECT_FALSE(rp::passes::parse_debug_view("shadow"));
-  for (const std::string& name : rp::passes::debug_view_names())
-    EXPECT_EQ(rp::passes::debug_view_name(*rp::passes::parse_debug_view(name)), name);
+  EXPECT_EQ(rp::parse_name<DebugView>("shadow-map"), DebugView::kShadowMap);
+  EXPECT_EQ(rp::parse_name<DebugView>("final"), DebugView::kFinal);
+  EXPECT_FALSE(rp::parse_name<DebugView>("shadow"));
+  const auto table = names(DebugView{});
+  for (size_t i = 0; i < table.size(); ++i) {  // every view, in enum order
+    EXPECT_EQ(size_t(table[i].value), i);
+    EXPECT_EQ(rp::name_of(*rp::parse_name<DebugView>(table[i].name)), table[i].name);
+  }
+  EXPECT_EQ(table.back().value, DebugView::kSpecular);  // the last enumerator has its row
   EXPECT_EQ(rp::passes::parse_voxel_dir("-y"), RP_DIR_NEG_Y);
   EXPECT_FALSE(rp::passes::parse_voxel_dir("y"));
   EXPECT_EQ(rp::passes::debug_view_for_key('1'), DebugView::kFinal);

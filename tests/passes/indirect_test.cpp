@@ -187,7 +187,7 @@ class IndirectFixture {
                                       ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16),
                                       ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16)};
     rp::cl::Profiler profiler(ctx.queue);
-    rp::passes::LightPass pass(ctx, rp::test::programs(), rp::passes::ShadowFilter::kHard);
+    rp::passes::LightPass pass(ctx, rp::test::programs(), rp::render::ShadowMode::kHard);
     // The reference path with an empty chain: direct + emission only.
     static const rp::test::cone::Chain empty(kRes, 5);
     ::cl::Buffer empty_voxels(ctx.context, CL_MEM_READ_ONLY, empty.voxels.size() * 16);

@@ -29,10 +29,10 @@
 
 namespace {
 
-using rp::passes::ShadowFilter;
+using rp::render::ShadowMode;
 
-constexpr ShadowFilter kAllFilters[] = {ShadowFilter::kHard, ShadowFilter::kPcf,
-                                        ShadowFilter::kPcss, ShadowFilter::kVssm};
+constexpr ShadowMode kAllFilters[] = {ShadowMode::kHard, ShadowMode::kPcf, ShadowMode::kPcss,
+                                      ShadowMode::kVssm};
 
 struct Point {
   glm::vec3 p, n, albedo, emission{0.0f};
@@ -80,7 +80,7 @@ class LightFixture {
   // empty); `mode`: hdr only or with the components, which `direct` / `indirect` receive.
   enum class Mode { kCones, kConesSplit };
   std::vector<float> run(const std::vector<Point>& points, const std::vector<float>& shadow,
-                         ShadowFilter filter, uint32_t frame_index = 0, uint32_t width = 8,
+                         ShadowMode filter, uint32_t frame_index = 0, uint32_t width = 8,
                          const rp::test::cone::Chain& chain = empty_chain(),
                          Mode mode = Mode::kCones, std::vector<float>* direct = nullptr,
                          std::vector<float>* indirect = nullptr,
@@ -122,7 +122,7 @@ class LightFixture {
                                  chain.voxels.data());
     ::cl::Buffer hdr(ctx.context, CL_MEM_READ_WRITE, n * 16);
     rp::cl::Profiler profiler(ctx.queue);
-    if (const uint32_t planes = rp::passes::shadow_mip_planes(filter); planes > 0)
+    if (const uint32_t planes = rp::render::shadow_mip_planes(filter); planes > 0)
       rp::passes::ShadowFilterPass(ctx, rp::test::programs()).run(profiler, *scene_, sm,
                                                                   planes > 1);
     rp::passes::LightPass pass(ctx, rp::test::programs(), filter);
@@ -229,7 +229,7 @@ double floor_and_occluder_hit(glm::dvec3 o, glm::dvec3 d) {
 TEST(Light, UnshadowedMatchesReference) {
   LightFixture fx(32);
   auto pts = box_points(fx.light().position);
-  for (ShadowFilter filter : kAllFilters) {
+  for (ShadowMode filter : kAllFilters) {
     auto hdr = fx.run(pts, std::vector<float>(32 * 32, 1.0f), filter);
     for (size_t i = 0; i < pts.size(); ++i)
       expect_radiance(hdr, i, radiance_ref(pts[i], fx.light(), 1.0), "lit");
@@ -241,7 +241,7 @@ TEST(Light, UnshadowedMatchesReference) {
 TEST(Light, FullyOccludedMapShadowsOnlyInsideTheFrustum) {
   LightFixture fx(32);
   auto pts = box_points(fx.light().position);
-  for (ShadowFilter filter : kAllFilters) {
+  for (ShadowMode filter : kAllFilters) {
     auto hdr = fx.run(pts, std::vector<float>(32 * 32, 0.0f), filter);
     ASSERT_TRUE(outside_shadow_frustum(fx.light(), pts[kOutside].p));
     int inside = 0;
@@ -274,7 +274,7 @@ TEST(Light, BoxDepthMapHasNoAcne) {
     }
   }
   int checked = 0;
-  for (ShadowFilter filter : kAllFilters) {
+  for (ShadowMode filter : kAllFilters) {
     for (uint32_t frame = 0; frame < 3; ++frame) {
       auto hdr = fx.run(pts, map, filter, frame, 16);
       for (size_t i = 0; i < pts.size(); ++i) {
@@ -303,8 +303,8 @@ TEST(Light, SquareOccluderCastsShadow) {
     row.push_back({{0.95f * float(i) / 63.0f, -1.0f, -0.55f}, {0, 1, 0}, {0.5f, 0.5f, 0.5f}});
   const rp::scene::PointLight& light = fx.light();
 
-  auto hard = fx.run(row, map, ShadowFilter::kHard, 0, 16);
-  auto pcf = fx.run(row, map, ShadowFilter::kPcf, 0, 16);
+  auto hard = fx.run(row, map, ShadowMode::kHard, 0, 16);
+  auto pcf = fx.run(row, map, ShadowMode::kPcf, 0, 16);
   int pcf_partial = 0;
   for (size_t i = 0; i < row.size(); ++i) {
     const double x = row[i].p.x;
@@ -336,9 +336,9 @@ TEST(Light, DeterministicPerFrameNoise) {
       band.push_back({{0.45f + 0.25f * float(i) / 15.0f, -1.0f, -0.7f + 0.05f * float(j)},
                       {0, 1, 0},
                       {0.5f, 0.5f, 0.5f}});
-  auto a = fx.run(band, map, ShadowFilter::kPcf, 5, 16);
-  auto b = fx.run(band, map, ShadowFilter::kPcf, 5, 16);
-  auto c = fx.run(band, map, ShadowFilter::kPcf, 6, 16);
+  auto a = fx.run(band, map, ShadowMode::kPcf, 5, 16);
+  auto b = fx.run(band, map, ShadowMode::kPcf, 5, 16);
+  auto c = fx.run(band, map, ShadowMode::kPcf, 6, 16);
   EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(float)));  // bit-identical
   int lit = 0, differs = 0;
   for (size_t i = 0; i < band.size(); ++i) {
@@ -360,7 +360,7 @@ TEST(Light, ConeTracedIndirectMatchesReference) {
   pts.push_back({{0.2f, -0.3f, 0.1f}, glm::normalize(glm::vec3(0.3f, 0.8f, -0.5f)), {0.7f, 0.6f, 0.5f}});
   pts.push_back({{-0.5f, 0.4f, -0.2f}, glm::normalize(glm::vec3(-0.6f, -0.2f, 0.7f)), {0.3f, 0.9f, 0.4f}});
   const rp::test::cone::Chain chain = random_chain(16, 77);
-  auto hdr = fx.run(pts, std::vector<float>(32 * 32, 1.0f), ShadowFilter::kHard, 0, 8,
+  auto hdr = fx.run(pts, std::vector<float>(32 * 32, 1.0f), ShadowMode::kHard, 0, 8,
                     chain);
   int lit = 0;
   for (size_t i = 0; i < pts.size(); ++i) {
@@ -383,8 +383,8 @@ TEST(Light, SplitVariantWritesTheComponents) {
   const rp::test::cone::Chain chain = random_chain(16, 5);
   const std::vector<float> map(32 * 32, 1.0f);
   std::vector<float> direct, indirect;
-  auto lean = fx.run(pts, map, ShadowFilter::kHard, 0, 8, chain);
-  auto split = fx.run(pts, map, ShadowFilter::kHard, 0, 8, chain,
+  auto lean = fx.run(pts, map, ShadowMode::kHard, 0, 8, chain);
+  auto split = fx.run(pts, map, ShadowMode::kHard, 0, 8, chain,
                       LightFixture::Mode::kConesSplit, &direct, &indirect);
   EXPECT_EQ(0, std::memcmp(lean.data(), split.data(), lean.size() * sizeof(float)));
   for (size_t i = 0; i < pts.size(); ++i) {
@@ -437,7 +437,7 @@ TEST(Light, GlossySurfacesMatchTheBrdfReference) {
   };
   const std::vector<float> map(32 * 32, 1.0f);
   std::vector<float> direct, indirect, specular;
-  auto hdr = fx.run(pts, map, ShadowFilter::kHard, 0, 8, empty_chain(),
+  auto hdr = fx.run(pts, map, ShadowMode::kHard, 0, 8, empty_chain(),
                     LightFixture::Mode::kConesSplit, &direct, &indirect, &specular);
   const rp::shading::BrdfTables& tables = rp::shading::BrdfTables::get();
   const rp::scene::PointLight& light = fx.light();
@@ -498,7 +498,7 @@ TEST(Light, ReflectionConeMatchesReference) {
   const rp::test::cone::Chain chain = random_chain(16, 91);
   const std::vector<float> dark(32 * 32, 0.0f);  // every point in the lamp's shadow
   std::vector<float> direct, indirect, specular;
-  auto hdr = fx.run(pts, dark, ShadowFilter::kHard, 0, 8, chain, LightFixture::Mode::kConesSplit,
+  auto hdr = fx.run(pts, dark, ShadowMode::kHard, 0, 8, chain, LightFixture::Mode::kConesSplit,
                     &direct, &indirect, &specular);
   const rp::shading::BrdfTables& tables = rp::shading::BrdfTables::get();
   int reflecting = 0;
@@ -536,7 +536,7 @@ TEST(Light, RejectsAVoxelChainThatDoesNotFit) {
   auto& ctx = rp::test::context();
   LightFixture fx(32);
   fx.run(box_points(fx.light().position), std::vector<float>(32 * 32, 1.0f),
-         ShadowFilter::kHard);  // sets up the scene for an 8x2 frame
+         ShadowMode::kHard);  // sets up the scene for an 8x2 frame
   rp::render::GBuffer gb;
   gb.resize(ctx.context, 8, 2);
   rp::render::ShadowMap sm;
@@ -545,7 +545,7 @@ TEST(Light, RejectsAVoxelChainThatDoesNotFit) {
   const size_t total16 = rp::gpu::rp_voxel_total(16, 5);
   ::cl::Buffer voxels(ctx.context, CL_MEM_READ_ONLY, total16 * 16);
   rp::cl::Profiler profiler(ctx.queue);
-  rp::passes::LightPass pass(ctx, rp::test::programs(), ShadowFilter::kHard);
+  rp::passes::LightPass pass(ctx, rp::test::programs(), ShadowMode::kHard);
   auto message = [&](uint32_t resolution, uint32_t levels, const ::cl::Buffer& buffer) {
     try {
       pass.run(profiler, fx.scene(), gb, sm, buffer, resolution, levels, hdr);

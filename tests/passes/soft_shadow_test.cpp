@@ -35,7 +35,7 @@
 
 namespace {
 
-using rp::passes::ShadowFilter;
+using rp::render::ShadowMode;
 
 struct Point {
   glm::vec3 p, n;
@@ -87,7 +87,7 @@ class Shadows {
   // surfaces).
   // raw: when given, also the visibility kernel's own output per pixel (width x height).
   std::vector<double> visibility(const std::vector<Point>& points, const std::vector<float>& map,
-                                 ShadowFilter filter, uint32_t frame_index, uint32_t width = 16,
+                                 ShadowMode filter, uint32_t frame_index, uint32_t width = 16,
                                  bool checkerboard = false, std::vector<float>* raw = nullptr) {
     auto& ctx = rp::test::context();
     const uint32_t height = uint32_t((points.size() + width - 1) / width);
@@ -119,7 +119,7 @@ class Shadows {
                                  chain.voxels.data());
     ::cl::Buffer hdr(ctx.context, CL_MEM_READ_WRITE, n * 16);
     rp::cl::Profiler profiler(ctx.queue);
-    if (const uint32_t planes = rp::passes::shadow_mip_planes(filter); planes > 0) {
+    if (const uint32_t planes = rp::render::shadow_mip_planes(filter); planes > 0) {
       rp::passes::ShadowFilterPass mips(ctx, rp::test::programs());
       mips.run(profiler, *scene_, sm, planes > 1);
     }
@@ -144,7 +144,7 @@ class Shadows {
   // Mean visibility over `frames` frame indices.
   // `width`: points per image row (the kernel pools pcss searches over 2x2 pixel quads).
   std::vector<double> mean_visibility(const std::vector<Point>& points,
-                                      const std::vector<float>& map, ShadowFilter filter,
+                                      const std::vector<float>& map, ShadowMode filter,
                                       uint32_t frames, uint32_t width = 16) {
     std::vector<double> sum(points.size(), 0.0);
     for (uint32_t f = 0; f < frames; ++f) {
@@ -228,7 +228,7 @@ Row floor_row(const rp::scene::PointLight& l, const Plate& plate, double x0, dou
 // PCSS and VSSM against the lamp disk's visible fraction across the edge of a plate at height
 // 0 (z_b = 1.1, z_r = 2.1 below the lamp centre): penumbra 2 a (2.1 - 1.1) / (1.1 - 0.1) = 0.67
 // wide, centred on the plate edge's projection through the disk's centre.
-void expect_plate_penumbra(ShadowFilter filter, double max_mean_error, double width_tolerance,
+void expect_plate_penumbra(ShadowMode filter, double max_mean_error, double width_tolerance,
                            double max_point_error) {
   Shadows s(256);
   const Plate plate{0.0, -0.4, 0.4};  // edge at x = 0, penumbra over x in (-0.33, 0.33)
@@ -253,19 +253,19 @@ void expect_plate_penumbra(ShadowFilter filter, double max_mean_error, double wi
   EXPECT_NEAR(got, want, width_tolerance * want) << "10-90 % penumbra width";
   std::printf("%s: mean |error| %.4f, 10-90 %% width %.4f (reference %.4f), full width %.4f "
               "(formula %.4f)\n",
-              filter == ShadowFilter::kPcss ? "pcss" : "vssm", sum_error / double(vis.size()), got,
+              filter == ShadowMode::kPcss ? "pcss" : "vssm", sum_error / double(vis.size()), got,
               want, full, formula);
 }
 
 TEST(SoftShadow, PcssPenumbraMatchesTheLampDisk) {
-  expect_plate_penumbra(ShadowFilter::kPcss, 0.03, 0.10, 0.2);
+  expect_plate_penumbra(ShadowMode::kPcss, 0.03, 0.10, 0.2);
 }
 
 // VSSM's penumbra on the plate comes out about 0.4x the reference's width (a bilinear mip
 // lookup is a tent, not the disk, and Chebyshev's bound with light-bleeding reduction sharpens
 // it): a looser bound, the measured figure in the notes.
 TEST(SoftShadow, VssmPenumbraMatchesTheLampDisk) {
-  expect_plate_penumbra(ShadowFilter::kVssm, 0.08, 0.7, 0.35);
+  expect_plate_penumbra(ShadowMode::kVssm, 0.08, 0.7, 0.35);
 }
 
 // In a frame, a pixel's quad neighbours mostly lie on its surface, and pcss pools their
@@ -282,7 +282,7 @@ TEST(SoftShadow, PcssPooledQuadsMatchTheLampDisk) {
     p.p.z += 0.004f;
     pts.push_back(p);
   }
-  const auto vis = s.mean_visibility(pts, map, ShadowFilter::kPcss, 64, 96);
+  const auto vis = s.mean_visibility(pts, map, ShadowMode::kPcss, 64, 96);
   double sum_error = 0.0;
   for (size_t i = 0; i < pts.size(); ++i) {
     sum_error += std::abs(vis[i] - row.truth[i % 96]);
@@ -323,8 +323,8 @@ TEST(SoftShadow, PcssDoesNotPoolAcrossSurfaces) {
   }
   double b_mean = 0.0;
   for (uint32_t frame = 0; frame < 8; ++frame) {
-    const auto vb = s.visibility(with_b, map, ShadowFilter::kPcss, frame, 2);
-    const auto vl = s.visibility(with_lit, map, ShadowFilter::kPcss, frame, 2);
+    const auto vb = s.visibility(with_b, map, ShadowMode::kPcss, frame, 2);
+    const auto vl = s.visibility(with_lit, map, ShadowMode::kPcss, frame, 2);
     for (size_t i = 0; i < vb.size(); i += 2) {
       EXPECT_EQ(vb[i], vl[i]) << "A point " << i / 2 << ", frame " << frame;
       b_mean += vb[i + 1] / (8.0 * 48.0);
@@ -457,8 +457,8 @@ TEST(SoftShadow, PcssCheckerboardFillsOnlyWhereTheNeighboursAgree) {
   size_t filled = 0, differ = 0, chunks = 0;
   for (uint32_t frame = 0; frame < 2; ++frame) {
     std::vector<float> full, got;
-    const auto full_image = s.visibility(floor, map, ShadowFilter::kPcss, frame, kN, false, &full);
-    const auto got_image = s.visibility(floor, map, ShadowFilter::kPcss, frame, kN, true, &got);
+    const auto full_image = s.visibility(floor, map, ShadowMode::kPcss, frame, kN, false, &full);
+    const auto got_image = s.visibility(floor, map, ShadowMode::kPcss, frame, kN, true, &got);
     const auto chunk_value = [&](const std::vector<float>& v, uint32_t ci, uint32_t cj) {
       // 1 or 0 when the chunk's 8 pixels all are exactly that, else -1
       const float first = v[size_t(2 * cj) * kN + 4 * ci];
@@ -516,8 +516,8 @@ TEST(SoftShadow, PcssCheckerboardMissesASubChunkShadowEveryOtherFrame) {
   const size_t ball = size_t(80) * kN + 80;
   for (uint32_t frame = 0; frame < 4; ++frame) {
     std::vector<float> full, got;
-    s.visibility(floor, map, ShadowFilter::kPcss, frame, kN, false, &full);
-    s.visibility(floor, map, ShadowFilter::kPcss, frame, kN, true, &got);
+    s.visibility(floor, map, ShadowMode::kPcss, frame, kN, false, &full);
+    s.visibility(floor, map, ShadowMode::kPcss, frame, kN, true, &got);
     ASSERT_LT(full[ball], 0.9f) << "the ball's shadow must show in the full evaluation";
     if (frame % 2 == 0) {
       EXPECT_EQ(got[ball], full[ball]) << "computed chunk, frame " << frame;
@@ -585,7 +585,7 @@ TEST(SoftShadow, HardIsOneTapAtTheReceiver) {
   Shadows s(128);
   const auto map = s.map(busy_hit);
   const auto pts = floor_grid(40);
-  const auto vis = s.visibility(pts, map, ShadowFilter::kHard, 3);
+  const auto vis = s.visibility(pts, map, ShadowMode::kHard, 3);
   int shadowed = 0;
   for (size_t i = 0; i < pts.size(); ++i) {
     EXPECT_EQ(vis[i] < 0.5 ? 0.0 : 1.0, hard_ref(s.light(), map, s.size(), pts[i])) << i;
@@ -602,7 +602,7 @@ TEST(SoftShadow, PcfIsTheRotatedTapSum) {
   const auto pts = floor_grid(40);
   int partial = 0, off = 0;
   for (uint32_t frame : {0u, 7u}) {
-    const auto vis = s.visibility(pts, map, ShadowFilter::kPcf, frame);
+    const auto vis = s.visibility(pts, map, ShadowMode::kPcf, frame);
     for (size_t i = 0; i < pts.size(); ++i) {
       const double want = pcf_ref(s.light(), map, s.size(), pts[i], uint32_t(i % 16),
                                   uint32_t(i / 16), frame);
@@ -637,12 +637,12 @@ TEST(SoftShadow, TiltedPlanesStayLit) {
             c + u * (-0.45 + 0.9 * i / 11.0) + glm::dvec3(0, 0, -0.6 + 1.2 * j / 11.0);
         pts.push_back({glm::vec3(p), glm::vec3(n)});
       }
-    for (ShadowFilter f : {ShadowFilter::kHard, ShadowFilter::kPcf, ShadowFilter::kPcss,
-                           ShadowFilter::kVssm}) {
+    for (ShadowMode f : {ShadowMode::kHard, ShadowMode::kPcf, ShadowMode::kPcss,
+                           ShadowMode::kVssm}) {
       const auto vis = s.visibility(pts, map, f, 1);
       for (size_t i = 0; i < pts.size(); ++i) {
         if (direct_ref(pts[i], s.light()) <= 0.0) continue;
-        EXPECT_GT(vis[i], f == ShadowFilter::kVssm ? 0.95 : 0.999)
+        EXPECT_GT(vis[i], f == ShadowMode::kVssm ? 0.95 : 0.999)
             << "tilt " << deg << " mode " << int(f) << " point " << i;
       }
     }
@@ -661,11 +661,11 @@ TEST(SoftShadow, ContactStaysShadowed) {
     for (int i = 0; i < 8; ++i)
       pts.push_back({{0.05f + 0.5f * float(i) / 7.0f, -1.0f, -0.25f + 0.5f * float(j) / 7.0f},
                      {0, 1, 0}});
-  for (ShadowFilter f :
-       {ShadowFilter::kHard, ShadowFilter::kPcf, ShadowFilter::kPcss, ShadowFilter::kVssm}) {
+  for (ShadowMode f :
+       {ShadowMode::kHard, ShadowMode::kPcf, ShadowMode::kPcss, ShadowMode::kVssm}) {
     const auto vis = s.mean_visibility(pts, map, f, 4);
     for (size_t i = 0; i < pts.size(); ++i)
-      EXPECT_LT(vis[i], f == ShadowFilter::kVssm ? 0.05 : 0.01) << "mode " << int(f) << " " << i;
+      EXPECT_LT(vis[i], f == ShadowMode::kVssm ? 0.05 : 0.01) << "mode " << int(f) << " " << i;
   }
 }
 
@@ -714,8 +714,8 @@ TEST(SoftShadow, BallOnTheFloorMatchesTheLampDisk) {
   std::vector<double> xs;
   for (int i = 0; i < 32; ++i) xs.push_back(0.2 + 0.6 * i / 31.0);
   const double want_width = crossing(xs, want, 0.9) - crossing(xs, want, 0.1);
-  for (ShadowFilter f : {ShadowFilter::kPcss, ShadowFilter::kVssm}) {
-    const bool pcss = f == ShadowFilter::kPcss;
+  for (ShadowMode f : {ShadowMode::kPcss, ShadowMode::kVssm}) {
+    const bool pcss = f == ShadowMode::kPcss;
     const auto vis = s.mean_visibility(pts, map, f, 32);
     double sum = 0.0;
     for (size_t i = 0; i < pts.size(); ++i) sum += std::abs(vis[i] - want[i]);
@@ -781,8 +781,8 @@ TEST(SoftShadow, ColumnOnTheFloorMatchesTheLampDisk) {
     xs.push_back(0.01 + 0.5 * i / 31.0);
   }
   const double want_width = crossing(xs, want, 0.9) - crossing(xs, want, 0.1);
-  for (ShadowFilter f : {ShadowFilter::kPcss, ShadowFilter::kVssm}) {
-    const bool pcss = f == ShadowFilter::kPcss;
+  for (ShadowMode f : {ShadowMode::kPcss, ShadowMode::kVssm}) {
+    const bool pcss = f == ShadowMode::kPcss;
     const auto vis = s.mean_visibility(pts, map, f, 32);
     double sum = 0.0, bias = 0.0;
     for (size_t i = 0; i < pts.size(); ++i) {

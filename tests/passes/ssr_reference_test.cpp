@@ -194,7 +194,7 @@ std::vector<float> run_light(const Screen& sc, const rp::test::cone::Chain& chai
                                    ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16),
                                    ::cl::Buffer(ctx.context, CL_MEM_READ_WRITE, n * 16)};
   rp::cl::Profiler profiler(ctx.queue);
-  rp::passes::LightPass pass(ctx, rp::test::programs(), rp::passes::ShadowFilter::kHard);
+  rp::passes::LightPass pass(ctx, rp::test::programs(), rp::render::ShadowMode::kHard);
   const rp::passes::SsrInputs ssr{&depth, &prev_hdr, &gb.velocity};
   pass.run(profiler, scene, gb, sm, voxels, chain.resolution, chain.levels, hdr, &comp, nullptr,
            with_history ? &ssr : nullptr);

@@ -40,7 +40,7 @@ TEST(PrtTiming, DISABLED_DemoRoomAndTumblers) {
     const double sec =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::printf("%s bands %d samples %u bounces %u%s: %u vertices, %.2f s (%.2f Mrays/s)\n",
-                prt_kind_name(c.kind), c.bands, c.samples, c.bounces,
+                name_of(c.kind).data(), c.bands, c.samples, c.bounces,
                 c.matrix_mb ? "" : " (rays again per bounce)", t.vertex_count(), sec,
                 double(t.vertex_count()) * c.samples / sec * 1e-6);
   }

@@ -67,7 +67,7 @@ TEST(PrtTransfer, UnoccludedPlaneIsTheCosineLobeTurnedToItsNormal) {
       for (uint32_t v = 0; v < t.vertex_count(); ++v)
         for (int i = 0; i < t.count(); ++i)
           ASSERT_NEAR(t.at(v, 0)[i], want[size_t(i)], 1e-6)
-              << prt_kind_name(kind) << " bands " << bands << " vertex " << v << " coef " << i;
+              << name_of(kind) << " bands " << bands << " vertex " << v << " coef " << i;
     }
 }
 
