@@ -193,6 +193,11 @@ void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pa
                   "bloom mix factor f: colour * (1 - f) + bloom * f")
       ->capture_default_str()
       ->check(decimal_in(0.0, 1.0));
+  cmd->add_option("--shutter", common.render.effects.shutter,
+                  "motion blur: the fraction of the frame interval the shutter is open (0.5 = a "
+                  "180 degree shutter; 0 = no blur)")
+      ->capture_default_str()
+      ->check(decimal_in(0.0, 1.0));
   cmd->add_option("--render-scale", common.render.render_scale,
                   "render pixels per output pixel along each axis, 0.5 to 1: below 1 the frame "
                   "is rendered smaller and temporal upsampling reconstructs the output size "
@@ -356,7 +361,7 @@ std::string check_pathtrace(const CLI::App* cmd, const CommonOptions& common) {
     return check_bounces(common);
   }
   for (const char* name : {"--device", "--visibility", "--shadow-size", "--shadows",
-                           "--texture-filter", "--bloom-strength", "--gi-volume"})
+                           "--texture-filter", "--bloom-strength", "--shutter", "--gi-volume"})
     if (cmd->count(name))
       return std::string(name) + " does not apply to --quality pathtraced (the path tracer "
                                  "runs on the host's cores, without post-processing)";

@@ -81,6 +81,11 @@ TEST(ParseCli, BloomStrengthIsAFiniteFraction) {
   };
   EXPECT_FLOAT_EQ(strength("0.25"), 0.25f);
   EXPECT_FLOAT_EQ(strength("1"), 1.0f);
+  EXPECT_FLOAT_EQ(command({"render"}).common.render.effects.shutter, 0.5f);
+  EXPECT_FLOAT_EQ(command({"run", "--shutter", "0.25"}).common.render.effects.shutter, 0.25f);
+  EXPECT_FLOAT_EQ(command({"bench", "--shutter", "1"}).common.render.effects.shutter, 1.0f);
+  EXPECT_EQ(exit_of({"render", "--shutter", "1.5"}).exit_code, 2);
+  EXPECT_EQ(exit_of({"render", "--quality", "pathtraced", "--shutter", "0.3"}).exit_code, 2);
   for (const char* bad : {"nan", "NaN", "inf", "-0.5", "1.5", "0x1p-1", "0.5x", ""}) {
     const CliExit e = exit_of({"render", "--bloom-strength", bad});
     EXPECT_EQ(e.exit_code, 2) << bad;
