@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "cl/error.h"
+#include "cl/launch_log.h"
 
 namespace rp::cl {
 
@@ -83,6 +84,7 @@ bool timestamps_usable(const std::vector<EventTimes>& in_order, uint64_t min_ns)
 
 void Profiler::enqueue(const std::string& pass, const ::cl::Kernel& kernel,
                        const ::cl::NDRange& global, const ::cl::NDRange& local) {
+  note_kernel_launch(kernel);
   ::cl::Event event;
   const bool host = timing_ == Timing::kHost;
   Clock::time_point t0;

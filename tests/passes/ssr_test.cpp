@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "cl/launch_log.h"
 #include "cl/program_cache.h"
 #include "passes/indirect.h"
 #include "support/cl_fixture.h"
@@ -37,6 +38,7 @@ TEST(Ssr, MinZPyramidHoldsEachCellsNearestDepth) {
     k.setArg(5, cl_uint(dst_off));
     k.setArg(6, cl_uint(dw));
     k.setArg(7, cl_uint(dh));
+    rp::cl::note_kernel_launch(k);  // launched here, not through a Profiler
     ctx.queue.enqueueNDRangeKernel(k, ::cl::NullRange, ::cl::NDRange(dw, dh));
     offsets.push_back(dst_off);
     widths.push_back(dw);
