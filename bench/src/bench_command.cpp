@@ -17,6 +17,7 @@
 #include "bench/src/quality_report.h"
 #include "bench/src/scene_file_facts.h"
 #include "io/output_path.h"
+#include "passes/pass_names.h"
 #include "render/renderer.h"
 #include "scene/demo_scene.h"
 
@@ -31,6 +32,8 @@
 #endif
 
 namespace rp::bench {
+
+namespace pass_name = passes::pass_name;
 
 using app::CommonOptions;
 using app::PassStats;
@@ -50,7 +53,7 @@ constexpr const char* kBenchInterrupted = "while benchmarking; no file was writt
 double visibility_ms(const PassStats& stats) {
   double ms = 0.0;
   for (const std::string& name : stats.pass_names())
-    if (name == "visibility" || name == "visibility_host") ms += stats.pass(name).median_ms;
+    if (name == pass_name::kVisibility || name == pass_name::kVisibilityHost) ms += stats.pass(name).median_ms;
   return ms;
 }
 

@@ -9,8 +9,12 @@
 #include <cmath>
 #include <functional>
 
+#include "passes/pass_names.h"
+
 namespace rp::bench {
 namespace {
+
+namespace pass_name = passes::pass_name;
 
 constexpr double kFloat = 4, kFloat2 = 8, kFloat4 = 16;
 
@@ -245,10 +249,11 @@ using Model = std::function<PassWork(const WorkParams&)>;
 
 const std::vector<std::pair<std::string, Model>>& models() {
   static const std::vector<std::pair<std::string, Model>> all = {
-      {"visibility", visibility}, {"shadow_map", shadow_map}, {"gbuffer", gbuffer},
-      {"voxelize", voxelize},     {"voxel_mips", voxel_mips}, {"light", light},
-      {"taa", taa},               {"bloom", bloom},           {"motion_blur", motion_blur},
-      {"tone_map", tone_map}};
+      {pass_name::kVisibility, visibility}, {pass_name::kShadowMap, shadow_map},
+      {pass_name::kGBuffer, gbuffer},       {pass_name::kVoxelize, voxelize},
+      {pass_name::kVoxelMips, voxel_mips},  {pass_name::kLight, light},
+      {pass_name::kTaa, taa},               {pass_name::kBloom, bloom},
+      {pass_name::kMotionBlur, motion_blur}, {pass_name::kToneMap, tone_map}};
   return all;
 }
 

@@ -1,21 +1,16 @@
 #include "app/pass_stats.h"
 
 #include <algorithm>
-#include <array>
 #include <cstdio>
 #include <stdexcept>
 #include <string_view>
 
+#include "passes/pass_names.h"
+
 namespace rp::app {
 
 int pipeline_rank(const std::string& pass) {
-  // Order of DESIGN.md's data flow; "upload" covers per-frame buffer writes.
-  static constexpr std::array<std::string_view, 17> order = {
-      "upload",      "visibility_host", "visibility",      "gbuffer",     "shadow_map",
-      "voxelize",    "voxel_mips",      "ssr_min_z",       "indirect_trace",  "indirect_filter",
-      "light",
-      "taa",         "bloom",           "motion_blur",     "tone_map",    "debug_view",
-      "readback"};
+  const auto& order = passes::pass_name::kPipelineOrder;
   for (size_t i = 0; i < order.size(); ++i)
     if (order[i] == pass) return static_cast<int>(i);
   return static_cast<int>(order.size());

@@ -47,7 +47,8 @@ class PassStats {
 // One line "visibility 1.23 ms, gbuffer 0.45 ms, ..." of per-pass medians.
 std::string median_line(const PassStats& stats);
 
-// Rank of a pass in the frame's pipeline (DESIGN.md data flow); unknown names rank last.
+// Rank of a pass in the frame's pipeline (passes::pass_name::kPipelineOrder); unknown names
+// rank last.
 int pipeline_rank(const std::string& pass);
 
 }  // namespace rp::app

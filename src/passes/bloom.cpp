@@ -5,11 +5,12 @@
 #include <string>
 
 #include "cl/error.h"
+#include "passes/pass_names.h"
 
 namespace rp::passes {
 namespace {
 
-constexpr const char* kPass = "bloom";
+constexpr const char* kPass = pass_name::kBloom;
 constexpr size_t kPlanes = 3;  // the chain's levels are planar r, g, b
 
 // Grids of `x` by `y` work-items (by `z` channels) in work-groups of 16 x 1 (x 1), x rounded up

@@ -1,6 +1,7 @@
 #include "passes/bounce.h"
 
 #include "cl/error.h"
+#include "passes/pass_names.h"
 
 namespace rp::passes {
 namespace {
@@ -40,7 +41,7 @@ void BouncePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   gather_.setArg(6, scene.frame);
   gather_.setArg(7, scene.sky);
   const size_t items = cones == Cones::kAll ? faces : faces / 2;  // one cone: half a frame
-  profiler.enqueue("bounce", gather_, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
+  profiler.enqueue(pass_name::kBounce, gather_, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
                    ::cl::NDRange(kGroup));
   valid_ = true;
 }

@@ -5,6 +5,7 @@
 
 #include "cl/error.h"
 #include "kernels/shared/voxel_layout.h"
+#include "passes/pass_names.h"
 
 namespace rp::passes {
 namespace {
@@ -148,7 +149,7 @@ void DebugViewPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scen
     }
   }
   k->setArg(arg, rgba8);
-  profiler.enqueue("debug_view", *k,
+  profiler.enqueue(pass_name::kDebugView, *k,
                    ::cl::NDRange(rp::cl::round_up(w, kGroup), rp::cl::round_up(h, kGroup)),
                    ::cl::NDRange(kGroup, kGroup));
 }

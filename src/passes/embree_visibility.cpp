@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "cl/error.h"
+#include "passes/pass_names.h"
 #include "render/gpu_types.h"
 #include "scene/alpha_mask.h"
 
@@ -554,7 +555,7 @@ double EmbreeVisibilityPass::render(rp::cl::Profiler& profiler, const render::Gp
   queue.enqueueWriteBuffer(out.bary, CL_FALSE, 0, 2 * n * sizeof(float), s.bary.data(), nullptr,
                            &s.uploads[2]);
   s.uploads_pending = true;
-  for (const ::cl::Event& e : s.uploads) profiler.record("visibility", e);
+  for (const ::cl::Event& e : s.uploads) profiler.record(pass_name::kVisibility, e);
   return host_ms;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cl/error.h"
+#include "passes/pass_names.h"
 
 namespace rp::passes {
 namespace {
@@ -80,7 +81,7 @@ void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   // One work-item per span of span_ pixels of a row, a 1D range in row-major order.
   const size_t span = static_cast<size_t>(span_);
   const size_t spans = (w + span - 1) / span * h;
-  profiler.enqueue("gbuffer", resolve, ::cl::NDRange(rp::cl::round_up(spans, kGroup)),
+  profiler.enqueue(pass_name::kGBuffer, resolve, ::cl::NDRange(rp::cl::round_up(spans, kGroup)),
                    ::cl::NDRange(kGroup));
   if (scene.has_material_maps) run_material(profiler, scene, vis, out);
 }
@@ -103,7 +104,7 @@ void GBufferPass::run_material(rp::cl::Profiler& profiler, const render::GpuScen
   material_.setArg(arg++, out.emission);
   constexpr size_t kTile = 16;
   const uint32_t w = scene.constants.width, h = scene.constants.height;
-  profiler.enqueue("gbuffer", material_,
+  profiler.enqueue(pass_name::kGBuffer, material_,
                    ::cl::NDRange(rp::cl::round_up(w, kTile), rp::cl::round_up(h, kTile)),
                    ::cl::NDRange(kTile, kTile));
 }

@@ -9,6 +9,7 @@
 
 #include "cl/error.h"
 #include "passes/light.h"
+#include "passes/pass_names.h"
 
 namespace rp::passes {
 namespace {
@@ -115,7 +116,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
     min_z_.setArg(5, cl_uint(dst_off));
     min_z_.setArg(6, cl_uint(dw));
     min_z_.setArg(7, cl_uint(dh));
-    profiler.enqueue("ssr_min_z", min_z_,
+    profiler.enqueue(pass_name::kSsrMinZ, min_z_,
                      ::cl::NDRange(rp::cl::round_up(dw, kGroup), rp::cl::round_up(dh, kGroup)),
                      ::cl::NDRange(kGroup, kGroup));
     src_off = dst_off;  // level k is the next level's source
@@ -150,7 +151,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   trace.setArg(arg++, ssr ? *ssr->prev_hdr : dummy_);
   trace.setArg(arg++, ssr ? *ssr->velocity : dummy_);
   trace.setArg(arg++, cl_uint(ssr && history_valid_ ? 1 : 0));
-  profiler.enqueue("indirect_trace", trace,
+  profiler.enqueue(pass_name::kIndirectTrace, trace,
                    ::cl::NDRange(rp::cl::round_up(lw, kGroup), rp::cl::round_up(lh, kGroup)),
                    local);
 
@@ -178,7 +179,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
                                  &scene.constants.prev_view_proj_unjittered,
                                  sizeof(scene.constants.view_proj_unjittered)) == 0;
   filter_.setArg(arg++, cl_uint(history_valid_ && still ? 1 : 0));
-  profiler.enqueue("indirect_filter", filter_,
+  profiler.enqueue(pass_name::kIndirectFilter, filter_,
                    ::cl::NDRange(rp::cl::round_up((lw + 7) / 8, kGroup), rp::cl::round_up(lh, kGroup)),
                    local);
 

@@ -5,6 +5,7 @@
 #include "cl/error.h"
 #include "kernels/shared/svo_layout.h"
 #include "kernels/shared/voxel_layout.h"
+#include "passes/pass_names.h"
 
 namespace rp::passes {
 namespace {
@@ -39,7 +40,7 @@ cl_uint bind_common(::cl::Kernel& kernel, const render::GpuScene& scene,
 }
 
 void enqueue(rp::cl::Profiler& profiler, const ::cl::Kernel& kernel, uint32_t w, uint32_t h) {
-  profiler.enqueue("light", kernel,
+  profiler.enqueue(pass_name::kLight, kernel,
                    ::cl::NDRange(rp::cl::round_up(w, kGroup), rp::cl::round_up(h, kGroup)),
                    ::cl::NDRange(kGroup, kGroup));
 }
@@ -114,7 +115,7 @@ void LightPass::run_visibility(rp::cl::Profiler& profiler, const render::GpuScen
   if (!checkerboard_ || filter_ != render::ShadowMode::kPcss) {
     k.setArg(arg++, cl_uint(kShadowPassAll));
     k.setArg(arg, visibility_);  // not read in this pass
-    profiler.enqueue("light", k, ::cl::NDRange(rp::cl::round_up(chunks_x, kComposeGroupX), rows),
+    profiler.enqueue(pass_name::kLight, k, ::cl::NDRange(rp::cl::round_up(chunks_x, kComposeGroupX), rows),
                      local);
     return;
   }
@@ -126,7 +127,7 @@ void LightPass::run_visibility(rp::cl::Profiler& profiler, const render::GpuScen
   const ::cl::NDRange half(rp::cl::round_up((chunks_x + 1) / 2, kComposeGroupX), rows);
   for (cl_uint pass : {kShadowPassBlack, kShadowPassWhite}) {
     k.setArg(arg, pass);
-    profiler.enqueue("light", k, half, local);
+    profiler.enqueue(pass_name::kLight, k, half, local);
   }
 }
 
@@ -216,7 +217,7 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   k.setArg(arg, hdr);
   if (indirect != nullptr) {
     // light_compose: 8 pixels of a row per work-item.
-    profiler.enqueue("light", k,
+    profiler.enqueue(pass_name::kLight, k,
                      ::cl::NDRange(rp::cl::round_up((w + 7) / 8, kComposeGroupX),
                                    rp::cl::round_up(h, kComposeGroupY)),
                      ::cl::NDRange(kComposeGroupX, kComposeGroupY));

@@ -4,11 +4,12 @@
 #include <string>
 
 #include "cl/error.h"
+#include "passes/pass_names.h"
 
 namespace rp::passes {
 namespace {
 
-constexpr const char* kPass = "motion_blur";
+constexpr const char* kPass = pass_name::kMotionBlur;
 constexpr const char* kFile = "motion_blur.cl";
 constexpr uint32_t kBlocksPerTile = 5;  // reconstruction: 4x4 pixel blocks, five per tile side
 

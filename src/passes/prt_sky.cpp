@@ -5,6 +5,7 @@
 
 #include "cl/buffer.h"
 #include "cl/error.h"
+#include "passes/pass_names.h"
 #include "shading/spherical_harmonics.h"
 
 namespace rp::passes {
@@ -120,7 +121,7 @@ void PrtSkyPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     vertex_kernel_.setArg(arg++, cl_uint(channels_));
     vertex_kernel_.setArg(arg++, cl_uint(bands_ * bands_));
     vertex_kernel_.setArg(arg++, vertex_e_);
-    profiler.enqueue("prt", vertex_kernel_,
+    profiler.enqueue(pass_name::kPrt, vertex_kernel_,
                      ::cl::NDRange(rp::cl::round_up(vertex_count_, kVertexGroup)),
                      ::cl::NDRange(kVertexGroup));
     vertex_e_fresh_ = true;
@@ -135,7 +136,7 @@ void PrtSkyPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   kernel_.setArg(arg++, offsets_);
   kernel_.setArg(arg++, cl_uint(offset_count_));
   kernel_.setArg(arg++, out_);
-  profiler.enqueue("prt", kernel_,
+  profiler.enqueue(pass_name::kPrt, kernel_,
                    ::cl::NDRange(rp::cl::round_up(w, kGroup), rp::cl::round_up(h, kGroup)),
                    ::cl::NDRange(kGroup, kGroup));
 }

@@ -1,5 +1,7 @@
 #include "passes/punctual_light.h"
 
+#include "passes/pass_names.h"
+
 namespace rp::passes {
 namespace {
 
@@ -31,7 +33,7 @@ void PunctualLightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& 
   }
   kernel.setArg(arg++, hdr);
   const uint32_t w = gbuffer.width, h = gbuffer.height;
-  profiler.enqueue("punctual_light", kernel,
+  profiler.enqueue(pass_name::kPunctualLight, kernel,
                    ::cl::NDRange(rp::cl::round_up((w + 7) / 8, kGroupX),
                                  rp::cl::round_up(h, kGroupY)),
                    ::cl::NDRange(kGroupX, kGroupY));

@@ -5,6 +5,7 @@
 
 #include "cl/error.h"
 #include "kernels/shared/shadow_mips.h"
+#include "passes/pass_names.h"
 
 namespace rp::passes {
 namespace {
@@ -51,7 +52,7 @@ void ShadowFilterPass::run(rp::cl::Profiler& profiler, const render::GpuScene& s
   first->setArg(3, shadow.mips);
   first->setArg(4, cl_uint(n1));
   first->setArg(5, cl_uint(plane));
-  profiler.enqueue("shadow_filter", *first, square(n1), ::cl::NDRange(kGroup, kGroup));
+  profiler.enqueue(pass_name::kShadowFilter, *first, square(n1), ::cl::NDRange(kGroup, kGroup));
   for (uint32_t l = 2; l <= levels; ++l) {
     const uint32_t m = gpu::rp_shadow_mip_size(size, l - 1), n = gpu::rp_shadow_mip_size(size, l);
     next->setArg(0, shadow.mips);
@@ -60,7 +61,7 @@ void ShadowFilterPass::run(rp::cl::Profiler& profiler, const render::GpuScene& s
     next->setArg(3, cl_uint(gpu::rp_shadow_mip_offset(size, l)));
     next->setArg(4, cl_uint(n));
     next->setArg(5, cl_uint(plane));
-    profiler.enqueue("shadow_filter", *next, square(n), ::cl::NDRange(kGroup, kGroup));
+    profiler.enqueue(pass_name::kShadowFilter, *next, square(n), ::cl::NDRange(kGroup, kGroup));
   }
 }
 

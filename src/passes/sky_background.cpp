@@ -1,5 +1,7 @@
 #include "passes/sky_background.h"
 
+#include "passes/pass_names.h"
+
 namespace rp::passes {
 namespace {
 // eight pixels of a row per work-item (kernels/sky.cl)
@@ -15,7 +17,7 @@ void SkyBackgroundPass::run(rp::cl::Profiler& profiler, const render::GpuScene& 
   kernel_.setArg(1, scene.sky);
   kernel_.setArg(2, gbuffer.position);
   kernel_.setArg(3, hdr);
-  profiler.enqueue("sky", kernel_,
+  profiler.enqueue(pass_name::kSky, kernel_,
                    ::cl::NDRange(rp::cl::round_up((c.width + 7) / 8, kGroupX),
                                  rp::cl::round_up(c.height, kGroupY)),
                    ::cl::NDRange(kGroupX, kGroupY));

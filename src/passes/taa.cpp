@@ -3,6 +3,7 @@
 #include <string>
 
 #include "cl/error.h"
+#include "passes/pass_names.h"
 
 namespace rp::passes {
 namespace {
@@ -74,14 +75,14 @@ void TaaPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   const uint32_t whole_blocks = w / kPixelsPerItem;
   if (whole_blocks > 0) {
     set_args(kernel_, 0);
-    profiler.enqueue("taa", kernel_, ::cl::NDRange(rp::cl::round_up(whole_blocks, kGroup), h),
+    profiler.enqueue(pass_name::kTaa, kernel_, ::cl::NDRange(rp::cl::round_up(whole_blocks, kGroup), h),
                      ::cl::NDRange(kGroup, 1));
   }
   if (w % kPixelsPerItem != 0) {
     if (!border_kernel_())
       border_kernel_ = programs_->kernel("taa.cl", "taa_resolve", "-DRP_TAA_BORDER=1");
     set_args(border_kernel_, whole_blocks * kPixelsPerItem);
-    profiler.enqueue("taa", border_kernel_, ::cl::NDRange(1, rp::cl::round_up(h, kGroup)),
+    profiler.enqueue(pass_name::kTaa, border_kernel_, ::cl::NDRange(1, rp::cl::round_up(h, kGroup)),
                      ::cl::NDRange(1, kGroup));
   }
   current_ = next;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cl/error.h"
+#include "passes/pass_names.h"
 
 namespace rp::passes {
 namespace {
@@ -71,7 +72,7 @@ void TaaUpsamplePass::run(rp::cl::Profiler& profiler, const render::GpuScene& sc
   kernel_.setArg(arg++, settings_.history_weight);
   kernel_.setArg(arg++, settings_.gamma);
   kernel_.setArg(arg++, cl_uint(history_valid_ ? 1u : 0u));
-  profiler.enqueue("taa", kernel_,
+  profiler.enqueue(pass_name::kTaa, kernel_,
                    ::cl::NDRange(rp::cl::round_up((out_width + kPixelsPerItem - 1) / kPixelsPerItem,
                                                   kGroupX),
                                  rp::cl::round_up(out_height, kGroupY)),

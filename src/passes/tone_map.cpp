@@ -1,6 +1,7 @@
 #include "passes/tone_map.h"
 
 #include "cl/error.h"
+#include "passes/pass_names.h"
 
 namespace rp::passes {
 namespace {
@@ -29,7 +30,7 @@ void ToneMapPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   kernel_.setArg(3, cl_uint(dither_ ? 1u : 0u));
   kernel_.setArg(4, cl_uint(scene.constants.frame_index));
   const size_t items = (size_t(pixels) + kPixelsPerItem - 1) / kPixelsPerItem;
-  profiler.enqueue("tone_map", kernel_, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
+  profiler.enqueue(pass_name::kToneMap, kernel_, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
                    ::cl::NDRange(kGroup));
 }
 

@@ -19,6 +19,7 @@
 
 #include "cl/buffer.h"
 #include "cl/error.h"
+#include "passes/pass_names.h"
 #include "render/gpu_types.h"  // before raster_types.h, which builds on its types
 #include "kernels/shared/raster_types.h"
 
@@ -331,9 +332,9 @@ VisibilityPass::VisibilityPass(const rp::cl::Context& context, rp::cl::ProgramCa
   impl_->context = &context;
   impl_->span = choose_span(context);
   impl_->tile_layout = context.info.is_cpu && impl_->span >= 8;
-  impl_->init_view(impl_->camera, programs, "visibility", false);
-  impl_->init_view(impl_->shadow, programs, "shadow_map", true);
-  impl_->init_view(impl_->lights, programs, "shadow_map_lights", true);
+  impl_->init_view(impl_->camera, programs, pass_name::kVisibility, false);
+  impl_->init_view(impl_->shadow, programs, pass_name::kShadowMap, true);
+  impl_->init_view(impl_->lights, programs, pass_name::kShadowMapLights, true);
 }
 
 void VisibilityPass::render(rp::cl::Profiler& profiler, const render::GpuScene& scene,

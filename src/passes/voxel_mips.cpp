@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cl/error.h"
+#include "passes/pass_names.h"
 
 namespace rp::passes {
 namespace {
@@ -42,7 +43,7 @@ void VoxelMipsPass::run(rp::cl::Profiler& profiler, render::VoxelVolume& volume)
     k.setArg(2, cl_uint(volume.resolution));
     k.setArg(3, level);
     const size_t items = span16 ? n / 16 * n * n : n * n * n;
-    profiler.enqueue("voxel_mips", k, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
+    profiler.enqueue(pass_name::kVoxelMips, k, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
                      ::cl::NDRange(kGroup));
   }
 }

@@ -7,6 +7,7 @@
 
 #include "cl/buffer.h"
 #include "cl/error.h"
+#include "passes/pass_names.h"
 
 namespace rp::passes {
 namespace {
@@ -181,7 +182,7 @@ void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScen
   const cl_uint zero = 0;
   queue.enqueueWriteBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &zero);
   set_large_args(scene, shadow, kCount);
-  profiler.enqueue("voxelize", large_, ::cl::NDRange(large_items_), ::cl::NDRange(kSpanGroup));
+  profiler.enqueue(pass_name::kVoxelize, large_, ::cl::NDRange(large_items_), ::cl::NDRange(kSpanGroup));
   cl_uint samples = 0;
   queue.enqueueReadBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &samples);
   if (uint64_t(samples) * kSampleBytes > cache_limit_) {
@@ -208,7 +209,7 @@ void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScen
   queue.enqueueWriteBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &zero);
   if (samples > 0) {
     set_large_args(scene, shadow, kRecord);
-    profiler.enqueue("voxelize", large_, ::cl::NDRange(large_items_),
+    profiler.enqueue(pass_name::kVoxelize, large_, ::cl::NDRange(large_items_),
                      ::cl::NDRange(kSpanGroup));
   }
   cache_samples_ = samples;
@@ -279,14 +280,14 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
   clear_.setArg(1, volume.overflow);
   clear_.setArg(2, voxels);
   clear_.setArg(3, large_count_);
-  profiler.enqueue("voxelize", clear_, ::cl::NDRange(rp::cl::round_up(voxels, kGroup)),
+  profiler.enqueue(pass_name::kVoxelize, clear_, ::cl::NDRange(rp::cl::round_up(voxels, kGroup)),
                    ::cl::NDRange(kGroup));
   voxelize(profiler, scene, shadow);
   resolve_.setArg(0, volume.accum);
   resolve_.setArg(1, volume.overflow);
   resolve_.setArg(2, volume.chain);
   resolve_.setArg(3, voxels);
-  profiler.enqueue("voxelize", resolve_, ::cl::NDRange(rp::cl::round_up(voxels, kGroup)),
+  profiler.enqueue(pass_name::kVoxelize, resolve_, ::cl::NDRange(rp::cl::round_up(voxels, kGroup)),
                    ::cl::NDRange(kGroup));
 }
 
@@ -332,7 +333,7 @@ void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& 
     triangles_.setArg(arg++, *bounce_);
     triangles_.setArg(arg++, bounce_cells_);
     const size_t span = static_cast<size_t>(span_);
-    profiler.enqueue("voxelize", triangles_,
+    profiler.enqueue(pass_name::kVoxelize, triangles_,
                      ::cl::NDRange(rp::cl::round_up((triangles + span - 1) / span, kSpanGroup)),
                      ::cl::NDRange(kSpanGroup));
 
@@ -341,7 +342,7 @@ void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& 
     // work-group costs a few microseconds even when it has nothing to do.
     if (rebuild) build_cache(profiler, scene, shadow);
     set_large_args(scene, shadow, kAccumulate);
-    profiler.enqueue("voxelize", large_, ::cl::NDRange(large_items_), ::cl::NDRange(kSpanGroup));
+    profiler.enqueue(pass_name::kVoxelize, large_, ::cl::NDRange(large_items_), ::cl::NDRange(kSpanGroup));
   }
 
   if (cache_samples_ > 0) {
@@ -365,7 +366,7 @@ void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& 
     cache_bounce_fresh_ = bounce_cells_ != 0;
     cache_bounce_grid_ = (*bounce_)();
     const size_t span = static_cast<size_t>(span_);
-    profiler.enqueue("voxelize", cached_,
+    profiler.enqueue(pass_name::kVoxelize, cached_,
                      ::cl::NDRange(rp::cl::round_up((cache_samples_ + span - 1) / span,
                                                     kSpanGroup)),
                      ::cl::NDRange(kSpanGroup));
@@ -383,7 +384,7 @@ void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& 
     spheres_.setArg(arg++, *bounce_);
     spheres_.setArg(arg++, bounce_cells_);
     spheres_.setArg(arg++, sphere_slices_);
-    profiler.enqueue("voxelize", spheres_,
+    profiler.enqueue(pass_name::kVoxelize, spheres_,
                      ::cl::NDRange(rp::cl::round_up(size_t(scene.sphere_count) * sphere_slices_, kGroup)),
                      ::cl::NDRange(kGroup));
   }

@@ -13,6 +13,7 @@
 #include "passes/indirect.h"
 #include "passes/light.h"
 #include "passes/motion_blur.h"
+#include "passes/pass_names.h"
 #include "passes/punctual_light.h"
 #include "passes/shadow_filter.h"
 #include "passes/prt_sky.h"
@@ -337,7 +338,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     }
     components_written_ = split;
     rp::cl::PassTimes times = profiler_.collect();
-    if (embree_) times["visibility_host"] = host_visibility_ms;
+    if (embree_) times[passes::pass_name::kVisibilityHost] = host_visibility_ms;
     return times;
   } catch (const ::cl::Error& e) {
     // The passes allocate their own per-size buffers (TAA history, bloom chain, motion blur

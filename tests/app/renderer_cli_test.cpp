@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "passes/pass_names.h"
 #include "support/cli_runner.h"
 #include "scene/demo_scene.h"
 #include "support/image_metrics.h"
@@ -88,7 +89,8 @@ TEST(RendererCli, BenchWritesJsonWithTheSchemaFields) {
   EXPECT_EQ(run.at("size"), nlohmann::json::array({32, 32}));
   EXPECT_EQ(run.at("frames"), 3);
   ASSERT_TRUE(run.at("passes").is_object());
-  EXPECT_TRUE(run.at("passes").contains("tone_map")) << run.at("passes").dump();
+  EXPECT_TRUE(run.at("passes").contains(rp::passes::pass_name::kToneMap))
+      << run.at("passes").dump();
   for (const auto& [pass, t] : run.at("passes").items()) {
     double lo = t.at("min_ms"), mid = t.at("median_ms"), hi = t.at("max_ms");
     EXPECT_LE(0.0, lo) << pass;

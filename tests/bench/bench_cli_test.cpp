@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "passes/pass_names.h"
 #include "support/cli_runner.h"
 
 namespace rp::test {
@@ -47,8 +48,8 @@ TEST(BenchCli, MatrixOfTwoSizesWritesJsonChartAndMarkdown) {
   for (const auto& run : d.at("runs")) {
     EXPECT_EQ(run.at("voxels"), 32);
     EXPECT_EQ(run.at("frames"), 1);
-    EXPECT_TRUE(run.at("passes").contains("light"));
-    EXPECT_TRUE(run.at("passes").contains("voxelize"));
+    EXPECT_TRUE(run.at("passes").contains(rp::passes::pass_name::kLight));
+    EXPECT_TRUE(run.at("passes").contains(rp::passes::pass_name::kVoxelize));
   }
   ASSERT_EQ(d.at("scaling").at("pixels").size(), 1u);
   EXPECT_EQ(d.at("scaling").at("pixels").at(0).at("points"), 2);
@@ -152,7 +153,8 @@ TEST(BenchCli, HostTimingIsLabelledAndPlausible) {
   EXPECT_EQ(d.at("runs").at(0).at("timing"), "host");
   for (const auto& [name, p] : d.at("runs").at(0).at("passes").items())
     EXPECT_GE(p.at("median_ms").get<double>(), 0.0) << name;
-  EXPECT_GT(d.at("runs").at(0).at("passes").at("light").at("median_ms").get<double>(), 0.0);
+  const nlohmann::json& light = d.at("runs").at(0).at("passes").at(rp::passes::pass_name::kLight);
+  EXPECT_GT(light.at("median_ms").get<double>(), 0.0);
   expect_no_impossible_fraction(j);
 }
 

@@ -14,10 +14,13 @@
 #include "bench/src/bench_report.h"
 #include "bench/src/scene_file_facts.h"
 #include "bench_test_scene.h"
+#include "passes/pass_names.h"
 #include "support/cli_runner.h"
 
 namespace rp::test {
 namespace {
+
+namespace pass_name = rp::passes::pass_name;
 
 cli::CliParse parse(const std::vector<std::string>& words) {
   std::vector<const char*> argv = {"rolypoly"};
@@ -62,7 +65,8 @@ TEST(BenchFileScene, MatrixRecordsTheSceneInItsJson) {
   EXPECT_EQ(run.at("scene").at("instances"), scene.instances);
   EXPECT_EQ(run.at("scene").at("instance_triangles"), scene.triangles);
   EXPECT_EQ(run.at("scene").at("spheres"), 0);
-  for (const char* pass : {"visibility", "gbuffer", "voxelize", "light"})
+  for (const char* pass : {pass_name::kVisibility, pass_name::kGBuffer, pass_name::kVoxelize,
+                           pass_name::kLight})
     EXPECT_TRUE(run.at("passes").contains(pass)) << pass;
   EXPECT_TRUE(Contains(read_all(md), "Scene: " + file.string()));
 }

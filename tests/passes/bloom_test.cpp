@@ -22,9 +22,12 @@
 
 #include "cl/error.h"
 #include "passes/bloom.h"
+#include "passes/pass_names.h"
 #include "support/cl_fixture.h"
 
 namespace {
+
+namespace pass_name = rp::passes::pass_name;
 
 // float4 per texel, row-major, top row first (the pass's layout), in double.
 struct Image {
@@ -386,7 +389,7 @@ TEST(BloomBehaviour, StrengthZeroReturnsTheInputExactly) {
   rp::passes::BloomPass pass(ctx, rp::test::programs());
   rp::cl::Profiler profiler(ctx.queue);
   pass.run(profiler, src, 37, 29, 0.0f, dst);
-  EXPECT_EQ(profiler.collect().count("bloom"), 1u);
+  EXPECT_EQ(profiler.collect().count(pass_name::kBloom), 1u);
   const std::vector<float> a = read_floats(src, in.px.size()), b = read_floats(dst, in.px.size());
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
   pass.run(profiler, src, 37, 29, 0.0f, src);  // in place: nothing to do
@@ -465,7 +468,7 @@ TEST(BloomBehaviour, Timing720) {
   const int runs = 5;
   for (int r = 0; r < runs; ++r) {
     pass.run(profiler, src, 720, 720, 0.1f, dst);
-    const double ms = profiler.collect().at("bloom");
+    const double ms = profiler.collect().at(pass_name::kBloom);
     best = std::min(best, ms);
     total += ms;
   }

@@ -18,6 +18,7 @@
 #include "cone_reference.h"
 #include "kernels/shared/voxel_layout.h"
 #include "passes/debug_view.h"
+#include "passes/pass_names.h"
 #include "render/gpu_scene.h"
 #include "support/cl_fixture.h"
 
@@ -70,7 +71,7 @@ class DebugFixture {
     rp::cl::Profiler profiler(ctx.queue);
     rp::passes::DebugViewPass pass(ctx, rp::test::programs());
     pass.run(profiler, *scene_, settings, inputs, rgba_);
-    EXPECT_EQ(profiler.collect().count("debug_view"), 1u);
+    EXPECT_EQ(profiler.collect().count(rp::passes::pass_name::kDebugView), 1u);
     std::vector<uint32_t> packed(kW * kH);
     ctx.queue.enqueueReadBuffer(rgba_, CL_TRUE, 0, packed.size() * 4, packed.data());
     std::vector<Rgb> out;

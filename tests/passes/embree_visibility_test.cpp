@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "passes/embree_visibility.h"
+#include "passes/pass_names.h"
 #include "passes/visibility.h"
 #include "render/gpu_scene.h"
 #include "render/renderer.h"
@@ -23,6 +24,8 @@
 
 namespace rp::test {
 namespace {
+
+namespace pass_name = rp::passes::pass_name;
 
 struct HostVisibility {
   std::vector<float> depth;
@@ -174,7 +177,7 @@ struct Backends {
     HostVisibility r = read_back(vb);
     embree.render(profiler, gpu, vb);
     rp::cl::PassTimes t = profiler.collect();
-    EXPECT_TRUE(t.count("visibility")) << "the upload is recorded under the pass name";
+    EXPECT_TRUE(t.count(pass_name::kVisibility)) << "the upload is recorded under the pass name";
     return {r, read_back(vb)};
   }
 };
@@ -326,7 +329,7 @@ TEST(EmbreeVisibility, WholeFramesMatchTheRasterBackend) {
     world.fill_frame(f);
     raster.render(f);
     rp::cl::PassTimes t = embree.render(f);
-    EXPECT_TRUE(t.count("visibility_host"));
+    EXPECT_TRUE(t.count(pass_name::kVisibilityHost));
     embree2.render(f);
     raster.read_rgba8(a);
     embree.read_rgba8(b);
@@ -362,12 +365,12 @@ TEST(EmbreeVisibility, DISABLED_Timings720) {
       b.gpu.update(frame, size, size, 1024, 64, 16);
       b.raster.render(b.profiler, b.gpu, vb);
       rp::cl::PassTimes t = b.profiler.collect();
-      if (i > 0) raster_ms.push_back(t["visibility"]);
+      if (i > 0) raster_ms.push_back(t[pass_name::kVisibility]);
       double host = b.embree.render(b.profiler, b.gpu, vb);
       t = b.profiler.collect();
       if (i > 0) {
         embree_host_ms.push_back(host);
-        upload_ms.push_back(t["visibility"]);
+        upload_ms.push_back(t[pass_name::kVisibility]);
       }
     }
     std::printf("[ timing   ] %s %ux%u (%zu spheres), median of 7: raster %.2f ms device; "

@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "passes/gbuffer.h"
+#include "passes/pass_names.h"
 #include "render/gpu_scene.h"
 #include "support/cl_fixture.h"
 
@@ -222,7 +223,7 @@ void check_resolve(uint32_t W, uint32_t H) {
   rp::cl::Profiler profiler(ctx.queue);
   rp::passes::GBufferPass pass(ctx, rp::test::programs());
   pass.run(profiler, scene, vis, gb, RP_TEXTURE_FILTER_BILINEAR);
-  EXPECT_EQ(profiler.collect().count("gbuffer"), 1u);
+  EXPECT_EQ(profiler.collect().count(rp::passes::pass_name::kGBuffer), 1u);
 
   auto albedo = read<float>(gb.albedo, n * 4), normal_depth = read<float>(gb.normal_depth, n * 4),
        position = read<float>(gb.position, n * 4), emission = read<float>(gb.emission, n * 4),

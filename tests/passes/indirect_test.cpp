@@ -20,6 +20,7 @@
 #include "cone_reference.h"
 #include "passes/indirect.h"
 #include "passes/light.h"
+#include "passes/pass_names.h"
 #include "render/gpu_scene.h"
 #include "scene/demo_scene.h"
 #include "shading/brdf.h"
@@ -27,6 +28,8 @@
 #include "support/cl_fixture.h"
 
 namespace {
+
+namespace pass_name = rp::passes::pass_name;
 
 using rp::passes::IndirectPass;
 
@@ -156,8 +159,8 @@ class IndirectFixture {
     rp::cl::Profiler profiler(rp::test::context().queue);
     rp::passes::LowResIndirect lr = pass_->run(profiler, *scene_, gbuffer_, voxels_, kRes, 5);
     const auto times = profiler.collect();
-    EXPECT_EQ(times.count("indirect_trace"), 1u);
-    EXPECT_EQ(times.count("indirect_filter"), 1u);
+    EXPECT_EQ(times.count(pass_name::kIndirectTrace), 1u);
+    EXPECT_EQ(times.count(pass_name::kIndirectFilter), 1u);
     auto& q = rp::test::context().queue;
     const size_t plane = lr.plane;
     radiance.resize(3 * plane);

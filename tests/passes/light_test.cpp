@@ -19,6 +19,7 @@
 #include "cone_reference.h"
 #include "kernels/shared/voxel_layout.h"
 #include "passes/light.h"
+#include "passes/pass_names.h"
 #include "passes/shadow_filter.h"
 #include "render/gpu_scene.h"
 #include "scene/demo_scene.h"
@@ -138,7 +139,7 @@ class LightFixture {
                  &components);
         break;
     }
-    EXPECT_EQ(profiler.collect().count("light"), 1u);
+    EXPECT_EQ(profiler.collect().count(rp::passes::pass_name::kLight), 1u);
     std::vector<float> out(n * 4);
     ctx.queue.enqueueReadBuffer(hdr, CL_TRUE, 0, n * 16, out.data());
     if (direct) {

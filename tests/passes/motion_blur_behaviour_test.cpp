@@ -14,6 +14,7 @@
 
 #include "cl/error.h"
 #include "passes/motion_blur.h"
+#include "passes/pass_names.h"
 #include "render/frame_buffers.h"
 #include "support/cl_fixture.h"
 
@@ -93,7 +94,7 @@ struct DeviceScene {
     rp::cl::Profiler profiler(ctx.queue);
     pass.run(profiler, in, g, w, h, shutter, out);
     const auto times = profiler.collect();
-    if (ms) *ms = times.at("motion_blur");
+    if (ms) *ms = times.at(rp::passes::pass_name::kMotionBlur);
     std::vector<Px> result(size_t(w) * h);
     ctx.queue.enqueueReadBuffer(out, CL_TRUE, 0, result.size() * 16, result.data());
     return result;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "passes/motion_blur.h"
+#include "passes/pass_names.h"
 #include "render/frame_buffers.h"
 #include "support/cl_fixture.h"
 
@@ -276,7 +277,7 @@ Outputs run_device(const Inputs& in, float shutter, const Inputs* prime = nullpt
   }
   upload(in);
   pass.run(profiler, hdr_in, g, in.w, in.h, shutter, hdr_out);
-  EXPECT_EQ(profiler.collect().count("motion_blur"), 1u);
+  EXPECT_EQ(profiler.collect().count(rp::passes::pass_name::kMotionBlur), 1u);
   Outputs out;
   const size_t tiles = size_t(pass.tiles_x()) * pass.tiles_y();
   out.tile_max.resize(tiles);

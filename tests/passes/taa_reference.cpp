@@ -1,3 +1,4 @@
+#include "passes/pass_names.h"
 #include "taa_reference.h"
 
 #include <algorithm>
@@ -20,6 +21,8 @@ Frame still_frame(uint32_t width, uint32_t height, std::vector<glm::vec4> hdr) {
 // The helpers are templates so that Reference::resolve can run them in double precision (below)
 // while the tests use the float versions declared in the header.
 namespace {
+
+namespace pass_name = rp::passes::pass_name;
 
 template <class T>
 T tone_t(T x) {
@@ -173,7 +176,7 @@ std::vector<glm::vec4> Harness::run(const Frame& f) {
   rp::cl::Profiler profiler(ctx.queue);
   pass_->run(profiler, *scene_, hdr_in_, gbuffer_, depth_, hdr_out_);
   rp::cl::PassTimes times = profiler.collect();
-  last_ms_ = times.count("taa") ? times.at("taa") : -1.0;
+  last_ms_ = times.count(pass_name::kTaa) ? times.at(pass_name::kTaa) : -1.0;
   std::vector<glm::vec4> out(n);
   ctx.queue.enqueueReadBuffer(hdr_out_, CL_TRUE, 0, n * 16, out.data());
   return out;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cl/program_cache.h"
+#include "passes/pass_names.h"
 #include "passes/tone_map.h"
 #include "render/gpu_scene.h"
 #include "support/cl_fixture.h"
@@ -41,7 +42,7 @@ std::vector<uint32_t> run_tone_map(const std::vector<float>& hdr_rgba, bool dith
   rp::passes::ToneMapPass pass(ctx, rp::test::programs(), dither);
   pass.run(profiler, scene, hdr, uint32_t(n), out);
   auto times = profiler.collect();
-  EXPECT_EQ(times.count("tone_map"), 1u);
+  EXPECT_EQ(times.count(rp::passes::pass_name::kToneMap), 1u);
   std::vector<uint32_t> result(n);
   ctx.queue.enqueueReadBuffer(out, CL_TRUE, 0, n * sizeof(uint32_t), result.data());
   return result;

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "passes/pass_names.h"
 #include "passes/reference_raster.h"
 #include "passes/visibility.h"
 #include "render/gpu_scene.h"
@@ -16,6 +17,8 @@
 
 namespace rp::test {
 namespace {
+
+namespace pass_name = rp::passes::pass_name;
 
 glm::mat4 to_glm(const gpu::rp_mat4& m) {
   glm::mat4 out;
@@ -97,10 +100,10 @@ TEST(VisibilityDemo, DeviceTimes) {
       d.pass.render(d.profiler, d.gpu, vb);
       d.pass.render_shadow(d.profiler, d.gpu, sm);
       rp::cl::PassTimes t = d.profiler.collect();
-      ASSERT_TRUE(t.count("visibility") && t.count("shadow_map"));
+      ASSERT_TRUE(t.count(pass_name::kVisibility) && t.count(pass_name::kShadowMap));
       if (frame > 0) {
-        best_vis = std::min(best_vis, t["visibility"]);
-        best_shadow = std::min(best_shadow, t["shadow_map"]);
+        best_vis = std::min(best_vis, t[pass_name::kVisibility]);
+        best_shadow = std::min(best_shadow, t[pass_name::kShadowMap]);
       }
     }
     std::printf("[ timing   ] demo %ux%u: visibility %.2f ms, shadow_map (1024^2) %.2f ms on %s\n",

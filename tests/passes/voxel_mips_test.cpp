@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cl/error.h"
+#include "passes/pass_names.h"
 #include "passes/voxel_mips.h"
 #include "render/voxel_volume.h"
 #include "support/cl_fixture.h"
@@ -184,7 +185,7 @@ void check_random_volume(uint32_t r, uint32_t check_level) {
                       << want[i][c];
     }
   EXPECT_EQ(bad, 0u);
-  EXPECT_EQ(times.count("voxel_mips"), 1u);
+  EXPECT_EQ(times.count(rp::passes::pass_name::kVoxelMips), 1u);
   const V4 top = got[at(r, check_level, 0, 0, 0, 0)];
   EXPECT_GT(top[3], 0.1f);
   EXPECT_LT(top[3], 1.0f);

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "passes/pass_names.h"
 #include "passes/visibility.h"
 #include "passes/voxel_mips.h"
 #include "passes/voxelize.h"
@@ -25,6 +26,8 @@
 
 namespace rp::test {
 namespace {
+
+namespace pass_name = rp::passes::pass_name;
 
 // Six marbles (cast shadows; every other one coated like the demo's, so the voxelizer's coat
 // weight Sphere.albedo.w is exercised), two fireballs and `particles` fire particles around them (emit,
@@ -278,10 +281,10 @@ TEST(VoxelizeDemo, DeviceTimes) {
         voxelize.run(d.profiler, *d.gpu, d.shadow, vol);
         mips.run(d.profiler, vol);
         rp::cl::PassTimes t = d.profiler.collect();
-        ASSERT_TRUE(t.count("voxelize") && t.count("voxel_mips"));
+        ASSERT_TRUE(t.count(pass_name::kVoxelize) && t.count(pass_name::kVoxelMips));
         if (frame > 0) {
-          best_vox = std::min(best_vox, t["voxelize"]);
-          best_mips = std::min(best_mips, t["voxel_mips"]);
+          best_vox = std::min(best_vox, t[pass_name::kVoxelize]);
+          best_mips = std::min(best_mips, t[pass_name::kVoxelMips]);
         }
       }
       std::printf("[ timing   ] demo + %zu spheres, R = %u: voxelize %.2f ms, voxel_mips %.2f ms on %s\n",

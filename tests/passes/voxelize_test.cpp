@@ -20,6 +20,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cl/error.h"
+#include "passes/pass_names.h"
 #include "passes/voxel_mips.h"
 #include "passes/voxelize.h"
 #include "passes/voxelize_reference.h"
@@ -213,7 +214,7 @@ TEST(Voxelize, IdenticalSumsToReference) {
     if (!(std::fabs(got.level0[i] - level0[i]) <= 1e-6f * std::fabs(level0[i])) && bad++ < 6)
       ADD_FAILURE() << "level 0 element " << i << ": " << got.level0[i] << " vs " << level0[i];
   EXPECT_EQ(bad, 0u);
-  EXPECT_EQ(got.times.count("voxelize"), 1u);
+  EXPECT_EQ(got.times.count(rp::passes::pass_name::kVoxelize), 1u);
 
   // Not vacuous: every primitive left voxels, and the face triangle touches both layers.
   size_t touched = 0;
