@@ -53,7 +53,8 @@ constexpr const char* kBenchInterrupted = "while benchmarking; no file was writt
 double visibility_ms(const PassStats& stats) {
   double ms = 0.0;
   for (const std::string& name : stats.pass_names())
-    if (name == pass_name::kVisibility || name == pass_name::kVisibilityHost) ms += stats.pass(name).median_ms;
+    if (name == pass_name::kVisibility || name == pass_name::kVisibilityHost)
+      ms += stats.pass(name).median_ms;
   return ms;
 }
 

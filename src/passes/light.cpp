@@ -115,7 +115,8 @@ void LightPass::run_visibility(rp::cl::Profiler& profiler, const render::GpuScen
   if (!checkerboard_ || filter_ != render::ShadowMode::kPcss) {
     k.setArg(arg++, cl_uint(kShadowPassAll));
     k.setArg(arg, visibility_);  // not read in this pass
-    profiler.enqueue(pass_name::kLight, k, ::cl::NDRange(rp::cl::round_up(chunks_x, kComposeGroupX), rows),
+    profiler.enqueue(pass_name::kLight, k,
+                     ::cl::NDRange(rp::cl::round_up(chunks_x, kComposeGroupX), rows),
                      local);
     return;
   }

@@ -253,7 +253,8 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     }
     occ_clear_.setArg(0, occ_);
     occ_clear_.setArg(1, cl_uint(words));
-    profiler.enqueue(pass_name::kSvoNodes, occ_clear_, ::cl::NDRange(items(words)), ::cl::NDRange(kGroup));
+    profiler.enqueue(pass_name::kSvoNodes, occ_clear_, ::cl::NDRange(items(words)),
+                     ::cl::NDRange(kGroup));
     if (count > 0) {
       occ_mark_.setArg(0, fragments);
       occ_mark_.setArg(1, cl_uint(count));
@@ -270,7 +271,8 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
       occ_reduce_.setArg(1, cl_uint(occ_offset(svo.resolution, l)));
       occ_reduce_.setArg(2, cl_uint(occ_offset(svo.resolution, l + 1)));
       occ_reduce_.setArg(3, cl_uint(n));
-      profiler.enqueue(pass_name::kSvoNodes, occ_reduce_, ::cl::NDRange(items((n * n * n + 31) / 32)),
+      profiler.enqueue(pass_name::kSvoNodes, occ_reduce_,
+                       ::cl::NDRange(items((n * n * n + 31) / 32)),
                        ::cl::NDRange(kGroup));
     }
   }
@@ -289,7 +291,8 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     clear_nodes_.setArg(1, own_);
     clear_nodes_.setArg(2, f0);
     clear_nodes_.setArg(3, n);
-    profiler.enqueue(pass_name::kSvoNodes, clear_nodes_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
+    profiler.enqueue(pass_name::kSvoNodes, clear_nodes_, ::cl::NDRange(items(n)),
+                     ::cl::NDRange(kGroup));
     if (int(k) <= last_bits_depth) {
       flag_bits_.setArg(0, own_);
       flag_bits_.setArg(1, coords_);
@@ -298,7 +301,8 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
       flag_bits_.setArg(4, f0);
       flag_bits_.setArg(5, n);
       flag_bits_.setArg(6, cl_uint(k));
-      profiler.enqueue(pass_name::kSvoNodes, flag_bits_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
+      profiler.enqueue(pass_name::kSvoNodes, flag_bits_, ::cl::NDRange(items(n)),
+                       ::cl::NDRange(kGroup));
     } else if (count > 0) {
       flag_.setArg(0, fragments);
       flag_.setArg(1, cl_uint(count));
@@ -309,7 +313,8 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
       flag_.setArg(6, cl_uint(D));
       flag_.setArg(7, cl_uint(int(k) == last_bits_depth + 1 && k > 0 ? 1 : 0));
       const size_t flag_items = items((count + kFlagChunk - 1) / kFlagChunk);
-      profiler.enqueue(pass_name::kSvoNodes, flag_, ::cl::NDRange(flag_items), ::cl::NDRange(kGroup));
+      profiler.enqueue(pass_name::kSvoNodes, flag_, ::cl::NDRange(flag_items),
+                       ::cl::NDRange(kGroup));
     }
     if (k > 0) {
       dilate_.setArg(0, svo.buffer);
@@ -318,7 +323,8 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
       dilate_.setArg(3, f0);
       dilate_.setArg(4, n);
       dilate_.setArg(5, cl_uint(k));
-      profiler.enqueue(pass_name::kSvoNodes, dilate_, ::cl::NDRange(items(n)), ::cl::NDRange(kGroup));
+      profiler.enqueue(pass_name::kSvoNodes, dilate_, ::cl::NDRange(items(n)),
+                       ::cl::NDRange(kGroup));
     }
     const cl_uint chunks = (n + kChunk - 1) / kChunk;
     count_.setArg(0, svo.buffer);
@@ -327,7 +333,8 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     count_.setArg(3, n);
     count_.setArg(4, cl_uint(kChunk));
     count_.setArg(5, sums_);
-    profiler.enqueue(pass_name::kSvoNodes, count_, ::cl::NDRange(items(chunks)), ::cl::NDRange(kGroup));
+    profiler.enqueue(pass_name::kSvoNodes, count_, ::cl::NDRange(items(chunks)),
+                     ::cl::NDRange(kGroup));
     scan_.setArg(0, sums_);
     scan_.setArg(1, chunks);
     scan_.setArg(2, totals_);
@@ -370,7 +377,8 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     allocate_.setArg(10, cl_uint(size));
     allocate_.setArg(11, cl_uint(leaf ? 1 : 0));
     allocate_.setArg(12, table_offset);
-    profiler.enqueue(pass_name::kSvoNodes, allocate_, ::cl::NDRange(items(chunks)), ::cl::NDRange(kGroup));
+    profiler.enqueue(pass_name::kSvoNodes, allocate_, ::cl::NDRange(items(chunks)),
+                     ::cl::NDRange(kGroup));
     samples += size_t(own) * size;
     brick_count += exist;
     first[k + 1] = f0 + n;
@@ -383,7 +391,8 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     link_.setArg(0, cl_uint(count));
     link_.setArg(1, cur_);
     link_.setArg(2, own_);
-    profiler.enqueue(pass_name::kSvoInject, link_, ::cl::NDRange(items(count)), ::cl::NDRange(kGroup));
+    profiler.enqueue(pass_name::kSvoInject, link_, ::cl::NDRange(items(count)),
+                     ::cl::NDRange(kGroup));
   }
   leaves_.setArg(0, fragments);
   leaves_.setArg(1, cur_);
@@ -396,7 +405,8 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   leaves_.setArg(8, L > 0 ? cl_uint(brick_first[L - 1]) : cl_uint(RP_SVO_NO_BRICK));
   leaves_.setArg(9, cl_uint(D));
   leaves_.setArg(10, table_offset);
-  profiler.enqueue(pass_name::kSvoInject, leaves_, ::cl::NDRange(items(nodes[L])), ::cl::NDRange(kGroup));
+  profiler.enqueue(pass_name::kSvoInject, leaves_, ::cl::NDRange(items(nodes[L])),
+                   ::cl::NDRange(kGroup));
   // The borders: the brick table's face links to the neighbours' bricks (no values are copied,
   // so every depth's links could be made right after its allocation; kept here, per depth).
   const auto border = [&](uint32_t k) {
@@ -419,7 +429,8 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
       mips_.setArg(3, brick_offset);
       mips_.setArg(4, alpha_offset);
       mips_.setArg(5, table_offset);
-      profiler.enqueue(pass_name::kSvoMips, mips_, ::cl::NDRange(items(nodes[k])), ::cl::NDRange(kGroup));
+      profiler.enqueue(pass_name::kSvoMips, mips_, ::cl::NDRange(items(nodes[k])),
+                       ::cl::NDRange(kGroup));
     }
     border(k);
   }

@@ -75,7 +75,8 @@ void TaaPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   const uint32_t whole_blocks = w / kPixelsPerItem;
   if (whole_blocks > 0) {
     set_args(kernel_, 0);
-    profiler.enqueue(pass_name::kTaa, kernel_, ::cl::NDRange(rp::cl::round_up(whole_blocks, kGroup), h),
+    profiler.enqueue(pass_name::kTaa, kernel_,
+                     ::cl::NDRange(rp::cl::round_up(whole_blocks, kGroup), h),
                      ::cl::NDRange(kGroup, 1));
   }
   if (w % kPixelsPerItem != 0) {

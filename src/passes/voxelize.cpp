@@ -182,7 +182,8 @@ void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScen
   const cl_uint zero = 0;
   queue.enqueueWriteBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &zero);
   set_large_args(scene, shadow, kCount);
-  profiler.enqueue(pass_name::kVoxelize, large_, ::cl::NDRange(large_items_), ::cl::NDRange(kSpanGroup));
+  profiler.enqueue(pass_name::kVoxelize, large_, ::cl::NDRange(large_items_),
+                   ::cl::NDRange(kSpanGroup));
   cl_uint samples = 0;
   queue.enqueueReadBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &samples);
   if (uint64_t(samples) * kSampleBytes > cache_limit_) {
@@ -342,7 +343,8 @@ void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& 
     // work-group costs a few microseconds even when it has nothing to do.
     if (rebuild) build_cache(profiler, scene, shadow);
     set_large_args(scene, shadow, kAccumulate);
-    profiler.enqueue(pass_name::kVoxelize, large_, ::cl::NDRange(large_items_), ::cl::NDRange(kSpanGroup));
+    profiler.enqueue(pass_name::kVoxelize, large_, ::cl::NDRange(large_items_),
+                     ::cl::NDRange(kSpanGroup));
   }
 
   if (cache_samples_ > 0) {
