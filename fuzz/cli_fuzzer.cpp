@@ -1,4 +1,4 @@
-// libFuzzer target: the whole command line, app::parse_cli (src/app/cli_parse.cpp): the real
+// libFuzzer target: the whole command line, cli::parse_cli (src/cli/cli_parse.cpp): the real
 // CLI11 option definitions, validators and usage checks of every subcommand. parse_cli opens no
 // device or file, so this runs the program's own parser, not a copy.
 //

@@ -42,7 +42,7 @@ bool fits(const DeviceMemoryNeed& need, uint64_t global_bytes, uint64_t max_allo
   return need.total_bytes <= global_bytes && need.largest_buffer_bytes <= max_alloc_bytes;
 }
 
-// The --voxels the app offers for a volume (app/cli_parse.cpp), largest first.
+// The --voxels the app offers for a volume (app/cli_options.cpp), largest first.
 std::vector<uint32_t> voxel_choices(bool octree) {
   return octree ? std::vector<uint32_t>{512, 256} : std::vector<uint32_t>{128, 64, 32};
 }
