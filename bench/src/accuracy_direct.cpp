@@ -8,12 +8,12 @@
 #include <cstdio>
 #include <limits>
 
-#include "bench/src/accuracy_metrics.h"
 #include "app/host_tone_map.h"
 #include "app/interrupt.h"
 #include "app/png_output.h"
 #include "app/progress.h"
 #include "app/truth_cache.h"
+#include "bench/src/accuracy_metrics.h"
 #include "scene/demo_scene.h"
 
 namespace rp::bench {

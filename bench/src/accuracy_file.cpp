@@ -9,13 +9,13 @@
 #include "app/host_tone_map.h"
 #include "app/png_output.h"
 #include "app/sky_input.h"
-#include "shading/spherical_harmonics.h"
 #include "app/truth_cache.h"
 #include "bench/src/accuracy_materials.h"
 #include "bench/src/accuracy_metrics.h"
 #include "bench/src/accuracy_render.h"
 #include "bench/src/scene_file_facts.h"
 #include "render/renderer.h"
+#include "shading/spherical_harmonics.h"
 
 namespace rp::bench {
 

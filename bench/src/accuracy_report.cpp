@@ -8,18 +8,18 @@
 #include <utility>
 #include <vector>
 
+#include "app/host_tone_map.h"
+#include "app/interrupt.h"
+#include "app/png_output.h"
+#include "app/truth_cache.h"
 #include "bench/src/accuracy_direct.h"
 #include "bench/src/accuracy_file.h"
 #include "bench/src/accuracy_marbles.h"
 #include "bench/src/accuracy_metrics.h"
 #include "bench/src/accuracy_render.h"
+#include "bench/src/bench_commands.h"
 #include "bench/src/bench_scene.h"
 #include "bench/src/scene_file_facts.h"
-#include "bench/src/bench_commands.h"
-#include "app/host_tone_map.h"
-#include "app/interrupt.h"
-#include "app/png_output.h"
-#include "app/truth_cache.h"
 #include "render/renderer.h"
 #include "scene/demo_scene.h"
 

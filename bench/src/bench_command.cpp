@@ -5,15 +5,15 @@
 #include <filesystem>
 #include <memory>
 
-#include "bench/src/bench_commands.h"
 #include "app/interrupt.h"
+#include "app/pass_stats.h"
 #include "app/png_output.h"
 #include "app/progress.h"
 #include "bench/src/bench_chart.h"
+#include "bench/src/bench_commands.h"
 #include "bench/src/bench_matrix.h"
 #include "bench/src/bench_report.h"
 #include "bench/src/bench_scene.h"
-#include "app/pass_stats.h"
 #include "bench/src/quality_report.h"
 #include "bench/src/scene_file_facts.h"
 #include "io/output_path.h"

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <string>
 
-#include "bench/src/bench_matrix.h"
 #include "app/pass_stats.h"
+#include "bench/src/bench_matrix.h"
 
 namespace rp::bench {
 

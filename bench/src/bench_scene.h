@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "bench/src/bench_options.h"
 #include "app/scene_input.h"
 #include "bench/src/bench_matrix.h"
+#include "bench/src/bench_options.h"
 
 namespace rp::bench {
 

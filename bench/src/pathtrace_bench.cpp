@@ -11,11 +11,11 @@
 #include "app/interrupt.h"
 #include "app/pass_stats.h"
 #include "app/pathtrace_settings.h"
+#include "app/png_output.h"
 #include "app/progress.h"
 #include "app/simulation_source.h"
 #include "app/sky_input.h"
 #include "bench/src/bench_commands.h"
-#include "app/png_output.h"
 #include "truth/path_tracer.h"
 
 namespace rp::bench {

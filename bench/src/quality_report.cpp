@@ -7,9 +7,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "bench/src/bench_commands.h"
 #include "app/png_output.h"
 #include "app/simulation_source.h"
+#include "bench/src/bench_commands.h"
 #include "scene/demo_scene.h"
 
 namespace rp::bench {

@@ -12,8 +12,8 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
-#include "util/named_enum.h"
 #include "passes/debug_view.h"
+#include "util/named_enum.h"
 
 namespace rp::app {
 

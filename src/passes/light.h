@@ -13,8 +13,8 @@
 
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
-#include "render/frame_buffers.h"
 #include "passes/indirect.h"
+#include "render/frame_buffers.h"
 #include "render/gpu_scene.h"
 #include "render/render_settings.h"
 

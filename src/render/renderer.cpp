@@ -5,26 +5,26 @@
 #include <cmath>
 
 #include "cl/error.h"
+#include "passes/bloom.h"
 #include "passes/bounce.h"
 #include "passes/debug_view.h"
 #include "passes/embree_visibility.h"
 #include "passes/gbuffer.h"
-#include "passes/bloom.h"
 #include "passes/indirect.h"
 #include "passes/light.h"
 #include "passes/motion_blur.h"
 #include "passes/pass_names.h"
+#include "passes/prt_sky.h"
 #include "passes/punctual_light.h"
 #include "passes/shadow_filter.h"
-#include "passes/prt_sky.h"
 #include "passes/sky_background.h"
+#include "passes/svo.h"
 #include "passes/taa.h"
 #include "passes/taa_upsample.h"
 #include "passes/tone_map.h"
 #include "passes/visibility.h"
 #include "passes/voxel_mips.h"
 #include "passes/voxelize.h"
-#include "passes/svo.h"
 
 namespace rp::render {
 namespace {

@@ -19,9 +19,9 @@
 #include <unistd.h>
 
 #include "app/png_output.h"
-#include "support/cli_runner.h"
 #include "io/atomic_file.h"
 #include "io/output_path.h"
+#include "support/cli_runner.h"
 #include "tiny_tmpfs.h"
 #include "truth/exr_io.h"
 

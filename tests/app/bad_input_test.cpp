@@ -21,8 +21,8 @@
 #include <stb/stb_image.h>
 
 #include "app/render_session.h"
-#include "support/cli_runner.h"
 #include "scene/demo_scene.h"
+#include "support/cli_runner.h"
 
 namespace rp::test {
 namespace {

@@ -14,9 +14,9 @@
 #include "app/scene_input.h"
 #include "app/simulation_source.h"
 #include "cl/context.h"
-#include "support/image_metrics.h"
 #include "scene/demo_scene.h"
 #include "scene/gltf_export.h"
+#include "support/image_metrics.h"
 #include "truth/path_tracer.h"
 
 namespace rp::test {

@@ -14,8 +14,8 @@
 #include "app/scene_input.h"
 #include "cl/buffer.h"
 #include "cl/error.h"
-#include "support/cli_runner.h"
 #include "support/cl_fixture.h"
+#include "support/cli_runner.h"
 
 namespace rp::test {
 namespace {

@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "passes/pass_names.h"
-#include "support/cli_runner.h"
 #include "scene/demo_scene.h"
+#include "support/cli_runner.h"
 #include "support/image_metrics.h"
 
 namespace rp::test {

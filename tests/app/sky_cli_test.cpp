@@ -14,15 +14,15 @@
 #include <glm/glm.hpp>
 #include <stb/stb_image_write.h>
 
-#include "cli/cli.h"
 #include "app/sky_input.h"
-#include "support/cli_runner.h"
+#include "cli/cli.h"
 #include "scene/box_mesh.h"
 #include "scene/frame_scene.h"
 #include "scene/gltf_export.h"
+#include "support/cli_runner.h"
 #include "truth/environment.h"
-#include "truth/prt_transfer.h"
 #include "truth/exr_io.h"
+#include "truth/prt_transfer.h"
 
 namespace rp::test {
 namespace {

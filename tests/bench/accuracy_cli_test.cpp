@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/truth_cache.h"
-#include "support/cli_runner.h"
 #include "scene/demo_scene.h"
+#include "support/cli_runner.h"
 
 namespace rp::bench {
 namespace {

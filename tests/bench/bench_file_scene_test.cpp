@@ -10,10 +10,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/cli.h"
 #include "bench/src/bench_report.h"
 #include "bench/src/scene_file_facts.h"
 #include "bench_test_scene.h"
+#include "cli/cli.h"
 #include "passes/pass_names.h"
 #include "support/cli_runner.h"
 
