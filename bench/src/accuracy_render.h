@@ -74,8 +74,8 @@ using FrameFn =
 // bloom or motion blur, TAA only when asked. `final_rgba` gets the last finished frame.
 // `assets`: what the frames draw from (a scene file's); nullptr = the demo's (--assets).
 Images render_mode(const app::CommonOptions& common, const std::string& name,
-                   render::Quality quality, uint32_t bounces, bool taa, uint32_t w, uint32_t h, uint32_t frames,
-                   std::vector<uint8_t>& final_rgba,
+                   render::Quality quality, uint32_t bounces, bool taa, uint32_t w, uint32_t h,
+                   uint32_t frames, std::vector<uint8_t>& final_rgba,
                    const FrameFn& frame_fn = scene::make_demo_frame,
                    const scene::SceneAssets* assets = nullptr);
 

@@ -16,9 +16,9 @@ int bench_command(const app::CommonOptions& common, const BenchOptions& options)
 // The files a bench writes: `given`, with out/bench.json and out/bench.svg for --json and
 // --chart when a device sweep (--devices) named none (bench/src/bench_command.cpp).
 BenchOptions with_default_outputs(const BenchOptions& given);
-// bench --accuracy: the real-time modes against the path-traced truth (bench/src/accuracy_report.h);
-// exit 3 when a threshold (--max-indirect-l1 ... --require-wall-hue) is missed, 130 when
-// interrupted.
+// bench --accuracy: the real-time modes against the path-traced truth
+// (bench/src/accuracy_report.h); exit 3 when a threshold (--max-indirect-l1 ...
+// --require-wall-hue) is missed, 130 when interrupted.
 int accuracy_command(const app::CommonOptions& common, const BenchOptions& options);
 // bench --quality pathtraced: seconds and Mrays/s per path-traced frame, optional JSON (schema
 // "rolypoly-pathtrace-bench/1"). file: a loaded scene file instead of the demo, with
