@@ -169,6 +169,16 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
     std::printf("  render scale %.3f: rendered at %ux%u for the %ux%u output%s\n",
                 double(run.render_scale), run.render_width, run.render_height, width, height,
                 common.target_ms > 0.0 ? " (where --target-ms left it)" : "");
+  const render::FrameMemory held = session.renderer().frame_device_memory();
+  for (const auto& [part, bytes] : held.parts)
+    if (bytes > 0) run.frame_memory.emplace_back(std::string(part), bytes);
+  const uint64_t shadow_bytes = held.of(passes::pass_name::kShadowMap) +
+                                held.of(passes::pass_name::kShadowFilter);
+  std::printf("  device memory that follows the frame (CL_MEM_SIZE): image buffers %.1f MiB "
+              "(%.1f bytes per output pixel), shadow map and its mips %.1f MiB\n",
+              double(held.total() - shadow_bytes) / double(1 << 20),
+              double(held.total() - shadow_bytes) / run.pixels(),
+              double(shadow_bytes) / double(1 << 20));
   if (common.render.gi_volume == render::GiVolume::kSvo) {
     const render::SvoVolume& o = session.renderer().octree();
     run.octree_device_bytes = o.device_bytes;

@@ -51,6 +51,9 @@ struct RunResult {
   // fragments and the fragment list's bytes.
   uint64_t octree_node_bytes = 0, octree_brick_bytes = 0, octree_fragments = 0,
            octree_fragment_bytes = 0;
+  // The device memory of the buffers that follow the image, per part (pass name, bytes) as the
+  // renderer held them after the last frame (render::Renderer::frame_device_memory).
+  std::vector<std::pair<std::string, uint64_t>> frame_memory;
   std::vector<PassResult> passes;  // pipeline order (pipeline_rank)
   app::TimeSummary frame;             // wall clock of Renderer::render per frame
   // What the measured frames drew (the last one; every device draws the same frames).

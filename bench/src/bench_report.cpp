@@ -65,6 +65,11 @@ Json run_json(const RunResult& r) {
                           {"brick_bytes", r.octree_brick_bytes},
                           {"fragments", r.octree_fragments},
                           {"fragment_bytes", r.octree_fragment_bytes}};
+  if (!r.frame_memory.empty()) {  // [part, bytes] pairs in the renderer's order
+    Json memory = Json::array();
+    for (const auto& [part, bytes] : r.frame_memory) memory.push_back({part, bytes});
+    j["frame_memory"] = memory;
+  }
   j["scene"] = {{"spheres", r.spheres},
                 {"instances", r.instances},
                 {"instance_triangles", r.instance_triangles},
@@ -112,6 +117,9 @@ RunResult parse_run(const Json& j) {
     r.octree_fragments = m.value("fragments", uint64_t(0));
     r.octree_fragment_bytes = m.value("fragment_bytes", uint64_t(0));
   }
+  if (j.contains("frame_memory"))  // files before it: none
+    for (const Json& part : j.at("frame_memory"))
+      r.frame_memory.emplace_back(part.at(0).get<std::string>(), part.at(1).get<uint64_t>());
   r.spheres = j.at("scene").at("spheres");
   r.instances = j.at("scene").at("instances");
   r.instance_triangles = j.at("scene").at("instance_triangles");

@@ -10,10 +10,9 @@
 #include "app/progress.h"
 #include "app/sky_input.h"
 #include "cl/error.h"
-#include "passes/motion_blur.h"
+#include "passes/pass_names.h"
 #include "passes/prt_sky.h"
-#include "render/gpu_types.h"  // before raster_types.h, which builds on its types
-#include "kernels/shared/raster_types.h"
+#include "render/frame_memory.h"
 #include "render/gpu_scene.h"
 #include "render/sky_texture.h"
 #include "render/voxel_volume.h"
@@ -49,24 +48,27 @@ std::vector<uint32_t> voxel_choices(bool octree) {
 
 }  // namespace
 
-DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_t shadow_size,
-                                        uint32_t voxel_resolution, bool light_components,
-                                        bool octree, bool reference, const SceneMemory* scene) {
-  const uint64_t n = uint64_t(width) * height;
-  uint64_t per_pixel_x3 = 3 * (20 + 72 + 16 + 32 + 4 + 32 + 4) + 32;  // bloom's 32/3 exactly
-  if (light_components) per_pixel_x3 += 3 * 48;  // direct, indirect, specular float4
-  if (reference) per_pixel_x3 += 3 * 16;         // the previous frame's output (its SSR)
-  const auto tiles = [&](uint64_t side) {
-    return ((width + side - 1) / side) * ((height + side - 1) / side);
-  };
-  const uint64_t blur_tiles = tiles(passes::MotionBlurPass::kTileSize);
-  const uint64_t raster_tiles = tiles(RP_RASTER_TILE);
-  const uint64_t r = voxel_resolution;
+render::FrameMemory frame_memory_worst_case(render::RenderSettings settings,
+                                            const render::FrameMemoryOptions& frame) {
+  settings.effects.taa = settings.effects.bloom = settings.effects.motion_blur = true;
+  render::FrameMemory m = render::frame_memory(settings, frame);
+  for (render::ShadowMode mode : {render::ShadowMode::kPcss, render::ShadowMode::kVssm}) {
+    settings.shadows = mode;
+    m.take_max(render::frame_memory(settings, frame));
+  }
+  return m;
+}
+
+DeviceMemoryNeed estimate_device_memory(const render::RenderSettings& settings,
+                                        const render::FrameMemoryOptions& frame,
+                                        const SceneMemory* scene) {
+  namespace pass_name = passes::pass_name;
+  const render::FrameMemory parts = frame_memory_worst_case(settings, frame);
+  const uint64_t r = settings.voxel_resolution;
   DeviceMemoryNeed need;
-  need.image_bytes =
-      (n * per_pixel_x3 + 2) / 3 + blur_tiles * 20 + raster_tiles * 2 * 12;
-  need.shadow_bytes = uint64_t(shadow_size) * shadow_size * 4;
-  if (octree) {
+  need.shadow_bytes = parts.of(pass_name::kShadowMap) + parts.of(pass_name::kShadowFilter);
+  need.image_bytes = parts.total() - need.shadow_bytes;
+  if (settings.gi_volume == render::GiVolume::kSvo) {
     // The octree's pools, fragment list and build scratch grow with the surface area: at
     // peak 502-567 bytes per R^2 measured on the demo, the busy scene and the atrium at 512^3
     // (141.9 MiB on the atrium), 508 on the atrium at 1024^3; the largest buffer, the fragment
@@ -77,30 +79,30 @@ DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_
     // The chain (one float4 buffer) and the voxelizer's sums (8 words) and overflow bits (one
     // word) per voxel (render/voxel_volume.h).
     need.volume_buffer_bytes =
-        uint64_t(gpu::rp_voxel_total(voxel_resolution,
-                                     render::VoxelVolume::levels_for(voxel_resolution))) *
+        uint64_t(gpu::rp_voxel_total(settings.voxel_resolution,
+                                     render::VoxelVolume::levels_for(settings.voxel_resolution))) *
         16;
     need.volume_bytes = need.volume_buffer_bytes + r * r * r * (RP_VOXEL_ACCUM_WORDS * 4 + 4);
   }
   need.scene_bytes = scene ? std::max(kSceneReserveBytes, scene->bytes() + kSceneListsBytes)
                            : kSceneReserveBytes;
   need.total_bytes = need.image_bytes + need.shadow_bytes + need.volume_bytes + need.scene_bytes;
-  need.largest_buffer_bytes = std::max(n * 16, need.volume_buffer_bytes);
+  const uint64_t pixels = uint64_t(settings.width) * settings.height;
+  need.largest_buffer_bytes = std::max(pixels * 16, need.volume_buffer_bytes);
   if (scene) need.largest_buffer_bytes = std::max(need.largest_buffer_bytes,
                                                   scene->largest_buffer_bytes());
   return need;
 }
 
 uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_bytes,
-                                  uint32_t shadow_size, uint32_t voxel_resolution,
-                                  bool light_components, bool octree, bool reference,
+                                  render::RenderSettings settings,
+                                  const render::FrameMemoryOptions& frame,
                                   const SceneMemory* scene) {
   uint32_t lo = 0, hi = 1u << 17;  // invariant: lo fits (0 trivially), hi does not
   while (hi - lo > 1) {
     const uint32_t mid = lo + (hi - lo) / 2;
-    if (fits(estimate_device_memory(mid, mid, shadow_size, voxel_resolution, light_components,
-                                    octree, reference, scene),
-             global_bytes, max_alloc_bytes))
+    settings.width = settings.height = mid;
+    if (fits(estimate_device_memory(settings, frame, scene), global_bytes, max_alloc_bytes))
       lo = mid;
     else
       hi = mid;
@@ -108,27 +110,28 @@ uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_byte
   return lo;
 }
 
-uint32_t largest_voxels_that_fit(uint64_t global_bytes, uint64_t max_alloc_bytes, uint32_t width,
-                                 uint32_t height, uint32_t shadow_size, bool light_components,
-                                 bool octree, bool reference, const SceneMemory* scene) {
-  for (uint32_t v : voxel_choices(octree))
-    if (fits(estimate_device_memory(width, height, shadow_size, v, light_components, octree,
-                                    reference, scene),
-             global_bytes, max_alloc_bytes))
+uint32_t largest_voxels_that_fit(uint64_t global_bytes, uint64_t max_alloc_bytes,
+                                 render::RenderSettings settings,
+                                 const render::FrameMemoryOptions& frame,
+                                 const SceneMemory* scene) {
+  for (uint32_t v : voxel_choices(settings.gi_volume == render::GiVolume::kSvo)) {
+    settings.voxel_resolution = v;
+    if (fits(estimate_device_memory(settings, frame, scene), global_bytes, max_alloc_bytes))
       return v;
+  }
   return 0;
 }
 
-void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint32_t height,
-                         uint32_t shadow_size, uint32_t voxel_resolution, bool light_components,
-                         bool octree, bool reference, const SceneMemory* scene,
+void check_device_memory(const rp::cl::DeviceInfo& device, const render::RenderSettings& settings,
+                         const render::FrameMemoryOptions& frame, const SceneMemory* scene,
                          const std::string& scene_name) {
-  const DeviceMemoryNeed need = estimate_device_memory(
-      width, height, shadow_size, voxel_resolution, light_components, octree, reference, scene);
+  const DeviceMemoryNeed need = estimate_device_memory(settings, frame, scene);
   if (device.global_mem_bytes == 0 || fits(need, device.global_mem_bytes, device.max_alloc_bytes))
     return;  // 0: the driver did not say; buffer creation failures are still reported
   const uint64_t global = device.global_mem_bytes, max_alloc = device.max_alloc_bytes;
-  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  const bool octree = settings.gi_volume == render::GiVolume::kSvo;
+  const uint32_t voxel_resolution = settings.voxel_resolution;
+  const std::string size = std::to_string(settings.width) + "x" + std::to_string(settings.height);
   const std::string volume = std::string("--gi-volume ") + (octree ? "svo" : "dense") +
                              " --voxels " + std::to_string(voxel_resolution);
   const std::string parts = " (the image's buffers " + mib(need.image_bytes) + ", " +
@@ -139,9 +142,10 @@ void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint3
   // A loaded scene that does not fit even with a 1x1 image and the smallest volume: no
   // setting helps, the scene is the cause.
   if (scene != nullptr) {
-    const uint32_t smallest = voxel_choices(octree).back();
-    const DeviceMemoryNeed least = estimate_device_memory(1, 1, 1, smallest, false, octree,
-                                                          false, scene);
+    render::RenderSettings least_settings = settings;
+    least_settings.width = least_settings.height = least_settings.shadow_size = 1;
+    least_settings.voxel_resolution = voxel_choices(octree).back();
+    const DeviceMemoryNeed least = estimate_device_memory(least_settings, {}, scene);
     if (!fits(least, global, max_alloc)) {
       std::string message = "the scene " + scene_name + " needs " + mib(need.scene_bytes) +
                             " of device memory (" + scene->describe() + ")";
@@ -155,10 +159,8 @@ void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint3
   }
 
   // The GI volume decides when a smaller --voxels fits at this image size.
-  const uint32_t voxels = largest_voxels_that_fit(global, max_alloc, width, height, shadow_size,
-                                                  light_components, octree, reference, scene);
-  const uint32_t side = largest_square_that_fits(global, max_alloc, shadow_size, voxel_resolution,
-                                                 light_components, octree, reference, scene);
+  const uint32_t voxels = largest_voxels_that_fit(global, max_alloc, settings, frame, scene);
+  const uint32_t side = largest_square_that_fits(global, max_alloc, settings, frame, scene);
   if (voxels != 0 && voxels < voxel_resolution) {
     std::string message = volume + " at " + size + " needs ";
     if (need.total_bytes > global)
@@ -217,16 +219,12 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   render::check_texture_memory(assets_.textures, context_.info.max_alloc_bytes,
                                context_.info.global_mem_bytes);
   const SceneMemory scene = scene_memory();
-  const bool components = passes::needs_light_components(options.view.view) || keep_components;
-  const bool octree = settings.gi_volume == render::GiVolume::kSvo;
-  const bool reference = settings.quality == render::Quality::kReference;
-  check_device_memory(context_.info, width, height, settings.shadow_size,
-                      settings.voxel_resolution, components, octree, reference, &scene,
-                      "--scene " + options.scene);
-  device_memory_estimate_ =
-      estimate_device_memory(width, height, settings.shadow_size, settings.voxel_resolution,
-                             components, octree, reference, &scene)
-          .total_bytes;
+  render::FrameMemoryOptions frame;
+  frame.light_components =
+      passes::needs_light_components(options.view.view) || keep_components;
+  frame.prt = prt_.has_value();
+  check_device_memory(context_.info, settings, frame, &scene, "--scene " + options.scene);
+  device_memory_estimate_ = estimate_device_memory(settings, frame, &scene).total_bytes;
   try {
     renderer_ = std::make_unique<render::Renderer>(context_, programs_, assets_, settings);
   } catch (const std::bad_alloc&) {
@@ -244,10 +242,10 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
 void RenderSession::set_keep_components(bool keep) {
   if (keep) {
     const SceneMemory scene = scene_memory();
-    check_device_memory(context_.info, width(), height(), renderer_->settings().shadow_size,
-                        renderer_->settings().voxel_resolution, true,
-                        renderer_->settings().gi_volume == render::GiVolume::kSvo,
-                        renderer_->settings().quality == render::Quality::kReference, &scene);
+    render::FrameMemoryOptions frame;
+    frame.light_components = true;
+    frame.prt = prt_.has_value();
+    check_device_memory(context_.info, renderer_->settings(), frame, &scene);
   }
   renderer_->set_keep_light_components(keep);
 }

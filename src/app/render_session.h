@@ -148,32 +148,32 @@ class RenderSession {
   bool prt_ready_ = false;                     // prepare_prt ran: the renderer has the transfer
 };
 
-// Device memory the renderer allocates for one width x height image, counted buffer by buffer
-// from render/frame_buffers.h, renderer.h and the passes (bytes, an estimate that errs high):
-// per pixel: visibility 20 (depth, ids, bary), GBuffer 72 (4 float4 + velocity float2), HDR 16,
-// post ping-pong 32, RGBA8 4, TAA history 32, bloom chain <= 32/3 (half-size levels, down + up),
-// motion blur 4 (+ 20 per 20x20 tile), direct/indirect components 32 (only for those views or
-// when kept for `render --exr`),
-// raster tile lists 24 per tile; fixed: shadow map 4 * size^2, voxel chain + accum + overflow,
-// and kSceneReserveBytes for meshes, textures and draw lists.
+// Device memory a session needs (bytes, an estimate that errs high where the window may switch
+// modes): the buffers that follow the image (render/frame_memory.h, summed from the passes'
+// own figures: exact for the final view), the GI volume (the dense chain and the voxelizer's
+// sums and overflow bits, or the octree at 640 bytes per R^2, measured high), and the
+// scene (a loaded one's counted buffers, at least kSceneReserveBytes for meshes, textures and
+// draw lists).
 struct DeviceMemoryNeed {
   uint64_t total_bytes = 0;
   uint64_t largest_buffer_bytes = 0;  // the biggest single allocation (per pixel, volume, scene)
-  // The parts of total_bytes, for the message: per-pixel buffers and tile lists, the GI volume
-  // (dense chain and voxelizer scratch, or the octree's pools and scratch), the lamp's shadow
-  // map, the scene (a loaded one's counted buffers, at least the reserve).
+  // The parts of total_bytes, for the message: the image's buffers, the GI volume, the lamp's
+  // shadow map and its mips, the scene.
   uint64_t image_bytes = 0, volume_bytes = 0, shadow_bytes = 0, scene_bytes = 0;
   uint64_t volume_buffer_bytes = 0;  // the volume's one large buffer (chain, or octree pools)
 };
-// octree: the GI volume is the sparse voxel octree (its pools counted at kSvoBytesPerArea bytes
-// per R^2: measured on the demo, see bench/results/epyc-2core-pocl-svo-*.md) instead of the
-// dense chain.
-// reference: the reference quality mode, which keeps a copy of the previous frame's light output
-// for its screen-space reflections (16 bytes per pixel).
-// scene: a scene's counted buffers (nullptr: kSceneReserveBytes, enough for the demo).
-DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_t shadow_size,
-                                        uint32_t voxel_resolution, bool light_components,
-                                        bool octree = false, bool reference = false,
+
+// The frame memory the estimate counts for `settings`: every effect on (the window's keys turn
+// them on) and the buffers of pcss and vssm together (key H switches; pcss's chunk verdicts
+// stay allocated), each part at its largest.
+render::FrameMemory frame_memory_worst_case(render::RenderSettings settings,
+                                            const render::FrameMemoryOptions& frame);
+
+// settings: the size, shadow map, volume, quality and render scale; frame: the light
+// components (the direct / indirect views, `render --exr`) and PRT; scene: a loaded scene's
+// counted buffers (nullptr: kSceneReserveBytes, enough for the demo).
+DeviceMemoryNeed estimate_device_memory(const render::RenderSettings& settings,
+                                        const render::FrameMemoryOptions& frame = {},
                                         const SceneMemory* scene = nullptr);
 
 // Throws rp::cl::Error before anything is allocated when the estimate exceeds the device's
@@ -187,23 +187,22 @@ DeviceMemoryNeed estimate_device_memory(uint32_t width, uint32_t height, uint32_
 //   --voxels 512 the largest square size is about 1900 (--size 1900)";
 // - else the image: "16384x16384 needs 51.2 GiB of device memory, the device has 5.6 GiB; the
 //   largest square size that fits is about 5400 (--size 5400)".
-void check_device_memory(const rp::cl::DeviceInfo& device, uint32_t width, uint32_t height,
-                         uint32_t shadow_size, uint32_t voxel_resolution, bool light_components,
-                         bool octree = false, bool reference = false,
+void check_device_memory(const rp::cl::DeviceInfo& device, const render::RenderSettings& settings,
+                         const render::FrameMemoryOptions& frame = {},
                          const SceneMemory* scene = nullptr, const std::string& scene_name = "");
 
-// The largest square side s (0 if none) whose estimate fits `global_bytes` with every buffer
-// within `max_alloc_bytes`.
+// The largest square side s (0 if none) whose estimate with settings at s x s fits
+// `global_bytes` with every buffer within `max_alloc_bytes`.
 uint32_t largest_square_that_fits(uint64_t global_bytes, uint64_t max_alloc_bytes,
-                                  uint32_t shadow_size, uint32_t voxel_resolution,
-                                  bool light_components, bool octree = false,
-                                  bool reference = false, const SceneMemory* scene = nullptr);
+                                  render::RenderSettings settings,
+                                  const render::FrameMemoryOptions& frame = {},
+                                  const SceneMemory* scene = nullptr);
 
-// The largest --voxels the app offers for the volume (dense 128, 64, 32; octree 512, 256) whose
-// estimate fits at width x height; 0 if none.
-uint32_t largest_voxels_that_fit(uint64_t global_bytes, uint64_t max_alloc_bytes, uint32_t width,
-                                 uint32_t height, uint32_t shadow_size, bool light_components,
-                                 bool octree, bool reference = false,
+// The largest --voxels the app offers for settings.gi_volume (dense 128, 64, 32; octree 512,
+// 256) whose estimate fits at settings' size; 0 if none.
+uint32_t largest_voxels_that_fit(uint64_t global_bytes, uint64_t max_alloc_bytes,
+                                 render::RenderSettings settings,
+                                 const render::FrameMemoryOptions& frame = {},
                                  const SceneMemory* scene = nullptr);
 
 // "[0] pthread-... (CPU, Portable Computing Language)"

@@ -53,14 +53,38 @@ const ::cl::Buffer& BloomPass::up(int k) const {
   return k == levels() ? level.down : level.up;
 }
 
-void BloomPass::allocate(uint32_t width, uint32_t height) {
-  if (width == width_ && height == height_) return;
-  levels_.clear();
+std::vector<std::pair<uint32_t, uint32_t>> BloomPass::level_sizes(uint32_t width,
+                                                                  uint32_t height) {
+  std::vector<std::pair<uint32_t, uint32_t>> sizes;
   uint32_t w = width, h = height;
   for (int k = 1; k <= kMaxLevels; ++k) {
     w = (w + 1) / 2;
     h = (h + 1) / 2;
     if (k > 1 && std::min(w, h) < kMinLevelSide) break;
+    sizes.emplace_back(w, h);
+  }
+  return sizes;
+}
+
+uint64_t BloomPass::frame_bytes(uint32_t width, uint32_t height) {
+  const std::vector<std::pair<uint32_t, uint32_t>> sizes = level_sizes(width, height);
+  uint64_t bytes = 0;
+  for (size_t k = 0; k < sizes.size(); ++k)  // Dk, and Uk but for the last level
+    bytes += (k + 1 < sizes.size() ? 2 : 1) * pixel_count(sizes[k].first, sizes[k].second) *
+             kPlanes * sizeof(float);
+  return bytes;
+}
+
+uint64_t BloomPass::frame_device_bytes() const {
+  uint64_t bytes = 0;
+  for (const Level& level : levels_) bytes += buffer_bytes({&level.down, &level.up});
+  return bytes;
+}
+
+void BloomPass::allocate(uint32_t width, uint32_t height) {
+  if (width == width_ && height == height_) return;
+  levels_.clear();
+  for (const auto& [w, h] : level_sizes(width, height)) {
     Level level;
     level.width = w;
     level.height = h;

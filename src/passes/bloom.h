@@ -12,10 +12,12 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
+#include "passes/frame_memory.h"
 
 namespace rp::passes {
 
@@ -66,6 +68,12 @@ class BloomPass {
   uint32_t level_height(int k) const { return levels_.at(size_t(k - 1)).height; }
   const ::cl::Buffer& down(int k) const { return levels_.at(size_t(k - 1)).down; }
   const ::cl::Buffer& up(int k) const;
+
+  // The chain's level sizes for a width x height image (D1 .. DN), and its device memory
+  // (passes/frame_memory.h): Dk and Uk (k < N) as planar rgb floats; what the pass holds now.
+  static std::vector<std::pair<uint32_t, uint32_t>> level_sizes(uint32_t width, uint32_t height);
+  static uint64_t frame_bytes(uint32_t width, uint32_t height);
+  uint64_t frame_device_bytes() const;
 
  private:
   struct Level {

@@ -50,6 +50,29 @@ uint32_t IndirectPass::ssr_top_level(uint32_t w, uint32_t h) {
   return top;
 }
 
+uint64_t IndirectPass::hiz_floats(uint32_t w, uint32_t h) {
+  uint64_t floats = 1;
+  for (uint32_t k = 1, lw = w, lh = h; k <= ssr_top_level(w, h); ++k) {
+    lw = (lw + 1) / 2;
+    lh = (lh + 1) / 2;
+    floats += uint64_t(lw) * lh;
+  }
+  return floats;
+}
+
+// Planes per resize(): radiance 3, specular 3, specular_filled 2 x 3, position 4, geometry
+// 2 x 4, history 2 x 5.
+uint64_t IndirectPass::frame_bytes(uint32_t w, uint32_t h) {
+  const uint64_t plane = uint64_t(plane_size(low_res(w), low_res(h))) * sizeof(float);
+  return (3 + 3 + 2 * 3 + 4 + 2 * 4 + 2 * 5) * plane + hiz_floats(w, h) * sizeof(float) + 16;
+}
+
+uint64_t IndirectPass::frame_device_bytes() const {
+  return buffer_bytes({&radiance_, &specular_, &specular_filled_[0], &specular_filled_[1],
+                       &position_, &geometry_[0], &geometry_[1], &history_[0], &history_[1],
+                       &hiz_, &dummy_});
+}
+
 void IndirectPass::resize(uint32_t width, uint32_t height) {
   const size_t plane = size_t(plane_size(low_res(width), low_res(height))) * sizeof(float);
   radiance_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
@@ -71,13 +94,8 @@ void IndirectPass::resize(uint32_t width, uint32_t height) {
         &geometry_[1], &history_[0], &history_[1]})
     context_->queue.enqueueFillBuffer(*b, 0.0f, 0, b->getInfo<CL_MEM_SIZE>());
   context_->queue.enqueueFillBuffer(specular_, -3.0f, 0, specular_.getInfo<CL_MEM_SIZE>());
-  size_t hiz = 1;
-  for (uint32_t k = 1, lw = width, lh = height; k <= ssr_top_level(width, height); ++k) {
-    lw = (lw + 1) / 2;
-    lh = (lh + 1) / 2;
-    hiz += size_t(lw) * lh;
-  }
-  hiz_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, hiz * sizeof(float));
+  hiz_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
+                      size_t(hiz_floats(width, height)) * sizeof(float));
   dummy_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 16);
   context_->queue.enqueueFillBuffer(dummy_, 0.0f, 0, 16);
   width_ = width;

@@ -10,6 +10,7 @@
 
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
+#include "passes/frame_memory.h"
 #include "render/frame_buffers.h"
 #include "render/gpu_scene.h"
 
@@ -66,6 +67,13 @@ class IndirectPass {
   // Coarsest level of the min-Z pyramid for a frame w x h (kernels/common/ssr.h): at most 6
   // (64-pixel cells), no level smaller than 2 x 2.
   static uint32_t ssr_top_level(uint32_t w, uint32_t h);
+  // Floats of the min-Z pyramid for a frame w x h: one, then levels 1 .. ssr_top_level.
+  static uint64_t hiz_floats(uint32_t w, uint32_t h);
+
+  // Device memory for a frame w x h (passes/frame_memory.h): the low-resolution planes, the
+  // min-Z pyramid and the 16-byte stand-in; and what the pass holds now.
+  static uint64_t frame_bytes(uint32_t w, uint32_t h);
+  uint64_t frame_device_bytes() const;
 
   // The next run starts a fresh history (world reset, camera cut).
   void reset_history() { history_valid_ = false; }

@@ -91,6 +91,11 @@ LightPass::LightPass(const rp::cl::Context& context, rp::cl::ProgramCache& progr
   return *k;
 }
 
+uint64_t LightPass::frame_bytes(uint32_t w, uint32_t h, render::ShadowMode filter) {
+  const uint64_t chunks = uint64_t((w + 3) / 4) * ((h + 1) / 2);  // 4x2 pixels, one uchar
+  return pixel_count(w, h) * sizeof(float) + (filter == render::ShadowMode::kPcss ? chunks : 0);
+}
+
 void LightPass::run_visibility(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                                const render::GBuffer& gbuffer, const render::ShadowMap& shadow) {
   const uint32_t w = scene.constants.width, h = scene.constants.height;

@@ -48,6 +48,11 @@ class LightPass {
   // chunks computed, the others filled where all their neighbours agree on lit or umbra (on by
   // default; off computes every chunk).
   void set_shadow_checkerboard(bool on) { checkerboard_ = on; }
+  // Device memory for a frame w x h under `filter` (passes/frame_memory.h): the lamp's
+  // visibility and, for pcss with the checkerboard, its chunks' verdicts; and what the pass
+  // holds now (both only grow: a smaller frame keeps them).
+  static uint64_t frame_bytes(uint32_t w, uint32_t h, render::ShadowMode filter);
+  uint64_t frame_device_bytes() const { return buffer_bytes({&visibility_, &consensus_}); }
   // The last run's lamp visibility: width x height floats in [0, 1], row-major (for tests).
   const ::cl::Buffer& visibility() const { return visibility_; }
 

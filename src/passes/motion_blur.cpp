@@ -43,6 +43,14 @@ void MotionBlurPass::run(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in,
   enqueue(profiler, hdr_in, gbuffer, width, height, shutter, &bloom, hdr_out);
 }
 
+uint64_t MotionBlurPass::frame_bytes(uint32_t width, uint32_t height) {
+  const uint64_t tiles = uint64_t((width + kTileSize - 1) / kTileSize) *
+                         ((height + kTileSize - 1) / kTileSize);
+  // tile_max, neighbour_max float2; plane_needed uint; block_speed a float per 4x4 block
+  const uint64_t per_tile = 2 * 8 + 4 + kBlocksPerTile * kBlocksPerTile * sizeof(float);
+  return tiles * per_tile + pixel_count(width, height) * 2 * sizeof(uint16_t);
+}
+
 void MotionBlurPass::enqueue(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in,
                              const render::GBuffer& gbuffer, uint32_t width, uint32_t height,
                              float shutter, const BloomPass::Composite* bloom,
@@ -55,7 +63,7 @@ void MotionBlurPass::enqueue(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr
     throw rp::cl::Error("motion blur: shutter " + std::to_string(shutter) +
                         " is outside [0, 1] (fraction of the frame interval)");
   if (width == 0 || height == 0) return;
-  if (width != width_ || height != height_) {
+  if (width != width_ || height != height_) {  // the buffers of frame_bytes
     width_ = width;
     height_ = height;
     tiles_x_ = (width + kTileSize - 1) / kTileSize;

@@ -15,6 +15,7 @@
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
 #include "passes/bloom.h"
+#include "passes/frame_memory.h"
 #include "render/frame_buffers.h"
 
 namespace rp::passes {
@@ -55,6 +56,14 @@ class MotionBlurPass {
   const ::cl::Buffer& tile_max() const { return tile_max_; }
   const ::cl::Buffer& neighbour_max() const { return neighbour_max_; }
   const ::cl::Buffer& depth_speed() const { return depth_speed_; }
+
+  // Device memory for a width x height image (passes/frame_memory.h): the tile and block
+  // maxima and the halves of depth_speed; what the pass holds now.
+  static uint64_t frame_bytes(uint32_t width, uint32_t height);
+  uint64_t frame_device_bytes() const {
+    return buffer_bytes({&tile_max_, &neighbour_max_, &plane_needed_, &depth_speed_,
+                         &block_speed_});
+  }
 
  private:
   const rp::cl::Context* context_;

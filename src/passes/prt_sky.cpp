@@ -104,7 +104,7 @@ void PrtSkyPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     throw rp::cl::Error("prt pass: frame size " + std::to_string(w) + "x" + std::to_string(h) +
                         " does not match the visibility buffer (" + std::to_string(vis.width) +
                         "x" + std::to_string(vis.height) + ")");
-  const size_t bytes = std::max<size_t>(1, size_t(w) * h) * 16;
+  const size_t bytes = size_t(frame_bytes(w, h));
   if (out_bytes_ < bytes) {
     out_ = rp::cl::make_buffer(context_->context, CL_MEM_READ_WRITE, bytes,
                                "the PRT sky light (float4 per pixel)");

@@ -8,6 +8,7 @@
 // sh_turn_environment: a rotation, no re-projection) and shades. Pass name "prt".
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -16,6 +17,7 @@
 
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
+#include "passes/frame_memory.h"
 #include "render/frame_buffers.h"
 #include "render/gpu_scene.h"
 #include "scene/environment.h"
@@ -57,6 +59,13 @@ class PrtSkyPass {
            const render::VisibilityBuffer& vis, const scene::Environment& environment);
 
   const ::cl::Buffer& output() const { return out_; }
+
+  // Device memory of output() for a width x height frame (passes/frame_memory.h; it only
+  // grows); what the pass holds now.
+  static uint64_t frame_bytes(uint32_t width, uint32_t height) {
+    return std::max<uint64_t>(1, pixel_count(width, height)) * 16;
+  }
+  uint64_t frame_device_bytes() const { return buffer_bytes({&out_}); }
 
  private:
   void update_environment(const scene::Environment& environment);

@@ -22,6 +22,10 @@ constexpr size_t kGroup = 8;  // 8x8 work-groups
 ShadowFilterPass::ShadowFilterPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs)
     : context_(&context), programs_(&programs) {}
 
+uint64_t ShadowFilterPass::frame_bytes(uint32_t size, uint32_t planes) {
+  return std::max<uint64_t>(uint64_t(gpu::rp_shadow_mip_total(size)) * planes, 1) * sizeof(float);
+}
+
 void ShadowFilterPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                            render::ShadowMap& shadow, bool moments) {
   if (shadow.size != scene.constants.shadow_size)
@@ -32,8 +36,8 @@ void ShadowFilterPass::run(rp::cl::Profiler& profiler, const render::GpuScene& s
   const uint32_t planes = moments ? 3u : 1u;
   const uint32_t plane = gpu::rp_shadow_mip_total(size);
   if (allocated_size_ != size || shadow.mip_planes != planes || shadow.mips() == nullptr) {
-    shadow.mips = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
-                               std::max<size_t>(size_t(plane) * planes, 1) * sizeof(float));
+    shadow.mips =
+        ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, size_t(frame_bytes(size, planes)));
     shadow.mip_planes = planes;
     allocated_size_ = size;
   }

@@ -25,6 +25,10 @@ class ShadowFilterPass {
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene, render::ShadowMap& shadow,
            bool moments);
 
+  // Device memory of shadow.mips for a size x size map with `planes` planes (1 for pcss, 3
+  // for vssm; passes/frame_memory.h). The buffer belongs to the ShadowMap.
+  static uint64_t frame_bytes(uint32_t size, uint32_t planes);
+
  private:
   const rp::cl::Context* context_;
   rp::cl::ProgramCache* programs_;

@@ -12,6 +12,7 @@
 
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
+#include "passes/frame_memory.h"
 #include "render/frame_buffers.h"
 #include "render/gpu_scene.h"
 
@@ -42,6 +43,13 @@ class TaaPass {
 
   // Forget the history: the next run() outputs its current frame (camera cuts).
   void reset_history() { history_valid_ = false; }
+
+  // Device memory for a width x height frame (passes/frame_memory.h): the two histories of
+  // three float planes; what the pass holds now.
+  static uint64_t frame_bytes(uint32_t width, uint32_t height) {
+    return 2 * pixel_count(width, height) * 3 * sizeof(float);
+  }
+  uint64_t frame_device_bytes() const { return buffer_bytes({&history_[0], &history_[1]}); }
 
   const TaaSettings& settings() const { return settings_; }
   void set_settings(const TaaSettings& settings);

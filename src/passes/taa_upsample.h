@@ -14,6 +14,7 @@
 
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
+#include "passes/frame_memory.h"
 #include "passes/taa.h"
 #include "render/frame_buffers.h"
 #include "render/gpu_scene.h"
@@ -41,6 +42,16 @@ class TaaUpsamplePass {
   // What the last run() wrote at the output size for motion blur: velocity (float2, output
   // pixels) and normal_depth (float4, w the linear depth); the other planes are not allocated.
   const render::GBuffer& motion() const { return motion_; }
+
+  // Device memory for an out_width x out_height output (passes/frame_memory.h): the two
+  // histories of three float planes and motion()'s velocity and normal_depth; what the pass
+  // holds now.
+  static uint64_t frame_bytes(uint32_t out_width, uint32_t out_height) {
+    return pixel_count(out_width, out_height) * (2 * 3 * sizeof(float) + 8 + 16);
+  }
+  uint64_t frame_device_bytes() const {
+    return buffer_bytes({&history_[0], &history_[1]}) + motion_.device_bytes();
+  }
 
   const TaaSettings& settings() const { return settings_; }
   void set_settings(const TaaSettings& settings) { settings_ = settings; }

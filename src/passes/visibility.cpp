@@ -337,6 +337,21 @@ VisibilityPass::VisibilityPass(const rp::cl::Context& context, rp::cl::ProgramCa
   impl_->init_view(impl_->lights, programs, pass_name::kShadowMapLights, true);
 }
 
+uint64_t VisibilityPass::tile_list_bytes(uint32_t width, uint32_t height) {
+  const uint64_t tiles = uint64_t((width + kTile - 1) / kTile) * ((height + kTile - 1) / kTile);
+  return 3 * 2 * tiles * sizeof(uint32_t);
+}
+
+uint64_t VisibilityPass::camera_tile_bytes() const {
+  const ViewState& v = impl_->camera;
+  return buffer_bytes({&v.counts, &v.start, &v.cursor});
+}
+
+uint64_t VisibilityPass::lamp_tile_bytes() const {
+  const ViewState& v = impl_->shadow;
+  return buffer_bytes({&v.counts, &v.start, &v.cursor});
+}
+
 void VisibilityPass::render(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                             render::VisibilityBuffer& out) {
   if (out.width != scene.constants.width || out.height != scene.constants.height)

@@ -32,6 +32,13 @@ class VisibilityPass {
   void render_light_shadows(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                             render::ShadowMap& out);
 
+  // The raster's tile lists for a width x height view (counts, start, cursor: a uint per tile
+  // for triangles and one for spheres; passes/frame_memory.h), and what the camera's and the
+  // lamp's views hold now (they only grow). The triangle lists follow the scene.
+  static uint64_t tile_list_bytes(uint32_t width, uint32_t height);
+  uint64_t camera_tile_bytes() const;
+  uint64_t lamp_tile_bytes() const;
+
  private:
   struct Impl;
   std::shared_ptr<Impl> impl_;

@@ -8,6 +8,7 @@
 #include <CL/opencl.hpp>
 
 #include "cl/buffer.h"
+#include "passes/frame_memory.h"
 
 namespace rp::render {
 
@@ -19,13 +20,20 @@ struct VisibilityBuffer {
   ::cl::Buffer bary;   // float2: perspective-correct barycentrics (b1, b2) of the triangle's
                        // 2nd and 3rd vertex (b0 = 1 - b1 - b2); (0, 0) for spheres/background
 
+  static constexpr size_t kDepthBytes = sizeof(float), kIdsBytes = 2 * sizeof(uint32_t),
+                          kBaryBytes = 2 * sizeof(float);  // per pixel
+  static uint64_t frame_bytes(uint32_t w, uint32_t h) {
+    return passes::pixel_count(w, h) * (kDepthBytes + kIdsBytes + kBaryBytes);
+  }
+  uint64_t device_bytes() const { return passes::buffer_bytes({&depth, &ids, &bary}); }
+
   void resize(const ::cl::Context& context, uint32_t w, uint32_t h) {
     width = w;
     height = h;
     size_t n = size_t(w) * h;
-    depth = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * sizeof(float));
-    ids = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * 2 * sizeof(uint32_t));
-    bary = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * 2 * sizeof(float));
+    depth = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * kDepthBytes);
+    ids = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * kIdsBytes);
+    bary = ::cl::Buffer(context, CL_MEM_READ_WRITE, n * kBaryBytes);
   }
 };
 
@@ -53,10 +61,13 @@ struct ShadowMap {
     depth_floats = floats;
   }
 
+  // The lamp's two planes; what the punctual lights' views add follows the scene.
+  static uint64_t frame_bytes(uint32_t s) { return 2 * uint64_t(s) * s * sizeof(float); }
+
   void resize(const ::cl::Context& context, uint32_t s) {
     size = s;
     depth_floats = 2 * uint64_t(s) * s;
-    depth = rp::cl::make_buffer(context, CL_MEM_READ_WRITE, 2 * size_t(s) * s * sizeof(float),
+    depth = rp::cl::make_buffer(context, CL_MEM_READ_WRITE, size_t(frame_bytes(s)),
                                 "the lamp's shadow map at " + std::to_string(s) + "x" +
                                     std::to_string(s),
                                 "a smaller --shadow-size needs less");
@@ -76,6 +87,13 @@ struct GBuffer {
                               //         0 = matte and background)
   ::cl::Buffer velocity;      // float2: screen motion in pixels, this frame minus previous
                               //         (unjittered; +x right, +y down); 0 for background
+
+  static uint64_t frame_bytes(uint32_t w, uint32_t h) {
+    return passes::pixel_count(w, h) * (4 * 16 + 8);
+  }
+  uint64_t device_bytes() const {
+    return passes::buffer_bytes({&albedo, &normal_depth, &position, &emission, &velocity});
+  }
 
   void resize(const ::cl::Context& context, uint32_t w, uint32_t h) {
     width = w;

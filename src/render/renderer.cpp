@@ -349,6 +349,28 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
   }
 }
 
+FrameMemory Renderer::frame_device_memory() const {
+  namespace pass_name = passes::pass_name;
+  using passes::buffer_bytes;
+  FrameMemory m;
+  m.add(pass_name::kVisibility, vis_.device_bytes() + visibility_->camera_tile_bytes());
+  m.add(pass_name::kShadowMap, buffer_bytes({&shadow_.depth}) + visibility_->lamp_tile_bytes());
+  m.add(pass_name::kShadowFilter, buffer_bytes({&shadow_.mips}));
+  m.add(pass_name::kGBuffer, gbuffer_.device_bytes());
+  if (indirect_) m.add(pass_name::kIndirectTrace, indirect_->frame_device_bytes());
+  if (prt_) m.add(pass_name::kPrt, prt_->frame_device_bytes());
+  m.add(pass_name::kLight,
+        buffer_bytes({&hdr_, &hdr_prev_, &light_components_.direct, &light_components_.indirect,
+                      &light_components_.specular}) +
+            light_->frame_device_bytes());
+  m.add(pass_name::kTaa, taa_->frame_device_bytes() + taa_upsample_->frame_device_bytes());
+  m.add(pass_name::kBloom, bloom_->frame_device_bytes());
+  m.add(pass_name::kMotionBlur, motion_blur_->frame_device_bytes());
+  m.add(kPostBuffers, buffer_bytes({&post_[0], &post_[1]}));
+  m.add(pass_name::kToneMap, buffer_bytes({&rgba8_}));
+  return m;
+}
+
 void Renderer::set_effects(const Effects& effects) {
   if (effects.taa && !settings_.effects.taa) {
     taa_->reset_history();

@@ -13,6 +13,7 @@
 #include "passes/debug_view.h"
 #include "passes/light.h"
 #include "render/frame_buffers.h"
+#include "render/frame_memory.h"
 #include "render/gpu_scene.h"
 #include "render/render_settings.h"
 #include "render/svo_volume.h"
@@ -104,8 +105,9 @@ class Renderer {
   // The light pass's direct and indirect terms (float4 per pixel), written only while the
   // direct or indirect debug view is on or they are kept (empty buffers otherwise).
   const passes::LightComponents& light_components() const { return light_components_; }
-  // Keeps the light pass writing its direct and indirect terms whatever is shown (allocates the
-  // two float4 buffers, 32 bytes per pixel, now and on resize), for read_components.
+  // Keeps the light pass writing its direct, indirect and specular terms whatever is shown
+  // (allocates the three float4 buffers, 48 bytes per pixel, now and on resize), for
+  // read_components.
   void set_keep_light_components(bool keep);
   // Sky light by precomputed radiance transfer from now on (passes/prt_sky.h): `prt` holds the
   // transfer of the frames' instances (the same instances, in the same order, every frame);
@@ -132,6 +134,10 @@ class Renderer {
   void read_rgba8(std::vector<uint8_t>& out);
 
   const RenderSettings& settings() const { return settings_; }
+  // The buffers that follow the frame's size it holds now, part by part as frame_memory()
+  // states them (render/frame_memory.h); the shadow map's part includes the punctual lights'
+  // maps a file scene adds.
+  FrameMemory frame_device_memory() const;
   const GpuScene& gpu_scene() const { return *scene_; }
   const VisibilityBuffer& visibility() const { return vis_; }
   const ShadowMap& shadow_map() const { return shadow_; }

@@ -21,6 +21,9 @@
 #include <stb/stb_image.h>
 
 #include "app/render_session.h"
+#include "kernels/shared/shadow_mips.h"
+#include "passes/indirect.h"
+#include "render/frame_memory.h"
 #include "scene/demo_scene.h"
 #include "support/cli_runner.h"
 
@@ -99,40 +102,62 @@ TEST(BadInput, UnknownShadowModeSaysWhichExist) {
   EXPECT_TRUE(Contains(pt.err, "--shadows does not apply to --quality pathtraced"));
 }
 
-// The estimate counts the buffers; checked here against sums written out by hand.
+// The estimate: the image's buffers as the passes state them (tests/render/frame_memory_test.cpp
+// holds those against real frames) as the window may switch them (every effect, both soft
+// shadow modes' buffers), the dense volume and the scene's reserve written out by hand.
 TEST(BadInput, DeviceMemoryEstimateCountsEveryBuffer) {
-  // 160x160: 25600 pixels; 10 raster tiles (16 px) per side = 100; 8 blur tiles (20 px) = 64.
-  app::DeviceMemoryNeed need = app::estimate_device_memory(160, 160, 64, 32, false);
+  render::RenderSettings s;
+  s.width = s.height = 160;
+  s.shadow_size = 64;
+  s.voxel_resolution = 32;
+  s.effects.taa = s.effects.bloom = s.effects.motion_blur = false;  // keys T, B, M turn them on
+  s.shadows = render::ShadowMode::kHard;                            // key H switches
+  const app::DeviceMemoryNeed need = app::estimate_device_memory(s);
+  render::RenderSettings vssm = s;
+  vssm.effects = render::Effects{};
+  vssm.shadows = render::ShadowMode::kVssm;
   const uint64_t pixels = 25600;
-  const uint64_t per_pixel = 20 + 72 + 16 + 32 + 4 + 32 + 4;  // + bloom's 32/3
+  // vssm's buffers, and pcss's verdicts: a byte per 4x2-pixel chunk, 40 x 80 of them.
+  const uint64_t frame = render::frame_memory(vssm, {}).total() + 40 * 80;
+  EXPECT_EQ(need.image_bytes + need.shadow_bytes, frame);
+  // The lamp's two depth planes, vssm's three mip planes, the raster's tile lists (4 x 4 tiles
+  // of 16 texels: 3 lists of 2 uints each).
+  EXPECT_EQ(need.shadow_bytes, 2 * 64 * 64 * 4 + 3 * uint64_t(gpu::rp_shadow_mip_total(64)) * 4 +
+                                   16 * 3 * 2 * 4);
   const uint64_t voxels = 32 * 32 * 32;
   // Chain: level 0 (32^3) plus six volumes of 16^3, 8^3, 4^3, 2^3, 1: float4 each.
   const uint64_t chain = voxels + 6 * (4096 + 512 + 64 + 8 + 1);
-  const uint64_t expected = pixels * per_pixel + (pixels * 32 + 2) / 3 + 64 * 20 + 100 * 24 +
-                            64 * 64 * 4 + chain * 16 + voxels * 36 + (uint64_t(64) << 20);
+  const uint64_t expected = frame + chain * 16 + voxels * 36 + (uint64_t(64) << 20);
   EXPECT_EQ(need.total_bytes, expected);
   // The largest single buffer: a float4 per pixel, or the voxel chain (here the chain).
   EXPECT_EQ(need.largest_buffer_bytes, std::max(pixels * 16, chain * 16));
   // The direct / indirect / specular views add three float4 per pixel.
-  EXPECT_EQ(app::estimate_device_memory(160, 160, 64, 32, true).total_bytes,
-            expected + pixels * 48);
-  // The reference mode keeps the previous frame's output (float4 per pixel) for its SSR.
-  EXPECT_EQ(app::estimate_device_memory(160, 160, 64, 32, false, false, true).total_bytes,
-            expected + pixels * 16);
+  render::FrameMemoryOptions components;
+  components.light_components = true;
+  EXPECT_EQ(app::estimate_device_memory(s, components).total_bytes, expected + pixels * 48);
+  // The reference mode keeps the previous frame's output (float4 per pixel) for its SSR and
+  // has no low-resolution indirect planes.
+  render::RenderSettings reference = s;
+  reference.quality = render::Quality::kReference;
+  EXPECT_EQ(app::estimate_device_memory(reference).total_bytes,
+            expected + pixels * 16 - passes::IndirectPass::frame_bytes(160, 160));
 }
 
 TEST(BadInput, LargestSquareThatFitsIsTheBoundary) {
   const uint64_t global = uint64_t(6) << 30, max_alloc = uint64_t(1) << 30;
-  uint32_t s = app::largest_square_that_fits(global, max_alloc, 1024, 64, false);
+  const render::RenderSettings defaults;
+  uint32_t s = app::largest_square_that_fits(global, max_alloc, defaults);
   ASSERT_GT(s, 1000u);
   auto fits = [&](uint32_t side) {
-    app::DeviceMemoryNeed n = app::estimate_device_memory(side, side, 1024, 64, false);
+    render::RenderSettings at = defaults;
+    at.width = at.height = side;
+    app::DeviceMemoryNeed n = app::estimate_device_memory(at);
     return n.total_bytes <= global && n.largest_buffer_bytes <= max_alloc;
   };
   EXPECT_TRUE(fits(s));
   EXPECT_FALSE(fits(s + 1));
   // 1 GiB per buffer of 16 bytes per pixel limits the side to 8192.
-  EXPECT_EQ(app::largest_square_that_fits(uint64_t(1) << 40, max_alloc, 1024, 64, false), 8192u);
+  EXPECT_EQ(app::largest_square_that_fits(uint64_t(1) << 40, max_alloc, defaults), 8192u);
 }
 
 TEST(BadInput, CheckDeviceMemoryNamesTheNeedAndWhatFits) {
@@ -140,21 +165,26 @@ TEST(BadInput, CheckDeviceMemoryNamesTheNeedAndWhatFits) {
   device.name = "small";
   device.global_mem_bytes = uint64_t(2) << 30;
   device.max_alloc_bytes = uint64_t(1) << 30;
-  EXPECT_NO_THROW(app::check_device_memory(device, 720, 720, 1024, 64, false));
+  const auto at = [](uint32_t side) {
+    render::RenderSettings s;
+    s.width = s.height = side;
+    return s;
+  };
+  EXPECT_NO_THROW(app::check_device_memory(device, at(720)));
   try {
-    app::check_device_memory(device, 16384, 16384, 1024, 64, false);
+    app::check_device_memory(device, at(16384));
     FAIL() << "16384x16384 cannot fit 2 GiB";
   } catch (const cl::Error& e) {
     std::string m = e.what();
     EXPECT_TRUE(Contains(m, "16384x16384 needs "));
     EXPECT_TRUE(Contains(m, "GiB of device memory, the device has 2.0 GiB"));
     uint32_t s = app::largest_square_that_fits(device.global_mem_bytes, device.max_alloc_bytes,
-                                               1024, 64, false);
+                                               render::RenderSettings{});
     EXPECT_TRUE(Contains(m, "largest square size that fits is about " + std::to_string(s)));
   }
   device.global_mem_bytes = uint64_t(64) << 30;  // enough in total, but not in one buffer
   try {
-    app::check_device_memory(device, 10000, 10000, 1024, 64, false);
+    app::check_device_memory(device, at(10000));
     FAIL() << "a 1.5 GiB buffer is above the 1 GiB limit";
   } catch (const cl::Error& e) {
     EXPECT_TRUE(Contains(e.what(), "the device allows at most 1.0 GiB per buffer"));

@@ -30,10 +30,19 @@ cl::DeviceInfo device_with(uint64_t global_mib, uint64_t max_alloc_mib) {
   return device;
 }
 
+render::RenderSettings settings_for(uint32_t size, uint32_t voxels, bool octree) {
+  render::RenderSettings s;
+  s.width = s.height = size;
+  s.shadow_size = 1024;
+  s.voxel_resolution = voxels;
+  s.gi_volume = octree ? render::GiVolume::kSvo : render::GiVolume::kDense;
+  return s;
+}
+
 std::string check_message(const cl::DeviceInfo& device, uint32_t size, uint32_t voxels,
                           bool octree, const app::SceneMemory* scene = nullptr) {
   try {
-    app::check_device_memory(device, size, size, 1024, voxels, false, octree, false, scene,
+    app::check_device_memory(device, settings_for(size, voxels, octree), {}, scene,
                              "--scene big.glb");
   } catch (const cl::Error& e) {
     return e.what();
@@ -44,7 +53,7 @@ std::string check_message(const cl::DeviceInfo& device, uint32_t size, uint32_t 
 // What PoCL reports under POCL_MEMORY_LIMIT=1: 1 GiB of global memory, 256 MiB per buffer.
 TEST(MemoryCheck, OctreeTooLargeAtThisSizeNamesTheLargestVoxelsThatFit) {
   const cl::DeviceInfo device = device_with(1024, 256);
-  // 2200^2: the image's buffers take about 880 MiB; the octree at 512^3 160 MiB more does not
+  // 2200^2: the image's buffers take about 900 MiB; the octree at 512^3 160 MiB more does not
   // fit, at 256^3 (40 MiB) it does.
   const std::string m = check_message(device, 2200, 512, true);
   EXPECT_TRUE(Contains(m, "--gi-volume svo --voxels 512 at 2200x2200 needs "));
@@ -52,9 +61,8 @@ TEST(MemoryCheck, OctreeTooLargeAtThisSizeNamesTheLargestVoxelsThatFit) {
   EXPECT_TRUE(Contains(m, "the octree 160 MiB"));
   EXPECT_TRUE(Contains(m, "the device has 1024 MiB"));
   EXPECT_TRUE(Contains(m, "the largest --voxels that fits at this size is 256 (--voxels 256)"));
-  const uint32_t side = app::largest_square_that_fits(device.global_mem_bytes,
-                                                      device.max_alloc_bytes, 1024, 512, false,
-                                                      true);
+  const uint32_t side = app::largest_square_that_fits(
+      device.global_mem_bytes, device.max_alloc_bytes, settings_for(0, 512, true));
   ASSERT_GT(side, 0u);
   EXPECT_TRUE(Contains(m, "or at --voxels 512 the largest square size is about " +
                               std::to_string(side) + " (--size " + std::to_string(side) + ")"));
@@ -62,15 +70,15 @@ TEST(MemoryCheck, OctreeTooLargeAtThisSizeNamesTheLargestVoxelsThatFit) {
 }
 
 TEST(MemoryCheck, DenseVolumeTooLargeNamesTheLargestVoxelsThatFit) {
-  // 600 MiB: at 1500^2 (about 410 MiB of image buffers) the dense chain at 128^3 (136 MiB)
+  // 600 MiB: at 1500^2 (about 420 MiB of image buffers) the dense chain at 128^3 (136 MiB)
   // does not fit, at 64^3 (17 MiB) it does.
   const cl::DeviceInfo device = device_with(600, 512);
   const std::string m = check_message(device, 1500, 128, false);
   EXPECT_TRUE(Contains(m, "--gi-volume dense --voxels 128 at 1500x1500 needs "));
   EXPECT_TRUE(Contains(m, "the dense GI volume "));
   EXPECT_TRUE(Contains(m, "the largest --voxels that fits at this size is 64 (--voxels 64)"));
-  EXPECT_EQ(app::largest_voxels_that_fit(device.global_mem_bytes, device.max_alloc_bytes, 1500,
-                                         1500, 1024, false, false),
+  EXPECT_EQ(app::largest_voxels_that_fit(device.global_mem_bytes, device.max_alloc_bytes,
+                                         settings_for(1500, 128, false)),
             64u);
 }
 
@@ -106,9 +114,8 @@ TEST(MemoryCheck, LoadedSceneTooLargeNamesItsSizes) {
   app::SceneMemory small;
   small.triangles = 4'000'000;
   small.vertices = 2'000'000;
-  EXPECT_GT(app::estimate_device_memory(64, 64, 1024, 64, false, false, false, &small)
-                .total_bytes,
-            app::estimate_device_memory(64, 64, 1024, 64, false).total_bytes);
+  EXPECT_GT(app::estimate_device_memory(settings_for(64, 64, false), {}, &small).total_bytes,
+            app::estimate_device_memory(settings_for(64, 64, false)).total_bytes);
 }
 
 TEST(MemoryCheck, SceneMemoryCountsMeshesAndMipChains) {

@@ -226,15 +226,15 @@ TEST(RenderExr, RealTimeLayersAddUpAndMatchTheAlbedoView) {
       ASSERT_NEAR(int(png.rgba[4 * p + c]), int(rp::app::srgb_code(a.albedo[3 * p + c])), 1) << p;
 }
 
-// The kept components (32 bytes per pixel) count in the device memory check: a size between the
+// The kept components (48 bytes per pixel) count in the device memory check: a size between the
 // largest that fits with them and the largest without fails at once, before any allocation.
 TEST(RenderExr, MemoryCheckCountsTheKeptComponents) {
   const rp::cl::DeviceInfo device = rp::cl::choose_device("");
-  const rp::render::RenderSettings defaults;
   const auto largest = [&](bool components) {
+    rp::render::FrameMemoryOptions frame;
+    frame.light_components = components;
     return rp::app::largest_square_that_fits(device.global_mem_bytes, device.max_alloc_bytes,
-                                             defaults.shadow_size, defaults.voxel_resolution,
-                                             components);
+                                             rp::render::RenderSettings{}, frame);
   };
   const uint32_t with = largest(true), without = largest(false);
   // Halfway: a margin of a few per cent against the free memory PoCL reports changing.

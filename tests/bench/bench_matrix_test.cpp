@@ -193,6 +193,7 @@ BenchMatrix sample_matrix() {
   ok.runs[1].instance_triangles = 12345;
   ok.runs[1].voxel_triangles = 2345;
   ok.runs[1].shadow_triangles = 345;
+  ok.runs[1].frame_memory = {{"visibility", 123456789012ull}, {"gbuffer", 7}, {"post", 0}};
   ok.runs[1].passes[1].efficiency = {1e9, 2e9, 3.5, 0.1, 0.25, 1e-3};
   fit_scaling(ok);
   DeviceResult bad;
@@ -254,6 +255,7 @@ TEST(BenchJson, MatrixRoundTripsExactly) {
       EXPECT_EQ(x.instance_triangles, y.instance_triangles);
       EXPECT_EQ(x.voxel_triangles, y.voxel_triangles);
       EXPECT_EQ(x.shadow_triangles, y.shadow_triangles);
+      EXPECT_EQ(x.frame_memory, y.frame_memory) << "parts and their order kept";
       expect_summary_eq(x.frame, y.frame);
       ASSERT_EQ(x.passes.size(), y.passes.size());
       for (size_t q = 0; q < y.passes.size(); ++q) {
