@@ -54,6 +54,8 @@
  * 4 and no per-texel shuffles (measured: float4-per-texel versions of the first downsample and
  * of the mix were 1.4x and 1.8x slower). Deterministic: gathers only, no atomics.
  */
+#include "shared/types.h"
+#include "shared/pass_params.h"
 #include "common/bloom_composite.h"
 
 /* 20 consecutive texels of a planar row starting at column c0 (clamped to [0, w - 1]): lo holds
@@ -109,8 +111,10 @@ inline void rp_bloom_row_sums(float16 lo, float4 hi, float8* outer, float8* inne
 /* Plain 13-tap downsample, planar -> planar. Grid: (ceil(dst_w / 8), dst_h, 3 channels), any
  * local size (bounds-checked); each work-item writes destination texels 8i .. 8i+7 of one row of
  * one channel. */
-__kernel void bloom_downsample(__global const float* restrict src, int src_w, int src_h,
-                               __global float* restrict dst, int dst_w, int dst_h) {
+__kernel void bloom_downsample(__global const float* restrict src, __global float* restrict dst,
+                               const BloomStep step) {
+  const int src_w = step.src_width, src_h = step.src_height;
+  const int dst_w = step.dst_width, dst_h = step.dst_height;
   const int x = 8 * (int)get_global_id(0), y = (int)get_global_id(1), c = (int)get_global_id(2);
   if (x >= dst_w || y >= dst_h) return;
   __global const float* plane = src + c * src_w * src_h;
@@ -210,9 +214,10 @@ inline void rp_bloom_first_row(const float8 l[3][6], const float8 m[3][6], const
  * `karis` is non-zero. Grid: (ceil(dst_w / 8), ceil(dst_h / 2)), any local size; each work-item
  * makes destination texels 8i .. 8i+7 of rows 2j and 2j+1, all three channels: source pixels
  * 16i-2 .. 16i+17 of rows 4j-2 .. 4j+5 (the two rows' footprints share four source rows). */
-__kernel void bloom_downsample_first(__global const float4* restrict src, int src_w, int src_h,
-                                     __global float* restrict dst, int dst_w, int dst_h,
-                                     int karis) {
+__kernel void bloom_downsample_first(__global const float4* restrict src,
+                                     __global float* restrict dst, const BloomStep step) {
+  const int src_w = step.src_width, src_h = step.src_height;
+  const int dst_w = step.dst_width, dst_h = step.dst_height, karis = step.karis;
   const int x = 8 * (int)get_global_id(0), y = 2 * (int)get_global_id(1);
   if (x >= dst_w || y >= dst_h) return;
   /* Row sums per source row and channel: l (left outer), m (inner), r (right outer). */
@@ -248,9 +253,11 @@ __kernel void bloom_downsample_first(__global const float4* restrict src, int sr
 /* U(k) = D(k) + up(U(k+1)), planar. Grid: (ceil(dst_w / 16), dst_h, 3 channels), any local
  * size; each work-item writes texels 16i .. 16i+15 of one row of one channel, from coarse
  * texels 8i-1 .. 8i+8 of coarse rows n-1 .. n+1 (n = row / 2). */
-__kernel void bloom_upsample_add(__global const float* restrict coarse, int coarse_w,
-                                 int coarse_h, __global const float* restrict level,
-                                 __global float* restrict dst, int dst_w, int dst_h) {
+__kernel void bloom_upsample_add(__global const float* restrict coarse,
+                                 __global const float* restrict level,
+                                 __global float* restrict dst, const BloomStep step) {
+  const int coarse_w = step.src_width, coarse_h = step.src_height;
+  const int dst_w = step.dst_width, dst_h = step.dst_height;
   const int x = 16 * (int)get_global_id(0), y = (int)get_global_id(1), c = (int)get_global_id(2);
   if (x >= dst_w || y >= dst_h) return;
   __global const float* plane = coarse + c * coarse_w * coarse_h;
@@ -280,8 +287,10 @@ __kernel void bloom_upsample_add(__global const float* restrict coarse, int coar
  * local size; each work-item writes 16 pixels of two rows. out may be the same buffer as in
  * (each work-item reads and writes only its own pixels), hence no restrict. */
 __kernel void bloom_mix(__global const float4* hdr_in, __global const float* restrict level1,
-                        int level1_w, int level1_h, __global float4* hdr_out, int width,
-                        int height, float keep, float scale) {
+                        __global float4* hdr_out, const BloomStep step) {
+  const int level1_w = step.src_width, level1_h = step.src_height;
+  const int width = step.dst_width, height = step.dst_height;
+  const float keep = step.keep, scale = step.scale;
   const int gx = (int)get_global_id(0), n = (int)get_global_id(1);
   if (16 * gx >= width || 2 * n >= height) return;
   rp_bloom_composite_rows(hdr_in, level1, level1_w, level1_h, hdr_out, width, height, gx, n,

@@ -20,6 +20,8 @@
  * bounces too.
  * No atomics: bit-identical runs.
  */
+#include "shared/types.h"
+#include "shared/pass_params.h"
 #include "shared/voxel_layout.h"
 #include "common/random.h"
 #include "common/cone_trace.h"
@@ -39,10 +41,11 @@ inline bool bounce_cell_occupied(__global const float4* voxels, uint resolution,
   return false;
 }
 
-__kernel void bounce_gather(__global const float4* voxels, uint resolution, uint levels,
-                            __global float4* bounce, uint frame, uint cones,
+__kernel void bounce_gather(__global const float4* voxels, __global float4* bounce,
                             __global const FrameConstants* constants,
-                            __global const float4* sky) {
+                            __global const float4* sky, const BounceParams params) {
+  const uint resolution = params.resolution, levels = params.levels;
+  const uint frame = params.frame, cones = params.cones;
   const uint cells = rp_bounce_cells(resolution);
   /* one cone: half the faces per frame (those of the frame's parity), the other half next */
   const uint gid = cones >= RP_CONE_SET_SIZE ? (uint)get_global_id(0)

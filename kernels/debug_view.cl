@@ -20,6 +20,7 @@
  *               stored), then tone mapped like radiance; rays missing the box are black
  */
 #include "shared/types.h"
+#include "shared/pass_params.h"
 #include "shared/voxel_layout.h"
 #ifdef RP_GI_SVO
 #include "common/svo.h"
@@ -107,8 +108,10 @@ __kernel void debug_view_radiance(__global const FrameConstants* frame,
 /* voxels: the chain (shared/voxel_layout.h) of voxel_resolution^3 at level 0; level and dir
  * select the volume shown (dir ignored at level 0). */
 __kernel void debug_view_voxels(__global const FrameConstants* frame,
-                                __global const float4* voxels, const uint voxel_resolution,
-                                const uint level, const uint dir, __global uint* out) {
+                                __global const float4* voxels, __global uint* out,
+                                const VoxelViewParams params) {
+  const uint voxel_resolution = params.voxel_resolution, level = params.level;
+  const uint dir = params.dir;
   uint x, y, pixel;
   if (!debug_pixel(frame, &x, &y, &pixel)) return;
 

@@ -38,6 +38,7 @@
  * screen(prev_view_proj_unjittered * prev_p); depth = -(view * p).z.
  */
 #include "shared/types.h"
+#include "shared/pass_params.h"
 #include "common/colour.h"
 #include "common/span.h"
 #include "common/span_texture.h"
@@ -217,8 +218,10 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
                               __global float* out_normal_depth,
                               __global float* out_position,
                               __global float* out_emission,
-                              __global float* out_velocity,
-                              uint texture_filter, float lod_bias, uint stochastic_levels) {
+                              __global float* out_velocity, const GBufferParams params) {
+  uint texture_filter = params.texture_filter; /* a constant with RP_TEXTURE_FILTER_FIXED */
+  const uint stochastic_levels = params.stochastic_levels;
+  const float lod_bias = params.lod_bias;
   const uint width = frame->width, height = frame->height;
   /* 1D range over the spans in row-major order, so consecutive work-items read and write
    * consecutive memory. */

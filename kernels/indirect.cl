@@ -48,6 +48,7 @@
  * No atomics, no local memory: bit-identical runs.
  */
 #include "shared/types.h"
+#include "shared/pass_params.h"
 #include "common/math.h"
 #include "common/random.h"
 #include "common/cone_trace.h"
@@ -124,23 +125,20 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
                              __global const float4* position_plane,
                              __global const float4* emission_plane,
                              __global const float4* voxels,
-                             const uint voxel_resolution,
-                             const uint voxel_levels,
                              __global const float4* sky,
-                             const uint lr_width,
-                             const uint lr_height,
-                             const uint stride,
-                             const uint plane,
                              __global float* radiance,
                              __global float* position,
                              __global float* geom,
                              __global float* specular,
                              __global const float* ssr_depth,
                              __global const float* ssr_hiz,
-                             const uint ssr_top,
                              __global const float4* prev_hdr,
                              __global const float2* velocity,
-                             const uint ssr_history) {
+                             const IndirectTraceParams params) {
+  const uint voxel_resolution = params.voxel_resolution, voxel_levels = params.voxel_levels;
+  const uint lr_width = params.planes.width, lr_height = params.planes.height;
+  const uint stride = params.planes.stride, plane = params.planes.plane;
+  const uint ssr_top = params.ssr_top, ssr_history = params.ssr_history;
   const uint i = (uint)get_global_id(0), j = (uint)get_global_id(1);
   if (i >= lr_width || j >= lr_height) return;
   const uint s = (uint)rp_indirect_index((int)i, (int)j, (int)stride);
@@ -241,17 +239,14 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
                               __global const float* restrict prev_geom,
                               __global const float* restrict prev_history,
                               __global float* restrict history,
-                              const uint lr_width,
-                              const uint lr_height,
-                              const uint stride,
-                              const uint plane,
-                              const float pixel_scale,
-                              const uint history_valid,
-                              const float alpha_min,
                               __global const float* restrict specular,
                               __global const float* restrict prev_specular_out,
                               __global float* restrict specular_out,
-                              const uint specular_history) {
+                              const IndirectFilterParams params) {
+  const uint lr_width = params.planes.width, lr_height = params.planes.height;
+  const uint stride = params.planes.stride, plane = params.planes.plane;
+  const float pixel_scale = params.planes.pixel_scale, alpha_min = params.alpha_min;
+  const uint history_valid = params.history_valid, specular_history = params.specular_history;
   const uint i0 = 8u * (uint)get_global_id(0), j = (uint)get_global_id(1);
   if (i0 >= lr_width || j >= lr_height) return;
   const uint lanes = min(8u, lr_width - i0);

@@ -41,9 +41,11 @@
  *     (kernels/prt.cl): `prt_irradiance` (float4 per pixel, rgb E / pi) is added to D, whose
  *     cones then carry no diffuse sky (SkyGpu.diffuse_cones = 0); reflection cones keep it.
  *   RP_LIGHT_SPLIT=1: also writes the direct lamp term (rgb, a = covered), the indirect term
- *     (rgb, a = covered) and the specular part of both (rgb, a = covered) into three extra
- *     float4 buffers, for the debug views and the accuracy report; emission is in none. The
- *     default build writes only hdr.
+ *     (rgb, a = covered) and the specular part of both (rgb, a = covered) into
+ *     direct_out, indirect_out and specular_out (float4 each), for the debug views and the
+ *     accuracy report; emission is in none. The default build writes only hdr.
+ * Every variant takes the same arguments (bound by one call on the host); a variant reads
+ * none of the buffers it does not use.
  *
  * The direct term (lamp falloff from l.y, shadow-map projection, bias and taps) is
  * common/direct_light.h, shared with the voxelizer; the formulas are documented there.
@@ -56,6 +58,7 @@
  * multiply it by the visibility, so the quality modes differ only in their indirect light.
  */
 #include "shared/types.h"
+#include "shared/pass_params.h"
 #include "common/math.h"
 #include "common/random.h"
 #include "common/direct_light.h"
@@ -132,22 +135,18 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
                           __global const float* restrict visibility,
                           __global const float4* restrict brdf_table,
                           __global const float4* restrict voxels,
-                          const uint voxel_resolution,
-                          const uint voxel_levels,
                           __global const float4* restrict sky,
                           __global const float* restrict ssr_depth,
                           __global const float4* restrict ssr_prev_hdr,
                           __global const float2* restrict ssr_velocity,
-                          const uint ssr_history,
-#if RP_LIGHT_PRT
                           __global const float4* restrict prt_irradiance,
-#endif
-#if RP_LIGHT_SPLIT
                           __global float4* restrict direct_out,
                           __global float4* restrict indirect_out,
                           __global float4* restrict specular_out,
-#endif
-                          __global float4* restrict hdr) {
+                          __global float4* restrict hdr,
+                          const LightShadeParams params) {
+  const uint voxel_resolution = params.voxel_resolution, voxel_levels = params.voxel_levels;
+  const uint ssr_history = params.ssr_history;
   const uint x = (uint)get_global_id(0), y = (uint)get_global_id(1);
   const uint width = frame->width;
   if (x >= width || y >= frame->height) return;
@@ -230,11 +229,11 @@ inline float8 light_direct8(__global const FrameConstants* restrict frame, float
 }
 
 /* lr_irradiance (history: r, g, b, age planes), lr_geom (normal x, y, z, plane offset) and
- * lr_specular (reflection cone r, g, b): the indirect pass's padded planes (common/indirect.h), lr_width x lr_height samples, row stride
- * lr_stride, planes lr_plane floats apart; pixel_scale: world size of one pixel per unit of view
- * depth. The GBuffer, hdr and the split outputs are float4 per pixel, passed as floats. Eight
- * pixels of a row per work-item (common/indirect_simd.h): global size (ceil(width / 8), height)
- * rounded up to the work-group. */
+ * lr_specular (reflection cone r, g, b): the indirect pass's padded planes (common/indirect.h),
+ * laid out as `planes` says (shared/pass_params.h LowResPlanes). The GBuffer, hdr and the
+ * split outputs are float4 per pixel, passed as floats. Eight pixels of a row per work-item
+ * (common/indirect_simd.h): global size (ceil(width / 8), height) rounded up to the
+ * work-group. */
 __kernel void light_compose(__global const FrameConstants* restrict frame,
                             __global const float* restrict albedo,
                             __global const float* restrict normal_depth,
@@ -245,20 +244,14 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
                             __global const float* restrict lr_irradiance,
                             __global const float* restrict lr_geom,
                             __global const float* restrict lr_specular,
-                            const uint lr_width,
-                            const uint lr_height,
-                            const uint lr_stride,
-                            const uint lr_plane,
-                            const float pixel_scale,
-#if RP_LIGHT_PRT
                             __global const float* restrict prt_irradiance,
-#endif
-#if RP_LIGHT_SPLIT
                             __global float* restrict direct_out,
                             __global float* restrict indirect_out,
                             __global float* restrict specular_out,
-#endif
-                            __global float* restrict hdr) {
+                            __global float* restrict hdr,
+                            const LowResPlanes planes) {
+  const uint lr_stride = planes.stride, lr_plane = planes.plane;
+  const float pixel_scale = planes.pixel_scale;
   const uint x0 = 8u * (uint)get_global_id(0), y = (uint)get_global_id(1);
   const uint width = frame->width;
   if (x0 >= width || y >= frame->height) return;

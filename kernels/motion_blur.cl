@@ -38,6 +38,8 @@
  * 2 halves per pixel; tile buffers float2 (plane_needed uint) per tile, tiles_x = ceil(width / 20)
  * per row.
  */
+#include "shared/types.h"
+#include "shared/pass_params.h"
 #include "common/bloom_composite.h" /* before the pragma: same contraction as bloom.cl */
 #include "common/random.h"
 
@@ -122,8 +124,9 @@ inline void rp_mb_row20(__global const float* row, int x0, int width, float shut
  * ">", so the lowest pixel index wins a tie. */
 __kernel __attribute__((reqd_work_group_size(1, RP_MB_TILE, 1)))
 void motion_blur_tile_max(__global const float2* restrict velocity,
-                          __global float2* restrict tile_max, uint width, uint height,
-                          float shutter) {
+                          __global float2* restrict tile_max, const MotionBlurParams params) {
+  const uint width = params.width, height = params.height;
+  const float shutter = params.shutter;
   __local float2 best_v[RP_MB_TILE];
   __local float best_len2[RP_MB_TILE];
 
@@ -173,8 +176,9 @@ void motion_blur_tile_max(__global const float2* restrict velocity,
 /* Grid: (tiles_x, tiles_y), any local size. */
 __kernel void motion_blur_neighbour_max(__global const float2* restrict tile_max,
                                         __global float2* restrict neighbour_max,
-                                        __global uint* restrict plane_needed, uint tiles_x,
-                                        uint tiles_y) {
+                                        __global uint* restrict plane_needed,
+                                        const MotionBlurParams params) {
+  const uint tiles_x = params.tiles_x, tiles_y = params.tiles_y;
   const int tx = (int)get_global_id(0), ty = (int)get_global_id(1);
   if (tx >= (int)tiles_x || ty >= (int)tiles_y) return;
   /* The reconstruction reads the depth/speed plane at its pixel and at samples up to 20 px
@@ -231,8 +235,10 @@ inline uint4 rp_mb_float_to_half4(float4 x) {
 __kernel void motion_blur_depth_speed(__global const float2* restrict velocity,
                                       __global const float4* restrict normal_depth,
                                       __global const uint* restrict plane_needed,
-                                      __global half* restrict depth_speed, uint width,
-                                      uint height, uint tiles_x, float shutter) {
+                                      __global half* restrict depth_speed,
+                                      const MotionBlurParams params) {
+  const uint width = params.width, height = params.height, tiles_x = params.tiles_x;
+  const float shutter = params.shutter;
   const int tx = (int)get_global_id(0), y = (int)get_global_id(1);
   if (tx >= (int)tiles_x || y >= (int)height) return;
   if (plane_needed[(y / (int)RP_MB_TILE) * (int)tiles_x + tx] == 0u) return;
@@ -290,10 +296,14 @@ inline float16 rp_mb_cylinder16(float16 q) {
  * lie in moving tiles (neighbourhood max above half a pixel) are left to step 5; the others are
  * written whole (step 5 overwrites their moving part). */
 __kernel void motion_blur_composite(__global const float4* restrict hdr_in,
-                                    __global const float* restrict bloom_level1, int level1_w,
-                                    int level1_h, float keep, float scale,
-                                    __global const float2* restrict neighbour_max, int tiles_x,
-                                    __global float4* restrict hdr_out, int width, int height) {
+                                    __global const float* restrict bloom_level1,
+                                    __global const float2* restrict neighbour_max,
+                                    __global float4* restrict hdr_out,
+                                    const MotionBlurParams params) {
+  const int level1_w = (int)params.bloom_width, level1_h = (int)params.bloom_height;
+  const float keep = params.bloom_keep, scale = params.bloom_scale;
+  const int tiles_x = (int)params.tiles_x, width = (int)params.width,
+            height = (int)params.height;
   const int gx = (int)get_global_id(0), n = (int)get_global_id(1);
   const int x0 = 16 * gx;
   if (x0 >= width || 2 * n >= height) return;
@@ -398,8 +408,10 @@ inline void rp_mb_filter_block(__global const float4* restrict hdr_in,
  * 5 * tiles_y), any local size. */
 __kernel void motion_blur_block_max(__global const half* restrict depth_speed,
                                     __global const uint* restrict plane_needed,
-                                    __global float* restrict block_speed, int width, int height,
-                                    int tiles_x) {
+                                    __global float* restrict block_speed,
+                                    const MotionBlurParams params) {
+  const int width = (int)params.width, height = (int)params.height,
+            tiles_x = (int)params.tiles_x;
   const int bx = (int)get_global_id(0), by = (int)get_global_id(1);
   const int x0 = 4 * bx, y0 = 4 * by;
   if (x0 >= width || y0 >= height) return;
@@ -426,10 +438,14 @@ __kernel void motion_blur_reconstruct(__global const float4* restrict hdr_in,
                                       __global const half* restrict depth_speed,
                                       __global const float2* restrict neighbour_max,
                                       __global const float* restrict block_speed,
-                                      __global const float* restrict bloom_level1, int level1_w,
-                                      int level1_h, float keep, float scale, int fuse_bloom,
-                                      __global float4* restrict hdr_out, int width, int height,
-                                      int tiles_x) {
+                                      __global const float* restrict bloom_level1,
+                                      __global float4* restrict hdr_out,
+                                      const MotionBlurParams params) {
+  const int level1_w = (int)params.bloom_width, level1_h = (int)params.bloom_height;
+  const float keep = params.bloom_keep, scale = params.bloom_scale;
+  const int fuse_bloom = (int)params.fuse_bloom;
+  const int width = (int)params.width, height = (int)params.height,
+            tiles_x = (int)params.tiles_x;
   const int bx = (int)get_global_id(0), by = (int)get_global_id(1);
   const int x0 = 4 * bx, y0 = 4 * by;
   if (x0 >= width || y0 >= height) return;

@@ -23,6 +23,7 @@
  * transfer with the coefficients once a frame, prt_shade interpolates the result per pixel.
  */
 #include "shared/types.h"
+#include "shared/pass_params.h"
 
 #define RP_PRT_NO_TRANSFER ((int)0x80000000)
 
@@ -31,11 +32,11 @@
  * sum as interpolating the transfer (both are linear), and reads 3 float4 a pixel instead of
  * 3 x channels x count floats. */
 __kernel void prt_vertex_irradiance(__global const float* restrict transfer,
-                                    const uint vertex_count,
                                     __global const float4* restrict env,
-                                    const uint channels,
-                                    const uint count,
-                                    __global float4* restrict vertex_e) {
+                                    __global float4* restrict vertex_e,
+                                    const PrtVertexParams params) {
+  const uint vertex_count = params.vertex_count, channels = params.channels;
+  const uint count = params.coefficients;
   const uint v = (uint)get_global_id(0);
   if (v >= vertex_count) return;
   __global const float* t = transfer + v * channels * count;

@@ -33,10 +33,8 @@ __kernel void punctual_light_add(__global const FrameConstants* restrict frame,
                                  __global const float* restrict emission_plane,
                                  __global const float* restrict shadow,
                                  __global const float4* restrict brdf_table,
-#if RP_LIGHT_SPLIT
                                  __global float* restrict direct_out,
                                  __global float* restrict specular_out,
-#endif
                                  __global float* restrict hdr) {
   const uint x0 = 8u * (uint)get_global_id(0), y = (uint)get_global_id(1);
   const uint width = frame->width;

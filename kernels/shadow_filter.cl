@@ -19,6 +19,7 @@
  * 1e-6 world^2, which the reader floors away (RP_VSSM_MIN_VARIANCE in common/soft_shadow.h).
  */
 #include "shared/types.h"
+#include "shared/pass_params.h"
 #include "shared/shadow_mips.h"
 
 #ifndef RP_SHADOW_MOMENTS
@@ -32,9 +33,9 @@ inline float shadow_filter_linear(float d, float near, float far) {
 
 /* depth: size x size; mips: the chain (plane stride `plane`); level 1 is n1 x n1 at offset 0. */
 __kernel void shadow_filter_first(__global const FrameConstants* restrict frame,
-                                  __global const float* restrict depth, const uint size,
-                                  __global float* restrict mips, const uint n1,
-                                  const uint plane) {
+                                  __global const float* restrict depth,
+                                  __global float* restrict mips, const ShadowMipStep step) {
+  const uint size = step.src_size, n1 = step.dst_size, plane = step.plane;
   const uint i = (uint)get_global_id(0), j = (uint)get_global_id(1);
   if (i >= n1 || j >= n1) return;
   const float near = frame->clip.z, far = frame->clip.w;
@@ -56,8 +57,9 @@ __kernel void shadow_filter_first(__global const FrameConstants* restrict frame,
 }
 
 /* Level l (n x n at offset dst) from level l - 1 (m x m at offset src). */
-__kernel void shadow_filter_next(__global float* restrict mips, const uint src, const uint m,
-                                 const uint dst, const uint n, const uint plane) {
+__kernel void shadow_filter_next(__global float* restrict mips, const ShadowMipStep step) {
+  const uint src = step.src_offset, m = step.src_size, dst = step.dst_offset, n = step.dst_size;
+  const uint plane = step.plane;
   const uint i = (uint)get_global_id(0), j = (uint)get_global_id(1);
   if (i >= n || j >= n) return;
   const uint x0 = 2u * i, y0 = 2u * j;

@@ -5,9 +5,12 @@
  * of dst_w x dst_h, dst_w = ceil(src_w / 2), dst_h likewise (offsets in floats; levels >= 1
  * share one buffer, so the source and the destination may be the same buffer, at disjoint
  * ranges). Run once per level, finest first. */
-__kernel void ssr_min_z(__global const float* src, const uint src_off, const uint src_w,
-                        const uint src_h, __global float* dst, const uint dst_off,
-                        const uint dst_w, const uint dst_h) {
+#include "shared/types.h"
+#include "shared/pass_params.h"
+
+__kernel void ssr_min_z(__global const float* src, __global float* dst, const MinZLevel level) {
+  const uint src_off = level.src_offset, src_w = level.src_width, src_h = level.src_height;
+  const uint dst_off = level.dst_offset, dst_w = level.dst_width, dst_h = level.dst_height;
   const uint x = (uint)get_global_id(0), y = (uint)get_global_id(1);
   if (x >= dst_w || y >= dst_h) return;
   src += src_off;

@@ -55,6 +55,8 @@
  */
 #pragma OPENCL FP_CONTRACT OFF
 
+#include "shared/types.h"
+#include "shared/pass_params.h"
 #include "shared/voxel_layout.h"
 #include "shared/svo_layout.h"
 #include "common/voxel_composite.h"
@@ -131,8 +133,9 @@ inline void svo_clear_sample(__global uint* pool, __global uchar* alpha, uint s)
 #define SVO_OWN_FIRST(table, brick) \
   ((table)[RP_SVO_TABLE_WORDS * ((brick) >> RP_SVO_BRICK_SHIFT)])
 
-__kernel void svo_clear_nodes(__global uint* svo, __global uint* own, uint first,
-                              uint count) {
+__kernel void svo_clear_nodes(__global uint* svo, __global uint* own,
+                              const SvoBuildParams params) {
+  const uint first = params.first, count = params.count;
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   __global uint* nodes = SVO_NODE_WORDS(svo);
@@ -148,9 +151,10 @@ __kernel void svo_clear_nodes(__global uint* svo, __global uint* own, uint first
 
 /* The owners at `depth` of fragments [SVO_FLAG_CHUNK g, + SVO_FLAG_CHUNK) (see the header).
  * resolution_log2 = D. */
-__kernel void svo_flag(__global const uint* fragments, uint fragment_count, __global uint* svo,
-                       __global uint* cur, volatile __global uint* own, uint depth,
-                       uint resolution_log2, uint descend) {
+__kernel void svo_flag(__global const uint* fragments, __global uint* svo, __global uint* cur,
+                       volatile __global uint* own, const SvoBuildParams params) {
+  const uint fragment_count = params.fragment_count, depth = params.depth;
+  const uint resolution_log2 = params.resolution_log2, descend = params.descend;
   const uint begin = (uint)get_global_id(0) * SVO_FLAG_CHUNK;
   if (begin >= fragment_count) return;
   const uint end = min(begin + SVO_FLAG_CHUNK, fragment_count);
@@ -197,14 +201,17 @@ __kernel void svo_flag(__global const uint* fragments, uint fragment_count, __gl
  * (z n + y) n + x of level l's words (level l >= the host's bits level, n = R >> l) is set
  * when a fragment lies in level-l voxel (x, y, z). Level `level`'s words start at word
  * `offset`. */
-__kernel void svo_occ_clear(__global uint* occ, uint words) {
+__kernel void svo_occ_clear(__global uint* occ, const SvoBuildParams params) {
+  const uint words = params.words;
   const uint i = (uint)get_global_id(0);
   if (i < words) occ[i] = 0u;
 }
 
 /* SVO_FLAG_CHUNK fragments a work-item: consecutive fragments mostly share a word. */
-__kernel void svo_occ_mark(__global const uint* fragments, uint fragment_count,
-                           volatile __global uint* occ, uint level, uint resolution_log2) {
+__kernel void svo_occ_mark(__global const uint* fragments, volatile __global uint* occ,
+                           const SvoBuildParams params) {
+  const uint fragment_count = params.fragment_count, level = params.level;
+  const uint resolution_log2 = params.resolution_log2;
   const uint begin = (uint)get_global_id(0) * SVO_FLAG_CHUNK;
   if (begin >= fragment_count) return;
   const uint end = min(begin + SVO_FLAG_CHUNK, fragment_count);
@@ -225,7 +232,8 @@ __kernel void svo_occ_mark(__global const uint* fragments, uint fragment_count,
 }
 
 /* Level l + 1's bits (n per side) from level l's (2n): one work-item per word. */
-__kernel void svo_occ_reduce(__global uint* occ, uint src, uint dst, uint n) {
+__kernel void svo_occ_reduce(__global uint* occ, const SvoBuildParams params) {
+  const uint src = params.src, dst = params.dst, n = params.n;
   const uint w = (uint)get_global_id(0);
   const uint count = n * n * n;
   if (w * 32u >= count) return;
@@ -248,8 +256,9 @@ __kernel void svo_occ_reduce(__global uint* occ, uint src, uint dst, uint n) {
  * level l's occupancy words (at `offset`): own = any own voxel 2a + o occupied; bit e = an
  * occupied own voxel on the low faces along e (o_i = 0 and a_i > 0 for every axis i of e). */
 __kernel void svo_flag_bits(__global uint* own, __global const uint* coords,
-                            __global const uint* occ, uint offset, uint first, uint count,
-                            uint depth) {
+                            __global const uint* occ, const SvoBuildParams params) {
+  const uint offset = params.offset, first = params.first, count = params.count;
+  const uint depth = params.depth;
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   const uint3 a = svo_unpack(coords[first + i]);
@@ -300,7 +309,8 @@ inline uint svo_find_near(__global const uint* nodes, const uint* path, uint dep
  * only after svo_allocate): this kernel reads the flag words and the node words of depths < k
  * (the descent), and writes only depth k's node words, so nothing it reads is written. */
 __kernel void svo_dilate(__global uint* svo, __global const uint* own,
-                         __global const uint* coords, uint first, uint count, uint depth) {
+                         __global const uint* coords, const SvoBuildParams params) {
+  const uint first = params.first, count = params.count, depth = params.depth;
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   const uint bits = own[first + i] & RP_SVO_FLAG_FACES;
@@ -324,8 +334,9 @@ inline bool svo_exists(__global const uint* svo, __global const uint* own, uint 
 
 /* Existing nodes (sums[2g]) and occupied own voxels (sums[2g + 1]: the samples stored per
  * direction) in chunk g of [first, first + count). */
-__kernel void svo_count(__global const uint* svo, __global const uint* own, uint first,
-                        uint count, uint chunk, __global uint* sums) {
+__kernel void svo_count(__global const uint* svo, __global const uint* own,
+                        __global uint* sums, const SvoBuildParams params) {
+  const uint first = params.first, count = params.count, chunk = params.chunk;
   const uint g = (uint)get_global_id(0);
   const uint begin = g * chunk;
   if (begin >= count) return;
@@ -342,7 +353,8 @@ __kernel void svo_count(__global const uint* svo, __global const uint* own, uint
 /* Exclusive prefix sums over the chunk sums (both counts), in place; the totals into
  * totals[2 slot], totals[2 slot + 1]. One work-item: the chunks number nodes / chunk (a few
  * thousand). */
-__kernel void svo_scan(__global uint* sums, uint chunks, __global uint* totals, uint slot) {
+__kernel void svo_scan(__global uint* sums, __global uint* totals, const SvoBuildParams params) {
+  const uint chunks = params.chunks, slot = params.slot;
   if (get_global_id(0) != 0) return;
   uint run = 0u, run_own = 0u;
   for (uint g = 0; g < chunks; ++g) {
@@ -359,10 +371,11 @@ __kernel void svo_scan(__global uint* sums, uint chunks, __global uint* totals, 
 /* At the leaf depth the flag words are then zeroed: they become the leaves' list heads
  * (svo_link). */
 __kernel void svo_allocate(__global uint* svo, __global uint* own, __global uint* coords,
-                           uint first,
-                           uint count, uint chunk, __global const uint* sums, uint child_first,
-                           uint brick_first, uint own_first, uint directions, uint leaf,
-                           uint table_offset) {
+                           __global const uint* sums, const SvoBuildParams params) {
+  const uint first = params.first, count = params.count, chunk = params.chunk;
+  const uint child_first = params.child_first, brick_first = params.brick_first;
+  const uint own_first = params.own_first, directions = params.directions, leaf = params.leaf;
+  const uint table_offset = params.table_offset;
   const uint g = (uint)get_global_id(0);
   const uint begin = g * chunk;
   if (begin >= count) return;
@@ -398,7 +411,9 @@ __kernel void svo_allocate(__global uint* svo, __global uint* own, __global uint
 
 /* Fragment f onto its leaf's list: heads[leaf] and next[] (= cur) hold fragment index + 1,
  * 0 ends a list. Each work-item rewrites only its own cur[f] (after reading it). */
-__kernel void svo_link(uint fragment_count, __global uint* cur, volatile __global uint* heads) {
+__kernel void svo_link(__global uint* cur, volatile __global uint* heads,
+                       const SvoBuildParams params) {
+  const uint fragment_count = params.fragment_count;
   const uint f = (uint)get_global_id(0);
   if (f >= fragment_count) return;
   cur[f] = atomic_xchg(heads + cur[f], f + 1u);
@@ -411,9 +426,12 @@ __kernel void svo_link(uint fragment_count, __global uint* cur, volatile __globa
  * seen through their facing sums: what voxel_mips.cl does for the dense level 1). A leaf slot
  * without a brick clears that parent sample (its 8 voxels are empty). */
 __kernel void svo_leaves(__global const uint* fragments, __global const uint* next,
-                         __global const uint* heads, __global uint* svo, uint first, uint count,
-                         uint brick_offset, uint alpha_offset, uint parent_brick_first,
-                         uint resolution_log2, uint table_offset) {
+                         __global const uint* heads, __global uint* svo,
+                         const SvoBuildParams params) {
+  const uint first = params.first, count = params.count;
+  const uint brick_offset = params.brick_offset, alpha_offset = params.alpha_offset;
+  const uint parent_brick_first = params.parent_brick_first;
+  const uint resolution_log2 = params.resolution_log2, table_offset = params.table_offset;
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   const uint D = resolution_log2;
@@ -486,8 +504,10 @@ __kernel void svo_leaves(__global const uint* fragments, __global const uint* ne
 
 /* Brick-table words 1..3 of the nodes of `depth`: the brick index of the face neighbour a + x,
  * a + y, a + z (RP_SVO_NO_LINK where it does not exist or lies outside the grid). */
-__kernel void svo_border(__global uint* svo, __global const uint* coords, uint first,
-                         uint count, uint depth, uint table_offset) {
+__kernel void svo_border(__global uint* svo, __global const uint* coords,
+                         const SvoBuildParams params) {
+  const uint first = params.first, count = params.count, depth = params.depth;
+  const uint table_offset = params.table_offset;
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   __global const uint* nodes = SVO_NODE_WORDS(svo);
@@ -519,8 +539,10 @@ __kernel void svo_border(__global uint* svo, __global const uint* coords, uint f
 
 /* Own samples of the nodes of `depth` (brick level `level` >= 2) from their children (level 1:
  * svo_leaves). */
-__kernel void svo_mips(__global uint* svo, uint first, uint count, uint brick_offset,
-                       uint alpha_offset, uint table_offset) {
+__kernel void svo_mips(__global uint* svo, const SvoBuildParams params) {
+  const uint first = params.first, count = params.count;
+  const uint brick_offset = params.brick_offset, alpha_offset = params.alpha_offset;
+  const uint table_offset = params.table_offset;
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   __global const uint* nodes = SVO_NODE_WORDS(svo);

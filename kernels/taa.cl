@@ -44,6 +44,8 @@
  *      out = clamp(hist * history_weight + c * (1 - history_weight), 0, 1).
  * tests/passes/taa_reference.cpp is the same algorithm in plain C++, one pixel at a time.
  */
+#include "shared/types.h"
+#include "shared/pass_params.h"
 #include "common/colour.h"
 #include "common/sampling.h"
 #include "common/taa.h"
@@ -95,11 +97,12 @@ __kernel void taa_resolve(__global const float4* restrict hdr_in,
                           __global const float* restrict depth,
                           __global const float* restrict history_in,
                           __global float* restrict history_out,
-                          __global float4* restrict hdr_out,
-                          uint width, uint height,
-                          float jitter_x, float jitter_y, /* this frame's jitter, pixels */
-                          float history_weight, float gamma, uint history_valid, uint unjitter,
-                          uint x_first) {
+                          __global float4* restrict hdr_out, const TaaParams params) {
+  const uint width = params.render_width, height = params.render_height;
+  const float jitter_x = params.jitter_x, jitter_y = params.jitter_y; /* this frame's, pixels */
+  const float history_weight = params.history_weight, gamma = params.gamma;
+  const uint history_valid = params.history_valid, unjitter = params.unjitter;
+  const uint x_first = params.x_first;
   const int w = (int)width, h = (int)height;
   const int x0 = (int)x_first + 8 * (int)get_global_id(0), y = (int)get_global_id(1);
 #ifdef RP_TAA_BORDER

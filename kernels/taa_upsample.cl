@@ -46,6 +46,8 @@
  * resolve: about 4.7 ms at 720), most of it in the 3x3 loop (3.2 ms without it).
  * tests/passes/taa_upsample_reference.cpp is the same algorithm in plain C++.
  */
+#include "shared/types.h"
+#include "shared/pass_params.h"
 #include "common/colour.h"
 #include "common/taa.h"
 
@@ -81,10 +83,12 @@ __kernel void taa_upsample(__global const float4* restrict hdr_in,
                            __global float* restrict history_out,
                            __global float4* restrict hdr_out,
                            __global float2* restrict velocity_out,
-                           __global float4* restrict depth_out,
-                           uint render_width, uint render_height, uint out_width, uint out_height,
-                           float jitter_x, float jitter_y, float history_weight, float gamma,
-                           uint history_valid) {
+                           __global float4* restrict depth_out, const TaaParams params) {
+  const uint render_width = params.render_width, render_height = params.render_height;
+  const uint out_width = params.out_width, out_height = params.out_height;
+  const float jitter_x = params.jitter_x, jitter_y = params.jitter_y;
+  const float history_weight = params.history_weight, gamma = params.gamma;
+  const uint history_valid = params.history_valid;
   const int ow = (int)out_width, oh = (int)out_height;
   const int x0 = 8 * (int)get_global_id(0), oy = (int)get_global_id(1);
   if (x0 >= ow || oy >= oh) return;

@@ -17,6 +17,8 @@
  * 720x720 on the 2-core PoCL CPU: 1.9x faster than one work-item per output byte (which was
  * 3x faster than per-pixel float3 code); the output is bit-identical to it.
  */
+#include "shared/types.h"
+#include "shared/pass_params.h"
 #include "common/colour.h"
 #include "common/random.h"
 
@@ -42,7 +44,8 @@ inline uint16 rp_tone_map_codes16(float16 x, uint16 byte, uint frame_hash, uint 
 }
 
 __kernel void tone_map_output(__global const float* restrict hdr, __global uint* restrict rgba8,
-                              uint pixel_count, uint dither, uint frame) {
+                              const ToneMapParams params) {
+  const uint pixel_count = params.pixel_count, dither = params.dither, frame = params.frame;
   const uint p0 = 16u * (uint)get_global_id(0);
   if (p0 >= pixel_count) return;
   const bool whole = p0 + 16u <= pixel_count;

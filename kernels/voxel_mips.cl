@@ -31,6 +31,8 @@
  */
 #pragma OPENCL FP_CONTRACT OFF
 
+#include "shared/types.h"
+#include "shared/pass_params.h"
 #include "shared/voxel_layout.h"
 #include "common/voxel.h"
 #include "common/voxel_composite.h"
@@ -197,7 +199,8 @@ inline MipsLanes mips_facing16(MipsLanes iso, uint16 word, uint dir) {
 /* One work-item per 16 parents along x (the host launches this build only for levels with a
  * multiple of 16 voxels per side). */
 __kernel void voxel_mips_build(__global float4* chain, __global const uint4* accum,
-                               uint resolution, uint level) {
+                               const VoxelMipsParams params) {
+  const uint resolution = params.resolution, level = params.level;
   const uint n = rp_voxel_level_size(resolution, level);
   const uint spans = n / 16u;
   const uint gid = (uint)get_global_id(0);
@@ -231,7 +234,8 @@ __kernel void voxel_mips_build(__global float4* chain, __global const uint4* acc
 #else
 
 __kernel void voxel_mips_build(__global float4* chain, __global const uint4* accum,
-                               uint resolution, uint level) {
+                               const VoxelMipsParams params) {
+  const uint resolution = params.resolution, level = params.level;
   const uint n = rp_voxel_level_size(resolution, level);
   const uint gid = (uint)get_global_id(0);
   if (level == 0u || n == 0u || gid >= n * n * n) return;

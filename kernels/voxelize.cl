@@ -86,6 +86,7 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 #include "shared/types.h"
+#include "shared/pass_params.h"
 #include "shared/voxel_layout.h"
 #include "shared/svo_layout.h"
 #include "common/math.h"
@@ -1047,20 +1048,20 @@ __kernel void voxelize_clear(__global uint4* accum, __global uint* overflow, uin
 }
 
 __kernel void voxelize_triangles(__global const FrameConstants* frame,
-                                 __global const Instance* instances, uint instance_count,
-                                 uint triangle_total,
+                                 __global const Instance* instances,
                                  __global const Vertex* vertices,
                                  __global const Triangle* triangles,
                                  __global const Material* materials,
                                  __global const TextureInfo* textures,
                                  __global const uint* texels,
                                  __global const float* shadow,
-                                 uint resolution,
                                  volatile __global uint* accum,
                                  volatile __global uint* overflow,
                                  volatile __global uint* large_count,
                                  __global uint* large_list,
-                                 __global const float4* bounce, uint bounce_cells) {
+                                 __global const float4* bounce, const VoxelizeParams params) {
+  const uint instance_count = params.instance_count, triangle_total = params.triangle_total;
+  const uint resolution = params.resolution, bounce_cells = params.bounce_cells;
   const uint first = (uint)get_global_id(0) * RP_SPAN;
   if (first >= triangle_total) return;
   const int n = (int)min((uint)RP_SPAN, triangle_total - first);
@@ -1235,23 +1236,23 @@ inline void vx_large_triangle(__global const FrameConstants* frame,
 /* The frame's large triangles (listed by voxelize_triangles), by a fixed number of
  * work-items. */
 __kernel void voxelize_large(__global const FrameConstants* frame,
-                             __global const Instance* instances, uint instance_count,
+                             __global const Instance* instances,
                              __global const Vertex* vertices,
                              __global const Triangle* triangles,
                              __global const Material* materials,
                              __global const TextureInfo* textures,
                              __global const uint* texels,
                              __global const float* shadow,
-                             uint resolution,
                              volatile __global uint* accum,
                              volatile __global uint* overflow,
                              __global const uint* large_count,
                              __global const uint* large_list,
-                             __global const uint* cached_instances, uint record,
+                             __global const uint* cached_instances,
                              volatile __global uint* cache_count, __global float4* cache,
-                             uint cache_capacity,
-                             __global const float4* bounce, uint bounce_cells,
-                             uint slices) {
+                             __global const float4* bounce, const VoxelizeParams params) {
+  const uint instance_count = params.instance_count, resolution = params.resolution;
+  const uint record = params.record, cache_capacity = params.cache_capacity;
+  const uint bounce_cells = params.bounce_cells, slices = params.slices;
   /* A fixed number of work-items strides over the frame's list (its length is only known on
    * the device), `slices` consecutive work-items sharing each triangle's columns (1 on CPUs;
    * on GPUs a wall at 512^3 is 131k columns, far too many for one thread). The global size
@@ -1268,10 +1269,11 @@ __kernel void voxelize_large(__global const FrameConstants* frame,
 
 /* The frame's light on the cached samples: RP_SPAN samples per work-item. */
 __kernel void voxelize_cached(__global const FrameConstants* frame, __global const float* shadow,
-                              __global float4* cache, uint samples,
-                              volatile __global uint* accum, volatile __global uint* overflow,
-                              __global const float4* bounce, uint bounce_cells,
-                              uint refresh_stride, uint refresh_phase) {
+                              __global float4* cache, volatile __global uint* accum,
+                              volatile __global uint* overflow, __global const float4* bounce,
+                              const VoxelizeParams params) {
+  const uint samples = params.samples, bounce_cells = params.bounce_cells;
+  const uint refresh_stride = params.refresh_stride, refresh_phase = params.refresh_phase;
   const uint first = (uint)get_global_id(0) * RP_SPAN;
   if (first >= samples) return;
   const int n = (int)min((uint)RP_SPAN, samples - first);
@@ -1343,13 +1345,12 @@ __kernel void voxelize_cached(__global const FrameConstants* frame, __global con
 }
 
 __kernel void voxelize_spheres(__global const FrameConstants* frame,
-                               __global const Sphere* spheres, uint sphere_count,
-                               __global const float* shadow,
-                               uint resolution,
+                               __global const Sphere* spheres, __global const float* shadow,
                                volatile __global uint* accum,
                                volatile __global uint* overflow,
-                               __global const float4* bounce, uint bounce_cells,
-                               uint slices) {
+                               __global const float4* bounce, const VoxelizeParams params) {
+  const uint sphere_count = params.sphere_count, resolution = params.resolution;
+  const uint bounce_cells = params.bounce_cells, slices = params.slices;
   /* `slices` consecutive work-items share a sphere's voxel rows (1 on CPUs; on GPUs a marble
    * at 512^3 is thousands of rows, too many for one thread). */
   const uint gid = (uint)get_global_id(0), slice = gid % slices;

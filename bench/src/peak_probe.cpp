@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cl/kernel_args.h"
 #include "cl/profiler.h"
 
 namespace rp::bench {
@@ -49,8 +50,7 @@ double best_plausible(const std::vector<double>& ms, double amount, double max_r
 void fill(rp::cl::Profiler& profiler, rp::cl::ProgramCache& programs, const ::cl::Buffer& src,
           size_t items) {
   ::cl::Kernel k = programs.kernel("probe.cl", "probe_fill");
-  k.setArg(0, src);
-  k.setArg(1, cl_uint(items));
+  rp::cl::bind_args(k, src, cl_uint(items));
   timed_launch(profiler, "probe_fill", k, items);
 }
 
@@ -96,8 +96,7 @@ double measure_bandwidth_gbps(const rp::cl::Context& context, rp::cl::ProgramCac
   rp::cl::Profiler profiler(context.queue, context.timing);
   fill(profiler, programs, src, items);
   ::cl::Kernel copy = programs.kernel("probe.cl", "probe_copy");
-  copy.setArg(0, src);
-  copy.setArg(1, dst);
+  rp::cl::bind_args(copy, src, dst);
   timed_launch(profiler, "probe_copy", copy, items);  // warm-up: first touch of dst's pages
   std::vector<double> ms;
   for (int i = 0; i < launches; ++i) ms.push_back(timed_launch(profiler, "probe_copy", copy, items));
@@ -121,9 +120,7 @@ double measure_cached_bandwidth_gbps(const rp::cl::Context& context,
   rp::cl::Profiler profiler(context.queue, context.timing);
   fill(profiler, programs, src, items);
   ::cl::Kernel copy = programs.kernel("probe.cl", "probe_copy_wrap");
-  copy.setArg(0, src);
-  copy.setArg(1, dst);
-  copy.setArg(2, cl_uint(items - 1));
+  rp::cl::bind_args(copy, src, dst, cl_uint(items - 1));
   timed_launch(profiler, "probe_copy_wrap", copy, global);  // warm-up: caches filled
   std::vector<double> ms;
   for (int i = 0; i < launches; ++i)
@@ -143,22 +140,23 @@ double measure_gflops(const rp::cl::Context& context, rp::cl::ProgramCache& prog
   ::cl::Buffer out(context.context, CL_MEM_READ_WRITE, items * sizeof(float));
   rp::cl::Profiler profiler(context.queue, context.timing);
   ::cl::Kernel k = programs.kernel("probe.cl", "probe_compute");
-  k.setArg(0, out);
-  k.setArg(1, 1.0f);  // a = b = 1: every mad adds exactly 1 (kernels/probe.cl)
-  k.setArg(2, 1.0f);
+  // a = b = 1: every mad adds exactly 1 (kernels/probe.cl)
+  const auto bind = [&](uint32_t iterations) {
+    rp::cl::bind_args(k, out, 1.0f, 1.0f, cl_uint(iterations));
+  };
   // Calibrate: grow the iteration count until one launch takes at least target_ms / 4, then
   // scale it to target_ms. (A device with unusable time stops at kMaxIterations.)
   uint32_t iterations = 16;
   double ms = 0;
   for (;;) {
-    k.setArg(3, cl_uint(iterations));
+    bind(iterations);
     ms = timed_launch(profiler, "probe_compute", k, items);
     if (ms >= target_ms / 4 || iterations >= kMaxIterations) break;
     iterations = std::min(kMaxIterations, iterations * 4);
   }
   if (ms > 0 && ms < target_ms)
     iterations = uint32_t(std::min<double>(kMaxIterations, iterations * target_ms / ms));
-  k.setArg(3, cl_uint(iterations));
+  bind(iterations);
   std::vector<double> times;
   for (int i = 0; i < launches; ++i) times.push_back(timed_launch(profiler, "probe_compute", k, items));
   // Verify: item g holds sum over lanes j = 0..63 of ((g & 255) + j + 8 * iterations).

@@ -5,7 +5,9 @@
 #include <string>
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
+#include "render/gpu_types.h"
 
 namespace rp::passes {
 namespace {
@@ -26,6 +28,16 @@ constexpr size_t kGroupWidth = 16;
 const ::cl::NDRange kGroup2(kGroupWidth, 1), kGroup3(kGroupWidth, 1, 1);
 
 size_t div_up(size_t a, size_t b) { return (a + b - 1) / b; }
+
+gpu::BloomStep bloom_step(uint32_t src_width, uint32_t src_height, uint32_t dst_width,
+                          uint32_t dst_height) {
+  gpu::BloomStep step{};
+  step.src_width = int32_t(src_width);
+  step.src_height = int32_t(src_height);
+  step.dst_width = int32_t(dst_width);
+  step.dst_height = int32_t(dst_height);
+  return step;
+}
 
 void check_buffer(const ::cl::Buffer& buffer, uint32_t width, uint32_t height) {
   if (buffer.getInfo<CL_MEM_SIZE>() < size_t(width) * height * 4 * sizeof(float))
@@ -109,13 +121,9 @@ void BloomPass::run_chain(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in
 
   // D1 from the input (Karis average unless switched off): 8 texels of two rows per work-item.
   const Level& first = levels_.front();
-  downsample_first_.setArg(0, hdr_in);
-  downsample_first_.setArg(1, cl_int(width));
-  downsample_first_.setArg(2, cl_int(height));
-  downsample_first_.setArg(3, first.down);
-  downsample_first_.setArg(4, cl_int(first.width));
-  downsample_first_.setArg(5, cl_int(first.height));
-  downsample_first_.setArg(6, cl_int(karis_ ? 1 : 0));
+  gpu::BloomStep step = bloom_step(width, height, first.width, first.height);
+  step.karis = karis_ ? 1 : 0;
+  rp::cl::bind_args(downsample_first_, hdr_in, first.down, step);
   profiler.enqueue(kPass, downsample_first_,
                    grid(div_up(first.width, 8), div_up(first.height, 2)), kGroup2);
 
@@ -123,12 +131,8 @@ void BloomPass::run_chain(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in
   for (size_t k = 1; k < levels_.size(); ++k) {
     const Level& src = levels_[k - 1];
     const Level& dst = levels_[k];
-    downsample_.setArg(0, src.down);
-    downsample_.setArg(1, cl_int(src.width));
-    downsample_.setArg(2, cl_int(src.height));
-    downsample_.setArg(3, dst.down);
-    downsample_.setArg(4, cl_int(dst.width));
-    downsample_.setArg(5, cl_int(dst.height));
+    rp::cl::bind_args(downsample_, src.down, dst.down,
+                      bloom_step(src.width, src.height, dst.width, dst.height));
     profiler.enqueue(kPass, downsample_, grid(div_up(dst.width, 8), dst.height, kPlanes),
                      kGroup3);
   }
@@ -136,13 +140,9 @@ void BloomPass::run_chain(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in
   // Uk = Dk + up(U(k+1)) for k = N-1 .. 1: 16 texels of one channel row per work-item.
   for (int k = levels() - 1; k >= 1; --k) {
     Level& level = levels_[size_t(k - 1)];
-    upsample_add_.setArg(0, up(k + 1));
-    upsample_add_.setArg(1, cl_int(level_width(k + 1)));
-    upsample_add_.setArg(2, cl_int(level_height(k + 1)));
-    upsample_add_.setArg(3, level.down);
-    upsample_add_.setArg(4, level.up);
-    upsample_add_.setArg(5, cl_int(level.width));
-    upsample_add_.setArg(6, cl_int(level.height));
+    rp::cl::bind_args(upsample_add_, up(k + 1), level.down, level.up,
+                      bloom_step(level_width(k + 1), level_height(k + 1), level.width,
+                                 level.height));
     profiler.enqueue(kPass, upsample_add_, grid(div_up(level.width, 16), level.height, kPlanes),
                      kGroup3);
   }
@@ -180,15 +180,10 @@ void BloomPass::run(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr_in, uint
 
   // Mix at full resolution (16 pixels of two rows per work-item): bloom = up(U1) / N.
   const Composite c = composite(strength);
-  mix_.setArg(0, hdr_in);
-  mix_.setArg(1, *c.level1);
-  mix_.setArg(2, cl_int(c.level1_width));
-  mix_.setArg(3, cl_int(c.level1_height));
-  mix_.setArg(4, hdr_out);
-  mix_.setArg(5, cl_int(width));
-  mix_.setArg(6, cl_int(height));
-  mix_.setArg(7, c.keep);
-  mix_.setArg(8, c.scale);
+  gpu::BloomStep step = bloom_step(c.level1_width, c.level1_height, width, height);
+  step.keep = c.keep;
+  step.scale = c.scale;
+  rp::cl::bind_args(mix_, hdr_in, *c.level1, hdr_out, step);
   profiler.enqueue(kPass, mix_, grid(div_up(width, 16), div_up(height, 2)), kGroup2);
 }
 

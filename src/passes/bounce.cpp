@@ -1,7 +1,9 @@
 #include "passes/bounce.h"
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
+#include "render/gpu_types.h"
 
 namespace rp::passes {
 namespace {
@@ -32,14 +34,12 @@ void BouncePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   if (!valid_)  // start from nothing: every face age 0 (in queue order, no host copy)
     context_->queue.enqueueFillBuffer(grid_, cl_float4{{0.0f, 0.0f, 0.0f, 0.0f}}, 0,
                                       faces * 4 * sizeof(float));
-  gather_.setArg(0, voxels);
-  gather_.setArg(1, cl_uint(resolution));
-  gather_.setArg(2, cl_uint(levels));
-  gather_.setArg(3, grid_);
-  gather_.setArg(4, cl_uint(frame));
-  gather_.setArg(5, cl_uint(cones == Cones::kAll ? 16 : 1));
-  gather_.setArg(6, scene.frame);
-  gather_.setArg(7, scene.sky);
+  gpu::BounceParams params{};
+  params.resolution = resolution;
+  params.levels = levels;
+  params.frame = frame;
+  params.cones = cones == Cones::kAll ? 16u : 1u;
+  rp::cl::bind_args(gather_, voxels, grid_, scene.frame, scene.sky, params);
   const size_t items = cones == Cones::kAll ? faces : faces / 2;  // one cone: half a frame
   profiler.enqueue(pass_name::kBounce, gather_, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
                    ::cl::NDRange(kGroup));

@@ -4,8 +4,10 @@
 #include <string>
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "kernels/shared/voxel_layout.h"
 #include "passes/pass_names.h"
+#include "render/gpu_types.h"
 
 namespace rp::passes {
 namespace {
@@ -74,30 +76,24 @@ void DebugViewPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scen
   };
 
   ::cl::Kernel* k = nullptr;
-  cl_uint arg = 0;
   switch (settings.view) {
     case DebugView::kFinal:
       break;
     case DebugView::kAlbedo:
       k = &kernel("albedo");
-      k->setArg(arg++, scene.frame);
-      k->setArg(arg++, gbuffer().albedo);
+      rp::cl::bind_args(*k, scene.frame, gbuffer().albedo, rgba8);
       break;
     case DebugView::kNormal:
       k = &kernel("normal");
-      k->setArg(arg++, scene.frame);
-      k->setArg(arg++, gbuffer().normal_depth);
-      k->setArg(arg++, gbuffer().position);
+      rp::cl::bind_args(*k, scene.frame, gbuffer().normal_depth, gbuffer().position, rgba8);
       break;
     case DebugView::kDepth:
       k = &kernel("depth");
-      k->setArg(arg++, scene.frame);
-      k->setArg(arg++, gbuffer().normal_depth);
+      rp::cl::bind_args(*k, scene.frame, gbuffer().normal_depth, rgba8);
       break;
     case DebugView::kVelocity:
       k = &kernel("velocity");
-      k->setArg(arg++, scene.frame);
-      k->setArg(arg++, gbuffer().velocity);
+      rp::cl::bind_args(*k, scene.frame, gbuffer().velocity, rgba8);
       break;
     case DebugView::kShadowMap:
       require(in.shadow != nullptr, "view 'shadow-map' needs the shadow map");
@@ -106,8 +102,7 @@ void DebugViewPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scen
                   " texels wide but the frame constants say " +
                   std::to_string(scene.constants.shadow_size));
       k = &kernel("shadow_map");
-      k->setArg(arg++, scene.frame);
-      k->setArg(arg++, in.shadow->depth);
+      rp::cl::bind_args(*k, scene.frame, in.shadow->depth, rgba8);
       break;
     case DebugView::kDirect:
     case DebugView::kIndirect:
@@ -119,8 +114,7 @@ void DebugViewPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scen
       require(holds(buffer, pixels * 16),
               "the " + view + " buffer is smaller than " + frame_size(w, h) + " float4 pixels");
       k = &kernel("radiance");
-      k->setArg(arg++, scene.frame);
-      k->setArg(arg++, buffer);
+      rp::cl::bind_args(*k, scene.frame, buffer, rgba8);
       break;
     }
     case DebugView::kVoxels: {
@@ -140,15 +134,12 @@ void DebugViewPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scen
               "the voxel buffer is smaller than a " + std::to_string(r) + "^3 chain of " +
                   std::to_string(levels) + " levels");
       k = &kernel("voxels");
-      k->setArg(arg++, scene.frame);
-      k->setArg(arg++, *in.voxels);
-      k->setArg(arg++, cl_uint(r));
-      k->setArg(arg++, cl_uint(settings.level));
-      k->setArg(arg++, cl_uint(settings.level == 0 ? 0 : settings.dir));
+      rp::cl::bind_args(*k, scene.frame, *in.voxels, rgba8,
+                        gpu::VoxelViewParams{r, settings.level,
+                                             settings.level == 0 ? 0u : settings.dir, 0u});
       break;
     }
   }
-  k->setArg(arg, rgba8);
   profiler.enqueue(pass_name::kDebugView, *k,
                    ::cl::NDRange(rp::cl::round_up(w, kGroup), rp::cl::round_up(h, kGroup)),
                    ::cl::NDRange(kGroup, kGroup));

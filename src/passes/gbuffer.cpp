@@ -4,7 +4,9 @@
 #include <string>
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
+#include "render/gpu_types.h"
 
 namespace rp::passes {
 namespace {
@@ -53,31 +55,21 @@ void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   if (w == 0 || h == 0) return;
   if (!scene.texels() && !no_texels_())
     no_texels_ = ::cl::Buffer(context_->context, CL_MEM_READ_ONLY, sizeof(cl_uint));
-  cl_uint arg = 0;
   ::cl::Kernel& resolve = resolve_[texture_filter];
   if (!resolve())
     resolve = programs_->kernel("gbuffer.cl", "gbuffer_resolve",
                                 options_ + " -DRP_TEXTURE_FILTER_FIXED=" +
                                     std::to_string(texture_filter) + "u");
-  resolve.setArg(arg++, scene.frame);
-  resolve.setArg(arg++, vis.ids);
-  resolve.setArg(arg++, vis.bary);
-  resolve.setArg(arg++, scene.instances);
-  resolve.setArg(arg++, scene.spheres);
-  resolve.setArg(arg++, scene.vertices);
-  resolve.setArg(arg++, scene.triangles);
-  resolve.setArg(arg++, scene.materials);
-  resolve.setArg(arg++, scene.textures);
+  gpu::GBufferParams params{};
+  params.texture_filter = texture_filter;
+  params.lod_bias = lod_bias;
+  params.stochastic_levels = stochastic_levels ? 1u : 0u;
   // The packed RGBA8 sRGB texels, decoded per tap (kernels/common/span_texture.h).
-  resolve.setArg(arg++, scene.texels() ? scene.texels : no_texels_);
-  resolve.setArg(arg++, out.albedo);
-  resolve.setArg(arg++, out.normal_depth);
-  resolve.setArg(arg++, out.position);
-  resolve.setArg(arg++, out.emission);
-  resolve.setArg(arg++, out.velocity);
-  resolve.setArg(arg++, cl_uint(texture_filter));
-  resolve.setArg(arg++, cl_float(lod_bias));
-  resolve.setArg(arg++, cl_uint(stochastic_levels ? 1 : 0));
+  const ::cl::Buffer& texels = scene.texels() ? scene.texels : no_texels_;
+  rp::cl::bind_args(resolve, scene.frame, vis.ids, vis.bary, scene.instances, scene.spheres,
+                    scene.vertices, scene.triangles, scene.materials, scene.textures, texels,
+                    out.albedo, out.normal_depth, out.position, out.emission, out.velocity,
+                    params);
   // One work-item per span of span_ pixels of a row, a 1D range in row-major order.
   const size_t span = static_cast<size_t>(span_);
   const size_t spans = (w + span - 1) / span * h;
@@ -89,19 +81,9 @@ void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
 void GBufferPass::run_material(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                                const render::VisibilityBuffer& vis, render::GBuffer& out) {
   if (!material_()) material_ = programs_->kernel("gbuffer_material.cl", "gbuffer_material");
-  cl_uint arg = 0;
-  material_.setArg(arg++, scene.frame);
-  material_.setArg(arg++, vis.ids);
-  material_.setArg(arg++, vis.bary);
-  material_.setArg(arg++, scene.instances);
-  material_.setArg(arg++, scene.vertices);
-  material_.setArg(arg++, scene.tangents);
-  material_.setArg(arg++, scene.triangles);
-  material_.setArg(arg++, scene.materials);
-  material_.setArg(arg++, scene.textures);
-  material_.setArg(arg++, scene.texels() ? scene.texels : no_texels_);
-  material_.setArg(arg++, out.normal_depth);
-  material_.setArg(arg++, out.emission);
+  rp::cl::bind_args(material_, scene.frame, vis.ids, vis.bary, scene.instances, scene.vertices,
+                    scene.tangents, scene.triangles, scene.materials, scene.textures,
+                    scene.texels() ? scene.texels : no_texels_, out.normal_depth, out.emission);
   constexpr size_t kTile = 16;
   const uint32_t w = scene.constants.width, h = scene.constants.height;
   profiler.enqueue(pass_name::kGBuffer, material_,

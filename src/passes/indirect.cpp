@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "passes/light.h"
 #include "passes/pass_names.h"
 
@@ -126,14 +127,8 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   const uint32_t top = ssr ? ssr_top_level(w, h) : 0u;
   for (uint32_t k = 1, sw = w, sh = h, src_off = 0, dst_off = 0; k <= top; ++k) {
     const uint32_t dw = (sw + 1) / 2, dh = (sh + 1) / 2;
-    min_z_.setArg(0, k == 1 ? *ssr->depth : hiz_);
-    min_z_.setArg(1, cl_uint(src_off));
-    min_z_.setArg(2, cl_uint(sw));
-    min_z_.setArg(3, cl_uint(sh));
-    min_z_.setArg(4, hiz_);
-    min_z_.setArg(5, cl_uint(dst_off));
-    min_z_.setArg(6, cl_uint(dw));
-    min_z_.setArg(7, cl_uint(dh));
+    const gpu::MinZLevel level{src_off, sw, sh, dst_off, dw, dh, 0u, 0u};
+    rp::cl::bind_args(min_z_, k == 1 ? *ssr->depth : hiz_, hiz_, level);
     profiler.enqueue(pass_name::kSsrMinZ, min_z_,
                      ::cl::NDRange(rp::cl::round_up(dw, kGroup), rp::cl::round_up(dh, kGroup)),
                      ::cl::NDRange(kGroup, kGroup));
@@ -146,57 +141,39 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   // Without history the block traces the whole cone set (a converged-looking first frame after
   // a start, reset, camera cut or resize, at 16x the trace cost for that one frame).
   ::cl::Kernel& trace = history_valid_ ? trace_ : warm_trace_;
-  cl_uint arg = 0;
-  trace.setArg(arg++, scene.frame);
-  trace.setArg(arg++, gbuffer.normal_depth);
-  trace.setArg(arg++, gbuffer.position);
-  trace.setArg(arg++, gbuffer.emission);
-  trace.setArg(arg++, voxels);
-  trace.setArg(arg++, cl_uint(voxel_resolution));
-  trace.setArg(arg++, cl_uint(voxel_levels));
-  trace.setArg(arg++, scene.sky);
-  trace.setArg(arg++, cl_uint(lw));
-  trace.setArg(arg++, cl_uint(lh));
-  trace.setArg(arg++, cl_uint(stride));
-  trace.setArg(arg++, cl_uint(plane));
-  trace.setArg(arg++, radiance_);
-  trace.setArg(arg++, position_);
-  trace.setArg(arg++, geometry_[cur]);
-  trace.setArg(arg++, specular_);
-  trace.setArg(arg++, ssr ? *ssr->depth : dummy_);
-  trace.setArg(arg++, ssr ? hiz_ : dummy_);
-  trace.setArg(arg++, cl_uint(top));
-  trace.setArg(arg++, ssr ? *ssr->prev_hdr : dummy_);
-  trace.setArg(arg++, ssr ? *ssr->velocity : dummy_);
-  trace.setArg(arg++, cl_uint(ssr && history_valid_ ? 1 : 0));
+  gpu::LowResPlanes planes{};
+  planes.width = lw;
+  planes.height = lh;
+  planes.stride = stride;
+  planes.plane = plane;
+  planes.pixel_scale = scale;
+  gpu::IndirectTraceParams trace_params{};
+  trace_params.planes = planes;
+  trace_params.voxel_resolution = voxel_resolution;
+  trace_params.voxel_levels = voxel_levels;
+  trace_params.ssr_top = top;
+  trace_params.ssr_history = ssr && history_valid_ ? 1u : 0u;
+  rp::cl::bind_args(trace, scene.frame, gbuffer.normal_depth, gbuffer.position, gbuffer.emission,
+                    voxels, scene.sky, radiance_, position_, geometry_[cur], specular_,
+                    ssr ? *ssr->depth : dummy_, ssr ? hiz_ : dummy_,
+                    ssr ? *ssr->prev_hdr : dummy_, ssr ? *ssr->velocity : dummy_, trace_params);
   profiler.enqueue(pass_name::kIndirectTrace, trace,
                    ::cl::NDRange(rp::cl::round_up(lw, kGroup), rp::cl::round_up(lh, kGroup)),
                    local);
 
-  // 8 samples of a row per work-item (kernels/common/indirect_simd.h).
-  arg = 0;
-  filter_.setArg(arg++, scene.frame);
-  filter_.setArg(arg++, radiance_);
-  filter_.setArg(arg++, position_);
-  filter_.setArg(arg++, geometry_[cur]);
-  filter_.setArg(arg++, geometry_[prev]);
-  filter_.setArg(arg++, history_[prev]);
-  filter_.setArg(arg++, history_[cur]);
-  filter_.setArg(arg++, cl_uint(lw));
-  filter_.setArg(arg++, cl_uint(lh));
-  filter_.setArg(arg++, cl_uint(stride));
-  filter_.setArg(arg++, cl_uint(plane));
-  filter_.setArg(arg++, scale);
-  filter_.setArg(arg++, cl_uint(history_valid_ ? 1 : 0));
-  filter_.setArg(arg++, kAlphaMin);
-  filter_.setArg(arg++, specular_);
-  filter_.setArg(arg++, specular_filled_[prev]);
-  filter_.setArg(arg++, specular_filled_[cur]);
   // reflections move with the view: their history is used only while the camera stands still
   const bool still = std::memcmp(&scene.constants.view_proj_unjittered,
                                  &scene.constants.prev_view_proj_unjittered,
                                  sizeof(scene.constants.view_proj_unjittered)) == 0;
-  filter_.setArg(arg++, cl_uint(history_valid_ && still ? 1 : 0));
+  gpu::IndirectFilterParams filter_params{};
+  filter_params.planes = planes;
+  filter_params.history_valid = history_valid_ ? 1u : 0u;
+  filter_params.alpha_min = kAlphaMin;
+  filter_params.specular_history = history_valid_ && still ? 1u : 0u;
+  // 8 samples of a row per work-item (kernels/common/indirect_simd.h).
+  rp::cl::bind_args(filter_, scene.frame, radiance_, position_, geometry_[cur], geometry_[prev],
+                    history_[prev], history_[cur], specular_, specular_filled_[prev],
+                    specular_filled_[cur], filter_params);
   profiler.enqueue(pass_name::kIndirectFilter, filter_,
                    ::cl::NDRange(rp::cl::round_up((lw + 7) / 8, kGroup), rp::cl::round_up(lh, kGroup)),
                    local);

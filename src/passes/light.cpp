@@ -3,6 +3,7 @@
 #include <string>
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "kernels/shared/svo_layout.h"
 #include "kernels/shared/voxel_layout.h"
 #include "passes/pass_names.h"
@@ -23,20 +24,6 @@ uint32_t log2_exact(uint32_t v) {
   uint32_t l = 0;
   while ((1u << l) < v) ++l;
   return l;
-}
-
-// Binds the GBuffer and visibility arguments every variant starts with; returns the next index.
-cl_uint bind_common(::cl::Kernel& kernel, const render::GpuScene& scene,
-                    const render::GBuffer& gbuffer, const ::cl::Buffer& visibility) {
-  cl_uint arg = 0;
-  kernel.setArg(arg++, scene.frame);
-  kernel.setArg(arg++, gbuffer.albedo);
-  kernel.setArg(arg++, gbuffer.normal_depth);
-  kernel.setArg(arg++, gbuffer.position);
-  kernel.setArg(arg++, gbuffer.emission);
-  kernel.setArg(arg++, visibility);
-  kernel.setArg(arg++, scene.brdf_table);
-  return arg;
 }
 
 void enqueue(rp::cl::Profiler& profiler, const ::cl::Kernel& kernel, uint32_t w, uint32_t h) {
@@ -105,21 +92,18 @@ void LightPass::run_visibility(rp::cl::Profiler& profiler, const render::GpuScen
     visibility_bytes_ = bytes;
   }
   ::cl::Kernel& k = shadow_kernel();
-  cl_uint arg = 0;
-  k.setArg(arg++, scene.frame);
-  k.setArg(arg++, gbuffer.normal_depth);
-  k.setArg(arg++, gbuffer.position);
-  k.setArg(arg++, shadow.depth);
   // hard and pcf never read the mips: any buffer will do
-  k.setArg(arg++, shadow.mip_planes > 0 ? shadow.mips : shadow.depth);
-  k.setArg(arg++, visibility_);
+  const ::cl::Buffer& mips = shadow.mip_planes > 0 ? shadow.mips : shadow.depth;
+  const auto bind = [&](cl_uint pass, const ::cl::Buffer& consensus) {
+    rp::cl::bind_args(k, scene.frame, gbuffer.normal_depth, gbuffer.position, shadow.depth, mips,
+                      visibility_, pass, consensus);
+  };
   // 4x2 pixels per work-item; timed as part of the light pass
   const size_t chunks_x = (w + 3) / 4, chunks_y = (h + 1) / 2;
   const ::cl::NDRange local(kComposeGroupX, kComposeGroupY);
   const size_t rows = rp::cl::round_up(chunks_y, kComposeGroupY);
   if (!checkerboard_ || filter_ != render::ShadowMode::kPcss) {
-    k.setArg(arg++, cl_uint(kShadowPassAll));
-    k.setArg(arg, visibility_);  // not read in this pass
+    bind(kShadowPassAll, visibility_);  // the consensus is not read in this pass
     profiler.enqueue(pass_name::kLight, k,
                      ::cl::NDRange(rp::cl::round_up(chunks_x, kComposeGroupX), rows),
                      local);
@@ -129,10 +113,9 @@ void LightPass::run_visibility(rp::cl::Profiler& profiler, const render::GpuScen
     consensus_bytes_ = chunks_x * chunks_y;
     consensus_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, consensus_bytes_);
   }
-  k.setArg(arg + 1, consensus_);
   const ::cl::NDRange half(rp::cl::round_up((chunks_x + 1) / 2, kComposeGroupX), rows);
   for (cl_uint pass : {kShadowPassBlack, kShadowPassWhite}) {
-    k.setArg(arg, pass);
+    bind(pass, consensus_);
     profiler.enqueue(pass_name::kLight, k, half, local);
   }
 }
@@ -191,36 +174,38 @@ void LightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                         std::to_string(size_t(w) * h * 16) + " bytes (" + std::to_string(w) +
                         "x" + std::to_string(h) + " float4)");
   ::cl::Kernel& k = variant(indirect != nullptr, components != nullptr, prt != nullptr);
-  cl_uint arg = bind_common(k, scene, gbuffer, visibility_);
+  // What a variant does not read: any buffer will do (the lamp visibility, small).
+  const ::cl::Buffer& unused = visibility_;
+  const ::cl::Buffer& prt_in = prt != nullptr ? *prt : unused;
+  const ::cl::Buffer& direct_out = components != nullptr ? components->direct : unused;
+  const ::cl::Buffer& indirect_out = components != nullptr ? components->indirect : unused;
+  const ::cl::Buffer& specular_out = components != nullptr ? components->specular : unused;
   if (indirect != nullptr) {
-    k.setArg(arg++, *indirect->irradiance);
-    k.setArg(arg++, *indirect->geometry);
-    k.setArg(arg++, *indirect->specular);
-    k.setArg(arg++, cl_uint(indirect->width));
-    k.setArg(arg++, cl_uint(indirect->height));
-    k.setArg(arg++, cl_uint(indirect->stride));
-    k.setArg(arg++, cl_uint(indirect->plane));
-    k.setArg(arg++, indirect->pixel_scale);
+    gpu::LowResPlanes lr{};
+    lr.width = indirect->width;
+    lr.height = indirect->height;
+    lr.stride = indirect->stride;
+    lr.plane = indirect->plane;
+    lr.pixel_scale = indirect->pixel_scale;
+    rp::cl::bind_args(k, scene.frame, gbuffer.albedo, gbuffer.normal_depth, gbuffer.position,
+                      gbuffer.emission, visibility_, scene.brdf_table, *indirect->irradiance,
+                      *indirect->geometry, *indirect->specular, prt_in, direct_out,
+                      indirect_out, specular_out, hdr, lr);
   } else {
-    k.setArg(arg++, voxels);
-    k.setArg(arg++, cl_uint(voxel_resolution));
-    k.setArg(arg++, cl_uint(voxel_levels));
-    k.setArg(arg++, scene.sky);
     // the screen-space reflections (light_shade reads none of these when ssr_history is 0)
     if (ssr != nullptr && ssr->prev_hdr == &hdr)
       throw rp::cl::Error("light pass: the reflections' previous frame must not be the output");
-    k.setArg(arg++, ssr != nullptr ? *ssr->depth : visibility_);
-    k.setArg(arg++, ssr != nullptr ? *ssr->prev_hdr : gbuffer.position);
-    k.setArg(arg++, ssr != nullptr ? *ssr->velocity : gbuffer.velocity);
-    k.setArg(arg++, cl_uint(ssr != nullptr ? 1 : 0));
+    gpu::LightShadeParams params{};
+    params.voxel_resolution = voxel_resolution;
+    params.voxel_levels = voxel_levels;
+    params.ssr_history = ssr != nullptr ? 1u : 0u;
+    rp::cl::bind_args(k, scene.frame, gbuffer.albedo, gbuffer.normal_depth, gbuffer.position,
+                      gbuffer.emission, visibility_, scene.brdf_table, voxels, scene.sky,
+                      ssr != nullptr ? *ssr->depth : visibility_,
+                      ssr != nullptr ? *ssr->prev_hdr : gbuffer.position,
+                      ssr != nullptr ? *ssr->velocity : gbuffer.velocity, prt_in, direct_out,
+                      indirect_out, specular_out, hdr, params);
   }
-  if (prt != nullptr) k.setArg(arg++, *prt);
-  if (components != nullptr) {
-    k.setArg(arg++, components->direct);
-    k.setArg(arg++, components->indirect);
-    k.setArg(arg++, components->specular);
-  }
-  k.setArg(arg, hdr);
   if (indirect != nullptr) {
     // light_compose: 8 pixels of a row per work-item.
     profiler.enqueue(pass_name::kLight, k,

@@ -4,7 +4,9 @@
 #include <string>
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
+#include "render/gpu_types.h"
 
 namespace rp::passes {
 namespace {
@@ -78,56 +80,40 @@ void MotionBlurPass::enqueue(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr
                                 tiles * kBlocksPerTile * kBlocksPerTile * sizeof(float));
   }
 
-  tile_kernel_.setArg(0, gbuffer.velocity);
-  tile_kernel_.setArg(1, tile_max_);
-  tile_kernel_.setArg(2, cl_uint(width));
-  tile_kernel_.setArg(3, cl_uint(height));
-  tile_kernel_.setArg(4, shutter);
+  gpu::MotionBlurParams params{};
+  params.width = width;
+  params.height = height;
+  params.tiles_x = tiles_x_;
+  params.tiles_y = tiles_y_;
+  params.shutter = shutter;
+  params.fuse_bloom = bloom ? 1u : 0u;
+  params.bloom_width = bloom ? bloom->level1_width : 0u;
+  params.bloom_height = bloom ? bloom->level1_height : 0u;
+  params.bloom_keep = bloom ? bloom->keep : 1.0f;
+  params.bloom_scale = bloom ? bloom->scale : 0.0f;
+
+  rp::cl::bind_args(tile_kernel_, gbuffer.velocity, tile_max_, params);
   profiler.enqueue(kPass, tile_kernel_, ::cl::NDRange(tiles_x_, tiles_y_ * kTileSize),
                    ::cl::NDRange(1, kTileSize));
 
-  neighbour_kernel_.setArg(0, tile_max_);
-  neighbour_kernel_.setArg(1, neighbour_max_);
-  neighbour_kernel_.setArg(2, plane_needed_);
-  neighbour_kernel_.setArg(3, cl_uint(tiles_x_));
-  neighbour_kernel_.setArg(4, cl_uint(tiles_y_));
+  rp::cl::bind_args(neighbour_kernel_, tile_max_, neighbour_max_, plane_needed_, params);
   profiler.enqueue(kPass, neighbour_kernel_, ::cl::NDRange(tiles_x_, tiles_y_));
 
-  depth_speed_kernel_.setArg(0, gbuffer.velocity);
-  depth_speed_kernel_.setArg(1, gbuffer.normal_depth);
-  depth_speed_kernel_.setArg(2, plane_needed_);
-  depth_speed_kernel_.setArg(3, depth_speed_);
-  depth_speed_kernel_.setArg(4, cl_uint(width));
-  depth_speed_kernel_.setArg(5, cl_uint(height));
-  depth_speed_kernel_.setArg(6, cl_uint(tiles_x_));
-  depth_speed_kernel_.setArg(7, shutter);
+  rp::cl::bind_args(depth_speed_kernel_, gbuffer.velocity, gbuffer.normal_depth, plane_needed_,
+                    depth_speed_, params);
   profiler.enqueue(kPass, depth_speed_kernel_, ::cl::NDRange(tiles_x_, height),
                    ::cl::NDRange(tiles_x_, 1));
 
   // The largest blur radius of every 4x4 block of the flagged tiles.
-  block_max_kernel_.setArg(0, depth_speed_);
-  block_max_kernel_.setArg(1, plane_needed_);
-  block_max_kernel_.setArg(2, block_speed_);
-  block_max_kernel_.setArg(3, cl_int(width));
-  block_max_kernel_.setArg(4, cl_int(height));
-  block_max_kernel_.setArg(5, cl_int(tiles_x_));
+  rp::cl::bind_args(block_max_kernel_, depth_speed_, plane_needed_, block_speed_, params);
   profiler.enqueue(kPass, block_max_kernel_,
                    ::cl::NDRange(tiles_x_ * kBlocksPerTile, tiles_y_ * kBlocksPerTile),
                    ::cl::NDRange(kBlocksPerTile, kBlocksPerTile));
 
   // The image outside the moving tiles: the whole buffer copied, or the bloom composited.
   if (bloom) {
-    composite_kernel_.setArg(0, hdr_in);
-    composite_kernel_.setArg(1, *bloom->level1);
-    composite_kernel_.setArg(2, cl_int(bloom->level1_width));
-    composite_kernel_.setArg(3, cl_int(bloom->level1_height));
-    composite_kernel_.setArg(4, bloom->keep);
-    composite_kernel_.setArg(5, bloom->scale);
-    composite_kernel_.setArg(6, neighbour_max_);
-    composite_kernel_.setArg(7, cl_int(tiles_x_));
-    composite_kernel_.setArg(8, hdr_out);
-    composite_kernel_.setArg(9, cl_int(width));
-    composite_kernel_.setArg(10, cl_int(height));
+    rp::cl::bind_args(composite_kernel_, hdr_in, *bloom->level1, neighbour_max_, hdr_out,
+                      params);
     profiler.enqueue(kPass, composite_kernel_,
                      ::cl::NDRange(rp::cl::round_up(div_up(width, 16), 16), div_up(height, 2)),
                      ::cl::NDRange(16, 1));
@@ -139,20 +125,9 @@ void MotionBlurPass::enqueue(rp::cl::Profiler& profiler, const ::cl::Buffer& hdr
   }
 
   // The moving tiles, over the copy: 4x4 pixel blocks, one tile's 5x5 blocks per work-group.
-  reconstruct_kernel_.setArg(0, hdr_in);
-  reconstruct_kernel_.setArg(1, depth_speed_);
-  reconstruct_kernel_.setArg(2, neighbour_max_);
-  reconstruct_kernel_.setArg(3, block_speed_);
-  reconstruct_kernel_.setArg(4, bloom ? *bloom->level1 : neighbour_max_);
-  reconstruct_kernel_.setArg(5, cl_int(bloom ? bloom->level1_width : 0));
-  reconstruct_kernel_.setArg(6, cl_int(bloom ? bloom->level1_height : 0));
-  reconstruct_kernel_.setArg(7, bloom ? bloom->keep : 1.0f);
-  reconstruct_kernel_.setArg(8, bloom ? bloom->scale : 0.0f);
-  reconstruct_kernel_.setArg(9, cl_int(bloom ? 1 : 0));
-  reconstruct_kernel_.setArg(10, hdr_out);
-  reconstruct_kernel_.setArg(11, cl_int(width));
-  reconstruct_kernel_.setArg(12, cl_int(height));
-  reconstruct_kernel_.setArg(13, cl_int(tiles_x_));
+  // Without the bloom its level is not read: any buffer will do.
+  rp::cl::bind_args(reconstruct_kernel_, hdr_in, depth_speed_, neighbour_max_, block_speed_,
+                    bloom ? *bloom->level1 : neighbour_max_, hdr_out, params);
   profiler.enqueue(kPass, reconstruct_kernel_,
                    ::cl::NDRange(tiles_x_ * kBlocksPerTile, tiles_y_ * kBlocksPerTile),
                    ::cl::NDRange(kBlocksPerTile, kBlocksPerTile));

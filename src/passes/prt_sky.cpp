@@ -5,7 +5,9 @@
 
 #include "cl/buffer.h"
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
+#include "render/gpu_types.h"
 #include "shading/spherical_harmonics.h"
 
 namespace rp::passes {
@@ -114,28 +116,18 @@ void PrtSkyPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   update_environment(environment);
   if (vertex_count_ > 0 && !vertex_e_fresh_) {
     // the vertices' E / pi: again only when the sky's coefficients changed (a turn, a strength)
-    cl_uint arg = 0;
-    vertex_kernel_.setArg(arg++, transfer_);
-    vertex_kernel_.setArg(arg++, cl_uint(vertex_count_));
-    vertex_kernel_.setArg(arg++, env_);
-    vertex_kernel_.setArg(arg++, cl_uint(channels_));
-    vertex_kernel_.setArg(arg++, cl_uint(bands_ * bands_));
-    vertex_kernel_.setArg(arg++, vertex_e_);
+    gpu::PrtVertexParams params{};
+    params.vertex_count = vertex_count_;
+    params.channels = channels_;
+    params.coefficients = uint32_t(bands_ * bands_);
+    rp::cl::bind_args(vertex_kernel_, transfer_, env_, vertex_e_, params);
     profiler.enqueue(pass_name::kPrt, vertex_kernel_,
                      ::cl::NDRange(rp::cl::round_up(vertex_count_, kVertexGroup)),
                      ::cl::NDRange(kVertexGroup));
     vertex_e_fresh_ = true;
   }
-  cl_uint arg = 0;
-  kernel_.setArg(arg++, scene.frame);
-  kernel_.setArg(arg++, vis.ids);
-  kernel_.setArg(arg++, vis.bary);
-  kernel_.setArg(arg++, scene.instances);
-  kernel_.setArg(arg++, scene.triangles);
-  kernel_.setArg(arg++, vertex_e_);
-  kernel_.setArg(arg++, offsets_);
-  kernel_.setArg(arg++, cl_uint(offset_count_));
-  kernel_.setArg(arg++, out_);
+  rp::cl::bind_args(kernel_, scene.frame, vis.ids, vis.bary, scene.instances, scene.triangles,
+                    vertex_e_, offsets_, cl_uint(offset_count_), out_);
   profiler.enqueue(pass_name::kPrt, kernel_,
                    ::cl::NDRange(rp::cl::round_up(w, kGroup), rp::cl::round_up(h, kGroup)),
                    ::cl::NDRange(kGroup, kGroup));

@@ -1,6 +1,8 @@
 #include "passes/punctual_light.h"
 
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
+#include "render/gpu_types.h"
 
 namespace rp::passes {
 namespace {
@@ -19,19 +21,11 @@ void PunctualLightPass::run(rp::cl::Profiler& profiler, const render::GpuScene& 
   if (!kernel())
     kernel = programs_.kernel("punctual_light.cl", "punctual_light_add",
                               components ? "-DRP_LIGHT_SPLIT=1" : "");
-  cl_uint arg = 0;
-  kernel.setArg(arg++, scene.frame);
-  kernel.setArg(arg++, gbuffer.albedo);
-  kernel.setArg(arg++, gbuffer.normal_depth);
-  kernel.setArg(arg++, gbuffer.position);
-  kernel.setArg(arg++, gbuffer.emission);
-  kernel.setArg(arg++, shadow.depth);
-  kernel.setArg(arg++, scene.brdf_table);
-  if (components) {
-    kernel.setArg(arg++, components->direct);
-    kernel.setArg(arg++, components->specular);
-  }
-  kernel.setArg(arg++, hdr);
+  // Without the components the variant reads neither: any buffer will do.
+  rp::cl::bind_args(kernel, scene.frame, gbuffer.albedo, gbuffer.normal_depth, gbuffer.position,
+                    gbuffer.emission, shadow.depth, scene.brdf_table,
+                    components ? components->direct : hdr,
+                    components ? components->specular : hdr, hdr);
   const uint32_t w = gbuffer.width, h = gbuffer.height;
   profiler.enqueue(pass_name::kPunctualLight, kernel,
                    ::cl::NDRange(rp::cl::round_up((w + 7) / 8, kGroupX),

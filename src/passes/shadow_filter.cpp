@@ -4,8 +4,10 @@
 #include <string>
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "kernels/shared/shadow_mips.h"
 #include "passes/pass_names.h"
+#include "render/gpu_types.h"
 
 namespace rp::passes {
 namespace {
@@ -50,21 +52,21 @@ void ShadowFilterPass::run(rp::cl::Profiler& profiler, const render::GpuScene& s
     next = programs_->kernel("shadow_filter.cl", "shadow_filter_next", options);
   }
   const uint32_t n1 = gpu::rp_shadow_mip_size(size, 1);
-  first->setArg(0, scene.frame);
-  first->setArg(1, shadow.depth);
-  first->setArg(2, cl_uint(size));
-  first->setArg(3, shadow.mips);
-  first->setArg(4, cl_uint(n1));
-  first->setArg(5, cl_uint(plane));
+  gpu::ShadowMipStep step{};
+  step.src_size = size;
+  step.dst_size = n1;
+  step.plane = plane;
+  rp::cl::bind_args(*first, scene.frame, shadow.depth, shadow.mips, step);
   profiler.enqueue(pass_name::kShadowFilter, *first, square(n1), ::cl::NDRange(kGroup, kGroup));
   for (uint32_t l = 2; l <= levels; ++l) {
     const uint32_t m = gpu::rp_shadow_mip_size(size, l - 1), n = gpu::rp_shadow_mip_size(size, l);
-    next->setArg(0, shadow.mips);
-    next->setArg(1, cl_uint(gpu::rp_shadow_mip_offset(size, l - 1)));
-    next->setArg(2, cl_uint(m));
-    next->setArg(3, cl_uint(gpu::rp_shadow_mip_offset(size, l)));
-    next->setArg(4, cl_uint(n));
-    next->setArg(5, cl_uint(plane));
+    gpu::ShadowMipStep level{};
+    level.src_offset = gpu::rp_shadow_mip_offset(size, l - 1);
+    level.src_size = m;
+    level.dst_offset = gpu::rp_shadow_mip_offset(size, l);
+    level.dst_size = n;
+    level.plane = plane;
+    rp::cl::bind_args(*next, shadow.mips, level);
     profiler.enqueue(pass_name::kShadowFilter, *next, square(n), ::cl::NDRange(kGroup, kGroup));
   }
 }

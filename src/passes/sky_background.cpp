@@ -1,6 +1,8 @@
 #include "passes/sky_background.h"
 
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
+#include "render/gpu_types.h"
 
 namespace rp::passes {
 namespace {
@@ -13,10 +15,7 @@ void SkyBackgroundPass::run(rp::cl::Profiler& profiler, const render::GpuScene& 
   const gpu::FrameConstants& c = scene.constants;
   if (c.sky.levels == 0 || c.width == 0 || c.height == 0) return;
   if (!kernel_()) kernel_ = programs_->kernel("sky.cl", "sky_background");
-  kernel_.setArg(0, scene.frame);
-  kernel_.setArg(1, scene.sky);
-  kernel_.setArg(2, gbuffer.position);
-  kernel_.setArg(3, hdr);
+  rp::cl::bind_args(kernel_, scene.frame, scene.sky, gbuffer.position, hdr);
   profiler.enqueue(pass_name::kSky, kernel_,
                    ::cl::NDRange(rp::cl::round_up((c.width + 7) / 8, kGroupX),
                                  rp::cl::round_up(c.height, kGroupY)),

@@ -6,8 +6,10 @@
 
 #include "cl/buffer.h"
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
 #include "passes/svo_solid.h"
+#include "render/gpu_types.h"
 #include "render/voxel_volume.h"
 
 namespace rp::passes {
@@ -238,6 +240,14 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   const cl_uint brick_offset = cl_uint(svo.brick_offset());
   const cl_uint alpha_offset = cl_uint(svo.alpha_offset());
   const cl_uint table_offset = cl_uint(svo.table_offset());
+  // The builder's kernels' parameters: the fields every launch shares, each adds its own.
+  gpu::SvoBuildParams shared{};
+  shared.resolution_log2 = D;
+  shared.fragment_count = cl_uint(count);
+  shared.chunk = kChunk;
+  shared.table_offset = table_offset;
+  shared.brick_offset = brick_offset;
+  shared.alpha_offset = alpha_offset;
 
   // Occupancy bits for the depths whose brick level is >= kBitsLevel (last_bits_depth and
   // above; none when D - 1 < kBitsLevel).
@@ -251,26 +261,26 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
                                  at_resolution("occupancy bits", svo.resolution),
                                  svo_advice(svo.resolution));
     }
-    occ_clear_.setArg(0, occ_);
-    occ_clear_.setArg(1, cl_uint(words));
+    gpu::SvoBuildParams clear = shared;
+    clear.words = words;
+    rp::cl::bind_args(occ_clear_, occ_, clear);
     profiler.enqueue(pass_name::kSvoNodes, occ_clear_, ::cl::NDRange(items(words)),
                      ::cl::NDRange(kGroup));
     if (count > 0) {
-      occ_mark_.setArg(0, fragments);
-      occ_mark_.setArg(1, cl_uint(count));
-      occ_mark_.setArg(2, occ_);
-      occ_mark_.setArg(3, cl_uint(kBitsLevel));
-      occ_mark_.setArg(4, cl_uint(D));
+      gpu::SvoBuildParams mark = shared;
+      mark.level = kBitsLevel;
+      rp::cl::bind_args(occ_mark_, fragments, occ_, mark);
       profiler.enqueue(pass_name::kSvoNodes, occ_mark_,
                        ::cl::NDRange(items((count + kFlagChunk - 1) / kFlagChunk)),
                        ::cl::NDRange(kGroup));
     }
     for (uint32_t l = kBitsLevel; l + 1 < D; ++l) {
       const uint32_t n = svo.resolution >> (l + 1);
-      occ_reduce_.setArg(0, occ_);
-      occ_reduce_.setArg(1, cl_uint(occ_offset(svo.resolution, l)));
-      occ_reduce_.setArg(2, cl_uint(occ_offset(svo.resolution, l + 1)));
-      occ_reduce_.setArg(3, cl_uint(n));
+      gpu::SvoBuildParams reduce = shared;
+      reduce.src = occ_offset(svo.resolution, l);
+      reduce.dst = occ_offset(svo.resolution, l + 1);
+      reduce.n = n;
+      rp::cl::bind_args(occ_reduce_, occ_, reduce);
       profiler.enqueue(pass_name::kSvoNodes, occ_reduce_,
                        ::cl::NDRange(items((n * n * n + 31) / 32)),
                        ::cl::NDRange(kGroup));
@@ -287,58 +297,40 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
       allocate(svo, (size_t(f0) + n) * 2, svo.brick_capacity, svo.sample_capacity);
       return false;
     }
-    clear_nodes_.setArg(0, svo.buffer);
-    clear_nodes_.setArg(1, own_);
-    clear_nodes_.setArg(2, f0);
-    clear_nodes_.setArg(3, n);
+    gpu::SvoBuildParams depth = shared;  // this depth's nodes
+    depth.first = f0;
+    depth.count = n;
+    depth.depth = k;
+    rp::cl::bind_args(clear_nodes_, svo.buffer, own_, depth);
     profiler.enqueue(pass_name::kSvoNodes, clear_nodes_, ::cl::NDRange(items(n)),
                      ::cl::NDRange(kGroup));
     if (int(k) <= last_bits_depth) {
-      flag_bits_.setArg(0, own_);
-      flag_bits_.setArg(1, coords_);
-      flag_bits_.setArg(2, occ_);
-      flag_bits_.setArg(3, cl_uint(occ_offset(svo.resolution, D - 1 - k)));
-      flag_bits_.setArg(4, f0);
-      flag_bits_.setArg(5, n);
-      flag_bits_.setArg(6, cl_uint(k));
+      gpu::SvoBuildParams bits = depth;
+      bits.offset = occ_offset(svo.resolution, D - 1 - k);
+      rp::cl::bind_args(flag_bits_, own_, coords_, occ_, bits);
       profiler.enqueue(pass_name::kSvoNodes, flag_bits_, ::cl::NDRange(items(n)),
                        ::cl::NDRange(kGroup));
     } else if (count > 0) {
-      flag_.setArg(0, fragments);
-      flag_.setArg(1, cl_uint(count));
-      flag_.setArg(2, svo.buffer);
-      flag_.setArg(3, cur_);
-      flag_.setArg(4, own_);
-      flag_.setArg(5, cl_uint(k));
-      flag_.setArg(6, cl_uint(D));
-      flag_.setArg(7, cl_uint(int(k) == last_bits_depth + 1 && k > 0 ? 1 : 0));
+      gpu::SvoBuildParams flag = depth;
+      flag.descend = int(k) == last_bits_depth + 1 && k > 0 ? 1u : 0u;
+      rp::cl::bind_args(flag_, fragments, svo.buffer, cur_, own_, flag);
       const size_t flag_items = items((count + kFlagChunk - 1) / kFlagChunk);
       profiler.enqueue(pass_name::kSvoNodes, flag_, ::cl::NDRange(flag_items),
                        ::cl::NDRange(kGroup));
     }
     if (k > 0) {
-      dilate_.setArg(0, svo.buffer);
-      dilate_.setArg(1, own_);
-      dilate_.setArg(2, coords_);
-      dilate_.setArg(3, f0);
-      dilate_.setArg(4, n);
-      dilate_.setArg(5, cl_uint(k));
+      rp::cl::bind_args(dilate_, svo.buffer, own_, coords_, depth);
       profiler.enqueue(pass_name::kSvoNodes, dilate_, ::cl::NDRange(items(n)),
                        ::cl::NDRange(kGroup));
     }
     const cl_uint chunks = (n + kChunk - 1) / kChunk;
-    count_.setArg(0, svo.buffer);
-    count_.setArg(1, own_);
-    count_.setArg(2, f0);
-    count_.setArg(3, n);
-    count_.setArg(4, cl_uint(kChunk));
-    count_.setArg(5, sums_);
+    rp::cl::bind_args(count_, svo.buffer, own_, sums_, depth);
     profiler.enqueue(pass_name::kSvoNodes, count_, ::cl::NDRange(items(chunks)),
                      ::cl::NDRange(kGroup));
-    scan_.setArg(0, sums_);
-    scan_.setArg(1, chunks);
-    scan_.setArg(2, totals_);
-    scan_.setArg(3, cl_uint(k));
+    gpu::SvoBuildParams scan = depth;
+    scan.chunks = chunks;
+    scan.slot = k;
+    rp::cl::bind_args(scan_, sums_, totals_, scan);
     profiler.enqueue(pass_name::kSvoNodes, scan_, ::cl::NDRange(1), ::cl::NullRange);
     cl_uint totals[2] = {0, 0};  // existing nodes, occupied own voxels
     queue.enqueueReadBuffer(totals_, CL_TRUE, 2 * k * sizeof(cl_uint), sizeof(totals), totals);
@@ -364,19 +356,13 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
     bricks[k] = exist;
     owns[k] = own;
     brick_first[k] = cl_uint(brick_count);
-    allocate_.setArg(0, svo.buffer);
-    allocate_.setArg(1, own_);
-    allocate_.setArg(2, coords_);
-    allocate_.setArg(3, f0);
-    allocate_.setArg(4, n);
-    allocate_.setArg(5, cl_uint(kChunk));
-    allocate_.setArg(6, sums_);
-    allocate_.setArg(7, cl_uint(f0 + n));
-    allocate_.setArg(8, cl_uint(brick_count));
-    allocate_.setArg(9, cl_uint(samples));
-    allocate_.setArg(10, cl_uint(size));
-    allocate_.setArg(11, cl_uint(leaf ? 1 : 0));
-    allocate_.setArg(12, table_offset);
+    gpu::SvoBuildParams alloc = depth;
+    alloc.child_first = f0 + n;
+    alloc.brick_first = cl_uint(brick_count);
+    alloc.own_first = cl_uint(samples);
+    alloc.directions = size;
+    alloc.leaf = leaf ? 1u : 0u;
+    rp::cl::bind_args(allocate_, svo.buffer, own_, coords_, sums_, alloc);
     profiler.enqueue(pass_name::kSvoNodes, allocate_, ::cl::NDRange(items(chunks)),
                      ::cl::NDRange(kGroup));
     samples += size_t(own) * size;
@@ -388,34 +374,26 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   // Leaves: fragment lists, sums and samples (and level 1's own samples), borders.
   const uint32_t L = D - 1;
   if (count > 0) {
-    link_.setArg(0, cl_uint(count));
-    link_.setArg(1, cur_);
-    link_.setArg(2, own_);
+    rp::cl::bind_args(link_, cur_, own_, shared);
     profiler.enqueue(pass_name::kSvoInject, link_, ::cl::NDRange(items(count)),
                      ::cl::NDRange(kGroup));
   }
-  leaves_.setArg(0, fragments);
-  leaves_.setArg(1, cur_);
-  leaves_.setArg(2, own_);
-  leaves_.setArg(3, svo.buffer);
-  leaves_.setArg(4, cl_uint(first[L]));
-  leaves_.setArg(5, cl_uint(nodes[L]));
-  leaves_.setArg(6, brick_offset);
-  leaves_.setArg(7, alpha_offset);
-  leaves_.setArg(8, L > 0 ? cl_uint(brick_first[L - 1]) : cl_uint(RP_SVO_NO_BRICK));
-  leaves_.setArg(9, cl_uint(D));
-  leaves_.setArg(10, table_offset);
+  gpu::SvoBuildParams leaves = shared;
+  leaves.first = first[L];
+  leaves.count = nodes[L];
+  leaves.depth = L;
+  leaves.parent_brick_first = L > 0 ? cl_uint(brick_first[L - 1]) : cl_uint(RP_SVO_NO_BRICK);
+  rp::cl::bind_args(leaves_, fragments, cur_, own_, svo.buffer, leaves);
   profiler.enqueue(pass_name::kSvoInject, leaves_, ::cl::NDRange(items(nodes[L])),
                    ::cl::NDRange(kGroup));
   // The borders: the brick table's face links to the neighbours' bricks (no values are copied,
   // so every depth's links could be made right after its allocation; kept here, per depth).
   const auto border = [&](uint32_t k) {
-    border_.setArg(0, svo.buffer);
-    border_.setArg(1, coords_);
-    border_.setArg(2, cl_uint(first[k]));
-    border_.setArg(3, cl_uint(nodes[k]));
-    border_.setArg(4, cl_uint(k));
-    border_.setArg(5, table_offset);
+    gpu::SvoBuildParams at_depth = shared;
+    at_depth.first = first[k];
+    at_depth.count = nodes[k];
+    at_depth.depth = k;
+    rp::cl::bind_args(border_, svo.buffer, coords_, at_depth);
     profiler.enqueue(pass_name::kSvoBorder, border_, ::cl::NDRange(items(nodes[k])),
                      ::cl::NDRange(kGroup));
   };
@@ -423,12 +401,11 @@ bool SvoPass::try_build(rp::cl::Profiler& profiler, const ::cl::Buffer& fragment
   for (uint32_t level = 1; level < D; ++level) {
     const uint32_t k = D - 1 - level;
     if (level >= 2) {
-      mips_.setArg(0, svo.buffer);
-      mips_.setArg(1, cl_uint(first[k]));
-      mips_.setArg(2, cl_uint(nodes[k]));
-      mips_.setArg(3, brick_offset);
-      mips_.setArg(4, alpha_offset);
-      mips_.setArg(5, table_offset);
+      gpu::SvoBuildParams mips = shared;
+      mips.first = first[k];
+      mips.count = nodes[k];
+      mips.depth = k;
+      rp::cl::bind_args(mips_, svo.buffer, mips);
       profiler.enqueue(pass_name::kSvoMips, mips_, ::cl::NDRange(items(nodes[k])),
                        ::cl::NDRange(kGroup));
     }

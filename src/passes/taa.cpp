@@ -3,7 +3,9 @@
 #include <string>
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
+#include "render/gpu_types.h"
 
 namespace rp::passes {
 namespace {
@@ -54,23 +56,19 @@ void TaaPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     history_valid_ = false;
   }
   const int next = 1 - current_;
+  gpu::TaaParams params{};
+  params.render_width = params.out_width = w;
+  params.render_height = params.out_height = h;
+  params.jitter_x = scene.constants.jitter.x;
+  params.jitter_y = scene.constants.jitter.y;
+  params.history_weight = settings_.history_weight;
+  params.gamma = settings_.gamma;
+  params.history_valid = history_valid_ ? 1u : 0u;
+  params.unjitter = settings_.unjitter_current ? 1u : 0u;
   auto set_args = [&](::cl::Kernel& kernel, uint32_t x_first) {
-    cl_uint arg = 0;
-    kernel.setArg(arg++, hdr_in);
-    kernel.setArg(arg++, gbuffer.velocity);
-    kernel.setArg(arg++, depth);
-    kernel.setArg(arg++, history_[current_]);
-    kernel.setArg(arg++, history_[next]);
-    kernel.setArg(arg++, hdr_out);
-    kernel.setArg(arg++, cl_uint(w));
-    kernel.setArg(arg++, cl_uint(h));
-    kernel.setArg(arg++, scene.constants.jitter.x);
-    kernel.setArg(arg++, scene.constants.jitter.y);
-    kernel.setArg(arg++, settings_.history_weight);
-    kernel.setArg(arg++, settings_.gamma);
-    kernel.setArg(arg++, cl_uint(history_valid_ ? 1u : 0u));
-    kernel.setArg(arg++, cl_uint(settings_.unjitter_current ? 1u : 0u));
-    kernel.setArg(arg++, cl_uint(x_first));
+    params.x_first = x_first;
+    rp::cl::bind_args(kernel, hdr_in, gbuffer.velocity, depth, history_[current_],
+                      history_[next], hdr_out, params);
   };
   const uint32_t whole_blocks = w / kPixelsPerItem;
   if (whole_blocks > 0) {

@@ -5,7 +5,9 @@
 #include <string>
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
+#include "render/gpu_types.h"
 
 namespace rp::passes {
 namespace {
@@ -54,24 +56,18 @@ void TaaUpsamplePass::run(rp::cl::Profiler& profiler, const render::GpuScene& sc
   // built on first use: renders at scale 1 never pay for its compilation
   if (!kernel_()) kernel_ = programs_->kernel("taa_upsample.cl", "taa_upsample");
   const int next = 1 - current_;
-  cl_uint arg = 0;
-  kernel_.setArg(arg++, hdr_in);
-  kernel_.setArg(arg++, gbuffer.velocity);
-  kernel_.setArg(arg++, gbuffer.normal_depth);
-  kernel_.setArg(arg++, history_[current_]);
-  kernel_.setArg(arg++, history_[next]);
-  kernel_.setArg(arg++, hdr_out);
-  kernel_.setArg(arg++, motion_.velocity);
-  kernel_.setArg(arg++, motion_.normal_depth);
-  kernel_.setArg(arg++, cl_uint(w));
-  kernel_.setArg(arg++, cl_uint(h));
-  kernel_.setArg(arg++, cl_uint(out_width));
-  kernel_.setArg(arg++, cl_uint(out_height));
-  kernel_.setArg(arg++, scene.constants.jitter.x);
-  kernel_.setArg(arg++, scene.constants.jitter.y);
-  kernel_.setArg(arg++, settings_.history_weight);
-  kernel_.setArg(arg++, settings_.gamma);
-  kernel_.setArg(arg++, cl_uint(history_valid_ ? 1u : 0u));
+  gpu::TaaParams params{};
+  params.render_width = w;
+  params.render_height = h;
+  params.out_width = out_width;
+  params.out_height = out_height;
+  params.jitter_x = scene.constants.jitter.x;
+  params.jitter_y = scene.constants.jitter.y;
+  params.history_weight = settings_.history_weight;
+  params.gamma = settings_.gamma;
+  params.history_valid = history_valid_ ? 1u : 0u;
+  rp::cl::bind_args(kernel_, hdr_in, gbuffer.velocity, gbuffer.normal_depth, history_[current_],
+                    history_[next], hdr_out, motion_.velocity, motion_.normal_depth, params);
   profiler.enqueue(pass_name::kTaa, kernel_,
                    ::cl::NDRange(rp::cl::round_up((out_width + kPixelsPerItem - 1) / kPixelsPerItem,
                                                   kGroupX),

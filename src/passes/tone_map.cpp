@@ -1,7 +1,9 @@
 #include "passes/tone_map.h"
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
+#include "render/gpu_types.h"
 
 namespace rp::passes {
 namespace {
@@ -24,11 +26,11 @@ ToneMapPass::ToneMapPass(const rp::cl::Context& context, rp::cl::ProgramCache& p
 void ToneMapPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                       const ::cl::Buffer& hdr, uint32_t pixels, ::cl::Buffer& rgba8) {
   if (pixels == 0) return;
-  kernel_.setArg(0, hdr);
-  kernel_.setArg(1, rgba8);
-  kernel_.setArg(2, cl_uint(pixels));
-  kernel_.setArg(3, cl_uint(dither_ ? 1u : 0u));
-  kernel_.setArg(4, cl_uint(scene.constants.frame_index));
+  gpu::ToneMapParams params{};
+  params.pixel_count = pixels;
+  params.dither = dither_ ? 1u : 0u;
+  params.frame = scene.constants.frame_index;
+  rp::cl::bind_args(kernel_, hdr, rgba8, params);
   const size_t items = (size_t(pixels) + kPixelsPerItem - 1) / kPixelsPerItem;
   profiler.enqueue(pass_name::kToneMap, kernel_, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
                    ::cl::NDRange(kGroup));

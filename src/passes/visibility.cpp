@@ -19,6 +19,7 @@
 
 #include "cl/buffer.h"
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
 #include "render/gpu_types.h"  // before raster_types.h, which builds on its types
 #include "kernels/shared/raster_types.h"
@@ -234,81 +235,43 @@ struct VisibilityPass::Impl {
     p.list_capacity = static_cast<uint32_t>(v.list_cap);
 
     const uint32_t count_n = 2 * tiles;
-    v.clear.setArg(0, v.counts);
-    v.clear.setArg(1, count_n);
+    rp::cl::bind_args(v.clear, v.counts, cl_uint(count_n));
     profiler.enqueue(v.pass, v.clear, ::cl::NDRange(rp::cl::round_up(count_n, kItemGroup)),
                      ::cl::NDRange(kItemGroup));
 
     if (items > 0) {
-      cl_uint a = 0;
       if (v.draw_count > 0) {
-        v.setup.setArg(a++, p);
-        v.setup.setArg(a++, v.draw_items);
-        v.setup.setArg(a++, scene.instances);
-        v.setup.setArg(a++, scene.triangles);
-        v.setup.setArg(a++, scene.vertices);
-        v.setup.setArg(a++, scene.materials);
-        v.setup.setArg(a++, v.tris);
-        v.setup.setArg(a++, v.bounds);
-        v.setup.setArg(a++, v.edges);
+        rp::cl::bind_args(v.setup, p, v.draw_items, scene.instances, scene.triangles,
+                          scene.vertices, scene.materials, v.tris, v.bounds, v.edges);
         const size_t lanes = static_cast<size_t>(span);
         const size_t spans = (v.draw_count + lanes - 1) / lanes;
         profiler.enqueue(v.pass, v.setup, ::cl::NDRange(rp::cl::round_up(spans, kSetupGroup)),
                          ::cl::NDRange(kSetupGroup));
       }
       if (spheres > 0) {
-        a = 0;
-        v.setup_spheres.setArg(a++, p);
-        v.setup_spheres.setArg(a++, scene.spheres);
-        v.setup_spheres.setArg(a++, v.bounds);
+        rp::cl::bind_args(v.setup_spheres, p, scene.spheres, v.bounds);
         profiler.enqueue(v.pass, v.setup_spheres,
                          ::cl::NDRange(rp::cl::round_up(spheres, kItemGroup)),
                          ::cl::NDRange(kItemGroup));
       }
-      a = 0;
-      v.count.setArg(a++, p);
-      v.count.setArg(a++, v.bounds);
-      v.count.setArg(a++, v.edges);
-      v.count.setArg(a++, v.counts);
+      rp::cl::bind_args(v.count, p, v.bounds, v.edges, v.counts);
       profiler.enqueue(v.pass, v.count, ::cl::NDRange(rp::cl::round_up(items, kItemGroup)),
                        ::cl::NDRange(kItemGroup));
     }
 
-    v.scan.setArg(0, v.counts);
-    v.scan.setArg(1, count_n);
-    v.scan.setArg(2, v.start);
-    v.scan.setArg(3, v.cursor);
-    v.scan.setArg(4, v.total);
+    rp::cl::bind_args(v.scan, v.counts, cl_uint(count_n), v.start, v.cursor, v.total);
     profiler.enqueue(v.pass, v.scan, ::cl::NDRange(kScanGroup), ::cl::NDRange(kScanGroup));
 
     if (items > 0) {
-      cl_uint a = 0;
-      v.bin.setArg(a++, p);
-      v.bin.setArg(a++, v.bounds);
-      v.bin.setArg(a++, v.edges);
-      v.bin.setArg(a++, v.cursor);
-      v.bin.setArg(a++, v.list);
+      rp::cl::bind_args(v.bin, p, v.bounds, v.edges, v.cursor, v.list);
       profiler.enqueue(v.pass, v.bin, ::cl::NDRange(rp::cl::round_up(items, kItemGroup)),
                        ::cl::NDRange(kItemGroup));
     }
 
-    cl_uint a = 0;
-    v.raster.setArg(a++, p);
-    v.raster.setArg(a++, v.tris);
-    v.raster.setArg(a++, v.bounds);
-    v.raster.setArg(a++, scene.spheres);
-    v.raster.setArg(a++, v.start);
-    v.raster.setArg(a++, v.cursor);
-    v.raster.setArg(a++, v.list);
-    v.raster.setArg(a++, depth_out);
-    v.raster.setArg(a++, ids_out);
-    v.raster.setArg(a++, bary_out);
-    // what the alpha test of masked materials reads (kernels/common/alpha_mask.h)
-    v.raster.setArg(a++, scene.triangles);
-    v.raster.setArg(a++, scene.vertices);
-    v.raster.setArg(a++, scene.materials);
-    v.raster.setArg(a++, scene.textures);
-    v.raster.setArg(a++, scene.texels);
+    // the last five: what the alpha test of masked materials reads (kernels/common/alpha_mask.h)
+    rp::cl::bind_args(v.raster, p, v.tris, v.bounds, scene.spheres, v.start, v.cursor, v.list,
+                      depth_out, ids_out, bary_out, scene.triangles, scene.vertices,
+                      scene.materials, scene.textures, scene.texels);
     if (tile_layout) {  // CPU layout: one work-item per tile
       profiler.enqueue(v.pass, v.raster,
                        ::cl::NDRange(rp::cl::round_up(tiles, kTilesPerGroup)),

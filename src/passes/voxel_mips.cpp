@@ -4,7 +4,9 @@
 #include <string>
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
+#include "render/gpu_types.h"
 
 namespace rp::passes {
 namespace {
@@ -38,10 +40,8 @@ void VoxelMipsPass::run(rp::cl::Profiler& profiler, render::VoxelVolume& volume)
     const size_t n = volume.resolution >> level;
     const bool span16 = use_span16_ && n % 16 == 0;
     ::cl::Kernel& k = span16 ? span16_ : kernel_;
-    k.setArg(0, volume.chain);
-    k.setArg(1, volume.accum);
-    k.setArg(2, cl_uint(volume.resolution));
-    k.setArg(3, level);
+    rp::cl::bind_args(k, volume.chain, volume.accum,
+                      gpu::VoxelMipsParams{volume.resolution, level, 0u, 0u});
     const size_t items = span16 ? n / 16 * n * n : n * n * n;
     profiler.enqueue(pass_name::kVoxelMips, k, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
                      ::cl::NDRange(kGroup));

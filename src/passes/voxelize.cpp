@@ -7,6 +7,7 @@
 
 #include "cl/buffer.h"
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "passes/pass_names.h"
 
 namespace rp::passes {
@@ -148,31 +149,27 @@ bool VoxelizePass::update_cache_plan(const render::GpuScene& scene, uint32_t res
   return any;
 }
 
+gpu::VoxelizeParams VoxelizePass::params_for(const render::GpuScene& scene) const {
+  gpu::VoxelizeParams params{};
+  params.resolution = target_resolution_;
+  params.instance_count = scene.instance_count;
+  params.triangle_total = scene.voxel_triangle_count;
+  params.sphere_count = scene.sphere_count;
+  params.bounce_cells = bounce_cells_;
+  return params;
+}
+
 void VoxelizePass::set_large_args(const render::GpuScene& scene, const render::ShadowMap& shadow,
                                   cl_uint record) {
-  cl_uint arg = 0;
-  large_.setArg(arg++, scene.frame);
-  large_.setArg(arg++, scene.instances);
-  large_.setArg(arg++, cl_uint(scene.instance_count));
-  large_.setArg(arg++, scene.vertices);
-  large_.setArg(arg++, scene.triangles);
-  large_.setArg(arg++, scene.materials);
-  large_.setArg(arg++, scene.textures);
-  large_.setArg(arg++, texels_);
-  large_.setArg(arg++, shadow.depth);
-  large_.setArg(arg++, target_resolution_);
-  large_.setArg(arg++, target_accum_);
-  large_.setArg(arg++, target_overflow_);
-  large_.setArg(arg++, large_count_);
-  large_.setArg(arg++, large_list_);
-  large_.setArg(arg++, cached_flags_);
-  large_.setArg(arg++, record);
-  large_.setArg(arg++, cache_count_);
-  large_.setArg(arg++, cache_() ? cache_ : cache_count_);  // a valid buffer before the first
-  large_.setArg(arg++, cl_uint(cache_capacity_));
-  large_.setArg(arg++, *bounce_);
-  large_.setArg(arg++, bounce_cells_);
-  large_.setArg(arg++, large_slices_);
+  gpu::VoxelizeParams params = params_for(scene);
+  params.record = record;
+  params.cache_capacity = cl_uint(cache_capacity_);
+  params.slices = large_slices_;
+  rp::cl::bind_args(large_, scene.frame, scene.instances, scene.vertices, scene.triangles,
+                    scene.materials, scene.textures, texels_, shadow.depth, target_accum_,
+                    target_overflow_, large_count_, large_list_, cached_flags_, cache_count_,
+                    cache_() ? cache_ : cache_count_,  // a valid buffer before the first
+                    *bounce_, params);
 }
 
 void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScene& scene,
@@ -277,17 +274,11 @@ void VoxelizePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene
   target_resolution_ = r;
   target_accum_ = volume.accum;
   target_overflow_ = volume.overflow;
-  clear_.setArg(0, volume.accum);
-  clear_.setArg(1, volume.overflow);
-  clear_.setArg(2, voxels);
-  clear_.setArg(3, large_count_);
+  rp::cl::bind_args(clear_, volume.accum, volume.overflow, voxels, large_count_);
   profiler.enqueue(pass_name::kVoxelize, clear_, ::cl::NDRange(rp::cl::round_up(voxels, kGroup)),
                    ::cl::NDRange(kGroup));
   voxelize(profiler, scene, shadow);
-  resolve_.setArg(0, volume.accum);
-  resolve_.setArg(1, volume.overflow);
-  resolve_.setArg(2, volume.chain);
-  resolve_.setArg(3, voxels);
+  rp::cl::bind_args(resolve_, volume.accum, volume.overflow, volume.chain, voxels);
   profiler.enqueue(pass_name::kVoxelize, resolve_, ::cl::NDRange(rp::cl::round_up(voxels, kGroup)),
                    ::cl::NDRange(kGroup));
 }
@@ -315,24 +306,10 @@ void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& 
   large_items_ = rp::cl::round_up(in_flight * large_slices_, kSpanGroup);
 
   if (triangles > 0) {
-    cl_uint arg = 0;
-    triangles_.setArg(arg++, scene.frame);
-    triangles_.setArg(arg++, scene.instances);
-    triangles_.setArg(arg++, cl_uint(scene.instance_count));
-    triangles_.setArg(arg++, triangles);
-    triangles_.setArg(arg++, scene.vertices);
-    triangles_.setArg(arg++, scene.triangles);
-    triangles_.setArg(arg++, scene.materials);
-    triangles_.setArg(arg++, scene.textures);
-    triangles_.setArg(arg++, texels_);
-    triangles_.setArg(arg++, shadow.depth);
-    triangles_.setArg(arg++, r);
-    triangles_.setArg(arg++, target_accum_);
-    triangles_.setArg(arg++, target_overflow_);
-    triangles_.setArg(arg++, large_count_);
-    triangles_.setArg(arg++, large_list_);
-    triangles_.setArg(arg++, *bounce_);
-    triangles_.setArg(arg++, bounce_cells_);
+    rp::cl::bind_args(triangles_, scene.frame, scene.instances, scene.vertices,
+                      scene.triangles, scene.materials, scene.textures, texels_, shadow.depth,
+                      target_accum_, target_overflow_, large_count_, large_list_, *bounce_,
+                      params_for(scene));
     const size_t span = static_cast<size_t>(span_);
     profiler.enqueue(pass_name::kVoxelize, triangles_,
                      ::cl::NDRange(rp::cl::round_up((triangles + span - 1) / span, kSpanGroup)),
@@ -348,23 +325,16 @@ void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& 
   }
 
   if (cache_samples_ > 0) {
-    cl_uint arg = 0;
-    cached_.setArg(arg++, scene.frame);
-    cached_.setArg(arg++, shadow.depth);
-    cached_.setArg(arg++, cache_);
-    cached_.setArg(arg++, cache_samples_);
-    cached_.setArg(arg++, target_accum_);
-    cached_.setArg(arg++, target_overflow_);
-    cached_.setArg(arg++, *bounce_);
-    cached_.setArg(arg++, bounce_cells_);
     // The bounce light's refresh (set_bounce_refresh_stride): all of it unless every sample
     // already holds a light of this very grid.
     const bool reuse = bounce_cells_ != 0 && cache_bounce_fresh_ &&
                        cache_bounce_grid_ == (*bounce_)() && bounce_refresh_stride_ > 1;
-    const cl_uint stride = reuse ? bounce_refresh_stride_ : 1u;
-    const cl_uint phase = reuse ? bounce_refresh_runs_++ % stride : 0u;
-    cached_.setArg(arg++, stride);
-    cached_.setArg(arg++, phase);
+    gpu::VoxelizeParams params = params_for(scene);
+    params.samples = cache_samples_;
+    params.refresh_stride = reuse ? bounce_refresh_stride_ : 1u;
+    params.refresh_phase = reuse ? bounce_refresh_runs_++ % params.refresh_stride : 0u;
+    rp::cl::bind_args(cached_, scene.frame, shadow.depth, cache_, target_accum_,
+                      target_overflow_, *bounce_, params);
     cache_bounce_fresh_ = bounce_cells_ != 0;
     cache_bounce_grid_ = (*bounce_)();
     const size_t span = static_cast<size_t>(span_);
@@ -375,17 +345,10 @@ void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& 
   }
 
   if (scene.sphere_count > 0) {
-    cl_uint arg = 0;
-    spheres_.setArg(arg++, scene.frame);
-    spheres_.setArg(arg++, scene.spheres);
-    spheres_.setArg(arg++, cl_uint(scene.sphere_count));
-    spheres_.setArg(arg++, shadow.depth);
-    spheres_.setArg(arg++, r);
-    spheres_.setArg(arg++, target_accum_);
-    spheres_.setArg(arg++, target_overflow_);
-    spheres_.setArg(arg++, *bounce_);
-    spheres_.setArg(arg++, bounce_cells_);
-    spheres_.setArg(arg++, sphere_slices_);
+    gpu::VoxelizeParams params = params_for(scene);
+    params.slices = sphere_slices_;
+    rp::cl::bind_args(spheres_, scene.frame, scene.spheres, shadow.depth, target_accum_,
+                      target_overflow_, *bounce_, params);
     profiler.enqueue(pass_name::kVoxelize, spheres_,
                      ::cl::NDRange(rp::cl::round_up(size_t(scene.sphere_count) * sphere_slices_, kGroup)),
                      ::cl::NDRange(kGroup));

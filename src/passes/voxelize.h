@@ -85,6 +85,9 @@ class VoxelizePass {
                    const render::ShadowMap& shadow);
   void set_large_args(const render::GpuScene& scene, const render::ShadowMap& shadow,
                       cl_uint record);
+  // The kernels' parameters every launch shares (the target, the frame's counts, the bounce
+  // grid); each launch adds its own.
+  gpu::VoxelizeParams params_for(const render::GpuScene& scene) const;
 
   const rp::cl::Context* context_;
   bool fragments_ = false;  // built with RP_VOXEL_FRAGMENTS (run_fragments)

@@ -6,6 +6,8 @@
 #include <glm/glm.hpp>
 
 #include "kernels/shared/types.h"
+// after types.h, whose scalar types it uses
+#include "kernels/shared/pass_params.h"
 
 namespace rp::gpu {
 
@@ -23,6 +25,23 @@ static_assert(sizeof(Instance) == 224);
 static_assert(sizeof(Sphere) == 64);
 static_assert(sizeof(Material) == 80);
 static_assert(sizeof(TextureInfo) == 32 + 4 * RP_TEXTURE_MAX_LEVELS);
+static_assert(sizeof(LowResPlanes) == 32);
+static_assert(sizeof(IndirectTraceParams) == 48);
+static_assert(sizeof(IndirectFilterParams) == 48);
+static_assert(sizeof(LightShadeParams) == 16);
+static_assert(sizeof(MinZLevel) == 32);
+static_assert(sizeof(MotionBlurParams) == 48);
+static_assert(sizeof(TaaParams) == 48);
+static_assert(sizeof(BloomStep) == 32);
+static_assert(sizeof(GBufferParams) == 16);
+static_assert(sizeof(PrtVertexParams) == 16);
+static_assert(sizeof(ShadowMipStep) == 32);
+static_assert(sizeof(BounceParams) == 16);
+static_assert(sizeof(ToneMapParams) == 16);
+static_assert(sizeof(VoxelMipsParams) == 16);
+static_assert(sizeof(VoxelViewParams) == 16);
+static_assert(sizeof(VoxelizeParams) == 48);
+static_assert(sizeof(SvoBuildParams) == 96);
 
 inline rp_float4 to_gpu(const glm::vec4& v) { return {v.x, v.y, v.z, v.w}; }
 inline rp_float4 to_gpu(const glm::vec3& v, float w) { return {v.x, v.y, v.z, w}; }

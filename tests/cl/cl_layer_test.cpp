@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
 #include "support/cl_fixture.h"
@@ -127,6 +128,36 @@ TEST(ProgramCache, BuildsOncePerFileAndOptions) {
   const cl::Program& c = cache.program("ok.cl", "-DVALUE=2");
   EXPECT_EQ(a(), b());
   EXPECT_NE(a(), c());
+}
+
+// A host call that binds fewer or more values than the kernel takes throws, naming the kernel;
+// the values it binds reach the kernel in order (probe_fill writes (i, 1, 2, 3) below n).
+TEST(KernelArgs, BindsInOrderAndRefusesAWrongCount) {
+  auto& ctx = rp::test::context();
+  ::cl::Kernel k = rp::test::programs().kernel("probe.cl", "probe_fill");
+  ::cl::Buffer out(ctx.context, CL_MEM_READ_WRITE, 4 * 16);
+  for (size_t given : {size_t(1), size_t(3)}) {
+    try {
+      if (given == 1)
+        rp::cl::bind_args(k, out);
+      else
+        rp::cl::bind_args(k, out, cl_uint(2), cl_uint(0));
+      FAIL() << "bound " << given << " values to a kernel of two arguments";
+    } catch (const rp::cl::Error& e) {
+      EXPECT_EQ(std::string(e.what()), "kernel probe_fill takes 2 arguments but the host bound " +
+                                           std::to_string(given));
+    }
+  }
+  const float sentinel[16] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
+  ctx.queue.enqueueWriteBuffer(out, CL_TRUE, 0, sizeof sentinel, sentinel);
+  rp::cl::bind_args(k, out, cl_uint(2));
+  ctx.queue.enqueueNDRangeKernel(k, ::cl::NullRange, ::cl::NDRange(4));
+  float got[16];
+  ctx.queue.enqueueReadBuffer(out, CL_TRUE, 0, sizeof got, got);
+  EXPECT_EQ(got[0], 0.0f);
+  EXPECT_EQ(got[4], 1.0f);
+  EXPECT_EQ(got[7], 3.0f);
+  EXPECT_EQ(got[8], -1.0f) << "item 2 is at n: not written";
 }
 
 TEST(Profiler, RecordsTimePerPassName) {

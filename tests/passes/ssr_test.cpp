@@ -8,9 +8,11 @@
 #include <random>
 #include <vector>
 
+#include "cl/kernel_args.h"
 #include "cl/launch_log.h"
 #include "cl/program_cache.h"
 #include "passes/indirect.h"
+#include "render/gpu_types.h"
 #include "support/cl_fixture.h"
 
 namespace {
@@ -30,14 +32,8 @@ TEST(Ssr, MinZPyramidHoldsEachCellsNearestDepth) {
   std::vector<uint32_t> offsets, widths, heights;
   for (uint32_t level = 1; level <= kTop; ++level) {
     const uint32_t dw = (sw + 1) / 2, dh = (sh + 1) / 2;
-    k.setArg(0, level == 1 ? src : hiz);
-    k.setArg(1, cl_uint(src_off));
-    k.setArg(2, cl_uint(sw));
-    k.setArg(3, cl_uint(sh));
-    k.setArg(4, hiz);
-    k.setArg(5, cl_uint(dst_off));
-    k.setArg(6, cl_uint(dw));
-    k.setArg(7, cl_uint(dh));
+    rp::cl::bind_args(k, level == 1 ? src : hiz, hiz,
+                      rp::gpu::MinZLevel{src_off, sw, sh, dst_off, dw, dh, 0u, 0u});
     rp::cl::note_kernel_launch(k);  // launched here, not through a Profiler
     ctx.queue.enqueueNDRangeKernel(k, ::cl::NullRange, ::cl::NDRange(dw, dh));
     offsets.push_back(dst_off);
