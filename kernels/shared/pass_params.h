@@ -58,8 +58,8 @@ typedef struct {
 /* The motion blur pass's kernels (kernels/motion_blur.cl): each reads the fields it needs.
  * The image is width x height pixels in tiles_x x tiles_y tiles; shutter the fraction of the
  * frame interval the shutter is open. The fused bloom (fuse_bloom 1; motion_blur_composite
- * always): its level 1 is bloom_width x bloom_height, mixed as in * keep + up(level 1) *
- * scale. 48 bytes. */
+ * always): its level 1 is bloom_width x bloom_height, and out = in * bloom_keep +
+ * up(level 1) * bloom_scale. 48 bytes. */
 typedef struct {
   rp_uint width, height, tiles_x, tiles_y;
   rp_float shutter;

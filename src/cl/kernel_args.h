@@ -7,10 +7,15 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 
 #include <CL/opencl.hpp>
 
 namespace rp::cl {
+
+// The kernel's function name (CL_KERNEL_FUNCTION_NAME without the terminating NULs some
+// bindings keep), for messages and logs.
+std::string kernel_name(const ::cl::Kernel& kernel);
 
 // Throws rp::cl::Error unless `kernel` takes exactly `given` arguments (CL_KERNEL_NUM_ARGS).
 void check_arg_count(const ::cl::Kernel& kernel, size_t given);

@@ -6,6 +6,8 @@
 #include <set>
 #include <string>
 
+#include "cl/kernel_args.h"
+
 namespace rp::cl {
 namespace {
 
@@ -26,8 +28,7 @@ void note_kernel_launch(const ::cl::Kernel& kernel) noexcept {
   LaunchLog& log = launch_log();
   if (log.path == nullptr || log.path[0] == '\0') return;
   try {
-    std::string name = kernel.getInfo<CL_KERNEL_FUNCTION_NAME>();
-    while (!name.empty() && name.back() == '\0') name.pop_back();
+    const std::string name = kernel_name(kernel);
     const std::lock_guard<std::mutex> lock(log.mutex);
     if (!log.seen.insert(name).second) return;
     // Append mode: several processes (a test and the binary it runs) may share one file.

@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "cl/error.h"
+#include "cl/kernel_args.h"
 #include "cl/launch_log.h"
 
 namespace rp::cl {
@@ -96,9 +97,7 @@ void Profiler::enqueue(const std::string& pass, const ::cl::Kernel& kernel,
     queue_.enqueueNDRangeKernel(kernel, ::cl::NullRange, global, local, nullptr,
                                 host ? nullptr : &event);
   } catch (const ::cl::Error& e) {
-    std::string name = kernel.getInfo<CL_KERNEL_FUNCTION_NAME>();
-    while (!name.empty() && name.back() == '\0') name.pop_back();
-    throw Error("pass '" + pass + "': launching kernel '" + name + "' failed: " +
+    throw Error("pass '" + pass + "': launching kernel '" + kernel_name(kernel) + "' failed: " +
                 error_name(e.err()));
   }
   if (host) {

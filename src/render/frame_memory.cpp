@@ -1,7 +1,5 @@
 #include "render/frame_memory.h"
 
-#include <algorithm>
-
 #include "passes/bloom.h"
 #include "passes/indirect.h"
 #include "passes/light.h"
@@ -68,8 +66,8 @@ FrameMemory frame_memory(const RenderSettings& settings, const FrameMemoryOption
   if (options.prt) m.add(pass_name::kPrt, passes::PrtSkyPass::frame_bytes(rw, rh));
   // The light pass's output, float4; the reference mode's copy of the previous frame's (its
   // screen-space reflections); the three component images.
-  uint64_t light_images = 1 + (settings.quality == Quality::kReference ? 1 : 0) +
-                          (options.light_components ? 3 : 0);
+  const uint64_t light_images = 1 + (settings.quality == Quality::kReference ? 1 : 0) +
+                                (options.light_components ? 3 : 0);
   m.add(pass_name::kLight, light_images * render_pixels * 16 +
                                passes::LightPass::frame_bytes(rw, rh, settings.shadows));
   // Temporal upsampling runs with or without TAA (without: no history is used).
