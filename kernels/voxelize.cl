@@ -974,65 +974,90 @@ inline rp_spani vx_alpha_keep_voxels(const VxSetup* s, __global const Triangle* 
 }
 
 /* ---- the static surface cache (voxelize_cached; host side in src/passes/voxelize.cpp) ----
- * Per-voxel samples of the large triangles of instances that have not moved: everything but
- * the light (point, normal, albedo * texture, emission), so a frame only adds the direct light
- * and accumulates. Built by voxelize_large in the VX_COUNT and VX_RECORD modes (in no
- * particular order); the samples are computed by the same code as in VX_ACCUMULATE, and sums
- * are order independent, so the volume
- * is bit-identical with or without the cache. One sample is 4 float4:
+ * Per-voxel samples of every triangle of the instances that have not moved: everything but
+ * the light (point, normal, albedo * texture, emission), so a frame only adds the light and
+ * accumulates. A small triangle gives one sample per voxel it touches, all at its centroid with
+ * its centroid's albedo (what VX_ACCUMULATE shades once for all its voxels); a triangle shaded
+ * per voxel, one at each voxel's point. Built by voxelize_triangles (small and per-voxel lanes)
+ * and voxelize_large in the VX_COUNT and VX_RECORD modes (in no particular order); the samples
+ * are computed by the same code as in VX_ACCUMULATE and lit by the same functions, and sums
+ * are order independent, so the volume is bit-identical with or without the cache. One sample
+ * is 5 float4:
  *   (p.xyz, voxel index as bits), (unit normal, bounce.r), (albedo * texture, bounce.g),
- *   (emission, bounce.b), bounce = the bounce grid's light at the sample (irradiance / pi) as of
- *   the frame that last refreshed it (0 when recorded).
+ *   (emission, bounce.b), (direct.rgb, 0)
+ * bounce = the bounce grid's light at the sample (irradiance / pi) as of the frame that last
+ * refreshed it (0 when recorded); direct = the lamp's and the punctual lights' light at the
+ * sample (before albedo) as of the last run that computed it.
  * The bounce grid changes slowly (it blends each frame's gather in at 1/32, kernels/bounce.cl),
  * so voxelize_cached may refresh the bounce light of only one in `refresh_stride` samples per
  * run (those whose voxel hashes to `refresh_phase`) and reuse the stored value for the others
  * (the host cycles the phase over the runs; stride 1 refreshes all: exact, and bit-identical
- * to the per-frame path). The trilinear ambient-cube lookup is most of the cached samples' cost. */
-#define VX_ACCUMULATE 0u /* voxelize_large: shade and accumulate non-cached instances */
-#define VX_COUNT 1u      /* count the samples of cached instances */
-#define VX_RECORD 2u     /* write them (cache_count restarts at 0) */
+ * to the per-frame path). The direct light is reused whole (`direct_fresh`) when the host
+ * knows that the lights and shadow maps are those of the run that stored it (a still scene
+ * under still lights): then the stored value is the one the run would compute. */
+#define VX_ACCUMULATE 0u /* shade and accumulate the instances that are not cached */
+#define VX_COUNT 1u      /* count the samples of cached instances (and list their large
+                            triangles: voxelize_triangles) */
+#define VX_RECORD 2u     /* write them (cache_count restarts at 0; the large list is kept) */
+#define VX_SAMPLE_FLOAT4S 5u
 
-inline void vx_record_samples(const VxSetup* s, __global const uint* texels,
-                              uint resolution, rp_spani x, rp_spani y, rp_spani z,
-                              rp_spanu voxel, rp_spani hit, uint record,
-                              volatile __global uint* cache_count, __global float4* cache,
-                              uint cache_capacity) {
+/* Writes (or counts) one cache sample per lane of `hit`: point p, normal, albedo, emission of
+ * the lanes, at their voxel. */
+inline void vx_write_samples(const VxVec* p, const VxVec* nrm, const VxVec* albedo,
+                             const VxVec* emission, rp_spanu voxel, rp_spani hit, uint record,
+                             volatile __global uint* cache_count, __global float4* cache,
+                             uint cache_capacity) {
   int lh[RP_SPAN];
   RP_SPAN_TO_ARRAY(hit, lh);
   if (record == VX_COUNT) {
     uint hits = 0;
     for (int i = 0; i < RP_SPAN; ++i) hits += lh[i] != 0;
-    atomic_add(cache_count, hits);
+    if (hits != 0u) atomic_add(cache_count, hits);
     return;
   }
-  rp_spanf b0, b1, b2;
-  const VxVec p = vx_voxel_point(s, resolution, x, y, z, &b0, &b1, &b2);
-  const VxVec albedo = vx_albedo_span(s, texels, b0, b1, b2, hit, RP_SPAN);
   float v[12][RP_SPAN];
   uint lv[RP_SPAN];
-  RP_SPAN_TO_ARRAY(p.x, v[0]);
-  RP_SPAN_TO_ARRAY(p.y, v[1]);
-  RP_SPAN_TO_ARRAY(p.z, v[2]);
-  RP_SPAN_TO_ARRAY(s->nw.x, v[3]);
-  RP_SPAN_TO_ARRAY(s->nw.y, v[4]);
-  RP_SPAN_TO_ARRAY(s->nw.z, v[5]);
-  RP_SPAN_TO_ARRAY(albedo.x, v[6]);
-  RP_SPAN_TO_ARRAY(albedo.y, v[7]);
-  RP_SPAN_TO_ARRAY(albedo.z, v[8]);
-  RP_SPAN_TO_ARRAY(s->emission.x, v[9]);
-  RP_SPAN_TO_ARRAY(s->emission.y, v[10]);
-  RP_SPAN_TO_ARRAY(s->emission.z, v[11]);
+  RP_SPAN_TO_ARRAY(p->x, v[0]);
+  RP_SPAN_TO_ARRAY(p->y, v[1]);
+  RP_SPAN_TO_ARRAY(p->z, v[2]);
+  RP_SPAN_TO_ARRAY(nrm->x, v[3]);
+  RP_SPAN_TO_ARRAY(nrm->y, v[4]);
+  RP_SPAN_TO_ARRAY(nrm->z, v[5]);
+  RP_SPAN_TO_ARRAY(albedo->x, v[6]);
+  RP_SPAN_TO_ARRAY(albedo->y, v[7]);
+  RP_SPAN_TO_ARRAY(albedo->z, v[8]);
+  RP_SPAN_TO_ARRAY(emission->x, v[9]);
+  RP_SPAN_TO_ARRAY(emission->y, v[10]);
+  RP_SPAN_TO_ARRAY(emission->z, v[11]);
   RP_SPAN_TO_ARRAY(voxel, lv);
   for (int i = 0; i < RP_SPAN; ++i) {
     if (!lh[i]) continue;
     const uint slot = atomic_inc(cache_count);
     if (slot >= cache_capacity) continue; /* the host sized it from VX_COUNT: cannot happen */
-    __global float4* q = cache + 4u * slot;
+    __global float4* q = cache + VX_SAMPLE_FLOAT4S * slot;
     q[0] = (float4)(v[0][i], v[1][i], v[2][i], as_float(lv[i]));
     q[1] = (float4)(v[3][i], v[4][i], v[5][i], 0.0f);
     q[2] = (float4)(v[6][i], v[7][i], v[8][i], 0.0f);
     q[3] = (float4)(v[9][i], v[10][i], v[11][i], 0.0f);
+    q[4] = (float4)(0.0f);
   }
+}
+
+/* The samples of a large triangle's voxels (x, y, z) of the lanes in `hit`. */
+inline void vx_record_samples(const VxSetup* s, __global const uint* texels,
+                              uint resolution, rp_spani x, rp_spani y, rp_spani z,
+                              rp_spanu voxel, rp_spani hit, uint record,
+                              volatile __global uint* cache_count, __global float4* cache,
+                              uint cache_capacity) {
+  if (record == VX_COUNT) {
+    vx_write_samples(0, 0, 0, 0, voxel, hit, record, cache_count, cache, cache_capacity);
+    return;
+  }
+  rp_spanf b0, b1, b2;
+  const VxVec p = vx_voxel_point(s, resolution, x, y, z, &b0, &b1, &b2);
+  const VxVec albedo = vx_albedo_span(s, texels, b0, b1, b2, hit, RP_SPAN);
+  vx_write_samples(&p, &s->nw, &albedo, &s->emission, voxel, hit, record, cache_count, cache,
+                   cache_capacity);
 }
 
 /* ---- kernels ---- */
@@ -1047,6 +1072,10 @@ __kernel void voxelize_clear(__global uint4* accum, __global uint* overflow, uin
   overflow[i] = 0u;
 }
 
+/* record (params.record): VX_ACCUMULATE shades and accumulates the lanes of instances that are
+ * not cached (cached_instances[instance] == 0) and lists their large triangles; VX_COUNT and
+ * VX_RECORD count or write the cache samples of the cached instances' small and per-voxel
+ * triangles, VX_COUNT listing their large triangles for voxelize_large. */
 __kernel void voxelize_triangles(__global const FrameConstants* frame,
                                  __global const Instance* instances,
                                  __global const Vertex* vertices,
@@ -1059,9 +1088,12 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
                                  volatile __global uint* overflow,
                                  volatile __global uint* large_count,
                                  __global uint* large_list,
+                                 __global const uint* cached_instances,
+                                 volatile __global uint* cache_count, __global float4* cache,
                                  __global const float4* bounce, const VoxelizeParams params) {
   const uint instance_count = params.instance_count, triangle_total = params.triangle_total;
   const uint resolution = params.resolution, bounce_cells = params.bounce_cells;
+  const uint record = params.record, cache_capacity = params.cache_capacity;
   const uint first = (uint)get_global_id(0) * RP_SPAN;
   if (first >= triangle_total) return;
   const int n = (int)min((uint)RP_SPAN, triangle_total - first);
@@ -1071,9 +1103,12 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
   uint hint_index = 0, hint_start = 0;
   for (int i = 0; i < RP_SPAN; ++i) {
     if (i < n) {
-      const VxTriangle t = vx_fetch_triangle(instances, instance_count, vertices, triangles,
-                                             materials, textures, first + (uint)i, &hint_index,
-                                             &hint_start, resolution);
+      VxTriangle t = vx_fetch_triangle(instances, instance_count, vertices, triangles,
+                                       materials, textures, first + (uint)i, &hint_index,
+                                       &hint_start, resolution);
+      /* this launch's instances only: the cached ones when counting or recording */
+      if (t.valid && (cached_instances[hint_index] != 0u) != (record != VX_ACCUMULATE))
+        t.valid = 0;
       vx_put_lane(&lanes, i, &t);
     } else {
       vx_put_empty_lane(&lanes, i);
@@ -1087,7 +1122,7 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
    * over their columns). Either way each voxel gets the same value. */
   const rp_spani columns = (s.ru1 - s.ru0 + 1) * (s.rv1 - s.rv0 + 1);
   const rp_spani per_voxel = s.valid & s.large & (columns <= RP_VOXEL_LANE_COLUMNS);
-  {
+  if (record != VX_RECORD) {
     int lv[RP_SPAN], ls[RP_SPAN], lp[RP_SPAN];
     RP_SPAN_TO_ARRAY(s.valid, lv);
     RP_SPAN_TO_ARRAY(s.small, ls);
@@ -1104,8 +1139,13 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
   const VxLight light = vx_light(frame, bounce, bounce_cells);
   const float third = 1.0f / 3.0f;
   const VxVec centroid = vxv_add(vxv_add(s.w0, vxv_scale(s.e01, third)), vxv_scale(s.e02, third));
-  const VxVec radiance = vx_shade_span(&s, &light, shadow, texels, &centroid, third,
-                                       third, third, small, n);
+  const VxVec small_albedo = vx_albedo_span(&s, texels, (rp_spanf)(third), (rp_spanf)(third),
+                                            (rp_spanf)(third), small, n);
+  const VxVec radiance =
+      record == VX_ACCUMULATE
+          ? vx_radiance_span(&light, shadow, &small_albedo, &centroid, &s.nw, &s.emission,
+                             small, n)
+          : vxv((rp_spanf)(0.0f), (rp_spanf)(0.0f), (rp_spanf)(0.0f));
   /* alpha masks: a small triangle exists where its centroid does */
   const bool any_masked = vx_lane_any(s.masked & active, n);
   const rp_spani small_kept =
@@ -1136,6 +1176,21 @@ __kernel void voxelize_triangles(__global const FrameConstants* frame,
                 vx_alpha_keep_voxels(&s, triangles, vertices, materials, textures, texels,
                                      resolution, x, y, z, hit & per_voxel);
         const rp_spanu voxel = rp_span_convert_uint((z * R + y) * R + x);
+        if (record != VX_ACCUMULATE) {
+          /* the sample: the centroid's (small), the voxel's point (per voxel) */
+          VxVec p = centroid, albedo = small_albedo;
+          const rp_spani hit_per_voxel = hit & per_voxel;
+          if (record == VX_RECORD && any_per_voxel && vx_lane_any(hit_per_voxel, n)) {
+            rp_spanf b0, b1, b2;
+            const VxVec pv = vx_voxel_point(&s, resolution, x, y, z, &b0, &b1, &b2);
+            const VxVec av = vx_albedo_span(&s, texels, b0, b1, b2, hit_per_voxel, n);
+            p = vxv_select(p, pv, per_voxel);
+            albedo = vxv_select(albedo, av, per_voxel);
+          }
+          vx_write_samples(&p, &s.nw, &albedo, &s.emission, voxel, hit, record, cache_count,
+                           cache, cache_capacity);
+          continue;
+        }
         VxVec value = radiance;
         if (any_per_voxel && vx_lane_any(hit & per_voxel, n))
           value = vxv_select(radiance,
@@ -1267,22 +1322,26 @@ __kernel void voxelize_large(__global const FrameConstants* frame,
                       bounce_cells, slice, slices);
 }
 
-/* The frame's light on the cached samples: RP_SPAN samples per work-item. */
+/* The frame's light on the cached samples: RP_SPAN samples per work-item. direct_fresh: the
+ * samples' stored direct light is this run's (the host's key: lights, shadow maps, instances
+ * and spheres unchanged since it was stored); else it is computed and stored. */
 __kernel void voxelize_cached(__global const FrameConstants* frame, __global const float* shadow,
                               __global float4* cache, volatile __global uint* accum,
                               volatile __global uint* overflow, __global const float4* bounce,
                               const VoxelizeParams params) {
   const uint samples = params.samples, bounce_cells = params.bounce_cells;
   const uint refresh_stride = params.refresh_stride, refresh_phase = params.refresh_phase;
+  const uint direct_fresh = params.direct_fresh;
   const uint first = (uint)get_global_id(0) * RP_SPAN;
   if (first >= samples) return;
   const int n = (int)min((uint)RP_SPAN, samples - first);
-  float v[15][RP_SPAN];
+  float v[18][RP_SPAN];
   uint lv[RP_SPAN];
   for (int i = 0; i < RP_SPAN; ++i) {
     const uint k = first + (uint)(i < n ? i : 0);
-    const float4 q0 = cache[4u * k], q1 = cache[4u * k + 1u], q2 = cache[4u * k + 2u],
-                 q3 = cache[4u * k + 3u];
+    __global const float4* q = cache + VX_SAMPLE_FLOAT4S * k;
+    const float4 q0 = q[0], q1 = q[1], q2 = q[2], q3 = q[3];
+    const float4 q4 = direct_fresh ? q[4] : (float4)(0.0f);
     v[0][i] = q0.x;
     v[1][i] = q0.y;
     v[2][i] = q0.z;
@@ -1299,6 +1358,9 @@ __kernel void voxelize_cached(__global const FrameConstants* frame, __global con
     v[12][i] = q1.w;
     v[13][i] = q2.w;
     v[14][i] = q3.w;
+    v[15][i] = q4.x;
+    v[16][i] = q4.y;
+    v[17][i] = q4.z;
   }
   const VxVec p = vxv(VX_SPAN(v[0]), VX_SPAN(v[1]), VX_SPAN(v[2]));
   const VxVec nrm = vxv(VX_SPAN(v[3]), VX_SPAN(v[4]), VX_SPAN(v[5]));
@@ -1306,9 +1368,20 @@ __kernel void voxelize_cached(__global const FrameConstants* frame, __global con
   const VxVec emission = vxv(VX_SPAN(v[9]), VX_SPAN(v[10]), VX_SPAN(v[11]));
   const rp_spani active = rp_span_convert_int(RP_LANES) < n;
   const VxLight light = vx_light(frame, bounce, bounce_cells);
-  VxVec direct = vx_direct_span(&light, shadow, &p, &nrm, active, n);
-  if (frame->punctual_count != 0u)
-    direct = vxv_add(direct, vx_punctual_span(&light, shadow, &p, &nrm, active, n));
+  VxVec direct;
+  if (direct_fresh) {
+    direct = vxv(VX_SPAN(v[15]), VX_SPAN(v[16]), VX_SPAN(v[17]));
+  } else {
+    direct = vx_direct_span(&light, shadow, &p, &nrm, active, n);
+    if (frame->punctual_count != 0u)
+      direct = vxv_add(direct, vx_punctual_span(&light, shadow, &p, &nrm, active, n));
+    float dx[RP_SPAN], dy[RP_SPAN], dz[RP_SPAN];
+    RP_SPAN_TO_ARRAY(direct.x, dx);
+    RP_SPAN_TO_ARRAY(direct.y, dy);
+    RP_SPAN_TO_ARRAY(direct.z, dz);
+    for (int i = 0; i < n; ++i)
+      cache[VX_SAMPLE_FLOAT4S * (first + (uint)i) + 4u] = (float4)(dx[i], dy[i], dz[i], 0.0f);
+  }
   VxVec e = vxv(VX_SPAN(v[12]), VX_SPAN(v[13]), VX_SPAN(v[14]));
   if (bounce_cells != 0u) {
     /* Which samples refresh is a hash of their voxel (16 bits, scaled to [0, stride)), not
@@ -1327,9 +1400,9 @@ __kernel void voxelize_cached(__global const FrameConstants* frame, __global con
     for (int i = 0; i < n; ++i) {
       if (!lr[i]) continue;
       const uint k = first + (uint)i;
-      cache[4u * k + 1u].w = ex[i];
-      cache[4u * k + 2u].w = ey[i];
-      cache[4u * k + 3u].w = ez[i];
+      cache[VX_SAMPLE_FLOAT4S * k + 1u].w = ex[i];
+      cache[VX_SAMPLE_FLOAT4S * k + 2u].w = ey[i];
+      cache[VX_SAMPLE_FLOAT4S * k + 3u].w = ez[i];
     }
     e = vxv(select(e.x, fresh.x, refresh), select(e.y, fresh.y, refresh),
             select(e.z, fresh.z, refresh));

@@ -148,11 +148,11 @@ typedef struct {
   rp_uint sphere_count;
   rp_uint bounce_cells;   /* the bounce grid's cells per side (0: no bounce light) */
   rp_uint slices;         /* work-items sharing one large triangle (or one sphere) */
-  rp_uint record;         /* voxelize_large: VX_ACCUMULATE, VX_COUNT or VX_RECORD */
+  rp_uint record;         /* voxelize_triangles, _large: VX_ACCUMULATE, VX_COUNT, VX_RECORD */
   rp_uint cache_capacity; /* samples the static surface cache holds */
   rp_uint samples;        /* voxelize_cached: the samples in the cache */
   rp_uint refresh_stride, refresh_phase; /* voxelize_cached: the bounce light's refresh */
-  rp_uint pad;
+  rp_uint direct_fresh;   /* voxelize_cached: 1 reuses the samples' stored direct light */
 } VoxelizeParams;
 
 /* The octree builder's kernels (kernels/svo.cl; each reads the fields it needs). 96 bytes. */

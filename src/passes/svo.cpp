@@ -88,8 +88,8 @@ void SvoPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
         fragment_capacity_ * RP_SVO_FRAGMENT_WORDS * sizeof(cl_uint),
         at_resolution("fragment list", resolution), svo_advice(resolution));
   }
-  // The voxelizer's static surface cache costs 64 bytes a cached room sample: 36 MiB at 256^3
-  // on the demo, 145 MiB at 512^3, where the octree and its build scratch took 251 MiB of the
+  // The voxelizer's static surface cache costs 80 bytes a cached sample: 45 MiB at 256^3
+  // on the demo, 181 MiB at 512^3, where the octree and its build scratch took 251 MiB of the
   // 256 MB budget (now 97 MiB, 142 MiB on the atrium). So from 512^3 on
   // the room is voxelized every frame like the moving objects (the same fragments; the cost:
   // bench/results/epyc-2core-pocl-svo2.md).

@@ -63,9 +63,10 @@ Slices choose_slices(const rp::cl::Context& context, uint32_t resolution) {
   return n;
 }
 
-// voxelize_large's modes (VX_ACCUMULATE, VX_COUNT, VX_RECORD in voxelize.cl).
+// voxelize_triangles' and voxelize_large's modes (VX_ACCUMULATE, VX_COUNT, VX_RECORD in
+// voxelize.cl).
 constexpr cl_uint kAccumulate = 0, kCount = 1, kRecord = 2;
-constexpr size_t kSampleBytes = 4 * 4 * sizeof(float);  // one cache sample: 4 float4
+constexpr size_t kSampleBytes = 5 * 4 * sizeof(float);  // one cache sample: 5 float4
 
 // The part of an instance voxelization depends on apart from the light.
 bool same_geometry(const gpu::Instance& a, const gpu::Instance& b) {
@@ -159,8 +160,24 @@ gpu::VoxelizeParams VoxelizePass::params_for(const render::GpuScene& scene) cons
   return params;
 }
 
-void VoxelizePass::set_large_args(const render::GpuScene& scene, const render::ShadowMap& shadow,
-                                  cl_uint record) {
+void VoxelizePass::enqueue_triangles(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                                     const render::ShadowMap& shadow, cl_uint record) {
+  gpu::VoxelizeParams params = params_for(scene);
+  params.record = record;
+  params.cache_capacity = cl_uint(cache_capacity_);
+  rp::cl::bind_args(triangles_, scene.frame, scene.instances, scene.vertices, scene.triangles,
+                    scene.materials, scene.textures, texels_, shadow.depth, target_accum_,
+                    target_overflow_, large_count_, large_list_, cached_flags_, cache_count_,
+                    cache_() ? cache_ : cache_count_,  // a valid buffer before the first
+                    *bounce_, params);
+  const size_t span = static_cast<size_t>(span_);
+  const size_t items = (size_t(scene.voxel_triangle_count) + span - 1) / span;
+  profiler.enqueue(pass_name::kVoxelize, triangles_,
+                   ::cl::NDRange(rp::cl::round_up(items, kSpanGroup)), ::cl::NDRange(kSpanGroup));
+}
+
+void VoxelizePass::enqueue_large(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                                 const render::ShadowMap& shadow, cl_uint record) {
   gpu::VoxelizeParams params = params_for(scene);
   params.record = record;
   params.cache_capacity = cl_uint(cache_capacity_);
@@ -170,17 +187,23 @@ void VoxelizePass::set_large_args(const render::GpuScene& scene, const render::S
                     target_overflow_, large_count_, large_list_, cached_flags_, cache_count_,
                     cache_() ? cache_ : cache_count_,  // a valid buffer before the first
                     *bounce_, params);
+  // The list's length is only known on the device (reading it back would stall the queue): a
+  // fixed number of work-items strides over it.
+  profiler.enqueue(pass_name::kVoxelize, large_, ::cl::NDRange(large_items_),
+                   ::cl::NDRange(kSpanGroup));
 }
 
 void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                                const render::ShadowMap& shadow) {
   // Rare (the first frame, a cached instance that moved): blocking reads and writes are fine.
   ::cl::CommandQueue& queue = profiler.queue();
+  // Counting lists the cached instances' large triangles (from an empty list); recording
+  // reads the same list. The caller empties the list again before its own launches.
   const cl_uint zero = 0;
   queue.enqueueWriteBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &zero);
-  set_large_args(scene, shadow, kCount);
-  profiler.enqueue(pass_name::kVoxelize, large_, ::cl::NDRange(large_items_),
-                   ::cl::NDRange(kSpanGroup));
+  queue.enqueueWriteBuffer(large_count_, CL_TRUE, 0, sizeof(cl_uint), &zero);
+  enqueue_triangles(profiler, scene, shadow, kCount);
+  enqueue_large(profiler, scene, shadow, kCount);
   cl_uint samples = 0;
   queue.enqueueReadBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &samples);
   if (uint64_t(samples) * kSampleBytes > cache_limit_) {
@@ -206,12 +229,46 @@ void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScen
   }
   queue.enqueueWriteBuffer(cache_count_, CL_TRUE, 0, sizeof(cl_uint), &zero);
   if (samples > 0) {
-    set_large_args(scene, shadow, kRecord);
-    profiler.enqueue(pass_name::kVoxelize, large_, ::cl::NDRange(large_items_),
-                     ::cl::NDRange(kSpanGroup));
+    enqueue_triangles(profiler, scene, shadow, kRecord);
+    enqueue_large(profiler, scene, shadow, kRecord);
   }
   cache_samples_ = samples;
   cache_bounce_fresh_ = false;  // recorded with no bounce light
+  direct_key_.clear();          // nor direct light
+}
+
+bool VoxelizePass::update_direct_key(const render::GpuScene& scene,
+                                     const render::ShadowMap& shadow) {
+  // What the samples' direct light reads: the lamp (position, intensity, shadow projection and
+  // planes), the punctual lights and their shadow views, and the shadow maps, which are drawn
+  // from the instances and spheres through those views (the renderer redraws them only when
+  // one of these changed). The depth buffer is held, so its handle cannot come back as
+  // another buffer's.
+  std::vector<unsigned char>& key = direct_key_scratch_;
+  key.clear();
+  const auto append = [&key](const void* data, size_t bytes) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    key.insert(key.end(), b, b + bytes);
+  };
+  const gpu::FrameConstants& c = scene.constants;
+  append(&c.light_view_proj, sizeof(c.light_view_proj));
+  append(&c.light_pos, sizeof(c.light_pos));
+  append(&c.light_intensity, sizeof(c.light_intensity));
+  append(&c.clip.z, 2 * sizeof(float));
+  append(&c.shadow_size, sizeof(c.shadow_size));
+  append(&c.punctual_count, sizeof(c.punctual_count));
+  append(c.punctual, std::min<size_t>(c.punctual_count, RP_MAX_PUNCTUAL_LIGHTS) *
+                         sizeof(c.punctual[0]));
+  append(&c.shadow_view_count, sizeof(c.shadow_view_count));
+  append(c.shadow_views, std::min<size_t>(c.shadow_view_count, RP_MAX_SHADOW_VIEWS) *
+                             sizeof(c.shadow_views[0]));
+  append(scene.host_instances.data(), scene.host_instances.size() * sizeof(gpu::Instance));
+  append(scene.host_spheres.data(), scene.host_spheres.size() * sizeof(gpu::Sphere));
+  const bool fresh = !direct_key_.empty() && key == direct_key_ &&
+                     direct_shadow_() == shadow.depth();
+  std::swap(direct_key_, key);
+  direct_shadow_ = shadow.depth;
+  return fresh;
 }
 
 void VoxelizePass::set_bounce(const ::cl::Buffer* bounce, uint32_t bounce_cells) {
@@ -305,23 +362,21 @@ void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& 
   // A multiple of both the group and the slices (both powers of two).
   large_items_ = rp::cl::round_up(in_flight * large_slices_, kSpanGroup);
 
-  if (triangles > 0) {
-    rp::cl::bind_args(triangles_, scene.frame, scene.instances, scene.vertices,
-                      scene.triangles, scene.materials, scene.textures, texels_, shadow.depth,
-                      target_accum_, target_overflow_, large_count_, large_list_, *bounce_,
-                      params_for(scene));
-    const size_t span = static_cast<size_t>(span_);
-    profiler.enqueue(pass_name::kVoxelize, triangles_,
-                     ::cl::NDRange(rp::cl::round_up((triangles + span - 1) / span, kSpanGroup)),
-                     ::cl::NDRange(kSpanGroup));
-
-    // The list's length is only known on the device (reading it back would stall the
-    // queue): a fixed number of work-items strides over it. Few on CPUs, where every
-    // work-group costs a few microseconds even when it has nothing to do.
-    if (rebuild) build_cache(profiler, scene, shadow);
-    set_large_args(scene, shadow, kAccumulate);
-    profiler.enqueue(pass_name::kVoxelize, large_, ::cl::NDRange(large_items_),
-                     ::cl::NDRange(kSpanGroup));
+  if (triangles > 0 && rebuild) {
+    build_cache(profiler, scene, shadow);
+    const cl_uint zero = 0;
+    profiler.queue().enqueueFillBuffer(large_count_, zero, 0, sizeof(cl_uint));
+  }
+  // The instances outside the cache, shaded and accumulated triangle by triangle (none in a
+  // still scene once its cache is built).
+  bool any_uncached = false;
+  for (size_t i = 0; i < scene.host_instances.size() && !any_uncached; ++i) {
+    const gpu::Instance& inst = scene.host_instances[i];
+    any_uncached = inst.voxelize != 0 && inst.voxel_triangle_count != 0 && !cached_host_[i];
+  }
+  if (triangles > 0 && any_uncached) {
+    enqueue_triangles(profiler, scene, shadow, kAccumulate);
+    enqueue_large(profiler, scene, shadow, kAccumulate);
   }
 
   if (cache_samples_ > 0) {
@@ -333,6 +388,7 @@ void VoxelizePass::voxelize(rp::cl::Profiler& profiler, const render::GpuScene& 
     params.samples = cache_samples_;
     params.refresh_stride = reuse ? bounce_refresh_stride_ : 1u;
     params.refresh_phase = reuse ? bounce_refresh_runs_++ % params.refresh_stride : 0u;
+    params.direct_fresh = update_direct_key(scene, shadow) ? 1u : 0u;
     rp::cl::bind_args(cached_, scene.frame, shadow.depth, cache_, target_accum_,
                       target_overflow_, *bounce_, params);
     cache_bounce_fresh_ = bounce_cells_ != 0;

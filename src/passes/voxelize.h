@@ -80,11 +80,18 @@ class VoxelizePass {
   // Follows which instances have not changed since tracking began (still_) and decides the
   // instances of the static surface cache; returns true when the cache must be rebuilt.
   bool update_cache_plan(const render::GpuScene& scene, uint32_t resolution, bool scene_changed);
-  // VX_COUNT then VX_RECORD passes of voxelize_large over the frame's large-triangle list.
+  // VX_COUNT then VX_RECORD passes of voxelize_triangles and voxelize_large over the cached
+  // instances; leaves their large triangles in the large-triangle list.
   void build_cache(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                    const render::ShadowMap& shadow);
-  void set_large_args(const render::GpuScene& scene, const render::ShadowMap& shadow,
-                      cl_uint record);
+  // One launch of voxelize_triangles / voxelize_large in mode `record` (VX_* of voxelize.cl).
+  void enqueue_triangles(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                         const render::ShadowMap& shadow, cl_uint record);
+  void enqueue_large(rp::cl::Profiler& profiler, const render::GpuScene& scene,
+                     const render::ShadowMap& shadow, cl_uint record);
+  // Records what the cached samples' direct light depends on; true when it is what the last
+  // call recorded (the samples' stored direct light is then this run's).
+  bool update_direct_key(const render::GpuScene& scene, const render::ShadowMap& shadow);
   // The kernels' parameters every launch shares (the target, the frame's counts, the bounce
   // grid); each launch adds its own.
   gpu::VoxelizeParams params_for(const render::GpuScene& scene) const;
@@ -111,9 +118,9 @@ class VoxelizePass {
   cl_uint large_slices_ = 1;   // work-items sharing one large triangle (choose_slices)
   cl_uint sphere_slices_ = 1;  // work-items sharing one sphere (choose_slices)
 
-  // Static surface cache (kernels/voxelize.cl voxelize_cached): per-voxel samples of the large
+  // Static surface cache (kernels/voxelize.cl voxelize_cached): per-voxel samples of the
   // triangles of instances that have not changed (model, triangle range, voxelize flag) since
-  // tracking began; tracking restarts when the instance count, the scene's buffers or the
+  // tracking began, with their last direct and bounce light; tracking restarts when the instance count, the scene's buffers or the
   // resolution change. An instance that changes leaves the cache for good (a rebuild without
   // it), so a session rebuilds at most once per instance. The volume is bit-identical with or
   // without the cache. ROLYPOLY_VOXELIZE_CACHE=0
@@ -135,6 +142,9 @@ class VoxelizePass {
   cl_mem cache_bounce_grid_ = nullptr;    // the grid the samples' bounce light came from
   uint32_t cache_resolution_ = 0;
   ::cl::Buffer cache_vertices_, cache_triangles_, cache_materials_;  // scene buffers tracked
+  // What the samples' stored direct light was computed under (update_direct_key); empty: none.
+  std::vector<unsigned char> direct_key_, direct_key_scratch_;
+  ::cl::Buffer direct_shadow_;  // the shadow depth buffer it read
 };
 
 }  // namespace rp::passes

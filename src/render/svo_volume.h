@@ -34,7 +34,7 @@ struct SvoVolume {
   uint64_t fragment_bytes = 0;  // of which the fragment list (its capacity)
   uint64_t device_bytes = 0;
   uint64_t peak_device_bytes = 0;
-  // The fragment voxelizer's own buffers (its static surface cache: 64 bytes a cached room
+  // The fragment voxelizer's own buffers (its static surface cache: 80 bytes a cached
   // sample), set by SvoPass::run.
   uint64_t voxelizer_bytes = 0;
 

@@ -556,7 +556,8 @@ VoxelGpuOutput run_voxelize(render::GpuScene& gpu, const std::vector<float>& sha
 
 VoxelGpuOutput run_voxelize(passes::VoxelizePass& pass, render::VoxelVolume& vol,
                             render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r,
-                            const ::cl::Buffer* bounce, uint32_t bounce_cells) {
+                            const ::cl::Buffer* bounce, uint32_t bounce_cells,
+                            render::ShadowMap* shadow_map) {
   rp::cl::Context& ctx = context();
   vol.resize(ctx.context, r);
   gpu.constants.voxel_resolution = vol.resolution;
@@ -571,8 +572,9 @@ VoxelGpuOutput run_voxelize(passes::VoxelizePass& pass, render::VoxelVolume& vol
                                accum_garbage.data());
   ctx.queue.enqueueWriteBuffer(vol.overflow, CL_TRUE, 0, voxels * 4, garbage.data());
 
-  render::ShadowMap sm;
-  sm.resize(ctx.context, gpu.constants.shadow_size);
+  render::ShadowMap own;
+  render::ShadowMap& sm = shadow_map != nullptr ? *shadow_map : own;
+  if (sm.size != gpu.constants.shadow_size) sm.resize(ctx.context, gpu.constants.shadow_size);
   if (shadow.size() != size_t(sm.size) * sm.size)
     throw std::invalid_argument("run_voxelize: shadow map size does not match the constants");
   ctx.queue.enqueueWriteBuffer(sm.depth, CL_TRUE, 0, shadow.size() * sizeof(float), shadow.data());

@@ -111,10 +111,13 @@ VoxelGpuOutput run_voxelize(render::GpuScene& gpu, const std::vector<float>& sha
                             const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0);
 
 // The same with a given pass (its state, the static surface cache, carries over between
-// calls) and volume (resized to r; garbage is written into it first all the same).
+// calls) and volume (resized to r; garbage is written into it first all the same). shadow_map:
+// the depth buffer to write `shadow` into and voxelize with (kept across calls, as the
+// renderer's is), or nullptr for a new one per call.
 VoxelGpuOutput run_voxelize(passes::VoxelizePass& pass, render::VoxelVolume& vol,
                             render::GpuScene& gpu, const std::vector<float>& shadow, uint32_t r,
-                            const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0);
+                            const ::cl::Buffer* bounce = nullptr, uint32_t bounce_cells = 0,
+                            render::ShadowMap* shadow_map = nullptr);
 
 // The reference input for the same scene.
 VoxelRefInput reference_input(const scene::SceneAssets& assets, const scene::FrameScene& frame,

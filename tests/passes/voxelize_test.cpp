@@ -434,6 +434,49 @@ TEST(Voxelize, StaticCacheGivesTheSameSumsAsFrameByFrame) {
   }
 }
 
+// The cached samples' direct light (the lamp's, with its shadow map) is stored and reused
+// while what it depends on stays the same: the lights, the shadow views and every instance and
+// sphere (the renderer draws the shadow maps from them and redraws them only when one
+// changes), and the depth buffer itself. Reuse is visible by rewriting the map behind the
+// pass's back: the stored light stays; a moved sphere then makes the pass compute it again.
+TEST(Voxelize, StaticCacheReusesTheDirectLightWhileLightsAndObjectsStayStill) {
+  constexpr uint32_t kR = 16;
+  Scene s = many_triangles_scene();
+  s.frame.light.intensity = glm::vec3(5.0f);
+  s.gpu->update(s.frame, 16, 16, kShadowSize);
+  const std::vector<float> open = uniform_shadow(1.0f), closed = uniform_shadow(0.0f);
+  const auto per_frame = [&](const std::vector<float>& shadow) {
+    setenv("ROLYPOLY_VOXELIZE_CACHE", "0", 1);
+    VoxelGpuOutput out = run_voxelize(*s.gpu, shadow, kR);
+    unsetenv("ROLYPOLY_VOXELIZE_CACHE");
+    return out.level0;
+  };
+  const std::vector<float> lit = per_frame(open), dark = per_frame(closed);
+  ASSERT_FALSE(lit == dark) << "the shadow map must light the voxels";
+
+  passes::VoxelizePass pass(context(), programs());
+  render::VoxelVolume vol;
+  render::ShadowMap map;  // one depth buffer for every run, as the renderer's
+  const auto cached = [&](const std::vector<float>& shadow) {
+    return run_voxelize(pass, vol, *s.gpu, shadow, kR, nullptr, 0, &map).level0;
+  };
+  EXPECT_TRUE(cached(closed) == dark) << "the run that builds the cache";
+  EXPECT_TRUE(cached(closed) == dark) << "the next run, reusing the stored light";
+  EXPECT_TRUE(cached(open) == dark) << "the map changed behind the pass: the stored light stays";
+
+  s.frame.spheres = {sphere({0.3f, -0.5f, 0.45f}, 0.1f, {0.0f, 0.0f, 0.0f})};
+  s.gpu->update(s.frame, 16, 16, kShadowSize);
+  const std::vector<float> with_sphere = per_frame(open);
+  EXPECT_TRUE(cached(open) == with_sphere) << "an object moved: the light is computed again";
+  s.frame.spheres[0].center.x += 0.01f;
+  s.gpu->update(s.frame, 16, 16, kShadowSize);
+  EXPECT_TRUE(cached(closed) == per_frame(closed)) << "the sphere moved again";
+  s.frame.light.intensity = glm::vec3(4.0f, 5.0f, 6.0f);
+  s.gpu->update(s.frame, 16, 16, kShadowSize);
+  EXPECT_TRUE(cached(open) == per_frame(open)) << "the lamp changed";
+  EXPECT_TRUE(cached(open) == per_frame(open)) << "and stays";
+}
+
 // The fast mode's bounce-light refresh (VoxelizePass::set_bounce_refresh_stride): the cached
 // samples keep the bounce grid's light of the run that last refreshed them, one in `stride` of
 // them refreshed per run. The run that builds the cache refreshes all; after the grid changes,
