@@ -11,54 +11,48 @@
  *     gloss code (shared/brdf_layout.h) rebuilt from them (dielectrics keep the material's f0);
  *   emission: emission.rgb *= the map (sRGB).
  *
- * The maps are sampled bilinearly at level 0 with the texture's wrap modes, texel centres at +0.5, v
- * up: the path tracer's arithmetic (truth/trace_scene.h LinearTexture), so both see the same
- * surface; the base colour keeps gbuffer_resolve's filtered lookup. Spheres and background
- * are left as they are. One work-item per pixel.
+ * The maps are sampled bilinearly at level 0 with the texture's wrap modes, texel centres at
+ * +0.5, v up: the path tracer's arithmetic (truth/trace_scene.h LinearTexture), so both see the
+ * same surface; the base colour keeps gbuffer_resolve's filtered lookup. Spheres and
+ * background are left as they are.
+ *
+ * One work-item per RP_SPAN pixels of a row (common/span.h: the CPU's vector width, 1 on GPUs):
+ * each lane gathers its pixel's triangle, material and interpolated uv, the lanes' maps are
+ * sampled together (common/span_texture.h: per-lane textures, wrap folding and taps as vector
+ * arithmetic; the same values as one pixel at a time), and the per-pixel results are then
+ * written lane by lane.
  */
 #include "shared/types.h"
 #include "shared/brdf_layout.h"
 #include "common/colour.h"
+#include "common/span.h"
+#include "common/span_texture.h"
 
-/* Texel column (or row) c (an integer held in float) and c + 1 folded into [0, n) by wrap
- * mode `mode` (RP_WRAP_*): the path tracer's rules (common/span_texture.h rp_span_wrap_taps
- * for spans). */
-inline void gm_fold(float c, int n, uint mode, int* i0, int* i1) {
-  if (mode == RP_WRAP_CLAMP) {
-    const int k = (int)clamp(c, -1.0f, (float)n);
-    *i0 = clamp(k, 0, n - 1);
-    *i1 = clamp(k + 1, 0, n - 1);
-    return;
+/* Bilinear sample at level 0 of map index[i] for the lanes with has[i] (srgb: decode the codes;
+ * else code / 255) at (u, v): rgb into out[3][RP_SPAN]. */
+inline void gm_sample_lanes(__global const TextureInfo* textures, __global const uint* texels,
+                            const uint* index, const int* has, const float* u, const float* v,
+                            int n, int srgb, float out[3][RP_SPAN]) {
+  float w[RP_SPAN], h[RP_SPAN];
+  uint offset[RP_SPAN], wrap[RP_SPAN];
+  int on[RP_SPAN];
+  for (int i = 0; i < RP_SPAN; ++i) {
+    const bool read = i < n && has[i];
+    __global const TextureInfo* info = textures + (read ? index[i] : 0u);
+    w[i] = read ? (float)info->width : 1.0f;
+    h[i] = read ? (float)info->height : 1.0f;
+    offset[i] = read ? info->offset : 0u;
+    wrap[i] = read ? info->wrap : RP_WRAP_REPEAT;
+    on[i] = read ? -1 : 0;
   }
-  const int period = mode == RP_WRAP_MIRROR ? 2 * n : n;
-  int m = (int)(c - floor(c / (float)period) * (float)period);
-  if (m >= period) m -= period;
-  if (m < 0) m += period;
-  const int m1 = m + 1 == period ? 0 : m + 1;
-  *i0 = m < n ? m : period - 1 - m;
-  *i1 = m1 < n ? m1 : period - 1 - m1;
-}
-
-/* Bilinear texel of texture `info` at uv: linear bytes / 255 (srgb 0) or sRGB decoded
- * (srgb 1); rgb. */
-inline float3 gm_sample(__global const TextureInfo* info, __global const uint* texels, float2 uv,
-                        int srgb) {
-  const int w = (int)info->width, h = (int)info->height;
-  const float x = uv.x * (float)w - 0.5f, y = (1.0f - uv.y) * (float)h - 0.5f;
-  const float fx0 = floor(x), fy0 = floor(y);
-  const float fx = x - fx0, fy = y - fy0;
-  int x0, x1, y0, y1;
-  gm_fold(fx0, w, RP_WRAP_U(info->wrap), &x0, &x1);
-  gm_fold(fy0, h, RP_WRAP_V(info->wrap), &y0, &y1);
-  const uint base = info->offset;
-  const uint t[4] = {texels[base + (uint)(y0 * w + x0)], texels[base + (uint)(y0 * w + x1)],
-                     texels[base + (uint)(y1 * w + x0)], texels[base + (uint)(y1 * w + x1)]};
-  float3 c[4];
-  for (int k = 0; k < 4; ++k)
-    c[k] = srgb ? rp_unpack_rgba8_srgb(t[k]).xyz
-                : (float3)((float)(t[k] & 255u), (float)((t[k] >> 8) & 255u),
-                           (float)((t[k] >> 16) & 255u)) * (1.0f / 255.0f);
-  return mix(mix(c[0], c[1], fx), mix(c[2], c[3], fx), fy);
+  rp_spanf r, g, b;
+  rp_span_texture_sample_coded(texels, RP_SPAN_FROM_ARRAY(on) != 0, RP_SPAN_FROM_ARRAY(w),
+                               RP_SPAN_FROM_ARRAY(h), RP_SPAN_FROM_ARRAY(offset),
+                               RP_SPAN_FROM_ARRAY(wrap), RP_SPAN_FROM_ARRAY(u),
+                               RP_SPAN_FROM_ARRAY(v), n, srgb, &r, &g, &b);
+  RP_SPAN_TO_ARRAY(r, out[0]);
+  RP_SPAN_TO_ARRAY(g, out[1]);
+  RP_SPAN_TO_ARRAY(b, out[2]);
 }
 
 __kernel void gbuffer_material(__global const FrameConstants* frame,
@@ -73,54 +67,92 @@ __kernel void gbuffer_material(__global const FrameConstants* frame,
                                __global const uint* texels,
                                __global float4* normal_depth,
                                __global float4* emission) {
-  const uint x = (uint)get_global_id(0), y = (uint)get_global_id(1);
-  if (x >= frame->width || y >= frame->height) return;
-  const uint pixel = y * frame->width + x;
-  const uint a = ids[2 * pixel], p = ids[2 * pixel + 1];
-  if (a >= frame->instance_count || p >= instances[a].triangle_count) return;
-  __global const Instance* inst = instances + a;
-  const Triangle tri = triangles[inst->first_triangle + p];
-  __global const Material* mat = materials + tri.w;
-  const uint normal_map = mat->normal_texture, mr_map = mat->metallic_roughness_texture;
-  const uint emission_map = mat->emission_texture;
-  if (normal_map == RP_TEXTURE_NONE && mr_map == RP_TEXTURE_NONE &&
-      emission_map == RP_TEXTURE_NONE)
-    return;
-  const float b1 = bary[2 * pixel], b2 = bary[2 * pixel + 1], b0 = 1.0f - b1 - b2;
-  const float2 uv = (float2)(vertices[tri.x].position_u.w, vertices[tri.x].normal_v.w) * b0 +
-                    (float2)(vertices[tri.y].position_u.w, vertices[tri.y].normal_v.w) * b1 +
-                    (float2)(vertices[tri.z].position_u.w, vertices[tri.z].normal_v.w) * b2;
-  float4 e = emission[pixel];
-  if (emission_map != RP_TEXTURE_NONE)
-    e.xyz *= gm_sample(textures + emission_map, texels, uv, 1);
-  if (mr_map != RP_TEXTURE_NONE) {
-    const float3 mr = gm_sample(textures + mr_map, texels, uv, 0);
-    const float roughness = clamp(mat->factors.y * mr.y, 0.0f, 1.0f);
-    const bool metal = mat->factors.z * mr.z >= 0.5f;
-    const float f0 = mat->factors.w;
-    const int r = (int)(roughness * 255.0f + 0.5f);
-    if (metal)
-      e.w = (float)(r + RP_GLOSS_METAL);
-    else if (f0 > 0.0f)
-      e.w = (float)(r + 256 * clamp((int)(f0 * RP_GLOSS_F0_SCALE + 0.5f), 1, 255));
-    else
-      e.w = 0.0f;
+  const uint x0 = (uint)get_global_id(0) * RP_SPAN, y = (uint)get_global_id(1);
+  const uint width = frame->width;
+  if (x0 >= width || y >= frame->height) return;
+  const int n = (int)min((uint)RP_SPAN, width - x0);
+  /* Per lane: the material, its maps (RP_TEXTURE_NONE: none), uv, the barycentrics. */
+  uint mat_index[RP_SPAN], nm[RP_SPAN], mr[RP_SPAN], em[RP_SPAN];
+  int has_nm[RP_SPAN], has_mr[RP_SPAN], has_em[RP_SPAN];
+  uint tri_x[RP_SPAN], tri_y[RP_SPAN], tri_z[RP_SPAN], inst_index[RP_SPAN];
+  float u[RP_SPAN], v[RP_SPAN], b0_[RP_SPAN], b1_[RP_SPAN], b2_[RP_SPAN];
+  bool any_nm = false, any_mr = false, any_em = false;
+  for (int i = 0; i < RP_SPAN; ++i) {
+    has_nm[i] = has_mr[i] = has_em[i] = 0;
+    nm[i] = mr[i] = em[i] = mat_index[i] = tri_x[i] = tri_y[i] = tri_z[i] = inst_index[i] = 0u;
+    u[i] = v[i] = b0_[i] = b1_[i] = b2_[i] = 0.0f;
+    if (i >= n) continue;
+    const uint pixel = y * width + x0 + (uint)i;
+    const uint a = ids[2 * pixel], p = ids[2 * pixel + 1];
+    if (a >= frame->instance_count || p >= instances[a].triangle_count) continue;
+    const Triangle tri = triangles[instances[a].first_triangle + p];
+    __global const Material* mat = materials + tri.w;
+    nm[i] = mat->normal_texture;
+    mr[i] = mat->metallic_roughness_texture;
+    em[i] = mat->emission_texture;
+    has_nm[i] = nm[i] != RP_TEXTURE_NONE;
+    has_mr[i] = mr[i] != RP_TEXTURE_NONE;
+    has_em[i] = em[i] != RP_TEXTURE_NONE;
+    if (!has_nm[i] && !has_mr[i] && !has_em[i]) continue;
+    any_nm = any_nm || has_nm[i];
+    any_mr = any_mr || has_mr[i];
+    any_em = any_em || has_em[i];
+    mat_index[i] = tri.w;
+    inst_index[i] = a;
+    tri_x[i] = tri.x;
+    tri_y[i] = tri.y;
+    tri_z[i] = tri.z;
+    const float b1 = bary[2 * pixel], b2 = bary[2 * pixel + 1], b0 = 1.0f - b1 - b2;
+    const float2 uv =
+        (float2)(vertices[tri.x].position_u.w, vertices[tri.x].normal_v.w) * b0 +
+        (float2)(vertices[tri.y].position_u.w, vertices[tri.y].normal_v.w) * b1 +
+        (float2)(vertices[tri.z].position_u.w, vertices[tri.z].normal_v.w) * b2;
+    u[i] = uv.x;
+    v[i] = uv.y;
+    b0_[i] = b0;
+    b1_[i] = b1;
+    b2_[i] = b2;
   }
-  emission[pixel] = e;
-  if (normal_map != RP_TEXTURE_NONE) {
-    const float4 t4 = tangents[tri.x] * b0 + tangents[tri.y] * b1 + tangents[tri.z] * b2;
-    const rp_mat4 m = inst->model;
+  if (!any_nm && !any_mr && !any_em) return;
+  float emap[3][RP_SPAN], mrmap[3][RP_SPAN], nmap[3][RP_SPAN];
+  if (any_em) gm_sample_lanes(textures, texels, em, has_em, u, v, n, 1, emap);
+  if (any_mr) gm_sample_lanes(textures, texels, mr, has_mr, u, v, n, 0, mrmap);
+  if (any_nm) gm_sample_lanes(textures, texels, nm, has_nm, u, v, n, 0, nmap);
+
+  for (int i = 0; i < n; ++i) {
+    if (!has_nm[i] && !has_mr[i] && !has_em[i]) continue;
+    const uint pixel = y * width + x0 + (uint)i;
+    __global const Material* mat = materials + mat_index[i];
+    float4 e = emission[pixel];
+    if (has_em[i]) e.xyz *= (float3)(emap[0][i], emap[1][i], emap[2][i]);
+    if (has_mr[i]) {
+      const float roughness = clamp(mat->factors.y * mrmap[1][i], 0.0f, 1.0f);
+      const bool metal = mat->factors.z * mrmap[2][i] >= 0.5f;
+      const float f0 = mat->factors.w;
+      const int r = (int)(roughness * 255.0f + 0.5f);
+      if (metal)
+        e.w = (float)(r + RP_GLOSS_METAL);
+      else if (f0 > 0.0f)
+        e.w = (float)(r + 256 * clamp((int)(f0 * RP_GLOSS_F0_SCALE + 0.5f), 1, 255));
+      else
+        e.w = 0.0f;
+    }
+    emission[pixel] = e;
+    if (!has_nm[i]) continue;
+    const float b0 = b0_[i], b1 = b1_[i], b2 = b2_[i];
+    const float4 t4 = tangents[tri_x[i]] * b0 + tangents[tri_y[i]] * b1 + tangents[tri_z[i]] * b2;
+    const rp_mat4 m = instances[inst_index[i]].model;
     float3 t = m.c[0].xyz * t4.x + m.c[1].xyz * t4.y + m.c[2].xyz * t4.z;
     float4 nd = normal_depth[pixel];
-    const float3 n = nd.xyz;
-    t -= n * dot(n, t);
+    const float3 nrm = nd.xyz;
+    t -= nrm * dot(nrm, t);
     const float len2 = dot(t, t);
     if (len2 > 1.0e-24f) {
       t *= rsqrt(len2);
-      const float3 b = (t4.w < 0.0f ? -1.0f : 1.0f) * cross(n, t);
-      const float3 s = gm_sample(textures + normal_map, texels, uv, 0) * 2.0f - 1.0f;
+      const float3 b = (t4.w < 0.0f ? -1.0f : 1.0f) * cross(nrm, t);
+      const float3 s = (float3)(nmap[0][i], nmap[1][i], nmap[2][i]) * 2.0f - 1.0f;
       const float scale = mat->factors.x;
-      const float3 np = t * (s.x * scale) + b * (s.y * scale) + n * s.z;
+      const float3 np = t * (s.x * scale) + b * (s.y * scale) + nrm * s.z;
       if (dot(np, np) > 1.0e-24f) nd.xyz = normalize(np);
       normal_depth[pixel] = nd;
     }

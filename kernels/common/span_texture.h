@@ -77,10 +77,23 @@ inline void rp_span_texture_taps(rp_spani textured, rp_spanf w, rp_spanf h, rp_s
  * mip level) size in texels, offset its first texel in texels (packed RGBA8 sRGB per texel,
  * rows top to bottom), wrap its RP_WRAP_PACK modes. Writes the sampled (r, g, b); untextured
  * lanes and lanes >= n read nothing and get 0. */
+inline void rp_span_texture_sample_coded(__global const uint* texels, rp_spani textured,
+                                         rp_spanf w, rp_spanf h, rp_spanu offset,
+                                         rp_spanu wrap, rp_spanf u, rp_spanf v, int n,
+                                         int srgb, rp_spanf* r, rp_spanf* g, rp_spanf* b);
 inline void rp_span_texture_sample(__global const uint* texels, rp_spani textured,
                                    rp_spanf w, rp_spanf h, rp_spanu offset, rp_spanu wrap,
                                    rp_spanf u, rp_spanf v, int n, rp_spanf* r, rp_spanf* g,
                                    rp_spanf* b) {
+  rp_span_texture_sample_coded(texels, textured, w, h, offset, wrap, u, v, n, 1, r, g, b);
+}
+
+/* rp_span_texture_sample with the rgb codes read as sRGB (srgb != 0: the table) or as linear
+ * 8-bit values (code / 255: normal and metallic-roughness maps, glTF's non-colour data). */
+inline void rp_span_texture_sample_coded(__global const uint* texels, rp_spani textured,
+                                         rp_spanf w, rp_spanf h, rp_spanu offset,
+                                         rp_spanu wrap, rp_spanf u, rp_spanf v, int n,
+                                         int srgb, rp_spanf* r, rp_spanf* g, rp_spanf* b) {
   uint i00[RP_SPAN], i10[RP_SPAN], i01[RP_SPAN], i11[RP_SPAN];
   rp_spanf fx, fy;
   rp_span_texture_taps(textured, w, h, offset, wrap, u, v, i00, i10, i01, i11, &fx, &fy);
@@ -97,10 +110,16 @@ inline void rp_span_texture_sample(__global const uint* texels, rp_spani texture
       t01 = texels[i01[i]];
       t11 = texels[i11[i]];
     }
-#define RP_TAP_DECODE_(t, rr, gg, bb)                     \
-  rr[i] = RP_SRGB8_TO_LINEAR[(t) & 0xFFu];                \
-  gg[i] = RP_SRGB8_TO_LINEAR[((t) >> 8) & 0xFFu];         \
-  bb[i] = RP_SRGB8_TO_LINEAR[((t) >> 16) & 0xFFu]
+#define RP_TAP_DECODE_(t, rr, gg, bb)                                                    \
+  if (srgb) {                                                                            \
+    rr[i] = RP_SRGB8_TO_LINEAR[(t) & 0xFFu];                                             \
+    gg[i] = RP_SRGB8_TO_LINEAR[((t) >> 8) & 0xFFu];                                      \
+    bb[i] = RP_SRGB8_TO_LINEAR[((t) >> 16) & 0xFFu];                                     \
+  } else {                                                                               \
+    rr[i] = (float)((t) & 0xFFu) * (1.0f / 255.0f);                                      \
+    gg[i] = (float)(((t) >> 8) & 0xFFu) * (1.0f / 255.0f);                               \
+    bb[i] = (float)(((t) >> 16) & 0xFFu) * (1.0f / 255.0f);                              \
+  }
     RP_TAP_DECODE_(t00, r00a, g00a, b00a);
     RP_TAP_DECODE_(t10, r10a, g10a, b10a);
     RP_TAP_DECODE_(t01, r01a, g01a, b01a);

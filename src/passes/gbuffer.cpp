@@ -80,14 +80,17 @@ void GBufferPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
 
 void GBufferPass::run_material(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                                const render::VisibilityBuffer& vis, render::GBuffer& out) {
-  if (!material_()) material_ = programs_->kernel("gbuffer_material.cl", "gbuffer_material");
+  if (!material_())
+    material_ = programs_->kernel("gbuffer_material.cl", "gbuffer_material", options_);
   rp::cl::bind_args(material_, scene.frame, vis.ids, vis.bary, scene.instances, scene.vertices,
                     scene.tangents, scene.triangles, scene.materials, scene.textures,
                     scene.texels() ? scene.texels : no_texels_, out.normal_depth, out.emission);
-  constexpr size_t kTile = 16;
+  // One work-item per span of span_ pixels of a row.
+  constexpr size_t kTile = 8;
   const uint32_t w = scene.constants.width, h = scene.constants.height;
+  const size_t spans = (w + size_t(span_) - 1) / size_t(span_);
   profiler.enqueue(pass_name::kGBuffer, material_,
-                   ::cl::NDRange(rp::cl::round_up(w, kTile), rp::cl::round_up(h, kTile)),
+                   ::cl::NDRange(rp::cl::round_up(spans, kTile), rp::cl::round_up(h, kTile)),
                    ::cl::NDRange(kTile, kTile));
 }
 
