@@ -10,7 +10,8 @@
  * filtered over 3x3 texels of its own map (common/punctual_light.h).
  *
  * Eight pixels of a row per work-item (common/indirect_simd.h loads and stores): the lights'
- * direction, attenuation and 3x3-filtered shadow lane by lane, the surface model
+ * direction, attenuation and 3x3-filtered shadow for the eight lanes at once
+ * (common/punctual_light8.h; only the shadow texels are read lane by lane), the surface model
  * (rp_brdf_lamp8) once for the eight lanes, only where a lane has a coat.
  *
  * Variants (-D): RP_LIGHT_SPLIT=1: also adds the direct light to direct_out and its specular
@@ -20,7 +21,7 @@
 #include "common/math.h"
 #include "common/brdf.h"
 #include "common/indirect_simd.h"
-#include "common/punctual_light.h"
+#include "common/punctual_light8.h"
 
 #ifndef RP_LIGHT_SPLIT
 #define RP_LIGHT_SPLIT 0
@@ -55,35 +56,15 @@ __kernel void punctual_light_add(__global const FrameConstants* restrict frame,
   vx *= inv_v;
   vy *= inv_v;
   vz *= inv_v;
-  float p_[3][8], n_[3][8], cv[8];
-  vstore8(px, 0, p_[0]);
-  vstore8(py, 0, p_[1]);
-  vstore8(pz, 0, p_[2]);
-  vstore8(nx, 0, n_[0]);
-  vstore8(ny, 0, n_[1]);
-  vstore8(nz, 0, n_[2]);
-  vstore8(cov, 0, cv);
+  const int8 on = covered & ((int8)(0, 1, 2, 3, 4, 5, 6, 7) < (int)lanes);
   const float8 zero = 0.0f;
   float8 dr = zero, dg = zero, db = zero, sr_sum = zero, sg_sum = zero, sb_sum = zero;
   for (uint i = 0; i < frame->punctual_count; ++i) {
-    /* lane by lane: the light's irradiance factor k (rgb) and direction l */
-    float k_[3][8], l_[3][8];
-    bool lit = false;
-    for (uint q = 0; q < 8u; ++q) {
-      float3 l = (float3)(0.0f, 1.0f, 0.0f), k = (float3)(0.0f);
-      if (q < lanes && cv[q] != 0.0f)
-        k = rp_punctual_direct(frame, shadow, i, (float3)(p_[0][q], p_[1][q], p_[2][q]),
-                               (float3)(n_[0][q], n_[1][q], n_[2][q]), 1, &l);
-      lit = lit || any(k != 0.0f);
-      k_[0][q] = k.x;
-      k_[1][q] = k.y;
-      k_[2][q] = k.z;
-      l_[0][q] = l.x;
-      l_[1][q] = l.y;
-      l_[2][q] = l.z;
-    }
-    if (!lit) continue;
-    const float8 kr = vload8(0, k_[0]), kg = vload8(0, k_[1]), kb = vload8(0, k_[2]);
+    /* the light's irradiance factor k (rgb) and direction l, eight lanes at once */
+    float8 kr, kg, kb, lx, ly, lz;
+    if (!rp_punctual_direct8(frame, shadow, i, px, py, pz, nx, ny, nz, on, &kr, &kg, &kb, &lx,
+                             &ly, &lz))
+      continue;
     if (!coated) { /* matte lanes: w_d = 1, no specular */
       dr += ar * kr;
       dg += ag * kg;
@@ -91,9 +72,8 @@ __kernel void punctual_light_add(__global const FrameConstants* restrict frame,
       continue;
     }
     float8 wr, wg, wb, sr, sg, sb, vr, vg, vb;
-    rp_brdf_lamp8(brdf_table, code, ar, ag, ab, nx, ny, nz, vx, vy, vz, vload8(0, l_[0]),
-                  vload8(0, l_[1]), vload8(0, l_[2]), zero, &wr, &wg, &wb, &sr, &sg, &sb, &vr,
-                  &vg, &vb);
+    rp_brdf_lamp8(brdf_table, code, ar, ag, ab, nx, ny, nz, vx, vy, vz, lx, ly, lz, zero, &wr,
+                  &wg, &wb, &sr, &sg, &sb, &vr, &vg, &vb);
     /* gloss code 0 (matte): w_d = 1, spec = 0, as the per-pixel form had it */
     const int8 matte = code == 0.0f;
     wr = select(wr, (float8)(1.0f), matte);
