@@ -87,6 +87,12 @@
 inline float8 light_direct8(__global const FrameConstants* restrict frame, float8 px, float8 py,
                             float8 pz, float8 nx, float8 ny, float8 nz);
 
+/* The demo's lamp shines (a file scene without it has intensity 0): otherwise its factor is 0
+ * and the lamp visibility is neither computed (LightPass) nor read. */
+inline bool rp_lamp_on(__global const FrameConstants* restrict frame) {
+  return any(frame->light_intensity.xyz != 0.0f);
+}
+
 /* Surface-model weights of eight lanes (common/brdf.h) for the lamp at frame->light_pos seen
  * from camera_pos: w* lamp diffuse weight, s* lamp specular (pi f), e* coat albedo toward the
  * view, i* indirect diffuse weight. Chunks without a coated lane skip the model (w = i = 1,
@@ -168,9 +174,11 @@ __kernel void light_shade(__global const FrameConstants* restrict frame,
   const float4 emission = emission_plane[pixel];
   /* the unshadowed lamp factor with the pixel in every lane (light_compose's formulas), lane 0
    * kept, times the pixel's visibility */
-  const float k = light_direct8(frame, (float8)(p.x), (float8)(p.y), (float8)(p.z),
-                                (float8)(n.x), (float8)(n.y), (float8)(n.z)).s0 *
-                  visibility[pixel];
+  const float k = rp_lamp_on(frame)
+                      ? light_direct8(frame, (float8)(p.x), (float8)(p.y), (float8)(p.z),
+                                      (float8)(n.x), (float8)(n.y), (float8)(n.z)).s0 *
+                            visibility[pixel]
+                      : 0.0f;
   /* the surface model with the pixel in every lane; lane 0 kept */
   float8 w[3], sp[3], e[3], iw[3];
   light_surface8(frame, brdf_table, (float8)(emission.w), (float8)(albedo.x), (float8)(albedo.y),
@@ -261,15 +269,18 @@ __kernel void light_compose(__global const FrameConstants* restrict frame,
   rp_load8_float4(position, row, x0, lanes, &px, &py, &pz, &cov);
   rp_load8_float4(normal_depth, row, x0, lanes, &nx, &ny, &nz, &depth);
   const int8 covered = cov != 0.0f;
-  float8 vis;
-  if (lanes == 8u) {
-    vis = vload8(0, visibility + y * width + x0);
-  } else {
-    float v[8];
-    for (uint q = 0; q < 8u; ++q) v[q] = visibility[y * width + x0 + min(q, lanes - 1u)];
-    vis = vload8(0, v);
+  float8 k = 0.0f;
+  if (rp_lamp_on(frame)) {
+    float8 vis;
+    if (lanes == 8u) {
+      vis = vload8(0, visibility + y * width + x0);
+    } else {
+      float v[8];
+      for (uint q = 0; q < 8u; ++q) v[q] = visibility[y * width + x0 + min(q, lanes - 1u)];
+      vis = vload8(0, v);
+    }
+    k = light_direct8(frame, px, py, pz, nx, ny, nz) * vis;
   }
-  const float8 k = light_direct8(frame, px, py, pz, nx, ny, nz) * vis;
 
   /* Joint-bilateral upsample from the block centres (4 i + 2 in pixels: where the accumulated
    * history lives, kernels/indirect.cl): pixel x + 0.5 lies at u = (x - 1.5) / 4. The 8 pixels'

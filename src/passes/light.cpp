@@ -91,6 +91,9 @@ void LightPass::run_visibility(rp::cl::Profiler& profiler, const render::GpuScen
     visibility_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
     visibility_bytes_ = bytes;
   }
+  // Without the lamp (a file scene) the light kernels read no visibility (light.cl rp_lamp_on).
+  const gpu::rp_float4 lamp = scene.constants.light_intensity;
+  if (lamp.x == 0.0f && lamp.y == 0.0f && lamp.z == 0.0f) return;
   ::cl::Kernel& k = shadow_kernel();
   // hard and pcf never read the mips: any buffer will do
   const ::cl::Buffer& mips = shadow.mip_planes > 0 ? shadow.mips : shadow.depth;

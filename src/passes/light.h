@@ -53,7 +53,8 @@ class LightPass {
   // holds now (both only grow: a smaller frame keeps them).
   static uint64_t frame_bytes(uint32_t w, uint32_t h, render::ShadowMode filter);
   uint64_t frame_device_bytes() const { return buffer_bytes({&visibility_, &consensus_}); }
-  // The last run's lamp visibility: width x height floats in [0, 1], row-major (for tests).
+  // The last run's lamp visibility: width x height floats in [0, 1], row-major (for tests); not
+  // written for a frame without the lamp (light_intensity 0).
   const ::cl::Buffer& visibility() const { return visibility_; }
 
   // hdr: float4 per pixel (rgb linear radiance, a = 1 covered / 0 background), gbuffer.width x
@@ -93,7 +94,8 @@ class LightPass {
   // first use.
   ::cl::Kernel& variant(bool upsample, bool split, bool prt = false);
   ::cl::Kernel& shadow_kernel();
-  // The lamp's visibility per pixel (kernels/shadow_visibility.cl) into visibility_.
+  // The lamp's visibility per pixel (kernels/shadow_visibility.cl) into visibility_; nothing
+  // when the lamp is off.
   void run_visibility(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                       const render::GBuffer& gbuffer, const render::ShadowMap& shadow);
 
