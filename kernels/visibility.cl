@@ -54,6 +54,9 @@
 #define RP_SCAN_GROUP 128
 #define RP_ITEM_GROUP 64
 #define RP_SETUP_GROUP 16 /* work-items (RP_SPAN triangles each) per visibility_setup group */
+/* Pixels by which a triangle's bounds are widened before testing whether they hold a pixel
+ * centre (visibility_setup): far above the rounding of x / w at any view size. */
+#define RP_CENTRE_MARGIN (1.0f / 16.0f)
 
 /* Pixel bounds (x0, y0, x1, y1 inclusive) from bounds of the covered pixel positions, with a
  * one-pixel margin, clamped to the view; x0 > x1 when nothing is on screen. */
@@ -348,8 +351,14 @@ void visibility_setup(const RasterView view, __global const uint2* draw_items,
   rp_spani by0 = clamp(rp_span_convert_int(floor(lo_y)) - 1, zero, last_y);
   rp_spani bx1 = clamp(rp_span_convert_int(floor(hi_x)) + 1, zero, last_x);
   rp_spani by1 = clamp(rp_span_convert_int(floor(hi_y)) + 1, zero, last_y);
+  /* No pixel centre (i + 0.5) within the bounds, widened by RP_CENTRE_MARGIN against the
+   * rounding between these divided coordinates and the homogeneous edge functions: the
+   * triangle covers no pixel (most of a far, finely tessellated scene's triangles). */
+  const rp_spani between_centres =
+      (floor(hi_x - 0.5f + RP_CENTRE_MARGIN) < ceil(lo_x - 0.5f - RP_CENTRE_MARGIN)) |
+      (floor(hi_y - 0.5f + RP_CENTRE_MARGIN) < ceil(lo_y - 0.5f - RP_CENTRE_MARGIN));
   const rp_spani off_view = (lo_x > hi_x) | (lo_y > hi_y) | (hi_x < 0.0f) | (hi_y < 0.0f) |
-                            (lo_x > fw) | (lo_y > fh);
+                            (lo_x > fw) | (lo_y > fh) | between_centres;
   bx0 = select(bx0, zero, off_view);
   by0 = select(by0, zero, off_view);
   bx1 = select(bx1, (rp_spani)(-1), off_view);
