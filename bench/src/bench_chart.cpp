@@ -57,14 +57,8 @@ std::string size_text(uint32_t w, uint32_t h) {
   return std::to_string(w) + "x" + std::to_string(h);
 }
 
-struct Series {
-  std::string label;
-  std::string colour, dash;
-  std::vector<std::pair<double, double>> points;  // (x, ms), x ascending
-};
+}  // namespace
 
-// Log-log line chart in the box (x0, y0, w, h); x ticks at the data's x values, labelled by
-// `x_label_of`. Returns the height used below the box by the legend.
 double line_chart(SvgWriter& svg, double x0, double y0, double w, double h,
                   const std::string& title, const std::string& x_title,
                   const std::vector<Series>& series,
@@ -114,7 +108,7 @@ double line_chart(SvgWriter& svg, double x0, double y0, double w, double h,
   return ly - (y0 + h);
 }
 
-}  // namespace
+const char* chart_colour(size_t i) { return kPalette[i % kPaletteSize]; }
 
 std::string xml_escape(const std::string& s) {
   std::string out;

@@ -5,7 +5,9 @@
 //  3. frame time against voxel count: one line per device and image size (log-log).
 #pragma once
 
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/src/bench_matrix.h"
@@ -32,6 +34,23 @@ class SvgWriter {
   double width_, height_;
   std::string body_;
 };
+
+// One line of a line_chart: (x, ms) points, x ascending.
+struct Series {
+  std::string label;
+  std::string colour, dash;
+  std::vector<std::pair<double, double>> points;
+};
+
+// Log-log line chart of `series` in the box (x0, y0, w, h) (y: frame ms); x ticks at the data's
+// x values, labelled by `x_label_of`. Returns the height used below the box by the legend.
+double line_chart(SvgWriter& svg, double x0, double y0, double w, double h,
+                  const std::string& title, const std::string& x_title,
+                  const std::vector<Series>& series,
+                  const std::function<std::string(double)>& x_label_of);
+
+// The i-th of ten distinguishable colours (wraps).
+const char* chart_colour(size_t i);
 
 // "&amp;" etc. for &, <, >, " and '.
 std::string xml_escape(const std::string& s);
