@@ -264,7 +264,7 @@ void visibility_setup(const RasterView view, __global const uint2* draw_items,
     tri_of[i] = d.y;
     masked_of[i] = RP_MATERIAL_MASKED(materials[t.w]) ? 1u : 0u;
 #if RP_DEPTH_ONLY
-    drawn_of[i] = inst->casts_shadow != 0u ? -1 : 0;
+    drawn_of[i] = (inst->casts_shadow & view.caster_mask) != 0u ? -1 : 0;
 #else
     drawn_of[i] = -1;
 #endif

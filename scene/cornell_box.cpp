@@ -14,8 +14,10 @@ namespace {
 // Appends a planar grid of n x n quads spanning origin + s * edge_u + t * edge_v, s,t in [0,1].
 // cross(edge_u, edge_v) must point along `normal`: then (p00, p10, p11) is counter-clockwise
 // seen from the side the normal points to.
+// Quads whose centre `keep` rejects are left out (their vertices stay, unused).
+template <class Keep>
 void add_wall(Mesh& mesh, glm::vec3 origin, glm::vec3 edge_u, glm::vec3 edge_v, glm::vec3 normal,
-              uint32_t material, int n) {
+              uint32_t material, int n, Keep keep) {
   const uint32_t base = static_cast<uint32_t>(mesh.vertices.size());
   const float inv_n = 1.0f / static_cast<float>(n);
   for (int j = 0; j <= n; ++j) {
@@ -28,6 +30,9 @@ void add_wall(Mesh& mesh, glm::vec3 origin, glm::vec3 edge_u, glm::vec3 edge_v, 
   for (uint32_t j = 0; j < static_cast<uint32_t>(n); ++j) {
     for (uint32_t i = 0; i < static_cast<uint32_t>(n); ++i) {
       const uint32_t p00 = base + j * row + i, p10 = p00 + 1, p01 = p00 + row, p11 = p01 + 1;
+      const float s = (static_cast<float>(i) + 0.5f) * inv_n;
+      const float t = (static_cast<float>(j) + 0.5f) * inv_n;
+      if (!keep(origin + s * edge_u + t * edge_v)) continue;
       mesh.triangles.push_back({p00, p10, p11});
       mesh.triangles.push_back({p00, p11, p01});
       mesh.materials.push_back(material);
@@ -84,17 +89,24 @@ UnitSphereMesh make_unit_icosphere(int subdivisions) {
 
 }  // namespace
 
-Mesh make_cornell_box(const BoxMaterialIds& materials, int quads_per_side) {
+Mesh make_cornell_box(const BoxMaterialIds& materials, int quads_per_side,
+                      const CeilingOpening& opening) {
   if (quads_per_side < 1) throw std::invalid_argument("make_cornell_box: quads_per_side < 1");
   Mesh mesh;
   mesh.name = "cornell_box";
   const int n = quads_per_side;
+  const auto all = [](glm::vec3) { return true; };
+  const auto outside_opening = [&opening](glm::vec3 c) {
+    return !(c.x >= opening.min.x && c.x <= opening.max.x && c.z >= opening.min.y &&
+             c.z <= opening.max.y);
+  };
   // Floor first so its grid (s, t) is the wood UV: s = (x + 1) / 2, t = (1 - z) / 2.
-  add_wall(mesh, {-1, -1, 1}, {2, 0, 0}, {0, 0, -2}, {0, 1, 0}, materials.floor, n);
-  add_wall(mesh, {-1, 1, -1}, {2, 0, 0}, {0, 0, 2}, {0, -1, 0}, materials.ceiling, n);
-  add_wall(mesh, {-1, -1, -1}, {2, 0, 0}, {0, 2, 0}, {0, 0, 1}, materials.back, n);
-  add_wall(mesh, {-1, -1, 1}, {0, 0, -2}, {0, 2, 0}, {1, 0, 0}, materials.left, n);
-  add_wall(mesh, {1, -1, -1}, {0, 0, 2}, {0, 2, 0}, {-1, 0, 0}, materials.right, n);
+  add_wall(mesh, {-1, -1, 1}, {2, 0, 0}, {0, 0, -2}, {0, 1, 0}, materials.floor, n, all);
+  add_wall(mesh, {-1, 1, -1}, {2, 0, 0}, {0, 0, 2}, {0, -1, 0}, materials.ceiling, n,
+           outside_opening);
+  add_wall(mesh, {-1, -1, -1}, {2, 0, 0}, {0, 2, 0}, {0, 0, 1}, materials.back, n, all);
+  add_wall(mesh, {-1, -1, 1}, {0, 0, -2}, {0, 2, 0}, {1, 0, 0}, materials.left, n, all);
+  add_wall(mesh, {1, -1, -1}, {0, 0, 2}, {0, 2, 0}, {-1, 0, 0}, materials.right, n, all);
   return mesh;
 }
 

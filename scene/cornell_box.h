@@ -30,7 +30,14 @@ struct BoxMaterialIds {
 // counter-clockwise seen from inside. Each wall has its own vertices (flat normals).
 // UVs: floor u = (x + 1) / 2, v = (1 - z) / 2 (v = 1 at the back wall), so the wood texture
 // covers the floor once, upright as seen from the camera; other walls use their grid coordinates.
-Mesh make_cornell_box(const BoxMaterialIds& materials, int quads_per_side = 8);
+//
+// opening: a skylight, the rectangle [min.x, max.x] x [min.y, max.y] of the ceiling in world x
+// and z; the ceiling quads whose centres lie inside it are left out (none by default: min > max).
+struct CeilingOpening {
+  glm::vec2 min{1.0f}, max{-1.0f};
+};
+Mesh make_cornell_box(const BoxMaterialIds& materials, int quads_per_side = 8,
+                      const CeilingOpening& opening = {});
 
 // The visible part of the lamp: an icosphere (icosahedron subdivided `subdivisions` times, each
 // step splitting a triangle into four) of radius light.lamp_radius around light.position, cut at

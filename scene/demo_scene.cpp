@@ -50,7 +50,7 @@ std::string default_asset_dir() {
   return ROLYPOLY_ASSET_DIR;
 }
 
-SceneAssets make_demo_assets(const std::string& asset_dir) {
+SceneAssets make_demo_assets(const std::string& asset_dir, bool open) {
   SceneAssets assets;
   // Order must match the demo:: indices.
   assets.textures.push_back(load_texture(asset_dir + "/wood.png", "wood"));
@@ -75,7 +75,9 @@ SceneAssets make_demo_assets(const std::string& asset_dir) {
   box_ids.back = demo::kBackMaterial;
   box_ids.left = demo::kLeftMaterial;
   box_ids.right = demo::kRightMaterial;
-  assets.meshes.push_back(make_cornell_box(box_ids));
+  CeilingOpening skylight;
+  if (open) skylight = {demo::kSkylightMin, demo::kSkylightMax};
+  assets.meshes.push_back(make_cornell_box(box_ids, 8, skylight));
   assets.meshes.push_back(make_lamp_cap(PointLight{}, demo::kLampMaterial));
   assets.meshes.push_back(
       make_tumbler_mesh(TumblerShape{}, TumblerMeshParams{}, demo::kTumblerMaterial));
@@ -94,6 +96,7 @@ void add_room_instances(FrameScene& frame) {
   MeshInstance box;
   box.mesh = demo::kBoxMesh;
   box.casts_shadow = false;
+  box.casts_light_shadow = true;  // keeps a sky's sun out; the lamp's map does without it
   frame.instances.push_back(box);
   MeshInstance lamp;
   lamp.mesh = demo::kLampMesh;

@@ -35,6 +35,10 @@ inline constexpr uint32_t kFloorMaterial = 0, kCeilingMaterial = 1, kBackMateria
                           kLeftMaterial = 3, kRightMaterial = 4, kLampMaterial = 5,
                           kTumblerMaterial = 6;
 inline constexpr uint32_t kWoodTexture = 0, kTumblerTexture = 1;
+// The open demo's skylight (world x and z of the ceiling): 1 x 0.5 against the back wall, the
+// ceiling's 2 x 4 quads behind the lamp (whose cap reaches 0.34 from the centre), so the sky
+// falls on the back wall and the floor behind the tumblers.
+inline constexpr glm::vec2 kSkylightMin{-0.5f, -1.0f}, kSkylightMax{0.5f, -0.5f};
 inline constexpr int kTumblerCount = 5;
 
 // The demo's surfaces (model in src/shading/brdf.h): every gloss of the scene is set
@@ -66,7 +70,9 @@ std::string default_asset_dir();
 
 // Meshes (box, lamp cap, tumbler, the tumbler's proxy), materials (walls, lamp, tumbler) and textures (wood.png,
 // tumbler_face.png from asset_dir). Throws AssetError when a texture cannot be loaded.
-SceneAssets make_demo_assets(const std::string& asset_dir);
+// open: the half-open variant (`--open`): a skylight, demo::kSkylight, cut into the ceiling, so
+// a sky (--env, --sky) lights the room through it as well as through the open front.
+SceneAssets make_demo_assets(const std::string& asset_dir, bool open = false);
 
 // The demo at rest: default camera and light, the box and lamp (identity model, no shadow), five
 // upright tumblers at demo_tumbler_placements() (casting shadows). Previous camera and models

@@ -167,6 +167,10 @@ struct MeshInstance {
   glm::mat4 model{1.0f};
   glm::mat4 prev_model{1.0f};
   bool casts_shadow = true;
+  // Also in the shadows of the punctual lights and the sky (their shadow maps, the path
+  // tracer's sky and punctual shadow rays) without casts_shadow: the demo's box, which must
+  // not shadow its own lamp (hung inside the ceiling) but keeps the sun out.
+  bool casts_light_shadow = false;
   // Part of the GI voxel volume. False for the lamp cap: the direct pass already lights the
   // scene with the analytic point light at its centre; voxelizing its emission too would count
   // the lamp's light twice.

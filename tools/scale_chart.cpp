@@ -106,14 +106,20 @@ int main(int argc, char** argv) {
   std::printf("\n|---|---|---|");
   for (size_t i = 0; i < shown.size(); ++i) std::printf("---|");
   std::printf("\n");
+  // NaN: the run has no such pass (the octree's passes in a dense run, and back).
   const auto ms_of = [](const Run& run, const std::string& name) {
     const auto it = run.pass_ms.find(name);
-    return it == run.pass_ms.end() ? 0.0 : it->second;
+    return it == run.pass_ms.end() ? NAN : it->second;
+  };
+  const auto cell = [](double ms) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, std::isnan(ms) ? "-" : "%.1f", ms);
+    return std::string(buf);
   };
   for (const Run& run : runs) {
     std::printf("| %s | %s | %.1f |", x_text(run.x, triangles).c_str(), run.volume.c_str(),
                 run.frame_ms);
-    for (const std::string& name : shown) std::printf(" %.1f |", ms_of(run, name));
+    for (const std::string& name : shown) std::printf(" %s |", cell(ms_of(run, name)).c_str());
     std::printf("\n");
   }
   std::vector<std::string> volumes;
@@ -128,8 +134,15 @@ int main(int argc, char** argv) {
           p.push_back({run.x, name.empty() ? run.frame_ms : ms_of(run, name)});
       return p;
     };
-    std::printf("| growth exponent | %s | %.2f |", volume.c_str(), growth_exponent(points("")));
-    for (const std::string& name : shown) std::printf(" %.2f |", growth_exponent(points(name)));
+    const auto exponent = [](double e) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, std::isnan(e) ? "-" : "%.2f", e);
+      return std::string(buf);
+    };
+    std::printf("| growth exponent | %s | %s |", volume.c_str(),
+                exponent(growth_exponent(points(""))).c_str());
+    for (const std::string& name : shown)
+      std::printf(" %s |", exponent(growth_exponent(points(name))).c_str());
     std::printf("\n");
   }
 
@@ -146,7 +159,7 @@ int main(int argc, char** argv) {
       for (const Run& run : runs)
         if (run.volume == volumes[v]) {
           const double ms = k == 0 ? run.frame_ms : ms_of(run, shown[k - 1]);
-          if (ms > 0.0) s.points.push_back({run.x, ms});
+          if (ms > 0.0) s.points.push_back({run.x, ms});  // false for NaN
         }
       if (!s.points.empty()) series.push_back(std::move(s));
     }

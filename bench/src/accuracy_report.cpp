@@ -10,6 +10,7 @@
 
 #include "app/host_tone_map.h"
 #include "app/interrupt.h"
+#include "app/pathtrace_settings.h"
 #include "app/png_output.h"
 #include "app/truth_cache.h"
 #include "bench/src/accuracy_direct.h"
@@ -22,6 +23,7 @@
 #include "bench/src/scene_file_facts.h"
 #include "render/renderer.h"
 #include "scene/demo_scene.h"
+#include "scene/gltf_export.h"
 
 namespace rp::bench {
 
@@ -76,10 +78,21 @@ nlohmann::json compare(const Images& rp, const Images& truth, const std::vector<
 
 }  // namespace
 
+std::string export_demo_at_rest(const CommonOptions& common, const std::string& out_dir) {
+  ensure_directory(out_dir);
+  const std::string path =
+      (std::filesystem::path(out_dir) / (common.open_demo ? "demo_open.glb" : "demo.glb"))
+          .string();
+  const scene::SceneAssets assets = app::load_demo_assets(common);
+  scene::ExportOptions exporting;
+  exporting.volume = scene::Bounds{glm::vec3(-1.0f), glm::vec3(1.0f)};  // the demo's GI volume
+  scene::export_gltf(assets, scene::make_demo_frame(assets, 0), path, exporting);
+  return path;
+}
+
 AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptions& options) {
   const uint32_t w = options.width, h = options.height;
-  const scene::SceneAssets assets = scene::make_demo_assets(
-      common.asset_dir.empty() ? scene::default_asset_dir() : common.asset_dir);
+  const scene::SceneAssets assets = app::load_demo_assets(common);
   const scene::FrameScene frame = scene::make_demo_frame(assets, 0);
   const std::filesystem::path cache =
       options.cache_dir.empty() ? default_truth_cache_dir() : options.cache_dir;
@@ -377,6 +390,11 @@ int accuracy_command(const CommonOptions& common, const BenchOptions& options) {
     if (is_bench_scene_file(options.scene)) {
       // The scene file first: a malformed one fails before anything is traced.
       const FileScene file = open_scene_file(options.scene);
+      r = measure_file_accuracy(common, file, scene_file_facts(file), o);
+    } else if (common.open_demo && common.sky.given()) {
+      // The half-open demo under a sky: its frame at rest, exported as glTF into the report's
+      // folder, measured as a scene file (one region per material; the truth sees the sky).
+      const FileScene file = open_scene_file(export_demo_at_rest(common, o.out_dir));
       r = measure_file_accuracy(common, file, scene_file_facts(file), o);
     } else {
       r = measure_accuracy(common, o);

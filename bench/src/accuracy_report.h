@@ -87,4 +87,9 @@ struct AccuracyResult {
 // (InterruptGuard, app/interrupt.h), before any report file is written.
 AccuracyResult measure_accuracy(const app::CommonOptions& common, const AccuracyOptions& options);
 
+// The demo at rest (the report's frame; with common.open_demo its skylight) written as glTF to
+// OUT_DIR/demo.glb or OUT_DIR/demo_open.glb (created); returns the path. `bench --accuracy
+// --open` with a sky measures this file as a scene file.
+std::string export_demo_at_rest(const app::CommonOptions& common, const std::string& out_dir);
+
 }  // namespace rp::bench

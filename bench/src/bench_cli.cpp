@@ -133,7 +133,8 @@ std::string BenchCli::finish(int argc, const char* const* argv) {
   // materials, so the simulation's options and the demo-only reports cannot apply.
   if (bench_opts.scene != "default" && bench_opts.scene != "busy") {
     std::string why;
-    for (const char* name : {"--seed", "--marbles", "--fireball", "--replay", "--assets"})
+    for (const char* name :
+         {"--seed", "--marbles", "--fireball", "--replay", "--assets", "--open"})
       if (why.empty() && bench->count(name))
         why = std::string(name) + " applies to the simulated demo, not to a scene file";
     if (why.empty() && bench_opts.quality_report)
@@ -191,7 +192,8 @@ std::string BenchCli::finish(int argc, const char* const* argv) {
   const bool demo_scene = bench_opts.scene == "default" || bench_opts.scene == "busy" ||
                           app::is_demo_scene(bench_opts.scene);
   if (std::string sky =
-          app::check_sky(bench, common, bench_opts.accuracy && demo_scene, demo_scene);
+          app::check_sky(bench, common, bench_opts.accuracy && demo_scene && !common.open_demo,
+                         demo_scene);
       !sky.empty())
     return sky;
   if (std::string scale =

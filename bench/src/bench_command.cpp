@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "app/interrupt.h"
+#include "app/pathtrace_settings.h"
 #include "app/pass_stats.h"
 #include "app/png_output.h"
 #include "app/progress.h"
@@ -222,9 +223,7 @@ void add_efficiency(const CommonOptions& common, const BenchScene& scene,
   result.bandwidth_note = peak.bandwidth_note;
   result.compute_note = peak.compute_note;
   const scene::SceneAssets assets =
-      scene.assets() ? *scene.assets()
-                     : scene::make_demo_assets(common.asset_dir.empty() ? scene::default_asset_dir()
-                                                                        : common.asset_dir);
+      scene.assets() ? *scene.assets() : app::load_demo_assets(common);
   uint32_t triangles = 0;
   for (const scene::Mesh& m : assets.meshes) triangles += static_cast<uint32_t>(m.triangles.size());
   for (RunResult& run : result.runs) {

@@ -25,7 +25,8 @@ typedef struct {
   rp_uint sphere_count;   /* ... items [triangle_items, triangle_items + sphere_count) spheres */
   rp_uint list_capacity;  /* entries in the tile list buffer (a tile whose range goes past it
                              rasterizes every item: kernels/visibility.cl) */
-  rp_uint pad;
+  rp_uint caster_mask;    /* depth-only views: the Instance.casts_shadow bits (RP_CASTS_*) that
+                             draw an instance into this view */
 } RasterView;
 
 /* A triangle after vertex transform, one per triangle draw item. 64 bytes.

@@ -121,6 +121,12 @@ typedef struct {
   SkyGpu sky;
 } FrameConstants;
 
+/* Instance.casts_shadow bits: drawn into the punctual lights' shadow views (scene::MeshInstance
+ * casts_shadow or casts_light_shadow), into the demo lamp's map (casts_shadow). The demo's box
+ * has only the first: it hides the sky's sun, but the lamp hangs inside its ceiling. */
+#define RP_CASTS_LIGHT_SHADOW 1u
+#define RP_CASTS_LAMP_SHADOW 2u
+
 /* One vertex of a mesh in object space. 32 bytes. */
 typedef struct {
   rp_float4 position_u; /* xyz position, w texture u */
@@ -137,7 +143,7 @@ typedef struct {
   rp_mat4 normal_matrix; /* inverse transpose of model (upper 3x3 used) */
   rp_uint first_triangle; /* the mesh's first triangle in the shared triangle buffer */
   rp_uint triangle_count;
-  rp_uint casts_shadow;  /* 1: drawn into the shadow map */
+  rp_uint casts_shadow;  /* RP_CASTS_* bits: the shadow maps it is drawn into */
   rp_uint voxelize;      /* 1: part of the GI voxel volume (0 for the lamp cap: its light
                             already comes from the analytic point light) */
   rp_uint voxel_first_triangle; /* the triangles the voxelizer takes instead: the mesh's proxy */

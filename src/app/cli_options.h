@@ -55,6 +55,8 @@ struct SizeArgs {
 // `voxel_option`: false for bench, which takes a list of resolutions instead. `pathtraced`:
 // --quality also offers pathtraced (render and bench; the window shows only real-time frames).
 void add_common(CLI::App* cmd, CommonOptions& common, bool voxel_option, bool pathtraced);
+// --open (CommonOptions::open_demo): in add_common, and for `export`.
+void add_open_demo(CLI::App* cmd, CommonOptions& common);
 
 // --voxels against --gi-volume (each resolution list entry): "" when fine.
 std::string check_gi_volume(const CommonOptions& common, const std::vector<uint32_t>& voxels);

@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "app/commands.h"
+#include "app/pathtrace_settings.h"
 #include "app/simulation_source.h"
 #include "scene/demo_scene.h"
 #include "scene/gltf_export.h"
@@ -9,8 +10,7 @@
 namespace rp::app {
 
 int export_command(const CommonOptions& common, const ExportOptions& options) {
-  const scene::SceneAssets assets = scene::make_demo_assets(
-      common.asset_dir.empty() ? scene::default_asset_dir() : common.asset_dir);
+  const scene::SceneAssets assets = load_demo_assets(common);
   SimulationFrameSource source(make_simulation_options(options.sim, common.render.effects));
   const scene::FrameScene frame = source.next_frame();
   scene::ExportOptions exporting;

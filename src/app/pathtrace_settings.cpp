@@ -25,8 +25,8 @@ rp::truth::PathTraceSettings pathtrace_settings(const CommonOptions& common, uin
 unsigned hardware_threads() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 scene::SceneAssets load_demo_assets(const CommonOptions& common) {
-  return scene::make_demo_assets(common.asset_dir.empty() ? scene::default_asset_dir()
-                                                          : common.asset_dir);
+  return scene::make_demo_assets(
+      common.asset_dir.empty() ? scene::default_asset_dir() : common.asset_dir, common.open_demo);
 }
 
 std::string describe_settings(const rp::truth::PathTraceSettings& s) {

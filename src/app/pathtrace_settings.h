@@ -19,7 +19,7 @@ rp::truth::PathTraceSettings pathtrace_settings(const CommonOptions& common, uin
 // What PathTraceSettings::threads = 0 means, for the report.
 unsigned hardware_threads();
 
-// The demo's assets from --assets (or the built-in folder).
+// The demo's assets from --assets (or the built-in folder), with the skylight of --open.
 scene::SceneAssets load_demo_assets(const CommonOptions& common);
 
 // "360x360, 1024 spp, 1 bounce" (+ ", area lamp")

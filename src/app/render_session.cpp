@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "app/interrupt.h"
+#include "app/pathtrace_settings.h"
 #include "app/progress.h"
 #include "app/sky_input.h"
 #include "cl/error.h"
@@ -201,10 +202,7 @@ void check_device_memory(const rp::cl::DeviceInfo& device, const render::RenderS
 
 RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint32_t height,
                              bool keep_components, const scene::SceneAssets* assets)
-    : assets_(assets ? *assets
-                     : scene::make_demo_assets(options.asset_dir.empty()
-                                                   ? scene::default_asset_dir()
-                                                   : options.asset_dir)),
+    : assets_(assets ? *assets : load_demo_assets(options)),
       context_(rp::cl::Context::create(options.device)),
       programs_(context_) {
   if (options.sky.given()) sky_ = std::make_unique<SkyLight>(load_sky(options.sky));

@@ -50,6 +50,7 @@ struct SkyOptions {
 struct CommonOptions {
   std::string device;      // --device: index or name substring ("" = first GPU, else CPU)
   std::string asset_dir;   // --assets: folder with the demo's textures
+  bool open_demo = false;  // --open: the demo with its skylight (scene::demo::kSkylight)
   std::string scene = "demo";  // --scene (render): "demo" or a glTF 2.0 file (app/scene_input.h)
   // What the real-time modes render: --shadow-size, --voxels, --gi-volume, --no-taa /
   // --no-bloom / --no-motion-blur / --bloom-strength, --visibility, --quality fast|reference,
@@ -74,8 +75,7 @@ class RenderSession {
  public:
   // keep_components: set_keep_components(true) from the start, counted in the memory check
   // that runs before anything is allocated (`render --exr`).
-  // assets: what the scene draws (a loaded file's); nullptr = the demo's, from
-  // options.asset_dir.
+  // assets: what the scene draws (a loaded file's); nullptr = the demo's (load_demo_assets).
   RenderSession(const CommonOptions& options, uint32_t width, uint32_t height,
                 bool keep_components = false, const scene::SceneAssets* assets = nullptr);
   RenderSession(const RenderSession&) = delete;

@@ -1,6 +1,7 @@
 // Disk cache of path-traced truths (see truth_cache.h).
 #include "app/truth_cache.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -109,6 +110,15 @@ std::string truth_key(const scene::SceneAssets& assets, const scene::FrameScene&
     h.mat(i.model);
     h.value(uint8_t(i.casts_shadow));
     h.value(uint8_t(i.voxelize));
+  }
+  // Instances that shade only the sky and the punctual lights (the demo's box) matter only
+  // under those: other frames keep their keys.
+  const bool light_casters = std::any_of(
+      frame.instances.begin(), frame.instances.end(),
+      [](const scene::MeshInstance& i) { return i.casts_light_shadow && !i.casts_shadow; });
+  if (light_casters && (frame.environment.enabled() || !frame.lights.empty())) {
+    h.text("light-casters");
+    for (const scene::MeshInstance& i : frame.instances) h.value(uint8_t(i.casts_light_shadow));
   }
   for (const scene::Sphere& s : frame.spheres) {
     h.vec(s.center);

@@ -159,6 +159,7 @@ CliParse parse_cli(int argc, const char* const* argv) {
       ->required();
   export_cmd->add_option("--scene", common.scene, "what to export: demo (the only choice)")
       ->capture_default_str();
+  app::add_open_demo(export_cmd, common);
   export_cmd->add_option("--assets", common.asset_dir,
                          "folder with the demo's textures (default: the built-in asset folder)");
   add_simulation(export_cmd, parsed.exporting.sim);
@@ -221,7 +222,8 @@ CliParse parse_cli(int argc, const char* const* argv) {
         !why.empty())
       return usage("rolypoly render", why);
     if (!is_demo_scene(common.scene)) {
-      for (const char* name : {"--seed", "--marbles", "--fireball", "--replay", "--assets"})
+      for (const char* name :
+           {"--seed", "--marbles", "--fireball", "--replay", "--assets", "--open"})
         if (render->count(name))
           return usage("rolypoly render",
                        std::string(name) + " applies to the simulated demo, not to a scene "
@@ -251,7 +253,7 @@ CliParse parse_cli(int argc, const char* const* argv) {
       return usage("rolypoly run", why);
     if (!is_demo_scene(common.scene)) {
       for (const char* name :
-           {"--seed", "--marbles", "--fireball", "--replay", "--record", "--assets"})
+           {"--seed", "--marbles", "--fireball", "--replay", "--record", "--assets", "--open"})
         if (run->count(name))
           return usage("rolypoly run",
                        std::string(name) + " applies to the simulated demo, not to a scene "

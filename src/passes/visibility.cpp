@@ -159,7 +159,7 @@ struct VisibilityPass::Impl {
     // the triangles this view draws of instance i (none: a depth-only view's non-caster)
     auto range = [&](const gpu::Instance& inst) -> std::pair<uint32_t, uint32_t> {
       if (!v.depth_only) return {inst.first_triangle, inst.triangle_count};
-      if (inst.casts_shadow == 0u) return {0u, 0u};
+      if ((inst.casts_shadow & v.params.caster_mask) == 0u) return {0u, 0u};
       return {inst.shadow_first_triangle, inst.shadow_triangle_count};
     };
     bool same = v.draw_key.size() == 2 * instances.size();
@@ -298,6 +298,8 @@ VisibilityPass::VisibilityPass(const rp::cl::Context& context, rp::cl::ProgramCa
   impl_->init_view(impl_->camera, programs, pass_name::kVisibility, false);
   impl_->init_view(impl_->shadow, programs, pass_name::kShadowMap, true);
   impl_->init_view(impl_->lights, programs, pass_name::kShadowMapLights, true);
+  impl_->shadow.params.caster_mask = RP_CASTS_LAMP_SHADOW;
+  impl_->lights.params.caster_mask = RP_CASTS_LIGHT_SHADOW;
 }
 
 uint64_t VisibilityPass::tile_list_bytes(uint32_t width, uint32_t height) {

@@ -308,7 +308,8 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
     g.normal_matrix = gpu::to_gpu(glm::inverseTranspose(inst.model));
     g.first_triangle = meshes[inst.mesh].first_triangle;
     g.triangle_count = meshes[inst.mesh].triangle_count;
-    g.casts_shadow = inst.casts_shadow ? 1u : 0u;
+    g.casts_shadow = (inst.casts_shadow ? RP_CASTS_LAMP_SHADOW : 0u) |
+                     (inst.casts_shadow || inst.casts_light_shadow ? RP_CASTS_LIGHT_SHADOW : 0u);
     g.voxelize = inst.voxelize ? 1u : 0u;
     const MeshRange& voxel = meshes[voxel_mesh(inst.mesh, voxel_resolution)];
     g.voxel_first_triangle = voxel.first_triangle;

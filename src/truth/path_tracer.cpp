@@ -137,7 +137,7 @@ class Integrator {
     const float c = glm::dot(s.ns, es.dir);
     if (c <= 0.0f || glm::dot(s.ng, es.dir) <= 0.0f) return glm::vec3(0.0f);
     ++rays;
-    if (scene_.shadowed(s.p + s.ng * kRayOffset, es.dir, kFar)) return glm::vec3(0.0f);
+    if (scene_.light_shadowed(s.p + s.ng * kRayOffset, es.dir, kFar)) return glm::vec3(0.0f);
     const bool glossy = coated(s);
     const float bsdf_pdf =
         glossy ? shading::brdf_pdf(bsdf_of(s), s.ns, wo, es.dir, tables_) : c / kPi;
@@ -162,7 +162,8 @@ class Integrator {
     if (!(ls.attenuation > 0.0f) || c <= 0.0f || glm::dot(s.ng, ls.l) <= 0.0f)
       return glm::vec3(0.0f);
     ++rays;
-    if (scene_.shadowed(s.p + s.ng * kRayOffset, ls.l, ls.distance)) return glm::vec3(0.0f);
+    if (scene_.light_shadowed(s.p + s.ng * kRayOffset, ls.l, ls.distance))
+      return glm::vec3(0.0f);
     const glm::vec3 f = coated(s) ? pi_f(s, wo, ls.l, spec) : s.albedo;
     const glm::vec3 k = light.intensity * (c * ls.attenuation);
     if (spec) *spec *= k;

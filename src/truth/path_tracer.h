@@ -44,6 +44,8 @@
 //   lights    a loaded scene's punctual lights (FrameScene::lights: directional, point, spot;
 //             scene/punctual_light.h) light every surface directly like the lamp, each with
 //             one shadow ray towards it; the lamp itself only when FrameScene::lamp is set.
+//             Their shadow rays (and the sky's) test casts_shadow and casts_light_shadow
+//             instances: the demo's box keeps a sky's sun out, not its own lamp's light.
 //             They count as the direct component and, after a gather, as lamp-lit surfaces do.
 //   materials a file's materials as the renderer reads them: alpha-masked holes are skipped
 //             by every ray (an Embree filter), normal maps tilt the shading normal in the

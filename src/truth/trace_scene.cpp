@@ -170,8 +170,15 @@ TraceScene::TraceScene(const TraceAssets& assets, const scene::FrameScene& frame
   }
   scene_ = rtcNewScene(assets.device());
   shadow_scene_ = rtcNewScene(assets.device());
-  add_instances(scene_, false);
-  add_instances(shadow_scene_, true);
+  add_instances(scene_, Casters::kAll);
+  add_instances(shadow_scene_, Casters::kLamp);
+  if (std::any_of(frame.instances.begin(), frame.instances.end(),
+                  [](const scene::MeshInstance& i) {
+                    return i.casts_light_shadow && !i.casts_shadow;
+                  })) {
+    light_shadow_scene_ = rtcNewScene(assets.device());
+    add_instances(light_shadow_scene_, Casters::kLight);
+  }
 
   // Spheres: every one with a radius in the scene, the casters also in the shadow scene. The
   // geometry id after the instances' ids (instance i has id i).
@@ -203,21 +210,27 @@ TraceScene::TraceScene(const TraceAssets& assets, const scene::FrameScene& frame
   sphere_index_ = all;
   add_spheres(scene_, all, sphere_points_);
   add_spheres(shadow_scene_, caster_spheres_, caster_points_);
+  if (light_shadow_scene_) add_spheres(light_shadow_scene_, caster_spheres_, caster_points_);
   rtcCommitScene(scene_);
   rtcCommitScene(shadow_scene_);
+  if (light_shadow_scene_) rtcCommitScene(light_shadow_scene_);
   assets.check("building the frame's scene");
 }
 
 TraceScene::~TraceScene() {
   if (scene_) rtcReleaseScene(scene_);
   if (shadow_scene_) rtcReleaseScene(shadow_scene_);
+  if (light_shadow_scene_) rtcReleaseScene(light_shadow_scene_);
 }
 
-void TraceScene::add_instances(RTCScene top, bool casters_only) {
+void TraceScene::add_instances(RTCScene top, Casters which) {
   for (size_t i = 0; i < frame_->instances.size(); ++i) {
     const scene::MeshInstance& inst = frame_->instances[i];
     const TraceMesh& mesh = assets_->meshes()[inst.mesh];
-    if (mesh.bvh == nullptr || (casters_only && !inst.casts_shadow)) continue;
+    const bool in = which == Casters::kAll ||
+                    (which == Casters::kLamp && inst.casts_shadow) ||
+                    (which == Casters::kLight && (inst.casts_shadow || inst.casts_light_shadow));
+    if (mesh.bvh == nullptr || !in) continue;
     RTCGeometry g = rtcNewGeometry(assets_->device(), RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(g, mesh.bvh);
     rtcSetGeometryTimeStepCount(g, 1);
@@ -312,12 +325,24 @@ bool TraceScene::intersect(glm::vec3 org, glm::vec3 dir, float t_max, Surface& o
   return true;
 }
 
-bool TraceScene::shadowed(glm::vec3 org, glm::vec3 dir, float t_max) const {
+namespace {
+
+bool occluded(RTCScene scene, glm::vec3 org, glm::vec3 dir, float t_max) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay ray = make_ray(org, dir, t_max);
-  rtcOccluded1(shadow_scene_, &context, &ray);
+  rtcOccluded1(scene, &context, &ray);
   return ray.tfar < 0.0f;  // Embree sets tfar to -inf when something was hit
+}
+
+}  // namespace
+
+bool TraceScene::shadowed(glm::vec3 org, glm::vec3 dir, float t_max) const {
+  return occluded(shadow_scene_, org, dir, t_max);
+}
+
+bool TraceScene::light_shadowed(glm::vec3 org, glm::vec3 dir, float t_max) const {
+  return occluded(light_shadow_scene_ ? light_shadow_scene_ : shadow_scene_, org, dir, t_max);
 }
 
 }  // namespace rp::truth

@@ -6,7 +6,10 @@
 // directly, so the path tracer needs no OpenCL device.
 //
 //   scene         everything: what camera, gather and light-sample rays hit.
-//   shadow scene  only the shadow casters (casts_shadow): what the lamp's shadow rays test.
+//   shadow scene  only the shadow casters (casts_shadow): what the lamp's shadow rays test;
+//   light shadow scene  those and the instances with casts_light_shadow (the demo's box): what
+//                 the sky's and the punctual lights' shadow rays test (the shadow scene itself
+//                 when there are none).
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -100,12 +103,15 @@ class TraceScene {
 
   // Nearest surface along org + t dir, t in (0, t_max); false when the ray leaves the scene.
   bool intersect(glm::vec3 org, glm::vec3 dir, float t_max, Surface& out) const;
-  // True when a shadow caster lies on org + t dir, t in (0, t_max).
+  // True when a shadow caster lies on org + t dir, t in (0, t_max): the lamp's (shadowed) or
+  // the sky's and the punctual lights' (light_shadowed).
   bool shadowed(glm::vec3 org, glm::vec3 dir, float t_max) const;
+  bool light_shadowed(glm::vec3 org, glm::vec3 dir, float t_max) const;
   const scene::FrameScene& frame() const { return *frame_; }
 
  private:
-  void add_instances(RTCScene top, bool casters_only);
+  enum class Casters { kAll, kLamp, kLight };
+  void add_instances(RTCScene top, Casters which);
 
   const TraceAssets* assets_;
   const scene::FrameScene* frame_;
@@ -115,6 +121,7 @@ class TraceScene {
   std::vector<uint32_t> caster_spheres_;              // shadow scene's sphere -> frame sphere
   unsigned sphere_geometry_ = 0;                      // geometry id of the spheres in scene_
   RTCScene scene_ = nullptr, shadow_scene_ = nullptr;
+  RTCScene light_shadow_scene_ = nullptr;  // nullptr: shadow_scene_ serves
 };
 
 }  // namespace rp::truth

@@ -126,11 +126,34 @@ TEST(SkyCli, EveryModeTakesTheSkyButTheDemosAccuracyReport) {
         {"render", "--quality", "reference", "--sky", "clear"},
         {"run", "--env", "a.hdr"},
         {"bench", "--env", "a.hdr"},
-        {"bench", "--accuracy", "--scene", "room.glb", "--sky", "clear"}})
+        {"bench", "--accuracy", "--scene", "room.glb", "--sky", "clear"},
+        {"bench", "--accuracy", "--open", "--sky", "clear"}})
     EXPECT_TRUE(sky_of(words).given()) << words[0] << " " << words[1];
   EXPECT_TRUE(Contains(refusal({"bench", "--accuracy", "--sky", "clear"}),
-                       "rolypoly bench: --sky with --accuracy needs --scene FILE: the demo's "
-                       "report measures its closed box"));
+                       "rolypoly bench: --sky with --accuracy needs --scene FILE or --open: the "
+                       "demo's report measures its closed box"));
+}
+
+// --open (the demo's skylight) parses for the demo in every command and is refused for a scene
+// file, whose geometry is its own.
+TEST(SkyCli, OpenIsTheDemosAndNotAFiles) {
+  for (const std::vector<std::string>& words :
+       {std::vector<std::string>{"render", "--open"},
+        {"run", "--open", "--sky", "clear"},
+        {"bench", "--open"},
+        {"bench", "--scene", "busy", "--open"},
+        {"export", "--open", "demo.glb"}}) {
+    cli::CliParse r = parse(words);
+    ASSERT_TRUE(std::holds_alternative<cli::ParsedCommand>(r)) << words[0];
+    EXPECT_TRUE(std::get<cli::ParsedCommand>(r).common.open_demo) << words[0];
+  }
+  EXPECT_FALSE(std::get<cli::ParsedCommand>(parse({"render"})).common.open_demo);
+  EXPECT_TRUE(Contains(refusal({"render", "--scene", "room.glb", "--open"}),
+                       "--open applies to the simulated demo, not to a scene file"));
+  EXPECT_TRUE(Contains(refusal({"run", "--scene", "atrium", "--open"}),
+                       "--open applies to the simulated demo"));
+  EXPECT_TRUE(Contains(refusal({"bench", "--scene", "atrium", "--open"}),
+                       "--open applies to the simulated demo"));
 }
 
 TEST(SkyCli, PrtOptionsResolveAndAreRefusedWithAReason) {

@@ -71,6 +71,29 @@ TEST(CornellBox, FloorUvCoversTheFloorOnce) {
   }
 }
 
+// A skylight: the ceiling quads whose centres lie in the rectangle are left out, every other
+// quad of the ceiling and of the other walls stays.
+TEST(CornellBox, CeilingOpeningLeavesOutTheQuadsInside) {
+  rp::scene::CeilingOpening opening;
+  opening.min = {-0.5f, -1.0f};
+  opening.max = {0.5f, -0.5f};
+  const Mesh box = rp::scene::make_cornell_box(distinct_ids(), 8, opening);
+  const Mesh closed = rp::scene::make_cornell_box(distinct_ids(), 8);
+  // 0.25-wide quads: 4 along x (centres -0.375 .. 0.375) by 2 along z (-0.875, -0.625)
+  EXPECT_EQ(box.triangles.size(), closed.triangles.size() - 4u * 2u * 2u);
+  size_t ceiling = 0;
+  for (size_t i = 0; i < box.triangles.size(); ++i) {
+    const glm::uvec3 t = box.triangles[i];
+    const glm::vec3 c = (box.vertices[t.x].position + box.vertices[t.y].position +
+                         box.vertices[t.z].position) / 3.0f;
+    if (box.materials[i] != distinct_ids().ceiling) continue;
+    ++ceiling;
+    const bool inside = c.x > -0.5f && c.x < 0.5f && c.z > -1.0f && c.z < -0.5f;
+    EXPECT_FALSE(inside) << "a ceiling triangle in the opening at " << c.x << ", " << c.z;
+  }
+  EXPECT_EQ(ceiling, 8u * 8u * 2u - 16u);
+}
+
 TEST(LampCap, LiesOnTheSphereBelowTheCeiling) {
   const rp::scene::PointLight light;  // centre (0, 1.1, 0), radius 0.35
   const Mesh cap = rp::scene::make_lamp_cap(light, 5, 3, 1.0f);

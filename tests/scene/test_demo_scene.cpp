@@ -82,6 +82,8 @@ TEST(DemoScene, InstancesAndFlags) {
       EXPECT_FALSE(inst.casts_shadow);
       EXPECT_EQ(inst.model, glm::mat4(1.0f));
     }
+    // the box keeps a sky's sun out, not the lamp's light
+    EXPECT_EQ(inst.casts_light_shadow, inst.mesh == demo::kBoxMesh);
   }
   EXPECT_EQ(tumblers, 5);
   EXPECT_EQ(frame.camera.position, frame.prev_camera.position);
@@ -159,6 +161,24 @@ TEST(DemoScene, CameraLooksIntoTheBoxAndTheWallsFillTheFrame) {
       }
     }
   }
+}
+
+// --open: the skylight leaves out ceiling quads behind the lamp only (the cap's rim, 0.335 from
+// the ceiling's centre, stays on whole ceiling), and nothing else changes.
+TEST(DemoScene, OpenVariantCutsTheSkylightBehindTheLamp) {
+  const SceneAssets open = make_demo_assets(default_asset_dir(), true);
+  const SceneAssets& closed = assets();
+  ASSERT_EQ(open.meshes.size(), closed.meshes.size());
+  const Mesh& box = open.meshes[demo::kBoxMesh];
+  EXPECT_EQ(box.triangles.size(), closed.meshes[demo::kBoxMesh].triangles.size() - 16u);
+  for (size_t m = 1; m < open.meshes.size(); ++m)
+    EXPECT_EQ(open.meshes[m].triangles.size(), closed.meshes[m].triangles.size()) << m;
+  const FrameScene frame = make_demo_frame(open, 0);
+  const float rim = std::sqrt(frame.light.lamp_radius * frame.light.lamp_radius -
+                              (frame.light.position.y - 1.0f) * (frame.light.position.y - 1.0f));
+  // the skylight's nearest edge to the lamp's axis (z = -0.5) lies beyond the cap's rim
+  EXPECT_LT(rim, -demo::kSkylightMax.y);
+  EXPECT_GT(demo::kSkylightMax.x - demo::kSkylightMin.x, 0.0f);
 }
 
 TEST(DemoScene, LampCentreIsOutsideTheBox) {

@@ -81,6 +81,35 @@ scene::FrameScene under_blocker(const scene::SceneAssets& a) {
   return f;
 }
 
+// An instance that casts only the lights' shadows (MeshInstance::casts_light_shadow, the demo's
+// box) blocks a punctual light and not the demo's lamp; without either flag it blocks neither.
+TEST(PathTracerLights, ALightOnlyCasterShadesTheLightsNotTheLamp) {
+  const scene::SceneAssets a = floor_assets(true);
+  const auto direct = [&](bool sun, bool lamp, bool light_caster) {
+    scene::FrameScene f = under_blocker(a);
+    f.instances[1].casts_shadow = false;
+    f.instances[1].casts_light_shadow = light_caster;
+    if (sun) {
+      scene::PunctualLight l;
+      l.type = scene::LightType::kDirectional;
+      l.direction = {0.0f, -1.0f, 0.0f};
+      l.intensity = glm::vec3(2.0f);
+      f.lights.push_back(l);
+    }
+    if (lamp) {
+      f.lamp = true;
+      f.light.position = {0.0f, 2.0f, 0.0f};
+      f.light.intensity = glm::vec3(4.0f);
+    }
+    return mean_direct(a, f);
+  };
+  EXPECT_NEAR(direct(true, false, false), 0.5 * 2.0, 1e-3) << "no caster: the sun's full light";
+  EXPECT_EQ(direct(true, false, true), 0.0) << "the light-only caster shades the sun";
+  const double lamp_open = direct(false, true, false);
+  EXPECT_GT(lamp_open, 0.0);
+  EXPECT_EQ(direct(false, true, true), lamp_open) << "and not the lamp";
+}
+
 TEST(PathTracerLights, PointLightIsAlbedoTimesIntensityCosOverDistanceSquared) {
   const scene::SceneAssets a = floor_assets(false);
   scene::FrameScene f = floor_frame(a);
