@@ -71,10 +71,15 @@ LightPass::LightPass(const rp::cl::Context& context, rp::cl::ProgramCache& progr
 }
 
 ::cl::Kernel& LightPass::shadow_kernel() {
-  std::optional<::cl::Kernel>& k = shadow_kernels_[int(filter_)];
+  // Only pcss samples its penumbrae stochastically: the other filters have one variant.
+  const bool more_taps = without_history_ && filter_ == render::ShadowMode::kPcss;
+  std::optional<::cl::Kernel>& k = shadow_kernels_[int(filter_)][more_taps ? 1 : 0];
   if (!k)
-    k = programs_->kernel("shadow_visibility.cl", "shadow_visibility",
-                          "-DRP_SHADOW_MODE=" + std::to_string(int(filter_)));
+    k = programs_->kernel(
+        "shadow_visibility.cl", "shadow_visibility",
+        "-DRP_SHADOW_MODE=" + std::to_string(int(filter_)) +
+            (more_taps ? " -DRP_PCSS_FILTER_TAPS=" + std::to_string(kPcssTapsWithoutHistory)
+                       : std::string()));
   return *k;
 }
 

@@ -48,6 +48,11 @@ class LightPass {
   // chunks computed, the others filled where all their neighbours agree on lit or umbra (on by
   // default; off computes every chunk).
   void set_shadow_checkerboard(bool on) { checkerboard_ = on; }
+  // Frames that no temporal history will average (TAA off, the first frame, after a cut): pcss
+  // filters each pixel with kPcssTapsWithoutHistory taps instead of the default 6, so a single
+  // frame's penumbrae are not a stipple that only TAA smooths (the blocker search stays).
+  void set_without_history(bool on) { without_history_ = on; }
+  static constexpr int kPcssTapsWithoutHistory = 16;
   // Device memory for a frame w x h under `filter` (passes/frame_memory.h): the lamp's
   // visibility and, for pcss with the checkerboard, its chunks' verdicts; and what the pass
   // holds now (both only grow: a smaller frame keeps them).
@@ -104,11 +109,12 @@ class LightPass {
   render::ShadowMode filter_;
   std::string gi_options_;  // -DRP_GI_SVO... for the light kernels ("" = the dense chain)
   std::optional<::cl::Kernel> kernels_[2][2][2];
-  std::optional<::cl::Kernel> shadow_kernels_[4];
+  std::optional<::cl::Kernel> shadow_kernels_[4][2];  // [filter][without history]
   // width x height floats in [0, 1] (one per pixel, row-major), grown on demand
   ::cl::Buffer visibility_;
   size_t visibility_bytes_ = 0;
   bool checkerboard_ = true;
+  bool without_history_ = false;
   ::cl::Buffer consensus_;  // uchar per 4x2 chunk (the checkerboard's black chunks' verdicts)
   size_t consensus_bytes_ = 0;
 };

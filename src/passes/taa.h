@@ -43,6 +43,8 @@ class TaaPass {
 
   // Forget the history: the next run() outputs its current frame (camera cuts).
   void reset_history() { history_valid_ = false; }
+  // The next run() blends a history (false on the first frame and after reset_history()).
+  bool history_valid() const { return history_valid_; }
 
   // Device memory for a width x height frame (passes/frame_memory.h): the two histories of
   // three float planes; what the pass holds now.

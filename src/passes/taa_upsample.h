@@ -38,6 +38,8 @@ class TaaUpsamplePass {
 
   // Forget the history: the next run() outputs the current frame's reconstruction alone.
   void reset_history() { history_valid_ = false; }
+  // The next run() blends a history (false on the first frame and after reset_history()).
+  bool history_valid() const { return history_valid_; }
 
   // What the last run() wrote at the output size for motion blur: velocity (float2, output
   // pixels) and normal_depth (float4, w the linear depth); the other planes are not allocated.

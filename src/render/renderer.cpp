@@ -282,6 +282,10 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
       profiler_.queue().enqueueCopyBuffer(hdr_, hdr_prev_, 0, 0,
                                           size_t(render_width_) * render_height_ * 16);
     if (prt_) prt_->run(profiler_, *scene_, vis_, frame.environment);
+    // a frame no history will average gets smooth penumbrae of its own
+    light_->set_without_history(
+        !(fx.taa && final_view &&
+          (upsample ? taa_upsample_->history_valid() : taa_->history_valid())));
     light_->run(profiler_, *scene_, gbuffer_, shadow_, gi_buffer(), gi_resolution(),
                 gi_levels(), hdr_, split ? &light_components_ : nullptr,
                 indirect_ ? &low_res : nullptr, ssr_history ? &ssr_reference : nullptr,
