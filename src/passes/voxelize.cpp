@@ -8,6 +8,7 @@
 #include "cl/buffer.h"
 #include "cl/error.h"
 #include "cl/kernel_args.h"
+#include "io/fnv1a.h"
 #include "passes/pass_names.h"
 
 namespace rp::passes {
@@ -234,7 +235,7 @@ void VoxelizePass::build_cache(rp::cl::Profiler& profiler, const render::GpuScen
   }
   cache_samples_ = samples;
   cache_bounce_fresh_ = false;  // recorded with no bounce light
-  direct_key_.clear();          // nor direct light
+  direct_key_valid_ = false;    // nor direct light
 }
 
 bool VoxelizePass::update_direct_key(const render::GpuScene& scene,
@@ -242,31 +243,32 @@ bool VoxelizePass::update_direct_key(const render::GpuScene& scene,
   // What the samples' direct light reads: the lamp (position, intensity, shadow projection and
   // planes), the punctual lights and their shadow views, and the shadow maps, which are drawn
   // from the instances and spheres through those views (the renderer redraws them only when
-  // one of these changed). The depth buffer is held, so its handle cannot come back as
-  // another buffer's.
-  std::vector<unsigned char>& key = direct_key_scratch_;
-  key.clear();
-  const auto append = [&key](const void* data, size_t bytes) {
-    const auto* b = static_cast<const unsigned char*>(data);
-    key.insert(key.end(), b, b + bytes);
-  };
+  // one of these changed). A 64-bit hash of those bytes, not the bytes: no allocation per
+  // frame (the busy scene's sphere count varies), and two states mistaken for one are about
+  // 2^-64 likely. The depth buffer is held, so its handle cannot come back as another
+  // buffer's.
+  io::Fnv1a h;
   const gpu::FrameConstants& c = scene.constants;
-  append(&c.light_view_proj, sizeof(c.light_view_proj));
-  append(&c.light_pos, sizeof(c.light_pos));
-  append(&c.light_intensity, sizeof(c.light_intensity));
-  append(&c.clip.z, 2 * sizeof(float));
-  append(&c.shadow_size, sizeof(c.shadow_size));
-  append(&c.punctual_count, sizeof(c.punctual_count));
-  append(c.punctual, std::min<size_t>(c.punctual_count, RP_MAX_PUNCTUAL_LIGHTS) *
-                         sizeof(c.punctual[0]));
-  append(&c.shadow_view_count, sizeof(c.shadow_view_count));
-  append(c.shadow_views, std::min<size_t>(c.shadow_view_count, RP_MAX_SHADOW_VIEWS) *
-                             sizeof(c.shadow_views[0]));
-  append(scene.host_instances.data(), scene.host_instances.size() * sizeof(gpu::Instance));
-  append(scene.host_spheres.data(), scene.host_spheres.size() * sizeof(gpu::Sphere));
-  const bool fresh = !direct_key_.empty() && key == direct_key_ &&
-                     direct_shadow_() == shadow.depth();
-  std::swap(direct_key_, key);
+  h.value(c.light_view_proj);
+  h.value(c.light_pos);
+  h.value(c.light_intensity);
+  h.value(c.clip.z);
+  h.value(c.clip.w);
+  h.value(c.shadow_size);
+  h.value(c.punctual_count);
+  h.bytes(c.punctual, std::min<size_t>(c.punctual_count, RP_MAX_PUNCTUAL_LIGHTS) *
+                          sizeof(c.punctual[0]));
+  h.value(c.shadow_view_count);
+  h.bytes(c.shadow_views, std::min<size_t>(c.shadow_view_count, RP_MAX_SHADOW_VIEWS) *
+                              sizeof(c.shadow_views[0]));
+  h.value(uint64_t(scene.host_instances.size()));
+  h.bytes(scene.host_instances.data(), scene.host_instances.size() * sizeof(gpu::Instance));
+  h.value(uint64_t(scene.host_spheres.size()));
+  h.bytes(scene.host_spheres.data(), scene.host_spheres.size() * sizeof(gpu::Sphere));
+  const bool fresh =
+      direct_key_valid_ && h.get() == direct_key_ && direct_shadow_() == shadow.depth();
+  direct_key_ = h.get();
+  direct_key_valid_ = true;
   direct_shadow_ = shadow.depth;
   return fresh;
 }

@@ -142,8 +142,9 @@ class VoxelizePass {
   cl_mem cache_bounce_grid_ = nullptr;    // the grid the samples' bounce light came from
   uint32_t cache_resolution_ = 0;
   ::cl::Buffer cache_vertices_, cache_triangles_, cache_materials_;  // scene buffers tracked
-  // What the samples' stored direct light was computed under (update_direct_key); empty: none.
-  std::vector<unsigned char> direct_key_, direct_key_scratch_;
+  // What the samples' stored direct light was computed under (update_direct_key's hash).
+  uint64_t direct_key_ = 0;
+  bool direct_key_valid_ = false;
   ::cl::Buffer direct_shadow_;  // the shadow depth buffer it read
 };
 
