@@ -15,6 +15,7 @@
 #include "passes/prt_sky.h"
 #include "render/frame_memory.h"
 #include "render/gpu_scene.h"
+#include "render/punctual_shadows.h"
 #include "render/sky_texture.h"
 #include "render/voxel_volume.h"
 #include "scene/demo_scene.h"
@@ -69,6 +70,8 @@ DeviceMemoryNeed estimate_device_memory(const render::RenderSettings& settings,
   DeviceMemoryNeed need;
   need.shadow_bytes = parts.of(pass_name::kShadowMap) + parts.of(pass_name::kShadowFilter);
   need.image_bytes = parts.total() - need.shadow_bytes;
+  const uint64_t light_views = scene ? scene->light_shadow_bytes : 0;  // follow the scene
+  need.shadow_bytes += light_views;
   if (settings.gi_volume == render::GiVolume::kSvo) {
     // The octree's pools, fragment list and build scratch grow with the surface area: at
     // peak 502-567 bytes per R^2 measured on the demo, the busy scene and the atrium at 512^3
@@ -90,6 +93,9 @@ DeviceMemoryNeed estimate_device_memory(const render::RenderSettings& settings,
   need.total_bytes = need.image_bytes + need.shadow_bytes + need.volume_bytes + need.scene_bytes;
   const uint64_t pixels = uint64_t(settings.width) * settings.height;
   need.largest_buffer_bytes = std::max(pixels * 16, need.volume_buffer_bytes);
+  // The shadow depth buffer: the lamp's two planes, then the lights' views.
+  const uint64_t s = settings.shadow_size;
+  need.largest_buffer_bytes = std::max(need.largest_buffer_bytes, 2 * s * s * 4 + light_views);
   if (scene) need.largest_buffer_bytes = std::max(need.largest_buffer_bytes,
                                                   scene->largest_buffer_bytes());
   return need;
@@ -137,7 +143,7 @@ void check_device_memory(const rp::cl::DeviceInfo& device, const render::RenderS
                              " --voxels " + std::to_string(voxel_resolution);
   const std::string parts = " (the image's buffers " + mib(need.image_bytes) + ", " +
                             (octree ? "the octree " : "the dense GI volume ") +
-                            mib(need.volume_bytes) + ", the shadow map " +
+                            mib(need.volume_bytes) + ", the shadow maps " +
                             mib(need.shadow_bytes) + ", the scene " + mib(need.scene_bytes) + ")";
 
   // A loaded scene that does not fit even with a 1x1 image and the smallest volume: no
@@ -221,7 +227,9 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   frame.light_components =
       passes::needs_light_components(options.view.view) || keep_components;
   frame.prt = prt_.has_value();
-  check_device_memory(context_.info, settings, frame, &scene, "--scene " + options.scene);
+  keep_components_ = keep_components;
+  scene_name_ = "--scene " + options.scene;
+  check_device_memory(context_.info, settings, frame, &scene, scene_name_);
   device_memory_estimate_ = estimate_device_memory(settings, frame, &scene).total_bytes;
   try {
     renderer_ = std::make_unique<render::Renderer>(context_, programs_, assets_, settings);
@@ -243,8 +251,9 @@ void RenderSession::set_keep_components(bool keep) {
     render::FrameMemoryOptions frame;
     frame.light_components = true;
     frame.prt = prt_.has_value();
-    check_device_memory(context_.info, renderer_->settings(), frame, &scene);
+    check_device_memory(context_.info, renderer_->settings(), frame, &scene, scene_name_);
   }
+  keep_components_ = keep;
   renderer_->set_keep_light_components(keep);
 }
 
@@ -271,7 +280,23 @@ SceneMemory RenderSession::scene_memory() const {
                                 (prt_->kind == truth::PrtKind::kInterreflected ? 3u : 1u);
     memory.prt_floats = memory.vertices * per_vertex;
   }
+  memory.light_shadow_bytes = light_shadow_bytes_;
   return memory;
+}
+
+void RenderSession::check_light_views(const scene::FrameScene& frame) {
+  light_views_checked_ = true;
+
+  if (frame.lights.empty()) return;
+  light_shadow_bytes_ =
+      4 * render::punctual_shadow_floats(frame.lights, renderer_->settings().shadow_size);
+  const SceneMemory scene = scene_memory();
+  render::FrameMemoryOptions options;
+  options.light_components = passes::needs_light_components(view_.view) || keep_components_;
+  options.prt = prt_.has_value();
+  check_device_memory(context_.info, renderer_->settings(), options, &scene, scene_name_);
+  device_memory_estimate_ =
+      estimate_device_memory(renderer_->settings(), options, &scene).total_bytes;
 }
 
 rp::cl::PassTimes RenderSession::render(const scene::FrameScene& frame,
@@ -281,12 +306,14 @@ rp::cl::PassTimes RenderSession::render(const scene::FrameScene& frame,
   if (sky_) {
     lit_frame_ = frame;  // copy assignment keeps the vectors' capacity: no per-frame allocation
     add_sky(*sky_, lit_frame_);
+    if (!light_views_checked_) check_light_views(lit_frame_);
     if (prt_ && !prt_ready_) {
       prepare_prt(lit_frame_);
       start = std::chrono::steady_clock::now();  // the frame's time, not the transfer's
     }
     times = renderer_->render(lit_frame_);
   } else {
+    if (!light_views_checked_) check_light_views(frame);
     times = renderer_->render(frame);
   }
   frame_ms = ms_since(start);

@@ -134,6 +134,9 @@ class RenderSession {
   // progress bar on a terminal and one line on stderr), handed to the renderer. Throws
   // Interrupted when a signal stops the computation.
   void prepare_prt(const scene::FrameScene& frame);
+  // On the first frame: counts its punctual lights' shadow views (the frame, not the assets,
+  // holds the lights) and checks the device memory again before they are allocated.
+  void check_light_views(const scene::FrameScene& frame);
 
   scene::SceneAssets assets_;
   rp::cl::Context context_;
@@ -146,6 +149,10 @@ class RenderSession {
   scene::FrameScene lit_frame_;                // with sky_: the frame render() adds it to
   std::optional<truth::PrtSettings> prt_;      // --sky-light prt
   bool prt_ready_ = false;                     // prepare_prt ran: the renderer has the transfer
+  bool light_views_checked_ = false;           // check_light_views ran
+  uint64_t light_shadow_bytes_ = 0;            // the lights' shadow views (SceneMemory)
+  bool keep_components_ = false;               // set_keep_components(true) was called
+  std::string scene_name_;                     // "--scene NAME", for the memory messages
 };
 
 // Device memory a session needs (bytes, an estimate that errs high where the window may switch

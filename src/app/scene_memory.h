@@ -17,6 +17,10 @@ struct SceneMemory {
   // --sky-light prt: the transfer's floats (passes/prt_sky.h), counted as one transfer per
   // mesh vertex (a file's meshes are mostly placed once)
   uint64_t prt_floats = 0;
+  // The punctual lights' shadow views (render/punctual_shadows.h) at the session's shadow
+  // size: they follow the lamp's two planes in its one depth buffer. Counted from the first
+  // frame (the lights are the frame's, not the assets').
+  uint64_t light_shadow_bytes = 0;
   // Bytes per element on the device: gpu::Vertex (2 float4) + its tangent (float4), one
   // gpu::Triangle (4 uint).
   static constexpr uint64_t kVertexBytes = 32 + 16, kTriangleBytes = 16, kTexelBytes = 4;

@@ -99,5 +99,33 @@ TEST(FileSceneTruth, LoadedRoomMatchesItsPathTracedTruth) {
   EXPECT_LE(std::abs(bias), 0.30);
 }
 
+// The lights' shadow views are counted in the device memory estimate before they are drawn:
+// the room's sun and spot take two planes of 256^2 floats each, its point light six faces of
+// two planes at half the size, all after the lamp's two planes in one depth buffer.
+TEST(FileSceneTruth, TheLightsShadowViewsAreCountedInTheDeviceMemory) {
+  rp::cl::ensure_pocl_cache_dir();
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("rolypoly_room_views_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  write_room(dir / "room.glb");
+  const app::FileScene file = app::open_scene_file((dir / "room.glb").string());
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(file.loaded.lights.size(), 3u);
+
+  app::CommonOptions common;
+  common.render.shadow_size = 256;
+  app::RenderSession session(common, 32, 32, false, &file.loaded.assets);
+  const uint64_t before = session.device_memory_estimate();
+  app::FileFrameSource source(file);
+  std::vector<uint8_t> rgba;
+  double ms = 0.0;
+  session.render(source.next(), rgba, ms);
+  const uint64_t lamp = 2 * 256 * 256, views = 2 * (2 * 256 * 256) + 6 * 2 * (128 * 128);
+  EXPECT_EQ(session.renderer().shadow_map().depth_floats, lamp + views);
+  EXPECT_EQ(session.device_memory_estimate() - before, 4 * views);
+  session.render(source.next(), rgba, ms);  // counted once
+  EXPECT_EQ(session.device_memory_estimate() - before, 4 * views);
+}
+
 }  // namespace
 }  // namespace rp::test
