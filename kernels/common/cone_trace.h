@@ -588,24 +588,37 @@ inline float3 rp_cone_apex(float3 p, float3 n, uint resolution) {
 }
 
 /* Near-field occlusion of surface point p (unit normal n): the opacity that the level-1
- * volumes facing n (weights n^2, no rows-behind-the-apex rule) show at the cones' apex. The
- * volumes hold only what faces the cone (voxel_mips.cl), so the surface's own voxels and flat
- * neighbours count nothing, while a surface that faces p within about two voxels (the
- * underside of a tumbler over the floor near its contact point) does: there the cones start
- * inside or behind it and would otherwise see past it. The diffuse light is scaled by one
- * minus this. */
+ * volumes facing n (weights n^2, no rows-behind-the-apex rule) show at the cones' apex, less
+ * what they show at the apex's mirror point behind the surface. The volumes hold only what
+ * faces the cone (voxel_mips.cl), so the surface's own voxels and flat neighbours count
+ * nothing, while a surface that faces p within about two voxels (the underside of a tumbler
+ * over the floor near its contact point) does: there the cones start inside or behind it and
+ * would otherwise see past it. The mirror term takes out the surface's own back: a wall or
+ * slab thinner than a level-1 voxel (2 v0) has its far face, which faces the cone, in the same
+ * trilinear footprint, and without the term every point of it read as occluded (measured on
+ * the atrium: its walls' indirect light 30-40 % short, image bias -23.0 % -> -14.0 %). A mirror
+ * point outside the box reads nothing (the box's faces hold the demo's walls, with nothing
+ * behind them). The diffuse light is scaled by one minus this. */
 inline float rp_cone_near_occlusion(__global const float4* voxels, uint resolution, uint levels,
                                     float3 p, float3 n) {
   if (levels < 2u) return 0.0f;
   const uint3 dirs = rp_voxel_cone_dirs(n);
   const float3 w = n * n;
   const float3 apex = rp_cone_apex(p, n, resolution);
+  const float3 mirror = 2.0f * p - apex;
+  const float behind = fmax(fmax(fabs(mirror.x), fabs(mirror.y)), fabs(mirror.z)) <= 1.0f ? 1.0f : 0.0f;
   /* volumes of weight 0 are not read (a wall's or the floor's normal reads one of three);
    * their term would add exactly 0 */
   float a = 0.0f;
-  if (w.x > 0.0f) a = w.x * rp_cone_volume(voxels, resolution, 1u, dirs.x, apex).w;
-  if (w.y > 0.0f) a += w.y * rp_cone_volume(voxels, resolution, 1u, dirs.y, apex).w;
-  if (w.z > 0.0f) a += w.z * rp_cone_volume(voxels, resolution, 1u, dirs.z, apex).w;
+  if (w.x > 0.0f)
+    a = w.x * (rp_cone_volume(voxels, resolution, 1u, dirs.x, apex).w -
+               behind * rp_cone_volume(voxels, resolution, 1u, dirs.x, mirror).w);
+  if (w.y > 0.0f)
+    a += w.y * (rp_cone_volume(voxels, resolution, 1u, dirs.y, apex).w -
+                behind * rp_cone_volume(voxels, resolution, 1u, dirs.y, mirror).w);
+  if (w.z > 0.0f)
+    a += w.z * (rp_cone_volume(voxels, resolution, 1u, dirs.z, apex).w -
+                behind * rp_cone_volume(voxels, resolution, 1u, dirs.z, mirror).w);
   return clamp(a * RP_CONE_NEAR_OCCLUSION, 0.0f, 1.0f);
 }
 

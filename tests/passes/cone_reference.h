@@ -92,8 +92,9 @@ glm::dvec4 trace_aperture(const Chain& c, const glm::dvec3& origin, const glm::d
                           double tan_half, const Aperture& a = {});
 // Near-field occlusion of surface point p with unit normal n (rp_cone_near_occlusion): the
 // opacity the three level-1 volumes facing n (weights n^2, trilinear, no rows-behind-the-apex
-// rule) show at the cones' apex p + n v0, times kNearOcclusion, clamped to [0, 1]; 0 for a
-// chain without level 1.
+// rule) show at the cones' apex p + n v0, less what they show at the mirror point p - n v0
+// when it lies inside the box, times kNearOcclusion, clamped to [0, 1]; 0 for a chain without
+// level 1.
 constexpr double kNearOcclusion = 0.6;
 double near_occlusion(const Chain& c, const glm::dvec3& p, const glm::dvec3& n);
 // The 16 diffuse cones (quarter-diameter steps, quadrilinear) at surface point p with unit

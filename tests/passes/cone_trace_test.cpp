@@ -630,6 +630,44 @@ TEST(ConeTrace, DiffuseConesMatchReference) {
   EXPECT_GT(occluded, 8);  // the near-field occlusion takes part
 }
 
+// The near-field occlusion counts surfaces that face p in front of it, not the surface's own
+// back: a slab thinner than a level-1 voxel has its far face (which faces the cones) in the
+// apex's trilinear footprint. R = 16 (level-1 voxels 0.25 wide, centres at -0.125, 0.125),
+// an emitting ceiling, a floor point p at y = -0.05 (normal +y): its apex at y = 0.075 reads
+// the level-1 row centred at -0.125 with weight 0.2, the mirror point at -0.175 with 0.8.
+TEST(ConeTrace, NearOcclusionIgnoresTheSurfacesOwnBack) {
+  Chain chain(16, 5);
+  for (uint32_t z = 0; z < 16; ++z)
+    for (uint32_t y = 12; y < 16; ++y)
+      for (uint32_t x = 0; x < 16; ++x) chain.at(0, 0, x, y, z) = glm::vec4(1, 1, 1, 1);
+  chain.build_mips();
+  // One level-1 row of +y (what a cone going up sees), opaque and dark: y index `row`.
+  auto opaque_row = [](Chain c, uint32_t row) {
+    for (uint32_t z = 0; z < 8; ++z)
+      for (uint32_t x = 0; x < 8; ++x) c.at(1, RP_DIR_POS_Y, x, row, z) = glm::vec4(0, 0, 0, 1);
+    return c;
+  };
+  const Chain back = opaque_row(chain, 3);   // the slab's underside, below p
+  const Chain front = opaque_row(chain, 4);  // a surface over p, facing it
+  const glm::dvec3 p(0.01, -0.05, 0.02), n(0, 1, 0);
+  EXPECT_EQ(rp::test::cone::near_occlusion(back, p, n), 0.0);
+  EXPECT_GT(rp::test::cone::near_occlusion(front, p, n), 0.3);
+  const std::vector<glm::vec4> points = {v4(p)}, normals = {v4(n)};
+  const glm::vec4 open = run_diffuse(chain, points, normals)[0];
+  const glm::vec4 with_back = run_diffuse(back, points, normals)[0];
+  ASSERT_GT(open.x, 0.05f);
+  EXPECT_NEAR(with_back.x, open.x, 1e-6f);
+  EXPECT_LT(run_diffuse(front, points, normals)[0].x, 0.7f * open.x);
+
+  // A mirror point outside the box reads nothing: a floor on the box's face keeps the
+  // occlusion of what lies over it in the bottom row.
+  const glm::dvec3 q(0.01, -1.0 + 0.02, 0.02);
+  const Chain over_face = opaque_row(chain, 0);
+  EXPECT_GT(rp::test::cone::near_occlusion(over_face, q, n), 0.3);
+  EXPECT_LT(run_diffuse(over_face, {v4(q)}, normals)[0].x,
+            0.7f * run_diffuse(chain, {v4(q)}, normals)[0].x);
+}
+
 // The 16-cone set: unit directions, cone 0 along n, five at sin^2 = 3.5/16 72 degrees apart,
 // ten at sin^2 = 11/16 36 degrees apart and offset 18 degrees from the first ring; the kernel's
 // table and basis give the reference's directions.
