@@ -605,20 +605,19 @@ inline float rp_cone_near_occlusion(__global const float4* voxels, uint resoluti
   const uint3 dirs = rp_voxel_cone_dirs(n);
   const float3 w = n * n;
   const float3 apex = rp_cone_apex(p, n, resolution);
-  const float3 mirror = 2.0f * p - apex;
-  const float behind = fmax(fmax(fabs(mirror.x), fabs(mirror.y)), fabs(mirror.z)) <= 1.0f ? 1.0f : 0.0f;
   /* volumes of weight 0 are not read (a wall's or the floor's normal reads one of three);
    * their term would add exactly 0 */
   float a = 0.0f;
-  if (w.x > 0.0f)
-    a = w.x * (rp_cone_volume(voxels, resolution, 1u, dirs.x, apex).w -
-               behind * rp_cone_volume(voxels, resolution, 1u, dirs.x, mirror).w);
-  if (w.y > 0.0f)
-    a += w.y * (rp_cone_volume(voxels, resolution, 1u, dirs.y, apex).w -
-                behind * rp_cone_volume(voxels, resolution, 1u, dirs.y, mirror).w);
-  if (w.z > 0.0f)
-    a += w.z * (rp_cone_volume(voxels, resolution, 1u, dirs.z, apex).w -
-                behind * rp_cone_volume(voxels, resolution, 1u, dirs.z, mirror).w);
+  if (w.x > 0.0f) a = w.x * rp_cone_volume(voxels, resolution, 1u, dirs.x, apex).w;
+  if (w.y > 0.0f) a += w.y * rp_cone_volume(voxels, resolution, 1u, dirs.y, apex).w;
+  if (w.z > 0.0f) a += w.z * rp_cone_volume(voxels, resolution, 1u, dirs.z, apex).w;
+  /* the mirror term only lowers a, so where the apex shows nothing it is not read */
+  const float3 mirror = 2.0f * p - apex;
+  if (a > 0.0f && fmax(fmax(fabs(mirror.x), fabs(mirror.y)), fabs(mirror.z)) <= 1.0f) {
+    if (w.x > 0.0f) a -= w.x * rp_cone_volume(voxels, resolution, 1u, dirs.x, mirror).w;
+    if (w.y > 0.0f) a -= w.y * rp_cone_volume(voxels, resolution, 1u, dirs.y, mirror).w;
+    if (w.z > 0.0f) a -= w.z * rp_cone_volume(voxels, resolution, 1u, dirs.z, mirror).w;
+  }
   return clamp(a * RP_CONE_NEAR_OCCLUSION, 0.0f, 1.0f);
 }
 

@@ -282,11 +282,11 @@ double near_occlusion(const Chain& c, const glm::dvec3& p, const glm::dvec3& n) 
   const glm::dvec3 mirror = p - n * (normal_offset_in_voxels() * 2.0 / c.resolution);
   const bool behind = std::max({std::abs(mirror.x), std::abs(mirror.y), std::abs(mirror.z)}) <= 1.0;
   double a = 0.0;
-  for (uint32_t axis = 0; axis < 3; ++axis) {
-    const uint32_t volume = 2 * axis + (n[axis] < 0.0 ? 1u : 0u);
-    const double back = behind ? trilinear(c, 1, volume, mirror).w : 0.0;
-    a += n[axis] * n[axis] * (trilinear(c, 1, volume, apex).w - back);
-  }
+  for (uint32_t axis = 0; axis < 3; ++axis)
+    a += n[axis] * n[axis] * trilinear(c, 1, 2 * axis + (n[axis] < 0.0 ? 1u : 0u), apex).w;
+  if (a > 0.0 && behind)
+    for (uint32_t axis = 0; axis < 3; ++axis)
+      a -= n[axis] * n[axis] * trilinear(c, 1, 2 * axis + (n[axis] < 0.0 ? 1u : 0u), mirror).w;
   return std::clamp(a * kNearOcclusion, 0.0, 1.0);
 }
 
