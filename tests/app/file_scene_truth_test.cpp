@@ -37,6 +37,17 @@ void write_room(const std::filesystem::path& file) {
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
 }
 
+// The test room, written into a temporary folder and opened as `render --scene` opens it.
+app::FileScene open_room() {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("rolypoly_room_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  write_room(dir / "room.glb");
+  app::FileScene file = app::open_scene_file((dir / "room.glb").string());
+  std::filesystem::remove_all(dir);
+  return file;
+}
+
 // Mean |a - b| / mean b over the pixels (rgb), and mean (a - b) / mean b.
 void relative_l1_bias(const std::vector<float>& a, const std::vector<float>& b, double& l1,
                       double& bias) {
@@ -52,12 +63,7 @@ void relative_l1_bias(const std::vector<float>& a, const std::vector<float>& b, 
 
 TEST(FileSceneTruth, LoadedRoomMatchesItsPathTracedTruth) {
   rp::cl::ensure_pocl_cache_dir();
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("rolypoly_room_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  write_room(dir / "room.glb");
-  const app::FileScene file = app::open_scene_file((dir / "room.glb").string());
-  std::filesystem::remove_all(dir);
+  const app::FileScene file = open_room();
   ASSERT_EQ(file.loaded.lights.size(), 3u);
 
   truth::PathTraceSettings settings;
@@ -105,12 +111,7 @@ TEST(FileSceneTruth, LoadedRoomMatchesItsPathTracedTruth) {
 // two planes at half the size, all after the lamp's two planes in one depth buffer.
 TEST(FileSceneTruth, TheLightsShadowViewsAreCountedInTheDeviceMemory) {
   rp::cl::ensure_pocl_cache_dir();
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("rolypoly_room_views_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  write_room(dir / "room.glb");
-  const app::FileScene file = app::open_scene_file((dir / "room.glb").string());
-  std::filesystem::remove_all(dir);
+  const app::FileScene file = open_room();
   ASSERT_EQ(file.loaded.lights.size(), 3u);
 
   app::CommonOptions common;
