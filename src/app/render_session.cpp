@@ -286,7 +286,6 @@ SceneMemory RenderSession::scene_memory() const {
 
 void RenderSession::check_light_views(const scene::FrameScene& frame) {
   light_views_checked_ = true;
-
   if (frame.lights.empty()) return;
   light_shadow_bytes_ =
       4 * render::punctual_shadow_floats(frame.lights, renderer_->settings().shadow_size);
