@@ -227,7 +227,6 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
   frame.light_components =
       passes::needs_light_components(options.view.view) || keep_components;
   frame.prt = prt_.has_value();
-  keep_components_ = keep_components;
   scene_name_ = "--scene " + options.scene;
   check_device_memory(context_.info, settings, frame, &scene, scene_name_);
   device_memory_estimate_ = estimate_device_memory(settings, frame, &scene).total_bytes;
@@ -253,7 +252,6 @@ void RenderSession::set_keep_components(bool keep) {
     frame.prt = prt_.has_value();
     check_device_memory(context_.info, renderer_->settings(), frame, &scene, scene_name_);
   }
-  keep_components_ = keep;
   renderer_->set_keep_light_components(keep);
 }
 
@@ -291,7 +289,8 @@ void RenderSession::check_light_views(const scene::FrameScene& frame) {
       4 * render::punctual_shadow_floats(frame.lights, renderer_->settings().shadow_size);
   const SceneMemory scene = scene_memory();
   render::FrameMemoryOptions options;
-  options.light_components = passes::needs_light_components(view_.view) || keep_components_;
+  options.light_components =
+      passes::needs_light_components(view_.view) || renderer_->keeps_light_components();
   options.prt = prt_.has_value();
   check_device_memory(context_.info, renderer_->settings(), options, &scene, scene_name_);
   device_memory_estimate_ =

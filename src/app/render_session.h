@@ -151,7 +151,6 @@ class RenderSession {
   bool prt_ready_ = false;                     // prepare_prt ran: the renderer has the transfer
   bool light_views_checked_ = false;           // check_light_views ran
   uint64_t light_shadow_bytes_ = 0;            // the lights' shadow views (SceneMemory)
-  bool keep_components_ = false;               // the light components are kept (render --exr)
   std::string scene_name_;                     // "--scene NAME", for the memory messages
 };
 

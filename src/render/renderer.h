@@ -109,6 +109,7 @@ class Renderer {
   // (allocates the three float4 buffers, 48 bytes per pixel, now and on resize), for
   // read_components.
   void set_keep_light_components(bool keep);
+  bool keeps_light_components() const { return keep_components_; }
   // Sky light by precomputed radiance transfer from now on (passes/prt_sky.h): `prt` holds the
   // transfer of the frames' instances (the same instances, in the same order, every frame);
   // the diffuse cones and the bounce grid then carry no sky, the reflection cones still do.
