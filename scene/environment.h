@@ -26,7 +26,16 @@ struct Environment {
   std::shared_ptr<const EnvironmentMap> map;  // nullptr: no environment light
   float strength = 1.0f;                      // multiplies the map's radiance
   float rotate_deg = 0.0f;                    // turn about +y
+  // The map without its suns (scene/environment_suns.h), or nullptr when none were taken out.
+  // The real-time modes gather this one (cones, PRT) and light by the suns as the frame's
+  // directional lights marked in_environment; the background shows `map`, and the path tracer
+  // samples `map` whole and counts map - residual at the first vertex as direct light.
+  std::shared_ptr<const EnvironmentMap> residual;
   bool enabled() const { return map != nullptr && map->width > 0 && map->height > 0; }
+  // What the real-time modes gather: the residual where suns were taken out, else the map.
+  const std::shared_ptr<const EnvironmentMap>& gathered_map() const {
+    return residual ? residual : map;
+  }
 };
 
 // Unit direction (in the map's frame) of map coordinates (u, v) in [0, 1]^2.

@@ -160,6 +160,9 @@ struct PunctualLight {
   float outer_cone = 0.7853982f;       // spot: radians, zero outside; between: glTF's smooth
                                        // t = clamp((cos a - cos outer) / (cos inner - cos outer)),
                                        // attenuation t^2
+  // A sun of the environment map (scene/environment_suns.h): the real-time modes light by it,
+  // the path tracer finds its light in the map (Environment::residual) and leaves it out here.
+  bool in_environment = false;
 };
 
 struct MeshInstance {

@@ -3,11 +3,14 @@
 # (gen_load_scene --yard) under every map of Debian's blender-data and the clear sky, for the
 # cones and for PRT (9 coefficients interreflected, 25 interreflected, 25 shadowed), each with
 # bench --accuracy at 128x128 against a 256-spp truth; then one Markdown table of the JSONs.
-#   bash tools/sky_accuracy_table.sh [BUILD_DIR] [OUT_DIR]   (defaults: build, out/sky-table)
+#   bash tools/sky_accuracy_table.sh [BUILD_DIR] [OUT_DIR] [OPTIONS]
+# (defaults: build, out/sky-table; OPTIONS are added to every run, e.g. "--env-suns 0" for the
+# maps whole, their suns gathered by the cones or PRT with the rest)
 # About 30 s per map and configuration on 2 cores (the truths and transfers are cached).
 set -euo pipefail
 build="${1:-build}"
 out="${2:-out/sky-table}"
+extra="${3:-}"
 maps=/usr/share/blender/datafiles/studiolights/world
 [[ -d "$maps" ]] || { echo "sky_accuracy_table: $maps missing (apt-get install blender-data)" >&2; exit 2; }
 mkdir -p "$out"
@@ -23,7 +26,7 @@ for sky in "${skies[@]}"; do
     tag="${config%%:*}"
     [[ -f "$out/$name-$tag.json" ]] && continue
     # shellcheck disable=SC2086  # the option strings are word lists
-    "$build/rolypoly" bench --accuracy --scene "$out/yard.glb" ${sky#*:} ${config#*:} \
+    "$build/rolypoly" bench --accuracy --scene "$out/yard.glb" ${sky#*:} ${config#*:} $extra \
       --size 128 --spp 256 --out "$out/$name-$tag" --json "$out/$name-$tag.json" \
       > "$out/$name-$tag.log" 2>&1 || { echo "failed: $name $tag (see $out/$name-$tag.log)" >&2; exit 1; }
     echo "done: $name $tag"

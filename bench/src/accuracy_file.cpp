@@ -153,9 +153,19 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
                        : std::string()) +
                   ", " + std::to_string(prt.samples) + " directions"
             : "cones";
+    // the map the real-time modes gather: without its suns, which are directional lights
+    scene::Environment gathered = sky.environment;
+    gathered.map = sky.environment.gathered_map();
+    gathered.residual = nullptr;
     for (const int bands : {3, 5})
       j["sky_sh_irradiance_error"][std::to_string(bands * bands)] =
-          shading::sh_irradiance_error(sky.environment, bands);
+          shading::sh_irradiance_error(gathered, bands);
+    j["sky_suns"] = nlohmann::json::array();
+    for (const scene::EnvironmentSun& sun : sky.map_suns)
+      j["sky_suns"].push_back({{"share", sun.share},
+                               {"solid_angle_sr", sun.solid_angle},
+                               {"irradiance", {sun.irradiance.x, sun.irradiance.y,
+                                               sun.irradiance.z}}});
   }
   j["width"] = w;
   j["height"] = h;

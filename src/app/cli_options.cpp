@@ -279,6 +279,12 @@ void add_sky_options(CLI::App* cmd, CommonOptions& common) {
                   "--env or --sky clear: multiply the map's radiance (and the clear sky's sun) "
                   "by K >= 0 (default 1)")
       ->check(decimal_in(0.0, 1000000.0));
+  cmd->add_option("--env-suns", sky.env_suns,
+                  "--env: take up to N compact bright patches out of the map (its sun, a "
+                  "studio's softboxes: at least 100x the map's mean, 5 % of its light within "
+                  "0.1 sr) and light by them as directional lights with shadow maps, 0 to 4 "
+                  "(default 4; 0: the cones and PRT gather the whole map)")
+      ->transform(whole_number(0, 4));
   cmd->add_option_function<std::string>(
          "--sky", [&sky](const std::string&) { sky.clear_sky = true; },
          "clear: a built-in Preetham clear sky with its sun as a directional light (--sun "
@@ -340,7 +346,9 @@ std::string check_sky(const CLI::App* cmd, const CommonOptions& common, bool acc
     return "--sun places the sun of --sky clear (an --env map's sun is part of the map)";
   if (cmd->count("--env-rotate") && sky.clear_sky)
     return "--env-rotate turns an --env map; the clear sky's sun is placed with --sun AZ,EL";
-  for (const char* name : {"--env-rotate", "--env-strength"})
+  if (cmd->count("--env-suns") && sky.clear_sky)
+    return "--env-suns takes the suns out of an --env map; the clear sky's sun is its own light";
+  for (const char* name : {"--env-rotate", "--env-strength", "--env-suns"})
     if (cmd->count(name) && !sky.given())
       return std::string(name) + " applies to --env FILE" +
              (std::string(name) == "--env-strength" ? " or --sky clear" : "");

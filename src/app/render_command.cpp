@@ -47,6 +47,7 @@ int render_frames(const CommonOptions& common, const RenderOptions& options,
   std::unique_ptr<FileFrameSource> file_source;
   if (file) file_source = std::make_unique<FileFrameSource>(*file);
   std::printf("device %s\n", describe_device(session.device()).c_str());
+  if (!session.sky_description().empty()) std::printf("%s\n", session.sky_description().c_str());
   if (file) {
     const render::SetupTimes& t = session.renderer().setup_times();
     std::printf("%s\nset-up: scene upload %.0f ms (mip chains %.0f, buffers %.0f), ",

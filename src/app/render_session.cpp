@@ -211,7 +211,10 @@ RenderSession::RenderSession(const CommonOptions& options, uint32_t width, uint3
     : assets_(assets ? *assets : load_demo_assets(options)),
       context_(rp::cl::Context::create(options.device)),
       programs_(context_) {
-  if (options.sky.given()) sky_ = std::make_unique<SkyLight>(load_sky(options.sky));
+  if (options.sky.given()) {
+    sky_ = std::make_unique<SkyLight>(load_sky(options.sky));
+    sky_description_ = describe_sky(options.sky, *sky_);
+  }
   if (sky_ && options.sky.prt) prt_ = options.sky.prt_settings;
   render::RenderSettings settings = options.render;
   settings.width = width;
@@ -272,7 +275,11 @@ SceneMemory RenderSession::scene_memory() const {
   SceneMemory memory = count_scene_memory(assets_);
   if (sky_ && sky_->environment.enabled())
     memory.sky_texels = render::sky_texel_count(sky_->environment.map->width,
-                                                sky_->environment.map->height);
+                                                sky_->environment.map->height) +
+                        (sky_->environment.residual ? render::sky_level0_texel_count(
+                                                          sky_->environment.map->width,
+                                                          sky_->environment.map->height)
+                                                    : 0);
   if (prt_) {
     const uint64_t per_vertex = uint64_t(prt_->bands * prt_->bands) *
                                 (prt_->kind == truth::PrtKind::kInterreflected ? 3u : 1u);

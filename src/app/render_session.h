@@ -32,6 +32,9 @@ struct SkyOptions {
   float strength = 1.0f;    // --env-strength: multiplies the map (the clear sky's sun too)
   float sun_azimuth_deg = 135.0f;   // --sun AZ,EL: compass angle from -z towards +x,
   float sun_elevation_deg = 45.0f;  // and degrees above the horizon (scene::ClearSkySettings)
+  // --env-suns: the map's suns taken out and lit as directional lights, at most this many
+  // (0: the cones and PRT gather the whole map; scene/environment_suns.h)
+  int env_suns = 4;
   bool given() const { return !env_file.empty() || clear_sky; }
   // --sky-light prt: the sky's diffuse light by precomputed radiance transfer (passes/
   // prt_sky.h) instead of through the cones; the transfer of the scene's (static) instances
@@ -98,6 +101,8 @@ class RenderSession {
   // Turns the sky (--env / --sky clear) about +y by `degrees` for the next frames (key O in
   // the window); returns the map's turn now in degrees, or nothing without a sky.
   std::optional<float> turn_sky(float degrees);
+  // The sky and the suns taken out of its map, for the log ("" without a sky).
+  const std::string& sky_description() const { return sky_description_; }
 
   // Post-processing switches for the next frames (keys T, B, M in the window).
   void set_effects(const render::Effects& effects) { renderer_->set_effects(effects); }
@@ -146,6 +151,7 @@ class RenderSession {
   uint64_t device_memory_estimate_ = 0;
   std::optional<FrameTimeScale> frame_scale_;  // --target-ms
   std::unique_ptr<SkyLight> sky_;              // --env / --sky clear; nullptr: none
+  std::string sky_description_;                // app/sky_input.h describe_sky, "" without
   scene::FrameScene lit_frame_;                // with sky_: the frame render() adds it to
   std::optional<truth::PrtSettings> prt_;      // --sky-light prt
   bool prt_ready_ = false;                     // prepare_prt ran: the renderer has the transfer

@@ -252,6 +252,7 @@ int run_command(const CommonOptions& common, const RunOptions& options) {
     window->set_look_drag(true);
   }
   std::printf("device %s\n", describe_device(session.device()).c_str());
+  if (!session.sky_description().empty()) std::printf("%s\n", session.sky_description().c_str());
   std::fflush(stdout);
 
   PassStats all, interval;

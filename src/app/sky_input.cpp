@@ -1,5 +1,6 @@
 #include "app/sky_input.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include <memory>
 
 #include "scene/asset_error.h"
+#include "render/gpu_types.h"
 #include "scene/clear_sky.h"
 #include "truth/environment.h"
 
@@ -51,9 +53,15 @@ SkyLight load_sky(const SkyOptions& options) {
     } catch (const std::exception& e) {
       throw scene::AssetError(std::string("--env: ") + e.what());
     }
+    const scene::EnvironmentSuns suns = scene::find_environment_suns(*map, options.env_suns);
     sky.environment.map = std::move(map);
+    sky.environment.residual = suns.residual;
     sky.environment.rotate_deg = options.rotate_deg;
     sky.environment.strength = options.strength;
+    sky.map_suns = suns.suns;
+    for (size_t i = 0; i < suns.suns.size(); ++i)
+      sky.suns.push_back(scene::environment_sun_light(suns.suns[i], int(i), options.rotate_deg,
+                                                      options.strength));
   } else if (options.clear_sky) {
     scene::ClearSkySettings settings;
     settings.sun_azimuth_deg = options.sun_azimuth_deg;
@@ -62,7 +70,7 @@ SkyLight load_sky(const SkyOptions& options) {
     sky.environment.map = std::move(clear.map);
     sky.environment.strength = options.strength;
     clear.sun.intensity *= options.strength;
-    sky.sun = clear.sun;
+    sky.suns.push_back(clear.sun);
   }
   return sky;
 }
@@ -70,16 +78,25 @@ SkyLight load_sky(const SkyOptions& options) {
 void add_sky(const SkyLight& sky, scene::FrameScene& frame) {
   if (!sky.environment.enabled()) return;
   frame.environment = sky.environment;
-  if (sky.sun) frame.lights.push_back(*sky.sun);
+  if (frame.lights.size() + sky.suns.size() > RP_MAX_PUNCTUAL_LIGHTS)
+    throw scene::AssetError(
+        "the scene's " + std::to_string(frame.lights.size()) + " lights and the sky's " +
+        std::to_string(sky.suns.size()) + " suns are more than the renderer's " +
+        std::to_string(RP_MAX_PUNCTUAL_LIGHTS) + " lights; --env-suns " +
+        std::to_string(RP_MAX_PUNCTUAL_LIGHTS - std::min<size_t>(frame.lights.size(),
+                                                                 RP_MAX_PUNCTUAL_LIGHTS)) +
+        " takes no more suns out of the map than fit");
+  frame.lights.insert(frame.lights.end(), sky.suns.begin(), sky.suns.end());
 }
 
 void turn_sky(SkyLight& sky, float degrees) {
   sky.environment.rotate_deg = std::fmod(sky.environment.rotate_deg + degrees, 360.0f);
-  if (!sky.sun) return;
   // the path tracer's map-to-world turn (truth::EnvironmentSampler::to_world) by `degrees`
   const float a = degrees * 0.0174532925f, c = std::cos(a), s = std::sin(a);
-  const glm::vec3 d = sky.sun->direction;
-  sky.sun->direction = glm::vec3(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
+  for (scene::PunctualLight& sun : sky.suns) {
+    const glm::vec3 d = sun.direction;
+    sun.direction = glm::vec3(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
+  }
 }
 
 std::string describe_sky(const SkyOptions& options, const SkyLight& sky) {
@@ -95,6 +112,20 @@ std::string describe_sky(const SkyOptions& options, const SkyLight& sky) {
     if (options.rotate_deg != 0.0f) text += ", turned " + number(options.rotate_deg) + " degrees";
   }
   if (options.strength != 1.0f) text += ", strength " + number(options.strength);
+  for (size_t i = 0; i < sky.map_suns.size(); ++i) {
+    const scene::EnvironmentSun& sun = sky.map_suns[i];
+    const glm::vec3 towards = -sky.suns[i].direction;  // world, the map's turn applied
+    const double azimuth = std::atan2(double(towards.x), -double(towards.z)) * 57.29577951;
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "\n  sun %zu of the map: %.1f %% of its light from azimuth %.0f, elevation %.1f "
+                  "degrees (%.3f sr), lit as a directional light with a shadow map",
+                  i + 1, 100.0 * double(sun.share),
+                  azimuth < 0.0 ? azimuth + 360.0 : azimuth,
+                  std::asin(std::clamp(double(towards.y), -1.0, 1.0)) * 57.29577951,
+                  double(sun.solid_angle));
+    text += line;
+  }
   return text;
 }
 

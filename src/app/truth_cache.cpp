@@ -137,6 +137,12 @@ std::string truth_key(const scene::SceneAssets& assets, const scene::FrameScene&
     h.bytes(map.rgb.data(), map.rgb.size() * sizeof(float));
     h.value(frame.environment.strength);
     h.value(frame.environment.rotate_deg);
+    // suns taken out of the map (scene/environment_suns.h): their part is direct light at
+    // the first vertex; the whole map stays what is sampled, so the images' sum is the same
+    if (const auto& residual = frame.environment.residual) {
+      h.text("environment-suns");
+      h.bytes(residual->rgb.data(), residual->rgb.size() * sizeof(float));
+    }
   }
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.get()));

@@ -75,10 +75,11 @@ PrtSkyPass::~PrtSkyPass() = default;
 
 void PrtSkyPass::update_environment(const scene::Environment& environment) {
   const bool enabled = environment.enabled();
-  if (enabled && environment.map != projected_map_) {
-    scene::Environment unturned{environment.map, 1.0f, 0.0f};
+  if (enabled && environment.gathered_map() != projected_map_) {
+    // the map without its suns: they light the scene as directional lights
+    scene::Environment unturned{environment.gathered_map(), 1.0f, 0.0f, nullptr};
     unturned_ = shading::sh_project_environment(unturned, bands_);
-    projected_map_ = environment.map;
+    projected_map_ = environment.gathered_map();
     uploaded_strength_ = -1.0f;  // force the upload
   }
   if (enabled == uploaded_enabled_ &&

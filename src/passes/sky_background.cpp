@@ -15,7 +15,7 @@ void SkyBackgroundPass::run(rp::cl::Profiler& profiler, const render::GpuScene& 
   const gpu::FrameConstants& c = scene.constants;
   if (c.sky.levels == 0 || c.width == 0 || c.height == 0) return;
   if (!kernel_()) kernel_ = programs_->kernel("sky.cl", "sky_background");
-  rp::cl::bind_args(kernel_, scene.frame, scene.sky, gbuffer.position, hdr);
+  rp::cl::bind_args(kernel_, scene.frame, scene.sky_seen, gbuffer.position, hdr);
   profiler.enqueue(pass_name::kSky, kernel_,
                    ::cl::NDRange(rp::cl::round_up((c.width + 7) / 8, kGroupX),
                                  rp::cl::round_up(c.height, kGroupY)),

@@ -239,17 +239,29 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
   }
   frame = ::cl::Buffer(context, CL_MEM_READ_ONLY, sizeof(gpu::FrameConstants));
   sky = upload(context, queue_, std::vector<gpu::rp_float4>(1, gpu::rp_float4{}), "no sky");
+  sky_seen = sky;
 }
 
 void GpuScene::update_sky(const scene::Environment& environment) {
-  if (environment.enabled() && environment.map != sky_map_) {
-    const SkyTexture texture = build_sky_texture(*environment.map);
+  if (environment.enabled() &&
+      (environment.gathered_map() != sky_map_ || environment.map != sky_seen_map_)) {
+    const SkyTexture texture = build_sky_texture(*environment.gathered_map());
     sky = upload(context_, queue_, texture.texels,
                  "the environment map's " + std::to_string(texture.info.levels) + " levels (" +
                      std::to_string(texture.info.width) + "x" +
                      std::to_string(texture.info.height) + " and halvings)");
-    sky_map_ = environment.map;
+    sky_map_ = environment.gathered_map();
     sky_info_ = texture.info;
+    sky_seen = sky;
+    if (environment.residual) {  // the whole map's level 0 (level_offset[0] is 0)
+      std::vector<gpu::rp_float4> level0 = build_sky_texture(*environment.map).texels;
+      level0.resize(size_t(texture.info.width) * texture.info.height);
+      sky_seen = upload(context_, queue_, level0,
+                        "the environment map with its suns (" +
+                            std::to_string(texture.info.width) + "x" +
+                            std::to_string(texture.info.height) + ")");
+    }
+    sky_seen_map_ = environment.map;
   }
   constants.sky = sky_record(sky_info_, environment);
   if (!sky_diffuse_cones_) constants.sky.diffuse_cones = 0;

@@ -102,6 +102,10 @@ class GpuScene {
   // The frame's environment map and its mip chain (render/sky_texture.h; one unused texel
   // without one), uploaded when the frame's map changes; FrameConstants.sky places its levels.
   ::cl::Buffer sky;
+  // The map seen directly (kernels/sky.cl): `sky` itself, or where suns were taken out of
+  // what the cones gather (scene::Environment::residual), the whole map's level 0 alone, laid
+  // out as `sky`'s.
+  ::cl::Buffer sky_seen;
   // Whether the diffuse cones add the sky (FrameConstants.sky.diffuse_cones; on by default):
   // off where precomputed radiance transfer carries the diffuse sky (passes/prt_sky.h).
   void set_sky_diffuse_cones(bool on) { sky_diffuse_cones_ = on; }
@@ -121,6 +125,7 @@ class GpuScene {
   void update_sky(const scene::Environment& environment);
   bool sky_diffuse_cones_ = true;
   std::shared_ptr<const scene::EnvironmentMap> sky_map_;  // the map `sky` holds (nullptr: none)
+  std::shared_ptr<const scene::EnvironmentMap> sky_seen_map_;  // the one `sky_seen` shows
   gpu::SkyGpu sky_info_{};
   glm::vec2 last_jitter_px_{0.0f};  // the jitter the previous update() used (0 before the first)
 };

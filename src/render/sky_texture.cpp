@@ -75,6 +75,15 @@ SkyTexture build_sky_texture(const scene::EnvironmentMap& map) {
   return out;
 }
 
+uint64_t sky_level0_texel_count(int width, int height) {
+  int w = std::max(width, 1), h = std::max(height, 1);
+  while (w > kSkyMaxWidth) {
+    w = std::max(w / 2, 1);
+    h = std::max(h / 2, 1);
+  }
+  return uint64_t(w) * uint64_t(h);
+}
+
 uint64_t sky_texel_count(int width, int height) {
   int w = std::max(width, 1), h = std::max(height, 1);
   while (w > kSkyMaxWidth) {

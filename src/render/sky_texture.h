@@ -30,6 +30,9 @@ SkyTexture build_sky_texture(const scene::EnvironmentMap& map);
 
 // The texels build_sky_texture makes of a width x height map (what the device holds).
 uint64_t sky_texel_count(int width, int height);
+// The texels of its level 0 alone (what the device holds besides, to show a map whose suns
+// were taken out of the chain: GpuScene::sky_seen).
+uint64_t sky_level0_texel_count(int width, int height);
 
 // `levels` (a SkyTexture's info) with the environment's turn and strength (the path tracer's
 // convention: truth::EnvironmentSampler), or all zero (no sky) when `environment` is disabled.

@@ -30,6 +30,8 @@ size_t invert(const std::vector<float>& cdf, size_t first, size_t n, float u, fl
 EnvironmentSampler::EnvironmentSampler(const scene::Environment& environment) {
   if (!environment.enabled() || !(environment.strength > 0.0f)) return;
   map_ = environment.map.get();
+  if (environment.residual && environment.residual->rgb.size() == map_->rgb.size())
+    residual_ = environment.residual.get();
   strength_ = environment.strength;
   cos_turn_ = std::cos(environment.rotate_deg * kDegree);
   sin_turn_ = std::sin(environment.rotate_deg * kDegree);
@@ -92,6 +94,18 @@ glm::vec3 EnvironmentSampler::radiance(glm::vec3 dir) const {
   return glm::vec3(t[0], t[1], t[2]) * strength_;
 }
 
+glm::vec3 EnvironmentSampler::sun_part(size_t texel) const {
+  if (residual_ == nullptr) return glm::vec3(0.0f);
+  const float* t = &map_->rgb[3 * texel];
+  const float* r = &residual_->rgb[3 * texel];
+  return glm::vec3(t[0] - r[0], t[1] - r[1], t[2] - r[2]) * strength_;
+}
+
+glm::vec3 EnvironmentSampler::sun_radiance(glm::vec3 dir) const {
+  if (map_ == nullptr) return glm::vec3(0.0f);
+  return sun_part(texel_of(to_map(dir)));
+}
+
 EnvironmentSampler::Sample EnvironmentSampler::sample(float u1, float u2) const {
   Sample s;
   if (!enabled_) return s;
@@ -106,6 +120,7 @@ EnvironmentSampler::Sample EnvironmentSampler::sample(float u1, float u2) const 
   s.dir = to_world(map_dir);
   const float* t = &map_->rgb[3 * (y * w + x)];
   s.radiance = glm::vec3(t[0], t[1], t[2]) * strength_;
+  s.sun = sun_part(y * w + x);
   s.pdf = density_[y * w + x] / (2.0f * kPi * kPi * sin_theta);
   return s;
 }

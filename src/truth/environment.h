@@ -27,9 +27,15 @@ class EnvironmentSampler {
   // Radiance arriving from world direction `dir` (unit; strength and rotation applied).
   glm::vec3 radiance(glm::vec3 dir) const;
 
+  // The part of radiance(dir) that the environment's suns took out of the map (map -
+  // residual, scene::Environment::residual): what the real-time modes light by directional
+  // lights, the path tracer's direct light at the first vertex. 0 without suns.
+  glm::vec3 sun_radiance(glm::vec3 dir) const;
+
   struct Sample {
     glm::vec3 dir{0.0f};       // world, unit
     glm::vec3 radiance{0.0f};  // radiance(dir)
+    glm::vec3 sun{0.0f};       // sun_radiance(dir), a part of radiance
     float pdf = 0.0f;          // per unit solid angle
   };
   Sample sample(float u1, float u2) const;
@@ -38,11 +44,13 @@ class EnvironmentSampler {
 
  private:
   size_t texel_of(glm::vec3 map_dir) const;
+  glm::vec3 sun_part(size_t texel) const;
   glm::vec3 to_map(glm::vec3 world) const;
   glm::vec3 to_world(glm::vec3 map) const;
 
   bool enabled_ = false;
   const scene::EnvironmentMap* map_ = nullptr;
+  const scene::EnvironmentMap* residual_ = nullptr;  // the map without its suns, or none
   float strength_ = 1.0f;
   float cos_turn_ = 1.0f, sin_turn_ = 0.0f;
   std::vector<float> row_cdf_;    // height entries, inclusive, last = 1

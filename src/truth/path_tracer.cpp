@@ -120,6 +120,7 @@ class Integrator {
     glm::vec3 sum = demo_lamp(s, wo, rng, spec);
     glm::vec3 light_spec(0.0f);
     for (const scene::PunctualLight& light : scene_.frame().lights) {
+      if (light.in_environment) continue;  // its light is in the map: environment_light()
       sum += punctual(light, s, wo, spec ? &light_spec : nullptr);
       if (spec) *spec += light_spec;
     }
@@ -128,9 +129,12 @@ class Integrator {
 
   // The environment's light reflected by `s`, one direction sampled by the map (MIS weighted
   // against the BRDF's sampler, which the gather's escaping rays stand for). Draws two numbers,
-  // only when there is an environment.
-  glm::vec3 environment_light(const Surface& s, glm::vec3 wo, Pcg32& rng, glm::vec3* spec) {
+  // only when there is an environment. sun (optional): receives the part of the result that
+  // came from the environment's suns (EnvironmentSampler::sun_radiance).
+  glm::vec3 environment_light(const Surface& s, glm::vec3 wo, Pcg32& rng, glm::vec3* spec,
+                              glm::vec3* sun = nullptr) {
     if (spec) *spec = glm::vec3(0.0f);
+    if (sun) *sun = glm::vec3(0.0f);
     const float u1 = rng.uniform(), u2 = rng.uniform();
     const EnvironmentSampler::Sample es = env_.sample(u1, u2);
     if (!(es.pdf > 0.0f)) return glm::vec3(0.0f);
@@ -142,9 +146,11 @@ class Integrator {
     const float bsdf_pdf =
         glossy ? shading::brdf_pdf(bsdf_of(s), s.ns, wo, es.dir, tables_) : c / kPi;
     // f L cos / pdf with pi f in rolypoly's units: (pi f / pi) L cos / pdf
-    const glm::vec3 li = es.radiance * (c / kPi / es.pdf * power_heuristic(es.pdf, bsdf_pdf));
+    const float k = c / kPi / es.pdf * power_heuristic(es.pdf, bsdf_pdf);
+    const glm::vec3 li = es.radiance * k;
     const glm::vec3 f = glossy ? pi_f(s, wo, es.dir, spec) : s.albedo;
     if (spec) *spec *= li;
+    if (sun) *sun = f * (es.sun * k);
     return f * li;
   }
 
@@ -270,11 +276,14 @@ class Integrator {
     r.albedo = s.albedo;
     glm::vec3 wo = -dir;  // towards the previous vertex
     // The environment's light at the seen surface is gathered light (the real-time passes
-    // bring it through their cones): indirect, sampled right after the lights as lamp() does.
+    // bring it through their cones): indirect, sampled right after the lights as lamp() does;
+    // but its suns' part is direct, as the real-time passes light by them.
     r.direct = lights(s, wo, rng, &r.specular);
     if (env_.enabled()) {
-      glm::vec3 env_spec(0.0f);
-      r.indirect += environment_light(s, wo, rng, &env_spec);
+      glm::vec3 env_spec(0.0f), env_sun(0.0f);
+      const glm::vec3 env = environment_light(s, wo, rng, &env_spec, &env_sun);
+      r.direct += env_sun;
+      r.indirect += env - env_sun;
       r.specular += env_spec;
     }
     glm::vec3 beta(1.0f);  // throughput from the camera to s: f cos / pdf of the gathers so far
@@ -327,9 +336,13 @@ class Integrator {
       ++rays;
       if (!scene_.intersect(s.p + s.ng * kRayOffset, wi, kFar, next)) {
         if (env_.enabled()) {  // the environment's BRDF-sampled share (MIS weighted)
-          const glm::vec3 sky = env_.radiance(wi) * environment_weight(wi, pdf);
-          // gathered light at every vertex, as the map-sampled share
-          r.indirect += beta * sky;
+          const float w = environment_weight(wi, pdf);
+          const glm::vec3 sky = env_.radiance(wi) * w;
+          // gathered light at every vertex, as the map-sampled share; the suns' part direct
+          // at the first
+          const glm::vec3 sun = gather == 1 ? env_.sun_radiance(wi) * w : glm::vec3(0.0f);
+          r.direct += beta * sun;
+          r.indirect += beta * (sky - sun);
           r.specular += beta_s * sky;
         }
         break;

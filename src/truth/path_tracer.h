@@ -47,6 +47,8 @@
 //             Their shadow rays (and the sky's) test casts_shadow and casts_light_shadow
 //             instances: the demo's box keeps a sky's sun out, not its own lamp's light.
 //             They count as the direct component and, after a gather, as lamp-lit surfaces do.
+//             An environment's suns (PunctualLight::in_environment) are left out: their light
+//             is in the map, which is sampled whole (components below).
 //   materials a file's materials as the renderer reads them: alpha-masked holes are skipped
 //             by every ray (an Embree filter), normal maps tilt the shading normal in the
 //             interpolated tangent frame, metallic-roughness and emission textures scale their
@@ -66,7 +68,8 @@
 //             today. Russian roulette only after the third gather (unbiased).
 //   components (per pixel, the mean over its samples, linear radiance in the renderer's units):
 //             direct   = the lamp's and the punctual lights' direct light at the surface the
-//                        camera sees
+//                        camera sees, and the environment's suns' part of the map there
+//                        (Environment::residual: the real-time passes light by them)
 //             emission = that surface's own emission, or the environment where no surface is
 //             indirect = everything else reaching the camera from it (gathered light), the
 //                        environment's light included (the real-time passes gather the sky

@@ -16,6 +16,8 @@
 
 #include "app/sky_input.h"
 #include "cli/cli.h"
+#include "render/gpu_types.h"
+#include "scene/asset_error.h"
 #include "scene/box_mesh.h"
 #include "scene/frame_scene.h"
 #include "scene/gltf_export.h"
@@ -118,6 +120,62 @@ TEST(SkyCli, CombinationsAndValuesAreRefusedWithAReason) {
                          "elevation 1 to 90 above the horizon"))
         << bad;
   EXPECT_TRUE(Contains(refusal(with({"--env", ""})), "--env needs a value"));
+  EXPECT_TRUE(Contains(refusal(with({"--env-suns", "2"})),
+                       "rolypoly render: --env-suns applies to --env FILE\n"));
+  EXPECT_TRUE(Contains(refusal(with({"--sky", "clear", "--env-suns", "1"})),
+                       "--env-suns takes the suns out of an --env map; the clear sky's sun is "
+                       "its own light"));
+  for (const char* bad : {"5", "-1", "x", "1.5"})
+    EXPECT_TRUE(Contains(refusal(with({"--env", "a.hdr", "--env-suns", bad})), "--env-suns"))
+        << bad;
+  EXPECT_EQ(sky_of(with({"--env", "a.hdr", "--env-suns", "0"})).env_suns, 0);
+  EXPECT_EQ(sky_of(with({"--env", "a.hdr"})).env_suns, 4);
+}
+
+// A map's suns are the frame's directional lights, turned with the map; there is room for
+// them beside the scene's lights or a clear message.
+TEST(SkyCli, TheMapsSunsAreLightsThatTurnWithTheMap) {
+  TempDir dir;
+  const int mw = 64, mh = 32;
+  std::vector<float> rgb(size_t(mw) * mh * 3, 0.5f);
+  for (int y = 8; y < 10; ++y)  // a 2 x 2 sun at (u, v) = (0.25, 0.28): azimuth 90 degrees
+    for (int x = 15; x < 17; ++x)
+      for (int c = 0; c < 3; ++c) rgb[(size_t(y) * mw + size_t(x)) * 3 + size_t(c)] = 3000.0f;
+  truth::write_exr_atomic(dir / "sun.exr", mw, mh, {{"", &rgb}});
+  app::SkyOptions options;
+  options.env_file = (dir / "sun.exr").string();
+  app::SkyLight sky = app::load_sky(options);
+  ASSERT_EQ(sky.suns.size(), 1u);
+  ASSERT_NE(sky.environment.residual, nullptr);
+  EXPECT_TRUE(sky.suns[0].in_environment);
+  EXPECT_TRUE(Contains(app::describe_sky(options, sky),
+                       "\n  sun 1 of the map: 9"));  // 90+ % of its light
+  EXPECT_TRUE(Contains(app::describe_sky(options, sky), "from azimuth 90, elevation 39."));
+  const glm::vec3 before = sky.suns[0].direction;
+  app::turn_sky(sky, 90.0f);
+  const glm::vec3 after = sky.suns[0].direction;
+  EXPECT_NEAR(after.y, before.y, 1e-6f);
+  EXPECT_NEAR(after.x * before.x + after.z * before.z, 0.0f, 1e-6f);
+  EXPECT_GT(truth::EnvironmentSampler(sky.environment).radiance(-after).x, 1000.0f);
+
+  scene::FrameScene frame;
+  app::add_sky(sky, frame);
+  ASSERT_EQ(frame.lights.size(), 1u);
+  EXPECT_EQ(frame.environment.residual, sky.environment.residual);
+  scene::FrameScene full;
+  full.lights.resize(RP_MAX_PUNCTUAL_LIGHTS);
+  try {
+    app::add_sky(sky, full);
+    ADD_FAILURE() << "eight lights and a sun were taken";
+  } catch (const scene::AssetError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "the scene's 8 lights and the sky's 1 suns are more than the renderer's 8 "
+              "lights; --env-suns 0 takes no more suns out of the map than fit");
+  }
+  options.env_suns = 0;
+  const app::SkyLight whole = app::load_sky(options);
+  EXPECT_TRUE(whole.suns.empty());
+  EXPECT_EQ(whole.environment.residual, nullptr);
 }
 
 TEST(SkyCli, EveryModeTakesTheSkyButTheDemosAccuracyReport) {
@@ -202,12 +260,12 @@ TEST(SkyCli, TurningTheClearSkyTurnsItsSunWithTheMap) {
   options.sun_azimuth_deg = 30.0f;
   options.sun_elevation_deg = 40.0f;
   app::SkyLight sky = app::load_sky(options);
-  ASSERT_TRUE(sky.sun.has_value());
-  const glm::vec3 before = sky.sun->direction;  // the direction the sunlight travels
+  ASSERT_EQ(sky.suns.size(), 1u);
+  const glm::vec3 before = sky.suns[0].direction;  // the direction the sunlight travels
   const glm::vec3 glow = truth::EnvironmentSampler(sky.environment).radiance(-before);
   app::turn_sky(sky, 90.0f);
   EXPECT_FLOAT_EQ(sky.environment.rotate_deg, 90.0f);
-  const glm::vec3 after = sky.sun->direction;
+  const glm::vec3 after = sky.suns[0].direction;
   EXPECT_NEAR(after.y, before.y, 1e-6f);  // the same elevation
   EXPECT_NEAR(after.x * before.x + after.z * before.z, 0.0f, 1e-6f);  // a quarter turn
   const glm::vec3 turned = truth::EnvironmentSampler(sky.environment).radiance(-after);
@@ -450,6 +508,55 @@ TEST(SkyCli, RealTimeRotatingTheMapHalfTurnMovesItsLightToTheOtherSide) {
   EXPECT_NEAR(mean(after, 6, 6, 4), 0.0, 0.1);
   EXPECT_NEAR(mean(before, 0, 0, 2), 0.0, 1e-6);
   EXPECT_NEAR(mean(after, 0, 0, 2), 1.0, 1e-6);
+}
+
+// A map whose sun holds most of its light, seen by a white floor with a box on it: taken out
+// of the map (the default --env-suns), the sun is a directional light whose shadow map keeps
+// its light out of the box's shadow, so the real-time image is within a few per cent of the
+// path tracer's, shadow included; gathered through the cones with the rest (--env-suns 0), the
+// sun leaks into the shadow through their wide footprint. The log names the sun it took.
+TEST(SkyCli, RealTimeTheMapsSunCastsItsShadowLikeThePathTracers) {
+  TempDir dir;
+  // a dim sky (0.3) and a 2 x 2 texel sun at azimuth 90, elevation 45 (about 6 x the sky's
+  // light on the floor)
+  const int mw = 64, mh = 32;
+  std::vector<float> rgb(size_t(mw) * mh * 3, 0.3f);
+  for (int y = 7; y < 9; ++y)
+    for (int x = 15; x < 17; ++x)
+      for (int c = 0; c < 3; ++c) rgb[(size_t(y) * mw + size_t(x)) * 3 + size_t(c)] = 250.0f;
+  truth::write_exr_atomic(dir / "sun.exr", mw, mh, {{"", &rgb}});
+  scene::Mesh mesh;
+  mesh.name = "floor and box";
+  scene::append_box(mesh, {0.0f, -0.05f, 0.0f}, {50.0f, 0.05f, 50.0f}, 0);
+  scene::append_box(mesh, {0.0f, 0.3f, 0.0f}, {0.3f, 0.3f, 0.3f}, 0);
+  scene::Camera camera;
+  camera.position = {0.0f, 3.0f, 0.5f};
+  camera.target = {0.0f, 0.0f, 0.0f};
+  camera.fov_y_deg = 40.0f;
+  write_white_scene(dir / "box.gltf", mesh, camera);
+  const std::string common = "--scene " + shell_quote((dir / "box.gltf").string()) + " --env " +
+                             shell_quote((dir / "sun.exr").string()) + " --size 32";
+  uint32_t w = 0, h = 0;
+  const std::vector<float> truth = path_trace(common + " --spp 256 --bounces 1", dir / "pt", w, h);
+  ASSERT_EQ(truth.size(), size_t(32) * 32 * 3);
+  // relative L1 of a real-time image against the truth
+  const auto error = [&](const std::vector<float>& img) {
+    double diff = 0.0, sum = 0.0;
+    for (size_t i = 0; i < truth.size(); ++i) {
+      diff += std::abs(double(img[i]) - double(truth[i]));
+      sum += double(truth[i]);
+    }
+    return diff / sum;
+  };
+  const std::vector<float> sun_light = render_real_time(common, dir / "suns", w, h);
+  const std::vector<float> cones = render_real_time(common + " --env-suns 0", dir / "cones", w, h);
+  ASSERT_EQ(sun_light.size(), truth.size());
+  ASSERT_EQ(cones.size(), truth.size());
+  EXPECT_LT(error(sun_light), 0.12);  // 0.083 measured, the truth's noise included
+  EXPECT_GT(error(cones), 2.0 * error(sun_light));  // 0.26
+  const CommandResult r = run_rolypoly("render --frames 1 --out " +
+                                       shell_quote((dir / "log").string()) + " " + common);
+  EXPECT_TRUE(Contains(r.out, "  sun 1 of the map: ")) << r.out;
 }
 
 // --sky-light prt's furnace test: the white floor's transfer (its top face sees the whole sky)

@@ -2,13 +2,16 @@
 // density integrates to one and matches its samples, map coordinates round-trip, a white
 // sphere under a uniform sky is as bright as the sky (the furnace test), and a floor under an
 // uneven sky (a small bright sun patch on a gradient) gets the irradiance integrated from the
-// map texel by texel, through importance sampling combined with the BRDF's (MIS).
+// map texel by texel, through importance sampling combined with the BRDF's (MIS); a sun taken
+// out of the map is direct light at the first vertex.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
 
+#include "scene/environment_suns.h"
 #include "truth/environment.h"
 #include "truth/path_tracer.h"
 
@@ -117,6 +120,39 @@ TEST(Environment, FurnaceWhiteSphereUnderUniformSkyIsAsBrightAsTheSky) {
   EXPECT_NEAR(sum / double(n), 0.75, 0.005);
 }
 
+// A large floor of albedo 0.6 facing +y, seen from 1 above by a narrow camera.
+scene::SceneAssets floor_assets() {
+  scene::SceneAssets assets;
+  assets.materials.push_back({"floor", glm::vec3(0.6f), glm::vec3(0.0f), -1});
+  scene::Mesh floor;
+  floor.name = "floor";
+  const glm::vec3 n(0.0f, 1.0f, 0.0f);
+  floor.vertices = {{{-50, 0, -50}, n, {0, 0}}, {{50, 0, -50}, n, {1, 0}},
+                    {{50, 0, 50}, n, {1, 1}}, {{-50, 0, 50}, n, {0, 1}}};
+  floor.triangles = {{0, 2, 1}, {0, 3, 2}};
+  floor.materials = {0, 0};
+  assets.meshes.push_back(floor);
+  return assets;
+}
+
+scene::FrameScene floor_frame(scene::Environment env) {
+  scene::FrameScene frame;
+  frame.lamp = false;
+  frame.camera.position = {0.0f, 1.0f, 0.0f};
+  frame.camera.target = {0.01f, 0.0f, 0.0f};
+  frame.camera.fov_y_deg = 20.0f;
+  frame.camera.far_plane = 10.0f;
+  frame.instances.push_back(scene::MeshInstance{});
+  frame.environment = std::move(env);
+  return frame;
+}
+
+double mean_green(const std::vector<float>& rgb) {
+  double sum = 0.0;
+  for (size_t i = 1; i < rgb.size(); i += 3) sum += rgb[i];
+  return sum / double(rgb.size() / 3);
+}
+
 TEST(Environment, FloorUnderUnevenSkyGetsTheIrradianceOfTheMap) {
   // A large white floor facing +y, seen from above: its radiance is albedo * E / pi, E the
   // map's irradiance on +y, integrated texel by texel (each texel's solid angle exactly).
@@ -131,39 +167,59 @@ TEST(Environment, FloorUnderUnevenSkyGetsTheIrradianceOfTheMap) {
         const double ct = 0.5 * (std::cos(t0) + std::cos(t1));  // mean cos theta = n . dir
         if (ct > 0.0) irradiance += double(map->rgb[size_t(3 * (y * w + x) + 1)]) * omega * ct;
       }
-    scene::SceneAssets assets;
-    assets.materials.push_back({"floor", glm::vec3(0.6f), glm::vec3(0.0f), -1});
-    scene::Mesh floor;
-    floor.name = "floor";
-    const glm::vec3 n(0.0f, 1.0f, 0.0f);
-    floor.vertices = {{{-50, 0, -50}, n, {0, 0}}, {{50, 0, -50}, n, {1, 0}},
-                      {{50, 0, 50}, n, {1, 1}}, {{-50, 0, 50}, n, {0, 1}}};
-    floor.triangles = {{0, 2, 1}, {0, 3, 2}};
-    floor.materials = {0, 0};
-    assets.meshes.push_back(floor);
-    scene::FrameScene frame;
-    frame.lamp = false;
-    frame.camera.position = {0.0f, 1.0f, 0.0f};
-    frame.camera.target = {0.01f, 0.0f, 0.0f};
-    frame.camera.fov_y_deg = 20.0f;
-    frame.camera.far_plane = 10.0f;
-    frame.instances.push_back(scene::MeshInstance{});
-    frame.environment = environment_of(map, turn);
+    const scene::SceneAssets assets = floor_assets();
+    scene::FrameScene frame = floor_frame(environment_of(map, turn));
     PathTracer tracer(assets);
     PathTraceSettings s;
     s.width = s.height = 16;
     s.spp = 256;
     s.bounces = 1;
     const PathTracedImage img = tracer.render(frame, s);
-    double sum = 0.0;
-    for (size_t i = 1; i < img.indirect.size(); i += 3) sum += img.indirect[i];  // green
-    const double mean = sum / double(img.indirect.size() / 3);
+    const double mean = mean_green(img.indirect);
     const double want = 0.6 * irradiance / kPi;
     EXPECT_NEAR(mean, want, 0.02 * want) << "turn " << turn << ": map irradiance " << irradiance;
     // The sky's light is gathered light (the real-time passes bring it through their cones):
     // the indirect component holds all of it, the direct one (lamp and punctual lights) none.
     for (float v : img.direct) ASSERT_EQ(v, 0.0f);
   }
+}
+
+// With the map's sun taken out (scene/environment_suns.h), the path tracer still samples the
+// whole map: the image's sum is the same, draw for draw, but the sun's part at the first
+// vertex is direct light, as bright as its directional light makes the floor in the real-time
+// modes (E cos / pi x albedo), and the directional light itself is not counted again.
+TEST(Environment, TheMapsSunIsDirectLightAtTheFirstVertex) {
+  // the uneven map with a sun 100 x its mean within 0.1 sr: 3 x 3 texels of 3000 (0.014 sr)
+  // at (u, v) = (0.7, 0.25), away from its broad patch of 200 (0.12 sr: not a sun)
+  const auto map = uneven_map(128);
+  for (int y = 15; y <= 17; ++y)
+    for (int x = 89; x <= 91; ++x)
+      for (int c = 0; c < 3; ++c) map->rgb[size_t(3 * (y * 128 + x) + c)] = 3000.0f;
+  const scene::EnvironmentSuns suns = scene::find_environment_suns(*map, 4);
+  ASSERT_EQ(suns.suns.size(), 1u);
+  const scene::SceneAssets assets = floor_assets();
+  PathTraceSettings s;
+  s.width = s.height = 16;
+  s.spp = 256;
+  s.bounces = 1;
+  PathTracer tracer(assets);
+  const PathTracedImage whole = tracer.render(floor_frame(environment_of(map, 30.0f)), s);
+  scene::Environment split = environment_of(map, 30.0f);
+  split.residual = suns.residual;
+  scene::FrameScene frame = floor_frame(split);
+  const scene::PunctualLight light = scene::environment_sun_light(suns.suns[0], 0, 30.0f, 1.0f);
+  frame.lights.push_back(light);
+  const PathTracedImage parts = tracer.render(frame, s);
+  for (size_t i = 0; i < whole.combined.size(); ++i) {
+    ASSERT_NEAR(parts.combined[i], whole.combined[i], 1e-5f * (1.0f + whole.combined[i])) << i;
+    ASSERT_NEAR(parts.direct[i] + parts.indirect[i], whole.indirect[i],
+                1e-5f * (1.0f + whole.indirect[i]))
+        << i;
+  }
+  const float cos_sun = std::max(0.0f, -light.direction.y);
+  const double want = 0.6 * light.intensity.y * cos_sun;  // albedo x (E / pi) x cos
+  EXPECT_NEAR(mean_green(parts.direct), want, 0.03 * want);
+  EXPECT_GT(mean_green(parts.indirect), 0.0);
 }
 
 TEST(Environment, LoadingRefusesWhatIsNotAnEquirectangularMap) {
