@@ -126,7 +126,7 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
   // The truth's frame carries the options' sky; the real-time renders get it from their
   // RenderSession (app/render_session.h), so frame_fn stays without it.
   scene::FrameScene frame = frame_fn(assets, 0);
-  const SkyLight sky = load_sky(common.sky);
+  SkyLight sky = load_sky(common.sky);  // add_sky may put suns back into the map
   add_sky(sky, frame);
   const std::filesystem::path cache =
       (options.cache_dir.empty() ? default_truth_cache_dir() : options.cache_dir) /

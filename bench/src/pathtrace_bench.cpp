@@ -62,7 +62,7 @@ int pathtrace_bench_command(const CommonOptions& common, const BenchOptions& opt
   // --json was checked by bench_command before this (the long renders).
   const uint32_t w = options.size.width, h = options.size.height;
   const scene::SceneAssets assets = file ? file->loaded.assets : app::load_demo_assets(common);
-  const SkyLight sky = load_sky(common.sky);
+  SkyLight sky = load_sky(common.sky);  // add_sky may put suns back into the map
   auto next_frame = [&] {
     scene::FrameScene f = simulation ? simulation->next_frame() : file_source->next();
     add_sky(sky, f);

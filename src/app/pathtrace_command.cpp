@@ -62,7 +62,7 @@ int pathtrace_render_command(const CommonOptions& common, const RenderOptions& o
   std::unique_ptr<VideoPipe> video;
   if (!options.video.empty()) video = std::make_unique<VideoPipe>(options.video, w, h, 60);
   const scene::SceneAssets assets = file ? file->loaded.assets : load_demo_assets(common);
-  const SkyLight sky = load_sky(common.sky);
+  SkyLight sky = load_sky(common.sky);  // add_sky may put suns back into the map
   auto next_frame = [&] {
     scene::FrameScene f = simulation ? simulation->next_frame() : file_source->next();
     add_sky(sky, f);

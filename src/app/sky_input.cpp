@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <memory>
 
-#include "scene/asset_error.h"
 #include "render/gpu_types.h"
+#include "scene/asset_error.h"
 #include "scene/clear_sky.h"
 #include "truth/environment.h"
 
@@ -75,17 +75,28 @@ SkyLight load_sky(const SkyOptions& options) {
   return sky;
 }
 
-void add_sky(const SkyLight& sky, scene::FrameScene& frame) {
+void add_sky(SkyLight& sky, scene::FrameScene& frame) {
   if (!sky.environment.enabled()) return;
+  const size_t room =
+      RP_MAX_PUNCTUAL_LIGHTS - std::min<size_t>(frame.lights.size(), RP_MAX_PUNCTUAL_LIGHTS);
+  if (sky.map_suns.size() > room) {
+    // the brightest `room` suns are the first `room` found: find them again with the rest
+    // left in the map
+    std::fprintf(stderr,
+                 "rolypoly: note: the scene's %zu lights leave room for %zu of the map's %zu "
+                 "suns; the others stay in the map\n",
+                 frame.lights.size(), room, sky.map_suns.size());
+    const scene::EnvironmentSuns suns =
+        scene::find_environment_suns(*sky.environment.map, int(room));
+    sky.environment.residual = suns.residual;
+    sky.map_suns = suns.suns;
+    sky.suns.clear();
+    for (size_t i = 0; i < suns.suns.size(); ++i)
+      sky.suns.push_back(scene::environment_sun_light(suns.suns[i], int(i),
+                                                      sky.environment.rotate_deg,
+                                                      sky.environment.strength));
+  }
   frame.environment = sky.environment;
-  if (frame.lights.size() + sky.suns.size() > RP_MAX_PUNCTUAL_LIGHTS)
-    throw scene::AssetError(
-        "the scene's " + std::to_string(frame.lights.size()) + " lights and the sky's " +
-        std::to_string(sky.suns.size()) + " suns are more than the renderer's " +
-        std::to_string(RP_MAX_PUNCTUAL_LIGHTS) + " lights; --env-suns " +
-        std::to_string(RP_MAX_PUNCTUAL_LIGHTS - std::min<size_t>(frame.lights.size(),
-                                                                 RP_MAX_PUNCTUAL_LIGHTS)) +
-        " takes no more suns out of the map than fit");
   frame.lights.insert(frame.lights.end(), sky.suns.begin(), sky.suns.end());
 }
 

@@ -29,9 +29,10 @@ struct SkyLight {
 SkyLight load_sky(const SkyOptions& options);
 
 // Gives `frame` the environment and appends the suns to its lights (nothing when none).
-// Throws scene::AssetError (exit 1) when the frame's lights and the suns are more than the
-// renderer's RP_MAX_PUNCTUAL_LIGHTS.
-void add_sky(const SkyLight& sky, scene::FrameScene& frame);
+// Where the frame's lights leave room (RP_MAX_PUNCTUAL_LIGHTS) for fewer of the map's suns, the
+// dimmest go back into the map, for this frame and the ones after (a note on stderr says so).
+// The clear sky's sun is appended as it is (the renderer leaves out lights beyond the limit).
+void add_sky(SkyLight& sky, scene::FrameScene& frame);
 
 // Turns the sky about +y by `degrees` (counter-clockwise seen from above, as --env-rotate):
 // the map's turn and its suns' directions, so a sun stays where the map shows it. The turn is

@@ -17,7 +17,6 @@
 #include "app/sky_input.h"
 #include "cli/cli.h"
 #include "render/gpu_types.h"
-#include "scene/asset_error.h"
 #include "scene/box_mesh.h"
 #include "scene/frame_scene.h"
 #include "scene/gltf_export.h"
@@ -132,8 +131,8 @@ TEST(SkyCli, CombinationsAndValuesAreRefusedWithAReason) {
   EXPECT_EQ(sky_of(with({"--env", "a.hdr"})).env_suns, 4);
 }
 
-// A map's suns are the frame's directional lights, turned with the map; there is room for
-// them beside the scene's lights or a clear message.
+// A map's suns are the frame's directional lights, turned with the map; where the scene's
+// lights leave room for fewer, the dimmest go back into the map.
 TEST(SkyCli, TheMapsSunsAreLightsThatTurnWithTheMap) {
   TempDir dir;
   const int mw = 64, mh = 32;
@@ -164,14 +163,30 @@ TEST(SkyCli, TheMapsSunsAreLightsThatTurnWithTheMap) {
   EXPECT_EQ(frame.environment.residual, sky.environment.residual);
   scene::FrameScene full;
   full.lights.resize(RP_MAX_PUNCTUAL_LIGHTS);
-  try {
-    app::add_sky(sky, full);
-    ADD_FAILURE() << "eight lights and a sun were taken";
-  } catch (const scene::AssetError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "the scene's 8 lights and the sky's 1 suns are more than the renderer's 8 "
-              "lights; --env-suns 0 takes no more suns out of the map than fit");
-  }
+  app::SkyLight crowded = sky;
+  app::add_sky(crowded, full);
+  EXPECT_EQ(full.lights.size(), size_t(RP_MAX_PUNCTUAL_LIGHTS));  // no room: the sun stays
+  EXPECT_EQ(full.environment.residual, nullptr);                  // in the map
+  EXPECT_TRUE(crowded.suns.empty());
+  EXPECT_TRUE(crowded.map_suns.empty());
+
+  // two suns, room for one: the brighter is the light, the other stays in the map
+  for (int y = 20; y < 22; ++y)  // 2 x 2 texels of 1500 below the horizon
+    for (int x = 40; x < 42; ++x)
+      for (int c = 0; c < 3; ++c) rgb[(size_t(y) * mw + size_t(x)) * 3 + size_t(c)] = 1500.0f;
+  truth::write_exr_atomic(dir / "two.exr", mw, mh, {{"", &rgb}});
+  options.env_file = (dir / "two.exr").string();
+  app::SkyLight two = app::load_sky(options);
+  ASSERT_EQ(two.suns.size(), 2u);
+  scene::FrameScene seven;
+  seven.lights.resize(RP_MAX_PUNCTUAL_LIGHTS - 1);
+  app::add_sky(two, seven);
+  ASSERT_EQ(seven.lights.size(), size_t(RP_MAX_PUNCTUAL_LIGHTS));
+  EXPECT_TRUE(seven.lights.back().in_environment);
+  EXPECT_LT(seven.lights.back().direction.y, 0.0f);  // the one above the horizon
+  ASSERT_NE(seven.environment.residual, nullptr);
+  EXPECT_EQ(seven.environment.residual->rgb[(size_t(20) * mw + 40) * 3], 1500.0f);
+  EXPECT_LT(seven.environment.residual->rgb[(size_t(8) * mw + 15) * 3], 3000.0f);
   options.env_suns = 0;
   const app::SkyLight whole = app::load_sky(options);
   EXPECT_TRUE(whole.suns.empty());
