@@ -39,6 +39,19 @@ void check_readable(const std::string& file) {
   std::fclose(f);
 }
 
+// Takes up to `max_suns` suns out of the sky's map (scene/environment_suns.h): its residual
+// and its lights, turned and scaled as the environment is now.
+void take_suns(SkyLight& sky, int max_suns) {
+  const scene::EnvironmentSuns suns =
+      scene::find_environment_suns(*sky.environment.map, max_suns);
+  sky.environment.residual = suns.residual;
+  sky.map_suns = suns.suns;
+  sky.suns.clear();
+  for (size_t i = 0; i < suns.suns.size(); ++i)
+    sky.suns.push_back(scene::environment_sun_light(
+        suns.suns[i], int(i), sky.environment.rotate_deg, sky.environment.strength));
+}
+
 }  // namespace
 
 SkyLight load_sky(const SkyOptions& options) {
@@ -53,15 +66,10 @@ SkyLight load_sky(const SkyOptions& options) {
     } catch (const std::exception& e) {
       throw scene::AssetError(std::string("--env: ") + e.what());
     }
-    const scene::EnvironmentSuns suns = scene::find_environment_suns(*map, options.env_suns);
     sky.environment.map = std::move(map);
-    sky.environment.residual = suns.residual;
     sky.environment.rotate_deg = options.rotate_deg;
     sky.environment.strength = options.strength;
-    sky.map_suns = suns.suns;
-    for (size_t i = 0; i < suns.suns.size(); ++i)
-      sky.suns.push_back(scene::environment_sun_light(suns.suns[i], int(i), options.rotate_deg,
-                                                      options.strength));
+    take_suns(sky, options.env_suns);
   } else if (options.clear_sky) {
     scene::ClearSkySettings settings;
     settings.sun_azimuth_deg = options.sun_azimuth_deg;
@@ -86,15 +94,7 @@ void add_sky(SkyLight& sky, scene::FrameScene& frame) {
                  "rolypoly: note: the scene's %zu lights leave room for %zu of the map's %zu "
                  "suns; the others stay in the map\n",
                  frame.lights.size(), room, sky.map_suns.size());
-    const scene::EnvironmentSuns suns =
-        scene::find_environment_suns(*sky.environment.map, int(room));
-    sky.environment.residual = suns.residual;
-    sky.map_suns = suns.suns;
-    sky.suns.clear();
-    for (size_t i = 0; i < suns.suns.size(); ++i)
-      sky.suns.push_back(scene::environment_sun_light(suns.suns[i], int(i),
-                                                      sky.environment.rotate_deg,
-                                                      sky.environment.strength));
+    take_suns(sky, int(room));
   }
   frame.environment = sky.environment;
   frame.lights.insert(frame.lights.end(), sky.suns.begin(), sky.suns.end());
