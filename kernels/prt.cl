@@ -17,6 +17,12 @@
  *                   g + vertex_offset[instance]; RP_PRT_NO_TRANSFER: the instance has none
  *   env             float4 per coefficient (count of them): rgb L_i / pi, turned and scaled
  *                   for this frame on the host
+ *   shadowed        params.suns only: the shadowed transfer the interreflected one started
+ *                   from, grey, vertex v's coefficient i at v * count + i
+ *   sun_env         params.suns only: as env, for the environment's suns alone (the map minus
+ *                   its residual: scene/environment_suns.h). Their first vertex is the
+ *                   directional lights' (shadow maps), so E = T . env - T_shadowed . sun_env:
+ *                   the suns' bounces stay with the transfer, their direct light does not
  * Output: float4 per pixel, rgb = E / pi (the light pass's D, irradiance over pi: albedo times
  * it is the Lambertian radiance), a = 1 where a transfer was found, 0 elsewhere (background,
  * spheres, instances without transfer). Two kernels: prt_vertex_irradiance dots every vertex's
@@ -33,6 +39,8 @@
  * 3 x channels x count floats. */
 __kernel void prt_vertex_irradiance(__global const float* restrict transfer,
                                     __global const float4* restrict env,
+                                    __global const float* restrict shadowed,
+                                    __global const float4* restrict sun_env,
                                     __global float4* restrict vertex_e,
                                     const PrtVertexParams params) {
   const uint vertex_count = params.vertex_count, channels = params.channels;
@@ -50,6 +58,10 @@ __kernel void prt_vertex_irradiance(__global const float* restrict transfer,
       e.y += t[count + i] * l.y;
       e.z += t[2u * count + i] * l.z;
     }
+  }
+  if (params.suns != 0u) {
+    __global const float* t0 = shadowed + v * count;
+    for (uint i = 0; i < count; ++i) e -= t0[i] * sun_env[i].xyz;
   }
   vertex_e[v] = (float4)(e, 0.0f);
 }

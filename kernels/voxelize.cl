@@ -762,7 +762,7 @@ inline VxVec vx_albedo_span(const VxSetup* s, __global const uint* texels, rp_sp
  *     L->bounce_cells != 0);
  *   punctual 1: a file scene's punctual lights, common/punctual_light.h with one bilinear
  *     shadow comparison per light (the voxels average many surface points, as the lamp's four
- *     taps do). */
+ *     taps do), but those flagged RP_LIGHT_NOT_IN_VOXELS. */
 inline VxVec vx_lane_light_span(const VxLight* L, __global const float* shadow, const VxVec* p,
                                 const VxVec* n, rp_spani active, int n_lanes,
                                 const int punctual) {
@@ -784,6 +784,7 @@ inline VxVec vx_lane_light_span(const VxLight* L, __global const float* shadow, 
         e = rp_bounce_irradiance(L->bounce, L->bounce_cells, pl, nl);
       } else {
         for (uint k = 0; k < L->frame->punctual_count; ++k) {
+          if ((L->frame->punctual[k].flags & RP_LIGHT_NOT_IN_VOXELS) != 0u) continue;
           float3 l;
           e += rp_punctual_direct(L->frame, shadow, k, pl, nl, 0, &l);
         }

@@ -101,9 +101,11 @@ typedef struct {
 } GBufferParams;
 
 /* prt_vertex_irradiance (kernels/prt.cl): vertex_count vertices' transfer of `channels`
- * channels (1 or 3) and `coefficients` SH coefficients each (9 or 25). 16 bytes. */
+ * channels (1 or 3) and `coefficients` SH coefficients each (9 or 25); suns 1: subtract the
+ * shadowed transfer's light of the suns' coefficients (their first vertex is lit elsewhere).
+ * 16 bytes. */
 typedef struct {
-  rp_uint vertex_count, channels, coefficients, pad;
+  rp_uint vertex_count, channels, coefficients, suns;
 } PrtVertexParams;
 
 /* One level of the shadow filter's mip chain (kernels/shadow_filter.cl, layout in

@@ -57,6 +57,9 @@ typedef struct {
 #define RP_LIGHT_DIRECTIONAL 0u
 #define RP_LIGHT_POINT 1u
 #define RP_LIGHT_SPOT 2u
+/* PunctualLightGpu.flags: an environment's sun whose bounces precomputed radiance transfer
+ * gathers (src/passes/prt_sky.h): lit directly, not voxelized. */
+#define RP_LIGHT_NOT_IN_VOXELS 1u
 
 /* 80 bytes. */
 typedef struct {
@@ -67,7 +70,7 @@ typedef struct {
   rp_uint type;             /* RP_LIGHT_* */
   rp_uint first_view;       /* its shadow views in FrameConstants.shadow_views */
   rp_uint view_count;       /* 0: no shadow */
-  rp_uint pad0;
+  rp_uint flags;            /* RP_LIGHT_NOT_IN_VOXELS: the GI volume leaves its light out */
 } PunctualLightGpu;
 
 /* The environment light as the real-time modes see it (scene/environment.h; host:

@@ -281,8 +281,11 @@ SceneMemory RenderSession::scene_memory() const {
                                                           sky_->environment.map->height)
                                                     : 0);
   if (prt_) {
-    const uint64_t per_vertex = uint64_t(prt_->bands * prt_->bands) *
-                                (prt_->kind == truth::PrtKind::kInterreflected ? 3u : 1u);
+    // interreflected: RGB, and the grey shadowed transfer beside it where it bounces
+    const bool bouncing = prt_->kind == truth::PrtKind::kInterreflected && prt_->bounces > 0;
+    const uint64_t per_vertex =
+        uint64_t(prt_->bands * prt_->bands) *
+        (prt_->kind == truth::PrtKind::kInterreflected ? (bouncing ? 4u : 3u) : 1u);
     memory.prt_floats = memory.vertices * per_vertex;
   }
   memory.light_shadow_bytes = light_shadow_bytes_;
@@ -351,6 +354,7 @@ void RenderSession::prepare_prt(const scene::FrameScene& frame) {
   shading.bands = t.bands;
   shading.channels = t.channels;
   shading.coefficients = std::move(t.coefficients);  // tens of MB on a large scene
+  shading.shadowed = std::move(t.shadowed);
   for (size_t i = 0; i < frame.instances.size(); ++i) {
     const bool has = i < t.instances.size() && t.instances[i].count > 0;
     shading.instances.push_back(

@@ -31,6 +31,13 @@ PrtSkyPass::PrtSkyPass(const rp::cl::Context& context, rp::cl::ProgramCache& pro
     throw rp::cl::Error("prt pass: " + std::to_string(prt.channels) +
                         " colour channels (1 or 3 expected)");
   const uint32_t vertices = prt.vertex_count();
+  const size_t count = size_t(prt.bands) * size_t(prt.bands);
+  has_shadowed_ = !prt.shadowed.empty();
+  if (has_shadowed_ && (prt.channels != 3 || prt.shadowed.size() != size_t(vertices) * count))
+    throw rp::cl::Error("prt pass: a shadowed transfer of " + std::to_string(prt.shadowed.size()) +
+                        " floats beside " + std::to_string(vertices) +
+                        " vertices' RGB transfer (" + std::to_string(vertices * count) +
+                        " expected)");
   std::vector<int32_t> offsets;
   offsets.reserve(prt.instances.size());
   for (size_t i = 0; i < prt.instances.size(); ++i) {
@@ -57,12 +64,16 @@ PrtSkyPass::PrtSkyPass(const rp::cl::Context& context, rp::cl::ProgramCache& pro
       rp::cl::upload_buffer(context.context, context.queue, prt.coefficients, what, kLessMemory);
   offsets_ = rp::cl::upload_buffer(context.context, context.queue, offsets,
                                    "the PRT instance offsets");
-  env_ = rp::cl::make_buffer(context.context, CL_MEM_READ_ONLY,
+  const std::vector<float> no_sky(size_t(shading::kShMaxCount) * 4, 0.0f);  // until a sky comes
+  for (::cl::Buffer* b : {&env_, &sun_env_}) {
+    *b = rp::cl::make_buffer(context.context, CL_MEM_READ_ONLY,
                              size_t(shading::kShMaxCount) * 4 * sizeof(float),
                              "the environment's SH coefficients");
-  const std::vector<float> no_sky(size_t(shading::kShMaxCount) * 4, 0.0f);  // until a sky comes
-  context.queue.enqueueWriteBuffer(env_, CL_TRUE, 0, no_sky.size() * sizeof(float),
-                                   no_sky.data());
+    context.queue.enqueueWriteBuffer(*b, CL_TRUE, 0, no_sky.size() * sizeof(float),
+                                     no_sky.data());
+  }
+  shadowed_ = rp::cl::upload_buffer(context.context, context.queue, prt.shadowed,
+                                    "the PRT shadowed transfer", kLessMemory);
   vertex_count_ = vertices;
   vertex_e_ = rp::cl::make_buffer(context.context, CL_MEM_READ_WRITE,
                                   std::max<size_t>(1, vertices) * 16,
@@ -75,11 +86,25 @@ PrtSkyPass::~PrtSkyPass() = default;
 
 void PrtSkyPass::update_environment(const scene::Environment& environment) {
   const bool enabled = environment.enabled();
-  if (enabled && environment.gathered_map() != projected_map_) {
-    // the map without its suns: they light the scene as directional lights
-    scene::Environment unturned{environment.gathered_map(), 1.0f, 0.0f, nullptr};
-    unturned_ = shading::sh_project_environment(unturned, bands_);
-    projected_map_ = environment.gathered_map();
+  if (enabled &&
+      (environment.map != projected_map_ || environment.residual != projected_residual_)) {
+    // Without suns, or without the shadowed transfer, the gathered map (the residual: the suns
+    // light the scene as directional lights, their bounce through the GI volume). Else the
+    // whole map, less the suns' shadowed light.
+    const bool suns = has_shadowed_ && environment.residual != nullptr;
+    const auto project = [&](const std::shared_ptr<const scene::EnvironmentMap>& map) {
+      return shading::sh_project_environment(scene::Environment{map, 1.0f, 0.0f, nullptr},
+                                             bands_);
+    };
+    unturned_ = project(suns ? environment.map : environment.gathered_map());
+    unturned_suns_.clear();
+    if (suns) {
+      unturned_suns_ = project(environment.residual);
+      for (size_t i = 0; i < unturned_suns_.size(); ++i)
+        unturned_suns_[i] = unturned_[i] - unturned_suns_[i];
+    }
+    projected_map_ = environment.map;
+    projected_residual_ = environment.residual;
     uploaded_strength_ = -1.0f;  // force the upload
   }
   if (enabled == uploaded_enabled_ &&
@@ -87,14 +112,20 @@ void PrtSkyPass::update_environment(const scene::Environment& environment) {
                     environment.strength == uploaded_strength_)))
     return;
   vertex_e_fresh_ = false;
-  std::vector<float> env(size_t(shading::kShMaxCount) * 4, 0.0f);
-  if (enabled) {
-    const std::vector<glm::dvec3> turned =
-        shading::sh_turn_environment(unturned_, environment.rotate_deg, environment.strength);
-    for (size_t i = 0; i < turned.size(); ++i)
-      for (int c = 0; c < 3; ++c) env[4 * i + size_t(c)] = float(turned[i][c] * kInvPi);
-  }
-  context_->queue.enqueueWriteBuffer(env_, CL_TRUE, 0, env.size() * sizeof(float), env.data());
+  const auto upload = [&](const ::cl::Buffer& buffer, const std::vector<glm::dvec3>& unturned) {
+    std::vector<float> env(size_t(shading::kShMaxCount) * 4, 0.0f);
+    if (enabled && !unturned.empty()) {
+      const std::vector<glm::dvec3> turned =
+          shading::sh_turn_environment(unturned, environment.rotate_deg, environment.strength);
+      for (size_t i = 0; i < turned.size(); ++i)
+        for (int c = 0; c < 3; ++c) env[4 * i + size_t(c)] = float(turned[i][c] * kInvPi);
+    }
+    context_->queue.enqueueWriteBuffer(buffer, CL_TRUE, 0, env.size() * sizeof(float),
+                                       env.data());
+  };
+  upload(env_, unturned_);
+  upload(sun_env_, unturned_suns_);
+  suns_uploaded_ = enabled && !unturned_suns_.empty();
   uploaded_enabled_ = enabled;
   uploaded_turn_ = environment.rotate_deg;
   uploaded_strength_ = environment.strength;
@@ -121,7 +152,8 @@ void PrtSkyPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     params.vertex_count = vertex_count_;
     params.channels = channels_;
     params.coefficients = uint32_t(bands_ * bands_);
-    rp::cl::bind_args(vertex_kernel_, transfer_, env_, vertex_e_, params);
+    params.suns = suns_uploaded_ ? 1u : 0u;
+    rp::cl::bind_args(vertex_kernel_, transfer_, env_, shadowed_, sun_env_, vertex_e_, params);
     profiler.enqueue(pass_name::kPrt, vertex_kernel_,
                      ::cl::NDRange(rp::cl::round_up(vertex_count_, kVertexGroup)),
                      ::cl::NDRange(kVertexGroup));

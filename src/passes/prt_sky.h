@@ -6,6 +6,13 @@
 // transfer itself is computed on the host (truth/prt_transfer.h) by the caller; this pass holds
 // it on the device, turns the environment's coefficients each frame (shading::
 // sh_turn_environment: a rotation, no re-projection) and shades. Pass name "prt".
+//
+// An environment's suns (scene/environment_suns.h) are directional lights with shadow maps; the
+// residual map is gathered here. With an interreflected transfer that keeps its shadowed part
+// (PrtShading::shadowed), the suns' bounces are gathered here too, from the whole map:
+//     E = T . L(map) - T_shadowed . L(map - residual),
+// and the GI volume leaves the suns out (carries_suns_bounce(): the renderer tells the scene),
+// since their bounce by PRT's traced transfer is closer to the truth than the cones'.
 #pragma once
 
 #include <algorithm>
@@ -31,6 +38,9 @@ struct PrtShading {
   // Vertex-major: vertex v, channel c, coefficient i at (v * channels + c) * bands^2 + i;
   // E_c = sum_i T_{c,i} L_{c,i} (irradiance; the receiver's albedo not included).
   std::vector<float> coefficients;
+  // Empty, or (interreflected transfer with bounces) the grey shadowed transfer it started from:
+  // vertex v's coefficient i at v * bands^2 + i (truth::PrtTransfer::shadowed).
+  std::vector<float> shadowed;
   // Per frame instance, in the frame's order: its mesh (scene::MeshInstance::mesh) and its
   // first PRT vertex (vertex v of the mesh is PRT vertex first + v); kNoTransfer: none.
   struct Instance {
@@ -60,6 +70,10 @@ class PrtSkyPass {
 
   const ::cl::Buffer& output() const { return out_; }
 
+  // Whether the suns' bounces are this pass's (the transfer keeps its shadowed part), so the
+  // GI volume must leave the suns' light out.
+  bool carries_suns_bounce() const { return has_shadowed_; }
+
   // Device memory of output() for a width x height frame (passes/frame_memory.h; it only
   // grows); what the pass holds now.
   static uint64_t frame_bytes(uint32_t width, uint32_t height) {
@@ -74,16 +88,20 @@ class PrtSkyPass {
   ::cl::Kernel vertex_kernel_, kernel_;  // prt_vertex_irradiance, prt_shade
   int bands_ = 3;
   uint32_t channels_ = 1;
+  bool has_shadowed_ = false;
   ::cl::Buffer transfer_, offsets_, env_, out_;
+  ::cl::Buffer shadowed_, sun_env_;  // PrtShading::shadowed; the suns' L / pi (or 1 float)
   ::cl::Buffer vertex_e_;        // float4 per PRT vertex: E / pi of the coefficients in env_
   bool vertex_e_fresh_ = false;  // vertex_e_ holds env_'s E (recomputed after each upload)
   uint32_t vertex_count_ = 0, offset_count_ = 0;
   size_t out_bytes_ = 0;
-  // The map's coefficients unturned at strength 1 (projected once per map), and what env_ holds.
-  std::shared_ptr<const scene::EnvironmentMap> projected_map_;
-  std::vector<glm::dvec3> unturned_;
+  // The gathered light's coefficients unturned at strength 1 (projected once per map; the whole
+  // map's when the suns' bounces are gathered, else the residual's), the suns' alone (empty when
+  // they are not gathered), and what env_ and sun_env_ hold.
+  std::shared_ptr<const scene::EnvironmentMap> projected_map_, projected_residual_;
+  std::vector<glm::dvec3> unturned_, unturned_suns_;
   float uploaded_turn_ = 0.0f, uploaded_strength_ = -1.0f;
-  bool uploaded_enabled_ = false;
+  bool uploaded_enabled_ = false, suns_uploaded_ = false;
 };
 
 }  // namespace rp::passes

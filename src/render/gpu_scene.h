@@ -109,6 +109,9 @@ class GpuScene {
   // Whether the diffuse cones add the sky (FrameConstants.sky.diffuse_cones; on by default):
   // off where precomputed radiance transfer carries the diffuse sky (passes/prt_sky.h).
   void set_sky_diffuse_cones(bool on) { sky_diffuse_cones_ = on; }
+  // Whether the GI volume leaves the environment's suns (scene::PunctualLight::in_environment)
+  // out (RP_LIGHT_NOT_IN_VOXELS): where PRT gathers their bounces (passes/prt_sky.h).
+  void set_suns_in_voxels(bool on) { suns_in_voxels_ = on; }
   uint32_t instance_count = 0, sphere_count = 0;
   uint32_t instance_triangle_count = 0;  // sum of triangle_count over instances
   uint32_t voxel_triangle_count = 0;     // sum of voxel_triangle_count over instances
@@ -124,6 +127,7 @@ class GpuScene {
   size_t instance_capacity_ = 0, sphere_capacity_ = 0;
   void update_sky(const scene::Environment& environment);
   bool sky_diffuse_cones_ = true;
+  bool suns_in_voxels_ = true;
   std::shared_ptr<const scene::EnvironmentMap> sky_map_;  // the map `sky` holds (nullptr: none)
   std::shared_ptr<const scene::EnvironmentMap> sky_seen_map_;  // the one `sky_seen` shows
   gpu::SkyGpu sky_info_{};

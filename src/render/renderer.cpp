@@ -190,6 +190,7 @@ void Renderer::set_keep_light_components(bool keep) {
 void Renderer::set_prt(const passes::PrtShading& prt) {
   prt_ = std::make_unique<passes::PrtSkyPass>(context_, programs_, *scene_, prt);
   scene_->set_sky_diffuse_cones(false);
+  scene_->set_suns_in_voxels(!prt_->carries_suns_bounce());
 }
 
 void Renderer::update_light_components() {

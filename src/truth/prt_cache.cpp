@@ -16,6 +16,7 @@ namespace {
 constexpr char kMagic[8] = {'R', 'P', 'P', 'R', 'T', 'B', 'I', 'N'};
 
 void put_bytes(std::string& out, const void* data, size_t n) {
+  if (n == 0) return;
   out.append(static_cast<const char*>(data), n);
 }
 void put_u32(std::string& out, uint32_t v) { put_bytes(out, &v, sizeof v); }
@@ -25,6 +26,7 @@ class Reader {
  public:
   explicit Reader(const std::string& bytes) : bytes_(bytes) {}
   bool get(void* dst, size_t n) {
+    if (n == 0) return true;  // an empty array's data() may be null: memcpy must not see it
     if (n > bytes_.size() - pos_) return false;
     std::memcpy(dst, bytes_.data() + pos_, n);
     pos_ += n;
@@ -120,7 +122,7 @@ std::filesystem::path prt_cache_file(const std::filesystem::path& dir, const std
 void write_prt_file(const std::filesystem::path& path, const std::string& key,
                     const PrtTransfer& t) {
   std::string out;
-  out.reserve(64 + t.positions.size() * 24 + t.coefficients.size() * 4);
+  out.reserve(64 + t.positions.size() * 24 + (t.coefficients.size() + t.shadowed.size()) * 4);
   put_bytes(out, kMagic, sizeof kMagic);
   const std::string version = kPrtVersion;
   put_u32(out, uint32_t(version.size()));
@@ -136,6 +138,7 @@ void write_prt_file(const std::filesystem::path& path, const std::string& key,
   put_bytes(out, t.positions.data(), t.positions.size() * sizeof(glm::vec3));
   put_bytes(out, t.normals.data(), t.normals.size() * sizeof(glm::vec3));
   put_bytes(out, t.coefficients.data(), t.coefficients.size() * sizeof(float));
+  put_bytes(out, t.shadowed.data(), t.shadowed.size() * sizeof(float));
   const uint64_t sum = checksum(out.data(), out.size());
   put_bytes(out, &sum, sizeof sum);
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
@@ -184,7 +187,11 @@ std::optional<PrtTransfer> read_prt_file(const std::filesystem::path& path,
     return std::nullopt;
   // The exact size the counts call for (64-bit arithmetic: no overflow for u32 counts).
   const uint64_t coefficients = uint64_t(nv) * t.channels * uint64_t(t.count());
-  const uint64_t payload = uint64_t(ni) * 8 + uint64_t(nv) * 24 + coefficients * 4;
+  const uint64_t shadowed =
+      t.kind == PrtKind::kInterreflected && t.bounces > 0 ? uint64_t(nv) * uint64_t(t.count())
+                                                          : 0;
+  const uint64_t payload =
+      uint64_t(ni) * 8 + uint64_t(nv) * 24 + (coefficients + shadowed) * 4;
   if (payload != uint64_t(body - r.pos())) return std::nullopt;
   t.instances.resize(ni);
   uint64_t covered = 0;
@@ -197,9 +204,11 @@ std::optional<PrtTransfer> read_prt_file(const std::filesystem::path& path,
   t.positions.resize(nv);
   t.normals.resize(nv);
   t.coefficients.resize(size_t(coefficients));
+  t.shadowed.resize(size_t(shadowed));
   if (!r.get(t.positions.data(), size_t(nv) * sizeof(glm::vec3)) ||
       !r.get(t.normals.data(), size_t(nv) * sizeof(glm::vec3)) ||
-      !r.get(t.coefficients.data(), t.coefficients.size() * sizeof(float)))
+      !r.get(t.coefficients.data(), t.coefficients.size() * sizeof(float)) ||
+      !r.get(t.shadowed.data(), t.shadowed.size() * sizeof(float)))
     return std::nullopt;
   return t;
 }

@@ -18,6 +18,7 @@
 //   u32 x 2  per instance: first vertex, vertex count
 //   f32 x 3  per vertex: world position; then f32 x 3 per vertex: world normal
 //   f32      coefficients, vertex count * channels * bands^2 (PrtTransfer's layout)
+//   f32      interreflected with bounces only: the shadowed transfer, vertex count * bands^2
 //   u64      FNV-1a of every byte before it
 // Read back only when the size is exactly that, the magic, version, key and settings match and
 // the checksum holds; anything else (truncated, corrupt, older version) is ignored and rebuilt.
@@ -34,7 +35,7 @@
 namespace rp::truth {
 
 // Bump when the transfer changes for the same inputs (a fix, a new convention).
-inline constexpr const char* kPrtVersion = "rolypoly-prt/1";
+inline constexpr const char* kPrtVersion = "rolypoly-prt/2";
 
 // The cache key above, as 16 hex digits.
 std::string prt_key(const scene::SceneAssets& assets, const scene::FrameScene& frame,

@@ -360,6 +360,7 @@ PrtTransfer compute_prt_transfer(const scene::SceneAssets& assets, const scene::
     }
   }
   out.coefficients.assign(total.begin(), total.end());
+  if (bouncing) out.shadowed.assign(t0.begin(), t0.end());
   if (progress) progress(1.0);
   return out;
 }

@@ -104,6 +104,11 @@ struct PrtTransfer {
   std::vector<glm::vec3> normals;           // world space, unit (zero: degenerate vertex)
   // Vertex-major: vertex v, channel c, coefficient i at (v * channels + c) * bands^2 + i.
   std::vector<float> coefficients;
+  // kInterreflected with bounces: the shadowed transfer the bounces start from (grey, vertex
+  // v's coefficient i at v * bands^2 + i), so a shader can take the bounces alone (coefficients
+  // minus this) for light whose first vertex it computes itself: an environment's suns. Empty
+  // otherwise.
+  std::vector<float> shadowed;
 
   uint32_t vertex_count() const { return uint32_t(positions.size()); }
   int count() const { return bands * bands; }

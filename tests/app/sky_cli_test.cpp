@@ -574,6 +574,64 @@ TEST(SkyCli, RealTimeTheMapsSunCastsItsShadowLikeThePathTracers) {
   EXPECT_TRUE(Contains(r.out, "  sun 1 of the map: ")) << r.out;
 }
 
+// The same box under the same map with --sky-light prt: the sun's first vertex is its
+// directional light's, and its bounces (the box's lit side onto the floor, the floor onto the
+// box) are the interreflected transfer's, gathered from the whole map less the sun's shadowed
+// light, while the GI volume leaves the sun out (else its bounce would count twice). Within a
+// few per cent of the path tracer's image, as the cones' version above.
+TEST(SkyCli, RealTimePrtTheMapsSunBouncesOnceByTheTransfer) {
+  TempDir dir;
+  const int mw = 64, mh = 32;
+  std::vector<float> rgb(size_t(mw) * mh * 3, 0.3f);
+  for (int y = 7; y < 9; ++y)
+    for (int x = 15; x < 17; ++x)
+      for (int c = 0; c < 3; ++c) rgb[(size_t(y) * mw + size_t(x)) * 3 + size_t(c)] = 250.0f;
+  truth::write_exr_atomic(dir / "sun.exr", mw, mh, {{"", &rgb}});
+  scene::Mesh mesh;
+  mesh.name = "floor and box";
+  // cells of 0.2 m: vertices for the transfer to live on
+  scene::append_box(mesh, {0.0f, -0.05f, 0.0f}, {2.0f, 0.05f, 2.0f}, 0, 1.0f, 0.2f);
+  scene::append_box(mesh, {0.0f, 0.5f, 0.0f}, {0.5f, 0.5f, 0.5f}, 0, 1.0f, 0.2f);
+  scene::Camera camera;
+  camera.far_plane = 20.0f;
+  camera.position = {0.0f, 4.0f, 3.0f};
+  camera.target = {0.0f, 0.0f, 0.0f};
+  camera.fov_y_deg = 40.0f;
+  write_white_scene(dir / "box.gltf", mesh, camera);
+  const std::string common = "--scene " + shell_quote((dir / "box.gltf").string()) + " --env " +
+                             shell_quote((dir / "sun.exr").string()) + " --size 32";
+  uint32_t w = 0, h = 0;
+  const std::vector<float> truth = path_trace(common + " --spp 256 --bounces 3", dir / "pt", w, h);
+  ASSERT_EQ(truth.size(), size_t(32) * 32 * 3);
+  const auto error = [&](const std::vector<float>& img) {
+    double diff = 0.0, sum = 0.0;
+    for (size_t i = 0; i < truth.size(); ++i) {
+      diff += std::abs(double(img[i]) - double(truth[i]));
+      sum += double(truth[i]);
+    }
+    return diff / sum;
+  };
+  const std::string cache = "XDG_CACHE_HOME=" + shell_quote((dir / "cache").string());
+  const CommandResult r = run_rolypoly(
+      "render --exr --frames 4 --bounces 1 --sky-light prt --prt-samples 256 --prt-bounces 3 "
+      "--out " + shell_quote((dir / "prt").string()) + " " + common, cache);
+  ASSERT_EQ(r.exit_code, 0) << r.command << "\n" << r.out << r.err;
+  const std::vector<float> prt = truth::read_exr_layer(dir / "prt" / "frame_0003.exr", "", w, h);
+  ASSERT_EQ(prt.size(), truth.size());
+  double sum_prt = 0.0, sum_truth = 0.0;
+  for (size_t i = 0; i < truth.size(); ++i) {
+    sum_prt += prt[i];
+    sum_truth += truth[i];
+  }
+  const double bias = sum_prt / sum_truth - 1.0;
+  std::printf("against the truth: relative L1 %.4f, bias %+.4f\n", error(prt), bias);
+  // Measured: L1 0.066, bias -0.008; with the suns' bounce left to the cones (the residual's
+  // transfer alone) 0.085 and -0.047; with it counted twice (the volume keeps the suns too)
+  // 0.069 and +0.008: the cones' bounce is small in this open scene.
+  EXPECT_LT(error(prt), 0.075);
+  EXPECT_LT(std::abs(bias), 0.025);
+}
+
 // --sky-light prt's furnace test: the white floor's transfer (its top face sees the whole sky)
 // dotted with a uniform map's coefficients is pi L, so the floor is as bright as the map; the
 // second run finds the transfer in the cache (XDG_CACHE_HOME) instead of computing it.

@@ -5,6 +5,11 @@
 // (sh_turn_environment) is checked too: the turns are whole numbers of texel columns, where
 // rotating and re-projecting agree to rounding; the second frame turns the sky again.
 //
+// With a shadowed transfer beside the interreflected one and an environment whose suns were
+// taken out, the pass gathers the whole map and takes the suns' shadowed light away:
+// E = T . L(map) - T_shadowed . L(suns); the reference projects the suns' own map (the test
+// map's bright texel alone), not the difference of two projections the pass computes.
+//
 // Tolerance: 1e-4 of the largest value plus 1e-4 relative (float sums of 9 or 25 products of
 // numbers near 1, and the two coefficient paths' rounding).
 #include <algorithm>
@@ -51,7 +56,21 @@ struct Readback {
   std::vector<glm::vec4> out;
 };
 
-void check_pass(int bands, uint32_t channels) {
+// The test map without its bright texel (the residual), and that texel alone (the suns).
+std::shared_ptr<scene::EnvironmentMap> without_spike(const scene::EnvironmentMap& map,
+                                                     bool spike_only) {
+  auto out = std::make_shared<scene::EnvironmentMap>(map);
+  for (size_t i = 0; i < out->rgb.size(); ++i) {
+    const bool spike = i == (size_t(1) * size_t(map.width) + 3) * 3 + 2;
+    const float excess = spike ? 4.0f : 0.0f;
+    out->rgb[i] = spike_only ? excess : out->rgb[i] - excess;
+  }
+  return out;
+}
+
+enum class Suns { kNone, kShadowedNoSuns, kShadowedWithSuns };
+
+void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
   // Mesh 0: a quad of two triangles; mesh 1: one triangle. Instances: the quad, the triangle in
   // front of it, a second quad to the right, and a third quad without transfer.
   const std::vector<glm::vec3> quad = {{-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f},
@@ -70,6 +89,8 @@ void check_pass(int bands, uint32_t channels) {
   for (scene::MeshInstance& i : frame.instances) i.prev_model = i.model;
   frame.environment.map = test_map();
   frame.environment.strength = 1.5f;
+  if (suns == Suns::kShadowedWithSuns)
+    frame.environment.residual = without_spike(*frame.environment.map, false);
 
   // Transfer: random numbers per PRT vertex (instance a: 0..3, b: 4..6, c: 7..10).
   passes::PrtShading prt;
@@ -80,6 +101,10 @@ void check_pass(int bands, uint32_t channels) {
   std::uniform_real_distribution<float> t(-0.3f, 1.0f);
   prt.coefficients.resize(size_t(11) * channels * size_t(count));
   for (float& v : prt.coefficients) v = t(rng);
+  if (suns != Suns::kNone) {
+    prt.shadowed.resize(size_t(11) * size_t(count));
+    for (float& v : prt.shadowed) v = t(rng);
+  }
   prt.instances = {{0, 0}, {1, 4}, {0, 7}, {0, passes::PrtShading::kNoTransfer}};
 
   const uint32_t w = 96, h = 80;
@@ -91,6 +116,7 @@ void check_pass(int bands, uint32_t channels) {
   passes::VisibilityPass visibility(context(), programs());
   visibility.render(profiler, gpu, vis);
   passes::PrtSkyPass pass(context(), programs(), gpu, prt);
+  EXPECT_EQ(pass.carries_suns_bounce(), suns != Suns::kNone);
   // Two frames of one pass: the second turns the sky further (a whole number of columns
   // again), so the vertices' sky light must be recomputed, not reused.
   for (const float turn : {3 * 360.0f / 16.0f, -5 * 360.0f / 16.0f}) {
@@ -109,6 +135,13 @@ void check_pass(int bands, uint32_t channels) {
     q.enqueueReadBuffer(pass.output(), CL_TRUE, 0, n * 16, r.out.data());
 
     const std::vector<glm::dvec3> env = shading::sh_project_environment(frame.environment, bands);
+    std::vector<glm::dvec3> sun_env(env.size(), glm::dvec3(0.0));
+    if (suns == Suns::kShadowedWithSuns) {
+      scene::Environment alone = frame.environment;
+      alone.map = without_spike(*frame.environment.map, true);
+      alone.residual = nullptr;
+      sun_env = shading::sh_project_environment(alone, bands);
+    }
     // Vertex indices of each instance's triangles, local to its mesh.
     const auto local = [&](uint32_t instance, uint32_t primitive) {
       return assets.meshes[frame.instances[instance].mesh].triangles.at(primitive);
@@ -134,6 +167,11 @@ void check_pass(int bands, uint32_t channels) {
             return double(prt.coefficients[(size_t(first + vertex) * channels + ch) * count + i]);
           };
           e[c] += (b0 * at(v.x) + b1 * at(v.y) + b2 * at(v.z)) * env[size_t(i)][c];
+          if (prt.shadowed.empty()) continue;
+          const auto at0 = [&](uint32_t vertex) {
+            return double(prt.shadowed[size_t(first + vertex) * count + i]);
+          };
+          e[c] -= (b0 * at0(v.x) + b1 * at0(v.y) + b2 * at0(v.z)) * sun_env[size_t(i)][c];
         }
       }
       e = glm::max(e / kPi, glm::dvec3(0.0));
@@ -150,6 +188,40 @@ void check_pass(int bands, uint32_t channels) {
 
 TEST(PrtSkyPass, NineGreyCoefficientsMatchTheReference) { check_pass(3, 1); }
 TEST(PrtSkyPass, TwentyFiveRgbCoefficientsMatchTheReference) { check_pass(5, 3); }
+TEST(PrtSkyPass, ShadowedTransferWithoutSunsGathersTheMapAlone) {
+  check_pass(5, 3, Suns::kShadowedNoSuns);
+}
+TEST(PrtSkyPass, TheSunsBouncesAreGatheredTheirFirstVertexIsNot) {
+  check_pass(3, 3, Suns::kShadowedWithSuns);
+  check_pass(5, 3, Suns::kShadowedWithSuns);
+}
+
+// Where the transfer gathers the suns' bounces the GI volume must not carry their light as
+// well: the scene marks the environment's suns RP_LIGHT_NOT_IN_VOXELS (kernels/voxelize.cl
+// skips them), and only them, and only when told.
+TEST(PrtSkyPass, TheGiVolumeLeavesTheSunsOutOnlyWhenThePassGathersThem) {
+  scene::SceneAssets assets =
+      make_test_assets({make_test_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}})});
+  scene::FrameScene frame = make_test_frame();
+  frame.instances = {scene::MeshInstance{}};
+  scene::PunctualLight lamp, sun;
+  lamp.type = sun.type = scene::LightType::kDirectional;
+  lamp.direction = sun.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
+  sun.in_environment = true;
+  frame.lights = {lamp, sun};
+  render::GpuScene gpu(context().context, context().queue, assets);
+  const auto flags = [&](size_t light) { return gpu.constants.punctual[light].flags; };
+  gpu.update(frame, 8, 8, 64);
+  EXPECT_EQ(flags(0), 0u);
+  EXPECT_EQ(flags(1), 0u);
+  gpu.set_suns_in_voxels(false);
+  gpu.update(frame, 8, 8, 64);
+  EXPECT_EQ(flags(0), 0u);
+  EXPECT_EQ(flags(1), uint32_t(RP_LIGHT_NOT_IN_VOXELS));
+  gpu.set_suns_in_voxels(true);
+  gpu.update(frame, 8, 8, 64);
+  EXPECT_EQ(flags(1), 0u);
+}
 
 TEST(PrtSkyPass, RejectsTransferThatDoesNotFitTheScene) {
   scene::SceneAssets assets =
@@ -165,6 +237,13 @@ TEST(PrtSkyPass, RejectsTransferThatDoesNotFitTheScene) {
   prt.instances = {{0, 0}};
   prt.bands = 4;
   EXPECT_THROW(passes::PrtSkyPass(context(), programs(), gpu, prt), rp::cl::Error);
+  prt.bands = 3;
+  prt.channels = 3;
+  prt.coefficients.resize(3 * 3 * 9);
+  prt.shadowed.resize(2 * 9);  // a shadowed transfer of two vertices beside three
+  EXPECT_THROW(passes::PrtSkyPass(context(), programs(), gpu, prt), rp::cl::Error);
+  prt.shadowed.resize(3 * 9);
+  EXPECT_NO_THROW(passes::PrtSkyPass(context(), programs(), gpu, prt));
 }
 
 }  // namespace

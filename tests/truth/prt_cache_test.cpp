@@ -66,6 +66,7 @@ void expect_same(const PrtTransfer& a, const PrtTransfer& b) {
   EXPECT_EQ(a.positions, b.positions);
   EXPECT_EQ(a.normals, b.normals);
   EXPECT_EQ(a.coefficients, b.coefficients);  // bit for bit (no NaN here)
+  EXPECT_EQ(a.shadowed, b.shadowed);
 }
 
 TEST_F(PrtCache, RoundTripIsIdentical) {
@@ -73,6 +74,7 @@ TEST_F(PrtCache, RoundTripIsIdentical) {
   const auto frame = one_instance_frame();
   const CachedPrt first = cached_prt_transfer(assets, frame, interreflected(), dir_);
   EXPECT_FALSE(first.from_cache);
+  EXPECT_EQ(first.transfer.shadowed.size(), size_t(first.transfer.vertex_count()) * 25);
   ASSERT_TRUE(fs::exists(first.file));
   EXPECT_EQ(first.file.parent_path(), dir_);
   const CachedPrt second = cached_prt_transfer(assets, frame, interreflected(), dir_);

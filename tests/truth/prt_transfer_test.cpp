@@ -147,6 +147,14 @@ TEST(PrtTransfer, InterreflectionAddsLightAndConvergesWithBounces) {
   for (uint32_t v = 0; v < shadowed.vertex_count(); ++v)
     for (uint32_t c = 0; c < 3; ++c)
       EXPECT_EQ(runs[0].at(v, c)[0], shadowed.at(v, 0)[0]) << "0 bounces = shadowed";
+  // What the bounces started from is kept beside them (a shader takes the bounces alone):
+  // the shadowed kind's transfer; with no bounces it is the transfer itself, not kept again.
+  EXPECT_TRUE(runs[0].shadowed.empty());
+  for (size_t r = 1; r < runs.size(); ++r) {
+    ASSERT_EQ(runs[r].shadowed.size(), shadowed.coefficients.size());
+    for (size_t i = 0; i < shadowed.coefficients.size(); ++i)
+      ASSERT_NEAR(runs[r].shadowed[i], shadowed.coefficients[i], 1e-6) << "coefficient " << i;
+  }
   double prev_step = 0.0;
   for (size_t r = 1; r < runs.size(); ++r) {
     double step = 0.0;
