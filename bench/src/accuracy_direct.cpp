@@ -126,6 +126,7 @@ RealTime render_real_time(const CommonOptions& common, render::ShadowMode mode, 
   c.view = {};
   c.render.effects.bloom = c.render.effects.motion_blur = false;
   c.render.effects.taa = false;
+  c.render.render_scale = 1.0f;  // the direct term at the output size
   RenderSession session(c, w, h, true);
   RealTime rt;
   std::vector<uint8_t> rgba;

@@ -80,8 +80,12 @@ Images render_mode(const CommonOptions& common, const std::string& name, render:
   c.view = {};
   c.render.effects.bloom = c.render.effects.motion_blur = false;
   c.render.effects.taa = taa;
+  // The light pass's terms are compared at the output size; only the finished frame with TAA
+  // is reconstructed from the render scale (--render-scale), as the user would see it.
+  if (!taa) c.render.render_scale = 1.0f;
+  const bool components = c.render.render_scale >= 1.0f;
   RenderSession session(c, w, h, false, assets);
-  session.set_keep_components(true);
+  session.set_keep_components(components);
   ProgressBar bar(name, frames);
   double ms = 0.0;
   for (uint32_t i = 0; i < frames; ++i) {
@@ -90,6 +94,7 @@ Images render_mode(const CommonOptions& common, const std::string& name, render:
     bar.update(i + 1);
   }
   bar.finish();
+  if (!components) return {name, {}, {}, {}, {}, {}};  // at the render size: not comparable
   render::LinearComponents lc;
   session.read_components(lc);
   return {name, lc.combined, lc.direct, lc.indirect, lc.albedo, lc.specular};

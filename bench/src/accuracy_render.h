@@ -71,7 +71,9 @@ using FrameFn =
 
 // The real-time renderer on `frame_fn`'s frames: `frames` frames (frame_index counting up, so
 // the fast mode's interleaving, the shadow noise and TAA's jitter rotate as in the app), no
-// bloom or motion blur, TAA only when asked. `final_rgba` gets the last finished frame.
+// bloom or motion blur, TAA only when asked. `final_rgba` gets the last finished frame. Only
+// the TAA render takes common's render scale (the others render at the output size); its light
+// terms are returned at scale 1 and left empty below it.
 // `assets`: what the frames draw from (a scene file's); nullptr = the demo's (--assets).
 Images render_mode(const app::CommonOptions& common, const std::string& name,
                    render::Quality quality, uint32_t bounces, bool taa, uint32_t w, uint32_t h,

@@ -196,9 +196,12 @@ std::string BenchCli::finish(int argc, const char* const* argv) {
                          demo_scene);
       !sky.empty())
     return sky;
-  if (std::string scale =
-          app::check_render_scale(common, bench_opts.accuracy ? "--accuracy" : nullptr);
-      !scale.empty())
+  // --accuracy with --render-scale: the finished frame with TAA at that scale (its final PSNR
+  // against the truth), every light term at the output size; a held rate is no fixed picture.
+  if (bench_opts.accuracy && common.target_ms > 0.0)
+    return "--target-ms holds a frame time, so its pictures depend on the machine's speed; "
+           "--accuracy measures a fixed --render-scale";
+  if (std::string scale = app::check_render_scale(common, nullptr); !scale.empty())
     return scale;
   if (std::string gi = app::check_gi_volume(common, bench_opts.voxels); !gi.empty())
     return gi;

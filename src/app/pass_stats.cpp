@@ -23,6 +23,8 @@ TimeSummary summarize(std::vector<double> samples) {
   TimeSummary s;
   s.min_ms = samples.front();
   s.max_ms = samples.back();
+  const size_t rank = (95 * n + 99) / 100;  // ceil(0.95 n), >= 1
+  s.p95_ms = samples[rank - 1];
   s.median_ms = n % 2 == 1 ? samples[n / 2] : 0.5 * (samples[n / 2 - 1] + samples[n / 2]);
   return s;
 }

@@ -1,4 +1,5 @@
-// Per-pass timing statistics over many frames (median, min, max in milliseconds), shared by
+// Per-pass timing statistics over many frames (median, 95th percentile, min, max in
+// milliseconds), shared by
 // `render` (summary line), `run` (window title) and `bench` (table and JSON).
 #pragma once
 
@@ -14,6 +15,9 @@ struct TimeSummary {
   double median_ms = 0.0;  // middle value; mean of the two middle values for an even count
   double min_ms = 0.0;
   double max_ms = 0.0;
+  // Nearest rank: the smallest sample at least 95 % of the samples do not exceed (the
+  // ceil(0.95 n)-th smallest): how slow the slow frames of a held frame rate are.
+  double p95_ms = 0.0;
 };
 
 // Summary of `samples` (must not be empty; throws std::invalid_argument otherwise).

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <stdexcept>
+#include <vector>
 
 #include "app/pass_stats.h"
 #include "app/progress.h"
@@ -21,6 +22,16 @@ TEST(PassStats, SummarizeEvenCountAveragesTheTwoMiddleValues) {
   EXPECT_DOUBLE_EQ(s.median_ms, 3.0);
   EXPECT_DOUBLE_EQ(s.min_ms, 1.0);
   EXPECT_DOUBLE_EQ(s.max_ms, 10.0);
+}
+
+TEST(PassStats, NinetyFifthPercentileIsTheNearestRank) {
+  std::vector<double> ms;
+  for (int i = 20; i >= 1; --i) ms.push_back(double(i));  // 1..20, unordered
+  EXPECT_DOUBLE_EQ(summarize(ms).p95_ms, 19.0);            // ceil(0.95 * 20) = 19th smallest
+  ms.push_back(100.0);                                     // 21 samples: the 20th smallest
+  EXPECT_DOUBLE_EQ(summarize(ms).p95_ms, 20.0);
+  EXPECT_DOUBLE_EQ(summarize({5.0, 1.0, 3.0}).p95_ms, 5.0);  // 3 samples: the largest
+  EXPECT_DOUBLE_EQ(summarize({7.0}).p95_ms, 7.0);
 }
 
 TEST(PassStats, SummarizeRejectsNoSamples) {

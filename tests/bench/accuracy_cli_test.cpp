@@ -149,6 +149,19 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
   EXPECT_EQ(j4["configurations"], j["configurations"]);
   EXPECT_EQ(j4["region_pixels"], j["region_pixels"]);
   EXPECT_FALSE(j["region_pixels"].contains("marbles"));
+  // --render-scale: only the finished frame with TAA is rendered at it (the light terms and
+  // the shadow modes' direct light are compared at the output size, so they stay as they are).
+  const rp::test::CommandResult fifth = run_rolypoly(args + " --render-scale 0.5");
+  ASSERT_EQ(fifth.exit_code, 0) << fifth.out << fifth.err;
+  std::ifstream in5(dir / "acc.json");
+  const nlohmann::json j5 = nlohmann::json::parse(in5);
+  for (const char* key : {"fast_many", "reference_many", "fast_one", "reference_one"})
+    EXPECT_EQ(j5["configurations"][key], j["configurations"][key]) << key;
+  EXPECT_EQ(j5["configurations"]["fast_many_taa"]["render_scale"], 0.5);
+  EXPECT_EQ(j["configurations"]["fast_many_taa"]["render_scale"], 1.0);
+  EXPECT_GT(j5["configurations"]["fast_many_taa"]["final_psnr_db"].get<double>(), 5.0);
+  EXPECT_EQ(j5["direct"]["modes"]["pcss"]["direct_psnr_db"],
+            j["direct"]["modes"]["pcss"]["direct_psnr_db"]);
   const nlohmann::json& marbles = j4["marbles"];
   EXPECT_EQ(marbles["truth"]["bounces"], 64);
   EXPECT_FALSE(marbles["truth"]["from_cache"].get<bool>());
@@ -172,7 +185,7 @@ TEST(AccuracyCli, UsageErrors) {
         "bench --accuracy --max-region-bias x", "bench --accuracy --quality pathtraced",
         "bench --min-direct-psnr-floor 35", "bench --max-penumbra-error 0.25",
         "bench --min-albedo-psnr 20", "bench --accuracy --lamp area",
-        "bench --accuracy --max-penumbra-error -1"}) {
+        "bench --accuracy --max-penumbra-error -1", "bench --accuracy --target-ms 33"}) {
     const rp::test::CommandResult r = run_rolypoly(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
   }

@@ -211,6 +211,7 @@ void expect_summary_eq(const TimeSummary& a, const TimeSummary& b) {
   EXPECT_EQ(a.median_ms, b.median_ms);
   EXPECT_EQ(a.min_ms, b.min_ms);
   EXPECT_EQ(a.max_ms, b.max_ms);
+  EXPECT_EQ(a.p95_ms, b.p95_ms);
 }
 
 void expect_fit_eq(const PowerFit& a, const PowerFit& b) {
