@@ -217,7 +217,7 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
   j["configurations"][kTaaConfigKey] = {
       {"quality", "fast"},  {"bounces", options.many_bounces},
       {"frames", options.converge_frames}, {"taa", true},
-      {"render_scale", common.render.render_scale},
+      {"render_scale", json_scale(common.render.render_scale)},
       {"bloom", false},     {"motion_blur", false},
       {"truth", "many"},    {"final_psnr_db", rgba8_psnr(taa_rgba, truths[1].combined)}};
   j["images"] = write_accuracy_pictures(options.out_dir, w, h, truths, rendered, regions.image, taa_rgba,

@@ -3,6 +3,7 @@
 // real-time renderer on a frame at rest, and a cached truth with a progress bar.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -63,6 +64,9 @@ struct Images {
 };
 
 Images from_truth(const std::string& name, const truth::PathTracedImage& t);
+
+// A render scale for the JSON as the user typed it (0.85, not the float's 0.8500000238).
+inline double json_scale(float scale) { return std::round(double(scale) * 1.0e4) / 1.0e4; }
 
 // The frame a section measures: frame `frame_index` of a scene at rest (scene::make_demo_frame,
 // the marble section's marble_frame, a scene file's still frame).

@@ -148,7 +148,7 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
                                   {"bounces", options.many_bounces},
                                   {"frames", options.converge_frames},
                                   {"taa", true},
-                                  {"render_scale", common.render.render_scale},
+                                  {"render_scale", json_scale(common.render.render_scale)},
                                   {"bloom", false},
                                   {"motion_blur", false},
                                   {"truth", "many"},
