@@ -57,8 +57,8 @@ typedef struct {
 #define RP_LIGHT_DIRECTIONAL 0u
 #define RP_LIGHT_POINT 1u
 #define RP_LIGHT_SPOT 2u
-/* PunctualLightGpu.flags: an environment's sun whose bounces precomputed radiance transfer
- * gathers (src/passes/prt_sky.h): lit directly, not voxelized. */
+/* PunctualLightGpu.flags: a sun (an environment's, or a directional light) whose bounces
+ * precomputed radiance transfer gathers (src/passes/prt_sky.h): lit directly, not voxelized. */
 #define RP_LIGHT_NOT_IN_VOXELS 1u
 
 /* 80 bytes. */

@@ -16,6 +16,7 @@ namespace {
 constexpr size_t kGroup = 16;        // 16x16 work-groups, one pixel each
 constexpr size_t kVertexGroup = 64;  // prt_vertex_irradiance: one vertex a work-item
 constexpr int32_t kNoOffset = INT32_MIN;  // RP_PRT_NO_TRANSFER in kernels/prt.cl
+constexpr double kPi = 3.14159265358979323846;
 constexpr double kInvPi = 0.318309886183790671538;
 
 constexpr const char* kLessMemory = "fewer SH bands (--prt-bands 3) need less";
@@ -84,8 +85,28 @@ PrtSkyPass::PrtSkyPass(const rp::cl::Context& context, rp::cl::ProgramCache& pro
 
 PrtSkyPass::~PrtSkyPass() = default;
 
-void PrtSkyPass::update_environment(const scene::Environment& environment) {
+std::vector<glm::dvec3> PrtSkyPass::directional_coefficients(
+    const std::vector<scene::PunctualLight>& lights) const {
+  std::vector<glm::dvec3> out;
+  if (!has_shadowed_) return out;
+  double y[shading::kShMaxCount];
+  for (const scene::PunctualLight& l : lights) {
+    if (l.type != scene::LightType::kDirectional || l.in_environment) continue;
+    // Radiance pi I delta(w + direction): the irradiance it gives a surface facing it is pi I,
+    // the light pass's albedo I cos / (albedo / pi) (scene/frame_scene.h's units).
+    if (out.empty()) out.assign(size_t(bands_ * bands_), glm::dvec3(0.0));
+    shading::sh_eval(-glm::normalize(glm::dvec3(l.direction)), bands_, y);
+    for (size_t i = 0; i < out.size(); ++i) out[i] += kPi * glm::dvec3(l.intensity) * y[i];
+  }
+  return out;
+}
+
+void PrtSkyPass::update_environment(const scene::Environment& environment,
+                                    const std::vector<scene::PunctualLight>& lights) {
   const bool enabled = environment.enabled();
+  std::vector<glm::dvec3> directional = directional_coefficients(lights);
+  const bool lights_changed = directional != directional_;
+  if (lights_changed) directional_ = std::move(directional);
   if (enabled &&
       (environment.map != projected_map_ || environment.residual != projected_residual_)) {
     // Without suns, or without the shadowed transfer, the gathered map (the residual: the suns
@@ -107,32 +128,37 @@ void PrtSkyPass::update_environment(const scene::Environment& environment) {
     projected_residual_ = environment.residual;
     uploaded_strength_ = -1.0f;  // force the upload
   }
-  if (enabled == uploaded_enabled_ &&
+  if (!lights_changed && enabled == uploaded_enabled_ &&
       (!enabled || (environment.rotate_deg == uploaded_turn_ &&
                     environment.strength == uploaded_strength_)))
     return;
   vertex_e_fresh_ = false;
+  // The map's part turned and scaled; the directional lights' in world space already.
   const auto upload = [&](const ::cl::Buffer& buffer, const std::vector<glm::dvec3>& unturned) {
-    std::vector<float> env(size_t(shading::kShMaxCount) * 4, 0.0f);
+    std::vector<glm::dvec3> sum(size_t(shading::kShMaxCount), glm::dvec3(0.0));
     if (enabled && !unturned.empty()) {
       const std::vector<glm::dvec3> turned =
           shading::sh_turn_environment(unturned, environment.rotate_deg, environment.strength);
-      for (size_t i = 0; i < turned.size(); ++i)
-        for (int c = 0; c < 3; ++c) env[4 * i + size_t(c)] = float(turned[i][c] * kInvPi);
+      std::copy(turned.begin(), turned.end(), sum.begin());
     }
+    for (size_t i = 0; i < directional_.size(); ++i) sum[i] += directional_[i];
+    std::vector<float> env(size_t(shading::kShMaxCount) * 4, 0.0f);
+    for (size_t i = 0; i < sum.size(); ++i)
+      for (int c = 0; c < 3; ++c) env[4 * i + size_t(c)] = float(sum[i][c] * kInvPi);
     context_->queue.enqueueWriteBuffer(buffer, CL_TRUE, 0, env.size() * sizeof(float),
                                        env.data());
   };
   upload(env_, unturned_);
   upload(sun_env_, unturned_suns_);
-  suns_uploaded_ = enabled && !unturned_suns_.empty();
+  suns_uploaded_ = (enabled && !unturned_suns_.empty()) || !directional_.empty();
   uploaded_enabled_ = enabled;
   uploaded_turn_ = environment.rotate_deg;
   uploaded_strength_ = environment.strength;
 }
 
 void PrtSkyPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
-                     const render::VisibilityBuffer& vis, const scene::Environment& environment) {
+                     const render::VisibilityBuffer& vis, const scene::Environment& environment,
+                     const std::vector<scene::PunctualLight>& lights) {
   const uint32_t w = scene.constants.width, h = scene.constants.height;
   if (vis.width != w || vis.height != h)
     throw rp::cl::Error("prt pass: frame size " + std::to_string(w) + "x" + std::to_string(h) +
@@ -145,7 +171,7 @@ void PrtSkyPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     out_bytes_ = bytes;
   }
   if (w == 0 || h == 0) return;
-  update_environment(environment);
+  update_environment(environment, lights);
   if (vertex_count_ > 0 && !vertex_e_fresh_) {
     // the vertices' E / pi: again only when the sky's coefficients changed (a turn, a strength)
     gpu::PrtVertexParams params{};

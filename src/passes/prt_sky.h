@@ -9,10 +9,13 @@
 //
 // An environment's suns (scene/environment_suns.h) are directional lights with shadow maps; the
 // residual map is gathered here. With an interreflected transfer that keeps its shadowed part
-// (PrtShading::shadowed), the suns' bounces are gathered here too, from the whole map:
-//     E = T . L(map) - T_shadowed . L(map - residual),
-// and the GI volume leaves the suns out (carries_suns_bounce(): the renderer tells the scene),
-// since their bounce by PRT's traced transfer is closer to the truth than the cones'.
+// (PrtShading::shadowed), the bounces of every sun are gathered here too, the map's from the
+// whole map and the other directional lights' (the clear sky's sun, a scene's) as radiance
+// pi I delta(w - w_light), whose coefficients are pi I Y_i(w_light):
+//     E = T . (L(map) + L(lights)) - T_shadowed . (L(map - residual) + L(lights)),
+// and the GI volume leaves those lights out (carries_suns_bounce(): the renderer tells the
+// scene), since their bounce by PRT's traced transfer is closer to the truth than the cones'.
+// Point and spot lights have no distant radiance: their bounce stays with the volume.
 #pragma once
 
 #include <algorithm>
@@ -27,6 +30,7 @@
 #include "passes/frame_memory.h"
 #include "render/frame_buffers.h"
 #include "render/gpu_scene.h"
+#include "scene/frame_scene.h"
 #include "scene/environment.h"
 
 namespace rp::passes {
@@ -64,14 +68,16 @@ class PrtSkyPass {
   ~PrtSkyPass();
 
   // E / pi of the frame's environment (turned and scaled as `environment` says; black without
-  // one) at every pixel of `vis` into output() (grown to vis' size). Enqueues only.
+  // one) and of its directional lights' bounces (`lights`, where carries_suns_bounce()) at
+  // every pixel of `vis` into output() (grown to vis' size). Enqueues only.
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
-           const render::VisibilityBuffer& vis, const scene::Environment& environment);
+           const render::VisibilityBuffer& vis, const scene::Environment& environment,
+           const std::vector<scene::PunctualLight>& lights = {});
 
   const ::cl::Buffer& output() const { return out_; }
 
   // Whether the suns' bounces are this pass's (the transfer keeps its shadowed part), so the
-  // GI volume must leave the suns' light out.
+  // GI volume must leave the environment's suns and the directional lights out.
   bool carries_suns_bounce() const { return has_shadowed_; }
 
   // Device memory of output() for a width x height frame (passes/frame_memory.h; it only
@@ -82,7 +88,12 @@ class PrtSkyPass {
   uint64_t frame_device_bytes() const { return buffer_bytes({&out_}); }
 
  private:
-  void update_environment(const scene::Environment& environment);
+  void update_environment(const scene::Environment& environment,
+                          const std::vector<scene::PunctualLight>& lights);
+  // pi I Y_i(-direction) summed over the directional lights not in the environment (empty
+  // without any, or without the shadowed transfer).
+  std::vector<glm::dvec3> directional_coefficients(
+      const std::vector<scene::PunctualLight>& lights) const;
 
   const rp::cl::Context* context_;
   ::cl::Kernel vertex_kernel_, kernel_;  // prt_vertex_irradiance, prt_shade
@@ -100,6 +111,7 @@ class PrtSkyPass {
   // they are not gathered), and what env_ and sun_env_ hold.
   std::shared_ptr<const scene::EnvironmentMap> projected_map_, projected_residual_;
   std::vector<glm::dvec3> unturned_, unturned_suns_;
+  std::vector<glm::dvec3> directional_;  // directional_coefficients of the last frame
   float uploaded_turn_ = 0.0f, uploaded_strength_ = -1.0f;
   bool uploaded_enabled_ = false, suns_uploaded_ = false;
 };

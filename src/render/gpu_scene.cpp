@@ -302,7 +302,8 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
   // A file scene's lights; their shadow views follow the lamp's two planes.
   punctual = setup_punctual_lights(f.lights, shadow_size, 2 * uint64_t(shadow_size) * shadow_size);
   for (size_t i = 0; i < punctual.lights.size(); ++i)
-    if (!suns_in_voxels_ && f.lights[i].in_environment)
+    if (!suns_in_voxels_ &&
+        (f.lights[i].in_environment || f.lights[i].type == scene::LightType::kDirectional))
       punctual.lights[i].flags |= RP_LIGHT_NOT_IN_VOXELS;
   c.punctual_count = uint32_t(punctual.lights.size());
   c.shadow_view_count = uint32_t(punctual.views.size());

@@ -109,8 +109,9 @@ class GpuScene {
   // Whether the diffuse cones add the sky (FrameConstants.sky.diffuse_cones; on by default):
   // off where precomputed radiance transfer carries the diffuse sky (passes/prt_sky.h).
   void set_sky_diffuse_cones(bool on) { sky_diffuse_cones_ = on; }
-  // Whether the GI volume leaves the environment's suns (scene::PunctualLight::in_environment)
-  // out (RP_LIGHT_NOT_IN_VOXELS): where PRT gathers their bounces (passes/prt_sky.h).
+  // Whether the GI volume takes the suns' light: off, it leaves the environment's suns
+  // (scene::PunctualLight::in_environment) and the directional lights out
+  // (RP_LIGHT_NOT_IN_VOXELS), where PRT gathers their bounces (passes/prt_sky.h).
   void set_suns_in_voxels(bool on) { suns_in_voxels_ = on; }
   uint32_t instance_count = 0, sphere_count = 0;
   uint32_t instance_triangle_count = 0;  // sum of triangle_count over instances

@@ -282,7 +282,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     if (ssr_history)
       profiler_.queue().enqueueCopyBuffer(hdr_, hdr_prev_, 0, 0,
                                           size_t(render_width_) * render_height_ * 16);
-    if (prt_) prt_->run(profiler_, *scene_, vis_, frame.environment);
+    if (prt_) prt_->run(profiler_, *scene_, vis_, frame.environment, frame.lights);
     // a frame no history will average gets smooth penumbrae of its own
     light_->set_without_history(
         !(fx.taa && final_view &&

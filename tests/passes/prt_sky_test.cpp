@@ -8,7 +8,9 @@
 // With a shadowed transfer beside the interreflected one and an environment whose suns were
 // taken out, the pass gathers the whole map and takes the suns' shadowed light away:
 // E = T . L(map) - T_shadowed . L(suns); the reference projects the suns' own map (the test
-// map's bright texel alone), not the difference of two projections the pass computes.
+// map's bright texel alone), not the difference of two projections the pass computes. A
+// directional light's bounce is gathered the same way, its radiance pi I delta(w + direction)
+// with coefficients pi I Y(-direction) (a point light's is not: it has no distant radiance).
 //
 // Tolerance: 1e-4 of the largest value plus 1e-4 relative (float sums of 9 or 25 products of
 // numbers near 1, and the two coefficient paths' rounding).
@@ -91,6 +93,13 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
   frame.environment.strength = 1.5f;
   if (suns == Suns::kShadowedWithSuns)
     frame.environment.residual = without_spike(*frame.environment.map, false);
+  // a directional light (its bounce gathered with a shadowed transfer) and a point light (never)
+  std::vector<scene::PunctualLight> lights(2);
+  lights[0].type = scene::LightType::kDirectional;
+  lights[0].direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
+  lights[0].intensity = {2.0f, 1.5f, 0.5f};
+  lights[1].position = {0.0f, 1.0f, 0.0f};
+  lights[1].intensity = glm::vec3(50.0f);
 
   // Transfer: random numbers per PRT vertex (instance a: 0..3, b: 4..6, c: 7..10).
   passes::PrtShading prt;
@@ -121,7 +130,7 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
   // again), so the vertices' sky light must be recomputed, not reused.
   for (const float turn : {3 * 360.0f / 16.0f, -5 * 360.0f / 16.0f}) {
     frame.environment.rotate_deg = turn;
-    pass.run(profiler, gpu, vis, frame.environment);
+    pass.run(profiler, gpu, vis, frame.environment, lights);
     profiler.collect();
 
     Readback r;
@@ -141,6 +150,15 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
       alone.map = without_spike(*frame.environment.map, true);
       alone.residual = nullptr;
       sun_env = shading::sh_project_environment(alone, bands);
+    }
+    std::vector<glm::dvec3> light_env = env;  // the directional light's added where gathered
+    if (suns != Suns::kNone) {
+      double y[shading::kShMaxCount];
+      shading::sh_eval(-glm::dvec3(lights[0].direction), bands, y);
+      for (size_t i = 0; i < env.size(); ++i) {
+        light_env[i] += kPi * glm::dvec3(lights[0].intensity) * y[i];
+        sun_env[i] += kPi * glm::dvec3(lights[0].intensity) * y[i];
+      }
     }
     // Vertex indices of each instance's triangles, local to its mesh.
     const auto local = [&](uint32_t instance, uint32_t primitive) {
@@ -166,7 +184,7 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
           const auto at = [&](uint32_t vertex) {
             return double(prt.coefficients[(size_t(first + vertex) * channels + ch) * count + i]);
           };
-          e[c] += (b0 * at(v.x) + b1 * at(v.y) + b2 * at(v.z)) * env[size_t(i)][c];
+          e[c] += (b0 * at(v.x) + b1 * at(v.y) + b2 * at(v.z)) * light_env[size_t(i)][c];
           if (prt.shadowed.empty()) continue;
           const auto at0 = [&](uint32_t vertex) {
             return double(prt.shadowed[size_t(first + vertex) * count + i]);
@@ -188,7 +206,7 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
 
 TEST(PrtSkyPass, NineGreyCoefficientsMatchTheReference) { check_pass(3, 1); }
 TEST(PrtSkyPass, TwentyFiveRgbCoefficientsMatchTheReference) { check_pass(5, 3); }
-TEST(PrtSkyPass, ShadowedTransferWithoutSunsGathersTheMapAlone) {
+TEST(PrtSkyPass, ShadowedTransferGathersADirectionalLightsBounce) {
   check_pass(5, 3, Suns::kShadowedNoSuns);
 }
 TEST(PrtSkyPass, TheSunsBouncesAreGatheredTheirFirstVertexIsNot) {
@@ -197,30 +215,35 @@ TEST(PrtSkyPass, TheSunsBouncesAreGatheredTheirFirstVertexIsNot) {
 }
 
 // Where the transfer gathers the suns' bounces the GI volume must not carry their light as
-// well: the scene marks the environment's suns RP_LIGHT_NOT_IN_VOXELS (kernels/voxelize.cl
-// skips them), and only them, and only when told.
+// well: the scene marks the environment's suns and the directional lights
+// RP_LIGHT_NOT_IN_VOXELS (kernels/voxelize.cl skips them), not point or spot lights, and only
+// when told.
 TEST(PrtSkyPass, TheGiVolumeLeavesTheSunsOutOnlyWhenThePassGathersThem) {
   scene::SceneAssets assets =
       make_test_assets({make_test_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}})});
   scene::FrameScene frame = make_test_frame();
   frame.instances = {scene::MeshInstance{}};
-  scene::PunctualLight lamp, sun;
-  lamp.type = sun.type = scene::LightType::kDirectional;
-  lamp.direction = sun.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
+  scene::PunctualLight lamp, spot, directional, sun;
+  lamp.position = {0.0f, 1.0f, 0.0f};
+  spot.type = scene::LightType::kSpot;
+  spot.position = {0.0f, 1.0f, 0.0f};
+  directional.type = sun.type = scene::LightType::kDirectional;
+  directional.direction = sun.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
   sun.in_environment = true;
-  frame.lights = {lamp, sun};
+  frame.lights = {lamp, directional, spot, sun};
   render::GpuScene gpu(context().context, context().queue, assets);
   const auto flags = [&](size_t light) { return gpu.constants.punctual[light].flags; };
   gpu.update(frame, 8, 8, 64);
-  EXPECT_EQ(flags(0), 0u);
-  EXPECT_EQ(flags(1), 0u);
+  for (size_t i = 0; i < 4; ++i) EXPECT_EQ(flags(i), 0u) << i;
   gpu.set_suns_in_voxels(false);
   gpu.update(frame, 8, 8, 64);
   EXPECT_EQ(flags(0), 0u);
   EXPECT_EQ(flags(1), uint32_t(RP_LIGHT_NOT_IN_VOXELS));
+  EXPECT_EQ(flags(2), 0u);
+  EXPECT_EQ(flags(3), uint32_t(RP_LIGHT_NOT_IN_VOXELS));
   gpu.set_suns_in_voxels(true);
   gpu.update(frame, 8, 8, 64);
-  EXPECT_EQ(flags(1), 0u);
+  for (size_t i = 0; i < 4; ++i) EXPECT_EQ(flags(i), 0u) << i;
 }
 
 TEST(PrtSkyPass, RejectsTransferThatDoesNotFitTheScene) {
