@@ -19,10 +19,11 @@
  *                   for this frame on the host
  *   shadowed        params.suns only: the shadowed transfer the interreflected one started
  *                   from, grey, vertex v's coefficient i at v * count + i
- *   sun_env         params.suns only: as env, for the environment's suns alone (the map minus
- *                   its residual: scene/environment_suns.h). Their first vertex is the
- *                   directional lights' (shadow maps), so E = T . env - T_shadowed . sun_env:
- *                   the suns' bounces stay with the transfer, their direct light does not
+ *   sun_env         params.suns only: as env, for the suns alone: the environment's (the map
+ *                   minus its residual: scene/environment_suns.h) and the directional lights'
+ *                   (pi I Y(w_light)), which env holds too. Their first vertex is lit with
+ *                   shadow maps, so E = T . env - T_shadowed . sun_env: the suns' bounces stay
+ *                   with the transfer, their direct light does not
  * Output: float4 per pixel, rgb = E / pi (the light pass's D, irradiance over pi: albedo times
  * it is the Lambertian radiance), a = 1 where a transfer was found, 0 elsewhere (background,
  * spheres, instances without transfer). Two kernels: prt_vertex_irradiance dots every vertex's

@@ -113,8 +113,10 @@ class Renderer {
   // Sky light by precomputed radiance transfer from now on (passes/prt_sky.h): `prt` holds the
   // transfer of the frames' instances (the same instances, in the same order, every frame);
   // the diffuse cones and the bounce grid then carry no sky, the reflection cones still do.
-  // Where it keeps its shadowed part, the GI volume leaves the environment's suns out too: the
-  // transfer gathers their bounces (PrtSkyPass::carries_suns_bounce). Throws rp::cl::Error when the transfer does not fit the scene.
+  // Where it keeps its shadowed part, the GI volume leaves the environment's suns and the
+  // directional lights out too: the transfer gathers their bounces
+  // (PrtSkyPass::carries_suns_bounce). Throws rp::cl::Error when the transfer does not fit the
+  // scene.
   void set_prt(const passes::PrtShading& prt);
   // Reads the last frame's HDR output, light components and GBuffer emission / albedo back
   // (blocking). Throws rp::cl::Error unless the components were written (a direct / indirect
