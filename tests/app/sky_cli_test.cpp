@@ -525,6 +525,17 @@ TEST(SkyCli, RealTimeRotatingTheMapHalfTurnMovesItsLightToTheOtherSide) {
   EXPECT_NEAR(mean(after, 0, 0, 2), 1.0, 1e-6);
 }
 
+// A 64 x 32 map: a dim sky (0.3) and a 2 x 2 texel sun at azimuth 90, elevation 45 (about 6 x
+// the sky's light on a floor).
+void write_sun_map(const std::filesystem::path& file) {
+  const int mw = 64, mh = 32;
+  std::vector<float> rgb(size_t(mw) * mh * 3, 0.3f);
+  for (int y = 7; y < 9; ++y)
+    for (int x = 15; x < 17; ++x)
+      for (int c = 0; c < 3; ++c) rgb[(size_t(y) * mw + size_t(x)) * 3 + size_t(c)] = 250.0f;
+  truth::write_exr_atomic(file, mw, mh, {{"", &rgb}});
+}
+
 // A map whose sun holds most of its light, seen by a white floor with a box on it: taken out
 // of the map (the default --env-suns), the sun is a directional light whose shadow map keeps
 // its light out of the box's shadow, so the real-time image is within a few per cent of the
@@ -532,14 +543,7 @@ TEST(SkyCli, RealTimeRotatingTheMapHalfTurnMovesItsLightToTheOtherSide) {
 // sun leaks into the shadow through their wide footprint. The log names the sun it took.
 TEST(SkyCli, RealTimeTheMapsSunCastsItsShadowLikeThePathTracers) {
   TempDir dir;
-  // a dim sky (0.3) and a 2 x 2 texel sun at azimuth 90, elevation 45 (about 6 x the sky's
-  // light on the floor)
-  const int mw = 64, mh = 32;
-  std::vector<float> rgb(size_t(mw) * mh * 3, 0.3f);
-  for (int y = 7; y < 9; ++y)
-    for (int x = 15; x < 17; ++x)
-      for (int c = 0; c < 3; ++c) rgb[(size_t(y) * mw + size_t(x)) * 3 + size_t(c)] = 250.0f;
-  truth::write_exr_atomic(dir / "sun.exr", mw, mh, {{"", &rgb}});
+  write_sun_map(dir / "sun.exr");
   scene::Mesh mesh;
   mesh.name = "floor and box";
   scene::append_box(mesh, {0.0f, -0.05f, 0.0f}, {50.0f, 0.05f, 50.0f}, 0);
@@ -582,12 +586,7 @@ TEST(SkyCli, RealTimeTheMapsSunCastsItsShadowLikeThePathTracers) {
 // clear sky, whose sun is a directional light of its own (its bounce as pi I delta).
 TEST(SkyCli, RealTimePrtTheMapsSunBouncesOnceByTheTransfer) {
   TempDir dir;
-  const int mw = 64, mh = 32;
-  std::vector<float> rgb(size_t(mw) * mh * 3, 0.3f);
-  for (int y = 7; y < 9; ++y)
-    for (int x = 15; x < 17; ++x)
-      for (int c = 0; c < 3; ++c) rgb[(size_t(y) * mw + size_t(x)) * 3 + size_t(c)] = 250.0f;
-  truth::write_exr_atomic(dir / "sun.exr", mw, mh, {{"", &rgb}});
+  write_sun_map(dir / "sun.exr");
   scene::Mesh mesh;
   mesh.name = "floor and box";
   // cells of 0.2 m: vertices for the transfer to live on
