@@ -85,10 +85,10 @@ PrtSkyPass::PrtSkyPass(const rp::cl::Context& context, rp::cl::ProgramCache& pro
 
 PrtSkyPass::~PrtSkyPass() = default;
 
-std::vector<glm::dvec3> PrtSkyPass::directional_coefficients(
-    const std::vector<scene::PunctualLight>& lights) const {
-  std::vector<glm::dvec3> out;
-  if (!has_shadowed_) return out;
+void PrtSkyPass::directional_coefficients(const std::vector<scene::PunctualLight>& lights,
+                                          std::vector<glm::dvec3>& out) const {
+  out.clear();
+  if (!has_shadowed_) return;
   double y[shading::kShMaxCount];
   for (const scene::PunctualLight& l : lights) {
     if (l.type != scene::LightType::kDirectional || l.in_environment) continue;
@@ -98,15 +98,14 @@ std::vector<glm::dvec3> PrtSkyPass::directional_coefficients(
     shading::sh_eval(-glm::normalize(glm::dvec3(l.direction)), bands_, y);
     for (size_t i = 0; i < out.size(); ++i) out[i] += kPi * glm::dvec3(l.intensity) * y[i];
   }
-  return out;
 }
 
 void PrtSkyPass::update_environment(const scene::Environment& environment,
                                     const std::vector<scene::PunctualLight>& lights) {
   const bool enabled = environment.enabled();
-  std::vector<glm::dvec3> directional = directional_coefficients(lights);
-  const bool lights_changed = directional != directional_;
-  if (lights_changed) directional_ = std::move(directional);
+  directional_coefficients(lights, directional_next_);
+  const bool lights_changed = directional_next_ != directional_;
+  if (lights_changed) std::swap(directional_, directional_next_);
   if (enabled &&
       (environment.map != projected_map_ || environment.residual != projected_residual_)) {
     // Without suns, or without the shadowed transfer, the gathered map (the residual: the suns

@@ -72,7 +72,7 @@ class PrtSkyPass {
   // every pixel of `vis` into output() (grown to vis' size). Enqueues only.
   void run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
            const render::VisibilityBuffer& vis, const scene::Environment& environment,
-           const std::vector<scene::PunctualLight>& lights = {});
+           const std::vector<scene::PunctualLight>& lights);
 
   const ::cl::Buffer& output() const { return out_; }
 
@@ -90,10 +90,11 @@ class PrtSkyPass {
  private:
   void update_environment(const scene::Environment& environment,
                           const std::vector<scene::PunctualLight>& lights);
-  // pi I Y_i(-direction) summed over the directional lights not in the environment (empty
-  // without any, or without the shadowed transfer).
-  std::vector<glm::dvec3> directional_coefficients(
-      const std::vector<scene::PunctualLight>& lights) const;
+  // pi I Y_i(-direction) summed over the directional lights not in the environment into `out`
+  // (left empty without any, or without the shadowed transfer; its capacity is kept, so the
+  // per-frame call allocates nothing once the lights are known).
+  void directional_coefficients(const std::vector<scene::PunctualLight>& lights,
+                                std::vector<glm::dvec3>& out) const;
 
   const rp::cl::Context* context_;
   ::cl::Kernel vertex_kernel_, kernel_;  // prt_vertex_irradiance, prt_shade
@@ -111,7 +112,8 @@ class PrtSkyPass {
   // they are not gathered), and what env_ and sun_env_ hold.
   std::shared_ptr<const scene::EnvironmentMap> projected_map_, projected_residual_;
   std::vector<glm::dvec3> unturned_, unturned_suns_;
-  std::vector<glm::dvec3> directional_;  // directional_coefficients of the last frame
+  // directional_coefficients of the last upload, and this frame's (compared, then swapped)
+  std::vector<glm::dvec3> directional_, directional_next_;
   float uploaded_turn_ = 0.0f, uploaded_strength_ = -1.0f;
   bool uploaded_enabled_ = false, suns_uploaded_ = false;
 };
