@@ -211,15 +211,9 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
     m["truth"] = c.many ? "many" : "one";
     j["configurations"][c.key] = m;
   }
-  std::vector<uint8_t> taa_rgba;
-  render_mode(common, kTaaConfigKey, render::Quality::kFast, options.many_bounces, true, w, h,
-              options.converge_frames, taa_rgba, frame_fn, &assets);
-  j["configurations"][kTaaConfigKey] = {
-      {"quality", "fast"},  {"bounces", options.many_bounces},
-      {"frames", options.converge_frames}, {"taa", true},
-      {"render_scale", json_scale(common.render.render_scale)},
-      {"bloom", false},     {"motion_blur", false},
-      {"truth", "many"},    {"final_psnr_db", rgba8_psnr(taa_rgba, truths[1].combined)}};
+  const std::vector<uint8_t> taa_rgba =
+      render_finished_frames(common, options.many_bounces, w, h, options.converge_frames,
+                             truths[1].combined, j["configurations"], frame_fn, &assets);
   j["images"] = write_accuracy_pictures(options.out_dir, w, h, truths, rendered, regions.image, taa_rgba,
                                options.many_bounces);
 

@@ -75,6 +75,12 @@ std::string check_file_thresholds(const AccuracyOptions& options, nlohmann::json
     check("min_psnr_taa", *options.min_psnr_taa, v, v >= *options.min_psnr_taa,
           "final PSNR with TAA, fast/N (dB)");
   }
+  if (options.max_first_frame_gap) {
+    const double v = json_number(cfg[kFirstFrameConfigKey]["gap_to_taa_db"]);
+    check("max_first_frame_gap", *options.max_first_frame_gap, v,
+          v <= *options.max_first_frame_gap,
+          "final PSNR with TAA minus the first frame's, fast/N (dB)");
+  }
   if (options.min_albedo_psnr) {
     // The fast mode without TAA draws unjittered: its albedo is the albedo view's.
     const double v = json_number(fast["albedo_psnr_db"]);
@@ -152,6 +158,10 @@ std::string file_accuracy_table(const nlohmann::json& j) {
   std::snprintf(line, sizeof line, "%-34s %s %8s %8s %8s\n", "final PSNR, TAA (dB)",
                 db_cell(json_number(cfg[kTaaConfigKey]["final_psnr_db"])).c_str(), "-", "-",
                 "-");
+  t << line;
+  std::snprintf(line, sizeof line, "%-34s %s %8s %8s %8s\n", "final PSNR, first frame (dB)",
+                db_cell(json_number(cfg[kFirstFrameConfigKey]["final_psnr_db"])).c_str(), "-",
+                "-", "-");
   t << line;
   row("albedo PSNR (dB)",
       [](const nlohmann::json& m) { return db_cell(json_number(m["albedo_psnr_db"])); });

@@ -100,6 +100,35 @@ Images render_mode(const CommonOptions& common, const std::string& name, render:
   return {name, lc.combined, lc.direct, lc.indirect, lc.albedo, lc.specular};
 }
 
+std::vector<uint8_t> render_finished_frames(const CommonOptions& common, uint32_t bounces,
+                                            uint32_t w, uint32_t h, uint32_t frames,
+                                            const std::vector<float>& truth,
+                                            nlohmann::json& configurations,
+                                            const FrameFn& frame_fn,
+                                            const scene::SceneAssets* assets) {
+  auto facts = [&](uint32_t n, double psnr) {
+    return nlohmann::json{{"quality", "fast"},
+                          {"bounces", bounces},
+                          {"frames", n},
+                          {"taa", true},
+                          {"render_scale", json_scale(common.render.render_scale)},
+                          {"bloom", false},
+                          {"motion_blur", false},
+                          {"truth", "many"},
+                          {"final_psnr_db", psnr}};
+  };
+  std::vector<uint8_t> converged, first;
+  render_mode(common, kTaaConfigKey, render::Quality::kFast, bounces, true, w, h, frames,
+              converged, frame_fn, assets);
+  render_mode(common, kFirstFrameConfigKey, render::Quality::kFast, bounces, true, w, h, 1, first,
+              frame_fn, assets);
+  const double converged_db = rgba8_psnr(converged, truth), first_db = rgba8_psnr(first, truth);
+  configurations[kTaaConfigKey] = facts(frames, converged_db);
+  configurations[kFirstFrameConfigKey] = facts(1, first_db);
+  configurations[kFirstFrameConfigKey]["gap_to_taa_db"] = converged_db - first_db;
+  return converged;
+}
+
 CachedTruth cached_truth_with_progress(truth::PathTracer& tracer,
                                        const scene::SceneAssets& assets,
                                        const scene::FrameScene& frame,

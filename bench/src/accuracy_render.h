@@ -37,6 +37,9 @@ inline constexpr AccuracyConfig kAccuracyConfigs[] = {
 };
 // The fifth render: fast at many bounces with TAA, its finished 8-bit frame.
 inline constexpr const char* kTaaConfigKey = "fast_many_taa";
+// The sixth: the same session's first frame, which no history averages (what `render --frames
+// 1`, a camera cut or R show).
+inline constexpr const char* kFirstFrameConfigKey = "fast_first_frame";
 
 // {"rel_l1", "bias", "pixels"} (NaN figures, a region without light, are written as null).
 nlohmann::json stats_json(const ErrorStats& s);
@@ -84,6 +87,18 @@ Images render_mode(const app::CommonOptions& common, const std::string& name,
                    uint32_t frames, std::vector<uint8_t>& final_rgba,
                    const FrameFn& frame_fn = scene::make_demo_frame,
                    const scene::SceneAssets* assets = nullptr);
+
+// The fast mode's finished frames with TAA at `bounces` (no bloom or motion blur) against
+// `truth` (the many-bounce truth's combined radiance): converged after `frames` frames
+// (configurations[kTaaConfigKey]) and a fresh session's first frame, which no history averages
+// (configurations[kFirstFrameConfigKey], with its gap to the converged frame's PSNR). Returns
+// the converged frame's RGBA8.
+std::vector<uint8_t> render_finished_frames(const app::CommonOptions& common, uint32_t bounces,
+                                            uint32_t w, uint32_t h, uint32_t frames,
+                                            const std::vector<float>& truth,
+                                            nlohmann::json& configurations,
+                                            const FrameFn& frame_fn = scene::make_demo_frame,
+                                            const scene::SceneAssets* assets = nullptr);
 
 // cached_path_trace with a progress bar named `label`; Ctrl-C / SIGTERM (InterruptGuard) stops
 // the render between rows (truth::PathTracer::Cancelled).

@@ -141,18 +141,9 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
     m["truth"] = c.many ? "many" : "one";
     j["configurations"][c.key] = m;
   }
-  std::vector<uint8_t> taa_rgba;
-  render_mode(common, kTaaConfigKey, render::Quality::kFast, options.many_bounces, true, w, h,
-              options.converge_frames, taa_rgba);
-  j["configurations"][kTaaConfigKey] = {{"quality", "fast"},
-                                  {"bounces", options.many_bounces},
-                                  {"frames", options.converge_frames},
-                                  {"taa", true},
-                                  {"render_scale", json_scale(common.render.render_scale)},
-                                  {"bloom", false},
-                                  {"motion_blur", false},
-                                  {"truth", "many"},
-                                  {"final_psnr_db", rgba8_psnr(taa_rgba, truth_many.combined)}};
+  const std::vector<uint8_t> taa_rgba =
+      render_finished_frames(common, options.many_bounces, w, h, options.converge_frames,
+                             truth_many.combined, j["configurations"]);
   for (size_t r = 0; r < kDemoRegionCount; ++r) {
     uint64_t n = 0;
     for (uint16_t l : labels) n += (l >> r) & 1u;
@@ -243,6 +234,12 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
     check("min_psnr_taa", *options.min_psnr_taa, v, v >= *options.min_psnr_taa,
           "final PSNR with TAA, fast/N (dB)");
   }
+  if (options.max_first_frame_gap) {
+    const double v = cfg[kFirstFrameConfigKey]["gap_to_taa_db"].get<double>();
+    check("max_first_frame_gap", *options.max_first_frame_gap, v,
+          v <= *options.max_first_frame_gap,
+          "final PSNR with TAA minus the first frame's, fast/N (dB)");
+  }
   if (options.require_wall_hue) {
     nlohmann::json walls;
     int matched = 0;
@@ -304,6 +301,10 @@ AccuracyResult measure_accuracy(const CommonOptions& common, const AccuracyOptio
   row("final PSNR (dB)", [&](const nlohmann::json& m) { return db(number(m["final_psnr_db"])); });
   std::snprintf(line, sizeof line, "%-32s %s %8s %8s %8s\n", "final PSNR, TAA (dB)",
                 db(cfg[kTaaConfigKey]["final_psnr_db"].get<double>()).c_str(), "-", "-", "-");
+  t << line;
+  std::snprintf(line, sizeof line, "%-32s %s %8s %8s %8s\n", "final PSNR, first frame (dB)",
+                db(cfg[kFirstFrameConfigKey]["final_psnr_db"].get<double>()).c_str(), "-", "-",
+                "-");
   t << line;
   row("direct bias", [&](const nlohmann::json& m) {
     return percent_cell(number(m["direct"]["bias"]), true);
@@ -380,6 +381,7 @@ int accuracy_command(const CommonOptions& common, const BenchOptions& options) {
   o.max_region_bias = options.max_region_bias;
   o.max_indirect_l1_single = options.max_indirect_l1_single;
   o.min_psnr_taa = options.min_psnr_taa;
+  o.max_first_frame_gap = options.max_first_frame_gap;
   o.require_wall_hue = options.require_wall_hue;
   o.min_direct_psnr_floor = options.min_direct_psnr_floor;
   o.max_penumbra_error = options.max_penumbra_error;

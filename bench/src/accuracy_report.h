@@ -61,6 +61,7 @@ struct AccuracyOptions {
   std::optional<double> max_region_bias;         // fast_many: |indirect bias|, every named region
   std::optional<double> max_indirect_l1_single;  // fast_one: indirect relative L1, image
   std::optional<double> min_psnr_taa;            // fast_many_taa: final PSNR (dB)
+  std::optional<double> max_first_frame_gap;     // fast_many_taa's PSNR - fast_first_frame's
   bool require_wall_hue = false;  // both walls: sign(R - B) of fast_many and fast_one as truth's
   // The direct section (accuracy_direct.h): its truth's samples per pixel are direct_spp_factor
   // x spp (a 0-bounce sample costs about a quarter of a 64-bounce one); its thresholds are on

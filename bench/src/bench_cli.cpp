@@ -77,6 +77,10 @@ BenchCli::BenchCli(CLI::App& app, app::CommonOptions& common, BenchOptions& opti
   threshold("--min-psnr-taa", options_.min_psnr_taa,
             "the PSNR (dB) of the fast mode's final image with TAA (no bloom or motion blur, "
             "64 bounces) against the 64-bounce truth is below this (e.g. 30)");
+  threshold("--max-first-frame-gap", options_.max_first_frame_gap,
+            "the fast mode's first frame (no history: `render --frames 1`, a cut) is more than "
+            "this many dB below its converged frame with TAA, both against the 64-bounce truth "
+            "(e.g. 1.5)");
   threshold("--min-direct-psnr-floor", options_.min_direct_psnr_floor,
             "the default shadow mode's direct PSNR (dB) on the floor against the area-lamp truth "
             "is below this (e.g. 35)");
@@ -181,13 +185,14 @@ std::string BenchCli::finish(int argc, const char* const* argv) {
            (bench->count("--out") || bench->count("--truth-cache") ||
             bench->count("--max-indirect-l1") || bench->count("--max-indirect-bias") ||
             bench->count("--max-region-bias") || bench->count("--max-indirect-l1-single") ||
-            bench->count("--min-psnr-taa") || bench_opts.require_wall_hue ||
+            bench->count("--min-psnr-taa") || bench->count("--max-first-frame-gap") ||
+            bench_opts.require_wall_hue ||
             bench->count("--min-direct-psnr-floor") || bench->count("--max-penumbra-error") ||
             bench->count("--min-albedo-psnr")))
     why = "--out, --truth-cache and the thresholds (--max-indirect-l1, --max-indirect-bias, "
-          "--max-region-bias, --max-indirect-l1-single, --min-psnr-taa, --require-wall-hue, "
-          "--min-direct-psnr-floor, --max-penumbra-error, --min-albedo-psnr) belong to "
-          "--accuracy";
+          "--max-region-bias, --max-indirect-l1-single, --min-psnr-taa, --max-first-frame-gap, "
+          "--require-wall-hue, --min-direct-psnr-floor, --max-penumbra-error, "
+          "--min-albedo-psnr) belong to --accuracy";
   if (why) return why;
   const bool demo_scene = bench_opts.scene == "default" || bench_opts.scene == "busy" ||
                           app::is_demo_scene(bench_opts.scene);

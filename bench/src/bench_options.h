@@ -28,7 +28,7 @@ struct BenchOptions {
   std::string truth_cache;              // --truth-cache DIR ("" = the default cache folder)
   // Thresholds (exit 3 when missed; bench/src/accuracy_report.h): fractions, PSNR in dB.
   std::optional<double> max_indirect_l1, max_indirect_bias, max_region_bias;
-  std::optional<double> max_indirect_l1_single, min_psnr_taa;
+  std::optional<double> max_indirect_l1_single, min_psnr_taa, max_first_frame_gap;
   std::optional<double> min_direct_psnr_floor, max_penumbra_error, min_albedo_psnr;
   bool require_wall_hue = false;
   // The matrix: every device x size x voxel resolution.

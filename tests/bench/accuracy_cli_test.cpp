@@ -27,7 +27,8 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
   const rp::test::CommandResult first = run_rolypoly(args);
   ASSERT_EQ(first.exit_code, 0) << first.command << "\n" << first.out << first.err;
   for (const char* text : {"indirect bias ceiling", "fast/N", "ref/N", "fast/1", "ref/1",
-                           "final PSNR, TAA (dB)", "right_wall reference N",
+                           "final PSNR, TAA (dB)", "final PSNR, first frame (dB)",
+                           "right_wall reference N",
                            "left_wall  sign of R - B: fast N as truth N"})
     EXPECT_NE(first.out.find(text), std::string::npos) << text << "\n" << first.out;
   EXPECT_EQ(first.out.find("from the cache"), std::string::npos);
@@ -72,6 +73,13 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
   EXPECT_FALSE(taa["bloom"].get<bool>());
   EXPECT_EQ(taa["bounces"], 64);
   EXPECT_GT(taa["final_psnr_db"].get<double>(), 5.0);
+  const nlohmann::json& first_frame = cfg["fast_first_frame"];
+  EXPECT_EQ(first_frame["frames"], 1);
+  EXPECT_TRUE(first_frame["taa"].get<bool>());
+  EXPECT_GT(first_frame["final_psnr_db"].get<double>(), 5.0);
+  EXPECT_NEAR(first_frame["gap_to_taa_db"].get<double>(),
+              taa["final_psnr_db"].get<double>() - first_frame["final_psnr_db"].get<double>(),
+              1e-9);
   // Many bounces carry more light than one.
   EXPECT_GT(j["truth"]["many"]["incoming_indirect"]["right_wall"]["rgb"][0].get<double>(),
             j["truth"]["one"]["incoming_indirect"]["right_wall"]["rgb"][0].get<double>());
@@ -94,7 +102,8 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
   // Every threshold, two missed on purpose; the truths come from the cache.
   const rp::test::CommandResult second = run_rolypoly(
       args + " --max-indirect-l1 0.0001 --max-indirect-bias 1000 --max-region-bias 1000 "
-             "--max-indirect-l1-single 1000 --min-psnr-taa 1000 --require-wall-hue "
+             "--max-indirect-l1-single 1000 --min-psnr-taa 1000 --max-first-frame-gap 1000 "
+             "--require-wall-hue "
              "--min-direct-psnr-floor 1000 --max-penumbra-error 1000 --min-albedo-psnr 0");
   EXPECT_EQ(second.exit_code, 3) << second.out << second.err;
   EXPECT_NE(second.out.find("(from the cache)"), std::string::npos) << second.out;
@@ -104,7 +113,8 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
   const nlohmann::json j2 = nlohmann::json::parse(in2);
   EXPECT_FALSE(j2["passed"].get<bool>());
   for (const char* name : {"max_indirect_l1", "max_indirect_bias", "max_region_bias",
-                           "max_indirect_l1_single", "min_psnr_taa", "require_wall_hue"}) {
+                           "max_indirect_l1_single", "min_psnr_taa", "max_first_frame_gap",
+                           "require_wall_hue"}) {
     const nlohmann::json& th = j2["thresholds"][name];
     EXPECT_TRUE(th["limit"].is_number()) << name;
     EXPECT_TRUE(th["passed"].is_boolean()) << name;
@@ -118,6 +128,9 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
   EXPECT_NE(second.out.find("threshold min_psnr_taa"), std::string::npos) << second.out;
   EXPECT_EQ(j2["thresholds"]["min_psnr_taa"]["value"].get<double>(),
             j2["configurations"]["fast_many_taa"]["final_psnr_db"].get<double>());
+  EXPECT_TRUE(j2["thresholds"]["max_first_frame_gap"]["passed"].get<bool>());
+  EXPECT_EQ(j2["thresholds"]["max_first_frame_gap"]["value"].get<double>(),
+            j2["configurations"]["fast_first_frame"]["gap_to_taa_db"].get<double>());
   EXPECT_TRUE(j2["thresholds"]["require_wall_hue"]["walls"]["left_wall"].contains("fast_one"));
   EXPECT_FALSE(j2["thresholds"]["min_direct_psnr_floor"]["passed"].get<bool>());
   EXPECT_EQ(j2["thresholds"]["min_direct_psnr_floor"]["value"].get<double>(),

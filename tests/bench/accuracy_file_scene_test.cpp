@@ -28,7 +28,8 @@ TEST(AccuracyFileScene, EveryMaterialIsARegion) {
   const CommandResult first = run_rolypoly(args);
   ASSERT_EQ(first.exit_code, 0) << first.command << "\n" << first.out << first.err;
   for (const char* text : {"accuracy at 64x64, scene ", "fast/N", "ref/N", "fast/1", "ref/1",
-                           "final PSNR, TAA (dB)", "direct PSNR (dB) image", "albedo PSNR (dB)",
+                           "final PSNR, TAA (dB)", "final PSNR, first frame (dB)",
+                           "direct PSNR (dB) image", "albedo PSNR (dB)",
                            "indirect L1 image", "leak pixels (indirect)", "specular L1 floor"})
     EXPECT_NE(first.out.find(text), std::string::npos) << text << "\n" << first.out;
   for (const std::string& m : scene.materials) {
@@ -85,6 +86,8 @@ TEST(AccuracyFileScene, EveryMaterialIsARegion) {
   }
   EXPECT_TRUE(j["configurations"]["fast_many_taa"]["taa"].get<bool>());
   EXPECT_GT(j["configurations"]["fast_many_taa"]["final_psnr_db"].get<double>(), 10.0);
+  EXPECT_EQ(j["configurations"]["fast_first_frame"]["frames"], 1);
+  EXPECT_GT(j["configurations"]["fast_first_frame"]["final_psnr_db"].get<double>(), 10.0);
   // Both truths in the file's own folder of the cache.
   const std::string folder = "scene-" + j["scene"]["content_hash"].get<std::string>();
   EXPECT_EQ(files_with_suffix(dir / "cache" / folder, ".exr").size(), 2u);

@@ -275,18 +275,21 @@ TEST(ParseCli, AccuracyThresholds) {
   const ParsedCommand p = command({"bench", "--accuracy", "--max-indirect-l1", "0.15",
                                    "--max-indirect-bias", "0.1", "--max-region-bias", "0.15",
                                    "--max-indirect-l1-single", "0.12", "--min-psnr-taa", "30",
-                                   "--require-wall-hue"});
+                                   "--max-first-frame-gap", "1.5", "--require-wall-hue"});
   EXPECT_TRUE(p.bench.accuracy);
   EXPECT_EQ(p.bench.max_indirect_l1, 0.15);
   EXPECT_EQ(p.bench.max_indirect_bias, 0.1);
   EXPECT_EQ(p.bench.max_region_bias, 0.15);
   EXPECT_EQ(p.bench.max_indirect_l1_single, 0.12);
   EXPECT_EQ(p.bench.min_psnr_taa, 30.0);
+  EXPECT_EQ(p.bench.max_first_frame_gap, 1.5);
   EXPECT_TRUE(p.bench.require_wall_hue);
   const ParsedCommand none = command({"bench", "--accuracy"});
   EXPECT_FALSE(none.bench.max_region_bias || none.bench.max_indirect_l1_single ||
-               none.bench.min_psnr_taa || none.bench.require_wall_hue);
-  for (const char* option : {"--max-region-bias", "--max-indirect-l1-single", "--min-psnr-taa"}) {
+               none.bench.min_psnr_taa || none.bench.max_first_frame_gap ||
+               none.bench.require_wall_hue);
+  for (const char* option : {"--max-region-bias", "--max-indirect-l1-single", "--min-psnr-taa",
+                             "--max-first-frame-gap"}) {
     EXPECT_EQ(exit_of({"bench", option, "1"}).exit_code, 2) << option;
     EXPECT_EQ(exit_of({"bench", "--accuracy", option, "inf"}).exit_code, 2) << option;
   }
