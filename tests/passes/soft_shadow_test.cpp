@@ -405,13 +405,13 @@ double hard_ref(const rp::scene::PointLight& light, const std::vector<float>& ma
 }
 
 // RP_PCF_TAPS = 8 taps, points 0, 2, .., 14 of the disk, RP_PCF_RADIUS = 2.5 texels, rotated by
-// 2 pi k / 16, k = the top 4 bits of the pixel's hash.
+// 2 pi k / 16, k = the top 4 bits of the pixel's hash plus the frame index (mod 16).
 double pcf_ref(const rp::scene::PointLight& light, const std::vector<float>& map, uint32_t size,
                const Point& pt, uint32_t x, uint32_t y, uint32_t frame) {
   const Receiver r = project(light, size, pt);
   if (!r.inside) return 1.0;
-  const uint32_t h = hash_u32(x ^ hash_u32(y ^ hash_u32(frame)));
-  const double angle = 2.0 * M_PI * double(h >> 28) / 16.0;
+  const uint32_t h = hash_u32(x ^ hash_u32(y));
+  const double angle = 2.0 * M_PI * double(((h >> 28) + frame) & 15u) / 16.0;
   const double ca = std::cos(angle), sa = std::sin(angle);
   int lit = 0;
   for (int t = 0; t < 8; ++t) {
