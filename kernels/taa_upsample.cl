@@ -6,18 +6,25 @@
  *                render pixels is p = (X + 0.5) * rw / ow. The jittered view_proj moved every
  *                point by +jitter render pixels, so render pixel i sampled the scene at
  *                q_i = i + 0.5 - jitter (in render pixels).
- *   1. current   the 3x3 render pixels around the one whose sample is nearest p; each sample
- *                weighted by w = max(0, 1 - 0.7 d^2)^2, d its distance from the output pixel
- *                centre in OUTPUT pixels (close to a Gaussian of sigma 0.47 output pixels:
- *                about the pixel's own footprint). c = sum w T(x) / sum w on tone-mapped colour
- *                T(x) = x / (1 + x). Where no sample is within reach (sum w = 0: at scale 0.5
- *                the nearest can be 1.4 output pixels away) c is the nearest sample and, with
- *                w_max = 0, the history stays as it was.
- *   2. box       mean and standard deviation of the 3x3 samples' T in YCoCg; box = mean +-
- *                gamma * stddev, grown to hold c (the 3x3 spans 3 / scale output pixels, so a
- *                thin feature's own colour can lie outside the moments' box).
- *   3. motion    velocity of the nearest surface (smallest linear depth) among the 3x3, in
- *                render pixels, times ow / rw: output pixels.
+ *   0. per render pixel (kernel taa_upsample_box, at the render size): its tone-mapped
+ *                colour T(x) = x / (1 + x), and over the 3x3 around it the mean and gamma x
+ *                the standard deviation of T in YCoCg and the velocity of the nearest surface
+ *                (smallest linear depth). Steps 2 and 3 read them for the render pixel whose
+ *                sample is nearest p: computed once per render pixel rather than once per
+ *                output pixel (about 1 / scale^2 times).
+ *   1. current   the render pixels whose samples may be within reach of the output pixel
+ *                centre: the 3x3 around the one nearest p, or at scales below 0.837 (reach
+ *                under one render pixel) the 2x2 around p; each sample weighted by w = max(0,
+ *                1 - 0.7 d^2)^2, d its distance from the output pixel centre in OUTPUT pixels
+ *                (close to a Gaussian of sigma 0.47 output pixels: about the pixel's own
+ *                footprint; zero beyond RP_TAAU_REACH). c = sum w T / sum w. Where no sample is
+ *                within reach (sum w = 0: at scale 0.5 the nearest can be 1.4 output pixels
+ *                away) c is the nearest sample and, with w_max = 0, the history stays as it was.
+ *   2. box       step 0's box of the nearest render pixel, mean +- gamma * stddev, grown to
+ *                hold c (the 3x3 spans 3 / scale output pixels, so a thin feature's own colour
+ *                can lie outside the moments' box).
+ *   3. motion    step 0's velocity of the nearest render pixel (render pixels), times ow / rw:
+ *                output pixels.
  *   4. history   output-resolution history, bilinear at the output pixel centre - motion;
  *                outside the image, or when history_valid = 0, history = c.
  *   5. blend     history clipped toward the box centre (rp_taa_clip), then
@@ -29,9 +36,10 @@
  *
  * Buffers (row-major, top row first):
  *   hdr_in        float4 rw x rh  linear HDR of this frame (w passed through from the pixel
- *                                 nearest p)
- *   velocity      float2 rw x rh  render pixels, this frame minus previous, unjittered
+ *                                 nearest p); read by step 0
+ *   velocity      float2 rw x rh  render pixels, this frame minus previous, unjittered; step 0
  *   normal_depth  float4 rw x rh  the GBuffer's (w: linear view depth; far plane where nothing)
+ *   colour, box_centre, box_extent  float4 rw x rh  step 0's (taa_upsample_box says how)
  *   history_in    float  ow x oh  previous resolved frame, tone mapped, planes R, G, B
  *   history_out   float  ow x oh  this resolved frame, same layout
  *   hdr_out       float4 ow x oh  this resolved frame in linear HDR
@@ -39,12 +47,11 @@
  *   depth_out     float4 ow x oh  w: the linear depth of the pixel nearest p (xyz 0)
  * Eight output pixels of a row per work-item, one float8 per channel (common/taa.h says why):
  * pixels x0 .. x0+7 with x0 = 8 * get_global_id(0), row get_global_id(1). Their samples lie
- * in one render row band and at most 11 consecutive render columns, so each of the three
- * render rows is loaded once as a segment of 16 pixels (tone mapped once) and every lane picks
- * its taps from the segment (rp_pick8), not with a gather from global memory per tap.
- * Cost on the 2-core AVX2 EPYC: 13-15 ms at 720x720 output from 360x360 (the same-size
- * resolve: about 4.7 ms at 720), most of it in the 3x3 loop (3.2 ms without it).
- * tests/passes/taa_upsample_reference.cpp is the same algorithm in plain C++.
+ * in one render row band and at most 11 consecutive render columns, so each render row of
+ * step 1 is loaded once as a segment of 16 pixels of step 0's colour and every lane picks its
+ * taps from the segment (rp_pick8), not with a gather from global memory per tap; step 0's
+ * values of the nearest render pixel are one load per lane.
+ * tests/passes/taa_upsample_test.cpp holds the same algorithm in plain C++.
  */
 #include "shared/types.h"
 #include "shared/pass_params.h"
@@ -58,6 +65,9 @@ inline float8 rp_taau_weight(float8 d2) {
   const float8 t = rp_max8(1.0f - 0.7f * d2, 0.0f);
   return t * t;
 }
+/* The weight's reach, sqrt(1 / 0.7) output pixels: at scales below 1 / RP_TAAU_REACH (0.837)
+ * it is under one render pixel, so the samples within reach of p are among the 2x2 around it */
+#define RP_TAAU_REACH 1.1952286f
 #define RP_TAAU_SEGMENT 16 /* render pixels loaded per row: 8 lanes at scale <= 1 need <= 11 */
 
 /* Grows the box centre M +- extent E (one channel) to hold the value C. */
@@ -76,8 +86,137 @@ inline float8 rp_pick8(float16 x, uint8 at) {
   return (float8)(t[at.s0], t[at.s1], t[at.s2], t[at.s3], t[at.s4], t[at.s5], t[at.s6], t[at.s7]);
 }
 
-__kernel void taa_upsample(__global const float4* restrict hdr_in,
-                           __global const float2* restrict velocity,
+/* Columns x0 - 1 .. x0 + 14 of a float4 image row (clamped to 0 .. w - 1) as planes R, G, B, A
+ * (float16 lvalues): two 8-pixel loads inside the image, clamped single loads at its borders. */
+#define RP_TAAU_LOAD_SEGMENT(img, row, x0, w, R, G, B, A)                                  \
+  do {                                                                                   \
+    float8 r0_, g0_, b0_, a0_, r1_, g1_, b1_, a1_;                                       \
+    if ((x0) >= 1 && (x0) + 15 <= (w)) {                                                 \
+      RP_LOAD_PX8(img, row, (x0) - 1, r0_, g0_, b0_, a0_);                               \
+      RP_LOAD_PX8(img, row, (x0) + 7, r1_, g1_, b1_, a1_);                               \
+    } else {                                                                             \
+      float t_[64];                                                                      \
+      for (int k_ = 0; k_ < 16; ++k_)                                                    \
+        vstore4((img)[(row) + clamp((x0) - 1 + k_, 0, (w) - 1)], k_, t_);                \
+      RP_DEINTERLEAVE8(vload16(0, t_), vload16(1, t_), r0_, g0_, b0_, a0_);              \
+      RP_DEINTERLEAVE8(vload16(2, t_), vload16(3, t_), r1_, g1_, b1_, a1_);              \
+    }                                                                                    \
+    R = (float16)(r0_, r1_);                                                             \
+    G = (float16)(g0_, g1_);                                                             \
+    B = (float16)(b0_, b1_);                                                             \
+    A = (float16)(a0_, a1_);                                                             \
+  } while (0)
+
+/* The same for a float2 image (velocity) as planes X, Y. */
+#define RP_TAAU_LOAD_SEGMENT2(img, row, x0, w, X, Y)                                       \
+  do {                                                                                   \
+    float t_[32];                                                                        \
+    if ((x0) >= 1 && (x0) + 15 <= (w)) {                                                 \
+      const __global float* f_ = (const __global float*)((img) + (row) + (x0) - 1);      \
+      vstore16(vload16(0, f_), 0, t_);                                                   \
+      vstore16(vload16(1, f_), 1, t_);                                                   \
+    } else {                                                                             \
+      for (int k_ = 0; k_ < 16; ++k_)                                                    \
+        vstore2((img)[(row) + clamp((x0) - 1 + k_, 0, (w) - 1)], k_, t_);                \
+    }                                                                                    \
+    const float16 p0_ = vload16(0, t_), p1_ = vload16(1, t_);                            \
+    X = (float16)(p0_.even, p1_.even);                                                   \
+    Y = (float16)(p0_.odd, p1_.odd);                                                     \
+  } while (0)
+
+/* Lanes 0..7 of a segment loaded from x0 - 1, shifted by dx in {-1, 0, 1}: pixel x0 + k + dx. */
+#define RP_TAAU_SHIFT(S, dx) ((dx) < 0 ? (S).s01234567 : (dx) == 0 ? (S).s12345678 : (S).s23456789)
+
+/* Step 0, at the render size: what depends only on the render pixel nearest an output pixel,
+ * computed once per render pixel instead of once per output pixel (4x fewer at scale 0.5).
+ * Eight render pixels of a row per work-item: x0 = 8 get_global_id(0), row get_global_id(1).
+ *   colour      float4 rw x rh  T(r), T(g), T(b) (tone mapped), alpha
+ *   box_centre  float4 rw x rh  the 3x3's mean of T in YCoCg, and the x velocity (render
+ *                               pixels) of its nearest surface (smallest depth; the first of
+ *                               equals in row-major order)
+ *   box_extent  float4 rw x rh  gamma x the 3x3's standard deviation of T in YCoCg, and that
+ *                               surface's y velocity
+ * The 3x3 clamps its columns and rows to the image (edge pixels repeat). */
+__kernel void taa_upsample_box(__global const float4* restrict hdr_in,
+                               __global const float2* restrict velocity,
+                               __global const float4* restrict normal_depth,
+                               __global float4* restrict colour,
+                               __global float4* restrict box_centre,
+                               __global float4* restrict box_extent, const TaaParams params) {
+  const int rw = (int)params.render_width, rh = (int)params.render_height;
+  const int x0 = 8 * (int)get_global_id(0), y = (int)get_global_id(1);
+  if (x0 >= rw || y >= rh) return;
+  float8 m1y = 0.0f, m1o = 0.0f, m1g = 0.0f, m2y = 0.0f, m2o = 0.0f, m2g = 0.0f;
+  float8 near_depth = INFINITY, nvx = 0.0f, nvy = 0.0f;
+  float8 tr = 0.0f, tg = 0.0f, tb = 0.0f, alpha = 0.0f;
+  for (int dy = -1; dy <= 1; ++dy) {
+    const int row = clamp(y + dy, 0, rh - 1) * rw;
+    float16 r, g, b, a, unused0, unused1, unused2, d, vx, vy;
+    RP_TAAU_LOAD_SEGMENT(hdr_in, row, x0, rw, r, g, b, a);
+    RP_TAAU_LOAD_SEGMENT(normal_depth, row, x0, rw, unused0, unused1, unused2, d);
+    RP_TAAU_LOAD_SEGMENT2(velocity, row, x0, rw, vx, vy);
+    r = rp_tone_map16(r);
+    g = rp_tone_map16(g);
+    b = rp_tone_map16(b);
+    if (dy == 0) {
+      tr = r.s12345678;
+      tg = g.s12345678;
+      tb = b.s12345678;
+      alpha = a.s12345678;
+    }
+#define RP_TAAU_BOX_TAP(dx)                                                               \
+  do {                                                                                   \
+    const float8 r_ = RP_TAAU_SHIFT(r, dx), g_ = RP_TAAU_SHIFT(g, dx);                   \
+    const float8 b_ = RP_TAAU_SHIFT(b, dx);                                              \
+    const float8 ly_ = 0.25f * r_ + 0.5f * g_ + 0.25f * b_, lo_ = 0.5f * r_ - 0.5f * b_; \
+    const float8 lg_ = -0.25f * r_ + 0.5f * g_ - 0.25f * b_;                             \
+    m1y += ly_;                                                                          \
+    m1o += lo_;                                                                          \
+    m1g += lg_;                                                                          \
+    m2y += ly_ * ly_;                                                                    \
+    m2o += lo_ * lo_;                                                                    \
+    m2g += lg_ * lg_;                                                                    \
+    const float8 d_ = RP_TAAU_SHIFT(d, dx);                                              \
+    const int8 closer_ = d_ < near_depth; /* strict: the first of equals wins */         \
+    near_depth = select(near_depth, d_, closer_);                                        \
+    nvx = select(nvx, RP_TAAU_SHIFT(vx, dx), closer_);                                   \
+    nvy = select(nvy, RP_TAAU_SHIFT(vy, dx), closer_);                                   \
+  } while (0)
+    RP_TAAU_BOX_TAP(-1);
+    RP_TAAU_BOX_TAP(0);
+    RP_TAAU_BOX_TAP(1);
+#undef RP_TAAU_BOX_TAP
+  }
+  const float ninth = 1.0f / 9.0f, gamma = params.gamma;
+  const float8 my = m1y * ninth, mo = m1o * ninth, mg = m1g * ninth;
+  const float8 ey = gamma * sqrt(rp_max8(m2y * ninth - my * my, 0.0f));
+  const float8 eo = gamma * sqrt(rp_max8(m2o * ninth - mo * mo, 0.0f));
+  const float8 eg = gamma * sqrt(rp_max8(m2g * ninth - mg * mg, 0.0f));
+  const int row = y * rw;
+  if (x0 + 8 <= rw) {
+    RP_STORE_PX8(colour, row, x0, tr, tg, tb, alpha);
+    RP_STORE_PX8(box_centre, row, x0, my, mo, mg, nvx);
+    RP_STORE_PX8(box_extent, row, x0, ey, eo, eg, nvy);
+  } else {
+    const int n = rw - x0;
+    RP_STORE_PX8_FIRST(colour, row, x0, n, tr, tg, tb, alpha);
+    RP_STORE_PX8_FIRST(box_centre, row, x0, n, my, mo, mg, nvx);
+    RP_STORE_PX8_FIRST(box_extent, row, x0, n, ey, eo, eg, nvy);
+  }
+}
+
+/* The float4 img[index.sk] of lane k as planes X, Y, Z, W (one load per lane, through private
+ * memory). */
+#define RP_TAAU_GATHER4(img, index, X, Y, Z, W)                                           \
+  do {                                                                                   \
+    float t_[32];                                                                        \
+    for (int k_ = 0; k_ < 8; ++k_) vstore4((img)[((int*)&(index))[k_]], k_, t_);          \
+    RP_DEINTERLEAVE8(vload16(0, t_), vload16(1, t_), X, Y, Z, W);                        \
+  } while (0)
+
+__kernel void taa_upsample(__global const float4* restrict colour,
+                           __global const float4* restrict box_centre,
+                           __global const float4* restrict box_extent,
                            __global const float4* restrict normal_depth,
                            __global const float* restrict history_in,
                            __global float* restrict history_out,
@@ -87,7 +226,7 @@ __kernel void taa_upsample(__global const float4* restrict hdr_in,
   const uint render_width = params.render_width, render_height = params.render_height;
   const uint out_width = params.out_width, out_height = params.out_height;
   const float jitter_x = params.jitter_x, jitter_y = params.jitter_y;
-  const float history_weight = params.history_weight, gamma = params.gamma;
+  const float history_weight = params.history_weight;
   const uint history_valid = params.history_valid;
   const int ow = (int)out_width, oh = (int)out_height;
   const int x0 = 8 * (int)get_global_id(0), oy = (int)get_global_id(1);
@@ -105,80 +244,55 @@ __kernel void taa_upsample(__global const float4* restrict hdr_in,
   const int8 last_col = (int8)(rw - 1);
   const int8 cx = clamp(convert_int8(floor(px + jitter_x)), (int8)(0), last_col);
   const int cy = clamp((int)floor(py + jitter_y), 0, rh - 1);
-  const int base = max(cx.s0 - 1, 0); /* the segments' first column */
+  const int8 nearest = cx + cy * rw;
 
+  /* step 1: the samples within reach, each weighted by its distance from the output pixel */
+  int8 bx;
+  int by, taps;
+  if (sx * RP_TAAU_REACH < 1.0f && sy * RP_TAAU_REACH < 1.0f) {
+    bx = convert_int8(floor(px + (jitter_x - 0.5f)));
+    by = (int)floor(py + (jitter_y - 0.5f));
+    taps = 2;
+  } else {
+    bx = cx - 1;
+    by = cy - 1;
+    taps = 3;
+  }
+  const int base = clamp(bx.s0, 0, rw - 1); /* the segments' first column */
   float8 sum_w = 0.0f, max_w = 0.0f, cr = 0.0f, cg = 0.0f, cb = 0.0f;
-  float8 m1y = 0.0f, m1o = 0.0f, m1g = 0.0f, m2y = 0.0f, m2o = 0.0f, m2g = 0.0f;
-  float8 near_depth = INFINITY, alpha = 0.0f, centre_depth = 0.0f;
-  float8 nr = 0.0f, ng = 0.0f, nb = 0.0f; /* the nearest sample (tone mapped) */
-  int8 near_index = 0; /* the nearest sample's render pixel index */
-  for (int dy = -1; dy <= 1; ++dy) {
-    const int y = clamp(cy + dy, 0, rh - 1), row = y * rw;
+  for (int dy = 0; dy < taps; ++dy) {
+    const int y = clamp(by + dy, 0, rh - 1), row = y * rw;
     /* the segment: 16 render pixels from column `base` (clamped to the last column) */
-    float8 r0, g0, b0, a0, r1, g1, b1, a1, unused0, unused1, d0, d1;
+    float8 r0, g0, b0, a0, r1, g1, b1, a1;
     if (base + RP_TAAU_SEGMENT <= rw) {
-      RP_LOAD_PX8(hdr_in, row, base, r0, g0, b0, a0);
-      RP_LOAD_PX8(hdr_in, row, base + 8, r1, g1, b1, a1);
-      RP_LOAD_PX8(normal_depth, row, base, unused0, unused1, unused0, d0);
-      RP_LOAD_PX8(normal_depth, row, base + 8, unused0, unused1, unused0, d1);
+      RP_LOAD_PX8(colour, row, base, r0, g0, b0, a0);
+      RP_LOAD_PX8(colour, row, base + 8, r1, g1, b1, a1);
     } else {
-      RP_LOAD_PX8_CLAMPED(hdr_in, row, base, rw, r0, g0, b0, a0);
-      RP_LOAD_PX8_CLAMPED(hdr_in, row, min(base + 8, rw - 1), rw, r1, g1, b1, a1);
-      RP_LOAD_PX8_CLAMPED(normal_depth, row, base, rw, unused0, unused1, unused0, d0);
-      RP_LOAD_PX8_CLAMPED(normal_depth, row, min(base + 8, rw - 1), rw, unused0, unused1,
-                          unused0, d1);
+      RP_LOAD_PX8_CLAMPED(colour, row, base, rw, r0, g0, b0, a0);
+      RP_LOAD_PX8_CLAMPED(colour, row, min(base + 8, rw - 1), rw, r1, g1, b1, a1);
     }
-    const float16 R = rp_tone_map16((float16)(r0, r1)), G = rp_tone_map16((float16)(g0, g1));
-    const float16 B = rp_tone_map16((float16)(b0, b1)), D = (float16)(d0, d1);
-    if (dy == 0) {
-      const uint8 at = convert_uint8(cx - base);
-      alpha = rp_pick8((float16)(a0, a1), at);
-      centre_depth = rp_pick8(D, at);
-    }
+    const float16 R = (float16)(r0, r1), G = (float16)(g0, g1), B = (float16)(b0, b1);
     const float ddy = ((float)y + 0.5f - jitter_y - py) * inv_sy;
-    for (int dx = -1; dx <= 1; ++dx) {
-      const int8 col = clamp(cx + dx, (int8)(0), last_col);
+    for (int dx = 0; dx < taps; ++dx) {
+      const int8 col = clamp(bx + dx, (int8)(0), last_col);
       const uint8 at = convert_uint8(col - base);
-      const float8 r = rp_pick8(R, at), g = rp_pick8(G, at), b = rp_pick8(B, at);
-      if (dy == 0 && dx == 0) {
-        nr = r;
-        ng = g;
-        nb = b;
-      }
       /* the sample's distance from the output pixel centre, in output pixels */
       const float8 ddx = (convert_float8(col) + (0.5f - jitter_x) - px) * inv_sx;
       const float8 w = rp_taau_weight(ddx * ddx + ddy * ddy);
       sum_w += w;
       max_w = fmax(max_w, w);
-      cr += w * r;
-      cg += w * g;
-      cb += w * b;
-      const float8 ly = 0.25f * r + 0.5f * g + 0.25f * b, lo = 0.5f * r - 0.5f * b;
-      const float8 lg = -0.25f * r + 0.5f * g - 0.25f * b;
-      m1y += ly;
-      m1o += lo;
-      m1g += lg;
-      m2y += ly * ly;
-      m2o += lo * lo;
-      m2g += lg * lg;
-      const float8 d = rp_pick8(D, at);
-      const int8 closer = d < near_depth; /* strict: the first of equals wins */
-      near_depth = select(near_depth, d, closer);
-      near_index = select(near_index, col + row, closer);
+      cr += w * rp_pick8(R, at);
+      cg += w * rp_pick8(G, at);
+      cb += w * rp_pick8(B, at);
     }
   }
-  /* the nearest sample's velocity, one gather per lane */
-  float8 vx, vy;
-  {
-    float u_[8], v_[8];
-    for (int k = 0; k < 8; ++k) {
-      const float2 v = velocity[((int*)&near_index)[k]];
-      u_[k] = v.x;
-      v_[k] = v.y;
-    }
-    vx = vload8(0, u_);
-    vy = vload8(0, v_);
-  }
+  /* the nearest render pixel's own colour, its box and its nearest surface's velocity (step 0),
+   * and its depth */
+  float8 nr, ng, nb, alpha, my, mo, mg, vx, ey, eo, eg, vy, centre_depth, unused;
+  RP_TAAU_GATHER4(colour, nearest, nr, ng, nb, alpha);
+  RP_TAAU_GATHER4(box_centre, nearest, my, mo, mg, vx);
+  RP_TAAU_GATHER4(box_extent, nearest, ey, eo, eg, vy);
+  RP_TAAU_GATHER4(normal_depth, nearest, unused, unused, unused, centre_depth);
   /* no sample within reach (at scales < 0.7 the nearest can be up to 0.5 / scale * sqrt 2
    * output pixels away): the nearest sample, and max_w = 0 keeps the history as it is */
   const int8 reached = sum_w > 1.0e-6f;
@@ -202,15 +316,10 @@ __kernel void taa_upsample(__global const float4* restrict hdr_in,
   float8 hr, hg, hb;
   RP_TAA_HISTORY8(history_in, plane, ow, hr, hg, hb);
 
-  /* clip toward the box centre in YCoCg (rp_taa_clip, lane by lane), then blend */
-  const float ninth = 1.0f / 9.0f;
-  /* the box: mean +- gamma stddev of the 3x3, grown to hold this frame's c (the 3x3 spans
-   * 3 / scale output pixels: a thin feature's own colour can lie outside the moments' box) */
+  /* clip toward the box centre in YCoCg (rp_taa_clip, lane by lane), then blend; the box grown
+   * to hold this frame's c (the 3x3 spans 3 / scale output pixels: a thin feature's own colour
+   * can lie outside the moments' box) */
   const rp_ycocg8 cc = rp_rgb_to_ycocg8(cr, cg, cb);
-  float8 my = m1y * ninth, mo = m1o * ninth, mg = m1g * ninth;
-  float8 ey = gamma * sqrt(rp_max8(m2y * ninth - my * my, 0.0f));
-  float8 eo = gamma * sqrt(rp_max8(m2o * ninth - mo * mo, 0.0f));
-  float8 eg = gamma * sqrt(rp_max8(m2g * ninth - mg * mg, 0.0f));
   RP_TAAU_GROW_BOX(my, ey, cc.y);
   RP_TAAU_GROW_BOX(mo, eo, cc.co);
   RP_TAAU_GROW_BOX(mg, eg, cc.cg);

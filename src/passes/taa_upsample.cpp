@@ -12,8 +12,9 @@
 namespace rp::passes {
 namespace {
 
-// One work-item per 8 output pixels of a row (kernels/taa_upsample.cl), 16 of them along the
-// row, one row a group (as kernels/taa.cl); blocks past the image return.
+// One work-item per 8 pixels of a row (kernels/taa_upsample.cl: render pixels for the box
+// kernel, output pixels for the resolve), 16 of them along the row, one row a group (as
+// kernels/taa.cl); blocks past the image return.
 constexpr uint32_t kPixelsPerItem = 8;
 constexpr size_t kGroupX = 16, kGroupY = 1;
 
@@ -53,8 +54,19 @@ void TaaUpsamplePass::run(rp::cl::Profiler& profiler, const render::GpuScene& sc
     height_ = out_height;
     history_valid_ = false;
   }
-  // built on first use: renders at scale 1 never pay for its compilation
-  if (!kernel_()) kernel_ = programs_->kernel("taa_upsample.cl", "taa_upsample");
+  if (w != render_width_ || h != render_height_) {
+    const size_t n = size_t(w) * h * 4 * sizeof(float);
+    colour_ = ::cl::Buffer(context_, CL_MEM_READ_WRITE, n);
+    box_centre_ = ::cl::Buffer(context_, CL_MEM_READ_WRITE, n);
+    box_extent_ = ::cl::Buffer(context_, CL_MEM_READ_WRITE, n);
+    render_width_ = w;
+    render_height_ = h;
+  }
+  // built on first use: renders at scale 1 never pay for their compilation
+  if (!kernel_()) {
+    box_kernel_ = programs_->kernel("taa_upsample.cl", "taa_upsample_box");
+    kernel_ = programs_->kernel("taa_upsample.cl", "taa_upsample");
+  }
   const int next = 1 - current_;
   gpu::TaaParams params{};
   params.render_width = w;
@@ -66,8 +78,16 @@ void TaaUpsamplePass::run(rp::cl::Profiler& profiler, const render::GpuScene& sc
   params.history_weight = settings_.history_weight;
   params.gamma = settings_.gamma;
   params.history_valid = history_valid_ ? 1u : 0u;
-  rp::cl::bind_args(kernel_, hdr_in, gbuffer.velocity, gbuffer.normal_depth, history_[current_],
-                    history_[next], hdr_out, motion_.velocity, motion_.normal_depth, params);
+  rp::cl::bind_args(box_kernel_, hdr_in, gbuffer.velocity, gbuffer.normal_depth, colour_,
+                    box_centre_, box_extent_, params);
+  profiler.enqueue(pass_name::kTaa, box_kernel_,
+                   ::cl::NDRange(rp::cl::round_up((w + kPixelsPerItem - 1) / kPixelsPerItem,
+                                                  kGroupX),
+                                 rp::cl::round_up(h, kGroupY)),
+                   ::cl::NDRange(kGroupX, kGroupY));
+  rp::cl::bind_args(kernel_, colour_, box_centre_, box_extent_, gbuffer.normal_depth,
+                    history_[current_], history_[next], hdr_out, motion_.velocity,
+                    motion_.normal_depth, params);
   profiler.enqueue(pass_name::kTaa, kernel_,
                    ::cl::NDRange(rp::cl::round_up((out_width + kPixelsPerItem - 1) / kPixelsPerItem,
                                                   kGroupX),

@@ -6,8 +6,10 @@
 // Use: jitter the camera with GpuScene::update's jitter_frames = upsample_jitter_frames(scale),
 // run() after the light pass every frame, reset_history() on camera cuts. The pass owns its
 // history (three float planes at the output size, two buffers ping-pong: 24 bytes per output
-// pixel) and what motion blur reads at the output size (motion(): velocity in output pixels and
-// the linear depth), allocated on first use and when the output size changes.
+// pixel), what motion blur reads at the output size (motion(): velocity in output pixels and
+// the linear depth), allocated on first use and when the output size changes, and its first
+// kernel's per-render-pixel colour and neighbourhood box (three float4: 48 bytes per render
+// pixel), allocated when the render size changes.
 #pragma once
 
 #include <cstdint>
@@ -45,14 +47,17 @@ class TaaUpsamplePass {
   // pixels) and normal_depth (float4, w the linear depth); the other planes are not allocated.
   const render::GBuffer& motion() const { return motion_; }
 
-  // Device memory for an out_width x out_height output (passes/frame_memory.h): the two
-  // histories of three float planes and motion()'s velocity and normal_depth; what the pass
-  // holds now.
-  static uint64_t frame_bytes(uint32_t out_width, uint32_t out_height) {
-    return pixel_count(out_width, out_height) * (2 * 3 * sizeof(float) + 8 + 16);
+  // Device memory for an out_width x out_height output from a render_width x render_height
+  // frame (passes/frame_memory.h): the two histories of three float planes, motion()'s velocity
+  // and normal_depth, and the per-render-pixel colour and box; what the pass holds now.
+  static uint64_t frame_bytes(uint32_t out_width, uint32_t out_height, uint32_t render_width,
+                              uint32_t render_height) {
+    return pixel_count(out_width, out_height) * (2 * 3 * sizeof(float) + 8 + 16) +
+           pixel_count(render_width, render_height) * 3 * 16;
   }
   uint64_t frame_device_bytes() const {
-    return buffer_bytes({&history_[0], &history_[1]}) + motion_.device_bytes();
+    return buffer_bytes({&history_[0], &history_[1], &colour_, &box_centre_, &box_extent_}) +
+           motion_.device_bytes();
   }
 
   const TaaSettings& settings() const { return settings_; }
@@ -61,13 +66,15 @@ class TaaUpsamplePass {
  private:
   ::cl::Context context_;
   rp::cl::ProgramCache* programs_;
-  ::cl::Kernel kernel_;  // built by the first run()
+  ::cl::Kernel box_kernel_, kernel_;  // built by the first run()
   TaaSettings settings_;
   uint32_t width_ = 0, height_ = 0;  // the output size the buffers have
   ::cl::Buffer history_[2];          // tone-mapped R, G, B planes; history_[current_] the latest
   int current_ = 0;
   bool history_valid_ = false;
   render::GBuffer motion_;
+  uint32_t render_width_ = 0, render_height_ = 0;  // the render size the next three have
+  ::cl::Buffer colour_, box_centre_, box_extent_;   // float4 per render pixel (the kernel's step 0)
 };
 
 }  // namespace rp::passes

@@ -72,7 +72,7 @@ FrameMemory frame_memory(const RenderSettings& settings, const FrameMemoryOption
                                passes::LightPass::frame_bytes(rw, rh, settings.shadows));
   // Temporal upsampling runs with or without TAA (without: no history is used).
   if (upsampling)
-    m.add(pass_name::kTaa, passes::TaaUpsamplePass::frame_bytes(w, h));
+    m.add(pass_name::kTaa, passes::TaaUpsamplePass::frame_bytes(w, h, rw, rh));
   else if (fx.taa)
     m.add(pass_name::kTaa, passes::TaaPass::frame_bytes(rw, rh));
   if (fx.bloom && fx.bloom_strength > 0.0f)

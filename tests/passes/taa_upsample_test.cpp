@@ -50,12 +50,18 @@ class Reference {
         const double px = (ox + 0.5) * sx, py = (oy + 0.5) * sy;
         const int cx = std::clamp(int(std::floor(px + f.jitter.x)), 0, rw - 1);
         const int cy = std::clamp(int(std::floor(py + f.jitter.y)), 0, rh - 1);
+        // the samples within reach: the 2x2 around p where the weight's reach, sqrt(1 / 0.7)
+        // output pixels, is under a render pixel, else the 3x3 around the nearest
+        const bool two = sx * std::sqrt(1.0 / 0.7) < 1.0 && sy * std::sqrt(1.0 / 0.7) < 1.0;
+        const int bx = two ? int(std::floor(px + f.jitter.x - 0.5)) : cx - 1;
+        const int by = two ? int(std::floor(py + f.jitter.y - 0.5)) : cy - 1;
+        const int taps = two ? 2 : 3;
         glm::dvec3 sum(0.0), m1(0.0), m2(0.0);
         double sum_w = 0.0, max_w = 0.0, near = INFINITY;
         glm::dvec2 v(0.0);
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int x = std::clamp(cx + dx, 0, rw - 1), y = std::clamp(cy + dy, 0, rh - 1);
+        for (int dy = 0; dy < taps; ++dy)
+          for (int dx = 0; dx < taps; ++dx) {
+            const int x = std::clamp(bx + dx, 0, rw - 1), y = std::clamp(by + dy, 0, rh - 1);
             const size_t i = size_t(y) * rw + x;
             const glm::dvec3 c = glm::dvec3(taa::tone(glm::vec3(f.hdr[i])));
             const double ddx = (x + 0.5 - f.jitter.x - px) / sx;
@@ -64,6 +70,13 @@ class Reference {
             sum_w += w;
             max_w = std::max(max_w, w);
             sum += w * c;
+          }
+        // the neighbourhood box and the nearest surface's velocity: the 3x3 around the nearest
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int x = std::clamp(cx + dx, 0, rw - 1), y = std::clamp(cy + dy, 0, rh - 1);
+            const size_t i = size_t(y) * rw + x;
+            const glm::dvec3 c = glm::dvec3(taa::tone(glm::vec3(f.hdr[i])));
             const glm::dvec3 ycc = glm::dvec3(taa::to_ycocg(glm::vec3(c)));
             m1 += ycc;
             m2 += ycc * ycc;
@@ -197,6 +210,9 @@ TEST(TaaUpsample, MatchesReferenceWithMotionAndPartialBlocks) {
   check_against_reference(29, 17, 41, 30, 3.0f);  // scale ~0.7, a last block of 1 pixel
 }
 TEST(TaaUpsample, MatchesReferenceAtFullSize) { check_against_reference(19, 9, 19, 9, 1.5f); }
+TEST(TaaUpsample, MatchesReferenceAboveTheTwoByTwoScale) {
+  check_against_reference(36, 18, 40, 20, 2.0f);  // scale 0.9: the 3x3 of samples within reach
+}
 
 // A sharp pattern (finer than the render pixels) seen through half-size jittered frames: the
 // accumulated output must approach the full-size picture (the pattern box-filtered over each
