@@ -113,7 +113,7 @@
  *   on some pixels and frames: those came out fully lit, a stipple of lit dots beyond the
  *   tumblers' shadows that even 16 frames averaged kept (bench --accuracy at 360, penumbra PSNR
  *   29.3 dB; 16 taps 29.9, 20 taps 29.2, 24 taps 30.4 with the dots gone; at 128x128 25.9, 29.3,
- *   30.4, 30.1). 24 (6 per pixel) cost the busy 720x720 frame's light pass about 1.3 ms.
+ *   30.4, 30.1). 24 (6 per pixel) cost the busy 720x720 frame's light pass about 1.5 ms.
  *   Search and filter disks are rotated by independent angles per pixel and frame; TAA
  *   averages them.
  *
