@@ -46,11 +46,12 @@
  *   velocity_out  float2 ow x oh  step 3's motion in output pixels (motion blur at output size)
  *   depth_out     float4 ow x oh  w: the linear depth of the pixel nearest p (xyz 0)
  * Eight output pixels of a row per work-item, one float8 per channel (common/taa.h says why):
- * pixels x0 .. x0+7 with x0 = 8 * get_global_id(0), row get_global_id(1). Their samples lie
- * in one render row band and at most 11 consecutive render columns, so each render row of
- * step 1 is loaded once as a segment of 16 pixels of step 0's colour and every lane picks its
- * taps from the segment (rp_pick8), not with a gather from global memory per tap; step 0's
- * values of the nearest render pixel are one load per lane.
+ * pixels x0 .. x0+7 with x0 = 8 * get_global_id(0), row get_global_id(1). Every tap of step 1
+ * and step 0's values of the nearest render pixel are one float4 load per lane, each lane
+ * named (RP_TAAU_GATHER4). On PoCL that beat loading each render row once as a 16-pixel segment
+ * and picking every lane's taps from it through private memory: the pass on the busy 720x720
+ * frame at scale 0.5 4.7 / 5.5 / 6.4 -> 3.8 / 5.0 / 5.2 ms, at 0.85 11.1 / 9.8 -> 9.0 / 8.0 ms
+ * (rounds alternating on a noisy host).
  * tests/passes/taa_upsample_test.cpp holds the same algorithm in plain C++.
  */
 #include "shared/types.h"
@@ -68,7 +69,6 @@ inline float8 rp_taau_weight(float8 d2) {
 /* The weight's reach, sqrt(1 / 0.7) output pixels: at scales below 1 / RP_TAAU_REACH (0.837)
  * it is under one render pixel, so the samples within reach of p are among the 2x2 around it */
 #define RP_TAAU_REACH 1.1952286f
-#define RP_TAAU_SEGMENT 16 /* render pixels loaded per row: 8 lanes at scale <= 1 need <= 11 */
 
 /* Grows the box centre M +- extent E (one channel) to hold the value C. */
 #define RP_TAAU_GROW_BOX(M, E, C)                                                         \
@@ -78,13 +78,6 @@ inline float8 rp_taau_weight(float8 d2) {
     E = 0.5f * (hi_ - lo_);                                                              \
   } while (0)
 
-/* lane k = x[at.sk], through private memory (measured as fast as OpenCL's shuffle() with a
- * run-time mask on PoCL) */
-inline float8 rp_pick8(float16 x, uint8 at) {
-  float t[16];
-  vstore16(x, 0, t);
-  return (float8)(t[at.s0], t[at.s1], t[at.s2], t[at.s3], t[at.s4], t[at.s5], t[at.s6], t[at.s7]);
-}
 
 /* Columns x0 - 1 .. x0 + 14 of a float4 image row (clamped to 0 .. w - 1) as planes R, G, B, A
  * (float16 lvalues): two 8-pixel loads inside the image, clamped single loads at its borders. */
@@ -261,32 +254,23 @@ __kernel void taa_upsample(__global const float4* restrict colour,
     by = cy - 1;
     taps = 3;
   }
-  const int base = clamp(bx.s0, 0, rw - 1); /* the segments' first column */
   float8 sum_w = 0.0f, max_w = 0.0f, cr = 0.0f, cg = 0.0f, cb = 0.0f;
   for (int dy = 0; dy < taps; ++dy) {
     const int y = clamp(by + dy, 0, rh - 1), row = y * rw;
-    /* the segment: 16 render pixels from column `base` (clamped to the last column) */
-    float8 r0, g0, b0, a0, r1, g1, b1, a1;
-    if (base + RP_TAAU_SEGMENT <= rw) {
-      RP_LOAD_PX8(colour, row, base, r0, g0, b0, a0);
-      RP_LOAD_PX8(colour, row, base + 8, r1, g1, b1, a1);
-    } else {
-      RP_LOAD_PX8_CLAMPED(colour, row, base, rw, r0, g0, b0, a0);
-      RP_LOAD_PX8_CLAMPED(colour, row, min(base + 8, rw - 1), rw, r1, g1, b1, a1);
-    }
-    const float16 R = (float16)(r0, r1), G = (float16)(g0, g1), B = (float16)(b0, b1);
     const float ddy = ((float)y + 0.5f - jitter_y - py) * inv_sy;
     for (int dx = 0; dx < taps; ++dx) {
       const int8 col = clamp(bx + dx, (int8)(0), last_col);
-      const uint8 at = convert_uint8(col - base);
+      const int8 at = col + row;
+      float8 r, g, b, unused_a;
+      RP_TAAU_GATHER4(colour, at, r, g, b, unused_a);
       /* the sample's distance from the output pixel centre, in output pixels */
       const float8 ddx = (convert_float8(col) + (0.5f - jitter_x) - px) * inv_sx;
       const float8 w = rp_taau_weight(ddx * ddx + ddy * ddy);
       sum_w += w;
       max_w = fmax(max_w, w);
-      cr += w * rp_pick8(R, at);
-      cg += w * rp_pick8(G, at);
-      cb += w * rp_pick8(B, at);
+      cr += w * r;
+      cg += w * g;
+      cb += w * b;
     }
   }
   /* the nearest render pixel's own colour, its box and its nearest surface's velocity (step 0),
