@@ -15,6 +15,7 @@
 //     the atrium (scene/atrium.h): a courtyard with two storeys of arcades, about 250k
 //     triangles and 43 textures, what `rolypoly --scene atrium` opens.
 // Deterministic: integer hashing only, so the same arguments write the same bytes.
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -234,22 +235,39 @@ int write_atrium(const char* path) {
   return 0;
 }
 
+// A whole decimal number in [lo, hi], or -1.
+long parse_count(const char* text, long lo, long hi) {
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(text, &end, 10);
+  if (errno != 0 || end == text || *end != '\0' || v < lo || v > hi) return -1;
+  return v;
+}
+
+constexpr const char* kUsage =
+    "usage: gen_load_scene OUT.glb [TRIANGLES] [TEXTURES]\n"
+    "       gen_load_scene OUT.glb --room\n"
+    "       gen_load_scene OUT.glb --atrium\n"
+    "       gen_load_scene OUT.glb --yard\n";
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  // OUT never starts with '-': a mistyped option must not become a file of that name.
+  if (argc < 2 || argc > 4 || argv[1][0] == '-') {
+    std::fputs(kUsage, stderr);
+    return 2;
+  }
   if (argc == 3 && std::string(argv[2]) == "--room") return write_room(argv[1]);
   if (argc == 3 && std::string(argv[2]) == "--atrium") return write_atrium(argv[1]);
   if (argc == 3 && std::string(argv[2]) == "--yard") return write_yard(argv[1]);
-  if (argc < 2 || argc > 4) {
-    std::fprintf(stderr, "usage: gen_load_scene OUT.glb [TRIANGLES] [TEXTURES]\n"
-                         "       gen_load_scene OUT.glb --room\n"
-                         "       gen_load_scene OUT.glb --atrium\n"
-                         "       gen_load_scene OUT.glb --yard\n");
-    return 2;
-  }
-  const long triangles = argc > 2 ? std::strtol(argv[2], nullptr, 10) : 250000;
-  const long textures = argc > 3 ? std::strtol(argv[3], nullptr, 10) : 50;
-  if (triangles < 1000 || triangles > 50000000 || textures < 1 || textures > 4096) {
+  const long triangles = argc > 2 ? parse_count(argv[2], 1000, 50000000) : 250000;
+  const long textures = argc > 3 ? parse_count(argv[3], 1, 4096) : 50;
+  if (triangles < 0 || textures < 0) {
     std::fprintf(stderr, "gen_load_scene: TRIANGLES 1000..50000000, TEXTURES 1..4096\n");
     return 2;
   }
