@@ -40,19 +40,35 @@ std::string shell_quote(const std::string& s) {
   return out;
 }
 
-CommandResult run_rolypoly(const std::string& args, const std::string& env_prefix) {
+namespace {
+
+// Runs `command` through the shell (in `cwd` when given), stdout and stderr captured to files
+// in a folder of their own.
+CommandResult run_captured(const std::string& command, const std::filesystem::path& cwd) {
   TempDir capture;
   std::filesystem::path out_file = capture / "stdout.txt", err_file = capture / "stderr.txt";
   CommandResult r;
-  r.command = (env_prefix.empty() ? "" : env_prefix + " ") + shell_quote(ROLYPOLY_BINARY) + " " +
-              args;
-  std::string full = r.command + " >" + shell_quote(out_file.string()) + " 2>" +
+  r.command = command;
+  std::string full = (cwd.empty() ? "" : "cd " + shell_quote(cwd.string()) + " && ") + command +
+                     " >" + shell_quote(out_file.string()) + " 2>" +
                      shell_quote(err_file.string()) + " </dev/null";
   int status = std::system(full.c_str());
   r.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
   r.out = slurp(out_file);
   r.err = slurp(err_file);
   return r;
+}
+
+}  // namespace
+
+CommandResult run_rolypoly(const std::string& args, const std::string& env_prefix) {
+  return run_captured(
+      (env_prefix.empty() ? "" : env_prefix + " ") + shell_quote(ROLYPOLY_BINARY) + " " + args, {});
+}
+
+CommandResult run_program_in(const std::string& program, const std::filesystem::path& cwd,
+                             const std::string& args) {
+  return run_captured(shell_quote(program) + " " + args, cwd);
 }
 
 std::string read_all(const std::filesystem::path& path) {

@@ -26,6 +26,11 @@ std::string shell_quote(const std::string& s);
 // `args` is appended as is (quote paths with shell_quote).
 CommandResult run_rolypoly(const std::string& args, const std::string& env_prefix = "");
 
+// Runs `program` (a path; quoted here) with `args` in folder `cwd`, output captured elsewhere,
+// so `cwd` holds only what the program wrote.
+CommandResult run_program_in(const std::string& program, const std::filesystem::path& cwd,
+                             const std::string& args);
+
 // True when `program` is found on PATH.
 bool have_program(const std::string& program);
 
