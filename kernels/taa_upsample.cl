@@ -78,7 +78,6 @@ inline float8 rp_taau_weight(float8 d2) {
     E = 0.5f * (hi_ - lo_);                                                              \
   } while (0)
 
-
 /* Columns x0 - 1 .. x0 + 14 of a float4 image row (clamped to 0 .. w - 1) as planes R, G, B, A
  * (float16 lvalues): two 8-pixel loads inside the image, clamped single loads at its borders. */
 #define RP_TAAU_LOAD_SEGMENT(img, row, x0, w, R, G, B, A)                                  \
