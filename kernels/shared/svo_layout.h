@@ -74,8 +74,9 @@
  *     sample pool): for levels l = header[RP_SVO_HDR_SOLID_LEVEL] .. D-1, back to back, one byte
  *     per level-l cell (x fastest, (R >> l)^3 cells, dense: the grid is small): round(255 x the
  *     fraction of the cell inside a closed object), written per frame by the host
- *     (src/passes/svo_solid.h). Cone samples at those levels take at least that opacity
- *     (common/svo.h rp_svo_solid_apply): the voxelized shells are hollow.
+ *     (src/passes/svo_solid.h). Cone samples at those levels take at least
+ *     RP_SVO_SOLID_WEIGHT x that opacity (common/svo.h rp_svo_solid_apply): the voxelized
+ *     shells are hollow.
  *
  * Fragments (the voxelizer's output at the octree's resolution, kernels/voxelize.cl built
  * with RP_VOXEL_FRAGMENTS): RP_SVO_FRAGMENT_WORDS = 5 uints (20 bytes) per fragment, one
@@ -111,6 +112,9 @@
 #define RP_SVO_HDR_SOLID_OFFSET 28u /* byte offset of the solid grid, 0: none (below) */
 #define RP_SVO_HDR_SOLID_LEVEL 29u  /* its first level */
 #define RP_SVO_HDR_ALPHA_OFFSET 30u /* byte offset of the opacity plane (packed samples) */
+/* The opacity a cone sample takes from a fully solid cell: RP_SVO_SOLID_WEIGHT x the grid's
+ * fraction (common/svo.h rp_svo_solid_apply says why it is below 1). */
+#define RP_SVO_SOLID_WEIGHT 0.6f
 #define RP_SVO_HDR_TABLE_OFFSET 18u /* first uint of the brick table (after LEVEL_START) */
 #define RP_SVO_MAX_DEPTHS 10u      /* R <= 1024 (voxel keys: 10 bits per axis) */
 

@@ -9,7 +9,8 @@
 // each level-l cell (l >= kSvoSolidFirstLevel) that lies inside a tumbler or a sphere, from their
 // analytic shapes (scene/tumbler_shape.h's signed distance, the spheres' centres and radii), as
 // bytes (0..255) behind the brick pool (layout: kernels/shared/svo_layout.h). The cone tracer
-// raises a coarse sample's opacity to that fraction (kernels/common/svo.h rp_svo_solid_apply).
+// raises a coarse sample's opacity to RP_SVO_SOLID_WEIGHT (0.6) x that fraction
+// (kernels/common/svo.h rp_svo_solid_apply says why not the whole fraction).
 #pragma once
 
 #include <cstddef>

@@ -561,7 +561,8 @@ TEST(Svo, SolidGridMatchesBruteForce) {
 }
 
 // Directional cone samples on the octree with the solid grid enabled = the dense chain's
-// sample (no grid) with its opacity raised to the grid's trilinear fraction at levels >= 2
+// sample (no grid) with its opacity raised to RP_SVO_SOLID_WEIGHT x the grid's trilinear
+// fraction at levels >= 2
 // (C++ reference of common/svo.h rp_svo_solid_apply over the grid the pass uploaded), and
 // unchanged below level 2.
 const char* kDirectionalKernel = R"CLC(
@@ -654,6 +655,7 @@ TEST(Svo, SolidGridRaisesCoarseOpacity) {
                         ((c & 4) ? f[2] : 1.0f - f[2]);
         solid += w * float(g[(size_t(z) * n + y) * n + x]) / 255.0f;
       }
+      solid *= RP_SVO_SOLID_WEIGHT;
       if (solid > want[3]) {
         ++raised;
         for (int c = 0; c < 3; ++c) want[c] = want[3] > 0.0f ? want[c] * solid / want[3] : 0.0f;
