@@ -193,6 +193,20 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
                           options.seed, cache, j["truth"]);
   j["truth"]["one"]["indirect_vs_many"] = stats_json(
       compare_region(truths[0].indirect, truths[1].indirect, regions.image, Region::kImage));
+  if (options.truth_noise) {
+    // The many-bounce truth again with the next seed: the indirect light's L1 between the two
+    // is the yardstick's own noise (twice its variance), in every L1 below.
+    const std::vector<Images> second =
+        truths_one_and_many(tracer, assets, frame, w, h, options.spp, options.many_bounces,
+                            options.seed + 1, cache, j["truth"]["noise"]["truths"], false);
+    nlohmann::json& noise = j["truth"]["noise"];
+    noise["seeds"] = {options.seed, options.seed + 1};
+    noise["indirect"][region_name(Region::kImage)] = stats_json(
+        compare_region(second[0].indirect, truths[1].indirect, regions.image, Region::kImage));
+    for (size_t k = 0; k < regions.seen.size(); ++k)
+      noise["indirect"][regions.names[regions.seen[k]]] = stats_json(compare_region(
+          second[0].indirect, truths[1].indirect, regions.labels[k], kMaterialRegion));
+  }
 
   std::vector<Images> rendered;
   std::vector<uint8_t> rgba;

@@ -122,6 +122,28 @@ std::string file_accuracy_table(const nlohmann::json& j) {
   const std::string n = std::to_string(j["many_bounces"].get<uint32_t>());
   t << "  the 1-bounce truth's indirect light against " << n << " bounces: bias"
     << percent_cell(json_number(j["truth"]["one"]["indirect_vs_many"]["bias"]), true) << "\n";
+  if (j["truth"].contains("noise")) {
+    const nlohmann::json& noise = j["truth"]["noise"];
+    const nlohmann::json& second = noise["truths"]["many"];
+    std::snprintf(line, sizeof line,
+                  "  the truth's own noise: indirect L1 against the %u-bounce truth of seed %llu "
+                  "(%.1f s%s):",
+                  second["bounces"].get<uint32_t>(),
+                  static_cast<unsigned long long>(second["seed"].get<uint64_t>()),
+                  second["seconds"].get<double>(), second["from_cache"].get<bool>() ? ", cached" : "");
+    t << line;
+    // the image first, then the regions (the JSON object's order: by name)
+    const std::string image = region_name(Region::kImage);
+    std::vector<std::string> names{image};
+    for (const auto& [region, stats] : noise["indirect"].items())
+      if (region != image && stats["pixels"].get<uint64_t>() > 0) names.push_back(region);
+    for (size_t i = 0; i < names.size(); ++i) {
+      std::snprintf(line, sizeof line, "%s %s %.1f %%", i == 0 ? "" : ",", names[i].c_str(),
+                    100.0 * json_number(noise["indirect"][names[i]]["rel_l1"]));
+      t << line;
+    }
+    t << "\n    (in every indirect L1 below; an exact image would read about 0.71 x it)\n";
+  }
   t << "  regions: image (" << j["region_pixels"]["image"].get<uint64_t>() << " pixels)";
   std::string unseen;
   for (const nlohmann::json& m : j["materials"]) {

@@ -153,9 +153,10 @@ std::vector<Images> truths_one_and_many(truth::PathTracer& tracer,
                                         const scene::FrameScene& frame, uint32_t w, uint32_t h,
                                         uint32_t spp, uint32_t many_bounces, uint64_t seed,
                                         const std::filesystem::path& cache,
-                                        nlohmann::json& truth_json) {
+                                        nlohmann::json& truth_json, bool with_one) {
   std::vector<Images> truths;
   for (uint32_t bounces : {1u, many_bounces}) {
+    if (bounces == 1u && !with_one) continue;
     truth::PathTraceSettings s;
     s.width = w;
     s.height = h;

@@ -112,12 +112,13 @@ app::CachedTruth cached_truth_with_progress(truth::PathTracer& tracer,
 // The truths of `frame` at one gather ([0], "one") and at `many_bounces` ([1], "many"), w x h,
 // `spp` samples, `seed`, each from the cache when it holds it; each one's facts (bounces, spp,
 // seed, seconds, rays per second, from the cache, file) go into truth_json["one"] / ["many"].
+// with_one false: the many-bounce truth alone ([0]).
 std::vector<Images> truths_one_and_many(truth::PathTracer& tracer,
                                         const scene::SceneAssets& assets,
                                         const scene::FrameScene& frame, uint32_t w, uint32_t h,
                                         uint32_t spp, uint32_t many_bounces, uint64_t seed,
                                         const std::filesystem::path& cache,
-                                        nlohmann::json& truth_json);
+                                        nlohmann::json& truth_json, bool with_one = true);
 
 // The report's three PNGs in out/: accuracy_side_by_side.png (truth, fast, reference at 1 and
 // at `many` bounces; rows final and indirect), accuracy_indirect_heat.png (the indirect light's

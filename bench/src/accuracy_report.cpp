@@ -383,6 +383,7 @@ int accuracy_command(const CommonOptions& common, const BenchOptions& options) {
   o.min_psnr_taa = options.min_psnr_taa;
   o.max_first_frame_gap = options.max_first_frame_gap;
   o.require_wall_hue = options.require_wall_hue;
+  o.truth_noise = options.truth_noise;
   o.min_direct_psnr_floor = options.min_direct_psnr_floor;
   o.max_penumbra_error = options.max_penumbra_error;
   o.min_albedo_psnr = options.min_albedo_psnr;

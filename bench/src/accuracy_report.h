@@ -63,6 +63,10 @@ struct AccuracyOptions {
   std::optional<double> min_psnr_taa;            // fast_many_taa: final PSNR (dB)
   std::optional<double> max_first_frame_gap;     // fast_many_taa's PSNR - fast_first_frame's
   bool require_wall_hue = false;  // both walls: sign(R - B) of fast_many and fast_one as truth's
+  // A scene file's report: also the many-bounce truth with seed + 1, and the indirect light's
+  // relative L1 and bias between the two truths per region (JSON truth.noise): what the truth's
+  // own noise adds to every L1 of the report (a noiseless image reads about 1 / sqrt 2 of it).
+  bool truth_noise = false;
   // The direct section (accuracy_direct.h): its truth's samples per pixel are direct_spp_factor
   // x spp (a 0-bounce sample costs about a quarter of a 64-bounce one); its thresholds are on
   // the default shadow mode (RenderSettings::shadows) and texture filter.

@@ -93,6 +93,11 @@ BenchCli::BenchCli(CLI::App& app, app::CommonOptions& common, BenchOptions& opti
                   "--accuracy: exit 3 unless on each side wall the incoming indirect light's "
                   "sign of R - B is the truth's: fast at 64 bounces as the 64-bounce truth, fast "
                   "at 1 bounce as the 1-bounce truth");
+  bench->add_flag("--truth-noise", options_.truth_noise,
+                  "--accuracy on a scene file (or --open with a sky): also path-trace the "
+                  "many-bounce truth with the next seed and report the indirect light's L1 "
+                  "between the two truths per region: the truth's own noise, which every L1 of "
+                  "the report includes (a noiseless image reads about 0.71 x it)");
   add_simulation(bench, options_.sim);
   bench->get_option("--marbles")
       ->description("start with the 30 marbles (key S toggles them); with --accuracy: also "
@@ -186,13 +191,13 @@ std::string BenchCli::finish(int argc, const char* const* argv) {
             bench->count("--max-indirect-l1") || bench->count("--max-indirect-bias") ||
             bench->count("--max-region-bias") || bench->count("--max-indirect-l1-single") ||
             bench->count("--min-psnr-taa") || bench->count("--max-first-frame-gap") ||
-            bench_opts.require_wall_hue ||
+            bench_opts.require_wall_hue || bench_opts.truth_noise ||
             bench->count("--min-direct-psnr-floor") || bench->count("--max-penumbra-error") ||
             bench->count("--min-albedo-psnr")))
     why = "--out, --truth-cache and the thresholds (--max-indirect-l1, --max-indirect-bias, "
           "--max-region-bias, --max-indirect-l1-single, --min-psnr-taa, --max-first-frame-gap, "
           "--require-wall-hue, --min-direct-psnr-floor, --max-penumbra-error, "
-          "--min-albedo-psnr) belong to --accuracy";
+          "--min-albedo-psnr, --truth-noise) belong to --accuracy";
   if (why) return why;
   const bool demo_scene = bench_opts.scene == "default" || bench_opts.scene == "busy" ||
                           app::is_demo_scene(bench_opts.scene);
@@ -213,6 +218,9 @@ std::string BenchCli::finish(int argc, const char* const* argv) {
   if (common.render.gi_volume == render::GiVolume::kSvo && bench_opts.voxels.empty())
     bench_opts.voxels = {render::RenderSettings::kDefaultSvoResolution};
   if (bench_opts.accuracy) {
+    if (bench_opts.truth_noise && demo_scene && !(common.open_demo && common.sky.given()))
+      return "--truth-noise measures a scene file's truth (or the half-open demo's under a "
+             "sky); the demo's report states its truth's noise in its direct section";
     if (bench->count("--lamp"))
       return "--lamp applies to --quality pathtraced (--accuracy uses both lamp models)";
     if (bench->count("--spp")) bench_opts.accuracy_spp = common.spp;

@@ -31,6 +31,7 @@ struct BenchOptions {
   std::optional<double> max_indirect_l1_single, min_psnr_taa, max_first_frame_gap;
   std::optional<double> min_direct_psnr_floor, max_penumbra_error, min_albedo_psnr;
   bool require_wall_hue = false;
+  bool truth_noise = false;  // --truth-noise: a second truth (next seed) to state the first's noise
   // The matrix: every device x size x voxel resolution.
   std::string devices;           // --devices all|LIST ("" = the one --device, or the default)
   std::vector<uint32_t> sizes;   // --sizes: square sizes (empty = `size`)

@@ -130,5 +130,44 @@ TEST(AccuracyFileScene, EveryMaterialIsARegion) {
   EXPECT_LT(std::abs(j3["configurations"]["fast_many"]["direct"]["bias"].get<double>()), 0.1);
 }
 
+// --truth-noise: a second many-bounce truth with the next seed, and the indirect L1 between
+// the two per region, which must fall as the samples grow (Monte Carlo noise: about
+// 1 / sqrt(spp), so a quarter of it at 16x the samples; the bound leaves room for the bias-free
+// but not exactly Gaussian estimate at 8 spp).
+TEST(AccuracyFileScene, TruthNoiseFallsWithSamples) {
+  TempDir dir;
+  const std::filesystem::path file = dir / "room.glb";
+  const BenchTestScene scene = write_bench_test_scene(file);
+  double image_noise[2] = {0.0, 0.0};
+  std::string folder;
+  for (int k = 0; k < 2; ++k) {
+    const std::string spp = k == 0 ? "8" : "128";
+    const CommandResult r = run_rolypoly(
+        "bench --accuracy --truth-noise --scene " + shell_quote(file.string()) +
+        " --size 48 --spp " + spp + " --voxels 32 --truth-cache " +
+        shell_quote((dir / "cache").string()) + " --out " + shell_quote((dir / "out").string()) +
+        " --json " + shell_quote((dir / "acc.json").string()));
+    ASSERT_EQ(r.exit_code, 0) << r.command << "\n" << r.out << r.err;
+    EXPECT_NE(r.out.find("the truth's own noise: indirect L1 against the 64-bounce truth of "
+                         "seed 2"),
+              std::string::npos)
+        << r.out;
+    const nlohmann::json j = nlohmann::json::parse(read_all(dir / "acc.json"));
+    folder = "scene-" + j["scene"]["content_hash"].get<std::string>();
+    const nlohmann::json& noise = j["truth"]["noise"];
+    EXPECT_EQ(noise["seeds"], nlohmann::json::array({1, 2}));
+    EXPECT_EQ(noise["truths"]["many"]["seed"], 2);
+    EXPECT_EQ(noise["truths"]["many"]["spp"], std::stoi(spp));
+    image_noise[k] = noise["indirect"]["image"]["rel_l1"].get<double>();
+    EXPECT_GT(image_noise[k], 0.0) << "two seeds' truths are not the same image";
+    for (const std::string& m : scene.materials)
+      EXPECT_TRUE(noise["indirect"][m]["rel_l1"].is_number()) << m;
+  }
+  EXPECT_LT(image_noise[1], 0.45 * image_noise[0])
+      << "8 spp: " << image_noise[0] << ", 128 spp: " << image_noise[1];
+  // Both seeds' many-bounce truths and the one-bounce truth, at both sample counts.
+  EXPECT_EQ(files_with_suffix(dir / "cache" / folder, ".exr").size(), 6u);
+}
+
 }  // namespace
 }  // namespace rp::test
