@@ -24,6 +24,13 @@
  *                   (pi I Y(w_light)), which env holds too. Their first vertex is lit with
  *                   shadow maps, so E = T . env - T_shadowed . sun_env: the suns' bounces stay
  *                   with the transfer, their direct light does not
+ *   sun_bounce      params.traced_suns only: per vertex v and traced sun j, the rgb irradiance
+ *                   its light reaches v with after 1..N bounces, per unit irradiance of the
+ *                   sun, at (v * traced_suns + j) * 3 (src/truth/prt_transfer.h)
+ *   sun_i           params.traced_suns only: float4 per traced sun, rgb = its intensity I (the
+ *                   lights' units: pi I is the irradiance it gives a surface facing it), so
+ *                   the sun adds I * sun_bounce to E / pi. env then holds the residual alone:
+ *                   E = T . L(residual) + sum_j pi I_j sun_bounce_j
  * Output: float4 per pixel, rgb = E / pi (the light pass's D, irradiance over pi: albedo times
  * it is the Lambertian radiance), a = 1 where a transfer was found, 0 elsewhere (background,
  * spheres, instances without transfer). Two kernels: prt_vertex_irradiance dots every vertex's
@@ -42,6 +49,8 @@ __kernel void prt_vertex_irradiance(__global const float* restrict transfer,
                                     __global const float4* restrict env,
                                     __global const float* restrict shadowed,
                                     __global const float4* restrict sun_env,
+                                    __global const float* restrict sun_bounce,
+                                    __global const float4* restrict sun_i,
                                     __global float4* restrict vertex_e,
                                     const PrtVertexParams params) {
   const uint vertex_count = params.vertex_count, channels = params.channels;
@@ -64,6 +73,10 @@ __kernel void prt_vertex_irradiance(__global const float* restrict transfer,
     __global const float* t0 = shadowed + v * count;
     for (uint i = 0; i < count; ++i) e -= t0[i] * sun_env[i].xyz;
   }
+  const uint traced = params.traced_suns;
+  __global const float* b = sun_bounce + v * traced * 3u;
+  for (uint j = 0; j < traced; ++j)
+    e += (float3)(b[3u * j], b[3u * j + 1u], b[3u * j + 2u]) * sun_i[j].xyz;
   vertex_e[v] = (float4)(e, 0.0f);
 }
 

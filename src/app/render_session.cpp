@@ -281,11 +281,14 @@ SceneMemory RenderSession::scene_memory() const {
                                                           sky_->environment.map->height)
                                                     : 0);
   if (prt_) {
-    // interreflected: RGB, and the grey shadowed transfer beside it where it bounces
+    // interreflected: RGB, and the grey shadowed transfer beside it where it bounces, with
+    // the directional lights' traced bounces (RGB per light; the most there can be, as the
+    // lights are not known before the first frame)
     const bool bouncing = prt_->kind == truth::PrtKind::kInterreflected && prt_->bounces > 0;
     const uint64_t per_vertex =
         uint64_t(prt_->bands * prt_->bands) *
-        (prt_->kind == truth::PrtKind::kInterreflected ? (bouncing ? 4u : 3u) : 1u);
+            (prt_->kind == truth::PrtKind::kInterreflected ? (bouncing ? 4u : 3u) : 1u) +
+        (bouncing ? 3u * truth::kPrtMaxSuns : 0u);
     memory.prt_floats = memory.vertices * per_vertex;
   }
   memory.light_shadow_bytes = light_shadow_bytes_;
@@ -331,7 +334,14 @@ rp::cl::PassTimes RenderSession::render(const scene::FrameScene& frame,
 }
 
 void RenderSession::prepare_prt(const scene::FrameScene& frame) {
-  const truth::PrtSettings settings = *prt_;
+  truth::PrtSettings settings = *prt_;
+  // The directional lights of this frame (the map's suns, the clear sky's, a scene's): their
+  // bounces are traced per vertex for these directions (the pass falls back to the SH transfer
+  // once the lights turn away from them).
+  for (const scene::PunctualLight& l : frame.lights)
+    if (l.type == scene::LightType::kDirectional &&
+        settings.sun_directions.size() < truth::kPrtMaxSuns)
+      settings.sun_directions.push_back(-l.direction);
   const size_t kSteps = 1000;
   std::atomic<bool> cancel{false};
   truth::CachedPrt cached;
@@ -355,17 +365,23 @@ void RenderSession::prepare_prt(const scene::FrameScene& frame) {
   shading.channels = t.channels;
   shading.coefficients = std::move(t.coefficients);  // tens of MB on a large scene
   shading.shadowed = std::move(t.shadowed);
+  shading.sun_directions = t.sun_directions;
+  shading.sun_bounce = std::move(t.sun_bounce);
   for (size_t i = 0; i < frame.instances.size(); ++i) {
     const bool has = i < t.instances.size() && t.instances[i].count > 0;
     shading.instances.push_back(
         {frame.instances[i].mesh, has ? t.instances[i].first : passes::PrtShading::kNoTransfer});
   }
   renderer_->set_prt(shading);
+  std::string bounces;
+  if (t.kind == truth::PrtKind::kInterreflected) {
+    bounces = ", " + std::to_string(t.bounces) + " bounces";
+    if (!t.sun_directions.empty())
+      bounces += " (" + std::to_string(t.sun_directions.size()) + " directional light" +
+                 (t.sun_directions.size() == 1 ? "'s" : "s'") + " traced)";
+  }
   std::fprintf(stderr, "rolypoly: PRT sky light: %d coefficients, %s%s, %u vertices (%s %s)\n",
-               t.count(), name_of(t.kind).data(),
-               t.kind == truth::PrtKind::kInterreflected
-                   ? (", " + std::to_string(t.bounces) + " bounces").c_str()
-                   : "",
+               t.count(), name_of(t.kind).data(), bounces.c_str(),
                t.vertex_count(), cached.from_cache ? "cached in" : "written to",
                cached.file.string().c_str());
   prt_ready_ = true;

@@ -75,6 +75,18 @@ PrtSkyPass::PrtSkyPass(const rp::cl::Context& context, rp::cl::ProgramCache& pro
   }
   shadowed_ = rp::cl::upload_buffer(context.context, context.queue, prt.shadowed,
                                     "the PRT shadowed transfer", kLessMemory);
+  const size_t suns = prt.sun_directions.size();
+  if (suns > 0 && (!has_shadowed_ || prt.sun_bounce.size() != size_t(vertices) * suns * 3))
+    throw rp::cl::Error("prt pass: " + std::to_string(prt.sun_bounce.size()) +
+                        " floats of traced sun bounces for " + std::to_string(suns) +
+                        " suns and " + std::to_string(vertices) + " vertices" +
+                        (has_shadowed_ ? "" : " without the shadowed transfer"));
+  for (const glm::vec3& d : prt.sun_directions) sun_directions_.push_back(glm::normalize(d));
+  sun_bounce_ = rp::cl::upload_buffer(context.context, context.queue, prt.sun_bounce,
+                                      "the PRT suns' traced bounces", kLessMemory);
+  sun_i_ = rp::cl::make_buffer(context.context, CL_MEM_READ_ONLY,
+                               std::max<size_t>(1, suns) * 4 * sizeof(float),
+                               "the PRT suns' intensities");
   vertex_count_ = vertices;
   vertex_e_ = rp::cl::make_buffer(context.context, CL_MEM_READ_WRITE,
                                   std::max<size_t>(1, vertices) * 16,
@@ -100,12 +112,38 @@ void PrtSkyPass::directional_coefficients(const std::vector<scene::PunctualLight
   }
 }
 
+bool PrtSkyPass::traced_sun_intensities(const std::vector<scene::PunctualLight>& lights,
+                                        std::vector<glm::vec3>& out) const {
+  out.assign(sun_directions_.size(), glm::vec3(0.0f));
+  if (sun_directions_.empty()) return false;
+  constexpr float kSameDirection = 0.99999998f;  // cos 0.01 degrees
+  for (const scene::PunctualLight& l : lights) {
+    if (l.type != scene::LightType::kDirectional) continue;
+    const glm::vec3 towards = -glm::normalize(l.direction);
+    size_t j = 0;
+    while (j < sun_directions_.size() && !(glm::dot(towards, sun_directions_[j]) >= kSameDirection))
+      ++j;
+    if (j == sun_directions_.size()) {
+      out.clear();
+      return false;
+    }
+    out[j] += l.intensity;
+  }
+  return true;
+}
+
 void PrtSkyPass::update_environment(const scene::Environment& environment,
                                     const std::vector<scene::PunctualLight>& lights) {
   const bool enabled = environment.enabled();
   directional_coefficients(lights, directional_next_);
-  const bool lights_changed = directional_next_ != directional_;
-  if (lights_changed) std::swap(directional_, directional_next_);
+  const bool exact = traced_sun_intensities(lights, sun_intensity_next_);
+  const bool lights_changed = directional_next_ != directional_ || exact != exact_suns_ ||
+                              sun_intensity_next_ != sun_intensity_;
+  if (lights_changed) {
+    std::swap(directional_, directional_next_);
+    std::swap(sun_intensity_, sun_intensity_next_);
+    exact_suns_ = exact;
+  }
   if (enabled &&
       (environment.map != projected_map_ || environment.residual != projected_residual_)) {
     // Without suns, or without the shadowed transfer, the gathered map (the residual: the suns
@@ -132,24 +170,40 @@ void PrtSkyPass::update_environment(const scene::Environment& environment,
                     environment.strength == uploaded_strength_)))
     return;
   vertex_e_fresh_ = false;
-  // The map's part turned and scaled; the directional lights' in world space already.
-  const auto upload = [&](const ::cl::Buffer& buffer, const std::vector<glm::dvec3>& unturned) {
+  // The map's part turned and scaled; the directional lights' in world space already (none
+  // with traced suns: their bounces come from sun_bounce_, and the map's suns are taken out).
+  const auto upload = [&](const ::cl::Buffer& buffer, const std::vector<glm::dvec3>& unturned,
+                          const std::vector<glm::dvec3>* minus) {
     std::vector<glm::dvec3> sum(size_t(shading::kShMaxCount), glm::dvec3(0.0));
     if (enabled && !unturned.empty()) {
+      std::vector<glm::dvec3> part = unturned;
+      if (minus != nullptr && !minus->empty())
+        for (size_t i = 0; i < part.size(); ++i) part[i] -= (*minus)[i];
       const std::vector<glm::dvec3> turned =
-          shading::sh_turn_environment(unturned, environment.rotate_deg, environment.strength);
+          shading::sh_turn_environment(part, environment.rotate_deg, environment.strength);
       std::copy(turned.begin(), turned.end(), sum.begin());
     }
-    for (size_t i = 0; i < directional_.size(); ++i) sum[i] += directional_[i];
+    if (!exact_suns_)
+      for (size_t i = 0; i < directional_.size(); ++i) sum[i] += directional_[i];
     std::vector<float> env(size_t(shading::kShMaxCount) * 4, 0.0f);
     for (size_t i = 0; i < sum.size(); ++i)
       for (int c = 0; c < 3; ++c) env[4 * i + size_t(c)] = float(sum[i][c] * kInvPi);
     context_->queue.enqueueWriteBuffer(buffer, CL_TRUE, 0, env.size() * sizeof(float),
                                        env.data());
   };
-  upload(env_, unturned_);
-  upload(sun_env_, unturned_suns_);
-  suns_uploaded_ = (enabled && !unturned_suns_.empty()) || !directional_.empty();
+  if (exact_suns_) {
+    upload(env_, unturned_, &unturned_suns_);  // the residual: T . L(map - suns)
+    std::vector<float> sun_i(sun_intensity_.size() * 4, 0.0f);
+    for (size_t j = 0; j < sun_intensity_.size(); ++j)
+      for (int c = 0; c < 3; ++c) sun_i[4 * j + size_t(c)] = sun_intensity_[j][c];  // E / pi
+    context_->queue.enqueueWriteBuffer(sun_i_, CL_TRUE, 0, sun_i.size() * sizeof(float),
+                                       sun_i.data());
+    suns_uploaded_ = false;
+  } else {
+    upload(env_, unturned_, nullptr);
+    upload(sun_env_, unturned_suns_, nullptr);
+    suns_uploaded_ = (enabled && !unturned_suns_.empty()) || !directional_.empty();
+  }
   uploaded_enabled_ = enabled;
   uploaded_turn_ = environment.rotate_deg;
   uploaded_strength_ = environment.strength;
@@ -178,7 +232,9 @@ void PrtSkyPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     params.channels = channels_;
     params.coefficients = uint32_t(bands_ * bands_);
     params.suns = suns_uploaded_ ? 1u : 0u;
-    rp::cl::bind_args(vertex_kernel_, transfer_, env_, shadowed_, sun_env_, vertex_e_, params);
+    params.traced_suns = exact_suns_ ? uint32_t(sun_directions_.size()) : 0u;
+    rp::cl::bind_args(vertex_kernel_, transfer_, env_, shadowed_, sun_env_, sun_bounce_, sun_i_,
+                      vertex_e_, params);
     profiler.enqueue(pass_name::kPrt, vertex_kernel_,
                      ::cl::NDRange(rp::cl::round_up(vertex_count_, kVertexGroup)),
                      ::cl::NDRange(kVertexGroup));

@@ -16,6 +16,14 @@
 // and the GI volume leaves those lights out (carries_suns_bounce(): the renderer tells the
 // scene), since their bounce by PRT's traced transfer is closer to the truth than the cones'.
 // Point and spot lights have no distant radiance: their bounce stays with the volume.
+//
+// Where the transfer also traced the directional lights' bounces per vertex for their
+// directions (PrtShading::sun_bounce) and every directional light of the frame still shines
+// from one of them, those replace the band-limited bounce:
+//     E = T . L(residual) + sum_j pi I_j * B_j,
+// exact for each sun's direction (25 coefficients smear a low sun's bounce over the horizon,
+// where the transfer as a function of the light's direction jumps). A turned map or a moved
+// light falls back to the formula above.
 #pragma once
 
 #include <algorithm>
@@ -52,6 +60,12 @@ struct PrtShading {
   };
   static constexpr uint32_t kNoTransfer = 0xFFFFFFFFu;
   std::vector<Instance> instances;
+  // Empty, or (with shadowed) the directions towards the directional lights whose bounces were
+  // traced, and those bounces: vertex v, sun j, channel c at (v * suns + j) * 3 + c, the
+  // irradiance after 1..N bounces per unit irradiance of the sun (truth::PrtTransfer::
+  // sun_bounce).
+  std::vector<glm::vec3> sun_directions;
+  std::vector<float> sun_bounce;
 
   uint32_t vertex_count() const {
     const size_t per = size_t(channels) * size_t(bands) * size_t(bands);
@@ -79,6 +93,9 @@ class PrtSkyPass {
   // Whether the suns' bounces are this pass's (the transfer keeps its shadowed part), so the
   // GI volume must leave the environment's suns and the directional lights out.
   bool carries_suns_bounce() const { return has_shadowed_; }
+  // Whether the last run took the suns' bounces from their traced per-vertex columns (every
+  // directional light shone from a traced direction) rather than through the SH transfer.
+  bool suns_traced() const { return exact_suns_; }
 
   // Device memory of output() for a width x height frame (passes/frame_memory.h; it only
   // grows); what the pass holds now.
@@ -95,6 +112,11 @@ class PrtSkyPass {
   // per-frame call allocates nothing once the lights are known).
   void directional_coefficients(const std::vector<scene::PunctualLight>& lights,
                                 std::vector<glm::dvec3>& out) const;
+  // Each traced sun's intensity I_j (rgb, the lights' units) into `out` when every directional
+  // light of `lights` shines from one of sun_directions_ (within 0.01 degrees); false (out
+  // cleared) otherwise or without traced suns.
+  bool traced_sun_intensities(const std::vector<scene::PunctualLight>& lights,
+                              std::vector<glm::vec3>& out) const;
 
   const rp::cl::Context* context_;
   ::cl::Kernel vertex_kernel_, kernel_;  // prt_vertex_irradiance, prt_shade
@@ -114,6 +136,13 @@ class PrtSkyPass {
   std::vector<glm::dvec3> unturned_, unturned_suns_;
   // directional_coefficients of the last upload, and this frame's (compared, then swapped)
   std::vector<glm::dvec3> directional_, directional_next_;
+  // The traced suns: their directions, bounces (sun_bounce_) and this upload's intensities
+  // (sun_i_: float4 per sun, kPrtMaxSuns of them); traced_sun_intensities of the last upload
+  // and this frame's.
+  std::vector<glm::vec3> sun_directions_;
+  ::cl::Buffer sun_bounce_, sun_i_;
+  std::vector<glm::vec3> sun_intensity_, sun_intensity_next_;
+  bool exact_suns_ = false;
   float uploaded_turn_ = 0.0f, uploaded_strength_ = -1.0f;
   bool uploaded_enabled_ = false, suns_uploaded_ = false;
 };

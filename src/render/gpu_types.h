@@ -34,7 +34,7 @@ static_assert(sizeof(MotionBlurParams) == 48);
 static_assert(sizeof(TaaParams) == 48);
 static_assert(sizeof(BloomStep) == 32);
 static_assert(sizeof(GBufferParams) == 16);
-static_assert(sizeof(PrtVertexParams) == 16);
+static_assert(sizeof(PrtVertexParams) == 32);
 static_assert(sizeof(ShadowMipStep) == 32);
 static_assert(sizeof(BounceParams) == 16);
 static_assert(sizeof(ToneMapParams) == 16);

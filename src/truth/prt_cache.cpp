@@ -54,6 +54,8 @@ PrtSettings effective(const PrtSettings& s) {
   if (e.kind != PrtKind::kInterreflected) e.bounces = 0;
   if (e.kind == PrtKind::kUnshadowed) e.samples = 0;
   e.threads = 0;
+  if (e.kind != PrtKind::kInterreflected || e.bounces == 0) e.sun_directions.clear();
+  for (glm::vec3& d : e.sun_directions) d = glm::normalize(d);
   return e;
 }
 
@@ -68,6 +70,8 @@ std::string prt_key(const scene::SceneAssets& assets, const scene::FrameScene& f
   h.value(uint32_t(s.kind));
   h.value(s.bounces);
   h.value(s.samples);
+  h.value(uint64_t(s.sun_directions.size()));
+  for (const glm::vec3& d : s.sun_directions) h.vec(d);
   for (const scene::Mesh& m : assets.meshes) {
     h.text(m.name);
     h.value(uint64_t(m.vertices.size()));
@@ -129,7 +133,8 @@ void write_prt_file(const std::filesystem::path& path, const std::string& key,
   out += version;
   out += key;
   for (uint32_t v : {uint32_t(t.bands), uint32_t(t.kind), t.bounces, t.samples, t.channels,
-                     t.vertex_count(), uint32_t(t.instances.size())})
+                     t.vertex_count(), uint32_t(t.instances.size()),
+                     uint32_t(t.sun_directions.size())})
     put_u32(out, v);
   for (const PrtInstanceRange& r : t.instances) {
     put_u32(out, r.first);
@@ -139,6 +144,8 @@ void write_prt_file(const std::filesystem::path& path, const std::string& key,
   put_bytes(out, t.normals.data(), t.normals.size() * sizeof(glm::vec3));
   put_bytes(out, t.coefficients.data(), t.coefficients.size() * sizeof(float));
   put_bytes(out, t.shadowed.data(), t.shadowed.size() * sizeof(float));
+  put_bytes(out, t.sun_directions.data(), t.sun_directions.size() * sizeof(glm::vec3));
+  put_bytes(out, t.sun_bounce.data(), t.sun_bounce.size() * sizeof(float));
   const uint64_t sum = checksum(out.data(), out.size());
   put_bytes(out, &sum, sizeof sum);
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
@@ -171,7 +178,7 @@ std::optional<PrtTransfer> read_prt_file(const std::filesystem::path& path,
   if (!r.get(version.data(), version_size) || version != kPrtVersion ||
       !r.get(file_key.data(), 16) || file_key != key)
     return std::nullopt;
-  uint32_t f[7];
+  uint32_t f[8];
   for (uint32_t& v : f)
     if (!r.u32(v)) return std::nullopt;
   const PrtSettings want = effective(settings);
@@ -181,17 +188,18 @@ std::optional<PrtTransfer> read_prt_file(const std::filesystem::path& path,
   t.bounces = f[2];
   t.samples = f[3];
   t.channels = f[4];
-  const uint32_t nv = f[5], ni = f[6];
+  const uint32_t nv = f[5], ni = f[6], suns = f[7];
   if (t.bands != want.bands || t.kind != want.kind || t.bounces != want.bounces ||
-      t.samples != want.samples || t.channels != (t.kind == PrtKind::kInterreflected ? 3u : 1u))
+      t.samples != want.samples || t.channels != (t.kind == PrtKind::kInterreflected ? 3u : 1u) ||
+      suns != want.sun_directions.size())
     return std::nullopt;
   // The exact size the counts call for (64-bit arithmetic: no overflow for u32 counts).
   const uint64_t coefficients = uint64_t(nv) * t.channels * uint64_t(t.count());
   const uint64_t shadowed =
       t.kind == PrtKind::kInterreflected && t.bounces > 0 ? uint64_t(nv) * uint64_t(t.count())
                                                           : 0;
-  const uint64_t payload =
-      uint64_t(ni) * 8 + uint64_t(nv) * 24 + (coefficients + shadowed) * 4;
+  const uint64_t payload = uint64_t(ni) * 8 + uint64_t(nv) * 24 + (coefficients + shadowed) * 4 +
+                           uint64_t(suns) * 12 + uint64_t(nv) * suns * 12;
   if (payload != uint64_t(body - r.pos())) return std::nullopt;
   t.instances.resize(ni);
   uint64_t covered = 0;
@@ -205,11 +213,16 @@ std::optional<PrtTransfer> read_prt_file(const std::filesystem::path& path,
   t.normals.resize(nv);
   t.coefficients.resize(size_t(coefficients));
   t.shadowed.resize(size_t(shadowed));
+  t.sun_directions.resize(suns);
+  t.sun_bounce.resize(size_t(nv) * suns * 3);
   if (!r.get(t.positions.data(), size_t(nv) * sizeof(glm::vec3)) ||
       !r.get(t.normals.data(), size_t(nv) * sizeof(glm::vec3)) ||
       !r.get(t.coefficients.data(), t.coefficients.size() * sizeof(float)) ||
-      !r.get(t.shadowed.data(), t.shadowed.size() * sizeof(float)))
+      !r.get(t.shadowed.data(), t.shadowed.size() * sizeof(float)) ||
+      !r.get(t.sun_directions.data(), size_t(suns) * sizeof(glm::vec3)) ||
+      !r.get(t.sun_bounce.data(), t.sun_bounce.size() * sizeof(float)))
     return std::nullopt;
+  if (t.sun_directions != want.sun_directions) return std::nullopt;
   return t;
 }
 

@@ -222,6 +222,12 @@ PrtTransfer compute_prt_transfer(const scene::SceneAssets& assets, const scene::
     if (frame.instances[i].mesh >= assets.meshes.size())
       throw std::runtime_error("PRT: instance " + std::to_string(i) +
                                " refers to a mesh that does not exist");
+  if (settings.sun_directions.size() > kPrtMaxSuns)
+    throw std::invalid_argument("PRT: " + std::to_string(settings.sun_directions.size()) +
+                                " suns (at most " + std::to_string(kPrtMaxSuns) + ")");
+  for (const glm::vec3& d : settings.sun_directions)
+    if (!(glm::length(d) > 1e-6f))
+      throw std::invalid_argument("PRT: a sun without a direction");
   const TraceAssets trace(assets);  // validates meshes, materials, textures
   const InstanceScene scene(trace, frame);
 
@@ -237,6 +243,12 @@ PrtTransfer compute_prt_transfer(const scene::SceneAssets& assets, const scene::
   const unsigned threads =
       settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
   const bool bouncing = settings.kind == PrtKind::kInterreflected && settings.bounces > 0;
+  // The suns ride along as extra columns after the SH coefficients: column nc + j starts as
+  // sun j's direct irradiance (cosine, shadow ray) and bounces through the same rows.
+  if (bouncing)
+    for (const glm::vec3& d : settings.sun_directions)
+      out.sun_directions.push_back(glm::normalize(d));
+  const size_t suns = out.sun_directions.size(), nt = nc + suns;
   // Keep every vertex's bounce row (bounces then cost a sparse product) when the worst case,
   // 3 entries per ray, fits the budget; else rebuild each row by tracing again per bounce.
   const bool keep_rows =
@@ -317,14 +329,25 @@ PrtTransfer compute_prt_transfer(const scene::SceneAssets& assets, const scene::
     }
   };
 
-  std::vector<double> t0(size_t(nv) * nc, 0.0);  // the shadowed (or unshadowed) transfer
+  // the shadowed (or unshadowed) transfer, then the suns' direct irradiance: nt per vertex
+  std::vector<double> t0(size_t(nv) * nt, 0.0);
   std::vector<std::vector<RowEntry>> rows(keep_rows ? nv : 0);
   auto first_pass = [&](uint32_t v) {
     if (verts[v].n == glm::dvec3(0.0)) return;  // degenerate: no transfer
     const std::vector<double> lobe = shading::sh_rotate_zonal(zonal, verts[v].n, settings.bands);
-    double* t = t0.data() + size_t(v) * nc;
+    double* t = t0.data() + size_t(v) * nt;
     std::copy(lobe.begin(), lobe.end(), t);
     if (settings.kind != PrtKind::kUnshadowed) trace_vertex(v, t, keep_rows ? &rows[v] : nullptr);
+    for (size_t j = 0; j < suns; ++j) {
+      const glm::dvec3 l(out.sun_directions[j]);
+      const double cosine = glm::dot(verts[v].n, l);
+      if (!(cosine > 0.0)) continue;
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      RTCRay ray = make_ray(verts[v].origin, glm::vec3(l), std::numeric_limits<float>::infinity());
+      rtcOccluded1(scene.get(), &context, &ray);
+      if (ray.tfar >= 0.0f) t[nc + j] = cosine;
+    }
   };
   if (settings.kind == PrtKind::kUnshadowed)
     for (uint32_t v = 0; v < nv; ++v) first_pass(v);  // closed form: no rays, no threads
@@ -332,25 +355,25 @@ PrtTransfer compute_prt_transfer(const scene::SceneAssets& assets, const scene::
     run_parallel(nv, threads, first_pass, report(0.0, trace_share), cancel);
 
   const uint32_t channels = out.channels;
-  std::vector<double> total(size_t(nv) * channels * nc);
+  std::vector<double> total(size_t(nv) * channels * nt);
   for (uint32_t v = 0; v < nv; ++v)
     for (uint32_t c = 0; c < channels; ++c)
-      std::copy_n(t0.begin() + std::ptrdiff_t(size_t(v) * nc), nc,
-                  total.begin() + std::ptrdiff_t((size_t(v) * channels + c) * nc));
+      std::copy_n(t0.begin() + std::ptrdiff_t(size_t(v) * nt), nt,
+                  total.begin() + std::ptrdiff_t((size_t(v) * channels + c) * nt));
   if (bouncing) {
     // T_k = M T_{k-1} per channel, T_0 the shadowed transfer; total = sum over k <= bounces.
     std::vector<double> prev = total, next(total.size());
     for (uint32_t bounce = 0; bounce < settings.bounces; ++bounce) {
       auto row_fn = [&](uint32_t v) {
-        double* dst = next.data() + size_t(v) * 3 * nc;
-        std::fill_n(dst, 3 * nc, 0.0);
+        double* dst = next.data() + size_t(v) * 3 * nt;
+        std::fill_n(dst, 3 * nt, 0.0);
         if (verts[v].n == glm::dvec3(0.0)) return;
         std::vector<RowEntry> rebuilt;
         if (!keep_rows) trace_vertex(v, nullptr, &rebuilt);
         for (const RowEntry& e : keep_rows ? rows[v] : rebuilt)
           for (uint32_t c = 0; c < 3; ++c) {
-            const double* src = prev.data() + (size_t(e.target) * 3 + c) * nc;
-            for (size_t i = 0; i < nc; ++i) dst[c * nc + i] += double(e.w[c]) * src[i];
+            const double* src = prev.data() + (size_t(e.target) * 3 + c) * nt;
+            for (size_t i = 0; i < nt; ++i) dst[c * nt + i] += double(e.w[c]) * src[i];
           }
       };
       const double span = (1.0 - trace_share) / double(settings.bounces);
@@ -359,8 +382,22 @@ PrtTransfer compute_prt_transfer(const scene::SceneAssets& assets, const scene::
       std::swap(prev, next);
     }
   }
-  out.coefficients.assign(total.begin(), total.end());
-  if (bouncing) out.shadowed.assign(t0.begin(), t0.end());
+  out.coefficients.resize(size_t(nv) * channels * nc);
+  for (size_t row = 0; row < size_t(nv) * channels; ++row)
+    std::copy_n(total.begin() + std::ptrdiff_t(row * nt), nc,
+                out.coefficients.begin() + std::ptrdiff_t(row * nc));
+  if (bouncing) {
+    out.shadowed.resize(size_t(nv) * nc);
+    out.sun_bounce.resize(size_t(nv) * suns * 3);
+    for (uint32_t v = 0; v < nv; ++v) {
+      std::copy_n(t0.begin() + std::ptrdiff_t(size_t(v) * nt), nc,
+                  out.shadowed.begin() + std::ptrdiff_t(size_t(v) * nc));
+      for (size_t j = 0; j < suns; ++j)  // the bounces alone: the total less the direct column
+        for (uint32_t c = 0; c < 3; ++c)
+          out.sun_bounce[(size_t(v) * suns + j) * 3 + c] =
+              float(total[(size_t(v) * 3 + c) * nt + nc + j] - t0[size_t(v) * nt + nc + j]);
+    }
+  }
   if (progress) progress(1.0);
   return out;
 }

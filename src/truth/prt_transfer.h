@@ -85,7 +85,15 @@ struct PrtSettings {
   // every bounce traces the same rays again (slower, little memory). Same result either way,
   // bit for bit (the same sums in the same order), so it is no part of the cache key.
   uint32_t bounce_matrix_mb = 1024;
+  // kInterreflected with bounces: directional lights (unit, world space, from the surface
+  // towards the light) whose bounced light is traced exactly per vertex (PrtTransfer::
+  // sun_bounce) instead of through the band-limited transfer: a sun near the horizon, where the
+  // transfer as a function of the light's direction jumps (the ground hides what lies below),
+  // is smeared by 9 or 25 coefficients. At most kPrtMaxSuns.
+  std::vector<glm::vec3> sun_directions;
 };
+
+inline constexpr size_t kPrtMaxSuns = 8;
 
 // Where one frame instance's vertices lie in PrtTransfer's arrays: vertex v of the instance's
 // mesh (scene::Mesh::vertices order) is PRT vertex first + v.
@@ -109,6 +117,13 @@ struct PrtTransfer {
   // minus this) for light whose first vertex it computes itself: an environment's suns. Empty
   // otherwise.
   std::vector<float> shadowed;
+  // The settings' sun_directions (empty without the shadowed transfer) and each one's bounced
+  // light: vertex v, sun j, channel c at (v * suns + j) * 3 + c, the irradiance that reaches v
+  // after 1 to `bounces` diffuse bounces when the sun gives a surface facing it irradiance 1
+  // (its first vertex, lit with shadow rays from every vertex, not included). A sun of
+  // irradiance E_sun (per channel) adds E_sun * sun_bounce to the vertex.
+  std::vector<glm::vec3> sun_directions;
+  std::vector<float> sun_bounce;
 
   uint32_t vertex_count() const { return uint32_t(positions.size()); }
   int count() const { return bands * bands; }

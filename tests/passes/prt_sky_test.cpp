@@ -12,6 +12,12 @@
 // directional light's bounce is gathered the same way, its radiance pi I delta(w + direction)
 // with coefficients pi I Y(-direction) (a point light's is not: it has no distant radiance).
 //
+// Where the transfer traced the directional lights' bounces (PrtShading::sun_bounce) and every
+// directional light of the frame shines from a traced direction, the pass gathers the residual
+// map alone and adds each sun's traced bounce times its intensity: E / pi = T . L(residual) / pi
+// + sum_j I_j B_j. A light that moved off its traced direction sends the pass back to the SH
+// formula above (the third frame).
+//
 // Tolerance: 1e-4 of the largest value plus 1e-4 relative (float sums of 9 or 25 products of
 // numbers near 1, and the two coefficient paths' rounding).
 #include <algorithm>
@@ -70,7 +76,7 @@ std::shared_ptr<scene::EnvironmentMap> without_spike(const scene::EnvironmentMap
   return out;
 }
 
-enum class Suns { kNone, kShadowedNoSuns, kShadowedWithSuns };
+enum class Suns { kNone, kShadowedNoSuns, kShadowedWithSuns, kTraced };
 
 void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
   // Mesh 0: a quad of two triangles; mesh 1: one triangle. Instances: the quad, the triangle in
@@ -91,15 +97,22 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
   for (scene::MeshInstance& i : frame.instances) i.prev_model = i.model;
   frame.environment.map = test_map();
   frame.environment.strength = 1.5f;
-  if (suns == Suns::kShadowedWithSuns)
+  if (suns == Suns::kShadowedWithSuns || suns == Suns::kTraced)
     frame.environment.residual = without_spike(*frame.environment.map, false);
-  // a directional light (its bounce gathered with a shadowed transfer) and a point light (never)
-  std::vector<scene::PunctualLight> lights(2);
+  // a directional light (its bounce gathered with a shadowed transfer) and a point light (never);
+  // traced: the map's sun as a directional light too (its direction the pass only compares)
+  std::vector<scene::PunctualLight> lights(suns == Suns::kTraced ? 3 : 2);
   lights[0].type = scene::LightType::kDirectional;
   lights[0].direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
   lights[0].intensity = {2.0f, 1.5f, 0.5f};
   lights[1].position = {0.0f, 1.0f, 0.0f};
   lights[1].intensity = glm::vec3(50.0f);
+  if (suns == Suns::kTraced) {
+    lights[2].type = scene::LightType::kDirectional;
+    lights[2].direction = glm::normalize(glm::vec3(-0.5f, -0.6f, 0.2f));
+    lights[2].intensity = {0.7f, 0.9f, 3.0f};
+    lights[2].in_environment = true;
+  }
 
   // Transfer: random numbers per PRT vertex (instance a: 0..3, b: 4..6, c: 7..10).
   passes::PrtShading prt;
@@ -115,6 +128,11 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
     for (float& v : prt.shadowed) v = t(rng);
   }
   prt.instances = {{0, 0}, {1, 4}, {0, 7}, {0, passes::PrtShading::kNoTransfer}};
+  if (suns == Suns::kTraced) {  // traced in the opposite order to the lights'
+    prt.sun_directions = {-lights[2].direction, -lights[0].direction};
+    prt.sun_bounce.resize(size_t(11) * 2 * 3);
+    for (float& v : prt.sun_bounce) v = std::abs(t(rng));
+  }
 
   const uint32_t w = 96, h = 80;
   render::GpuScene gpu(context().context, context().queue, assets);
@@ -128,9 +146,17 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
   EXPECT_EQ(pass.carries_suns_bounce(), suns != Suns::kNone);
   // Two frames of one pass: the second turns the sky further (a whole number of columns
   // again), so the vertices' sky light must be recomputed, not reused.
-  for (const float turn : {3 * 360.0f / 16.0f, -5 * 360.0f / 16.0f}) {
+  std::vector<float> turns = {3 * 360.0f / 16.0f, -5 * 360.0f / 16.0f};
+  if (suns == Suns::kTraced) turns.push_back(2 * 360.0f / 16.0f);
+  for (size_t frame_number = 0; frame_number < turns.size(); ++frame_number) {
+    const float turn = turns[frame_number];
+    // Traced: the third frame moves the directional light off its traced direction.
+    const bool moved = frame_number == 2;
+    if (moved) lights[0].direction = glm::normalize(glm::vec3(0.35f, -1.0f, -0.4f));
+    const bool traced = suns == Suns::kTraced && !moved;
     frame.environment.rotate_deg = turn;
     pass.run(profiler, gpu, vis, frame.environment, lights);
+    EXPECT_EQ(pass.suns_traced(), traced) << "frame " << frame_number;
     profiler.collect();
 
     Readback r;
@@ -145,14 +171,19 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
 
     const std::vector<glm::dvec3> env = shading::sh_project_environment(frame.environment, bands);
     std::vector<glm::dvec3> sun_env(env.size(), glm::dvec3(0.0));
-    if (suns == Suns::kShadowedWithSuns) {
+    if (suns == Suns::kShadowedWithSuns || suns == Suns::kTraced) {
       scene::Environment alone = frame.environment;
       alone.map = without_spike(*frame.environment.map, true);
       alone.residual = nullptr;
       sun_env = shading::sh_project_environment(alone, bands);
     }
     std::vector<glm::dvec3> light_env = env;  // the directional light's added where gathered
-    if (suns != Suns::kNone) {
+    if (traced) {  // the residual alone; the suns' traced bounces are added per vertex below
+      scene::Environment residual = frame.environment;
+      residual.map = frame.environment.residual;
+      residual.residual = nullptr;
+      light_env = shading::sh_project_environment(residual, bands);
+    } else if (suns != Suns::kNone) {
       double y[shading::kShMaxCount];
       shading::sh_eval(-glm::dvec3(lights[0].direction), bands, y);
       for (size_t i = 0; i < env.size(); ++i) {
@@ -185,14 +216,25 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
             return double(prt.coefficients[(size_t(first + vertex) * channels + ch) * count + i]);
           };
           e[c] += (b0 * at(v.x) + b1 * at(v.y) + b2 * at(v.z)) * light_env[size_t(i)][c];
-          if (prt.shadowed.empty()) continue;
+          if (prt.shadowed.empty() || traced) continue;
           const auto at0 = [&](uint32_t vertex) {
             return double(prt.shadowed[size_t(first + vertex) * count + i]);
           };
           e[c] -= (b0 * at0(v.x) + b1 * at0(v.y) + b2 * at0(v.z)) * sun_env[size_t(i)][c];
         }
       }
-      e = glm::max(e / kPi, glm::dvec3(0.0));
+      e /= kPi;
+      if (traced) {
+        const glm::vec3 intensity[2] = {lights[2].intensity, lights[0].intensity};
+        for (uint32_t j = 0; j < 2; ++j)
+          for (int c = 0; c < 3; ++c) {
+            const auto at = [&](uint32_t vertex) {
+              return double(prt.sun_bounce[(size_t(first + vertex) * 2 + j) * 3 + size_t(c)]);
+            };
+            e[c] += (b0 * at(v.x) + b1 * at(v.y) + b2 * at(v.z)) * double(intensity[j][c]);
+          }
+      }
+      e = glm::max(e, glm::dvec3(0.0));
       for (int c = 0; c < 3; ++c)
         if (!(std::abs(r.out[p][c] - e[c]) <= 1e-4 + 1e-4 * std::abs(e[c])) && bad++ < 5)
           ADD_FAILURE() << "pixel " << p << " channel " << c << ": " << r.out[p][c] << " vs "
@@ -208,6 +250,9 @@ TEST(PrtSkyPass, NineGreyCoefficientsMatchTheReference) { check_pass(3, 1); }
 TEST(PrtSkyPass, TwentyFiveRgbCoefficientsMatchTheReference) { check_pass(5, 3); }
 TEST(PrtSkyPass, ShadowedTransferGathersADirectionalLightsBounce) {
   check_pass(5, 3, Suns::kShadowedNoSuns);
+}
+TEST(PrtSkyPass, TracedSunsAddTheirBouncesPerVertexUntilALightMoves) {
+  check_pass(5, 3, Suns::kTraced);
 }
 TEST(PrtSkyPass, TheSunsBouncesAreGatheredTheirFirstVertexIsNot) {
   check_pass(3, 3, Suns::kShadowedWithSuns);
@@ -267,6 +312,13 @@ TEST(PrtSkyPass, RejectsTransferThatDoesNotFitTheScene) {
   EXPECT_THROW(passes::PrtSkyPass(context(), programs(), gpu, prt), rp::cl::Error);
   prt.shadowed.resize(3 * 9);
   EXPECT_NO_THROW(passes::PrtSkyPass(context(), programs(), gpu, prt));
+  prt.sun_directions = {{0.0f, 1.0f, 0.0f}};
+  prt.sun_bounce.resize(2 * 3);  // one sun's bounces for two vertices of three
+  EXPECT_THROW(passes::PrtSkyPass(context(), programs(), gpu, prt), rp::cl::Error);
+  prt.sun_bounce.resize(3 * 3);
+  EXPECT_NO_THROW(passes::PrtSkyPass(context(), programs(), gpu, prt));
+  prt.shadowed.clear();  // traced suns need the shadowed transfer beside them
+  EXPECT_THROW(passes::PrtSkyPass(context(), programs(), gpu, prt), rp::cl::Error);
 }
 
 }  // namespace

@@ -49,6 +49,7 @@ PrtSettings interreflected() {
   s.bands = 5;
   s.samples = 64;
   s.bounces = 2;
+  s.sun_directions = {{0.3f, 1.0f, 0.2f}};  // one directional light's bounce traced too
   return s;
 }
 
@@ -67,6 +68,8 @@ void expect_same(const PrtTransfer& a, const PrtTransfer& b) {
   EXPECT_EQ(a.normals, b.normals);
   EXPECT_EQ(a.coefficients, b.coefficients);  // bit for bit (no NaN here)
   EXPECT_EQ(a.shadowed, b.shadowed);
+  EXPECT_EQ(a.sun_directions, b.sun_directions);
+  EXPECT_EQ(a.sun_bounce, b.sun_bounce);
 }
 
 TEST_F(PrtCache, RoundTripIsIdentical) {
@@ -75,6 +78,7 @@ TEST_F(PrtCache, RoundTripIsIdentical) {
   const CachedPrt first = cached_prt_transfer(assets, frame, interreflected(), dir_);
   EXPECT_FALSE(first.from_cache);
   EXPECT_EQ(first.transfer.shadowed.size(), size_t(first.transfer.vertex_count()) * 25);
+  EXPECT_EQ(first.transfer.sun_bounce.size(), size_t(first.transfer.vertex_count()) * 3);
   ASSERT_TRUE(fs::exists(first.file));
   EXPECT_EQ(first.file.parent_path(), dir_);
   const CachedPrt second = cached_prt_transfer(assets, frame, interreflected(), dir_);
@@ -93,18 +97,24 @@ TEST_F(PrtCache, ChangedSettingOrSceneMisses) {
   PrtSettings s = base;
   s.threads = 3;  // the result does not depend on it
   EXPECT_EQ(prt_key(assets, frame, s), key);
-  for (int change = 0; change < 4; ++change) {
+  for (int change = 0; change < 6; ++change) {
     s = base;
     if (change == 0) s.bands = 3;
     if (change == 1) s.kind = PrtKind::kShadowed;
     if (change == 2) s.bounces = 3;
     if (change == 3) s.samples = 128;
+    if (change == 4) s.sun_directions[0].x = 0.31f;
+    if (change == 5) s.sun_directions.clear();
     EXPECT_NE(prt_key(assets, frame, s), key) << "change " << change;
   }
-  // Bounces are no part of a shadowed transfer's key, samples of an unshadowed one's.
+  // Bounces and suns are no part of a shadowed transfer's key, samples of an unshadowed one's;
+  // a sun's direction counts, not its length.
   PrtSettings a = base, b = base;
+  b.sun_directions[0] *= 2.0f;
+  EXPECT_EQ(prt_key(assets, frame, a), prt_key(assets, frame, b));
   a.kind = b.kind = PrtKind::kShadowed;
   b.bounces = 7;
+  b.sun_directions.clear();
   EXPECT_EQ(prt_key(assets, frame, a), prt_key(assets, frame, b));
   a.kind = b.kind = PrtKind::kUnshadowed;
   b.samples = 7;
