@@ -130,7 +130,8 @@ std::string file_accuracy_table(const nlohmann::json& j) {
                   "(%.1f s%s):",
                   second["bounces"].get<uint32_t>(),
                   static_cast<unsigned long long>(second["seed"].get<uint64_t>()),
-                  second["seconds"].get<double>(), second["from_cache"].get<bool>() ? ", cached" : "");
+                  second["seconds"].get<double>(),
+                  second["from_cache"].get<bool>() ? ", cached" : "");
     t << line;
     // the image first, then the regions (the JSON object's order: by name)
     const std::string image = region_name(Region::kImage);

@@ -4,10 +4,11 @@
 //
 // Key: 64-bit FNV-1a (io/fnv1a.h) of everything the transfer depends on: kPrtVersion; the
 // settings (bands, kind, bounces for kInterreflected, samples for the traced kinds, the suns'
-// directions for kInterreflected with bounces; not threads: the result does not depend on them); the meshes (positions, normals, uvs, triangles, per
-// triangle materials); the materials' albedo, base-colour texture and alpha mask (the hit albedo
-// and the holes); the textures' texels and sampling; and each frame instance's mesh and model
-// matrix. Not the camera, spheres, environment or lights (but the suns' directions): PRT is
+// directions for kInterreflected with bounces; not threads: the result does not depend on
+// them); the meshes (positions, normals, uvs, triangles, per triangle materials); the
+// materials' albedo, base-colour texture and alpha mask (the hit albedo and the holes); the
+// textures' texels and sampling; and each frame instance's mesh and model matrix. Not the
+// camera, spheres, environment or lights (but the suns' directions): PRT is
 // independent of the lighting otherwise.
 //
 // File: <dir>/prt-<key>.bin, written atomically (io/atomic_file.h), host byte order (a cache
