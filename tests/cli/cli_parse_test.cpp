@@ -296,6 +296,17 @@ TEST(ParseCli, AccuracyThresholds) {
   const CliExit hue = exit_of({"bench", "--require-wall-hue"});
   EXPECT_EQ(hue.exit_code, 2);
   EXPECT_NE(hue.message.find("belong to --accuracy"), std::string::npos) << hue.message;
+  // --truth-noise: a scene file's report (or the half-open demo's under a sky), not the demo's
+  const CliExit noise = exit_of({"bench", "--truth-noise"});
+  EXPECT_EQ(noise.exit_code, 2);
+  EXPECT_NE(noise.message.find("belong to --accuracy"), std::string::npos) << noise.message;
+  const CliExit demo_noise = exit_of({"bench", "--accuracy", "--truth-noise"});
+  EXPECT_EQ(demo_noise.exit_code, 2);
+  EXPECT_NE(demo_noise.message.find("--truth-noise measures a scene file's truth"),
+            std::string::npos)
+      << demo_noise.message;
+  EXPECT_TRUE(command({"bench", "--accuracy", "--truth-noise", "--scene", "yard.glb"})
+                  .bench.truth_noise);
 }
 
 TEST(ParseCli, BenchKeepsItsCommandLineAndTheSameArgvParsesTheSameTwice) {
