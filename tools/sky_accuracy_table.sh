@@ -23,8 +23,10 @@ mkdir -p "$out"
 configs=("cones:" "prt9i:--sky-light prt" "prt25i:--sky-light prt --prt-bands 5"
          "prt25s:--sky-light prt --prt-bands 5 --prt-transfer shadowed")
 skies=()
-for m in ${SKY_MAPS:-studio interior courtyard forest city sunrise sunset night clear}; do
-  if [[ "$m" == clear ]]; then skies+=("clear:--sky clear"); else skies+=("$m:--env $maps/$m.exr"); fi
+names="${SKY_MAPS:-studio interior courtyard forest city sunrise sunset night clear}"
+for m in $names; do
+  if [[ "$m" == clear ]]; then skies+=("clear:--sky clear")
+  else skies+=("$m:--env $maps/$m.exr"); fi
 done
 for sky in "${skies[@]}"; do
   name="${sky%%:*}"
@@ -38,7 +40,8 @@ for sky in "${skies[@]}"; do
     echo "done: $name $tag"
   done
 done
-python3 - "$out" ${SKY_MAPS:-studio interior courtyard forest city sunrise sunset night clear} <<'PY'
+# shellcheck disable=SC2086  # the map names are a word list
+python3 - "$out" $names <<'PY'
 import json, sys
 out = sys.argv[1]
 names = sys.argv[2:]

@@ -137,8 +137,8 @@ class PrtSkyPass {
   // directional_coefficients of the last upload, and this frame's (compared, then swapped)
   std::vector<glm::dvec3> directional_, directional_next_;
   // The traced suns: their directions, bounces (sun_bounce_) and this upload's intensities
-  // (sun_i_: float4 per sun, kPrtMaxSuns of them); traced_sun_intensities of the last upload
-  // and this frame's.
+  // (sun_i_: float4 per traced sun); traced_sun_intensities of the last upload and this
+  // frame's.
   std::vector<glm::vec3> sun_directions_;
   ::cl::Buffer sun_bounce_, sun_i_;
   std::vector<glm::vec3> sun_intensity_, sun_intensity_next_;
