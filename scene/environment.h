@@ -22,6 +22,8 @@ struct EnvironmentMap {
   std::vector<float> rgb;  // width * height * 3, linear radiance
 };
 
+struct EnvironmentGlow;  // scene/environment_glow.h
+
 struct Environment {
   std::shared_ptr<const EnvironmentMap> map;  // nullptr: no environment light
   float strength = 1.0f;                      // multiplies the map's radiance
@@ -31,6 +33,9 @@ struct Environment {
   // directional lights marked in_environment; the background shows `map`, and the path tracer
   // samples `map` whole and counts map - residual at the first vertex as direct light.
   std::shared_ptr<const EnvironmentMap> residual;
+  // The residual's glow around the suns (scene/environment_glow.h), or nullptr: part of the
+  // residual for every mode but PRT, which traces it apart from the band-limited sky.
+  std::shared_ptr<const EnvironmentGlow> glow;
   bool enabled() const { return map != nullptr && map->width > 0 && map->height > 0; }
   // What the real-time modes gather: the residual where suns were taken out, else the map.
   const std::shared_ptr<const EnvironmentMap>& gathered_map() const {
@@ -54,6 +59,13 @@ inline glm::vec2 environment_uv(glm::vec3 d) {
   if (u >= 1.0f) u -= 1.0f;
   const float v = std::acos(std::fmax(-1.0f, std::fmin(1.0f, d.y))) / kPi;
   return {u, v};
+}
+
+// World direction of map-frame direction `d` for a map turned by `rotate_deg` about +y
+// (truth::EnvironmentSampler::to_world's turn).
+inline glm::vec3 environment_to_world(glm::vec3 d, float rotate_deg) {
+  const float a = rotate_deg * 0.0174532925f, c = std::cos(a), s = std::sin(a);
+  return {c * d.x + s * d.z, d.y, -s * d.x + c * d.z};
 }
 
 }  // namespace rp::scene

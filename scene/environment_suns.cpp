@@ -119,10 +119,7 @@ EnvironmentSuns find_environment_suns(const EnvironmentMap& map, int max_suns) {
 
 PunctualLight environment_sun_light(const EnvironmentSun& sun, int index, float rotate_deg,
                                     float strength) {
-  // the map-to-world turn of truth::EnvironmentSampler::to_world
-  const float a = rotate_deg * 0.0174532925f, c = std::cos(a), s = std::sin(a);
-  const glm::vec3 d = sun.direction;
-  const glm::vec3 towards(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
+  const glm::vec3 towards = environment_to_world(sun.direction, rotate_deg);
   PunctualLight light;
   light.name = "environment sun " + std::to_string(index + 1);
   light.type = LightType::kDirectional;

@@ -12,6 +12,7 @@
 #include "render/gpu_types.h"
 #include "scene/asset_error.h"
 #include "scene/clear_sky.h"
+#include "scene/environment_glow.h"
 #include "truth/environment.h"
 
 namespace rp::app {
@@ -45,6 +46,8 @@ void take_suns(SkyLight& sky, int max_suns) {
   const scene::EnvironmentSuns suns =
       scene::find_environment_suns(*sky.environment.map, max_suns);
   sky.environment.residual = suns.residual;
+  sky.environment.glow =
+      suns.residual ? scene::find_environment_glow(*sky.environment.map, *suns.residual) : nullptr;
   sky.map_suns = suns.suns;
   sky.suns.clear();
   for (size_t i = 0; i < suns.suns.size(); ++i)
@@ -102,12 +105,8 @@ void add_sky(SkyLight& sky, scene::FrameScene& frame) {
 
 void turn_sky(SkyLight& sky, float degrees) {
   sky.environment.rotate_deg = std::fmod(sky.environment.rotate_deg + degrees, 360.0f);
-  // the path tracer's map-to-world turn (truth::EnvironmentSampler::to_world) by `degrees`
-  const float a = degrees * 0.0174532925f, c = std::cos(a), s = std::sin(a);
-  for (scene::PunctualLight& sun : sky.suns) {
-    const glm::vec3 d = sun.direction;
-    sun.direction = glm::vec3(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
-  }
+  for (scene::PunctualLight& sun : sky.suns)
+    sun.direction = scene::environment_to_world(sun.direction, degrees);
 }
 
 std::string describe_sky(const SkyOptions& options, const SkyLight& sky) {
