@@ -56,6 +56,8 @@ PrtSettings effective(const PrtSettings& s) {
   e.threads = 0;
   if (e.kind != PrtKind::kInterreflected || e.bounces == 0) e.sun_directions.clear();
   for (glm::vec3& d : e.sun_directions) d = glm::normalize(d);
+  if (e.kind == PrtKind::kUnshadowed) e.glow_cells.clear();
+  for (scene::GlowCell& c : e.glow_cells) c.direction = glm::normalize(c.direction);
   return e;
 }
 
@@ -72,6 +74,11 @@ std::string prt_key(const scene::SceneAssets& assets, const scene::FrameScene& f
   h.value(s.samples);
   h.value(uint64_t(s.sun_directions.size()));
   for (const glm::vec3& d : s.sun_directions) h.vec(d);
+  h.value(uint64_t(s.glow_cells.size()));
+  for (const scene::GlowCell& c : s.glow_cells) {
+    h.vec(c.direction);
+    h.vec(c.irradiance);
+  }
   for (const scene::Mesh& m : assets.meshes) {
     h.text(m.name);
     h.value(uint64_t(m.vertices.size()));
@@ -134,7 +141,7 @@ void write_prt_file(const std::filesystem::path& path, const std::string& key,
   out += key;
   for (uint32_t v : {uint32_t(t.bands), uint32_t(t.kind), t.bounces, t.samples, t.channels,
                      t.vertex_count(), uint32_t(t.instances.size()),
-                     uint32_t(t.sun_directions.size())})
+                     uint32_t(t.sun_directions.size()), uint32_t(t.glow_cells.size())})
     put_u32(out, v);
   for (const PrtInstanceRange& r : t.instances) {
     put_u32(out, r.first);
@@ -146,6 +153,8 @@ void write_prt_file(const std::filesystem::path& path, const std::string& key,
   put_bytes(out, t.shadowed.data(), t.shadowed.size() * sizeof(float));
   put_bytes(out, t.sun_directions.data(), t.sun_directions.size() * sizeof(glm::vec3));
   put_bytes(out, t.sun_bounce.data(), t.sun_bounce.size() * sizeof(float));
+  put_bytes(out, t.glow_cells.data(), t.glow_cells.size() * sizeof(scene::GlowCell));
+  put_bytes(out, t.glow.data(), t.glow.size() * sizeof(float));
   const uint64_t sum = checksum(out.data(), out.size());
   put_bytes(out, &sum, sizeof sum);
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
@@ -178,7 +187,7 @@ std::optional<PrtTransfer> read_prt_file(const std::filesystem::path& path,
   if (!r.get(version.data(), version_size) || version != kPrtVersion ||
       !r.get(file_key.data(), 16) || file_key != key)
     return std::nullopt;
-  uint32_t f[8];
+  uint32_t f[9];
   for (uint32_t& v : f)
     if (!r.u32(v)) return std::nullopt;
   const PrtSettings want = effective(settings);
@@ -188,10 +197,10 @@ std::optional<PrtTransfer> read_prt_file(const std::filesystem::path& path,
   t.bounces = f[2];
   t.samples = f[3];
   t.channels = f[4];
-  const uint32_t nv = f[5], ni = f[6], suns = f[7];
+  const uint32_t nv = f[5], ni = f[6], suns = f[7], cells = f[8];
   if (t.bands != want.bands || t.kind != want.kind || t.bounces != want.bounces ||
       t.samples != want.samples || t.channels != (t.kind == PrtKind::kInterreflected ? 3u : 1u) ||
-      suns != want.sun_directions.size())
+      suns != want.sun_directions.size() || cells != want.glow_cells.size())
     return std::nullopt;
   // The exact size the counts call for (64-bit arithmetic: no overflow for u32 counts).
   const uint64_t coefficients = uint64_t(nv) * t.channels * uint64_t(t.count());
@@ -199,7 +208,9 @@ std::optional<PrtTransfer> read_prt_file(const std::filesystem::path& path,
       t.kind == PrtKind::kInterreflected && t.bounces > 0 ? uint64_t(nv) * uint64_t(t.count())
                                                           : 0;
   const uint64_t payload = uint64_t(ni) * 8 + uint64_t(nv) * 24 + (coefficients + shadowed) * 4 +
-                           uint64_t(suns) * 12 + uint64_t(nv) * suns * 12;
+                           uint64_t(suns) * 12 + uint64_t(nv) * suns * 12 +
+                           uint64_t(cells) * sizeof(scene::GlowCell) +
+                           (cells > 0 ? uint64_t(nv) * 12 : 0);
   if (payload != uint64_t(body - r.pos())) return std::nullopt;
   t.instances.resize(ni);
   uint64_t covered = 0;
@@ -215,14 +226,22 @@ std::optional<PrtTransfer> read_prt_file(const std::filesystem::path& path,
   t.shadowed.resize(size_t(shadowed));
   t.sun_directions.resize(suns);
   t.sun_bounce.resize(size_t(nv) * suns * 3);
+  t.glow_cells.resize(cells);
+  t.glow.resize(cells > 0 ? size_t(nv) * 3 : 0);
   if (!r.get(t.positions.data(), size_t(nv) * sizeof(glm::vec3)) ||
       !r.get(t.normals.data(), size_t(nv) * sizeof(glm::vec3)) ||
       !r.get(t.coefficients.data(), t.coefficients.size() * sizeof(float)) ||
       !r.get(t.shadowed.data(), t.shadowed.size() * sizeof(float)) ||
       !r.get(t.sun_directions.data(), size_t(suns) * sizeof(glm::vec3)) ||
-      !r.get(t.sun_bounce.data(), t.sun_bounce.size() * sizeof(float)))
+      !r.get(t.sun_bounce.data(), t.sun_bounce.size() * sizeof(float)) ||
+      !r.get(t.glow_cells.data(), size_t(cells) * sizeof(scene::GlowCell)) ||
+      !r.get(t.glow.data(), t.glow.size() * sizeof(float)))
     return std::nullopt;
   if (t.sun_directions != want.sun_directions) return std::nullopt;
+  for (size_t i = 0; i < cells; ++i)
+    if (t.glow_cells[i].direction != want.glow_cells[i].direction ||
+        t.glow_cells[i].irradiance != want.glow_cells[i].irradiance)
+      return std::nullopt;
   return t;
 }
 

@@ -3,12 +3,12 @@
 // tracer's truth cache (app/truth_cache.h), with a binary file since the payload is float arrays.
 //
 // Key: 64-bit FNV-1a (io/fnv1a.h) of everything the transfer depends on: kPrtVersion; the
-// settings (bands, kind, bounces for kInterreflected, samples for the traced kinds, the suns'
-// directions for kInterreflected with bounces; not threads: the result does not depend on
-// them); the meshes (positions, normals, uvs, triangles, per triangle materials); the
+// settings (bands, kind, bounces for kInterreflected, samples and glow cells for the traced
+// kinds, the suns' directions for kInterreflected with bounces; not threads: the result does not
+// depend on them); the meshes (positions, normals, uvs, triangles, per triangle materials); the
 // materials' albedo, base-colour texture and alpha mask (the hit albedo and the holes); the
 // textures' texels and sampling; and each frame instance's mesh and model matrix. Not the
-// camera, spheres, environment or lights (but the suns' directions): PRT is
+// camera, spheres, environment or lights (but the suns' directions and the glow): PRT is
 // independent of the lighting otherwise.
 //
 // File: <dir>/prt-<key>.bin, written atomically (io/atomic_file.h), host byte order (a cache
@@ -16,12 +16,14 @@
 //   char[8]  "RPPRTBIN"
 //   u32      length, then the version string (kPrtVersion)
 //   char[16] the key, as hex
-//   u32 x 8  bands, kind, bounces, samples, channels, vertex count, instance count, sun count
+//   u32 x 9  bands, kind, bounces, samples, channels, vertex count, instance count, sun count,
+//            glow cell count
 //   u32 x 2  per instance: first vertex, vertex count
 //   f32 x 3  per vertex: world position; then f32 x 3 per vertex: world normal
 //   f32      coefficients, vertex count * channels * bands^2 (PrtTransfer's layout)
 //   f32      interreflected with bounces only: the shadowed transfer, vertex count * bands^2
 //   f32 x 3  per sun: its direction; then f32, vertex count * suns * 3: the suns' bounces
+//   f32 x 6  per glow cell: direction, irradiance; then, with cells, f32 x 3 per vertex: glow
 //   u64      FNV-1a of every byte before it
 // Read back only when the size is exactly that, the magic, version, key and settings match and
 // the checksum holds; anything else (truncated, corrupt, older version) is ignored and rebuilt.
@@ -38,7 +40,7 @@
 namespace rp::truth {
 
 // Bump when the transfer changes for the same inputs (a fix, a new convention).
-inline constexpr const char* kPrtVersion = "rolypoly-prt/3";
+inline constexpr const char* kPrtVersion = "rolypoly-prt/4";
 
 // The cache key above, as 16 hex digits.
 std::string prt_key(const scene::SceneAssets& assets, const scene::FrameScene& frame,

@@ -228,6 +228,13 @@ PrtTransfer compute_prt_transfer(const scene::SceneAssets& assets, const scene::
   for (const glm::vec3& d : settings.sun_directions)
     if (!(glm::length(d) > 1e-6f))
       throw std::invalid_argument("PRT: a sun without a direction");
+  if (settings.glow_cells.size() > scene::kMaxGlowCells)
+    throw std::invalid_argument("PRT: " + std::to_string(settings.glow_cells.size()) +
+                                " glow cells (at most " + std::to_string(scene::kMaxGlowCells) +
+                                ")");
+  for (const scene::GlowCell& c : settings.glow_cells)
+    if (!(glm::length(c.direction) > 1e-6f))
+      throw std::invalid_argument("PRT: a glow cell without a direction");
   const TraceAssets trace(assets);  // validates meshes, materials, textures
   const InstanceScene scene(trace, frame);
 
@@ -248,7 +255,14 @@ PrtTransfer compute_prt_transfer(const scene::SceneAssets& assets, const scene::
   if (bouncing)
     for (const glm::vec3& d : settings.sun_directions)
       out.sun_directions.push_back(glm::normalize(d));
-  const size_t suns = out.sun_directions.size(), nt = nc + suns;
+  // The glow rides along as one more column (RGB: it starts as each channel's own direct light)
+  // where it bounces; without bounces its direct light is all there is.
+  if (settings.kind != PrtKind::kUnshadowed)
+    for (const scene::GlowCell& c : settings.glow_cells)
+      out.glow_cells.push_back({glm::normalize(c.direction), c.irradiance});
+  const bool glowing = !out.glow_cells.empty();
+  const size_t suns = out.sun_directions.size(), glow_column = nc + suns;
+  const size_t nt = glow_column + (bouncing && glowing ? 1 : 0);
   // Keep every vertex's bounce row (bounces then cost a sparse product) when the worst case,
   // 3 entries per ray, fits the budget; else rebuild each row by tracing again per bounce.
   const bool keep_rows =
@@ -331,7 +345,16 @@ PrtTransfer compute_prt_transfer(const scene::SceneAssets& assets, const scene::
 
   // the shadowed (or unshadowed) transfer, then the suns' direct irradiance: nt per vertex
   std::vector<double> t0(size_t(nv) * nt, 0.0);
+  std::vector<glm::dvec3> glow0(glowing ? nv : 0, glm::dvec3(0.0));  // the glow's direct light
   std::vector<std::vector<RowEntry>> rows(keep_rows ? nv : 0);
+  // True where the ray from vertex v towards unit direction l leaves the scene.
+  auto sees = [&](uint32_t v, const glm::dvec3& l) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray = make_ray(verts[v].origin, glm::vec3(l), std::numeric_limits<float>::infinity());
+    rtcOccluded1(scene.get(), &context, &ray);
+    return ray.tfar >= 0.0f;
+  };
   auto first_pass = [&](uint32_t v) {
     if (verts[v].n == glm::dvec3(0.0)) return;  // degenerate: no transfer
     const std::vector<double> lobe = shading::sh_rotate_zonal(zonal, verts[v].n, settings.bands);
@@ -341,12 +364,13 @@ PrtTransfer compute_prt_transfer(const scene::SceneAssets& assets, const scene::
     for (size_t j = 0; j < suns; ++j) {
       const glm::dvec3 l(out.sun_directions[j]);
       const double cosine = glm::dot(verts[v].n, l);
-      if (!(cosine > 0.0)) continue;
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      RTCRay ray = make_ray(verts[v].origin, glm::vec3(l), std::numeric_limits<float>::infinity());
-      rtcOccluded1(scene.get(), &context, &ray);
-      if (ray.tfar >= 0.0f) t[nc + j] = cosine;
+      if (cosine > 0.0 && sees(v, l)) t[nc + j] = cosine;
+    }
+    if (!glowing) return;
+    for (const scene::GlowCell& c : out.glow_cells) {
+      const glm::dvec3 l(c.direction);
+      const double cosine = glm::dot(verts[v].n, l);
+      if (cosine > 0.0 && sees(v, l)) glow0[v] += glm::dvec3(c.irradiance) * cosine;
     }
   };
   if (settings.kind == PrtKind::kUnshadowed)
@@ -360,6 +384,9 @@ PrtTransfer compute_prt_transfer(const scene::SceneAssets& assets, const scene::
     for (uint32_t c = 0; c < channels; ++c)
       std::copy_n(t0.begin() + std::ptrdiff_t(size_t(v) * nt), nt,
                   total.begin() + std::ptrdiff_t((size_t(v) * channels + c) * nt));
+  if (bouncing && glowing)
+    for (uint32_t v = 0; v < nv; ++v)
+      for (uint32_t c = 0; c < 3; ++c) total[(size_t(v) * 3 + c) * nt + glow_column] = glow0[v][c];
   if (bouncing) {
     // T_k = M T_{k-1} per channel, T_0 the shadowed transfer; total = sum over k <= bounces.
     std::vector<double> prev = total, next(total.size());
@@ -397,6 +424,13 @@ PrtTransfer compute_prt_transfer(const scene::SceneAssets& assets, const scene::
           out.sun_bounce[(size_t(v) * suns + j) * 3 + c] =
               float(total[(size_t(v) * 3 + c) * nt + nc + j] - t0[size_t(v) * nt + nc + j]);
     }
+  }
+  if (glowing) {
+    out.glow.resize(size_t(nv) * 3);
+    for (uint32_t v = 0; v < nv; ++v)
+      for (uint32_t c = 0; c < 3; ++c)
+        out.glow[size_t(v) * 3 + c] =
+            float(bouncing ? total[(size_t(v) * 3 + c) * nt + glow_column] : glow0[v][c]);
   }
   if (progress) progress(1.0);
   return out;

@@ -62,6 +62,7 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/environment_glow.h"
 #include "scene/frame_scene.h"
 #include "util/named_enum.h"
 
@@ -91,6 +92,12 @@ struct PrtSettings {
   // transfer as a function of the light's direction jumps (the ground hides what lies below),
   // is smeared by 9 or 25 coefficients. At most kPrtMaxSuns.
   std::vector<glm::vec3> sun_directions;
+  // Traced kinds: the glow around an environment's suns (scene/environment_glow.h) as cells in
+  // world space (direction: unit, towards the cell; irradiance on a plane facing it), lit by a
+  // shadow ray per cell from every vertex and, with bounces, bounced like the sky
+  // (PrtTransfer::glow), so that the band-limited transfer need not carry that sharp light.
+  // At most scene::kMaxGlowCells.
+  std::vector<scene::GlowCell> glow_cells;
 };
 
 inline constexpr size_t kPrtMaxSuns = 8;
@@ -124,6 +131,11 @@ struct PrtTransfer {
   // irradiance E_sun (per channel) adds E_sun * sun_bounce to the vertex.
   std::vector<glm::vec3> sun_directions;
   std::vector<float> sun_bounce;
+  // The settings' glow_cells (empty for kUnshadowed) and the irradiance they give each vertex,
+  // rgb at v * 3: their light reaching v directly (shadow rays; the first vertex included, unlike
+  // the suns') plus, with bounces, after 1 to `bounces` diffuse bounces. Empty without cells.
+  std::vector<scene::GlowCell> glow_cells;
+  std::vector<float> glow;
 
   uint32_t vertex_count() const { return uint32_t(positions.size()); }
   int count() const { return bands * bands; }

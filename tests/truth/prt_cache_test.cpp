@@ -50,6 +50,7 @@ PrtSettings interreflected() {
   s.samples = 64;
   s.bounces = 2;
   s.sun_directions = {{0.3f, 1.0f, 0.2f}};  // one directional light's bounce traced too
+  s.glow_cells = {{{-0.2f, 0.8f, 0.3f}, {2.0f, 1.5f, 1.0f}}};  // and a glow cell's light
   return s;
 }
 
@@ -70,6 +71,12 @@ void expect_same(const PrtTransfer& a, const PrtTransfer& b) {
   EXPECT_EQ(a.shadowed, b.shadowed);
   EXPECT_EQ(a.sun_directions, b.sun_directions);
   EXPECT_EQ(a.sun_bounce, b.sun_bounce);
+  ASSERT_EQ(a.glow_cells.size(), b.glow_cells.size());
+  for (size_t i = 0; i < a.glow_cells.size(); ++i) {
+    EXPECT_EQ(a.glow_cells[i].direction, b.glow_cells[i].direction);
+    EXPECT_EQ(a.glow_cells[i].irradiance, b.glow_cells[i].irradiance);
+  }
+  EXPECT_EQ(a.glow, b.glow);
 }
 
 TEST_F(PrtCache, RoundTripIsIdentical) {
@@ -79,6 +86,7 @@ TEST_F(PrtCache, RoundTripIsIdentical) {
   EXPECT_FALSE(first.from_cache);
   EXPECT_EQ(first.transfer.shadowed.size(), size_t(first.transfer.vertex_count()) * 25);
   EXPECT_EQ(first.transfer.sun_bounce.size(), size_t(first.transfer.vertex_count()) * 3);
+  EXPECT_EQ(first.transfer.glow.size(), size_t(first.transfer.vertex_count()) * 3);
   ASSERT_TRUE(fs::exists(first.file));
   EXPECT_EQ(first.file.parent_path(), dir_);
   const CachedPrt second = cached_prt_transfer(assets, frame, interreflected(), dir_);
@@ -97,7 +105,7 @@ TEST_F(PrtCache, ChangedSettingOrSceneMisses) {
   PrtSettings s = base;
   s.threads = 3;  // the result does not depend on it
   EXPECT_EQ(prt_key(assets, frame, s), key);
-  for (int change = 0; change < 6; ++change) {
+  for (int change = 0; change < 8; ++change) {
     s = base;
     if (change == 0) s.bands = 3;
     if (change == 1) s.kind = PrtKind::kShadowed;
@@ -105,10 +113,12 @@ TEST_F(PrtCache, ChangedSettingOrSceneMisses) {
     if (change == 3) s.samples = 128;
     if (change == 4) s.sun_directions[0].x = 0.31f;
     if (change == 5) s.sun_directions.clear();
+    if (change == 6) s.glow_cells[0].irradiance.y = 1.25f;
+    if (change == 7) s.glow_cells.clear();
     EXPECT_NE(prt_key(assets, frame, s), key) << "change " << change;
   }
-  // Bounces and suns are no part of a shadowed transfer's key, samples of an unshadowed one's;
-  // a sun's direction counts, not its length.
+  // Bounces and suns are no part of a shadowed transfer's key, samples and glow of an
+  // unshadowed one's; a sun's direction counts, not its length.
   PrtSettings a = base, b = base;
   b.sun_directions[0] *= 2.0f;
   EXPECT_EQ(prt_key(assets, frame, a), prt_key(assets, frame, b));
@@ -118,6 +128,7 @@ TEST_F(PrtCache, ChangedSettingOrSceneMisses) {
   EXPECT_EQ(prt_key(assets, frame, a), prt_key(assets, frame, b));
   a.kind = b.kind = PrtKind::kUnshadowed;
   b.samples = 7;
+  b.glow_cells.clear();
   EXPECT_EQ(prt_key(assets, frame, a), prt_key(assets, frame, b));
 
   scene::SceneAssets recoloured = assets;

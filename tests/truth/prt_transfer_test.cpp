@@ -283,6 +283,55 @@ TEST(PrtTransfer, SunBounceOffAWideFloorIsItsViewFactor) {
     }
 }
 
+TEST(PrtTransfer, GlowCellsAreLitLikeSunsWithTheirFirstVertex) {
+  // One glow cell of irradiance (1, 0.5, 0.25) from a sun's direction: each vertex's glow is the
+  // cell's light on it (cosine and shadow ray: a sun's direct light) plus that sun's traced
+  // bounce, per channel in the cell's colour; two cells add up; a shadowed transfer has the
+  // direct light alone; the SH coefficients do not change.
+  const auto assets =
+      one_mesh_assets(glm::vec3(0.9f, 0.5f, 0.2f), [](scene::Mesh& m) { open_box(m, 4); });
+  const glm::vec3 d = glm::normalize(glm::vec3(0.3f, 1.0f, 0.2f));
+  const glm::vec3 e(1.0f, 0.5f, 0.25f);
+  PrtSettings s = settings(PrtKind::kInterreflected, 3, 128, 3);
+  s.sun_directions = {d};
+  const PrtTransfer suns = compute_prt_transfer(assets, one_instance_frame(), s);
+  s.glow_cells = {{d, e}};
+  const PrtTransfer glow = compute_prt_transfer(assets, one_instance_frame(), s);
+  EXPECT_EQ(glow.coefficients, suns.coefficients);
+  EXPECT_EQ(glow.sun_bounce, suns.sun_bounce);
+  ASSERT_EQ(glow.glow_cells.size(), 1u);
+  ASSERT_EQ(glow.glow.size(), size_t(glow.vertex_count()) * 3);
+  s.kind = PrtKind::kShadowed;
+  const PrtTransfer direct = compute_prt_transfer(assets, one_instance_frame(), s);
+  ASSERT_EQ(direct.glow.size(), glow.glow.size());
+  s.kind = PrtKind::kInterreflected;
+  s.glow_cells = {{d, e * 0.75f}, {d, e * 0.25f}};
+  const PrtTransfer halves = compute_prt_transfer(assets, one_instance_frame(), s);
+  size_t lit = 0, bounced = 0;
+  for (uint32_t v = 0; v < glow.vertex_count(); ++v) {
+    const float cosine = glm::dot(glm::normalize(glow.normals[v]), d);
+    const float light = direct.glow[size_t(v) * 3] / e[0];  // 0 (hidden) or the cosine
+    if (light > 0.0f) {
+      EXPECT_NEAR(light, cosine, 1e-5f) << v;
+      ++lit;
+    }
+    for (int c = 0; c < 3; ++c) {
+      const size_t i = size_t(v) * 3 + size_t(c);
+      EXPECT_NEAR(direct.glow[i], e[c] * light, 1e-6f) << v;
+      const float want = e[c] * (light + suns.sun_bounce[i]);
+      EXPECT_NEAR(glow.glow[i], want, 1e-5f * want + 1e-7f) << v << " channel " << c;
+      EXPECT_NEAR(halves.glow[i], glow.glow[i], 1e-5f * glow.glow[i] + 1e-7f) << v;
+    }
+    if (suns.sun_bounce[size_t(v) * 3] > 0.0f) ++bounced;
+  }
+  EXPECT_GT(lit, 0u);
+  EXPECT_LT(lit, glow.vertex_count());  // the box hides the cell from some vertices
+  EXPECT_GT(bounced, 0u);
+  // An unshadowed transfer traces nothing: no glow.
+  s.kind = PrtKind::kUnshadowed;
+  EXPECT_TRUE(compute_prt_transfer(assets, one_instance_frame(), s).glow.empty());
+}
+
 TEST(PrtTransfer, InstancesLayVerticesOutInFrameOrderAndSkipSpheres) {
   const auto assets = one_mesh_assets(glm::vec3(0.8f), [](scene::Mesh& m) { floor_grid(m, 2); });
   scene::FrameScene frame = one_instance_frame();
@@ -336,6 +385,11 @@ TEST(PrtTransfer, RefusesBadSettings) {
   EXPECT_THROW(compute_prt_transfer(assets, one_instance_frame(), suns), std::invalid_argument);
   suns.sun_directions = {glm::vec3(0.0f)};
   EXPECT_THROW(compute_prt_transfer(assets, one_instance_frame(), suns), std::invalid_argument);
+  PrtSettings glow = settings(PrtKind::kShadowed, 3, 16);
+  glow.glow_cells.assign(scene::kMaxGlowCells + 1, {glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(1.0f)});
+  EXPECT_THROW(compute_prt_transfer(assets, one_instance_frame(), glow), std::invalid_argument);
+  glow.glow_cells = {{glm::vec3(0.0f), glm::vec3(1.0f)}};
+  EXPECT_THROW(compute_prt_transfer(assets, one_instance_frame(), glow), std::invalid_argument);
 }
 
 }  // namespace
