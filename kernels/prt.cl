@@ -31,6 +31,9 @@
  *                   lights' units: pi I is the irradiance it gives a surface facing it), so
  *                   the sun adds I * sun_bounce to E / pi. env then holds the residual alone:
  *                   E = T . L(residual) + sum_j pi I_j sun_bounce_j
+ *   glow            params.glow_scale > 0 only: per vertex the rgb irradiance of the glow
+ *                   around the map's suns at strength 1, traced (first vertex and bounces) at
+ *                   v * 3; env then leaves the glow out, and E / pi gains glow_scale * glow
  * Output: float4 per pixel, rgb = E / pi (the light pass's D, irradiance over pi: albedo times
  * it is the Lambertian radiance), a = 1 where a transfer was found, 0 elsewhere (background,
  * spheres, instances without transfer). Two kernels: prt_vertex_irradiance dots every vertex's
@@ -51,6 +54,7 @@ __kernel void prt_vertex_irradiance(__global const float* restrict transfer,
                                     __global const float4* restrict sun_env,
                                     __global const float* restrict sun_bounce,
                                     __global const float4* restrict sun_i,
+                                    __global const float* restrict glow,
                                     __global float4* restrict vertex_e,
                                     const PrtVertexParams params) {
   const uint vertex_count = params.vertex_count, channels = params.channels;
@@ -77,6 +81,8 @@ __kernel void prt_vertex_irradiance(__global const float* restrict transfer,
   __global const float* b = sun_bounce + v * traced * 3u;
   for (uint j = 0; j < traced; ++j)
     e += (float3)(b[3u * j], b[3u * j + 1u], b[3u * j + 2u]) * sun_i[j].xyz;
+  if (params.glow_scale > 0.0f)
+    e += params.glow_scale * (float3)(glow[3u * v], glow[3u * v + 1u], glow[3u * v + 2u]);
   vertex_e[v] = (float4)(e, 0.0f);
 }
 

@@ -103,10 +103,13 @@ typedef struct {
 /* prt_vertex_irradiance (kernels/prt.cl): vertex_count vertices' transfer of `channels`
  * channels (1 or 3) and `coefficients` SH coefficients each (9 or 25); suns 1: subtract the
  * shadowed transfer's light of the suns' coefficients (their first vertex is lit elsewhere);
- * traced_suns > 0: add that many suns' traced bounces instead. 32 bytes. */
+ * traced_suns > 0: add that many suns' traced bounces instead; glow_scale > 0: add the traced
+ * glow times it (the environment's strength / pi). 32 bytes. */
 typedef struct {
   rp_uint vertex_count, channels, coefficients, suns;
-  rp_uint traced_suns, pad0, pad1, pad2;
+  rp_uint traced_suns;
+  rp_float glow_scale;
+  rp_uint pad0, pad1;
 } PrtVertexParams;
 
 /* One level of the shadow filter's mip chain (kernels/shadow_filter.cl, layout in

@@ -342,6 +342,13 @@ void RenderSession::prepare_prt(const scene::FrameScene& frame) {
     if (l.type == scene::LightType::kDirectional &&
         settings.sun_directions.size() < truth::kPrtMaxSuns)
       settings.sun_directions.push_back(-l.direction);
+  // The glow around the map's suns, turned as the map is now: traced per vertex (the pass takes
+  // it back into the SH sky once the map turns).
+  const scene::Environment& environment = frame.environment;
+  if (environment.glow)
+    for (const scene::GlowCell& c : environment.glow->cells)
+      settings.glow_cells.push_back(
+          {scene::environment_to_world(c.direction, environment.rotate_deg), c.irradiance});
   const size_t kSteps = 1000;
   std::atomic<bool> cancel{false};
   truth::CachedPrt cached;
@@ -367,6 +374,11 @@ void RenderSession::prepare_prt(const scene::FrameScene& frame) {
   shading.shadowed = std::move(t.shadowed);
   shading.sun_directions = t.sun_directions;
   shading.sun_bounce = std::move(t.sun_bounce);
+  if (!t.glow.empty()) {
+    shading.glow = std::move(t.glow);
+    shading.glow_source = environment.glow;
+    shading.glow_turn_deg = environment.rotate_deg;
+  }
   for (size_t i = 0; i < frame.instances.size(); ++i) {
     const bool has = i < t.instances.size() && t.instances[i].count > 0;
     shading.instances.push_back(
@@ -380,6 +392,9 @@ void RenderSession::prepare_prt(const scene::FrameScene& frame) {
       bounces += " (" + std::to_string(t.sun_directions.size()) + " directional light" +
                  (t.sun_directions.size() == 1 ? "'s" : "s'") + " traced)";
   }
+  if (!t.glow_cells.empty())
+    bounces += ", the glow around the map's suns traced (" +
+               std::to_string(t.glow_cells.size()) + " cells)";
   std::fprintf(stderr, "rolypoly: PRT sky light: %d coefficients, %s%s, %u vertices (%s %s)\n",
                t.count(), name_of(t.kind).data(), bounces.c_str(),
                t.vertex_count(), cached.from_cache ? "cached in" : "written to",

@@ -87,6 +87,18 @@ PrtSkyPass::PrtSkyPass(const rp::cl::Context& context, rp::cl::ProgramCache& pro
   sun_i_ = rp::cl::make_buffer(context.context, CL_MEM_READ_ONLY,
                                std::max<size_t>(1, suns) * 4 * sizeof(float),
                                "the PRT suns' intensities");
+  if (!prt.glow.empty() && (prt.glow.size() != size_t(vertices) * 3 || !prt.glow_source))
+    throw rp::cl::Error("prt pass: " + std::to_string(prt.glow.size()) +
+                        " floats of traced glow for " + std::to_string(vertices) + " vertices" +
+                        (prt.glow_source ? "" : " without the glow they were traced for"));
+  glow_ = rp::cl::upload_buffer(context.context, context.queue, prt.glow,
+                                "the PRT glow's traced light", kLessMemory);
+  if (!prt.glow.empty()) {
+    glow_source_ = prt.glow_source;
+    glow_turn_deg_ = prt.glow_turn_deg;
+    unturned_glow_ = shading::sh_project_environment(
+        scene::Environment{glow_source_->map, 1.0f, 0.0f, nullptr, nullptr}, bands_);
+  }
   vertex_count_ = vertices;
   vertex_e_ = rp::cl::make_buffer(context.context, CL_MEM_READ_WRITE,
                                   std::max<size_t>(1, vertices) * 16,
@@ -137,8 +149,12 @@ void PrtSkyPass::update_environment(const scene::Environment& environment,
   const bool enabled = environment.enabled();
   directional_coefficients(lights, directional_next_);
   const bool exact = traced_sun_intensities(lights, sun_intensity_next_);
+  // the glow traced for this map, turned as it is now
+  const bool glow = enabled && glow_source_ != nullptr && environment.glow == glow_source_ &&
+                    environment.rotate_deg == glow_turn_deg_;
   const bool lights_changed = directional_next_ != directional_ || exact != exact_suns_ ||
-                              sun_intensity_next_ != sun_intensity_;
+                              sun_intensity_next_ != sun_intensity_ || glow != glow_active_;
+  glow_active_ = glow;
   if (lights_changed) {
     std::swap(directional_, directional_next_);
     std::swap(sun_intensity_, sun_intensity_next_);
@@ -151,7 +167,7 @@ void PrtSkyPass::update_environment(const scene::Environment& environment,
     // whole map, less the suns' shadowed light.
     const bool suns = has_shadowed_ && environment.residual != nullptr;
     const auto project = [&](const std::shared_ptr<const scene::EnvironmentMap>& map) {
-      return shading::sh_project_environment(scene::Environment{map, 1.0f, 0.0f, nullptr},
+      return shading::sh_project_environment(scene::Environment{map, 1.0f, 0.0f, nullptr, nullptr},
                                              bands_);
     };
     unturned_ = project(suns ? environment.map : environment.gathered_map());
@@ -179,6 +195,8 @@ void PrtSkyPass::update_environment(const scene::Environment& environment,
       std::vector<glm::dvec3> part = unturned;
       if (minus != nullptr && !minus->empty())
         for (size_t i = 0; i < part.size(); ++i) part[i] -= (*minus)[i];
+      if (&buffer == &env_ && glow_active_)  // the glow is traced: out of the SH sky
+        for (size_t i = 0; i < part.size(); ++i) part[i] -= unturned_glow_[i];
       const std::vector<glm::dvec3> turned =
           shading::sh_turn_environment(part, environment.rotate_deg, environment.strength);
       std::copy(turned.begin(), turned.end(), sum.begin());
@@ -233,8 +251,9 @@ void PrtSkyPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
     params.coefficients = uint32_t(bands_ * bands_);
     params.suns = suns_uploaded_ ? 1u : 0u;
     params.traced_suns = exact_suns_ ? uint32_t(sun_directions_.size()) : 0u;
+    params.glow_scale = glow_active_ ? float(double(environment.strength) * kInvPi) : 0.0f;
     rp::cl::bind_args(vertex_kernel_, transfer_, env_, shadowed_, sun_env_, sun_bounce_, sun_i_,
-                      vertex_e_, params);
+                      glow_, vertex_e_, params);
     profiler.enqueue(pass_name::kPrt, vertex_kernel_,
                      ::cl::NDRange(rp::cl::round_up(vertex_count_, kVertexGroup)),
                      ::cl::NDRange(kVertexGroup));

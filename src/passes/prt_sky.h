@@ -24,6 +24,13 @@
 // exact for each sun's direction (25 coefficients smear a low sun's bounce over the horizon,
 // where the transfer as a function of the light's direction jumps). A turned map or a moved
 // light falls back to the formula above.
+//
+// Where the transfer also traced the glow around the map's suns (scene/environment_glow.h,
+// PrtShading::glow) and the map is still the one it was traced for, turned as it was, the glow
+// leaves the band-limited sky and its traced light is added instead (either formula above):
+//     E = T . L(residual - glow) + ... + strength * G,
+// which keeps the sharp edges of a studio's softboxes out of 9 or 25 coefficients. A turned map
+// takes the glow back into the SH sky.
 #pragma once
 
 #include <algorithm>
@@ -40,6 +47,7 @@
 #include "render/gpu_scene.h"
 #include "scene/frame_scene.h"
 #include "scene/environment.h"
+#include "scene/environment_glow.h"
 
 namespace rp::passes {
 
@@ -66,6 +74,12 @@ struct PrtShading {
   // sun_bounce).
   std::vector<glm::vec3> sun_directions;
   std::vector<float> sun_bounce;
+  // Empty, or the glow's traced light per vertex, rgb at v * 3 (truth::PrtTransfer::glow: the
+  // irradiance at strength 1, first vertex and bounces), traced for `glow_source` (an
+  // environment's glow) turned by glow_turn_deg.
+  std::vector<float> glow;
+  std::shared_ptr<const scene::EnvironmentGlow> glow_source;
+  float glow_turn_deg = 0.0f;
 
   uint32_t vertex_count() const {
     const size_t per = size_t(channels) * size_t(bands) * size_t(bands);
@@ -96,6 +110,8 @@ class PrtSkyPass {
   // Whether the last run took the suns' bounces from their traced per-vertex columns (every
   // directional light shone from a traced direction) rather than through the SH transfer.
   bool suns_traced() const { return exact_suns_; }
+  // Whether the last run took the glow around the map's suns from its traced per-vertex light.
+  bool glow_traced() const { return glow_active_; }
 
   // Device memory of output() for a width x height frame (passes/frame_memory.h; it only
   // grows); what the pass holds now.
@@ -143,6 +159,13 @@ class PrtSkyPass {
   ::cl::Buffer sun_bounce_, sun_i_;
   std::vector<glm::vec3> sun_intensity_, sun_intensity_next_;
   bool exact_suns_ = false;
+  // The traced glow: its per-vertex light (glow_, or 1 float), what it was traced for, its
+  // map's coefficients unturned at strength 1, and whether this upload uses it.
+  ::cl::Buffer glow_;
+  std::shared_ptr<const scene::EnvironmentGlow> glow_source_;
+  float glow_turn_deg_ = 0.0f;
+  std::vector<glm::dvec3> unturned_glow_;
+  bool glow_active_ = false;
   float uploaded_turn_ = 0.0f, uploaded_strength_ = -1.0f;
   bool uploaded_enabled_ = false, suns_uploaded_ = false;
 };

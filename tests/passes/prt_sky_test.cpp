@@ -18,6 +18,12 @@
 // + sum_j I_j B_j. A light that moved off its traced direction sends the pass back to the SH
 // formula above (the third frame).
 //
+// With a traced glow (PrtShading::glow, for the environment's glow turned as the first frame
+// turns the map) the glow's texels leave the gathered map and the glow's traced light is added:
+// E / pi += strength / pi * G. The second frame turns the map away from the glow's turn (the glow
+// goes back into the SH sky), the third turns it back while the moved light sends the suns to
+// the SH formula (the glow is traced again beside it).
+//
 // Tolerance: 1e-4 of the largest value plus 1e-4 relative (float sums of 9 or 25 products of
 // numbers near 1, and the two coefficient paths' rounding).
 #include <algorithm>
@@ -76,7 +82,20 @@ std::shared_ptr<scene::EnvironmentMap> without_spike(const scene::EnvironmentMap
   return out;
 }
 
-enum class Suns { kNone, kShadowedNoSuns, kShadowedWithSuns, kTraced };
+// Three texels of the residual around the sun's texel, zero elsewhere: a glow's map.
+std::shared_ptr<scene::EnvironmentGlow> glow_of(const scene::EnvironmentMap& residual) {
+  auto map = std::make_shared<scene::EnvironmentMap>(residual);
+  for (size_t i = 0; i < map->rgb.size(); ++i) {
+    const size_t texel = i / 3, x = texel % size_t(map->width), y = texel / size_t(map->width);
+    if (!((y == 1 && (x == 3 || x == 4)) || (y == 2 && x == 3))) map->rgb[i] = 0.0f;
+  }
+  auto glow = std::make_shared<scene::EnvironmentGlow>();
+  glow->map = map;
+  glow->cells = {{glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(1.0f)}};  // the pass reads none
+  return glow;
+}
+
+enum class Suns { kNone, kShadowedNoSuns, kShadowedWithSuns, kTraced, kTracedGlow };
 
 void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
   // Mesh 0: a quad of two triangles; mesh 1: one triangle. Instances: the quad, the triangle in
@@ -97,17 +116,19 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
   for (scene::MeshInstance& i : frame.instances) i.prev_model = i.model;
   frame.environment.map = test_map();
   frame.environment.strength = 1.5f;
-  if (suns == Suns::kShadowedWithSuns || suns == Suns::kTraced)
+  const bool traced_suns = suns == Suns::kTraced || suns == Suns::kTracedGlow;
+  if (suns == Suns::kShadowedWithSuns || traced_suns)
     frame.environment.residual = without_spike(*frame.environment.map, false);
+  if (suns == Suns::kTracedGlow) frame.environment.glow = glow_of(*frame.environment.residual);
   // a directional light (its bounce gathered with a shadowed transfer) and a point light (never);
   // traced: the map's sun as a directional light too (its direction the pass only compares)
-  std::vector<scene::PunctualLight> lights(suns == Suns::kTraced ? 3 : 2);
+  std::vector<scene::PunctualLight> lights(traced_suns ? 3 : 2);
   lights[0].type = scene::LightType::kDirectional;
   lights[0].direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
   lights[0].intensity = {2.0f, 1.5f, 0.5f};
   lights[1].position = {0.0f, 1.0f, 0.0f};
   lights[1].intensity = glm::vec3(50.0f);
-  if (suns == Suns::kTraced) {
+  if (traced_suns) {
     lights[2].type = scene::LightType::kDirectional;
     lights[2].direction = glm::normalize(glm::vec3(-0.5f, -0.6f, 0.2f));
     lights[2].intensity = {0.7f, 0.9f, 3.0f};
@@ -128,10 +149,18 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
     for (float& v : prt.shadowed) v = t(rng);
   }
   prt.instances = {{0, 0}, {1, 4}, {0, 7}, {0, passes::PrtShading::kNoTransfer}};
-  if (suns == Suns::kTraced) {  // traced in the opposite order to the lights'
+  if (traced_suns) {  // traced in the opposite order to the lights'
     prt.sun_directions = {-lights[2].direction, -lights[0].direction};
     prt.sun_bounce.resize(size_t(11) * 2 * 3);
     for (float& v : prt.sun_bounce) v = std::abs(t(rng));
+  }
+  std::vector<float> turns = {3 * 360.0f / 16.0f, -5 * 360.0f / 16.0f};
+  if (traced_suns) turns.push_back(suns == Suns::kTracedGlow ? turns[0] : 2 * 360.0f / 16.0f);
+  if (suns == Suns::kTracedGlow) {
+    prt.glow.resize(size_t(11) * 3);
+    for (float& v : prt.glow) v = std::abs(t(rng));
+    prt.glow_source = frame.environment.glow;
+    prt.glow_turn_deg = turns[0];
   }
 
   const uint32_t w = 96, h = 80;
@@ -146,17 +175,17 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
   EXPECT_EQ(pass.carries_suns_bounce(), suns != Suns::kNone);
   // Two frames of one pass: the second turns the sky further (a whole number of columns
   // again), so the vertices' sky light must be recomputed, not reused.
-  std::vector<float> turns = {3 * 360.0f / 16.0f, -5 * 360.0f / 16.0f};
-  if (suns == Suns::kTraced) turns.push_back(2 * 360.0f / 16.0f);
   for (size_t frame_number = 0; frame_number < turns.size(); ++frame_number) {
     const float turn = turns[frame_number];
     // Traced: the third frame moves the directional light off its traced direction.
     const bool moved = frame_number == 2;
     if (moved) lights[0].direction = glm::normalize(glm::vec3(0.35f, -1.0f, -0.4f));
-    const bool traced = suns == Suns::kTraced && !moved;
+    const bool traced = traced_suns && !moved;
+    const bool glow = suns == Suns::kTracedGlow && turn == prt.glow_turn_deg;
     frame.environment.rotate_deg = turn;
     pass.run(profiler, gpu, vis, frame.environment, lights);
     EXPECT_EQ(pass.suns_traced(), traced) << "frame " << frame_number;
+    EXPECT_EQ(pass.glow_traced(), glow) << "frame " << frame_number;
     profiler.collect();
 
     Readback r;
@@ -171,7 +200,7 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
 
     const std::vector<glm::dvec3> env = shading::sh_project_environment(frame.environment, bands);
     std::vector<glm::dvec3> sun_env(env.size(), glm::dvec3(0.0));
-    if (suns == Suns::kShadowedWithSuns || suns == Suns::kTraced) {
+    if (suns == Suns::kShadowedWithSuns || traced_suns) {
       scene::Environment alone = frame.environment;
       alone.map = without_spike(*frame.environment.map, true);
       alone.residual = nullptr;
@@ -190,6 +219,13 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
         light_env[i] += kPi * glm::dvec3(lights[0].intensity) * y[i];
         sun_env[i] += kPi * glm::dvec3(lights[0].intensity) * y[i];
       }
+    }
+    if (glow) {  // the glow's texels leave the gathered sky (either formula)
+      scene::Environment alone = frame.environment;
+      alone.map = frame.environment.glow->map;
+      alone.residual = nullptr;
+      const std::vector<glm::dvec3> glow_env = shading::sh_project_environment(alone, bands);
+      for (size_t i = 0; i < env.size(); ++i) light_env[i] -= glow_env[i];
     }
     // Vertex indices of each instance's triangles, local to its mesh.
     const auto local = [&](uint32_t instance, uint32_t primitive) {
@@ -234,6 +270,14 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
             e[c] += (b0 * at(v.x) + b1 * at(v.y) + b2 * at(v.z)) * double(intensity[j][c]);
           }
       }
+      if (glow)
+        for (int c = 0; c < 3; ++c) {
+          const auto at = [&](uint32_t vertex) {
+            return double(prt.glow[size_t(first + vertex) * 3 + size_t(c)]);
+          };
+          e[c] += (b0 * at(v.x) + b1 * at(v.y) + b2 * at(v.z)) *
+                  double(frame.environment.strength) / kPi;
+        }
       e = glm::max(e, glm::dvec3(0.0));
       for (int c = 0; c < 3; ++c)
         if (!(std::abs(r.out[p][c] - e[c]) <= 1e-4 + 1e-4 * std::abs(e[c])) && bad++ < 5)
@@ -253,6 +297,9 @@ TEST(PrtSkyPass, ShadowedTransferGathersADirectionalLightsBounce) {
 }
 TEST(PrtSkyPass, TracedSunsAddTheirBouncesPerVertexUntilALightMoves) {
   check_pass(5, 3, Suns::kTraced);
+}
+TEST(PrtSkyPass, TracedGlowLeavesTheShSkyWhileTheMapKeepsItsTurn) {
+  check_pass(5, 3, Suns::kTracedGlow);
 }
 TEST(PrtSkyPass, TheSunsBouncesAreGatheredTheirFirstVertexIsNot) {
   check_pass(3, 3, Suns::kShadowedWithSuns);
