@@ -30,6 +30,8 @@ std::shared_ptr<const EnvironmentGlow> find_environment_glow(const EnvironmentMa
   if (residual.width != w || residual.height != h || map.rgb.size() != n * 3 ||
       residual.rgb.size() != n * 3)
     throw std::invalid_argument("environment glow: the residual is not the map's size");
+  if (n > size_t(UINT32_MAX))
+    throw std::invalid_argument("environment glow: a map of more than 2^32 texels");
   if (n == 0) return nullptr;
   std::vector<double> row_solid_angle(static_cast<size_t>(h));
   double power = 0.0;
@@ -70,20 +72,21 @@ std::shared_ptr<const EnvironmentGlow> find_environment_glow(const EnvironmentMa
   }
 
   auto out = std::make_shared<EnvironmentGlow>();
-  auto glow_map = std::make_shared<EnvironmentMap>();
-  glow_map->width = w;
-  glow_map->height = h;
-  glow_map->rgb.assign(n * 3, 0.0f);
+  out->width = w;
+  out->height = h;
   for (size_t i = 0; i < n; ++i)
-    if (glow[i]) std::copy_n(&residual.rgb[3 * i], 3, &glow_map->rgb[3 * i]);
-  out->map = glow_map;
+    if (glow[i]) {
+      out->texels.push_back(uint32_t(i));
+      out->radiance.emplace_back(residual.rgb[3 * i], residual.rgb[3 * i + 1],
+                                 residual.rgb[3 * i + 2]);
+    }
 
   // Cells: the finest grid whose glow fits in kMaxGlowCells.
   for (int cells_u = kGlowCells; cells_u >= 2; cells_u /= 2) {
     const int cells_v = cells_u / 2;
     std::vector<CellSum> sums(size_t(cells_u) * size_t(cells_v));
-    for (size_t i = 0; i < n; ++i) {
-      if (!glow[i]) continue;
+    for (const uint32_t texel : out->texels) {
+      const size_t i = texel;
       const int x = int(i % size_t(w)), y = int(i / size_t(w));
       const int cu = std::min(cells_u - 1, int(int64_t(x) * cells_u / w));
       const int cv = std::min(cells_v - 1, int(int64_t(y) * cells_v / h));

@@ -18,6 +18,7 @@
 // that sees all of a cell gets exactly its texels' luminance-weighted cosine integral.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -37,9 +38,12 @@ struct GlowCell {
 };
 
 struct EnvironmentGlow {
-  // The residual's glow texels, zero elsewhere: same size as the map; residual - map is the
-  // residual's part that stays band-limited.
-  std::shared_ptr<const EnvironmentMap> map;
+  // The residual's glow texels, sparse (a glow is a few thousand texels of a map that may hold
+  // tens of millions): their indices in the map (row-major, ascending) and their radiance (the
+  // residual's). The residual less them is the part that stays band-limited.
+  int width = 0, height = 0;  // the map's
+  std::vector<uint32_t> texels;
+  std::vector<glm::vec3> radiance;
   std::vector<GlowCell> cells;  // in row-major grid order
 };
 

@@ -96,8 +96,7 @@ PrtSkyPass::PrtSkyPass(const rp::cl::Context& context, rp::cl::ProgramCache& pro
   if (!prt.glow.empty()) {
     glow_source_ = prt.glow_source;
     glow_turn_deg_ = prt.glow_turn_deg;
-    unturned_glow_ = shading::sh_project_environment(
-        scene::Environment{glow_source_->map, 1.0f, 0.0f, nullptr, nullptr}, bands_);
+    unturned_glow_ = shading::sh_project_glow(*glow_source_, bands_);
   }
   vertex_count_ = vertices;
   vertex_e_ = rp::cl::make_buffer(context.context, CL_MEM_READ_WRITE,

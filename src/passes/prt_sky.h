@@ -160,7 +160,7 @@ class PrtSkyPass {
   std::vector<glm::vec3> sun_intensity_, sun_intensity_next_;
   bool exact_suns_ = false;
   // The traced glow: its per-vertex light (glow_, or 1 float), what it was traced for, its
-  // map's coefficients unturned at strength 1, and whether this upload uses it.
+  // texels' coefficients unturned at strength 1, and whether this upload uses it.
   ::cl::Buffer glow_;
   std::shared_ptr<const scene::EnvironmentGlow> glow_source_;
   float glow_turn_deg_ = 0.0f;

@@ -190,6 +190,25 @@ std::vector<glm::dvec3> sh_project_environment(const scene::Environment& environ
   return c;
 }
 
+std::vector<glm::dvec3> sh_project_glow(const scene::EnvironmentGlow& glow, int bands) {
+  check_bands(bands);
+  std::vector<glm::dvec3> c(size_t(sh_count(bands)), glm::dvec3(0.0));
+  const int w = glow.width, h = glow.height;
+  double y[kShMaxCount];
+  for (size_t k = 0; k < glow.texels.size(); ++k) {
+    const int row = int(glow.texels[k] / uint32_t(w)), col = int(glow.texels[k] % uint32_t(w));
+    // for_each_texel's solid angle and direction, unturned
+    const double t0 = kPi * row / h, t1 = kPi * (row + 1) / h;
+    const double omega = (2.0 * kPi / w) * (std::cos(t0) - std::cos(t1));
+    const glm::dvec3 d(scene::environment_direction((float(col) + 0.5f) / float(w),
+                                                    (float(row) + 0.5f) / float(h)));
+    sh_eval(glm::normalize(d), bands, y);
+    const glm::dvec3 radiance(glow.radiance[k]);
+    for (size_t i = 0; i < c.size(); ++i) c[i] += radiance * (omega * y[i]);
+  }
+  return c;
+}
+
 glm::dvec3 sh_irradiance(const std::vector<glm::dvec3>& coefficients, glm::dvec3 n, int bands) {
   std::vector<double> zonal;
   for (int l = 0; l < bands; ++l) zonal.push_back(sh_cosine_lobe_zonal(l));

@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/environment.h"
+#include "scene/environment_glow.h"
 
 namespace rp::shading {
 
@@ -52,6 +53,11 @@ std::vector<double> sh_rotate_zonal(const std::vector<double>& zonal, glm::dvec3
 // (2 pi / width) (cos theta0 - cos theta1), of its radiance times Y_i at the texel's centre.
 // A constant map of radiance L gives L sqrt(4 pi) in the first coefficient (to rounding).
 std::vector<glm::dvec3> sh_project_environment(const scene::Environment& environment, int bands);
+
+// The same for an environment's glow (scene/environment_glow.h) unturned at strength 1: the
+// sum over its texels alone, equal to projecting a map that holds them and zero elsewhere (the
+// same terms in the same order).
+std::vector<glm::dvec3> sh_project_glow(const scene::EnvironmentGlow& glow, int bands);
 
 // Irradiance on a surface of unit normal n from RGB coefficients (the integral of
 // L max(0, n . dir) for the band-limited L): the coefficients dotted with the clamped cosine

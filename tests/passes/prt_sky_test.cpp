@@ -82,17 +82,31 @@ std::shared_ptr<scene::EnvironmentMap> without_spike(const scene::EnvironmentMap
   return out;
 }
 
-// Three texels of the residual around the sun's texel, zero elsewhere: a glow's map.
+// Three texels of the residual around the sun's texel: a glow.
 std::shared_ptr<scene::EnvironmentGlow> glow_of(const scene::EnvironmentMap& residual) {
-  auto map = std::make_shared<scene::EnvironmentMap>(residual);
-  for (size_t i = 0; i < map->rgb.size(); ++i) {
-    const size_t texel = i / 3, x = texel % size_t(map->width), y = texel / size_t(map->width);
-    if (!((y == 1 && (x == 3 || x == 4)) || (y == 2 && x == 3))) map->rgb[i] = 0.0f;
-  }
   auto glow = std::make_shared<scene::EnvironmentGlow>();
-  glow->map = map;
+  glow->width = residual.width;
+  glow->height = residual.height;
+  for (const uint32_t texel : {uint32_t(1 * residual.width + 3), uint32_t(1 * residual.width + 4),
+                               uint32_t(2 * residual.width + 3)}) {
+    glow->texels.push_back(texel);
+    const float* t = &residual.rgb[size_t(texel) * 3];
+    glow->radiance.emplace_back(t[0], t[1], t[2]);
+  }
   glow->cells = {{glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(1.0f)}};  // the pass reads none
   return glow;
+}
+
+// The glow's texels as a map, zero elsewhere.
+std::shared_ptr<scene::EnvironmentMap> glow_map(const scene::EnvironmentGlow& glow) {
+  auto map = std::make_shared<scene::EnvironmentMap>();
+  map->width = glow.width;
+  map->height = glow.height;
+  map->rgb.assign(size_t(glow.width) * size_t(glow.height) * 3, 0.0f);
+  for (size_t k = 0; k < glow.texels.size(); ++k)
+    for (int c = 0; c < 3; ++c)
+      map->rgb[size_t(glow.texels[k]) * 3 + size_t(c)] = glow.radiance[k][c];
+  return map;
 }
 
 enum class Suns { kNone, kShadowedNoSuns, kShadowedWithSuns, kTraced, kTracedGlow };
@@ -222,7 +236,7 @@ void check_pass(int bands, uint32_t channels, Suns suns = Suns::kNone) {
     }
     if (glow) {  // the glow's texels leave the gathered sky (either formula)
       scene::Environment alone = frame.environment;
-      alone.map = frame.environment.glow->map;
+      alone.map = glow_map(*frame.environment.glow);
       alone.residual = nullptr;
       const std::vector<glm::dvec3> glow_env = shading::sh_project_environment(alone, bands);
       for (size_t i = 0; i < env.size(); ++i) light_env[i] -= glow_env[i];

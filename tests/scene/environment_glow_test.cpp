@@ -1,6 +1,6 @@
 // The glow around an environment's suns (scene/environment_glow.h): the residual's bright texels
 // joined to a sun's patch are the glow and nothing else is (a bright area apart from every sun
-// stays out), the glow map is the residual there and zero elsewhere, the cells carry the glow
+// stays out) with the residual's radiance there, the cells carry the glow
 // texels' light exactly for a plane that sees them all, a wide glow is gathered in at most
 // kMaxGlowCells coarser cells, and a map without suns has no glow.
 #include <gtest/gtest.h>
@@ -45,15 +45,14 @@ glm::dvec3 texel_direction(const EnvironmentMap& map, int x, int y) {
                                           (float(y) + 0.5f) / float(map.height)));
 }
 
-// Irradiance on a plane of normal n from `map` alone (no occluders), per texel.
-glm::dvec3 texel_irradiance(const EnvironmentMap& map, glm::dvec3 n) {
+// Irradiance on a plane of normal n from the glow's texels alone (no occluders), per texel.
+glm::dvec3 texel_irradiance(const EnvironmentMap& map, const EnvironmentGlow& glow, glm::dvec3 n) {
   glm::dvec3 e(0.0);
-  for (int y = 0; y < map.height; ++y)
-    for (int x = 0; x < map.width; ++x) {
-      const float* t = &map.rgb[size_t(3 * (y * map.width + x))];
-      e += glm::dvec3(t[0], t[1], t[2]) * texel_solid_angle(map, y) *
-           std::max(0.0, glm::dot(n, texel_direction(map, x, y)));
-    }
+  for (size_t k = 0; k < glow.texels.size(); ++k) {
+    const int x = int(glow.texels[k]) % map.width, y = int(glow.texels[k]) / map.width;
+    e += glm::dvec3(glow.radiance[k]) * texel_solid_angle(map, y) *
+         std::max(0.0, glm::dot(n, texel_direction(map, x, y)));
+  }
   return e;
 }
 
@@ -75,16 +74,18 @@ TEST(EnvironmentGlow, IsTheResidualJoinedToASunAndNothingElse) {
   ASSERT_EQ(suns.suns.size(), 1u);  // the halo and the apart square are no suns
   const auto glow = find_environment_glow(map, *suns.residual);
   ASSERT_NE(glow, nullptr);
-  ASSERT_EQ(glow->map->width, map.width);
-  ASSERT_EQ(glow->map->height, map.height);
+  EXPECT_EQ(glow->width, map.width);
+  EXPECT_EQ(glow->height, map.height);
+  std::vector<uint32_t> halo;
   for (int y = 0; y < map.height; ++y)
-    for (int x = 0; x < map.width; ++x) {
-      const bool halo = std::abs(x - 38) <= 5 && std::abs(y - 19) <= 5;
-      for (int c = 0; c < 3; ++c) {
-        const size_t i = size_t(3 * (y * map.width + x) + c);
-        EXPECT_EQ(glow->map->rgb[i], halo ? suns.residual->rgb[i] : 0.0f) << x << ", " << y;
-      }
-    }
+    for (int x = 0; x < map.width; ++x)
+      if (std::abs(x - 38) <= 5 && std::abs(y - 19) <= 5)
+        halo.push_back(uint32_t(y * map.width + x));
+  EXPECT_EQ(glow->texels, halo);
+  ASSERT_EQ(glow->radiance.size(), glow->texels.size());
+  for (size_t k = 0; k < glow->texels.size(); ++k)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(glow->radiance[k][c], suns.residual->rgb[size_t(glow->texels[k]) * 3 + size_t(c)]);
 }
 
 TEST(EnvironmentGlow, CellsCarryTheGlowTexelsLight) {
@@ -101,7 +102,7 @@ TEST(EnvironmentGlow, CellsCarryTheGlowTexelsLight) {
   const glm::dvec3 side = glm::normalize(glm::cross(sun, glm::dvec3(0.0, 1.0, 0.0)));
   for (const glm::dvec3 n : {sun, glm::normalize(sun + 0.5 * side),
                              glm::normalize(sun - 0.8 * side + glm::dvec3(0.0, 0.3, 0.0))}) {
-    const glm::dvec3 want = texel_irradiance(*glow->map, n), got = cell_irradiance(*glow, n);
+    const glm::dvec3 want = texel_irradiance(map, *glow, n), got = cell_irradiance(*glow, n);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 1e-5 * want[c]);
   }
 }
@@ -122,7 +123,7 @@ TEST(EnvironmentGlow, AWideGlowIsGatheredInAtMostTheLimitsCells) {
   EXPECT_EQ(glow->cells.size(), 96u);  // coarsened once: 3 x 32 of the 64 x 32 cells
   // the band lies above the horizon: the zenith-facing plane sees all of it
   const glm::dvec3 up(0.0, 1.0, 0.0);
-  const glm::dvec3 want = texel_irradiance(*glow->map, up), got = cell_irradiance(*glow, up);
+  const glm::dvec3 want = texel_irradiance(map, *glow, up), got = cell_irradiance(*glow, up);
   EXPECT_GT(want.x, 0.0);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 1e-5 * want[c]);
 }

@@ -226,5 +226,31 @@ TEST(SphericalHarmonics, IrradianceErrorIsTheBandLimitsFloor) {
   EXPECT_EQ(sh_irradiance_error(scene::Environment{}, 3), 0.0);
 }
 
+TEST(SphericalHarmonics, GlowProjectsAsTheMapOfItsTexels) {
+  // A few scattered texels of a 32 x 16 map, coloured; the glow's sparse projection against the
+  // projection of a map that holds them and zero elsewhere: the same sums, to the bit.
+  scene::EnvironmentGlow glow;
+  glow.width = 32;
+  glow.height = 16;
+  auto map = std::make_shared<scene::EnvironmentMap>();
+  map->width = glow.width;
+  map->height = glow.height;
+  map->rgb.assign(size_t(32 * 16 * 3), 0.0f);
+  for (const uint32_t texel : {3u, 40u, 41u, 200u, 201u, 233u, 500u}) {
+    const glm::vec3 radiance(0.5f + 0.01f * float(texel), 2.0f, 0.25f * float(texel % 7));
+    glow.texels.push_back(texel);
+    glow.radiance.push_back(radiance);
+    for (int c = 0; c < 3; ++c) map->rgb[size_t(texel) * 3 + size_t(c)] = radiance[c];
+  }
+  for (const int bands : {3, 5}) {
+    const auto sparse = sh_project_glow(glow, bands);
+    const auto dense = sh_project_environment(scene::Environment{map, 1.0f, 0.0f, nullptr, nullptr},
+                                              bands);
+    ASSERT_EQ(sparse.size(), dense.size());
+    for (size_t i = 0; i < sparse.size(); ++i) EXPECT_EQ(sparse[i], dense[i]) << i;
+    EXPECT_GT(sparse[0].x, 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace rp::shading
