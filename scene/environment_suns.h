@@ -10,7 +10,8 @@
 // A patch: the 8-connected texels (wrapping in u) around a texel at least kSunPeak times the
 // map's mean luminance, down to kSunEdge times it. It is taken out when its excess over the
 // edge holds at least kSunMinShare of the map's power and it covers at most kSunMaxSolidAngle;
-// its texels keep their colour at the edge's luminance (the map stays continuous) and the
+// its texels keep their colour at the edge's luminance (the map stays continuous: PRT traces
+// those flattened patches and their bright rim apart, scene/environment_glow.h) and the
 // excess becomes the light: irradiance E = sum (texel - its residual) x texel solid angle on a
 // plane facing the patch, from the excess-weighted mean direction. Luminance: Rec. 709
 // (0.2126, 0.7152, 0.0722); a texel's solid angle (2 pi / w)(pi / h) sin theta at its centre.
