@@ -11,33 +11,17 @@
 
 #include "scene/environment_glow.h"
 #include "scene/environment_suns.h"
+#include "support/square_maps.h"
 
 namespace rp::scene {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using Square = test::MapSquare;
+using test::texel_solid_angle;
 
-struct Square {
-  int x, y, half;
-  float value;
-};
-
-// A 128 x 64 grey map of radiance 0.1 with squares painted in order (later ones on top).
+// A grey map of radiance 0.1 with `squares` painted on it.
 EnvironmentMap squares_map(const std::vector<Square>& squares) {
-  EnvironmentMap map;
-  map.width = 128;
-  map.height = 64;
-  map.rgb.assign(size_t(map.width * map.height * 3), 0.1f);
-  for (const Square& s : squares)
-    for (int y = s.y - s.half; y <= s.y + s.half; ++y)
-      for (int x = s.x - s.half; x <= s.x + s.half; ++x)
-        for (int c = 0; c < 3; ++c) map.rgb[size_t(3 * (y * map.width + x) + c)] = s.value;
-  return map;
-}
-
-double texel_solid_angle(const EnvironmentMap& map, int y) {
-  return (2.0 * kPi / map.width) * (kPi / map.height) *
-         std::sin(kPi * (double(y) + 0.5) / double(map.height));
+  return test::square_map([](int, int) { return glm::vec3(0.1f); }, squares);
 }
 
 glm::dvec3 texel_direction(const EnvironmentMap& map, int x, int y) {

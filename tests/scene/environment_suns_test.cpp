@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "scene/environment_suns.h"
+#include "support/square_maps.h"
 #include "truth/environment.h"
 
 namespace rp::scene {
@@ -17,31 +18,17 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A 128 x 64 map: a blue-white gradient from the zenith, a dim ground; `patches` grey squares
-// of radiance `value` and half-size `half` texels centred on texel (x, y).
-struct Square {
-  int x, y, half;
-  float value;
-};
+// A blue-white gradient from the zenith, a dim ground; `patches` painted on it.
+using Square = test::MapSquare;
 EnvironmentMap gradient_map(const std::vector<Square>& patches) {
-  EnvironmentMap map;
-  map.width = 128;
-  map.height = 64;
-  for (int y = 0; y < map.height; ++y)
-    for (int x = 0; x < map.width; ++x) {
-      const float v = (float(y) + 0.5f) / float(map.height);
-      glm::vec3 c = v < 0.5f ? glm::vec3(0.4f, 0.6f, 1.0f) * (1.0f - v) : glm::vec3(0.05f);
-      for (const Square& s : patches)
-        if (std::abs(x - s.x) <= s.half && std::abs(y - s.y) <= s.half) c = glm::vec3(s.value);
-      map.rgb.insert(map.rgb.end(), {c.x, c.y, c.z});
-    }
-  return map;
+  return test::square_map(
+      [](int, int y) {
+        const float v = (float(y) + 0.5f) / 64.0f;
+        return v < 0.5f ? glm::vec3(0.4f, 0.6f, 1.0f) * (1.0f - v) : glm::vec3(0.05f);
+      },
+      patches);
 }
-
-double texel_solid_angle(const EnvironmentMap& map, int y) {
-  return (2.0 * kPi / map.width) * (kPi / map.height) *
-         std::sin(kPi * (double(y) + 0.5) / double(map.height));
-}
+using test::texel_solid_angle;
 
 double luminance(const float* t) { return 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2]; }
 
