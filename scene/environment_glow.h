@@ -35,6 +35,7 @@ inline constexpr size_t kMaxGlowCells = 256;  // shadow rays per vertex, at most
 struct GlowCell {
   glm::vec3 direction{0.0f, 1.0f, 0.0f};  // map frame, unit, towards the cell
   glm::vec3 irradiance{0.0f};             // rgb, on a plane facing `direction` (strength 1)
+  bool operator==(const GlowCell&) const = default;
 };
 
 struct EnvironmentGlow {

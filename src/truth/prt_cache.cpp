@@ -13,6 +13,9 @@
 namespace rp::truth {
 namespace {
 
+// The file stores glow cells as they lie in memory: 6 floats each (prt_cache.h).
+static_assert(sizeof(scene::GlowCell) == 6 * sizeof(float));
+
 constexpr char kMagic[8] = {'R', 'P', 'P', 'R', 'T', 'B', 'I', 'N'};
 
 void put_bytes(std::string& out, const void* data, size_t n) {
@@ -237,11 +240,8 @@ std::optional<PrtTransfer> read_prt_file(const std::filesystem::path& path,
       !r.get(t.glow_cells.data(), size_t(cells) * sizeof(scene::GlowCell)) ||
       !r.get(t.glow.data(), t.glow.size() * sizeof(float)))
     return std::nullopt;
-  if (t.sun_directions != want.sun_directions) return std::nullopt;
-  for (size_t i = 0; i < cells; ++i)
-    if (t.glow_cells[i].direction != want.glow_cells[i].direction ||
-        t.glow_cells[i].irradiance != want.glow_cells[i].irradiance)
-      return std::nullopt;
+  if (t.sun_directions != want.sun_directions || t.glow_cells != want.glow_cells)
+    return std::nullopt;
   return t;
 }
 
