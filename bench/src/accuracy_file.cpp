@@ -1,6 +1,7 @@
 // `bench --accuracy --scene FILE` (see accuracy_file.h).
 #include "bench/src/accuracy_file.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 #include <utility>
@@ -28,6 +29,8 @@ using app::default_truth_cache_dir;
 using app::describe_sky;
 using app::ensure_directory;
 using app::load_sky;
+using app::encode_rgba8;
+using app::write_png_atomic;
 using app::write_text_atomic;
 
 namespace {
@@ -70,6 +73,7 @@ nlohmann::json compare(const Images& rp, const Images& truth, const Regions& reg
   j["direct"] = stats_json(compare_region(rp.direct, truth.direct, regions.image, Region::kImage));
   j["direct_psnr_db"][image] =
       masked_tone_mapped_psnr(rp.direct, truth.direct, regions.pixels.covered);
+  j["direct_by_region"][image] = j["direct"];
   j["indirect"][image] =
       stats_json(compare_region(rp.indirect, truth.indirect, regions.image, Region::kImage));
   j["specular"][image] =
@@ -83,6 +87,7 @@ nlohmann::json compare(const Images& rp, const Images& truth, const Regions& reg
     const std::string& name = regions.names[m];
     j["indirect"][name] = no_pixels();
     j["direct_psnr_db"][name] = nullptr;
+    j["direct_by_region"][name] = no_pixels();
     if (coated(assets.materials[m])) j["specular"][name] = no_pixels();
   }
   for (size_t k = 0; k < regions.seen.size(); ++k) {
@@ -93,6 +98,8 @@ nlohmann::json compare(const Images& rp, const Images& truth, const Regions& reg
         stats_json(compare_region(rp.indirect, truth.indirect, labels, kMaterialRegion));
     j["direct_psnr_db"][name] = masked_tone_mapped_psnr(rp.direct, truth.direct,
                                                         material_mask(regions.pixels, m));
+    j["direct_by_region"][name] =
+        stats_json(compare_region(rp.direct, truth.direct, labels, kMaterialRegion));
     if (coated(assets.materials[m]))
       j["specular"][name] =
           stats_json(compare_region(rp.specular, truth.specular, labels, kMaterialRegion));
@@ -225,11 +232,41 @@ AccuracyResult measure_file_accuracy(const CommonOptions& common, const FileScen
     m["truth"] = c.many ? "many" : "one";
     j["configurations"][c.key] = m;
   }
+  std::filesystem::path direct_png;
+  // The fast mode's light averaged over one cycle of TAA's jitter: the error of the light
+  // itself, without the single unjittered frame's aliasing (which dominates the direct PSNR of
+  // a detailed scene at a small size) or TAA's clamp.
+  {
+    const Images avg = render_jittered_average(common, kJitteredConfigKey, options.many_bounces,
+                                               w, h, std::max(options.converge_frames, 16u), 16,
+                                               frame_fn, &assets);
+    nlohmann::json m = compare(avg, truths[1], regions, assets);
+    m["quality"] = "fast";
+    m["bounces"] = options.many_bounces;
+    m["frames"] = std::max(options.converge_frames, 16u);
+    m["averaged_frames"] = 16;
+    m["taa"] = false;
+    m["jitter"] = true;
+    m["truth"] = "many";
+    j["configurations"][kJitteredConfigKey] = m;
+    // truth's direct light, the averaged one, and their signed difference
+    std::vector<std::vector<uint8_t>> tiles(3);
+    encode_rgba8(truths[1].direct, true, tiles[0]);
+    encode_rgba8(avg.direct, true, tiles[1]);
+    const double eps = leaks_and_misses(avg.direct, truths[1].direct, regions.image).epsilon;
+    signed_heat_map(avg.direct, truths[1].direct, regions.image, eps, tiles[2]);
+    direct_png = options.out_dir / "accuracy_direct_jittered.png";
+    write_png_atomic(direct_png, int(w * 3), int(h), tile_rgba8(tiles, w, h, 3));
+  }
   const std::vector<uint8_t> taa_rgba =
       render_finished_frames(common, options.many_bounces, w, h, options.converge_frames,
                              truths[1].combined, j["configurations"], frame_fn, &assets);
   j["images"] = write_accuracy_pictures(options.out_dir, w, h, truths, rendered, regions.image, taa_rgba,
                                options.many_bounces);
+  j["images"]["direct_jittered"] = direct_png.string();
+  j["images"]["direct_jittered_layout"] =
+      "the truth's direct light, the fast mode's averaged over TAA's jitter, (rp - truth) / "
+      "(truth + eps) of their luminance: blue -1 (too dark), white 0, red +1 (too bright)";
 
   AccuracyResult result;
   const std::string checks = check_file_thresholds(options, j, result.passed);

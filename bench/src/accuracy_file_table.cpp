@@ -19,6 +19,37 @@ std::string short_name(const std::string& name) {
   return name.size() <= kMax ? name : name.substr(0, kMax - 2) + "..";
 }
 
+// The fast mode's light averaged over TAA's jitter cycle (kJitteredConfigKey): one line for
+// the image, one per seen material.
+std::string jittered_lines(const nlohmann::json& j, const nlohmann::json& m) {
+  std::ostringstream t;
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "\nfast/N, its light averaged over TAA's %u jitter positions (no history clamp: "
+                "the light's\nerror without a single frame's aliasing), against the %u-bounce "
+                "truth:\n",
+                m["averaged_frames"].get<uint32_t>(), j["many_bounces"].get<uint32_t>());
+  t << line;
+  std::snprintf(line, sizeof line, "  final PSNR %.2f dB, albedo PSNR %.2f dB\n",
+                json_number(m["final_psnr_db"]), json_number(m["albedo_psnr_db"]));
+  t << line;
+  std::snprintf(line, sizeof line, "  %-20s %10s %11s %11s %13s\n", "region",
+                "direct dB", "direct bias", "indirect L1", "indirect bias");
+  t << line;
+  auto region_line = [&](const std::string& r) {
+    std::snprintf(line, sizeof line, "  %-20s   %s    %s    %s      %s\n",
+                  short_name(r).c_str(), db_cell(json_number(m["direct_psnr_db"][r])).c_str(),
+                  percent_cell(json_number(m["direct_by_region"][r]["bias"]), true).c_str(),
+                  percent_cell(json_number(m["indirect"][r]["rel_l1"]), false).c_str(),
+                  percent_cell(json_number(m["indirect"][r]["bias"]), true).c_str());
+    t << line;
+  };
+  region_line("image");
+  for (const nlohmann::json& mat : j["materials"])
+    if (mat["pixels"].get<uint64_t>() > 0) region_line(mat["region"].get<std::string>());
+  return t.str();
+}
+
 }  // namespace
 
 std::string check_file_thresholds(const AccuracyOptions& options, nlohmann::json& j,
@@ -211,10 +242,13 @@ std::string file_accuracy_table(const nlohmann::json& j) {
                         static_cast<unsigned long long>(m["leaks"][what].get<uint64_t>()));
           return std::string(b);
         });
+  if (cfg.contains(kJitteredConfigKey)) t << jittered_lines(j, cfg[kJitteredConfigKey]);
   const nlohmann::json& images = j["images"];
   t << "wrote " << images["side_by_side"].get<std::string>() << ", "
-    << images["heat_map"].get<std::string>() << " and " << images["final_taa"].get<std::string>()
-    << "\n";
+    << images["heat_map"].get<std::string>() << ", " << images["final_taa"].get<std::string>();
+  if (images.contains("direct_jittered"))
+    t << " and " << images["direct_jittered"].get<std::string>();
+  t << "\n";
   return t.str();
 }
 

@@ -1,6 +1,7 @@
 // The shared parts of `bench --accuracy` (see accuracy_render.h).
 #include "bench/src/accuracy_render.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -98,6 +99,48 @@ Images render_mode(const CommonOptions& common, const std::string& name, render:
   render::LinearComponents lc;
   session.read_components(lc);
   return {name, lc.combined, lc.direct, lc.indirect, lc.albedo, lc.specular};
+}
+
+Images render_jittered_average(const CommonOptions& common, const std::string& name,
+                               uint32_t bounces, uint32_t w, uint32_t h, uint32_t frames,
+                               uint32_t average_frames, const FrameFn& frame_fn,
+                               const scene::SceneAssets* assets) {
+  CommonOptions c = common;
+  c.render.quality = render::Quality::kFast;
+  c.render.bounces = bounces;
+  c.view = {};
+  c.render.effects.bloom = c.render.effects.motion_blur = false;
+  c.render.effects.taa = true;  // the jittered projection (Halton, 16 per cycle)
+  c.render.render_scale = 1.0f;
+  RenderSession session(c, w, h, false, assets);
+  session.set_keep_components(true);
+  average_frames = std::min(std::max(average_frames, 1u), std::max(frames, 1u));
+  frames = std::max(frames, average_frames);
+  Images avg{name, {}, {}, {}, {}, {}};
+  std::vector<std::vector<float>*> sums = {&avg.combined, &avg.direct, &avg.indirect,
+                                           &avg.albedo, &avg.specular};
+  std::vector<uint8_t> rgba;
+  render::LinearComponents lc;
+  ProgressBar bar(name, frames);
+  double ms = 0.0;
+  for (uint32_t i = 0; i < frames; ++i) {
+    if (InterruptGuard::interrupted()) throw truth::PathTracer::Cancelled();
+    session.render(frame_fn(session.assets(), i), rgba, ms);
+    bar.update(i + 1);
+    if (i + average_frames < frames) continue;
+    session.read_components(lc);
+    const std::vector<float>* terms[] = {&lc.combined, &lc.direct, &lc.indirect, &lc.albedo,
+                                         &lc.specular};
+    for (size_t t = 0; t < sums.size(); ++t) {
+      std::vector<float>& sum = *sums[t];
+      sum.resize(terms[t]->size(), 0.0f);
+      for (size_t k = 0; k < sum.size(); ++k) sum[k] += (*terms[t])[k];
+    }
+  }
+  bar.finish();
+  for (std::vector<float>* sum : sums)
+    for (float& v : *sum) v /= float(average_frames);
+  return avg;
 }
 
 std::vector<uint8_t> render_finished_frames(const CommonOptions& common, uint32_t bounces,

@@ -40,6 +40,9 @@ inline constexpr const char* kTaaConfigKey = "fast_many_taa";
 // The sixth: the same session's first frame, which no history averages (what `render --frames
 // 1`, a camera cut or R show).
 inline constexpr const char* kFirstFrameConfigKey = "fast_first_frame";
+// The seventh (scene files): fast at many bounces, its light averaged over TAA's jitter cycle
+// (render_jittered_average).
+inline constexpr const char* kJitteredConfigKey = "fast_many_jittered";
 
 // {"rel_l1", "bias", "pixels"} (NaN figures, a region without light, are written as null).
 nlohmann::json stats_json(const ErrorStats& s);
@@ -87,6 +90,16 @@ Images render_mode(const app::CommonOptions& common, const std::string& name,
                    uint32_t frames, std::vector<uint8_t>& final_rgba,
                    const FrameFn& frame_fn = scene::make_demo_frame,
                    const scene::SceneAssets* assets = nullptr);
+
+// The fast mode at `bounces` with TAA's camera jitter on (no bloom or motion blur), `frames`
+// frames, its light terms averaged over the last `average_frames` of them (one cycle of TAA's
+// 16-sample Halton jitter): what TAA converges to without its history clamp and blend, so
+// sub-pixel geometry and texture detail resolve as the truth's pixel averages do. Separates the
+// light's error from a single unjittered frame's aliasing (render_mode). At the output size.
+Images render_jittered_average(const app::CommonOptions& common, const std::string& name,
+                               uint32_t bounces, uint32_t w, uint32_t h, uint32_t frames,
+                               uint32_t average_frames, const FrameFn& frame_fn,
+                               const scene::SceneAssets* assets);
 
 // The fast mode's finished frames with TAA at `bounces` (no bloom or motion blur) against
 // `truth` (the many-bounce truth's combined radiance): converged after `frames` frames

@@ -30,7 +30,8 @@ TEST(AccuracyFileScene, EveryMaterialIsARegion) {
   for (const char* text : {"accuracy at 64x64, scene ", "fast/N", "ref/N", "fast/1", "ref/1",
                            "final PSNR, TAA (dB)", "final PSNR, first frame (dB)",
                            "direct PSNR (dB) image", "albedo PSNR (dB)",
-                           "indirect L1 image", "leak pixels (indirect)", "specular L1 floor"})
+                           "indirect L1 image", "leak pixels (indirect)", "specular L1 floor",
+                           "fast/N, its light averaged over TAA's 16 jitter positions"})
     EXPECT_NE(first.out.find(text), std::string::npos) << text << "\n" << first.out;
   for (const std::string& m : scene.materials) {
     EXPECT_NE(first.out.find("indirect bias " + m), std::string::npos) << m << "\n" << first.out;
@@ -38,7 +39,7 @@ TEST(AccuracyFileScene, EveryMaterialIsARegion) {
   }
   EXPECT_EQ(first.out.find("from the cache"), std::string::npos);
   for (const char* png : {"accuracy_side_by_side.png", "accuracy_indirect_heat.png",
-                          "accuracy_final_taa.png"})
+                          "accuracy_final_taa.png", "accuracy_direct_jittered.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / png)) << png;
 
   const nlohmann::json j = nlohmann::json::parse(read_all(dir / "acc.json"));
@@ -88,6 +89,21 @@ TEST(AccuracyFileScene, EveryMaterialIsARegion) {
   EXPECT_GT(j["configurations"]["fast_many_taa"]["final_psnr_db"].get<double>(), 10.0);
   EXPECT_EQ(j["configurations"]["fast_first_frame"]["frames"], 1);
   EXPECT_GT(j["configurations"]["fast_first_frame"]["final_psnr_db"].get<double>(), 10.0);
+  // The light averaged over TAA's jitter: per material, and closer to the truth's pixel
+  // averages than one unjittered frame, whose edges alias.
+  const nlohmann::json& jit = j["configurations"]["fast_many_jittered"];
+  EXPECT_EQ(jit["averaged_frames"], 16);
+  EXPECT_TRUE(jit["jitter"].get<bool>());
+  for (const std::string& m : scene.materials) {
+    EXPECT_TRUE(jit["direct_by_region"][m]["bias"].is_number()) << m;
+    EXPECT_TRUE(jit["indirect"][m]["rel_l1"].is_number()) << m;
+  }
+  const nlohmann::json& single = j["configurations"]["fast_many"];
+  EXPECT_GT(jit["direct_psnr_db"]["image"].get<double>(),
+            single["direct_psnr_db"]["image"].get<double>());
+  EXPECT_GT(jit["albedo_psnr_db"].get<double>(), single["albedo_psnr_db"].get<double>());
+  EXPECT_EQ(j["images"]["direct_jittered"],
+            (dir / "out" / "accuracy_direct_jittered.png").string());
   // Both truths in the file's own folder of the cache.
   const std::string folder = "scene-" + j["scene"]["content_hash"].get<std::string>();
   EXPECT_EQ(files_with_suffix(dir / "cache" / folder, ".exr").size(), 2u);
