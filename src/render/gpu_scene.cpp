@@ -139,8 +139,11 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
     uint32_t base = static_cast<uint32_t>(verts.size());
     range.first_vertex = base;
     range.vertex_count = static_cast<uint32_t>(mesh.vertices.size());
-    for (const scene::Vertex& v : mesh.vertices)
+    for (const scene::Vertex& v : mesh.vertices) {
       verts.push_back({gpu::to_gpu(v.position, v.uv.x), gpu::to_gpu(v.normal, v.uv.y)});
+      range.lo = verts.size() == base + 1u ? v.position : glm::min(range.lo, v.position);
+      range.hi = verts.size() == base + 1u ? v.position : glm::max(range.hi, v.position);
+    }
     if (!mesh.tangents.empty() && mesh.tangents.size() != mesh.vertices.size())
       throw rp::cl::Error("mesh '" + mesh.name + "': one tangent per vertex expected");
     for (size_t i = 0; i < mesh.vertices.size(); ++i)
@@ -267,6 +270,23 @@ void GpuScene::update_sky(const scene::Environment& environment) {
   if (!sky_diffuse_cones_) constants.sky.diffuse_cones = 0;
 }
 
+ShadowBounds GpuScene::frame_bounds(const scene::FrameScene& f) const {
+  ShadowBounds b;
+  for (const scene::MeshInstance& inst : f.instances) {
+    if (inst.mesh >= meshes.size()) continue;  // update() reports it
+    const MeshRange& m = meshes[inst.mesh];
+    if (m.lo.x > m.hi.x) continue;
+    for (int k = 0; k < 8; ++k) {
+      const glm::vec3 corner(k & 1 ? m.hi.x : m.lo.x, k & 2 ? m.hi.y : m.lo.y,
+                             k & 4 ? m.hi.z : m.lo.z);
+      const glm::vec3 p = glm::vec3(inst.model * glm::vec4(corner, 1.0f));
+      b.add(p, p);
+    }
+  }
+  for (const scene::Sphere& s : f.spheres) b.add(s.center - s.radius, s.center + s.radius);
+  return b;
+}
+
 void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t height,
                       uint32_t shadow_size, uint32_t voxel_resolution, uint32_t jitter_frames) {
   float aspect = float(width) / float(height);
@@ -300,7 +320,8 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
   c.voxel_levels = 1;
   while ((voxel_resolution >> c.voxel_levels) > 0) ++c.voxel_levels;  // log2(R) + 1
   // A file scene's lights; their shadow views follow the lamp's two planes.
-  punctual = setup_punctual_lights(f.lights, shadow_size, 2 * uint64_t(shadow_size) * shadow_size);
+  punctual = setup_punctual_lights(f.lights, shadow_size, 2 * uint64_t(shadow_size) * shadow_size,
+                                   frame_bounds(f));
   for (size_t i = 0; i < punctual.lights.size(); ++i)
     if (!suns_in_voxels_ &&
         (f.lights[i].in_environment || f.lights[i].type == scene::LightType::kDirectional))

@@ -38,6 +38,7 @@ struct MeshRange {
   uint32_t proxy_max_shadow_texels = 0;
   uint32_t first_vertex = 0;  // the mesh's first vertex in the shared vertex buffer
   uint32_t vertex_count = 0;
+  glm::vec3 lo{1.0f}, hi{-1.0f};  // the vertices' bounds in the mesh's space (none: lo > hi)
 };
 
 // Throws rp::cl::Error naming the largest texture, the need and the limit when the textures
@@ -94,6 +95,10 @@ class GpuScene {
   // the mesh itself (scene::voxel_mesh, scene::shadow_mesh).
   uint32_t voxel_mesh(uint32_t mesh, uint32_t voxel_resolution) const;
   uint32_t shadow_mesh(uint32_t mesh, uint32_t shadow_size) const;
+
+  // The region `frame`'s instances and spheres occupy (unsnapped, unclipped; empty without
+  // either): where the directional lights' shadow views look.
+  ShadowBounds frame_bounds(const scene::FrameScene& frame) const;
 
   // Per frame.
   ::cl::Buffer frame;      // gpu::FrameConstants (one)

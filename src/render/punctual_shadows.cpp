@@ -35,7 +35,40 @@ gpu::ShadowViewGpu make_view(const glm::mat4& view_proj, float near, float far, 
 // Distance from `p` past the far side of the volume.
 float far_from(glm::vec3 p) { return glm::length(p) + kVolumeRadius * 1.01f; }
 
+// The orthographic view along unit `dir` over the box [lo, hi]: square (texels as wide as
+// high, which common/punctual_light.h's texel size assumes), centred on the box's projection,
+// its depth range the box's with a margin.
+gpu::ShadowViewGpu directional_view(glm::vec3 dir, glm::vec3 lo, glm::vec3 hi, uint32_t size,
+                                    uint64_t offset) {
+  const glm::vec3 centre = 0.5f * (lo + hi);
+  const float radius = std::max(0.5f * glm::length(hi - lo), 0.01f);
+  const float pad = 0.01f * radius + 1.0e-3f;
+  const glm::mat4 view = glm::lookAt(centre - dir * (2.0f * radius + 2.0f * pad), centre,
+                                     up_for(dir));
+  float half = 0.0f, near = 1.0e30f, far = 0.0f;
+  for (int k = 0; k < 8; ++k) {
+    const glm::vec3 corner(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
+    const glm::vec4 v = view * glm::vec4(corner, 1.0f);
+    half = std::max({half, std::abs(v.x), std::abs(v.y)});
+    near = std::min(near, -v.z);
+    far = std::max(far, -v.z);
+  }
+  half = half * 1.01f + 1.0e-3f;
+  near -= pad;
+  far += pad;
+  return make_view(glm::ortho(-half, half, -half, half, near, far) * view, near, far, true, size,
+                   offset);
+}
+
 }  // namespace
+
+ShadowBounds ShadowBounds::snapped() const {
+  if (empty()) return *this;
+  ShadowBounds b;
+  b.lo = glm::max(glm::floor(lo / kStep) * kStep, glm::vec3(-1.0f));
+  b.hi = glm::min(glm::ceil(hi / kStep) * kStep, glm::vec3(1.0f));
+  return b;
+}
 
 uint64_t punctual_shadow_floats(const std::vector<scene::PunctualLight>& lights,
                                 uint32_t shadow_size) {
@@ -50,7 +83,11 @@ uint64_t punctual_shadow_floats(const std::vector<scene::PunctualLight>& lights,
 }
 
 PunctualSetup setup_punctual_lights(const std::vector<scene::PunctualLight>& lights,
-                                    uint32_t shadow_size, uint64_t first_float) {
+                                    uint32_t shadow_size, uint64_t first_float,
+                                    const ShadowBounds& bounds) {
+  // the directional views' box: the frame's bounds, else the whole volume
+  ShadowBounds box = bounds.snapped();
+  if (box.empty()) box = ShadowBounds{glm::vec3(-1.0f), glm::vec3(1.0f)};
   PunctualSetup setup;
   uint64_t offset = first_float;
   const size_t n = std::min<size_t>(lights.size(), RP_MAX_PUNCTUAL_LIGHTS);
@@ -64,19 +101,18 @@ PunctualSetup setup_punctual_lights(const std::vector<scene::PunctualLight>& lig
     g.cone = {cos_outer, cos_inner - cos_outer > 1.0e-6f ? 1.0f / (cos_inner - cos_outer) : 0.0f,
               0.0f, 0.0f};
     g.first_view = uint32_t(setup.views.size());
+    const auto push_view = [&](const gpu::ShadowViewGpu& v) {
+      setup.views.push_back(v);
+      offset += 2u * uint64_t(v.size) * v.size;
+    };
     const auto add_view = [&](const glm::mat4& vp, float near, float far, bool ortho,
                               uint32_t size) {
-      setup.views.push_back(make_view(vp, near, far, ortho, size, offset));
-      offset += 2u * uint64_t(size) * size;
+      push_view(make_view(vp, near, far, ortho, size, offset));
     };
     switch (l.type) {
       case scene::LightType::kDirectional: {
         g.type = RP_LIGHT_DIRECTIONAL;
-        const glm::vec3 eye = -l.direction * (2.0f * kVolumeRadius);
-        const glm::mat4 view = glm::lookAt(eye, glm::vec3(0.0f), up_for(l.direction));
-        const float r = kVolumeRadius * 1.01f;
-        const float near = kVolumeRadius * 0.5f, far = kVolumeRadius * 3.5f;
-        add_view(glm::ortho(-r, r, -r, r, near, far) * view, near, far, true, shadow_size);
+        push_view(directional_view(l.direction, box.lo, box.hi, shadow_size, offset));
         break;
       }
       case scene::LightType::kSpot: {
