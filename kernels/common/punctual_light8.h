@@ -1,9 +1,9 @@
 /* A loaded scene's punctual lights for eight surface points at once (OpenCL C only): the
- * lane-parallel form of common/punctual_light.h's rp_punctual_direct with the 3x3 shadow
- * filter (wide = 1), used by the punctual light pass (kernels/punctual_light.cl). The same
+ * lane-parallel form of common/punctual_light.h's rp_punctual_direct for the light pass
+ * (light_pass = 1), used by the punctual light pass (kernels/punctual_light.cl). The same
  * formulas, written out on float8 in the scalar functions' order: direction and attenuation,
  * the receiver's texel size, push and bias, the view's projection and the stored-depth
- * comparison are vector arithmetic; only the 16 texel reads per lane are gathered lane by
+ * comparison are vector arithmetic; only the 4 texel reads per lane are gathered lane by
  * lane. A point light's lanes seen through different cube faces (near the cube's edges) take
  * the scalar function lane by lane.
  */
@@ -17,7 +17,7 @@
 #define RP_PUNCTUAL8_ROW(m, row, x, y, z) \
   ((m).c[0].row * (x) + (m).c[1].row * (y) + (m).c[2].row * (z) + (m).c[3].row)
 
-/* The 3x3-filtered visibility (rp_punctual_visibility, wide = 1) of the lanes in `on`, all
+/* The visibility (rp_punctual_visibility, light_pass = 1) of the lanes in `on`, all
  * seen through view V, with receiver texel size `texel` and slope tan_theta; lanes outside the
  * view are lit (1), lanes not in `on` get 1 too. */
 inline float8 rp_punctual_view_visibility8(__global const float* shadow,
@@ -40,8 +40,8 @@ inline float8 rp_punctual_view_visibility8(__global const float* shadow,
   } else {
     lin = cw;
   }
-  /* rp_punctual_stored of lin - texel (1.5 + tan_theta) */
-  const float8 biased = lin - texel * (1.5f + tan_theta);
+  /* rp_punctual_stored of lin - texel rp_punctual_bias_texels(tan_theta, 1) */
+  const float8 biased = lin - texel * (0.5f + 0.5f * tan_theta);
   float8 receiver;
   if (V->depth.z != 0.0f) {
     receiver = (biased - near) / (far - near);
@@ -64,20 +64,19 @@ inline float8 rp_punctual_view_visibility8(__global const float* shadow,
   for (int q = 0; q < 8; ++q) {
     vis[q] = 1.0f;
     if (!ina[q]) continue;
-    /* nine bilinear comparisons around the receiver = 4x4 texels weighted (1 - f, 1, 1, f) */
+    /* one bilinear comparison, as rp_punctual_visibility */
     const int x0 = (int)xa[q], y0 = (int)ya[q];
-    const float4 wx = (float4)(1.0f - fxa[q], 1.0f, 1.0f, fxa[q]);
-    const float wy[4] = {1.0f - fya[q], 1.0f, 1.0f, fya[q]};
-    float lit = 0.0f;
-    for (int j = 0; j < 4; ++j)
-      lit += wy[j] * rp_punctual_row4(shadow, V, x0 - 1, y0 - 1 + j, ra[q], wx);
-    vis[q] = lit * (1.0f / 9.0f);
+    const float t00 = rp_punctual_tap(shadow, V, x0, y0, ra[q]);
+    const float t10 = rp_punctual_tap(shadow, V, x0 + 1, y0, ra[q]);
+    const float t01 = rp_punctual_tap(shadow, V, x0, y0 + 1, ra[q]);
+    const float t11 = rp_punctual_tap(shadow, V, x0 + 1, y0 + 1, ra[q]);
+    vis[q] = mix(mix(t00, t10, fxa[q]), mix(t01, t11, fxa[q]), fya[q]);
   }
   return vload8(0, vis);
 }
 
-/* Light i's direct irradiance factor (rp_punctual_direct, wide = 1) at the eight points p with
- * unit normals n, for the lanes in `on`: intensity * cos * attenuation * visibility into
+/* Light i's direct irradiance factor (rp_punctual_direct, light_pass = 1) at the eight points
+ * p with unit normals n, for the lanes in `on`: intensity * cos * attenuation * visibility into
  * (kr, kg, kb), the direction towards the light into (lx, ly, lz) ((0, 1, 0) where a point
  * light sits on the point). 0 elsewhere and where the surface faces away. Returns false when
  * no lane receives light. */
