@@ -30,7 +30,8 @@
  *
  * Maths per pixel (unchanged from the per-pixel version): mesh: object-space position, normal
  * and uv interpolated with (b0, b1, b2), position through model and prev_model, normal through
- * normal_matrix and normalised, albedo = material albedo * texture (wrap), emission =
+ * normal_matrix and normalised (and turned to the side the camera sees, as the path tracer
+ * does), albedo = material albedo * texture (wrap), emission =
  * material emission. Sphere: the camera ray through the pixel centre (unprojected with the
  * jittered inv_view_proj the rasterizer used) hits the sphere, the discriminant clamped at 0 so
  * a rasterized silhouette pixel whose exact ray just misses takes the closest point; the
@@ -311,7 +312,22 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
       const rp_spanf wnx = GB_ROW_DIR(nm, x, onx, ony, onz);
       const rp_spanf wny = GB_ROW_DIR(nm, y, onx, ony, onz);
       const rp_spanf wnz = GB_ROW_DIR(nm, z, onx, ony, onz);
-      const rp_spanf inv_len = rsqrt(wnx * wnx + wny * wny + wnz * wnz);
+      /* Seen from its back (thin double-sided surfaces: leaves, cloth), a surface faces the
+       * camera: its geometric normal turned towards the camera, the shading normal into that
+       * side (the path tracer's rule, truth/trace_scene.cpp), so lights and cones behind it
+       * do not reach the side seen. */
+      const float3 go = cross(p1.xyz - p0.xyz, p2.xyz - p0.xyz);
+      const float gx = GB_ROW_DIR(nm, x, go.x, go.y, go.z);
+      const float gy = GB_ROW_DIR(nm, y, go.x, go.y, go.z);
+      const float gz = GB_ROW_DIR(nm, z, go.x, go.y, go.z);
+      const float4 eye = frame->camera_pos;
+      const rp_spanf towards = gx * (eye.x - GB_ROW_POINT(m, x, obx, oby, obz)) +
+                               gy * (eye.y - GB_ROW_POINT(m, y, obx, oby, obz)) +
+                               gz * (eye.z - GB_ROW_POINT(m, z, obx, oby, obz));
+      const rp_spanf side = select((rp_spanf)(1.0f), (rp_spanf)(-1.0f), towards < 0.0f);
+      const rp_spanf shading_side = (wnx * gx + wny * gy + wnz * gz) * side;
+      const rp_spanf inv_len = rsqrt(wnx * wnx + wny * wny + wnz * wnz) *
+                               select((rp_spanf)(1.0f), (rp_spanf)(-1.0f), shading_side < 0.0f);
       nx = select(nx, wnx * inv_len, group);
       ny = select(ny, wny * inv_len, group);
       nz = select(nz, wnz * inv_len, group);

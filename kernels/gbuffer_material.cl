@@ -6,7 +6,9 @@
  *
  *   normal map: tangent t = model * (interpolated vertex tangent), made orthogonal to the
  *     GBuffer's normal n, bitangent b = w * cross(n, t), n' = normalize(t x s + b y s + n z)
- *     for the map's (x, y, z) = rgb * 2 - 1 and s = the material's normal scale;
+ *     for the map's (x, y, z) = rgb * 2 - 1 and s = the material's normal scale; where
+ *     gbuffer_resolve turned n to the side the camera sees (the interpolated vertex normal
+ *     points away from the GBuffer's), n' is built on the vertex normal's side and turned;
  *   metallic-roughness: roughness = factor * G, metallic = factor * B, metal at >= 0.5; the
  *     gloss code (shared/brdf_layout.h) rebuilt from them (dielectrics keep the material's f0);
  *   emission: emission.rgb *= the map (sRGB).
@@ -144,7 +146,13 @@ __kernel void gbuffer_material(__global const FrameConstants* frame,
     const rp_mat4 m = instances[inst_index[i]].model;
     float3 t = m.c[0].xyz * t4.x + m.c[1].xyz * t4.y + m.c[2].xyz * t4.z;
     float4 nd = normal_depth[pixel];
-    const float3 nrm = nd.xyz;
+    /* the side gbuffer_resolve turned the normal to: the interpolated vertex normal's sign */
+    const float3 nv = (vertices[tri_x[i]].normal_v * b0 + vertices[tri_y[i]].normal_v * b1 +
+                       vertices[tri_z[i]].normal_v * b2).xyz;
+    const rp_mat4 nmat = instances[inst_index[i]].normal_matrix;
+    const float3 nw = nmat.c[0].xyz * nv.x + nmat.c[1].xyz * nv.y + nmat.c[2].xyz * nv.z;
+    const float turned = dot(nw, nd.xyz) < 0.0f ? -1.0f : 1.0f;
+    const float3 nrm = nd.xyz * turned;
     t -= nrm * dot(nrm, t);
     const float len2 = dot(t, t);
     if (len2 > 1.0e-24f) {
@@ -153,7 +161,7 @@ __kernel void gbuffer_material(__global const FrameConstants* frame,
       const float3 s = (float3)(nmap[0][i], nmap[1][i], nmap[2][i]) * 2.0f - 1.0f;
       const float scale = mat->factors.x;
       const float3 np = t * (s.x * scale) + b * (s.y * scale) + nrm * s.z;
-      if (dot(np, np) > 1.0e-24f) nd.xyz = normalize(np);
+      if (dot(np, np) > 1.0e-24f) nd.xyz = normalize(np) * turned;
       normal_depth[pixel] = nd;
     }
   }

@@ -2,7 +2,8 @@
 // precision ray caster over a tiny known scene (a textured, rotated, scaled quad of two triangles
 // and one sphere) fills ids and barycentrics for a 16x12 frame; the pass must reproduce the hit
 // points, normals, textured albedo, emission, linear depth and velocity of a known motion
-// (instance translated by a world offset, sphere moved, camera moved).
+// (instance translated by a world offset, sphere moved, camera moved), and the normal of the
+// side seen where the quad faces away.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -70,7 +71,10 @@ struct TestScene {
   rp::scene::FrameScene frame;
   glm::mat4 rotation;  // rotation part of the instance's model matrix
 
-  explicit TestScene(uint32_t w = kW, uint32_t h = kH) : width(w), height(h) {
+  // back: the quad faces away from the camera (winding and vertex normals reversed), as a
+  // double-sided leaf seen from behind.
+  explicit TestScene(uint32_t w = kW, uint32_t h = kH, bool back = false)
+      : width(w), height(h) {
     assets.textures.push_back(make_texture());
     rp::scene::Material textured{"textured", {0.5f, 0.9f, 0.7f}, {0.1f, 0.2f, 0.3f}, 0};
     rp::scene::Material plain{"plain", {0.3f, 0.6f, 0.9f}, {0.0f, 0.0f, 0.0f}, -1};
@@ -83,6 +87,10 @@ struct TestScene {
                      {{0.5f, 0.5f, 0.0f}, {0.0f, 0.0f, 1.0f}, {1.5f, 1.5f}},
                      {{-0.5f, 0.5f, 0.0f}, {0.0f, 0.0f, 1.0f}, {-0.5f, 1.5f}}};
     quad.triangles = {{0, 1, 2}, {0, 2, 3}};
+    if (back) {
+      quad.triangles = {{0, 2, 1}, {0, 3, 2}};
+      for (auto& v : quad.vertices) v.normal = -v.normal;
+    }
     quad.materials = {0, 1};
     assets.meshes.push_back(quad);
 
@@ -170,9 +178,9 @@ void expect_near3(const float* got, const glm::dvec3& want, double tol, const ch
 
 // Resolves a hand-written visibility buffer of a W x H frame and checks every pixel against
 // the double-precision reference.
-void check_resolve(uint32_t W, uint32_t H) {
+void check_resolve(uint32_t W, uint32_t H, bool back = false) {
   auto& ctx = rp::test::context();
-  TestScene ts(W, H);
+  TestScene ts(W, H, back);
   rp::render::GpuScene scene(ctx.context, ctx.queue, ts.assets);
   scene.update(ts.frame, W, H, 64);
 
@@ -277,7 +285,7 @@ void check_resolve(uint32_t W, uint32_t H) {
         glm::dvec2 uv = b0 * glm::dvec2(v0.uv) + b1 * glm::dvec2(v1.uv) + b2 * glm::dvec2(v2.uv);
         want_p = glm::dvec3(glm::dmat4(ts.frame.instances[0].model) * glm::dvec4(obj, 1.0));
         EXPECT_NEAR(glm::length(want_p - ray_point), 0.0, 1e-5);  // reference self-check
-        want_n = quad_normal;
+        want_n = quad_normal;  // towards the camera, also when the quad faces away
         const auto& mat = ts.assets.materials[mesh.materials[hits[i]->triangle]];
         want_albedo = glm::dvec3(mat.albedo);
         if (mat.texture >= 0) want_albedo *= texture_ref(ts.assets.textures[0], uv);
@@ -299,6 +307,10 @@ void check_resolve(uint32_t W, uint32_t H) {
 }
 
 TEST(GBuffer, ResolvesMeshSphereAndBackground) { check_resolve(kW, kH); }
+
+// A surface seen from its back gets the normal of the side seen (the path tracer's rule): the
+// same reference with the quad's winding and vertex normals reversed.
+TEST(GBuffer, SurfacesSeenFromBehindFaceTheCamera) { check_resolve(kW, kH, true); }
 
 // Every pixel-span layout (16 pixels a work-item on CPUs, 1 on GPUs; 4 and 8 too) at a width
 // that leaves a partial span at the end of each row: same reference, same tolerances.
@@ -366,6 +378,76 @@ TEST(GBuffer, VelocityOfKnownMotion) {
   EXPECT_NEAR(velocity[0], want_x, 2e-4);
   EXPECT_NEAR(velocity[1], 0.0, 2e-4);
   EXPECT_LT(velocity[0], -0.1);  // a visible shift, so the check is meaningful
+}
+
+// The plain triangle's normal map, seen from the front and from behind: the GBuffer normal is
+// the path tracer's (truth/trace_scene.cpp): the map applied on the side of the vertex normal
+// (tangent along the quad's +x, bitangent w cross(n, t), w = -1 on the reversed quad, so the
+// texture keeps its orientation), then turned to the side the camera sees.
+TEST(GBuffer, NormalMapsTurnWithTheSideSeen) {
+  auto& ctx = rp::test::context();
+  const glm::dvec3 map(200.0 / 255.0 * 2.0 - 1.0, 90.0 / 255.0 * 2.0 - 1.0,
+                       230.0 / 255.0 * 2.0 - 1.0);
+  for (const bool back : {false, true}) {
+    TestScene ts(kW, kH, back);
+    rp::scene::Texture normal_map{"normal", 2, 2, {}};
+    const uint8_t texel[4] = {200, 90, 230, 255};
+    for (int i = 0; i < 16; ++i) normal_map.rgba.push_back(texel[i % 4]);
+    normal_map.srgb = false;
+    ts.assets.textures.push_back(normal_map);
+    ts.assets.materials[1].normal_texture = 1;
+    ts.assets.materials[1].normal_scale = 0.7f;
+    rp::scene::Mesh& quad = ts.assets.meshes[0];
+    quad.tangents.assign(quad.vertices.size(), glm::vec4(1.0f, 0.0f, 0.0f, back ? -1.0f : 1.0f));
+    ts.frame.spheres.clear();
+    rp::render::GpuScene scene(ctx.context, ctx.queue, ts.assets);
+    scene.update(ts.frame, kW, kH, 64);
+    ASSERT_TRUE(scene.has_material_maps);
+    const size_t n = size_t(kW) * kH;
+    std::vector<uint32_t> ids(n * 2, RP_ID_NONE);
+    std::vector<float> bary(n * 2, 0.0f);
+    for (uint32_t y = 0; y < kH; ++y)
+      for (uint32_t x = 0; x < kW; ++x) {
+        glm::dvec3 o, d;
+        ts.ray(x, y, o, d);
+        const std::optional<Hit> hit = ts.cast(o, d);
+        if (!hit || hit->sphere) continue;
+        const size_t i = size_t(y) * kW + x;
+        ids[i * 2] = 0;
+        ids[i * 2 + 1] = hit->triangle;
+        bary[i * 2] = float(hit->b1);
+        bary[i * 2 + 1] = float(hit->b2);
+      }
+    rp::render::VisibilityBuffer vis;
+    vis.resize(ctx.context, kW, kH);
+    ctx.queue.enqueueWriteBuffer(vis.ids, CL_TRUE, 0, n * 8, ids.data());
+    ctx.queue.enqueueWriteBuffer(vis.bary, CL_TRUE, 0, n * 8, bary.data());
+    rp::render::GBuffer gb;
+    gb.resize(ctx.context, kW, kH);
+    rp::cl::Profiler profiler(ctx.queue);
+    rp::passes::GBufferPass pass(ctx, rp::test::programs());
+    pass.run(profiler, scene, vis, gb, RP_TEXTURE_FILTER_BILINEAR);
+    const auto normal_depth = read<float>(gb.normal_depth, n * 4);
+
+    // The path tracer's rule in world space: n, t through the model's rotation (the scale
+    // is within the quad's plane), t orthogonal to n already.
+    const glm::dmat3 r(ts.rotation);
+    const glm::dvec3 nv = r * glm::dvec3(0.0, 0.0, back ? -1.0 : 1.0), t = r * glm::dvec3(1, 0, 0);
+    const glm::dvec3 b = (back ? -1.0 : 1.0) * glm::cross(nv, t);
+    glm::dvec3 want = glm::normalize(t * (map.x * 0.7) + b * (map.y * 0.7) + nv * map.z);
+    const glm::dvec3 facing = r * glm::dvec3(0.0, 0.0, 1.0);  // the side the camera sees
+    if (glm::dot(want, facing) < 0.0) want = -want;
+    int mapped = 0;
+    for (uint32_t y = 0; y < kH; ++y)
+      for (uint32_t x = 0; x < kW; ++x) {
+        const size_t i = size_t(y) * kW + x;
+        if (ids[i * 2] == RP_ID_NONE) continue;
+        const glm::dvec3 expected = ids[i * 2 + 1] == 1 ? want : facing;  // plain: mapped
+        mapped += ids[i * 2 + 1] == 1;
+        expect_near3(&normal_depth[i * 4], expected, 1e-4, back ? "back" : "front", x, y);
+      }
+    EXPECT_GE(mapped, 8);
+  }
 }
 
 }  // namespace
