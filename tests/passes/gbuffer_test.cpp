@@ -176,6 +176,27 @@ void expect_near3(const float* got, const glm::dvec3& want, double tol, const ch
     EXPECT_NEAR(got[c], want[c], tol) << what << "[" << c << "] at pixel " << x << "," << y;
 }
 
+// Runs the GBuffer pass (bilinear textures) over a hand-written W x H visibility buffer: ids
+// and barycentrics per pixel, and the depths where given. Returns the GBuffer.
+rp::render::GBuffer resolve(const rp::render::GpuScene& scene, const std::vector<uint32_t>& ids,
+                            const std::vector<float>& bary, uint32_t W, uint32_t H,
+                            const std::vector<float>* depth = nullptr) {
+  auto& ctx = rp::test::context();
+  const size_t n = size_t(W) * H;
+  rp::render::VisibilityBuffer vis;
+  vis.resize(ctx.context, W, H);
+  ctx.queue.enqueueWriteBuffer(vis.ids, CL_TRUE, 0, n * 8, ids.data());
+  ctx.queue.enqueueWriteBuffer(vis.bary, CL_TRUE, 0, n * 8, bary.data());
+  if (depth) ctx.queue.enqueueWriteBuffer(vis.depth, CL_TRUE, 0, n * 4, depth->data());
+  rp::render::GBuffer gb;
+  gb.resize(ctx.context, W, H);
+  rp::cl::Profiler profiler(ctx.queue);
+  rp::passes::GBufferPass pass(ctx, rp::test::programs());
+  pass.run(profiler, scene, vis, gb, RP_TEXTURE_FILTER_BILINEAR);
+  EXPECT_EQ(profiler.collect().count(rp::passes::pass_name::kGBuffer), 1u);
+  return gb;
+}
+
 // Resolves a hand-written visibility buffer of a W x H frame and checks every pixel against
 // the double-precision reference.
 void check_resolve(uint32_t W, uint32_t H, bool back = false) {
@@ -221,17 +242,7 @@ void check_resolve(uint32_t W, uint32_t H, bool back = false) {
   ids[2] = 0;
   ids[3] = 999;
 
-  rp::render::VisibilityBuffer vis;
-  vis.resize(ctx.context, W, H);
-  ctx.queue.enqueueWriteBuffer(vis.ids, CL_TRUE, 0, n * 8, ids.data());
-  ctx.queue.enqueueWriteBuffer(vis.bary, CL_TRUE, 0, n * 8, bary.data());
-  ctx.queue.enqueueWriteBuffer(vis.depth, CL_TRUE, 0, n * 4, depth.data());
-  rp::render::GBuffer gb;
-  gb.resize(ctx.context, W, H);
-  rp::cl::Profiler profiler(ctx.queue);
-  rp::passes::GBufferPass pass(ctx, rp::test::programs());
-  pass.run(profiler, scene, vis, gb, RP_TEXTURE_FILTER_BILINEAR);
-  EXPECT_EQ(profiler.collect().count(rp::passes::pass_name::kGBuffer), 1u);
+  const rp::render::GBuffer gb = resolve(scene, ids, bary, W, H, &depth);
 
   auto albedo = read<float>(gb.albedo, n * 4), normal_depth = read<float>(gb.normal_depth, n * 4),
        position = read<float>(gb.position, n * 4), emission = read<float>(gb.emission, n * 4),
@@ -353,15 +364,7 @@ TEST(GBuffer, VelocityOfKnownMotion) {
   ids[0] = 0;
   ids[1] = 0;
   bary[1] = 0.5f;
-  rp::render::VisibilityBuffer vis;
-  vis.resize(ctx.context, kW, kH);
-  ctx.queue.enqueueWriteBuffer(vis.ids, CL_TRUE, 0, n * 8, ids.data());
-  ctx.queue.enqueueWriteBuffer(vis.bary, CL_TRUE, 0, n * 8, bary.data());
-  rp::render::GBuffer gb;
-  gb.resize(ctx.context, kW, kH);
-  rp::cl::Profiler profiler(ctx.queue);
-  rp::passes::GBufferPass pass(ctx, rp::test::programs());
-  pass.run(profiler, scene, vis, gb, RP_TEXTURE_FILTER_BILINEAR);
+  const rp::render::GBuffer gb = resolve(scene, ids, bary, kW, kH);
   auto velocity = read<float>(gb.velocity, 2);
   auto position = read<float>(gb.position, 4);
   EXPECT_NEAR(position[0], centre.x, 1e-6);
@@ -418,15 +421,7 @@ TEST(GBuffer, NormalMapsTurnWithTheSideSeen) {
         bary[i * 2] = float(hit->b1);
         bary[i * 2 + 1] = float(hit->b2);
       }
-    rp::render::VisibilityBuffer vis;
-    vis.resize(ctx.context, kW, kH);
-    ctx.queue.enqueueWriteBuffer(vis.ids, CL_TRUE, 0, n * 8, ids.data());
-    ctx.queue.enqueueWriteBuffer(vis.bary, CL_TRUE, 0, n * 8, bary.data());
-    rp::render::GBuffer gb;
-    gb.resize(ctx.context, kW, kH);
-    rp::cl::Profiler profiler(ctx.queue);
-    rp::passes::GBufferPass pass(ctx, rp::test::programs());
-    pass.run(profiler, scene, vis, gb, RP_TEXTURE_FILTER_BILINEAR);
+    const rp::render::GBuffer gb = resolve(scene, ids, bary, kW, kH);
     const auto normal_depth = read<float>(gb.normal_depth, n * 4);
 
     // The path tracer's rule in world space: n, t through the model's rotation (the scale
