@@ -71,16 +71,28 @@ Images from_truth(const std::string& name, const truth::PathTracedImage& t) {
   return {name, t.combined, t.direct, t.indirect, t.albedo, t.specular};
 }
 
-Images render_mode(const CommonOptions& common, const std::string& name, render::Quality quality,
-                   uint32_t bounces, bool taa, uint32_t w, uint32_t h, uint32_t frames,
-                   std::vector<uint8_t>& final_rgba, const FrameFn& frame_fn,
-                   const scene::SceneAssets* assets) {
+namespace {
+
+// The options a measured render runs with: the user's device and scene settings, the given
+// quality, bounces and TAA, the final view, no bloom or motion blur.
+CommonOptions measured_options(const CommonOptions& common, render::Quality quality,
+                               uint32_t bounces, bool taa) {
   CommonOptions c = common;
   c.render.quality = quality;
   c.render.bounces = bounces;
   c.view = {};
   c.render.effects.bloom = c.render.effects.motion_blur = false;
   c.render.effects.taa = taa;
+  return c;
+}
+
+}  // namespace
+
+Images render_mode(const CommonOptions& common, const std::string& name, render::Quality quality,
+                   uint32_t bounces, bool taa, uint32_t w, uint32_t h, uint32_t frames,
+                   std::vector<uint8_t>& final_rgba, const FrameFn& frame_fn,
+                   const scene::SceneAssets* assets) {
+  CommonOptions c = measured_options(common, quality, bounces, taa);
   // The light pass's terms are compared at the output size; only the finished frame with TAA
   // is reconstructed from the render scale (--render-scale), as the user would see it.
   if (!taa) c.render.render_scale = 1.0f;
@@ -105,12 +117,8 @@ Images render_jittered_average(const CommonOptions& common, const std::string& n
                                uint32_t bounces, uint32_t w, uint32_t h, uint32_t frames,
                                uint32_t average_frames, const FrameFn& frame_fn,
                                const scene::SceneAssets* assets) {
-  CommonOptions c = common;
-  c.render.quality = render::Quality::kFast;
-  c.render.bounces = bounces;
-  c.view = {};
-  c.render.effects.bloom = c.render.effects.motion_blur = false;
-  c.render.effects.taa = true;  // the jittered projection (Halton, 16 per cycle)
+  // TAA on for its jittered projection (Halton, 16 per cycle); the terms at the output size
+  CommonOptions c = measured_options(common, render::Quality::kFast, bounces, true);
   c.render.render_scale = 1.0f;
   RenderSession session(c, w, h, false, assets);
   session.set_keep_components(true);

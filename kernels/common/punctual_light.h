@@ -77,8 +77,13 @@ inline float rp_punctual_stored(__global const ShadowViewGpu* V, float lin) {
  * light pass's points lie on the surface seen through the pixel; the voxelizer's anywhere on a
  * voxel's triangles, and its smaller bias darkened the voxels' light (the atrium's indirect
  * bias -16.4 -> -18.8 % with (0.5 + tan(theta) / 2) there too), so it keeps the wider one. */
+#define RP_PUNCTUAL_BIAS_LIGHT_PASS 0.5f       /* texels, plus this x tan(theta) */
+#define RP_PUNCTUAL_BIAS_SLOPE_LIGHT_PASS 0.5f
+#define RP_PUNCTUAL_BIAS_VOXELS 1.5f
+#define RP_PUNCTUAL_BIAS_SLOPE_VOXELS 1.0f
 inline float rp_punctual_bias_texels(float tan_theta, int light_pass) {
-  return light_pass ? 0.5f + 0.5f * tan_theta : 1.5f + tan_theta;
+  return light_pass ? RP_PUNCTUAL_BIAS_LIGHT_PASS + RP_PUNCTUAL_BIAS_SLOPE_LIGHT_PASS * tan_theta
+                    : RP_PUNCTUAL_BIAS_VOXELS + RP_PUNCTUAL_BIAS_SLOPE_VOXELS * tan_theta;
 }
 
 /* 1 where texel (tx, ty) of view V (clamped to the map) is at or beyond stored depth

@@ -41,7 +41,8 @@ inline float8 rp_punctual_view_visibility8(__global const float* shadow,
     lin = cw;
   }
   /* rp_punctual_stored of lin - texel rp_punctual_bias_texels(tan_theta, 1) */
-  const float8 biased = lin - texel * (0.5f + 0.5f * tan_theta);
+  const float8 biased =
+      lin - texel * (RP_PUNCTUAL_BIAS_LIGHT_PASS + RP_PUNCTUAL_BIAS_SLOPE_LIGHT_PASS * tan_theta);
   float8 receiver;
   if (V->depth.z != 0.0f) {
     receiver = (biased - near) / (far - near);
