@@ -66,7 +66,8 @@ __kernel void bounce_gather(__global const float4* voxels, __global float4* boun
   const float3 n = (float3)(axis == 0u ? sign : 0.0f, axis == 1u ? sign : 0.0f,
                             axis == 2u ? sign : 0.0f);
   float3 t, b;
-  rp_cone_basis(n, &t, &b);
+  rp_cone_sky_basis(constants, n, &t, &b);
+  const RpSkyCells sky_cells = rp_sky_cells(constants, n);
   const uint h = rp_hash_u32(gid ^ 0x68bc21ebu);
   const float u_pos = rp_hash_to_unit(rp_hash_u32(h ^ frame));
   const float u_level = rp_hash_to_unit(rp_hash_u32(h + 0x9e3779b9u * (frame + 1u)));
@@ -76,9 +77,9 @@ __kernel void bounce_gather(__global const float4* voxels, __global float4* boun
       const float up = u_pos + 0.618034f * (float)k, ul = u_level + 0.754877666f * (float)k;
       const float3 dir = rp_cone_set16_dir(n, t, b, k);
       sum += rp_sky_behind_diffuse_cone(constants, sky,
-                                rp_cone_trace_coarse(voxels, resolution, levels, origin, dir,
-                                                     up - floor(up), ul - floor(ul)),
-                                dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE_COARSE);
+                                        rp_cone_trace_coarse(voxels, resolution, levels, origin,
+                                                             dir, up - floor(up), ul - floor(ul)),
+                                        sky_cells, k, RP_CONE_OPAQUE_COARSE);
     }
     bounce[gid] = (float4)(sum * (1.0f / (float)RP_CONE_SET_SIZE), 1.0f);
     return;
@@ -87,7 +88,7 @@ __kernel void bounce_gather(__global const float4* voxels, __global float4* boun
   const float3 dir = rp_cone_set16_dir(n, t, b, k);
   const float3 s = rp_sky_behind_diffuse_cone(
       constants, sky, rp_cone_trace_coarse(voxels, resolution, levels, origin, dir, u_pos, u_level),
-      dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE_COARSE);
+      sky_cells, k, RP_CONE_OPAQUE_COARSE);
   const float4 old = bounce[gid];
   const float age = old.w;
   const float alpha = fmax(1.0f / (age + 1.0f), RP_BOUNCE_ALPHA);

@@ -99,24 +99,24 @@
 #define RP_INDIRECT_SPEC_ALPHA 0.1f
 #endif
 
-/* Radiance of one cone of the set from sample (i, j)'s surface point p (normal n) in frame f,
- * with the block's position and level jitters. */
+/* Radiance of cone k of the set from sample (i, j)'s surface point p (normal n, basis t, b, sky
+ * table row `cells`) in frame f, with the block's position and level jitters. */
 inline float3 indirect_cone(__global const FrameConstants* frame, __global const float4* sky,
                             __global const float4* voxels, uint voxel_resolution,
-                            uint voxel_levels, float3 p, float3 n, float3 dir, uint i, uint j,
-                            uint f) {
+                            uint voxel_levels, float3 p, float3 n, float3 t, float3 b,
+                            RpSkyCells cells, uint k, uint i, uint j, uint f) {
+  const float3 dir = rp_cone_set16_dir(n, t, b, k);
 #if RP_INDIRECT_COARSE
   const float4 cone = rp_cone_trace_coarse(voxels, voxel_resolution, voxel_levels,
                                            rp_cone_apex(p, n, voxel_resolution), dir,
                                            rp_indirect_position_jitter(i, j, f),
                                            rp_indirect_level_jitter(i, j, f));
-  return rp_sky_behind_diffuse_cone(frame, sky, cone, dir, RP_SKY_DIFFUSE_TAN,
-                                    RP_CONE_OPAQUE_COARSE);
+  return rp_sky_behind_diffuse_cone(frame, sky, cone, cells, k, RP_CONE_OPAQUE_COARSE);
 #else
   const float4 cone = rp_cone_trace_jittered(voxels, voxel_resolution, voxel_levels,
                                              rp_cone_apex(p, n, voxel_resolution), dir,
                                              rp_indirect_level_jitter(i, j, f));
-  return rp_sky_behind_diffuse_cone(frame, sky, cone, dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE);
+  return rp_sky_behind_diffuse_cone(frame, sky, cone, cells, k, RP_CONE_OPAQUE);
 #endif
 }
 
@@ -156,17 +156,18 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
     n = nd.xyz;
     depth = nd.w;
     float3 t, b;
-    rp_cone_basis(n, &t, &b);
+    rp_cone_sky_basis(frame, n, &t, &b);
+    const RpSkyCells cells = rp_sky_cells(frame, n);
 #if RP_INDIRECT_WARM_START
     /* No history yet (first frame, reset, camera cut, resize): every cone of the set, so the
      * first frame shows the whole estimate instead of one cone per block. */
     for (uint k = 0u; k < 16u; ++k)
-      c += indirect_cone(frame, sky, voxels, voxel_resolution, voxel_levels, p, n,
-                         rp_cone_set16_dir(n, t, b, k), i, j, f);
+      c += indirect_cone(frame, sky, voxels, voxel_resolution, voxel_levels, p, n, t, b, cells,
+                         k, i, j, f);
     c *= 1.0f / 16.0f;
 #else
-    c = indirect_cone(frame, sky, voxels, voxel_resolution, voxel_levels, p, n,
-                      rp_cone_set16_dir(n, t, b, rp_indirect_cone_index(i, j, f)), i, j, f);
+    c = indirect_cone(frame, sky, voxels, voxel_resolution, voxel_levels, p, n, t, b, cells,
+                      rp_indirect_cone_index(i, j, f), i, j, f);
 #endif
     c *= 1.0f - rp_cone_near_occlusion(voxels, voxel_resolution, voxel_levels, p, n);
     d = dot(n, p);

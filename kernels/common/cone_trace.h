@@ -556,6 +556,27 @@ inline void rp_cone_basis(float3 n, float3* t, float3* b) {
   *b = (float3)(c, sign + n.y * n.y * a, -n.y);
 }
 
+/* The diffuse set's basis for unit n in a frame with an environment whose diffuse light the
+ * cones carry: in the map's frame t = normalize(RP_SKY_BASIS_AXIS x n), b = n x t, turned back
+ * into the world, so each cone's cell lies in the map where the sky table's does
+ * (common/sky.h: rp_sky_cells) whatever the turn. Unlike rp_cone_basis it is continuous except
+ * at n = +-RP_SKY_BASIS_AXIS (no scene's axis), so neighbouring normals of the table have
+ * neighbouring cells and the table can be interpolated. Otherwise rp_cone_basis(n). */
+inline void rp_cone_sky_basis(__global const FrameConstants* restrict frame, float3 n,
+                              float3* t, float3* b) {
+  if (frame->sky.diffuse_cones == 0u) {
+    rp_cone_basis(n, t, b);
+    return;
+  }
+  const float4 turn = frame->sky.turn;
+  const float3 m = rp_sky_to_map(turn, n);
+  float3 c = cross(RP_SKY_BASIS_AXIS, m);
+  if (dot(c, c) < 1e-12f) c = cross((float3)(1.0f, 0.0f, 0.0f), m);
+  const float3 tm = normalize(c);
+  *t = rp_sky_from_map(turn, tm);
+  *b = rp_sky_from_map(turn, cross(m, tm));
+}
+
 /* The 16 cone directions of the diffuse set in the local frame (t, b, n) (see the header):
  * x along t, y along b, z along n. */
 __constant float4 RP_CONE_SET16[RP_CONE_SET_SIZE] = {
@@ -630,14 +651,16 @@ inline float3 rp_cone_diffuse16(__global const FrameConstants* restrict frame,
                                 __global const float4* voxels, uint resolution, uint levels,
                                 float3 p, float3 n) {
   float3 t, b;
-  rp_cone_basis(n, &t, &b);
+  rp_cone_sky_basis(frame, n, &t, &b);
+  const RpSkyCells cells = rp_sky_cells(frame, n);
   const float3 o = rp_cone_apex(p, n, resolution);
   float3 sum = (float3)(0.0f);
 #pragma unroll
   for (uint k = 0; k < RP_CONE_SET_SIZE; ++k) {
     const float3 dir = rp_cone_set16_dir(n, t, b, k);
-    sum += rp_sky_behind_diffuse_cone(frame, sky,
-                                      rp_cone_trace_fine(voxels, resolution, levels, o, dir), dir, RP_SKY_DIFFUSE_TAN, RP_CONE_OPAQUE);
+    sum += rp_sky_behind_diffuse_cone(
+        frame, sky, rp_cone_trace_fine(voxels, resolution, levels, o, dir), cells, k,
+        RP_CONE_OPAQUE);
   }
   return sum * ((1.0f - rp_cone_near_occlusion(voxels, resolution, levels, p, n)) /
                 (float)RP_CONE_SET_SIZE);

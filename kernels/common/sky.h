@@ -1,6 +1,7 @@
 /* The environment light in the real-time modes (OpenCL C only): radiance from a direction,
- * prefiltered for a cone's aperture, read from the mip chain that FrameConstants.sky describes
- * (shared/types.h: SkyGpu; host: src/render/sky_texture.h).
+ * prefiltered for a cone's aperture, read from the mip chain that FrameConstants.sky describes,
+ * and the diffuse cones' sky from the table after it (shared/types.h: SkyGpu; host:
+ * src/render/sky_texture.h, src/render/sky_cells.h).
  *
  * Prefilter: the map's mip chain, each level the solid-angle weighted 2x2 mean of the one
  * below, sampled bilinearly (u wraps, v clamps) and linearly between the two levels whose
@@ -8,29 +9,32 @@
  * level-0 texel being pi / height radians tall. SH of 9 or 25 coefficients would ring around
  * a bright sun and cannot follow the narrow specular cones; the chain costs 4/3 of the map.
  *
- * Through the cones: a cone that ends with occlusion A takes the sky in its direction weighted
- * by what the volume left of it, 1 - A / opaque (clamped to [0, 1]): a cone that stopped at its
- * opacity threshold `opaque` counts as closed, so sky light does not leak through walls by the
- * few per cent a marching cone never accumulates. The diffuse cones read the sky prefiltered
- * for their own aperture (RP_SKY_DIFFUSE_TAN = RP_CONE_TAN_HALF: 16 caps of 21.8 degrees cover
- * 7.2 of the hemisphere's 6.3 sr). A wider prefilter smooths the 16 samples but lets a bright
- * patch of sky leak around what blocks it: measured on gen_load_scene --yard under Blender's
- * eight studio-light maps (bench --accuracy, 128x128), 36.9 degrees gave indirect L1 20-115 %
- * where 21.8 gives 14-65 % (bench/results/zen3-2core-pocl-sky-prt.md).
+ * Through the cones: a cone that ends with occlusion A takes the sky weighted by what the
+ * volume left of it, 1 - A / opaque (clamped to [0, 1]): a cone that stopped at its opacity
+ * threshold `opaque` counts as closed, so sky light does not leak through walls by the few per
+ * cent a marching cone never accumulates. A specular cone reads the chain in its direction,
+ * prefiltered for its aperture. A diffuse cone stands for one 16th of the cosine-weighted
+ * hemisphere, its cell (common/cone_trace.h), and reads the map averaged over that cell with
+ * weight cos theta, from a table made on the host per map for a grid of normals in the map's
+ * frame (shared/types.h: RP_SKY_CELL_SIDE; src/render/sky_cells.h), interpolated. Reading
+ * the chain around the cone's axis instead (a 21.8-degree prefilter) weighted a bright patch
+ * near the horizon with the ring's cosine and let the map's lower half in: 1.96x the
+ * irradiance of studio.exr's residual for an upward normal. Unoccluded, the 16 cells sum to
+ * the irradiance / pi of the map whatever its shape.
  */
 #ifndef ROLYPOLY_COMMON_SKY_H
 #define ROLYPOLY_COMMON_SKY_H
 
 #include "shared/types.h"
 
-/* tan of the half-angle the diffuse cones read the sky with: their own (21.8 degrees). */
-#ifndef RP_SKY_DIFFUSE_TAN
-#define RP_SKY_DIFFUSE_TAN 0.4f
-#endif
-
 /* A world direction in the map's frame (the path tracer's EnvironmentSampler::to_map). */
 inline float3 rp_sky_to_map(float4 turn, float3 d) {
   return (float3)(turn.x * d.x - turn.y * d.z, d.y, turn.y * d.x + turn.x * d.z);
+}
+
+/* The world direction of a direction in the map's frame (rp_sky_to_map's inverse). */
+inline float3 rp_sky_from_map(float4 turn, float3 m) {
+  return (float3)(turn.x * m.x + turn.y * m.z, m.y, turn.x * m.z - turn.y * m.x);
 }
 
 /* Bilinear sample of one level (offset, w x h texels) at map coordinates uv in [0, 1]^2: texel
@@ -96,14 +100,56 @@ inline float3 rp_sky_behind_cone(__global const FrameConstants* restrict frame,
          rp_sky_weight(cone.w, opaque) * rp_sky_radiance(frame, texels, dir, tan_half);
 }
 
-/* The same for a diffuse cone (the lit surfaces' cones, the bounce grid's): no sky where
- * precomputed radiance transfer carries the diffuse sky light instead (SkyGpu.diffuse_cones
- * 0; kernels/prt.cl), so it is not counted twice. */
+/* The axis the diffuse cones' basis turns about with a sky (common/cone_trace.h:
+ * rp_cone_sky_basis; src/render/sky_cells.h): a unit direction no axis-aligned or diagonal
+ * normal is near. */
+#define RP_SKY_BASIS_AXIS ((float3)(0.36f, 0.48f, 0.8f))
+
+/* The four table rows around a world normal and their bilinear weights. */
+typedef struct {
+  uint4 rows;     /* first texel of each row */
+  float4 weight;  /* sums to 1 */
+} RpSkyCells;
+
+/* The rows of the diffuse cones' table for world normal n (unit): the four grid normals around
+ * it in the octahedral grid of the map's frame (shared/types.h), weighted bilinearly. */
+inline RpSkyCells rp_sky_cells(__global const FrameConstants* restrict frame, float3 n) {
+  __global const SkyGpu* sky = &frame->sky;
+  RpSkyCells c;
+  if (sky->diffuse_cones == 0u) { /* not read (rp_sky_behind_diffuse_cone) */
+    c.rows = (uint4)(0u);
+    c.weight = (float4)(0.0f);
+    return c;
+  }
+  const float3 m = rp_sky_to_map(sky->turn, n);
+  float2 p = m.xy * (1.0f / (fabs(m.x) + fabs(m.y) + fabs(m.z)));
+  if (m.z < 0.0f)
+    p = (1.0f - fabs(p.yx)) * (float2)(copysign(1.0f, p.x), copysign(1.0f, p.y));
+  const float last = (float)(RP_SKY_CELL_SIDE - 1u);
+  const float2 g = clamp((p + 1.0f) * (0.5f * last), 0.0f, last);
+  const float2 g0 = fmin(floor(g), last - 1.0f);
+  const float2 f = g - g0;
+  const uint i = (uint)g0.x, j = (uint)g0.y;
+  const uint r = sky->cell_offset + 16u * (j * RP_SKY_CELL_SIDE + i);
+  c.rows = (uint4)(r, r + 16u, r + 16u * RP_SKY_CELL_SIDE, r + 16u * (RP_SKY_CELL_SIDE + 1u));
+  c.weight = (float4)((1.0f - f.x) * (1.0f - f.y), f.x * (1.0f - f.y), (1.0f - f.x) * f.y,
+                      f.x * f.y);
+  return c;
+}
+
+/* A diffuse cone's result (radiance, occlusion) with the sky of its cell added: cone k of the
+ * set whose table rows `cells` (rp_sky_cells) hold. Nothing where precomputed radiance
+ * transfer carries the diffuse sky light instead (SkyGpu.diffuse_cones 0; kernels/prt.cl), so
+ * it is not counted twice. */
 inline float3 rp_sky_behind_diffuse_cone(__global const FrameConstants* restrict frame,
                                          __global const float4* restrict texels, float4 cone,
-                                         float3 dir, float tan_half, float opaque) {
+                                         RpSkyCells cells, uint k, float opaque) {
   if (frame->sky.diffuse_cones == 0u) return cone.xyz;
-  return rp_sky_behind_cone(frame, texels, cone, dir, tan_half, opaque);
+  const float3 s = cells.weight.x * texels[cells.rows.x + k].xyz +
+                   cells.weight.y * texels[cells.rows.y + k].xyz +
+                   cells.weight.z * texels[cells.rows.z + k].xyz +
+                   cells.weight.w * texels[cells.rows.w + k].xyz;
+  return cone.xyz + rp_sky_weight(cone.w, opaque) * frame->sky.turn.z * s;
 }
 
 #endif

@@ -80,11 +80,19 @@ typedef struct {
  * by (x, z) -> (c x - s z, s x + c z) with (c, s) = turn.xy (the path tracer's rotation);
  * radiance is texel x turn.z (the strength). levels == 0: no environment (black). */
 #define RP_SKY_MAX_LEVELS 12u
+/* The diffuse cones' sky table after the chain, at texel cell_offset: for each normal of an
+ * RP_SKY_CELL_SIDE^2 octahedral grid in the map's frame (row j, column i: the normal whose
+ * octahedral coordinates are (i, j) * 2 / (side - 1) - 1, so the six axes are grid points), 16
+ * texels, the map averaged over each diffuse cone's cell of the cosine-weighted hemisphere
+ * (src/render/sky_cells.h; kernels/common/sky.h: rp_sky_cells). */
+#define RP_SKY_CELL_SIDE 33u
 typedef struct {
   rp_float4 turn;  /* x cos, y sin of the turn about +y, z strength, w unused */
   rp_uint width, height, levels;
   rp_uint diffuse_cones; /* 1: diffuse cones (and the bounce grid) add the sky; 0: PRT does */
   rp_uint level_offset[RP_SKY_MAX_LEVELS];
+  rp_uint cell_offset;   /* first texel of the diffuse cones' table */
+  rp_uint pad0, pad1, pad2;
 } SkyGpu;
 
 /* 96 bytes. */

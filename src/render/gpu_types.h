@@ -15,7 +15,7 @@ static_assert(sizeof(rp_float4) == 16);
 static_assert(sizeof(rp_mat4) == 64);
 static_assert(sizeof(PunctualLightGpu) == 80);
 static_assert(sizeof(ShadowViewGpu) == 96);
-static_assert(sizeof(SkyGpu) == 32 + 4 * RP_SKY_MAX_LEVELS);
+static_assert(sizeof(SkyGpu) == 48 + 4 * RP_SKY_MAX_LEVELS);
 static_assert(sizeof(FrameConstants) == 6 * 64 + 5 * 16 + 8 * 4 + 4 * 4 +
                                             RP_MAX_PUNCTUAL_LIGHTS * 80 +
                                             RP_MAX_SHADOW_VIEWS * 96 + sizeof(SkyGpu));

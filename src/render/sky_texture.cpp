@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "render/sky_cells.h"
+
 namespace rp::render {
 namespace {
 
@@ -63,15 +65,21 @@ SkyTexture build_sky_texture(const scene::EnvironmentMap& map) {
   out.info.turn = {1.0f, 0.0f, 1.0f, 0.0f};
   out.info.width = uint32_t(level.width);
   out.info.height = uint32_t(level.height);
+  Level cell_source;  // the first level at most kSkyCellMapHeight tall
   for (uint32_t l = 0; l < RP_SKY_MAX_LEVELS; ++l) {
     out.info.level_offset[l] = uint32_t(out.texels.size());
     out.info.levels = l + 1;
     for (size_t t = 0; t < size_t(level.width) * level.height; ++t)
       out.texels.push_back({float(level.rgb[3 * t]), float(level.rgb[3 * t + 1]),
                             float(level.rgb[3 * t + 2]), 0.0f});
+    if (cell_source.height == 0 && level.height <= kSkyCellMapHeight) cell_source = level;
     if (level.height == 1) break;
     level = halve(level);
   }
+  out.info.cell_offset = uint32_t(out.texels.size());
+  const std::vector<gpu::rp_float4> cells =
+      sky_cell_table({cell_source.width, cell_source.height, cell_source.rgb.data()});
+  out.texels.insert(out.texels.end(), cells.begin(), cells.end());
   return out;
 }
 
@@ -97,7 +105,7 @@ uint64_t sky_texel_count(int width, int height) {
     w = std::max(w / 2, 1);
     h = std::max(h / 2, 1);
   }
-  return texels;
+  return texels + uint64_t(RP_SKY_CELL_SIDE) * RP_SKY_CELL_SIDE * 16u;
 }
 
 gpu::SkyGpu sky_record(const gpu::SkyGpu& levels, const scene::Environment& environment) {

@@ -18,6 +18,7 @@
 #include "cl/error.h"
 #include "cl/program_cache.h"
 #include "render/gpu_types.h"
+#include "render/sky_cells.h"
 #include "render/sky_texture.h"
 #include "support/cl_fixture.h"
 #include "truth/environment.h"
@@ -33,6 +34,15 @@ __kernel void sky_test_radiance(__global const FrameConstants* frame,
                                 __global float4* out) {
   const size_t i = get_global_id(0);
   out[i] = (float4)(rp_sky_radiance(frame, sky, dirs[i].xyz, dirs[i].w), 0.0f);
+}
+/* rows[i], weights[i]: the cones' table rows rp_sky_cells interpolates for normals[i] */
+__kernel void sky_test_cells(__global const FrameConstants* frame,
+                             __global const float4* normals, __global uint4* rows,
+                             __global float4* weights) {
+  const size_t i = get_global_id(0);
+  const RpSkyCells c = rp_sky_cells(frame, normals[i].xyz);
+  rows[i] = c.rows;
+  weights[i] = c.weight;
 }
 )CLC";
 
@@ -109,7 +119,9 @@ TEST(SkyTexture, EveryLevelKeepsTheMapsIntegralOverTheSphere) {
   ASSERT_EQ(t.info.levels, 6u);  // 64x32 .. 2x1
   EXPECT_EQ(t.info.width, 64u);
   EXPECT_EQ(t.info.height, 32u);
-  EXPECT_EQ(t.texels.size(), size_t(64 * 32 + 32 * 16 + 16 * 8 + 8 * 4 + 4 * 2 + 2 * 1));
+  const size_t chain = 64 * 32 + 32 * 16 + 16 * 8 + 8 * 4 + 4 * 2 + 2 * 1;
+  EXPECT_EQ(t.info.cell_offset, chain);  // the cones' table follows the chain
+  EXPECT_EQ(t.texels.size(), chain + RP_SKY_CELL_SIDE * RP_SKY_CELL_SIDE * 16);
   const glm::dvec3 base = integral(t, 0);
   for (uint32_t l = 1; l < t.info.levels; ++l)
     for (int c = 0; c < 3; ++c)
@@ -209,4 +221,187 @@ TEST(SkyLookup, NoEnvironmentIsBlack) {
   EXPECT_EQ(got[0], glm::vec3(0.0f));
 }
 
+// The cones' cells (render/sky_cells.h): in the disk of r = sin theta, where the cosine-weighted
+// measure is uniform, each cell holds 1/16, and each cone's axis lies in its own cell.
+TEST(SkyCells, EachConeOwnsASixteenthOfTheCosineWeightedHemisphere) {
+  constexpr int kSteps = 400;  // midpoints of a kSteps^2 grid in (r^2, azimuth)
+  std::vector<int> count(16, 0);
+  for (int a = 0; a < kSteps; ++a)
+    for (int r = 0; r < kSteps; ++r) {
+      const double r2 = (r + 0.5) / kSteps, phi = 2.0 * kPi * (a + 0.5) / kSteps;
+      const int k = rp::render::sky_cone_cell(
+          {std::sqrt(r2) * std::cos(phi), std::sqrt(r2) * std::sin(phi), std::sqrt(1.0 - r2)});
+      ASSERT_GE(k, 0);
+      ++count[size_t(k)];
+    }
+  for (int k = 0; k < 16; ++k) EXPECT_NEAR(count[size_t(k)], kSteps * kSteps / 16, kSteps) << k;
+  EXPECT_EQ(rp::render::sky_cone_cell({0.6, 0.0, -0.8}), -1);  // below the horizon
+  // the axes of kernels/common/cone_trace.h's RP_CONE_SET16
+  EXPECT_EQ(rp::render::sky_cone_cell({0.0, 0.0, 1.0}), 0);
+  for (int k = 1; k < 16; ++k) {
+    const bool inner = k <= 5;
+    const double s2 = inner ? 3.5 / 16.0 : 11.0 / 16.0;
+    const double az = (inner ? 72.0 * (k - 1) : 18.0 + 36.0 * (k - 6)) * kPi / 180.0;
+    EXPECT_EQ(rp::render::sky_cone_cell({std::sqrt(s2) * std::cos(az), std::sqrt(s2) * std::sin(az),
+                                         std::sqrt(1.0 - s2)}),
+              k);
+  }
+}
+
+// The grid's normals are unit, the six axes among them, and its basis is right-handed.
+TEST(SkyCells, GridHoldsTheAxes) {
+  const int side = int(RP_SKY_CELL_SIDE), mid = side / 2;
+  EXPECT_EQ(rp::render::sky_cell_normal(mid, mid), glm::dvec3(0, 0, 1));
+  EXPECT_EQ(rp::render::sky_cell_normal(side - 1, mid), glm::dvec3(1, 0, 0));
+  EXPECT_EQ(rp::render::sky_cell_normal(0, mid), glm::dvec3(-1, 0, 0));
+  EXPECT_EQ(rp::render::sky_cell_normal(mid, side - 1), glm::dvec3(0, 1, 0));
+  EXPECT_EQ(rp::render::sky_cell_normal(mid, 0), glm::dvec3(0, -1, 0));
+  EXPECT_EQ(rp::render::sky_cell_normal(0, 0), glm::dvec3(0, 0, -1));
+  for (int j = 0; j < side; j += 5)
+    for (int i = 0; i < side; i += 3) {
+      const glm::dvec3 n = rp::render::sky_cell_normal(i, j);
+      glm::dvec3 t, b;
+      rp::render::sky_cell_basis(n, t, b);
+      EXPECT_NEAR(glm::length(n), 1.0, 1e-12);
+      EXPECT_NEAR(glm::dot(glm::cross(t, b), n), 1.0, 1e-12) << i << " " << j;
+    }
+}
+
+// A constant map gives its radiance in every cell of every normal.
+TEST(SkyCells, ConstantMapIsConstant) {
+  std::vector<double> rgb;
+  for (int i = 0; i < 64 * 32; ++i) rgb.insert(rgb.end(), {0.5, 1.0, 2.0});
+  for (const rp::gpu::rp_float4& c : rp::render::sky_cell_table({64, 32, rgb.data()})) {
+    EXPECT_FLOAT_EQ(c.x, 0.5f);
+    EXPECT_FLOAT_EQ(c.y, 1.0f);
+    EXPECT_FLOAT_EQ(c.z, 2.0f);
+  }
+}
+
+// Each entry is the map's mean over its cell with weight cos theta: against the same map
+// integrated over the cell's own parametrisation (stratified in r^2 and azimuth, where the
+// weight is uniform; nearest texel), for normals across the grid, on a smooth sky (red, blue:
+// within 2 %) with a bright patch (green). The table decides by texel centres (128 x 64 texels
+// of 2.8 degrees), so where a cell's border cuts the patch its entry may miss or gain part of a
+// texel column: green within 20 % per cell and 3 % on average.
+TEST(SkyCells, EachEntryIsItsCellsCosineWeightedMean) {
+  const int w = 128, h = 64;
+  std::vector<double> rgb;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double v = 1.0 + 0.5 * std::cos(2.0 * kPi * x / w) + double(y) / h;
+      const bool patch = y >= 20 && y < 30 && x >= 40 && x < 52;
+      rgb.insert(rgb.end(), {v, patch ? 30.0 : v, 2.0 * v});
+    }
+  const std::vector<rp::gpu::rp_float4> table = rp::render::sky_cell_table({w, h, rgb.data()});
+  const int side = int(RP_SKY_CELL_SIDE);
+  double green_error = 0.0;
+  int entries = 0;
+  for (int j = 1; j < side; j += 4)
+    for (int i = 0; i < side; i += 4) {
+      const glm::dvec3 n = rp::render::sky_cell_normal(i, j);
+      glm::dvec3 t, b;
+      rp::render::sky_cell_basis(n, t, b);
+      for (int k = 0; k < 16; ++k) {
+        // the cell's (r^2, azimuth degrees) range
+        const double r0 = k == 0 ? 0.0 : k <= 5 ? 1.0 / 16.0 : 6.0 / 16.0;
+        const double r1 = k == 0 ? 1.0 / 16.0 : k <= 5 ? 6.0 / 16.0 : 1.0;
+        const double a0 = k == 0 ? 0.0 : k <= 5 ? 72.0 * (k - 1) - 36.0 : 36.0 * (k - 6);
+        const double a1 = k == 0 ? 360.0 : k <= 5 ? a0 + 72.0 : a0 + 36.0;
+        glm::dvec3 sum(0.0);
+        constexpr int kSteps = 60;
+        for (int a = 0; a < kSteps; ++a)
+          for (int r = 0; r < kSteps; ++r) {
+            const double r2 = r0 + (r1 - r0) * (r + 0.5) / kSteps;
+            const double phi = (a0 + (a1 - a0) * (a + 0.5) / kSteps) * kPi / 180.0;
+            const glm::dvec3 d = std::sqrt(r2) * std::cos(phi) * t +
+                                 std::sqrt(r2) * std::sin(phi) * b + std::sqrt(1.0 - r2) * n;
+            double u = std::atan2(d.x, -d.z) / (2.0 * kPi);
+            if (u < 0.0) u += 1.0;
+            const int x = std::min(int(u * w), w - 1);
+            const int y = std::min(int(std::acos(std::clamp(d.y, -1.0, 1.0)) / kPi * h), h - 1);
+            const size_t texel = (size_t(y) * w + x) * 3;
+            sum += glm::dvec3(rgb[texel], rgb[texel + 1], rgb[texel + 2]);
+          }
+        const glm::dvec3 want = sum / double(kSteps * kSteps);
+        const rp::gpu::rp_float4& got = table[(size_t(j) * side + i) * 16 + size_t(k)];
+        EXPECT_NEAR(got.x, want.x, 0.02 * want.x) << i << " " << j << " cone " << k;
+        EXPECT_NEAR(got.y, want.y, 0.2 * want.y) << i << " " << j << " cone " << k;
+        EXPECT_NEAR(got.z, want.z, 0.02 * want.z) << i << " " << j << " cone " << k;
+        green_error += std::fabs(got.y / want.y - 1.0);
+        ++entries;
+      }
+    }
+  EXPECT_LT(green_error / entries, 0.03);
+}
+
+// The kernels interpolate the table's rows around a world normal, through the turn: each grid
+// normal turned into the world reads its own row (or, on the octahedron's folded edges, a row
+// whose normal is the same) with weight 1, and any normal reads grid normals within 15 degrees
+// (a grid cell's diagonal) with weights that sum to 1 and whose blend lies within 1.5 degrees.
+TEST(SkyCells, KernelInterpolatesTheGridNormalsAroundForEveryTurn) {
+  const int side = int(RP_SKY_CELL_SIDE);
+  std::mt19937 rng(12);
+  std::normal_distribution<float> g;
+  for (const double turn : {0.0, 33.0, 250.0}) {
+    rp::gpu::SkyGpu info{};
+    info.turn = {float(std::cos(turn * kPi / 180.0)), float(std::sin(turn * kPi / 180.0)), 1.0f,
+                 0.0f};
+    info.cell_offset = 100;
+    info.diffuse_cones = 1;
+    const double c = info.turn.x, s = info.turn.y;
+    std::vector<glm::vec4> normals;
+    for (int j = 0; j < side; ++j)
+      for (int i = 0; i < side; ++i) {
+        const glm::dvec3 m = rp::render::sky_cell_normal(i, j);
+        normals.emplace_back(glm::vec3(c * m.x + s * m.z, m.y, c * m.z - s * m.x), 0.0f);
+      }
+    const size_t grid = normals.size();
+    for (int k = 0; k < 500; ++k)
+      normals.emplace_back(glm::normalize(glm::vec3(g(rng), g(rng), g(rng))), 0.0f);
+    auto& ctx = rp::test::context();
+    rp::gpu::FrameConstants frame{};
+    frame.sky = info;
+    const size_t n = normals.size();
+    ::cl::Buffer frame_buf(ctx.context, CL_MEM_READ_ONLY, sizeof frame);
+    ctx.queue.enqueueWriteBuffer(frame_buf, CL_TRUE, 0, sizeof frame, &frame);
+    ::cl::Buffer in(ctx.context, CL_MEM_READ_ONLY, n * 16);
+    ctx.queue.enqueueWriteBuffer(in, CL_TRUE, 0, n * 16, normals.data());
+    ::cl::Buffer rows_buf(ctx.context, CL_MEM_WRITE_ONLY, n * 16);
+    ::cl::Buffer weights_buf(ctx.context, CL_MEM_WRITE_ONLY, n * 16);
+    ::cl::Kernel kernel(test_program(), "sky_test_cells");
+    kernel.setArg(0, frame_buf);
+    kernel.setArg(1, in);
+    kernel.setArg(2, rows_buf);
+    kernel.setArg(3, weights_buf);
+    ctx.queue.enqueueNDRangeKernel(kernel, ::cl::NullRange, ::cl::NDRange(n));
+    std::vector<glm::uvec4> rows(n);
+    std::vector<glm::vec4> weights(n);
+    ctx.queue.enqueueReadBuffer(rows_buf, CL_TRUE, 0, n * 16, rows.data());
+    ctx.queue.enqueueReadBuffer(weights_buf, CL_TRUE, 0, n * 16, weights.data());
+    for (size_t q = 0; q < n; ++q) {
+      const glm::dvec3 want(glm::vec3(normals[q]));
+      EXPECT_NEAR(weights[q].x + weights[q].y + weights[q].z + weights[q].w, 1.0f, 1e-6f);
+      glm::dvec3 blend(0.0);
+      for (int r = 0; r < 4; ++r) {
+        ASSERT_GE(rows[q][r], 100u);
+        ASSERT_EQ((rows[q][r] - 100u) % 16u, 0u);
+        const uint32_t cell = (rows[q][r] - 100u) / 16u;
+        ASSERT_LT(cell, uint32_t(side * side));
+        EXPECT_GE(weights[q][r], 0.0f);
+        if (weights[q][r] < 1e-6f) continue;
+        const glm::dvec3 m = rp::render::sky_cell_normal(int(cell % side), int(cell / side));
+        const glm::dvec3 picked(c * m.x + s * m.z, m.y, c * m.z - s * m.x);
+        blend += double(weights[q][r]) * picked;
+        if (q < grid) {
+          EXPECT_NEAR(weights[q][r], 1.0f, 1e-5f) << "grid normal " << q << " turn " << turn;
+          EXPECT_NEAR(glm::dot(picked, want), 1.0, 1e-6) << "grid normal " << q;
+        } else {
+          EXPECT_GT(glm::dot(picked, want), std::cos(15.0 * kPi / 180.0)) << "normal " << q;
+        }
+      }
+      EXPECT_GT(glm::dot(glm::normalize(blend), want), std::cos(1.5 * kPi / 180.0)) << q;
+    }
+  }
+}
 }  // namespace
