@@ -564,7 +564,7 @@ inline void rp_cone_basis(float3 n, float3* t, float3* b) {
  * neighbouring cells and the table can be interpolated. Otherwise rp_cone_basis(n). */
 inline void rp_cone_sky_basis(__global const FrameConstants* restrict frame, float3 n,
                               float3* t, float3* b) {
-  if (frame->sky.diffuse_cones == 0u) {
+  if (!RP_SKY_DIFFUSE_CONES || frame->sky.diffuse_cones == 0u) {
     rp_cone_basis(n, t, b);
     return;
   }

@@ -27,6 +27,15 @@
 
 #include "shared/types.h"
 
+/* Built with -DRP_SKY_DIFFUSE_CONES=0 (frames whose diffuse cones carry no sky: the indirect
+ * and bounce passes pick that variant, src/render/sky_texture.h: kNoDiffuseSkyOption), the
+ * diffuse cones' sky code compiles away; otherwise SkyGpu.diffuse_cones decides per frame.
+ * (The runtime test alone cost the busy demo's indirect_trace 0.3-0.5 ms of 8.5-9 at 720x720
+ * on the 2-core Zen 5: PoCL computes both sides of it.) */
+#ifndef RP_SKY_DIFFUSE_CONES
+#define RP_SKY_DIFFUSE_CONES 1
+#endif
+
 /* A world direction in the map's frame (the path tracer's EnvironmentSampler::to_map). */
 inline float3 rp_sky_to_map(float4 turn, float3 d) {
   return (float3)(turn.x * d.x - turn.y * d.z, d.y, turn.y * d.x + turn.x * d.z);
@@ -116,7 +125,7 @@ typedef struct {
 inline RpSkyCells rp_sky_cells(__global const FrameConstants* restrict frame, float3 n) {
   __global const SkyGpu* sky = &frame->sky;
   RpSkyCells c;
-  if (sky->diffuse_cones == 0u) { /* not read (rp_sky_behind_diffuse_cone) */
+  if (!RP_SKY_DIFFUSE_CONES || sky->diffuse_cones == 0u) { /* not read */
     c.rows = (uint4)(0u);
     c.weight = (float4)(0.0f);
     return c;
@@ -144,7 +153,7 @@ inline RpSkyCells rp_sky_cells(__global const FrameConstants* restrict frame, fl
 inline float3 rp_sky_behind_diffuse_cone(__global const FrameConstants* restrict frame,
                                          __global const float4* restrict texels, float4 cone,
                                          RpSkyCells cells, uint k, float opaque) {
-  if (frame->sky.diffuse_cones == 0u) return cone.xyz;
+  if (!RP_SKY_DIFFUSE_CONES || frame->sky.diffuse_cones == 0u) return cone.xyz;
   const float3 s = cells.weight.x * texels[cells.rows.x + k].xyz +
                    cells.weight.y * texels[cells.rows.y + k].xyz +
                    cells.weight.z * texels[cells.rows.z + k].xyz +

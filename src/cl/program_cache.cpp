@@ -12,6 +12,16 @@
 #include "cl/error.h"
 
 namespace rp::cl {
+
+std::string join_options(std::initializer_list<std::string_view> parts) {
+  std::string out;
+  for (const std::string_view part : parts) {
+    if (part.empty()) continue;
+    if (!out.empty()) out += ' ';
+    out += part;
+  }
+  return out;
+}
 namespace {
 
 std::string read_file(const std::string& file) {

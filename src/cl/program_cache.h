@@ -1,6 +1,7 @@
 // Builds the embedded kernel files once per (device, file, options) and hands out kernels.
 #pragma once
 
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <string_view>
@@ -22,6 +23,9 @@ const std::map<std::string, std::string_view>& embedded_kernel_files();
 // copy when that is set (developer option: edit kernels without rebuilding).
 // Throws rp::cl::Error for an unknown file or a missing include.
 std::string kernel_source(const std::string& file);
+
+// Build options joined by single spaces, empty parts left out.
+std::string join_options(std::initializer_list<std::string_view> parts);
 
 class ProgramCache {
  public:

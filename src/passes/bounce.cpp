@@ -4,6 +4,7 @@
 #include "cl/kernel_args.h"
 #include "passes/pass_names.h"
 #include "render/gpu_types.h"
+#include "render/sky_texture.h"
 
 namespace rp::passes {
 namespace {
@@ -12,7 +13,17 @@ constexpr size_t kGroup = 64;
 
 BouncePass::BouncePass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
                        const std::string& gi_options)
-    : context_(&context), gather_(programs.kernel("bounce.cl", "bounce_gather", gi_options)) {}
+    : context_(&context), programs_(&programs), gi_options_(gi_options) {
+  gather_kernel(false);
+}
+
+::cl::Kernel& BouncePass::gather_kernel(bool sky) {
+  std::optional<::cl::Kernel>& k = gathers_[sky];
+  if (!k)
+    k = programs_->kernel("bounce.cl", "bounce_gather",
+                          rp::cl::join_options({sky ? "" : render::kNoDiffuseSkyOption, gi_options_}));
+  return *k;
+}
 
 void BouncePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
                      const render::VoxelVolume& volume, uint32_t frame, Cones cones) {
@@ -39,9 +50,10 @@ void BouncePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   params.levels = levels;
   params.frame = frame;
   params.cones = cones == Cones::kAll ? 16u : 1u;
-  rp::cl::bind_args(gather_, voxels, grid_, scene.frame, scene.sky, params);
+  ::cl::Kernel& gather = gather_kernel(scene.constants.sky.diffuse_cones != 0);
+  rp::cl::bind_args(gather, voxels, grid_, scene.frame, scene.sky, params);
   const size_t items = cones == Cones::kAll ? faces : faces / 2;  // one cone: half a frame
-  profiler.enqueue(pass_name::kBounce, gather_, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
+  profiler.enqueue(pass_name::kBounce, gather, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
                    ::cl::NDRange(kGroup));
   valid_ = true;
 }

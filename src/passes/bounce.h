@@ -7,6 +7,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
@@ -47,8 +49,14 @@ class BouncePass {
   static uint32_t cells(uint32_t resolution) { return resolution < 16 ? resolution : 16; }
 
  private:
+  // The gather kernel with the diffuse cones' sky code or without (render/sky_texture.h:
+  // kNoDiffuseSkyOption), built on first use (the constructor builds the one without).
+  ::cl::Kernel& gather_kernel(bool sky);
+
   const rp::cl::Context* context_;
-  ::cl::Kernel gather_;
+  rp::cl::ProgramCache* programs_;
+  std::string gi_options_;
+  std::optional<::cl::Kernel> gathers_[2];  // [sky]
   ::cl::Buffer grid_;
   uint32_t resolution_ = 0;  // the volume the grid was made for
   bool valid_ = false;

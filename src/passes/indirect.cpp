@@ -11,6 +11,7 @@
 #include "cl/kernel_args.h"
 #include "passes/light.h"
 #include "passes/pass_names.h"
+#include "render/sky_texture.h"
 
 namespace rp::passes {
 namespace {
@@ -37,13 +38,24 @@ float pixel_scale(const render::GpuScene& scene) {
 IndirectPass::IndirectPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs,
                            const std::string& gi_options)
     : context_(&context),
+      programs_(&programs),
+      gi_options_(gi_options),
       octree_(!gi_options.empty()),
-      trace_(programs.kernel("indirect.cl", "indirect_trace", gi_options)),
-      warm_trace_(programs.kernel("indirect.cl", "indirect_trace",
-                                  "-DRP_INDIRECT_WARM_START=1" +
-                                      (gi_options.empty() ? "" : " " + gi_options))),
-      filter_(programs.kernel("indirect.cl", "indirect_filter", gi_options)),
-      min_z_(programs.kernel("ssr.cl", "ssr_min_z")) {}
+      filter_(programs.kernel("indirect.cl", "indirect_filter",
+                              rp::cl::join_options({render::kNoDiffuseSkyOption, gi_options}))),
+      min_z_(programs.kernel("ssr.cl", "ssr_min_z")) {
+  trace_kernel(false, false);
+  trace_kernel(true, false);
+}
+
+::cl::Kernel& IndirectPass::trace_kernel(bool warm, bool sky) {
+  std::optional<::cl::Kernel>& k = traces_[warm][sky];
+  if (!k)
+    k = programs_->kernel("indirect.cl", "indirect_trace",
+                          rp::cl::join_options({warm ? "-DRP_INDIRECT_WARM_START=1" : "",
+                                        sky ? "" : render::kNoDiffuseSkyOption, gi_options_}));
+  return *k;
+}
 
 uint32_t IndirectPass::ssr_top_level(uint32_t w, uint32_t h) {
   uint32_t top = 0;
@@ -140,7 +152,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
 
   // Without history the block traces the whole cone set (a converged-looking first frame after
   // a start, reset, camera cut or resize, at 16x the trace cost for that one frame).
-  ::cl::Kernel& trace = history_valid_ ? trace_ : warm_trace_;
+  ::cl::Kernel& trace = trace_kernel(!history_valid_, scene.constants.sky.diffuse_cones != 0);
   gpu::LowResPlanes planes{};
   planes.width = lw;
   planes.height = lh;

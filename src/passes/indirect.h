@@ -7,6 +7,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
@@ -100,10 +102,16 @@ class IndirectPass {
  private:
   void resize(uint32_t width, uint32_t height);
 
+  // The trace kernel: all 16 cones per block (warm: no history yet) or one; with the diffuse
+  // cones' sky code (sky) or without (render/sky_texture.h: kNoDiffuseSkyOption). Built on
+  // first use; the constructor builds the two without a sky.
+  ::cl::Kernel& trace_kernel(bool warm, bool sky);
+
   const rp::cl::Context* context_;
+  rp::cl::ProgramCache* programs_;
+  std::string gi_options_;
   bool octree_ = false;  // built with RP_GI_SVO
-  ::cl::Kernel trace_;       // one cone per block (history valid)
-  ::cl::Kernel warm_trace_;  // all 16 cones per block (no history yet)
+  std::optional<::cl::Kernel> traces_[2][2];  // [warm][sky]
   ::cl::Kernel filter_;
   ::cl::Kernel min_z_;               // kernels/ssr.cl
   ::cl::Buffer hiz_;                 // the min-Z pyramid's levels 1 .. top (kernels/common/ssr.h)

@@ -21,6 +21,11 @@ inline constexpr int kSkyMaxWidth = 2048;
 // (about 0.1 s to build for 33 x 33 normals).
 inline constexpr int kSkyCellMapHeight = 64;
 
+// The kernel build option for frames whose diffuse cones carry no sky (kernels/common/sky.h:
+// RP_SKY_DIFFUSE_CONES): the passes that trace diffuse cones build that variant first and the
+// one without it when a frame has a sky (SkyGpu.diffuse_cones).
+inline constexpr const char* kNoDiffuseSkyOption = "-DRP_SKY_DIFFUSE_CONES=0";
+
 struct SkyTexture {
   std::vector<gpu::rp_float4> texels;
   gpu::SkyGpu info{};  // levels and offsets; turn = (1, 0, 1) (no turn, strength 1)
