@@ -11,11 +11,11 @@
  * traced with rp_cone_trace_coarse and per-cell-face jitters.
  *   cones = 16: all of them, their mean replaces the face (the reference mode, and the warm
  *               start after a reset): age 1.
- *   cones = 1:  half the faces a frame (face index parity = frame parity; the work-items
- *               cover 3 G^3 faces), cone (frame / 2 + hash) mod 16, blended into the face as
- *               a running mean for the first 16 gathers (so after 32 frames the face is the
- *               mean of the whole set), then exponentially with weight RP_BOUNCE_ALPHA (the
- *               fast mode).
+ *   cones = 1:  one face in S = RP_BOUNCE_FACE_STRIDE a frame (face index = frame mod S;
+ *               the work-items cover 6 G^3 / S faces), cone (frame / S + hash) mod 16, blended
+ *               into the face as a running mean for the first 16 gathers (so after 16 S
+ *               frames the face is the mean of the whole set), then exponentially with weight
+ *               RP_BOUNCE_ALPHA (the fast mode).
  * Cones that leave the volume bring the sky they let through (common/sky.h), so sky light
  * bounces too.
  * No atomics: bit-identical runs.
@@ -47,9 +47,11 @@ __kernel void bounce_gather(__global const float4* voxels, __global float4* boun
   const uint resolution = params.resolution, levels = params.levels;
   const uint frame = params.frame, cones = params.cones;
   const uint cells = rp_bounce_cells(resolution);
-  /* one cone: half the faces per frame (those of the frame's parity), the other half next */
-  const uint gid = cones >= RP_CONE_SET_SIZE ? (uint)get_global_id(0)
-                                             : 2u * (uint)get_global_id(0) + (frame & 1u);
+  /* one cone: one face in RP_BOUNCE_FACE_STRIDE per frame, the next ones the next frames */
+  const uint gid = cones >= RP_CONE_SET_SIZE
+                       ? (uint)get_global_id(0)
+                       : RP_BOUNCE_FACE_STRIDE * (uint)get_global_id(0) +
+                             frame % RP_BOUNCE_FACE_STRIDE;
   if (gid >= 6u * cells * cells * cells) return;
   const uint cell = gid / 6u, face = gid - 6u * cell;
   const int3 v = (int3)((int)(cell % cells), (int)((cell / cells) % cells),
@@ -84,7 +86,7 @@ __kernel void bounce_gather(__global const float4* voxels, __global float4* boun
     bounce[gid] = (float4)(sum * (1.0f / (float)RP_CONE_SET_SIZE), 1.0f);
     return;
   }
-  const uint k = ((frame >> 1) + h) & (RP_CONE_SET_SIZE - 1u);
+  const uint k = (frame / RP_BOUNCE_FACE_STRIDE + h) & (RP_CONE_SET_SIZE - 1u);
   const float3 dir = rp_cone_set16_dir(n, t, b, k);
   const float3 s = rp_sky_behind_diffuse_cone(
       constants, sky, rp_cone_trace_coarse(voxels, resolution, levels, origin, dir, u_pos, u_level),

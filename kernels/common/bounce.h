@@ -2,13 +2,18 @@
  * the voxelizer can add it to their radiance and the cones gather light that has bounced more
  * than once. Written by kernels/bounce.cl, read by kernels/voxelize.cl (OpenCL C only).
  *
- * Layout: G^3 cells over the box [-1,1]^3 (G = rp_bounce_cells(R): 16, or R when R < 16), cell
+ * Layout: G^3 cells over the box [-1,1]^3 (G = rp_bounce_cells(R): 32 from R = 64 up), cell
  * (i, j, k) centred at -1 + (i + 0.5) 2 / G, x fastest; per cell six float4 "faces" in the
  * order +x, -x, +y, -y, +z, -z (RP_DIR_*): face d holds, for a surface whose normal is d,
  * rgb = irradiance / pi arriving from the hemisphere around d at the cell's centre (the mean
  * of the 16-cone diffuse set, the same quantity the light pass multiplies by the albedo),
  * w = the face's age in gathers (0: nothing gathered, the face does not count).
- * Memory: G^3 * 6 * 16 bytes = 393 KiB for G = 16.
+ * Memory: G^3 * 6 * 16 bytes = 3 MiB for G = 32 (393 KiB for G = 16).
+ *
+ * Why 32: a cell gathers at its centre, so where a cell holds a thin wall its light on one side
+ * reaches the voxels on the other. 16^3 cells over the yard under studio.exr (softboxes behind
+ * its walls) made its many-bounce light 1.8x the truth's (indirect L1 19.9 %, bias +14.4 %);
+ * 32^3: 14.0 %, +2.6 % (bench/results/zen5-2core-pocl-sky-prt-4096.md).
  *
  * Lookup at surface point p with unit normal n (rp_bounce_irradiance): trilinear over the 8
  * cells around p (clamped to the grid) and, per cell, the three faces facing n blended with
@@ -20,10 +25,13 @@
 
 #include "shared/voxel_layout.h"
 
-#define RP_BOUNCE_MAX_CELLS 16u
+#define RP_BOUNCE_MAX_CELLS 32u
 
-/* Cells per side for a voxel volume of R voxels per side. */
-inline uint rp_bounce_cells(uint resolution) { return min(resolution, RP_BOUNCE_MAX_CELLS); }
+/* Cells per side for a voxel volume of R voxels per side: R up to 16, 16 up to R = 32, then
+ * R / 2 up to 32 (src/passes/bounce.h: BouncePass::cells). */
+inline uint rp_bounce_cells(uint resolution) {
+  return resolution <= 32u ? min(resolution, 16u) : min(resolution / 2u, RP_BOUNCE_MAX_CELLS);
+}
 
 /* irradiance / pi at p for unit normal n (see the header); 0 where no face has been gathered. */
 inline float3 rp_bounce_irradiance(__global const float4* bounce, uint cells, float3 p,

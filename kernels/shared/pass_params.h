@@ -121,6 +121,11 @@ typedef struct {
   rp_uint plane, pad0, pad1, pad2;
 } ShadowMipStep;
 
+/* The fast mode's bounce gather (one cone a face) refreshes one face in this many a frame:
+ * a quarter, so that the 32^3 grid (common/bounce.h) costs about what 16^3 cells cost at a
+ * half (busy demo 720x720: bounce pass about 1 ms). */
+#define RP_BOUNCE_FACE_STRIDE 4u
+
 /* bounce_gather (kernels/bounce.cl): the GI volume's level-0 side and levels, the frame
  * index (the cone set's rotation) and the cones gathered per face (1 or 16). 16 bytes. */
 typedef struct {

@@ -52,7 +52,9 @@ void BouncePass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
   params.cones = cones == Cones::kAll ? 16u : 1u;
   ::cl::Kernel& gather = gather_kernel(scene.constants.sky.diffuse_cones != 0);
   rp::cl::bind_args(gather, voxels, grid_, scene.frame, scene.sky, params);
-  const size_t items = cones == Cones::kAll ? faces : faces / 2;  // one cone: half a frame
+  // one cone: one face in RP_BOUNCE_FACE_STRIDE a frame (kernels/bounce.cl)
+  const size_t items =
+      cones == Cones::kAll ? faces : (faces + RP_BOUNCE_FACE_STRIDE - 1) / RP_BOUNCE_FACE_STRIDE;
   profiler.enqueue(pass_name::kBounce, gather, ::cl::NDRange(rp::cl::round_up(items, kGroup)),
                    ::cl::NDRange(kGroup));
   valid_ = true;

@@ -6,6 +6,7 @@
 // new voxel resolution starts it again. Pass name "bounce".
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -46,7 +47,9 @@ class BouncePass {
   void reset() { valid_ = false; }
 
   // Cells per side for a volume of `resolution` voxels per side (kernels/common/bounce.h).
-  static uint32_t cells(uint32_t resolution) { return resolution < 16 ? resolution : 16; }
+  static uint32_t cells(uint32_t resolution) {
+    return resolution <= 32 ? std::min(resolution, 16u) : std::min(resolution / 2, 32u);
+  }
 
  private:
   // The gather kernel with the diffuse cones' sky code or without (render/sky_texture.h:
