@@ -22,6 +22,7 @@ std::string join_options(std::initializer_list<std::string_view> parts) {
   }
   return out;
 }
+
 namespace {
 
 std::string read_file(const std::string& file) {

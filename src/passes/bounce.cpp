@@ -19,9 +19,11 @@ BouncePass::BouncePass(const rp::cl::Context& context, rp::cl::ProgramCache& pro
 
 ::cl::Kernel& BouncePass::gather_kernel(bool sky) {
   std::optional<::cl::Kernel>& k = gathers_[sky];
-  if (!k)
+  if (!k) {
+    const char* sky_option = sky ? "" : render::kNoDiffuseSkyOption;
     k = programs_->kernel("bounce.cl", "bounce_gather",
-                          rp::cl::join_options({sky ? "" : render::kNoDiffuseSkyOption, gi_options_}));
+                          rp::cl::join_options({sky_option, gi_options_}));
+  }
   return *k;
 }
 

@@ -132,6 +132,13 @@ TEST(ProgramCache, BuildsOncePerFileAndOptions) {
 
 // A host call that binds fewer or more values than the kernel takes throws, naming the kernel;
 // the values it binds reach the kernel in order (probe_fill writes (i, 1, 2, 3) below n).
+TEST(ProgramCache, JoinsOptionsLeavingEmptyPartsOut) {
+  EXPECT_EQ(rp::cl::join_options({}), "");
+  EXPECT_EQ(rp::cl::join_options({"", ""}), "");
+  EXPECT_EQ(rp::cl::join_options({"-DA=1", "", "-DB"}), "-DA=1 -DB");
+  EXPECT_EQ(rp::cl::join_options({"", "-DRP_GI_SVO"}), "-DRP_GI_SVO");
+}
+
 TEST(KernelArgs, BindsInOrderAndRefusesAWrongCount) {
   auto& ctx = rp::test::context();
   ::cl::Kernel k = rp::test::programs().kernel("probe.cl", "probe_fill");
