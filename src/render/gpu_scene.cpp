@@ -257,8 +257,7 @@ void GpuScene::update_sky(const scene::Environment& environment) {
     sky_info_ = texture.info;
     sky_seen = sky;
     if (environment.residual) {  // the whole map's level 0 (level_offset[0] is 0)
-      std::vector<gpu::rp_float4> level0 = build_sky_texture(*environment.map).texels;
-      level0.resize(size_t(texture.info.width) * texture.info.height);
+      const std::vector<gpu::rp_float4> level0 = build_sky_level0(*environment.map);
       sky_seen = upload(context_, queue_, level0,
                         "the environment map with its suns (" +
                             std::to_string(texture.info.width) + "x" +

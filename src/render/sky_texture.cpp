@@ -47,9 +47,8 @@ Level halve(const Level& fine) {
   return coarse;
 }
 
-}  // namespace
-
-SkyTexture build_sky_texture(const scene::EnvironmentMap& map) {
+// Level 0 of `map`'s chain: the map, halved down to kSkyMaxWidth.
+Level first_level(const scene::EnvironmentMap& map) {
   if (map.width <= 0 || map.height <= 0 ||
       map.rgb.size() != size_t(map.width) * size_t(map.height) * 3)
     throw std::invalid_argument("sky texture: " + std::to_string(map.rgb.size()) +
@@ -60,6 +59,25 @@ SkyTexture build_sky_texture(const scene::EnvironmentMap& map) {
   level.height = map.height;
   level.rgb.assign(map.rgb.begin(), map.rgb.end());
   while (level.width > kSkyMaxWidth) level = halve(level);
+  return level;
+}
+
+void append_texels(const Level& level, std::vector<gpu::rp_float4>& texels) {
+  for (size_t t = 0; t < size_t(level.width) * level.height; ++t)
+    texels.push_back({float(level.rgb[3 * t]), float(level.rgb[3 * t + 1]),
+                      float(level.rgb[3 * t + 2]), 0.0f});
+}
+
+}  // namespace
+
+std::vector<gpu::rp_float4> build_sky_level0(const scene::EnvironmentMap& map) {
+  std::vector<gpu::rp_float4> texels;
+  append_texels(first_level(map), texels);
+  return texels;
+}
+
+SkyTexture build_sky_texture(const scene::EnvironmentMap& map) {
+  Level level = first_level(map);
 
   SkyTexture out;
   out.info.turn = {1.0f, 0.0f, 1.0f, 0.0f};
@@ -69,9 +87,7 @@ SkyTexture build_sky_texture(const scene::EnvironmentMap& map) {
   for (uint32_t l = 0; l < RP_SKY_MAX_LEVELS; ++l) {
     out.info.level_offset[l] = uint32_t(out.texels.size());
     out.info.levels = l + 1;
-    for (size_t t = 0; t < size_t(level.width) * level.height; ++t)
-      out.texels.push_back({float(level.rgb[3 * t]), float(level.rgb[3 * t + 1]),
-                            float(level.rgb[3 * t + 2]), 0.0f});
+    append_texels(level, out.texels);
     if (cell_source.height == 0 && level.height <= kSkyCellMapHeight) cell_source = level;
     if (level.height == 1) break;
     level = halve(level);

@@ -39,6 +39,10 @@ struct SkyTexture {
 // odd edge), each row weighted by its solid angle (cos theta0 - cos theta1).
 SkyTexture build_sky_texture(const scene::EnvironmentMap& map);
 
+// Level 0 of that chain alone (what the device shows of a map whose suns were taken out of the
+// chain the cones read: GpuScene::sky_seen), without the coarser levels and the cones' table.
+std::vector<gpu::rp_float4> build_sky_level0(const scene::EnvironmentMap& map);
+
 // The texels build_sky_texture makes of a width x height map (what the device holds): the chain
 // and the cones' table.
 uint64_t sky_texel_count(int width, int height);

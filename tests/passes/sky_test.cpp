@@ -136,6 +136,16 @@ TEST(SkyTexture, MapsWiderThanTheCapAreHalvedFirst) {
   EXPECT_EQ(rp::render::sky_texel_count(map->width, map->height), t.texels.size());
 }
 
+// Level 0 alone (the map seen beside a chain without its suns) is the chain's first level.
+TEST(SkyTexture, LevelZeroAloneIsTheChainsFirstLevel) {
+  const auto map = random_map(2 * rp::render::kSkyMaxWidth, rp::render::kSkyMaxWidth / 2, 6);
+  const rp::render::SkyTexture t = rp::render::build_sky_texture(*map);
+  const std::vector<rp::gpu::rp_float4> level0 = rp::render::build_sky_level0(*map);
+  ASSERT_EQ(level0.size(), rp::render::sky_level0_texel_count(map->width, map->height));
+  ASSERT_EQ(level0.size(), size_t(t.info.width) * t.info.height);
+  EXPECT_EQ(std::memcmp(level0.data(), t.texels.data(), level0.size() * 16), 0);
+}
+
 // The memory estimate counts what the chain holds, odd sizes included.
 TEST(SkyTexture, TexelCountIsTheChainsSize) {
   for (const auto& [w, h] : {std::pair{64, 32}, {100, 50}, {6, 3}, {2, 1}}) {
