@@ -18,11 +18,12 @@
  * same surface; the base colour keeps gbuffer_resolve's filtered lookup. Spheres and
  * background are left as they are.
  *
- * One work-item per RP_SPAN pixels of a row (common/span.h: the CPU's vector width, 1 on GPUs):
- * each lane gathers its pixel's triangle, material and interpolated uv, the lanes' maps are
- * sampled together (common/span_texture.h: per-lane textures, wrap folding and taps as vector
- * arithmetic; the same values as one pixel at a time), and the per-pixel results are then
- * written lane by lane.
+ * One work-item per span of RP_SPAN pixels of a row (common/span.h: the CPU's vector width, 1 on
+ * GPUs), a 1D range over the spans in row-major order, as gbuffer_resolve: the span is walked
+ * per distinct (instance, primitive), whose triangle, material, maps and matrices are loaded
+ * once as scalars and interpolated for all lanes as vectors; the lanes' maps are then sampled
+ * together (common/span_texture.h) and the normal and gloss code rebuilt as vector arithmetic.
+ * (A per-lane loop with scalar maths took 40 of the atrium's 57 ms GBuffer pass at 720x720.)
  */
 #include "shared/types.h"
 #include "shared/brdf_layout.h"
@@ -30,32 +31,37 @@
 #include "common/span.h"
 #include "common/span_texture.h"
 
-/* Bilinear sample at level 0 of map index[i] for the lanes with has[i] (srgb: decode the codes;
- * else code / 255) at (u, v): rgb into out[3][RP_SPAN]. */
-inline void gm_sample_lanes(__global const TextureInfo* textures, __global const uint* texels,
-                            const uint* index, const int* has, const float* u, const float* v,
-                            int n, int srgb, float out[3][RP_SPAN]) {
-  float w[RP_SPAN], h[RP_SPAN];
-  uint offset[RP_SPAN], wrap[RP_SPAN];
-  int on[RP_SPAN];
-  for (int i = 0; i < RP_SPAN; ++i) {
-    const bool read = i < n && has[i];
-    __global const TextureInfo* info = textures + (read ? index[i] : 0u);
-    w[i] = read ? (float)info->width : 1.0f;
-    h[i] = read ? (float)info->height : 1.0f;
-    offset[i] = read ? info->offset : 0u;
-    wrap[i] = read ? info->wrap : RP_WRAP_REPEAT;
-    on[i] = read ? -1 : 0;
-  }
-  rp_spanf r, g, b;
-  rp_span_texture_sample_coded(texels, RP_SPAN_FROM_ARRAY(on) != 0, RP_SPAN_FROM_ARRAY(w),
-                               RP_SPAN_FROM_ARRAY(h), RP_SPAN_FROM_ARRAY(offset),
-                               RP_SPAN_FROM_ARRAY(wrap), RP_SPAN_FROM_ARRAY(u),
-                               RP_SPAN_FROM_ARRAY(v), n, srgb, &r, &g, &b);
-  RP_SPAN_TO_ARRAY(r, out[0]);
-  RP_SPAN_TO_ARRAY(g, out[1]);
-  RP_SPAN_TO_ARRAY(b, out[2]);
+/* The lanes' map of one kind (normal, metallic-roughness or emission): which lanes have one,
+ * and its size, first texel and wrap modes per lane (common/span_texture.h's inputs). */
+typedef struct {
+  rp_spani on;
+  rp_spanf w, h;
+  rp_spanu offset, wrap;
+} GmMap;
+
+inline GmMap gm_map_none(void) {
+  GmMap m;
+  m.on = (rp_spani)(0);
+  m.w = m.h = (rp_spanf)(1.0f);
+  m.offset = (rp_spanu)(0u);
+  m.wrap = (rp_spanu)(RP_WRAP_REPEAT);
+  return m;
 }
+
+/* Texture `texture` (RP_TEXTURE_NONE: none) into the lanes of `group`. */
+inline void gm_map_select(GmMap* m, __global const TextureInfo* textures, uint texture,
+                          rp_spani group) {
+  if (texture == RP_TEXTURE_NONE) return;
+  __global const TextureInfo* info = textures + texture;
+  m->on |= group;
+  m->w = select(m->w, (rp_spanf)((float)info->width), group);
+  m->h = select(m->h, (rp_spanf)((float)info->height), group);
+  m->offset = select(m->offset, (rp_spanu)(info->offset), group);
+  m->wrap = select(m->wrap, (rp_spanu)(info->wrap), group);
+}
+
+/* M (columns c[0..2]) * (x, y, z), one row. */
+#define GM_ROW_DIR(m, row, x, y, z) (m.c[0].row * (x) + m.c[1].row * (y) + m.c[2].row * (z))
 
 __kernel void gbuffer_material(__global const FrameConstants* frame,
                                __global const uint* ids,
@@ -67,102 +73,155 @@ __kernel void gbuffer_material(__global const FrameConstants* frame,
                                __global const Material* materials,
                                __global const TextureInfo* textures,
                                __global const uint* texels,
-                               __global float4* normal_depth,
-                               __global float4* emission) {
-  const uint x0 = (uint)get_global_id(0) * RP_SPAN, y = (uint)get_global_id(1);
-  const uint width = frame->width;
-  if (x0 >= width || y >= frame->height) return;
+                               __global float* normal_depth,
+                               __global float* emission) {
+  const uint width = frame->width, height = frame->height;
+  const uint spans_per_row = (width + RP_SPAN - 1) / RP_SPAN;
+  const uint gid = (uint)get_global_id(0);
+  const uint y = gid / spans_per_row, x0 = (gid - y * spans_per_row) * RP_SPAN;
+  if (y >= height) return;
   const int n = (int)min((uint)RP_SPAN, width - x0);
-  /* Per lane: the material, its maps (RP_TEXTURE_NONE: none), uv, the barycentrics. */
-  uint mat_index[RP_SPAN], nm[RP_SPAN], mr[RP_SPAN], em[RP_SPAN];
-  int has_nm[RP_SPAN], has_mr[RP_SPAN], has_em[RP_SPAN];
-  uint tri_x[RP_SPAN], tri_y[RP_SPAN], tri_z[RP_SPAN], inst_index[RP_SPAN];
-  float u[RP_SPAN], v[RP_SPAN], b0_[RP_SPAN], b1_[RP_SPAN], b2_[RP_SPAN];
-  bool any_nm = false, any_mr = false, any_em = false;
-  for (int i = 0; i < RP_SPAN; ++i) {
-    has_nm[i] = has_mr[i] = has_em[i] = 0;
-    nm[i] = mr[i] = em[i] = mat_index[i] = tri_x[i] = tri_y[i] = tri_z[i] = inst_index[i] = 0u;
-    u[i] = v[i] = b0_[i] = b1_[i] = b2_[i] = 0.0f;
-    if (i >= n) continue;
-    const uint pixel = y * width + x0 + (uint)i;
-    const uint a = ids[2 * pixel], p = ids[2 * pixel + 1];
-    if (a >= frame->instance_count || p >= instances[a].triangle_count) continue;
-    const Triangle tri = triangles[instances[a].first_triangle + p];
-    __global const Material* mat = materials + tri.w;
-    nm[i] = mat->normal_texture;
-    mr[i] = mat->metallic_roughness_texture;
-    em[i] = mat->emission_texture;
-    has_nm[i] = nm[i] != RP_TEXTURE_NONE;
-    has_mr[i] = mr[i] != RP_TEXTURE_NONE;
-    has_em[i] = em[i] != RP_TEXTURE_NONE;
-    if (!has_nm[i] && !has_mr[i] && !has_em[i]) continue;
-    any_nm = any_nm || has_nm[i];
-    any_mr = any_mr || has_mr[i];
-    any_em = any_em || has_em[i];
-    mat_index[i] = tri.w;
-    inst_index[i] = a;
-    tri_x[i] = tri.x;
-    tri_y[i] = tri.y;
-    tri_z[i] = tri.z;
-    const float b1 = bary[2 * pixel], b2 = bary[2 * pixel + 1], b0 = 1.0f - b1 - b2;
-    const float2 uv =
-        (float2)(vertices[tri.x].position_u.w, vertices[tri.x].normal_v.w) * b0 +
-        (float2)(vertices[tri.y].position_u.w, vertices[tri.y].normal_v.w) * b1 +
-        (float2)(vertices[tri.z].position_u.w, vertices[tri.z].normal_v.w) * b2;
-    u[i] = uv.x;
-    v[i] = uv.y;
-    b0_[i] = b0;
-    b1_[i] = b1;
-    b2_[i] = b2;
-  }
-  if (!any_nm && !any_mr && !any_em) return;
-  float emap[3][RP_SPAN], mrmap[3][RP_SPAN], nmap[3][RP_SPAN];
-  if (any_em) gm_sample_lanes(textures, texels, em, has_em, u, v, n, 1, emap);
-  if (any_mr) gm_sample_lanes(textures, texels, mr, has_mr, u, v, n, 0, mrmap);
-  if (any_nm) gm_sample_lanes(textures, texels, nm, has_nm, u, v, n, 0, nmap);
+  const uint pixel = y * width + x0;
+  const uint instance_count = frame->instance_count;
 
-  for (int i = 0; i < n; ++i) {
-    if (!has_nm[i] && !has_mr[i] && !has_em[i]) continue;
-    const uint pixel = y * width + x0 + (uint)i;
-    __global const Material* mat = materials + mat_index[i];
-    float4 e = emission[pixel];
-    if (has_em[i]) e.xyz *= (float3)(emap[0][i], emap[1][i], emap[2][i]);
-    if (has_mr[i]) {
-      const float roughness = clamp(mat->factors.y * mrmap[1][i], 0.0f, 1.0f);
-      const bool metal = mat->factors.z * mrmap[2][i] >= 0.5f;
-      const float f0 = mat->factors.w;
-      const int r = (int)(roughness * 255.0f + 0.5f);
-      if (metal)
-        e.w = (float)(r + RP_GLOSS_METAL);
-      else if (f0 > 0.0f)
-        e.w = (float)(r + 256 * clamp((int)(f0 * RP_GLOSS_F0_SCALE + 0.5f), 1, 255));
-      else
-        e.w = 0.0f;
+  rp_spanu id_x, id_y;
+  rp_load_span_pairs_u(ids + 2 * pixel, n, &id_x, &id_y);
+  rp_spanf b1, b2;
+  rp_load_span_pairs_f(bary + 2 * pixel, n, &b1, &b2);
+  const rp_spanf b0 = 1.0f - b1 - b2;
+
+  /* Per lane: the three maps, uv, and what each map's arithmetic takes from the material and
+   * the triangle (lanes without that map keep the neutral values). */
+  GmMap nm = gm_map_none(), mr = gm_map_none(), em = gm_map_none();
+  rp_spanf tu = 0.0f, tv = 0.0f;
+  rp_spanf rough_factor = 0.0f, metal_factor = 0.0f;
+  rp_spanf f0_code = 0.0f;  /* 256 * quantised f0 of a dielectric, 0 if it has none */
+  rp_spanf normal_scale = 0.0f;
+  rp_spanf tx = 0.0f, ty = 0.0f, tz = 0.0f, tsign = 1.0f; /* world tangent, bitangent sign */
+  rp_spanf vx = 0.0f, vy = 0.0f, vz = 0.0f;               /* world interpolated vertex normal */
+
+  uint lane_x[RP_SPAN], lane_y[RP_SPAN];
+  RP_SPAN_TO_ARRAY(id_x, lane_x);
+  RP_SPAN_TO_ARRAY(id_y, lane_y);
+  rp_spani done = (rp_spani)(0);
+  int lane_done[RP_SPAN];
+  RP_SPAN_TO_ARRAY(done, lane_done);
+  bool have_maps = false;
+  for (int lane = 0; lane < n; ++lane) {
+    if (lane_done[lane]) continue;
+    const uint a = lane_x[lane], p = lane_y[lane];
+    const rp_spani group = (id_x == a) & (id_y == p);
+    done |= group;
+    RP_SPAN_TO_ARRAY(done, lane_done);
+    if (a >= instance_count || p >= instances[a].triangle_count) continue;
+    __global const Instance* inst = instances + a;
+    const Triangle tri = triangles[inst->first_triangle + p];
+    __global const Material* mat = materials + tri.w;
+    const uint nmi = mat->normal_texture, mri = mat->metallic_roughness_texture;
+    const uint emi = mat->emission_texture;
+    if (nmi == RP_TEXTURE_NONE && mri == RP_TEXTURE_NONE && emi == RP_TEXTURE_NONE) continue;
+    have_maps = true;
+    const float4 p0 = vertices[tri.x].position_u, n0 = vertices[tri.x].normal_v;
+    const float4 p1 = vertices[tri.y].position_u, n1 = vertices[tri.y].normal_v;
+    const float4 p2 = vertices[tri.z].position_u, n2 = vertices[tri.z].normal_v;
+    tu = select(tu, p0.w * b0 + p1.w * b1 + p2.w * b2, group);
+    tv = select(tv, n0.w * b0 + n1.w * b1 + n2.w * b2, group);
+    gm_map_select(&em, textures, emi, group);
+    if (mri != RP_TEXTURE_NONE) {
+      gm_map_select(&mr, textures, mri, group);
+      const float4 factors = mat->factors;
+      rough_factor = select(rough_factor, (rp_spanf)(factors.y), group);
+      metal_factor = select(metal_factor, (rp_spanf)(factors.z), group);
+      const float code =
+          factors.w > 0.0f
+              ? (float)(256 * clamp((int)(factors.w * RP_GLOSS_F0_SCALE + 0.5f), 1, 255))
+              : 0.0f;
+      f0_code = select(f0_code, (rp_spanf)(code), group);
     }
-    emission[pixel] = e;
-    if (!has_nm[i]) continue;
-    const float b0 = b0_[i], b1 = b1_[i], b2 = b2_[i];
-    const float4 t4 = tangents[tri_x[i]] * b0 + tangents[tri_y[i]] * b1 + tangents[tri_z[i]] * b2;
-    const rp_mat4 m = instances[inst_index[i]].model;
-    float3 t = m.c[0].xyz * t4.x + m.c[1].xyz * t4.y + m.c[2].xyz * t4.z;
-    float4 nd = normal_depth[pixel];
-    /* the side gbuffer_resolve turned the normal to: the interpolated vertex normal's sign */
-    const float3 nv = (vertices[tri_x[i]].normal_v * b0 + vertices[tri_y[i]].normal_v * b1 +
-                       vertices[tri_z[i]].normal_v * b2).xyz;
-    const rp_mat4 nmat = instances[inst_index[i]].normal_matrix;
-    const float3 nw = nmat.c[0].xyz * nv.x + nmat.c[1].xyz * nv.y + nmat.c[2].xyz * nv.z;
-    const float turned = dot(nw, nd.xyz) < 0.0f ? -1.0f : 1.0f;
-    const float3 nrm = nd.xyz * turned;
-    t -= nrm * dot(nrm, t);
-    const float len2 = dot(t, t);
-    if (len2 > 1.0e-24f) {
-      t *= rsqrt(len2);
-      const float3 b = (t4.w < 0.0f ? -1.0f : 1.0f) * cross(nrm, t);
-      const float3 s = (float3)(nmap[0][i], nmap[1][i], nmap[2][i]) * 2.0f - 1.0f;
-      const float scale = mat->factors.x;
-      const float3 np = t * (s.x * scale) + b * (s.y * scale) + nrm * s.z;
-      if (dot(np, np) > 1.0e-24f) nd.xyz = normalize(np) * turned;
-      normal_depth[pixel] = nd;
+    if (nmi != RP_TEXTURE_NONE) {
+      gm_map_select(&nm, textures, nmi, group);
+      normal_scale = select(normal_scale, (rp_spanf)(mat->factors.x), group);
+      const float4 t0 = tangents[tri.x], t1 = tangents[tri.y], t2 = tangents[tri.z];
+      const rp_spanf otx = t0.x * b0 + t1.x * b1 + t2.x * b2;
+      const rp_spanf oty = t0.y * b0 + t1.y * b1 + t2.y * b2;
+      const rp_spanf otz = t0.z * b0 + t1.z * b1 + t2.z * b2;
+      const rp_spanf otw = t0.w * b0 + t1.w * b1 + t2.w * b2;
+      const rp_mat4 m = inst->model, nmat = inst->normal_matrix;
+      tx = select(tx, GM_ROW_DIR(m, x, otx, oty, otz), group);
+      ty = select(ty, GM_ROW_DIR(m, y, otx, oty, otz), group);
+      tz = select(tz, GM_ROW_DIR(m, z, otx, oty, otz), group);
+      tsign = select(tsign, select((rp_spanf)(1.0f), (rp_spanf)(-1.0f), otw < 0.0f), group);
+      const rp_spanf onx = n0.x * b0 + n1.x * b1 + n2.x * b2;
+      const rp_spanf ony = n0.y * b0 + n1.y * b1 + n2.y * b2;
+      const rp_spanf onz = n0.z * b0 + n1.z * b1 + n2.z * b2;
+      vx = select(vx, GM_ROW_DIR(nmat, x, onx, ony, onz), group);
+      vy = select(vy, GM_ROW_DIR(nmat, y, onx, ony, onz), group);
+      vz = select(vz, GM_ROW_DIR(nmat, z, onx, ony, onz), group);
     }
   }
+  if (!have_maps) return;
+
+  const bool any_em = rp_span_any(em.on), any_mr = rp_span_any(mr.on);
+  if (any_em || any_mr) {
+    rp_spanf er, eg, eb, ew;
+    rp_load_span_quads_f(emission + 4 * pixel, n, &er, &eg, &eb, &ew);
+    if (any_em) {
+      rp_spanf mr_, mg_, mb_;
+      rp_span_texture_sample_coded(texels, em.on, em.w, em.h, em.offset, em.wrap, tu, tv, n, 1,
+                                   &mr_, &mg_, &mb_);
+      er = select(er, er * mr_, em.on);
+      eg = select(eg, eg * mg_, em.on);
+      eb = select(eb, eb * mb_, em.on);
+    }
+    if (any_mr) {
+      rp_spanf unused, mg_, mb_;
+      rp_span_texture_sample_coded(texels, mr.on, mr.w, mr.h, mr.offset, mr.wrap, tu, tv, n, 0,
+                                   &unused, &mg_, &mb_);
+      /* roughness = factor * G, metal at factor * B >= 0.5: the gloss code */
+      const rp_spanf roughness = clamp(rough_factor * mg_, 0.0f, 1.0f);
+      const rp_spanf r = rp_span_convert_float(rp_span_convert_int(roughness * 255.0f + 0.5f));
+      const rp_spanf code = select(select((rp_spanf)(0.0f), r + f0_code, f0_code > 0.0f),
+                                   r + (float)RP_GLOSS_METAL, metal_factor * mb_ >= 0.5f);
+      ew = select(ew, code, mr.on);
+    }
+    rp_store_span_quads_f(er, eg, eb, ew, emission + 4 * pixel, n);
+  }
+  if (!rp_span_any(nm.on)) return;
+  rp_spanf sx, sy, sz;
+  rp_span_texture_sample_coded(texels, nm.on, nm.w, nm.h, nm.offset, nm.wrap, tu, tv, n, 0, &sx,
+                               &sy, &sz);
+  sx = sx * 2.0f - 1.0f;
+  sy = sy * 2.0f - 1.0f;
+  sz = sz * 2.0f - 1.0f;
+  rp_spanf nx, ny, nz, depth;
+  rp_load_span_quads_f(normal_depth + 4 * pixel, n, &nx, &ny, &nz, &depth);
+  /* the side gbuffer_resolve turned the normal to: the interpolated vertex normal's sign; the
+   * map applies on the vertex normal's side */
+  const rp_spanf turned =
+      select((rp_spanf)(1.0f), (rp_spanf)(-1.0f), vx * nx + vy * ny + vz * nz < 0.0f);
+  const rp_spanf ux = nx * turned, uy = ny * turned, uz = nz * turned;
+  /* tangent made orthogonal to the normal, bitangent w cross(n, t) */
+  const rp_spanf tn = ux * tx + uy * ty + uz * tz;
+  tx -= ux * tn;
+  ty -= uy * tn;
+  tz -= uz * tn;
+  const rp_spanf len2 = tx * tx + ty * ty + tz * tz;
+  const rp_spanf inv_t = rsqrt(fmax(len2, 1.0e-30f));
+  tx *= inv_t;
+  ty *= inv_t;
+  tz *= inv_t;
+  const rp_spanf bx = tsign * (uy * tz - uz * ty);
+  const rp_spanf by = tsign * (uz * tx - ux * tz);
+  const rp_spanf bz = tsign * (ux * ty - uy * tx);
+  const rp_spanf kx = sx * normal_scale, ky = sy * normal_scale;
+  const rp_spanf px = tx * kx + bx * ky + ux * sz;
+  const rp_spanf py = ty * kx + by * ky + uy * sz;
+  const rp_spanf pz = tz * kx + bz * ky + uz * sz;
+  const rp_spanf np2 = px * px + py * py + pz * pz;
+  const rp_spani mapped = nm.on & (len2 > 1.0e-24f) & (np2 > 1.0e-24f);
+  const rp_spanf k = rsqrt(fmax(np2, 1.0e-30f)) * turned;
+  nx = select(nx, px * k, mapped);
+  ny = select(ny, py * k, mapped);
+  nz = select(nz, pz * k, mapped);
+  rp_store_span_quads_f(nx, ny, nz, depth, normal_depth + 4 * pixel, n);
 }

@@ -209,6 +209,47 @@ inline void rp_span_from_float4s(const float4* q, rp_spanf* x, rp_spanf* y, rp_s
 #endif
 }
 
+/* Quads (float4 per pixel) in: a[i] = p[4i], b[i] = p[4i + 1], c[i] = p[4i + 2],
+ * d[i] = p[4i + 3] for lanes i < n, 0 beyond. */
+inline void rp_load_span_quads_f(__global const float* p, int n, rp_spanf* a, rp_spanf* b,
+                                 rp_spanf* c, rp_spanf* d) {
+#if RP_SPAN_SHUFFLES
+  if (n >= RP_SPAN) {
+    /* q_k = the k-th quarter of the interleaved abcd stream */
+    const rp_spanf q0 = RP_CAT(vload, RP_SPAN)(0, p), q1 = RP_CAT(vload, RP_SPAN)(1, p);
+    const rp_spanf q2 = RP_CAT(vload, RP_SPAN)(2, p), q3 = RP_CAT(vload, RP_SPAN)(3, p);
+    const rp_spanf ac_lo = shuffle2(q0, q1, RP_EVEN), bd_lo = shuffle2(q0, q1, RP_ODD);
+    const rp_spanf ac_hi = shuffle2(q2, q3, RP_EVEN), bd_hi = shuffle2(q2, q3, RP_ODD);
+    *a = shuffle2(ac_lo, ac_hi, RP_EVEN);
+    *c = shuffle2(ac_lo, ac_hi, RP_ODD);
+    *b = shuffle2(bd_lo, bd_hi, RP_EVEN);
+    *d = shuffle2(bd_lo, bd_hi, RP_ODD);
+    return;
+  }
+#endif
+#if RP_SPAN == 1
+  (void)n;
+  const float4 q = vload4(0, p);
+  *a = q.x;
+  *b = q.y;
+  *c = q.z;
+  *d = q.w;
+#else
+  float la[RP_SPAN], lb[RP_SPAN], lc[RP_SPAN], ld[RP_SPAN];
+  for (int i = 0; i < RP_SPAN; ++i) {
+    const float4 q = i < n ? vload4(i, p) : (float4)(0.0f);
+    la[i] = q.x;
+    lb[i] = q.y;
+    lc[i] = q.z;
+    ld[i] = q.w;
+  }
+  *a = RP_SPAN_FROM_ARRAY(la);
+  *b = RP_SPAN_FROM_ARRAY(lb);
+  *c = RP_SPAN_FROM_ARRAY(lc);
+  *d = RP_SPAN_FROM_ARRAY(ld);
+#endif
+}
+
 /* Quads (float4 per pixel): p[4i + 0..3] = (a[i], b[i], c[i], d[i]) for lanes i < n. */
 inline void rp_store_span_quads_f(rp_spanf a, rp_spanf b, rp_spanf c, rp_spanf d,
                                   __global float* p, int n) {

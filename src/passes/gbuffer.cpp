@@ -85,13 +85,12 @@ void GBufferPass::run_material(rp::cl::Profiler& profiler, const render::GpuScen
   rp::cl::bind_args(material_, scene.frame, vis.ids, vis.bary, scene.instances, scene.vertices,
                     scene.tangents, scene.triangles, scene.materials, scene.textures,
                     scene.texels() ? scene.texels : no_texels_, out.normal_depth, out.emission);
-  // One work-item per span of span_ pixels of a row.
-  constexpr size_t kTile = 8;
+  // One work-item per span of span_ pixels of a row, a 1D range in row-major order.
   const uint32_t w = scene.constants.width, h = scene.constants.height;
-  const size_t spans = (w + size_t(span_) - 1) / size_t(span_);
+  const size_t span = static_cast<size_t>(span_);
+  const size_t spans = (w + span - 1) / span * h;
   profiler.enqueue(pass_name::kGBuffer, material_,
-                   ::cl::NDRange(rp::cl::round_up(spans, kTile), rp::cl::round_up(h, kTile)),
-                   ::cl::NDRange(kTile, kTile));
+                   ::cl::NDRange(rp::cl::round_up(spans, kGroup)), ::cl::NDRange(kGroup));
 }
 
 }  // namespace rp::passes

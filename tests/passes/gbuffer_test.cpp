@@ -383,6 +383,25 @@ TEST(GBuffer, VelocityOfKnownMotion) {
   EXPECT_LT(velocity[0], -0.1);  // a visible shift, so the check is meaningful
 }
 
+// The visibility buffer of the test scene's quad by ray casting (its spheres left out).
+void quad_visibility(const TestScene& ts, std::vector<uint32_t>& ids, std::vector<float>& bary) {
+  const size_t n = size_t(kW) * kH;
+  ids.assign(n * 2, RP_ID_NONE);
+  bary.assign(n * 2, 0.0f);
+  for (uint32_t y = 0; y < kH; ++y)
+    for (uint32_t x = 0; x < kW; ++x) {
+      glm::dvec3 o, d;
+      ts.ray(x, y, o, d);
+      const std::optional<Hit> hit = ts.cast(o, d);
+      if (!hit || hit->sphere) continue;
+      const size_t i = size_t(y) * kW + x;
+      ids[i * 2] = 0;
+      ids[i * 2 + 1] = hit->triangle;
+      bary[i * 2] = float(hit->b1);
+      bary[i * 2 + 1] = float(hit->b2);
+    }
+}
+
 // The plain triangle's normal map, seen from the front and from behind: the GBuffer normal is
 // the path tracer's (truth/trace_scene.cpp): the map applied on the side of the vertex normal
 // (tangent along the quad's +x, bitangent w cross(n, t), w = -1 on the reversed quad, so the
@@ -407,20 +426,9 @@ TEST(GBuffer, NormalMapsTurnWithTheSideSeen) {
     scene.update(ts.frame, kW, kH, 64);
     ASSERT_TRUE(scene.has_material_maps);
     const size_t n = size_t(kW) * kH;
-    std::vector<uint32_t> ids(n * 2, RP_ID_NONE);
-    std::vector<float> bary(n * 2, 0.0f);
-    for (uint32_t y = 0; y < kH; ++y)
-      for (uint32_t x = 0; x < kW; ++x) {
-        glm::dvec3 o, d;
-        ts.ray(x, y, o, d);
-        const std::optional<Hit> hit = ts.cast(o, d);
-        if (!hit || hit->sphere) continue;
-        const size_t i = size_t(y) * kW + x;
-        ids[i * 2] = 0;
-        ids[i * 2 + 1] = hit->triangle;
-        bary[i * 2] = float(hit->b1);
-        bary[i * 2 + 1] = float(hit->b2);
-      }
+    std::vector<uint32_t> ids;
+    std::vector<float> bary;
+    quad_visibility(ts, ids, bary);
     const rp::render::GBuffer gb = resolve(scene, ids, bary, kW, kH);
     const auto normal_depth = read<float>(gb.normal_depth, n * 4);
 
@@ -442,6 +450,74 @@ TEST(GBuffer, NormalMapsTurnWithTheSideSeen) {
         expect_near3(&normal_depth[i * 4], expected, 1e-4, back ? "back" : "front", x, y);
       }
     EXPECT_GE(mapped, 8);
+  }
+}
+
+// The plain triangle's metallic-roughness and emission maps (one texel each, so every uv reads
+// it): roughness = factor * G / 255, metal where factor * B / 255 >= 0.5, the gloss code of
+// shared/brdf_layout.h rebuilt from them (metal: r + 65536; dielectric: r + 256 * round(f0 *
+// 1024)); emission times the sRGB-decoded map. The textured triangle has no maps and keeps
+// gbuffer_resolve's values.
+TEST(GBuffer, MetallicRoughnessAndEmissionMapsSetTheGlossCodeAndEmission) {
+  auto& ctx = rp::test::context();
+  const auto srgb = [](double c) {
+    c /= 255.0;
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+  };
+  struct Case {
+    float metallic;
+    bool metal;
+  };
+  for (const Case c : {Case{1.0f, true}, Case{0.5f, false}}) {
+    TestScene ts(kW, kH);
+    const uint8_t mr_texel[4] = {17, 128, 200, 255};     // G roughness, B metallic
+    const uint8_t emission_texel[4] = {255, 128, 0, 255};  // sRGB
+    for (const uint8_t* texel : {mr_texel, emission_texel}) {
+      rp::scene::Texture t{"map", 2, 2, {}};
+      for (int i = 0; i < 16; ++i) t.rgba.push_back(texel[i % 4]);
+      t.srgb = texel == emission_texel;
+      ts.assets.textures.push_back(t);
+    }
+    rp::scene::Material& m = ts.assets.materials[1];
+    m.specular.roughness = 0.9f;
+    m.specular.f0 = 0.04f;
+    m.metallic = c.metallic;
+    m.metallic_roughness_texture = 1;
+    m.emission = {2.0f, 3.0f, 4.0f};
+    m.emission_texture = 2;
+    ts.frame.spheres.clear();
+    rp::render::GpuScene scene(ctx.context, ctx.queue, ts.assets);
+    scene.update(ts.frame, kW, kH, 64);
+    ASSERT_TRUE(scene.has_material_maps);
+    std::vector<uint32_t> ids;
+    std::vector<float> bary;
+    quad_visibility(ts, ids, bary);
+    const rp::render::GBuffer gb = resolve(scene, ids, bary, kW, kH);
+    const auto emission = read<float>(gb.emission, size_t(kW) * kH * 4);
+
+    const double roughness = 0.9 * 128.0 / 255.0;
+    const int r = int(roughness * 255.0 + 0.5);
+    EXPECT_EQ(c.metal, c.metallic * 200.0 / 255.0 >= 0.5);  // the case's premise
+    const double code = c.metal ? r + 65536 : r + 256 * int(0.04 * 1024.0 + 0.5);
+    const glm::dvec3 want_mapped(2.0 * srgb(255), 3.0 * srgb(128), 4.0 * srgb(0));
+    int mapped = 0, plain = 0;
+    for (uint32_t y = 0; y < kH; ++y)
+      for (uint32_t x = 0; x < kW; ++x) {
+        const size_t i = size_t(y) * kW + x;
+        if (ids[i * 2] == RP_ID_NONE) continue;
+        const float* e = &emission[i * 4];
+        if (ids[i * 2 + 1] == 1) {
+          ++mapped;
+          expect_near3(e, want_mapped, 1e-5, "mapped emission", x, y);
+          EXPECT_EQ(e[3], code) << "gloss code at " << x << "," << y;
+        } else {
+          ++plain;
+          expect_near3(e, glm::dvec3(0.1, 0.2, 0.3), 1e-6, "plain emission", x, y);
+          EXPECT_EQ(e[3], 0.0f) << "matte at " << x << "," << y;
+        }
+      }
+    EXPECT_GE(mapped, 8);
+    EXPECT_GE(plain, 8);
   }
 }
 
