@@ -248,6 +248,9 @@ void visibility_setup(const RasterView view, __global const uint2* draw_items,
   float pos[3][3][RP_SPAN];
   uint inst_of[RP_SPAN], prim_of[RP_SPAN], tri_of[RP_SPAN], masked_of[RP_SPAN];
   int drawn_of[RP_SPAN];
+#if !RP_DEPTH_ONLY
+  int single_of[RP_SPAN]; /* -1: a single-sided material, its back face culled */
+#endif
   for (int i = 0; i < RP_SPAN; ++i) {
     const uint2 d = draw_items[first + (uint)(i < n ? i : 0)];
     __global const Instance* inst = &instances[d.x];
@@ -267,6 +270,7 @@ void visibility_setup(const RasterView view, __global const uint2* draw_items,
     drawn_of[i] = (inst->casts_shadow & view.caster_mask) != 0u ? -1 : 0;
 #else
     drawn_of[i] = -1;
+    single_of[i] = RP_MATERIAL_SINGLE_SIDED(materials[t.w]) ? -1 : 0;
 #endif
   }
   RpLanes4 obj[3];
@@ -280,6 +284,7 @@ void visibility_setup(const RasterView view, __global const uint2* draw_items,
   /* World positions through each distinct instance of the span (usually one). */
   const rp_spanu inst_lanes = RP_SPAN_FROM_ARRAY(inst_of);
   RpLanes4 clip[3];
+  rp_spani mirrored = (rp_spani)(0); /* lanes whose model matrix has a negative determinant */
   int done[RP_SPAN];
   RP_SPAN_TO_ARRAY((rp_spani)(0), done);
   for (int i = 0; i < RP_SPAN; ++i) {
@@ -290,6 +295,7 @@ void visibility_setup(const RasterView view, __global const uint2* draw_items,
     RP_SPAN_TO_ARRAY(group, g);
     for (int j = i; j < RP_SPAN; ++j) done[j] |= g[j];
     const rp_mat4 model = instances[instance].model;
+    if (dot(model.c[0].xyz, cross(model.c[1].xyz, model.c[2].xyz)) < 0.0f) mirrored |= group;
     for (int k = 0; k < 3; ++k) {
       const RpLanes4 c = rp_lanes_transform(view.view_proj, rp_lanes_transform(model, obj[k]));
       clip[k] = i == 0 ? c : rp_lanes_select(clip[k], c, group);
@@ -389,6 +395,26 @@ void visibility_setup(const RasterView view, __global const uint2* draw_items,
     ec[k] = x[j] * y[l] - y[j] * x[l];
   }
   rp_spanf det = (w[0] * ec[0] + w[1] * ec[1]) + w[2] * ec[2];
+#if !RP_DEPTH_ONLY
+  /* Back faces of single-sided materials are not drawn for the camera (glTF doubleSided false).
+   * The front face winds counter-clockwise in the object's space; on screen (y down) that is
+   * a negative determinant, and a mirroring model matrix swaps it (glTF: the determinant decides the winding).
+   * A closed mesh looks the same without its back faces, at about 30 % less raster work
+   * (bench/results/zen3-2core-pocl-atrium-scale.md). */
+  {
+    /* the determinant in the view's own frame, not the bounds' (the reference's arithmetic) */
+    const rp_spanf c0 = v[1].x * v[2].y - v[1].y * v[2].x;
+    const rp_spanf c1 = v[2].x * v[0].y - v[2].y * v[0].x;
+    const rp_spanf c2 = v[0].x * v[1].y - v[0].y * v[1].x;
+    const rp_spanf facing = (v[0].w * c0 + v[1].w * c1) + v[2].w * c2;
+    const rp_spani back = select(facing > 0.0f, facing < 0.0f, mirrored) &
+                          (RP_SPAN_FROM_ARRAY(single_of) != 0);
+    bx0 = select(bx0, zero, back);
+    by0 = select(by0, zero, back);
+    bx1 = select(bx1, (rp_spani)(-1), back);
+    by1 = select(by1, (rp_spani)(-1), back);
+  }
+#endif
   const rp_spanf sgn = select((rp_spanf)(1.0f), (rp_spanf)(-1.0f), det < 0.0f);
   for (int k = 0; k < 3; ++k) {
     ea[k] *= sgn;

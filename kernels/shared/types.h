@@ -187,13 +187,18 @@ typedef struct {
   rp_float4 factors;  /* x normal scale, y roughness factor, z metallic factor, w dielectric f0 */
   /* Alpha masks (scene/frame_scene.h AlphaMode::kMask): x the base colour alpha factor, y the
    * cutoff below which (factor x the base colour texture's alpha) is a hole, 0 for an opaque
-   * material (nothing is cut); zw unused. The rasterizer, the shadow maps and the voxelizer
-   * test it (kernels/common/alpha_mask.h). */
+   * material (nothing is cut). The rasterizer, the shadow maps and the voxelizer test it
+   * (kernels/common/alpha_mask.h). z: 1 for a single-sided material (glTF doubleSided false):
+   * the camera does not see its back faces (the rasterizer culls them; the path tracer's and
+   * Embree's camera rays pass through them), 0 for a double-sided one; w unused. Shadows,
+   * voxels and every other ray see both sides. */
   rp_float4 coverage;
 } Material;
 
 /* A material that cuts holes (Material.coverage.y > 0). */
 #define RP_MATERIAL_MASKED(m) ((m).coverage.y > 0.0f)
+/* A material whose back faces the camera does not see (Material.coverage.z). */
+#define RP_MATERIAL_SINGLE_SIDED(m) ((m).coverage.z != 0.0f)
 
 /* gbuffer_resolve's texture filter (render::TextureFilter, --texture-filter). */
 #define RP_TEXTURE_FILTER_BILINEAR 0u

@@ -23,7 +23,8 @@
 namespace rp::app {
 
 // Bump when the path tracer's output changes for the same inputs (a fix, a new convention).
-inline constexpr const char* kPathTracerVersion = "rolypoly-pathtracer/1";
+// 2: camera rays pass the back faces of single-sided materials.
+inline constexpr const char* kPathTracerVersion = "rolypoly-pathtracer/2";
 // The surface model of src/shading/brdf.h, part of the key of every frame with a coated
 // surface (rename when its formulas or tables change).
 inline constexpr const char* kSurfaceModel = "ggx-smith-hc-schlick-kulla-conty/1";

@@ -115,6 +115,8 @@ struct MeshData {
   std::vector<glm::vec2> uvs;
   std::vector<uint32_t> materials;
   const scene::AlphaMasks* masks = nullptr;
+  // Per triangle: 1 where its material is single-sided (the camera does not see its back).
+  std::vector<uint8_t> single_sided;
 
   // Embree filter (intersect and occluded) of a masked mesh: rejects hits in holes.
   static void alpha_filter(const RTCFilterFunctionNArguments* args) {
@@ -148,12 +150,14 @@ struct EmbreeVisibilityPass::Impl {
   bool static_enabled = false;
   std::vector<uint32_t> static_key;  // (instance index, mesh index) pairs of the static scene
   std::vector<uint32_t> static_instance_of;
+  std::vector<uint32_t> static_mesh_of;  // geomID g's mesh index
   // Moving instances: pool of instance geometries in `top`, mover k currently instancing mesh
   // mover_mesh[k] (kNone when disabled); top-level geomID -> instance index in instance_of_top.
   std::vector<RTCGeometry> movers;
   std::vector<unsigned> mover_ids;
   std::vector<uint32_t> mover_mesh;
   std::vector<uint32_t> instance_of_top;
+  std::vector<uint32_t> mesh_of_top;  // top-level geomID -> the instanced mesh's index
   // Spheres: float4 (centre, radius) per sphere, plus one float4 of padding.
   RTCGeometry spheres = nullptr;
   unsigned sphere_top_id = RTC_INVALID_GEOMETRY_ID;
@@ -212,6 +216,12 @@ struct EmbreeVisibilityPass::Impl {
           throw rp::cl::Error("Embree visibility: mesh '" + mesh.name +
                               "' refers to a vertex that does not exist");
         m.indices.insert(m.indices.end(), {t.x, t.y, t.z});
+      }
+      m.single_sided.resize(mesh.triangles.size());
+      for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const uint32_t material = t < mesh.materials.size() ? mesh.materials[t] : 0u;
+        m.single_sided[t] =
+            material < assets.materials.size() && !assets.materials[material].double_sided;
       }
       bool masked = false;
       for (uint32_t material : mesh.materials) masked = masked || masks->masked(material);
@@ -307,7 +317,10 @@ struct EmbreeVisibilityPass::Impl {
         movers.push_back(g);
         mover_ids.push_back(rtcAttachGeometry(top, g));
         mover_mesh.push_back(kNone);
-        if (instance_of_top.size() <= mover_ids.back()) instance_of_top.resize(mover_ids.back() + 1);
+        if (instance_of_top.size() <= mover_ids.back()) {
+          instance_of_top.resize(mover_ids.back() + 1);
+          mesh_of_top.resize(mover_ids.back() + 1);
+        }
         check("creating an instance geometry");
       }
       RTCGeometry g = movers[used];
@@ -317,6 +330,7 @@ struct EmbreeVisibilityPass::Impl {
       rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.model.c[0].x);
       rtcCommitGeometry(g);
       instance_of_top[mover_ids[used]] = static_cast<uint32_t>(i);
+      mesh_of_top[mover_ids[used]] = m;
       ++used;
     }
     for (size_t j = used; j < movers.size(); ++j) {
@@ -362,6 +376,7 @@ struct EmbreeVisibilityPass::Impl {
     rtcSetSceneBuildQuality(static_scene, RTC_BUILD_QUALITY_HIGH);
     static_key.clear();
     static_instance_of.clear();
+    static_mesh_of.clear();
     for (size_t i = 0; i < s.host_instances.size(); ++i) {
       const gpu::Instance& inst = s.host_instances[i];
       if (inst.triangle_count == 0 || !is_identity(inst.model)) continue;
@@ -371,8 +386,12 @@ struct EmbreeVisibilityPass::Impl {
       RTCGeometry g = new_triangles(meshes[m]);
       const unsigned id = rtcAttachGeometry(static_scene, g);
       rtcReleaseGeometry(g);
-      if (static_instance_of.size() <= id) static_instance_of.resize(id + 1, kNone);
+      if (static_instance_of.size() <= id) {
+        static_instance_of.resize(id + 1, kNone);
+        static_mesh_of.resize(id + 1, kNone);
+      }
       static_instance_of[id] = static_cast<uint32_t>(i);
+      static_mesh_of[id] = m;
     }
     rtcCommitScene(static_scene);
     rtcSetGeometryInstancedScene(static_instance, static_scene);
@@ -405,6 +424,7 @@ struct EmbreeVisibilityPass::Impl {
     alignas(64) int valid[16];
     // Per lane: clip z, w at the ray origin and their change per unit t (z_ndc along the ray).
     float z_o[16], w_o[16], z_d[16], w_d[16];
+    float far_t[16];  // the far plane's t
     RTCIntersectContext ictx;
     rtcInitIntersectContext(&ictx);
     ictx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -440,6 +460,7 @@ struct EmbreeVisibilityPass::Impl {
         rh.ray.dir_z[l] = rz;
         rh.ray.tnear[l] = 0.0f;  // the near plane, as the rasterizer's z_ndc >= -1
         rh.ray.tfar[l] = std::isfinite(len) ? len : 0.0f;  // the far plane
+        far_t[l] = rh.ray.tfar[l];
         rh.ray.time[l] = 0.0f;
         rh.ray.mask[l] = 0xFFFFFFFFu;
         rh.ray.id[l] = l;
@@ -448,6 +469,27 @@ struct EmbreeVisibilityPass::Impl {
         rh.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
       }
       rtcIntersect16(valid, top, &ictx, &rh);
+      // The back faces of single-sided materials are not seen (the rasterizer culls them): such
+      // lanes go on from just beyond the hit (bounded, for a stack of coplanar faces).
+      for (int pass = 0; pass < 64; ++pass) {
+        alignas(64) int again[16];
+        bool any = false;
+        for (uint32_t l = 0; l < 16; ++l) {
+          again[l] = 0;
+          if (!valid[l] || rh.hit.geomID[l] == RTC_INVALID_GEOMETRY_ID ||
+              rh.hit.instID[0][l] == RTC_INVALID_GEOMETRY_ID ||
+              !back_of_single_sided(rh, l))
+            continue;
+          again[l] = -1;
+          any = true;
+          rh.ray.tnear[l] = std::nextafter(rh.ray.tfar[l], far_t[l]);
+          rh.ray.tfar[l] = far_t[l];
+          rh.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
+          rh.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
+        }
+        if (!any) break;
+        rtcIntersect16(again, top, &ictx, &rh);
+      }
       for (uint32_t l = 0; l < 16; ++l) {
         if (!valid[l]) continue;
         const uint32_t x = tx * kTile + l % kTile, y = ty * kTile + l / kTile;
@@ -477,6 +519,29 @@ struct EmbreeVisibilityPass::Impl {
         bary[2 * p + 1] = b2;
       }
     }
+  }
+
+  // True when lane l hit the back of a single-sided material's triangle: counter-clockwise in
+  // the mesh's space is the front, its normal taken through the instance's normal matrix
+  // (which keeps that side for mirroring models too) against the ray.
+  bool back_of_single_sided(const RTCRayHit16& rh, uint32_t l) const {
+    const unsigned geom = rh.hit.geomID[l], inst = rh.hit.instID[0][l];
+    const bool is_static = inst == static_top_id;
+    const uint32_t instance = is_static ? static_instance_of[geom] : instance_of_top[inst];
+    const MeshData& m = meshes[is_static ? static_mesh_of[geom] : mesh_of_top[inst]];
+    const uint32_t prim = rh.hit.primID[l];
+    if (!m.single_sided[prim]) return false;
+    auto pos = [&](uint32_t k) {
+      const float* p = &m.positions[4 * size_t(m.indices[3 * size_t(prim) + k])];
+      return glm::vec3(p[0], p[1], p[2]);
+    };
+    const glm::vec3 p0 = pos(0), n = glm::cross(pos(1) - p0, pos(2) - p0);
+    const gpu::rp_mat4& nm = scene->host_instances[instance].normal_matrix;
+    const glm::vec3 front = glm::vec3(nm.c[0].x, nm.c[0].y, nm.c[0].z) * n.x +
+                            glm::vec3(nm.c[1].x, nm.c[1].y, nm.c[1].z) * n.y +
+                            glm::vec3(nm.c[2].x, nm.c[2].y, nm.c[2].z) * n.z;
+    return front.x * rh.ray.dir_x[l] + front.y * rh.ray.dir_y[l] + front.z * rh.ray.dir_z[l] >
+           0.0f;
   }
 
   // The rasterizer's sphere hit (visibility.cl) for the sphere Embree found, in the same float

@@ -181,7 +181,7 @@ GpuScene::GpuScene(const ::cl::Context& context, const ::cl::CommandQueue& queue
     g.factors = {m.normal_scale, m.specular.roughness, m.metallic, m.specular.f0};
     // A cutoff of 0 cuts nothing (alpha >= 0): opaque materials need no test.
     const bool masked = m.alpha_mode == scene::AlphaMode::kMask && m.alpha_cutoff > 0.0f;
-    g.coverage = {m.opacity, masked ? m.alpha_cutoff : 0.0f, 0.0f, 0.0f};
+    g.coverage = {m.opacity, masked ? m.alpha_cutoff : 0.0f, m.double_sided ? 0.0f : 1.0f, 0.0f};
     if (masked) has_alpha_masks = true;
     if (g.normal_texture != RP_TEXTURE_NONE || g.metallic_roughness_texture != RP_TEXTURE_NONE ||
         g.emission_texture != RP_TEXTURE_NONE)

@@ -268,7 +268,7 @@ class Integrator {
     SampleResult r;
     Surface s;
     ++rays;
-    if (!scene_.intersect(org, dir, kFar, s)) {
+    if (!scene_.intersect(org, dir, kFar, s, TraceScene::Viewer::kCamera)) {
       r.emission = env_.radiance(dir);  // the sky seen directly (0 without an environment)
       return r;
     }
@@ -563,7 +563,9 @@ std::vector<PrimaryHit> PathTracer::primary_hits(const scene::FrameScene& frame,
   for (uint32_t y = 0; y < height; ++y)
     for (uint32_t x = 0; x < width; ++x) {
       Surface s;
-      if (!scene.intersect(camera.origin, camera.direction(x + 0.5, y + 0.5), kFar, s)) continue;
+      if (!scene.intersect(camera.origin, camera.direction(x + 0.5, y + 0.5), kFar, s,
+                           TraceScene::Viewer::kCamera))
+        continue;
       PrimaryHit& hit = hits[size_t(y) * width + x];
       hit.instance = s.instance;
       hit.sphere = s.sphere;

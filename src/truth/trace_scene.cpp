@@ -241,15 +241,43 @@ void TraceScene::add_instances(RTCScene top, Casters which) {
   }
 }
 
-bool TraceScene::intersect(glm::vec3 org, glm::vec3 dir, float t_max, Surface& out) const {
+bool TraceScene::back_of_single_sided(const RTCRayHit& rh) const {
+  if (rh.hit.instID[0] == kInvalid) return false;  // a sphere
+  const scene::MeshInstance& inst = frame_->instances[rh.hit.instID[0]];
+  const TraceMesh& m = assets_->meshes()[inst.mesh];
+  const uint32_t prim = rh.hit.primID;
+  if (assets_->materials()[m.materials[prim]].double_sided) return false;
+  // Counter-clockwise in the object's space is the front: the winding's normal through the
+  // normal matrix (which keeps that side for mirroring models too) against the ray.
+  auto pos = [&](uint32_t k) {
+    return glm::vec3(m.positions[4 * k], m.positions[4 * k + 1], m.positions[4 * k + 2]);
+  };
+  const glm::vec3 p0 = pos(m.indices[3 * prim]), p1 = pos(m.indices[3 * prim + 1]),
+                  p2 = pos(m.indices[3 * prim + 2]);
+  const glm::vec3 front = glm::mat3(normal_matrices_[rh.hit.instID[0]]) *
+                          glm::cross(p1 - p0, p2 - p0);
+  return glm::dot(front, glm::vec3(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z)) > 0.0f;
+}
+
+bool TraceScene::intersect(glm::vec3 org, glm::vec3 dir, float t_max, Surface& out,
+                           Viewer viewer) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh{};
-  rh.ray = make_ray(org, dir, t_max);
-  rh.hit.geomID = kInvalid;
-  rh.hit.instID[0] = kInvalid;
-  rtcIntersect1(scene_, &context, &rh);
-  if (rh.hit.geomID == kInvalid) return false;
+  float t_near = 0.0f;
+  // The camera passes through back faces of single-sided materials (the rasterizer culls
+  // them): past such a hit the ray goes on from just beyond it. Bounded, for a ray that
+  // grazes a stack of coplanar faces.
+  for (int pass = 0;; ++pass) {
+    rh.ray = make_ray(org, dir, t_max);
+    rh.ray.tnear = t_near;
+    rh.hit.geomID = kInvalid;
+    rh.hit.instID[0] = kInvalid;
+    rtcIntersect1(scene_, &context, &rh);
+    if (rh.hit.geomID == kInvalid) return false;
+    if (viewer != Viewer::kCamera || pass == 64 || !back_of_single_sided(rh)) break;
+    t_near = std::nextafter(rh.ray.tfar, t_max);
+  }
   const float t = rh.ray.tfar;
 
   if (rh.hit.instID[0] != kInvalid) {

@@ -101,8 +101,13 @@ class TraceScene {
   TraceScene(const TraceScene&) = delete;
   TraceScene& operator=(const TraceScene&) = delete;
 
+  // Who looks along a ray: the camera does not see the back faces of single-sided materials
+  // (scene::Material::double_sided false, as the rasterizer culls them); light and every
+  // later bounce see both sides.
+  enum class Viewer { kLight, kCamera };
   // Nearest surface along org + t dir, t in (0, t_max); false when the ray leaves the scene.
-  bool intersect(glm::vec3 org, glm::vec3 dir, float t_max, Surface& out) const;
+  bool intersect(glm::vec3 org, glm::vec3 dir, float t_max, Surface& out,
+                 Viewer viewer = Viewer::kLight) const;
   // True when a shadow caster lies on org + t dir, t in (0, t_max): the lamp's (shadowed) or
   // the sky's and the punctual lights' (light_shadowed).
   bool shadowed(glm::vec3 org, glm::vec3 dir, float t_max) const;
@@ -112,6 +117,8 @@ class TraceScene {
  private:
   enum class Casters { kAll, kLamp, kLight };
   void add_instances(RTCScene top, Casters which);
+  // True when the hit is a mesh triangle of a single-sided material seen from behind.
+  bool back_of_single_sided(const RTCRayHit& rh) const;
 
   const TraceAssets* assets_;
   const scene::FrameScene* frame_;

@@ -120,6 +120,18 @@ RefImage reference_raster(const scene::SceneAssets& assets, const scene::FrameSc
       tri.primitive = t;
       tri.mesh = &mesh;
       if (view.depth_only && !inst.casts_shadow) tri.instance = RP_ID_NONE;  // not drawn
+      // The camera does not draw the back face of a single-sided material: counter-clockwise
+      // in the object's space is the front, which a mirroring model matrix turns clockwise.
+      const glm::mat3 m3(inst.model);
+      const bool mirrored = glm::dot(m3[0], glm::cross(m3[1], m3[2])) < 0.0f;
+      const glm::vec4* v = tri.v;
+      const float c0 = v[1].x * v[2].y - v[1].y * v[2].x;
+      const float c1 = v[2].x * v[0].y - v[2].y * v[0].x;
+      const float c2 = v[0].x * v[1].y - v[0].y * v[1].x;
+      const float facing = (v[0].w * c0 + v[1].w * c1) + v[2].w * c2;
+      const bool back = mirrored ? facing < 0.0f : facing > 0.0f;
+      if (!view.depth_only && back && !assets.materials.at(mesh.materials.at(t)).double_sided)
+        tri.instance = RP_ID_NONE;
       tris.push_back(tri);
     }
   }
@@ -293,6 +305,7 @@ scene::SceneAssets make_test_assets(std::vector<scene::Mesh> meshes) {
   assets.meshes = std::move(meshes);
   scene::Material grey;
   grey.name = "grey";
+  grey.double_sided = true;  // both windings drawn: the tests' triangles face either way
   assets.materials.push_back(grey);
   return assets;
 }

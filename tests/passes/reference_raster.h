@@ -51,7 +51,7 @@ scene::Mesh make_test_mesh(const std::vector<glm::vec3>& positions,
 // counter-clockwise seen from outside; shared vertices (a closed mesh).
 scene::Mesh make_icosphere(int levels, float radius);
 
-// Assets holding `meshes` and one grey material.
+// Assets holding `meshes` and one grey double-sided material (both windings drawn).
 scene::SceneAssets make_test_assets(std::vector<scene::Mesh> meshes);
 
 // An empty frame with the camera the visibility tests assume (independent of the defaults):

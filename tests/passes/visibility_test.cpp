@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "passes/reference_raster.h"
@@ -696,6 +697,64 @@ TEST(Visibility, AlphaMaskedCardCastsShadowsThroughItsHolesOnly) {
   EXPECT_EQ(errors, 0);
   EXPECT_GT(blocked, 50);
   EXPECT_GT(lit_through, 50);
+}
+
+// The camera does not draw the back of a single-sided material (glTF doubleSided false):
+// counter-clockwise in the mesh's space is the front, and a mirroring model matrix keeps the
+// front on the same side of the surface while turning its winding on screen. Double-sided
+// materials show both sides; the shadow map draws both sides of either.
+TEST(Visibility, SingleSidedBackFacesAreCulledForTheCameraOnly) {
+  const std::vector<glm::vec3> quad = {
+      {-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}};
+  // mesh 0 faces +z (the camera), mesh 1 the other way
+  scene::SceneAssets assets = make_test_assets(
+      {make_test_mesh(quad, {{0, 1, 2}, {0, 2, 3}}), make_test_mesh(quad, {{0, 2, 1}, {0, 3, 2}})});
+  scene::Material single;
+  single.name = "single";
+  single.double_sided = false;
+  assets.materials.push_back(single);
+  int cases = 0;
+  for (const bool single_sided : {false, true})
+    for (const uint32_t mesh : {0u, 1u})
+      for (const bool mirrored : {false, true}) {
+        for (scene::Mesh& m : assets.meshes)
+          m.materials.assign(m.triangles.size(), single_sided ? 1u : 0u);
+        Harness hm(assets);
+        scene::FrameScene frame = make_test_frame();
+        scene::MeshInstance inst;
+        inst.mesh = mesh;
+        inst.model = glm::scale(glm::mat4(1.0f), glm::vec3(mirrored ? -1.0f : 1.0f, 1.0f, 1.0f));
+        inst.prev_model = inst.model;
+        frame.instances.push_back(inst);
+        const GpuImage g = hm.render(frame, 32, 32);
+        expect_matches_reference(g, reference_raster(assets, frame, hm.view()));
+        int covered = 0;
+        for (const glm::uvec2& id : g.ids) covered += id.x == 0u;
+        const bool seen = !single_sided || mesh == 0u;  // the mirror keeps the side facing +z
+        SCOPED_TRACE(::testing::Message() << "single-sided " << single_sided << " mesh " << mesh
+                                          << " mirrored " << mirrored);
+        if (seen) {
+          EXPECT_GE(covered, 80);  // about 10 x 10 pixels
+        } else {
+          EXPECT_EQ(covered, 0);
+        }
+        ++cases;
+      }
+  EXPECT_EQ(cases, 8);
+
+  // A single-sided floor facing down still casts the lamp's shadow (from above).
+  const std::vector<glm::vec3> floor = {
+      {-0.6f, -0.2f, -0.6f}, {0.6f, -0.2f, -0.6f}, {0.6f, -0.2f, 0.6f}, {-0.6f, -0.2f, 0.6f}};
+  scene::SceneAssets shadow_assets = make_test_assets({make_test_mesh(floor, {{0, 1, 2}, {0, 2, 3}})});
+  shadow_assets.materials.push_back(single);
+  shadow_assets.meshes[0].materials.assign(2, 1u);
+  scene::FrameScene frame = make_test_frame();
+  frame.instances.push_back(scene::MeshInstance{});
+  Harness hs(shadow_assets);
+  const std::vector<float> depth = hs.render_shadow(frame, 32);
+  int casting = 0;
+  for (size_t i = 0; i < size_t(32) * 32; ++i) casting += depth[i] < 1.0f;
+  EXPECT_GT(casting, 20);
 }
 
 }  // namespace
