@@ -118,9 +118,10 @@ inline void gb_uv_derivatives(rp_mat4 m, float4 p0, float4 p1, float4 p2, float 
   const float n_fx = dot(nrm, fx), n_fy = dot(nrm, fy);
   const float u_fx = dot(gu, fx), u_fy = dot(gu, fy), v_fx = dot(gv, fx), v_fy = dot(gv, fy);
   const rp_spanf nd = dot(nrm, f0) + RP_LANES * n_fx;  /* n . d per lane */
-  const rp_spanf t = k / nd;
+  const rp_spanf inv_nd = 1.0f / nd; /* one division, not three (a vector division is slow) */
+  const rp_spanf t = k * inv_nd;
   const rp_spanf ud = dot(gu, f0) + RP_LANES * u_fx, vd = dot(gv, f0) + RP_LANES * v_fx;
-  const rp_spanf sx = n_fx / nd, sy = n_fy / nd;
+  const rp_spanf sx = n_fx * inv_nd, sy = n_fy * inv_nd;
   *dudx = t * (u_fx - ud * sx);
   *dvdx = t * (v_fx - vd * sx);
   *dudy = t * (u_fy - ud * sy);
