@@ -447,13 +447,18 @@ void visibility_setup(const RasterView view, __global const uint2* draw_items,
   RP_SPAN_TO_ARRAY(by0, b1);
   RP_SPAN_TO_ARRAY(bx1, b2);
   RP_SPAN_TO_ARRAY(by1, b3);
+  /* An item that draws nothing (empty bounds: culled, off the view, between pixel centres:
+   * most of a large scene's) writes its bounds only: every reader tests them before the rest
+   * (the raster's fallback over every item reads its record, but its box is empty). On the
+   * atrium 144 bytes less per such triangle, visibility 18.5 -> 17.1 ms at 720x720. */
   for (int i = 0; i < n; ++i) {
+    bounds_out[first + (uint)i] = (int4)(b0[i], b1[i], b2[i], b3[i]);
+    if (b0[i] > b2[i] || b1[i] > b3[i]) continue;
     RasterTriangle rt;
     for (int k = 0; k < 3; ++k)
       rt.v[k] = (float4)(vf[k][0][i], vf[k][1][i], vf[k][2][i], vf[k][3][i]);
     rt.info = (uint4)(inst_of[i], prim_of[i], tri_of[i], masked_of[i]);
     tris_out[first + (uint)i] = rt;
-    bounds_out[first + (uint)i] = (int4)(b0[i], b1[i], b2[i], b3[i]);
     RasterEdges e;
     for (int k = 0; k < 3; ++k) e.e[k] = (float4)(ef[k][0][i], ef[k][1][i], ef[k][2][i], 0.0f);
     e.top_left = (int4)(tl[0][i], tl[1][i], tl[2][i], valid_of[i]);
