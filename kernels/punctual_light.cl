@@ -12,8 +12,7 @@
  * Eight pixels of a row per work-item (common/indirect_simd.h loads and stores): the lights'
  * direction, attenuation and 3x3-filtered shadow for the eight lanes at once
  * (common/punctual_light8.h; only the shadow texels are read lane by lane), the surface model
- * (rp_brdf_lamp8) once for the eight lanes, only where a lane has a coat: its view terms
- * (rp_brdf_view8, a table lookup) once per pixel, the rest per light.
+ * (rp_brdf_lamp8) once for the eight lanes, only where a lane has a coat.
  *
  * Variants (-D): RP_LIGHT_SPLIT=1: also adds the direct light to direct_out and its specular
  * part to specular_out (the light pass's split outputs, which hold the lamp's share already).
@@ -60,9 +59,6 @@ __kernel void punctual_light_add(__global const FrameConstants* restrict frame,
   const int8 on = covered & ((int8)(0, 1, 2, 3, 4, 5, 6, 7) < (int)lanes);
   const float8 zero = 0.0f;
   float8 dr = zero, dg = zero, db = zero, sr_sum = zero, sg_sum = zero, sb_sum = zero;
-  /* the surface model's view terms, once for every light */
-  RpBrdfView8 view = {zero, zero, zero, zero};
-  if (coated) view = rp_brdf_view8(brdf_table, code, nx, ny, nz, vx, vy, vz);
   for (uint i = 0; i < frame->punctual_count; ++i) {
     /* the light's irradiance factor k (rgb) and direction l, eight lanes at once */
     float8 kr, kg, kb, lx, ly, lz;
@@ -76,8 +72,8 @@ __kernel void punctual_light_add(__global const FrameConstants* restrict frame,
       continue;
     }
     float8 wr, wg, wb, sr, sg, sb, vr, vg, vb;
-    rp_brdf_lamp8_view(brdf_table, &view, code, ar, ag, ab, nx, ny, nz, vx, vy, vz, lx, ly, lz,
-                       zero, &wr, &wg, &wb, &sr, &sg, &sb, &vr, &vg, &vb);
+    rp_brdf_lamp8(brdf_table, code, ar, ag, ab, nx, ny, nz, vx, vy, vz, lx, ly, lz, zero, &wr,
+                  &wg, &wb, &sr, &sg, &sb, &vr, &vg, &vb);
     /* gloss code 0 (matte): w_d = 1, spec = 0, as the per-pixel form had it */
     const int8 matte = code == 0.0f;
     wr = select(wr, (float8)(1.0f), matte);

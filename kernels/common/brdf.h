@@ -103,39 +103,25 @@ inline float rp_brdf_code_roughness(float code) {
   return (float)((int)code & 255) * (1.0f / 255.0f);
 }
 
-/* What rp_brdf_lamp8 needs of the view alone (roughness, mu_o and the table's entry there),
- * for a pass that shades one surface by several lights: computed once per pixel, not per
- * light. */
-typedef struct {
-  float8 rough, mo, eo, so;
-} RpBrdfView8;
-
-inline RpBrdfView8 rp_brdf_view8(__global const float4* restrict table, float8 code, float8 nx,
-                                 float8 ny, float8 nz, float8 vx, float8 vy, float8 vz) {
-  RpBrdfView8 view;
-  view.rough = convert_float8(convert_int8(code) & 255) * (1.0f / 255.0f);
-  view.mo = fmax(nx * vx + ny * vy + nz * vz, RP_BRDF_MIN_COS);
-  float8 e_avg, s_avg;
-  rp_brdf_table8(table, view.mo, view.rough, &view.eo, &view.so, &e_avg, &s_avg);
-  return view;
-}
-
-/* rp_brdf_lamp8 with the view's part already done (rp_brdf_view8 of the same code, n, v). */
-inline void rp_brdf_lamp8_view(__global const float4* restrict table, const RpBrdfView8* view,
-                               float8 code, float8 ar, float8 ag, float8 ab, float8 nx,
-                               float8 ny, float8 nz, float8 vx, float8 vy, float8 vz, float8 lx,
-                               float8 ly, float8 lz, float8 widen, float8* wr, float8* wg,
-                               float8* wb, float8* sr, float8* sg, float8* sb, float8* er,
-                               float8* eg, float8* eb) {
+/* Lamp shading of eight lanes (see the header). code: the GBuffer's gloss code; albedo a*:
+ * the base colour (a metal's F0); n, v, l unit normal, view and light directions (l towards
+ * the lamp centre, as the direct factor's cosine); widen = a / (2 d) of the lamp. Outputs:
+ * w_d (diffuse weight), spec* (pi f_spec per channel), view* (E_spec(mu_o) per channel). */
+inline void rp_brdf_lamp8(__global const float4* restrict table, float8 code, float8 ar,
+                          float8 ag, float8 ab, float8 nx, float8 ny, float8 nz, float8 vx,
+                          float8 vy, float8 vz, float8 lx, float8 ly, float8 lz, float8 widen,
+                          float8* wr, float8* wg, float8* wb, float8* sr, float8* sg,
+                          float8* sb, float8* er, float8* eg, float8* eb) {
   const int8 c = convert_int8(code);
   const int8 coated = c != 0, metal = c >= RP_GLOSS_METAL;
-  const float8 rough = view->rough;
+  const float8 rough = convert_float8(c & 255) * (1.0f / 255.0f);
   const float8 f0d = convert_float8((c >> 8) & 255) * (1.0f / RP_GLOSS_F0_SCALE);
   const float8 f0r = select(f0d, ar, metal), f0g = select(f0d, ag, metal),
                f0b = select(f0d, ab, metal);
-  const float8 mo = view->mo, eo = view->eo, so = view->so;
+  const float8 mo = fmax(nx * vx + ny * vy + nz * vz, RP_BRDF_MIN_COS);
   const float8 mi = fmax(nx * lx + ny * ly + nz * lz, RP_BRDF_MIN_COS);
-  float8 ei, si, e_avg, s_avg;
+  float8 eo, so, ei, si, e_avg, s_avg;
+  rp_brdf_table8(table, mo, rough, &eo, &so, &e_avg, &s_avg);
   rp_brdf_table8(table, mi, rough, &ei, &si, &e_avg, &s_avg);
 
   /* single scattering with the lamp-widened lobe (see the header) */
@@ -166,20 +152,6 @@ inline void rp_brdf_lamp8_view(__global const float4* restrict table, const RpBr
   RP_BRDF_CHANNEL(f0g, so_g, si_g, sa_g, wg, sg, eg)
   RP_BRDF_CHANNEL(f0b, so_b, si_b, sa_b, wb, sb, eb)
 #undef RP_BRDF_CHANNEL
-}
-
-/* Lamp shading of eight lanes (see the header). code: the GBuffer's gloss code; albedo a*:
- * the base colour (a metal's F0); n, v, l unit normal, view and light directions (l towards
- * the lamp centre, as the direct factor's cosine); widen = a / (2 d) of the lamp. Outputs:
- * w_d (diffuse weight), spec* (pi f_spec per channel), view* (E_spec(mu_o) per channel). */
-inline void rp_brdf_lamp8(__global const float4* restrict table, float8 code, float8 ar,
-                          float8 ag, float8 ab, float8 nx, float8 ny, float8 nz, float8 vx,
-                          float8 vy, float8 vz, float8 lx, float8 ly, float8 lz, float8 widen,
-                          float8* wr, float8* wg, float8* wb, float8* sr, float8* sg,
-                          float8* sb, float8* er, float8* eg, float8* eb) {
-  const RpBrdfView8 view = rp_brdf_view8(table, code, nx, ny, nz, vx, vy, vz);
-  rp_brdf_lamp8_view(table, &view, code, ar, ag, ab, nx, ny, nz, vx, vy, vz, lx, ly, lz, widen,
-                     wr, wg, wb, sr, sg, sb, er, eg, eb);
 }
 
 #endif
