@@ -41,14 +41,11 @@
 #include "shared/types.h"
 #include "shared/pass_params.h"
 #include "common/colour.h"
+#include "common/math.h"
 #include "common/span.h"
 #include "common/span_texture.h"
 #include "common/random.h"
 
-/* M * (x, y, z, 1), one row: ((c0 x + c1 y) + c2 z) + c3. */
-#define GB_ROW_POINT(m, row, x, y, z) \
-  (m.c[0].row * (x) + m.c[1].row * (y) + m.c[2].row * (z) + m.c[3].row)
-#define GB_ROW_DIR(m, row, x, y, z) (m.c[0].row * (x) + m.c[1].row * (y) + m.c[2].row * (z))
 
 /* Clip coordinates -> pixel coordinates (rp_clip_to_screen), per lane. */
 #define GB_SCREEN_X(cx, inv_w, size_x) (((cx) * (inv_w) * 0.5f + 0.5f) * (size_x))
@@ -304,27 +301,27 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
       const rp_spanf ony = n0.y * b0 + n1.y * b1 + n2.y * b2;
       const rp_spanf onz = n0.z * b0 + n1.z * b1 + n2.z * b2;
       const rp_mat4 m = inst->model, pm = inst->prev_model, nm = inst->normal_matrix;
-      px = select(px, GB_ROW_POINT(m, x, obx, oby, obz), group);
-      py = select(py, GB_ROW_POINT(m, y, obx, oby, obz), group);
-      pz = select(pz, GB_ROW_POINT(m, z, obx, oby, obz), group);
-      qx = select(qx, GB_ROW_POINT(pm, x, obx, oby, obz), group);
-      qy = select(qy, GB_ROW_POINT(pm, y, obx, oby, obz), group);
-      qz = select(qz, GB_ROW_POINT(pm, z, obx, oby, obz), group);
-      const rp_spanf wnx = GB_ROW_DIR(nm, x, onx, ony, onz);
-      const rp_spanf wny = GB_ROW_DIR(nm, y, onx, ony, onz);
-      const rp_spanf wnz = GB_ROW_DIR(nm, z, onx, ony, onz);
+      px = select(px, RP_MAT4_ROW_POINT(m, x, obx, oby, obz), group);
+      py = select(py, RP_MAT4_ROW_POINT(m, y, obx, oby, obz), group);
+      pz = select(pz, RP_MAT4_ROW_POINT(m, z, obx, oby, obz), group);
+      qx = select(qx, RP_MAT4_ROW_POINT(pm, x, obx, oby, obz), group);
+      qy = select(qy, RP_MAT4_ROW_POINT(pm, y, obx, oby, obz), group);
+      qz = select(qz, RP_MAT4_ROW_POINT(pm, z, obx, oby, obz), group);
+      const rp_spanf wnx = RP_MAT4_ROW_DIR(nm, x, onx, ony, onz);
+      const rp_spanf wny = RP_MAT4_ROW_DIR(nm, y, onx, ony, onz);
+      const rp_spanf wnz = RP_MAT4_ROW_DIR(nm, z, onx, ony, onz);
       /* Seen from its back (thin double-sided surfaces: leaves, cloth), a surface faces the
        * camera: its geometric normal turned towards the camera, the shading normal into that
        * side (the path tracer's rule, truth/trace_scene.cpp), so lights and cones behind it
        * do not reach the side seen. */
       const float3 go = cross(p1.xyz - p0.xyz, p2.xyz - p0.xyz);
-      const float gx = GB_ROW_DIR(nm, x, go.x, go.y, go.z);
-      const float gy = GB_ROW_DIR(nm, y, go.x, go.y, go.z);
-      const float gz = GB_ROW_DIR(nm, z, go.x, go.y, go.z);
+      const float gx = RP_MAT4_ROW_DIR(nm, x, go.x, go.y, go.z);
+      const float gy = RP_MAT4_ROW_DIR(nm, y, go.x, go.y, go.z);
+      const float gz = RP_MAT4_ROW_DIR(nm, z, go.x, go.y, go.z);
       const float4 eye = frame->camera_pos;
-      const rp_spanf towards = gx * (eye.x - GB_ROW_POINT(m, x, obx, oby, obz)) +
-                               gy * (eye.y - GB_ROW_POINT(m, y, obx, oby, obz)) +
-                               gz * (eye.z - GB_ROW_POINT(m, z, obx, oby, obz));
+      const rp_spanf towards = gx * (eye.x - RP_MAT4_ROW_POINT(m, x, obx, oby, obz)) +
+                               gy * (eye.y - RP_MAT4_ROW_POINT(m, y, obx, oby, obz)) +
+                               gz * (eye.z - RP_MAT4_ROW_POINT(m, z, obx, oby, obz));
       const rp_spanf side = select((rp_spanf)(1.0f), (rp_spanf)(-1.0f), towards < 0.0f);
       const rp_spanf shading_side = (wnx * gx + wny * gy + wnz * gz) * side;
       const rp_spanf inv_len = rsqrt(wnx * wnx + wny * wny + wnz * wnz) *
@@ -438,16 +435,16 @@ __kernel void gbuffer_resolve(__global const FrameConstants* frame,
   const float fw = (float)width, fh = (float)height;
   const rp_mat4 vp = frame->view_proj_unjittered, pvp = frame->prev_view_proj_unjittered;
   const rp_mat4 view = frame->view;
-  const rp_spanf inv_w = 1.0f / GB_ROW_POINT(vp, w, px, py, pz);
-  const rp_spanf prev_inv_w = 1.0f / GB_ROW_POINT(pvp, w, qx, qy, qz);
-  rp_spanf vx = GB_SCREEN_X(GB_ROW_POINT(vp, x, px, py, pz), inv_w, fw) -
-                GB_SCREEN_X(GB_ROW_POINT(pvp, x, qx, qy, qz), prev_inv_w, fw);
-  rp_spanf vy = GB_SCREEN_Y(GB_ROW_POINT(vp, y, px, py, pz), inv_w, fh) -
-                GB_SCREEN_Y(GB_ROW_POINT(pvp, y, qx, qy, qz), prev_inv_w, fh);
+  const rp_spanf inv_w = 1.0f / RP_MAT4_ROW_POINT(vp, w, px, py, pz);
+  const rp_spanf prev_inv_w = 1.0f / RP_MAT4_ROW_POINT(pvp, w, qx, qy, qz);
+  rp_spanf vx = GB_SCREEN_X(RP_MAT4_ROW_POINT(vp, x, px, py, pz), inv_w, fw) -
+                GB_SCREEN_X(RP_MAT4_ROW_POINT(pvp, x, qx, qy, qz), prev_inv_w, fw);
+  rp_spanf vy = GB_SCREEN_Y(RP_MAT4_ROW_POINT(vp, y, px, py, pz), inv_w, fh) -
+                GB_SCREEN_Y(RP_MAT4_ROW_POINT(pvp, y, qx, qy, qz), prev_inv_w, fh);
   vx = select((rp_spanf)(0.0f), vx, covered);
   vy = select((rp_spanf)(0.0f), vy, covered);
   const rp_spanf depth =
-      select((rp_spanf)(frame->clip.y), -GB_ROW_POINT(view, z, px, py, pz), covered);
+      select((rp_spanf)(frame->clip.y), -RP_MAT4_ROW_POINT(view, z, px, py, pz), covered);
   const rp_spanf one = select((rp_spanf)(0.0f), (rp_spanf)(1.0f), covered);
 
   rp_store_span_quads_f(ar, ag, ab, one, out_albedo + 4 * pixel, n);

@@ -28,6 +28,7 @@
 #include "shared/types.h"
 #include "shared/brdf_layout.h"
 #include "common/colour.h"
+#include "common/math.h"
 #include "common/span.h"
 #include "common/span_texture.h"
 
@@ -59,9 +60,6 @@ inline void gm_map_select(GmMap* m, __global const TextureInfo* textures, uint t
   m->offset = select(m->offset, (rp_spanu)(info->offset), group);
   m->wrap = select(m->wrap, (rp_spanu)(info->wrap), group);
 }
-
-/* M (columns c[0..2]) * (x, y, z), one row. */
-#define GM_ROW_DIR(m, row, x, y, z) (m.c[0].row * (x) + m.c[1].row * (y) + m.c[2].row * (z))
 
 __kernel void gbuffer_material(__global const FrameConstants* frame,
                                __global const uint* ids,
@@ -147,16 +145,16 @@ __kernel void gbuffer_material(__global const FrameConstants* frame,
       const rp_spanf otz = t0.z * b0 + t1.z * b1 + t2.z * b2;
       const rp_spanf otw = t0.w * b0 + t1.w * b1 + t2.w * b2;
       const rp_mat4 m = inst->model, nmat = inst->normal_matrix;
-      tx = select(tx, GM_ROW_DIR(m, x, otx, oty, otz), group);
-      ty = select(ty, GM_ROW_DIR(m, y, otx, oty, otz), group);
-      tz = select(tz, GM_ROW_DIR(m, z, otx, oty, otz), group);
+      tx = select(tx, RP_MAT4_ROW_DIR(m, x, otx, oty, otz), group);
+      ty = select(ty, RP_MAT4_ROW_DIR(m, y, otx, oty, otz), group);
+      tz = select(tz, RP_MAT4_ROW_DIR(m, z, otx, oty, otz), group);
       tsign = select(tsign, select((rp_spanf)(1.0f), (rp_spanf)(-1.0f), otw < 0.0f), group);
       const rp_spanf onx = n0.x * b0 + n1.x * b1 + n2.x * b2;
       const rp_spanf ony = n0.y * b0 + n1.y * b1 + n2.y * b2;
       const rp_spanf onz = n0.z * b0 + n1.z * b1 + n2.z * b2;
-      vx = select(vx, GM_ROW_DIR(nmat, x, onx, ony, onz), group);
-      vy = select(vy, GM_ROW_DIR(nmat, y, onx, ony, onz), group);
-      vz = select(vz, GM_ROW_DIR(nmat, z, onx, ony, onz), group);
+      vx = select(vx, RP_MAT4_ROW_DIR(nmat, x, onx, ony, onz), group);
+      vy = select(vy, RP_MAT4_ROW_DIR(nmat, y, onx, ony, onz), group);
+      vz = select(vz, RP_MAT4_ROW_DIR(nmat, z, onx, ony, onz), group);
     }
   }
   if (!have_maps) return;

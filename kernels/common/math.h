@@ -20,6 +20,13 @@ inline float4 rp_mat4_mul(const rp_mat4 m, float4 v) {
   return m.c[0] * v.x + m.c[1] * v.y + m.c[2] * v.z + m.c[3] * v.w;
 }
 
+/* One row (x, y, z or w) of M * (x, y, z, 1) and of M * (x, y, z, 0), for scalars or for
+ * spans of lanes (common/span.h): ((c0 x + c1 y) + c2 z) (+ c3). */
+#define RP_MAT4_ROW_POINT(m, row, x, y, z) \
+  ((m).c[0].row * (x) + (m).c[1].row * (y) + (m).c[2].row * (z) + (m).c[3].row)
+#define RP_MAT4_ROW_DIR(m, row, x, y, z) \
+  ((m).c[0].row * (x) + (m).c[1].row * (y) + (m).c[2].row * (z))
+
 /* Row r (0..3) of M as a 4-vector. */
 inline float4 rp_mat4_row(const rp_mat4 m, int r) {
   return r == 0   ? (float4)(m.c[0].x, m.c[1].x, m.c[2].x, m.c[3].x)

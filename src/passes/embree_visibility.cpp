@@ -150,14 +150,13 @@ struct EmbreeVisibilityPass::Impl {
   bool static_enabled = false;
   std::vector<uint32_t> static_key;  // (instance index, mesh index) pairs of the static scene
   std::vector<uint32_t> static_instance_of;
-  std::vector<uint32_t> static_mesh_of;  // geomID g's mesh index
   // Moving instances: pool of instance geometries in `top`, mover k currently instancing mesh
   // mover_mesh[k] (kNone when disabled); top-level geomID -> instance index in instance_of_top.
   std::vector<RTCGeometry> movers;
   std::vector<unsigned> mover_ids;
   std::vector<uint32_t> mover_mesh;
   std::vector<uint32_t> instance_of_top;
-  std::vector<uint32_t> mesh_of_top;  // top-level geomID -> the instanced mesh's index
+  std::vector<uint32_t> mesh_of_instance;  // the frame's instance -> its mesh (mesh_of)
   // Spheres: float4 (centre, radius) per sphere, plus one float4 of padding.
   RTCGeometry spheres = nullptr;
   unsigned sphere_top_id = RTC_INVALID_GEOMETRY_ID;
@@ -293,13 +292,17 @@ struct EmbreeVisibilityPass::Impl {
                           std::to_string(s.meshes.size()) + " meshes, not " +
                           std::to_string(meshes.size()) + ")");
     const std::vector<gpu::Instance>& instances = s.host_instances;
+    mesh_of_instance.assign(instances.size(), kNone);
+    for (size_t i = 0; i < instances.size(); ++i)
+      if (instances[i].triangle_count != 0) mesh_of_instance[i] = mesh_of(s, instances[i], i);
+    // (the static set, the movers and the back-face test read it: one search per instance)
 
     // Static set: rebuild the static scene only when it changes.
     bool same = true;
     size_t k = 0;
     for (size_t i = 0; i < instances.size(); ++i) {
       if (instances[i].triangle_count == 0 || !is_identity(instances[i].model)) continue;
-      const uint32_t m = mesh_of(s, instances[i], i);
+      const uint32_t m = mesh_of_instance[i];
       same = same && k + 2 <= static_key.size() && static_key[k] == i && static_key[k + 1] == m;
       k += 2;
     }
@@ -310,17 +313,14 @@ struct EmbreeVisibilityPass::Impl {
     for (size_t i = 0; i < instances.size(); ++i) {
       const gpu::Instance& inst = instances[i];
       if (inst.triangle_count == 0 || is_identity(inst.model)) continue;
-      const uint32_t m = mesh_of(s, inst, i);
+      const uint32_t m = mesh_of_instance[i];
       if (used == movers.size()) {
         RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryTimeStepCount(g, 1);
         movers.push_back(g);
         mover_ids.push_back(rtcAttachGeometry(top, g));
         mover_mesh.push_back(kNone);
-        if (instance_of_top.size() <= mover_ids.back()) {
-          instance_of_top.resize(mover_ids.back() + 1);
-          mesh_of_top.resize(mover_ids.back() + 1);
-        }
+        if (instance_of_top.size() <= mover_ids.back()) instance_of_top.resize(mover_ids.back() + 1);
         check("creating an instance geometry");
       }
       RTCGeometry g = movers[used];
@@ -330,7 +330,6 @@ struct EmbreeVisibilityPass::Impl {
       rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &inst.model.c[0].x);
       rtcCommitGeometry(g);
       instance_of_top[mover_ids[used]] = static_cast<uint32_t>(i);
-      mesh_of_top[mover_ids[used]] = m;
       ++used;
     }
     for (size_t j = used; j < movers.size(); ++j) {
@@ -376,22 +375,17 @@ struct EmbreeVisibilityPass::Impl {
     rtcSetSceneBuildQuality(static_scene, RTC_BUILD_QUALITY_HIGH);
     static_key.clear();
     static_instance_of.clear();
-    static_mesh_of.clear();
     for (size_t i = 0; i < s.host_instances.size(); ++i) {
       const gpu::Instance& inst = s.host_instances[i];
       if (inst.triangle_count == 0 || !is_identity(inst.model)) continue;
-      const uint32_t m = mesh_of(s, inst, i);
+      const uint32_t m = mesh_of_instance[i];
       static_key.push_back(static_cast<uint32_t>(i));
       static_key.push_back(m);
       RTCGeometry g = new_triangles(meshes[m]);
       const unsigned id = rtcAttachGeometry(static_scene, g);
       rtcReleaseGeometry(g);
-      if (static_instance_of.size() <= id) {
-        static_instance_of.resize(id + 1, kNone);
-        static_mesh_of.resize(id + 1, kNone);
-      }
+      if (static_instance_of.size() <= id) static_instance_of.resize(id + 1, kNone);
       static_instance_of[id] = static_cast<uint32_t>(i);
-      static_mesh_of[id] = m;
     }
     rtcCommitScene(static_scene);
     rtcSetGeometryInstancedScene(static_instance, static_scene);
@@ -528,7 +522,7 @@ struct EmbreeVisibilityPass::Impl {
     const unsigned geom = rh.hit.geomID[l], inst = rh.hit.instID[0][l];
     const bool is_static = inst == static_top_id;
     const uint32_t instance = is_static ? static_instance_of[geom] : instance_of_top[inst];
-    const MeshData& m = meshes[is_static ? static_mesh_of[geom] : mesh_of_top[inst]];
+    const MeshData& m = meshes[mesh_of_instance[instance]];
     const uint32_t prim = rh.hit.primID[l];
     if (!m.single_sided[prim]) return false;
     auto pos = [&](uint32_t k) {
