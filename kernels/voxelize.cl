@@ -204,6 +204,26 @@ inline void vx_sink(volatile __global uint* accum, volatile __global uint* overf
   for (uint i = 0; i < 3u; ++i)
     if (fs[i] != 0u) atomic_add(accum + RP_VOXEL_ACCUM_WORDS * voxel + 4u + i, fs[i]);
 }
+
+/* vx_sink for the sums q of several contributions to one voxel (64-bit: their total can pass
+ * 2^32, which sets the channel's overflow bit as the separate adds would have). */
+inline void vx_add_wide(volatile __global uint* accum, volatile __global uint* overflow,
+                        uint voxel, ulong4 q, uint3 f) {
+  const ulong qs[4] = {q.x, q.y, q.z, q.w};
+  for (uint c = 0; c < 4u; ++c) {
+    if (qs[c] == 0ul) continue;
+    const uint low = (uint)qs[c];
+    bool wrapped = qs[c] > 0xFFFFFFFFul;
+    if (low != 0u) {
+      const uint old = atomic_add(accum + RP_VOXEL_ACCUM_WORDS * voxel + c, low);
+      wrapped = wrapped || old > 0xFFFFFFFFu - low;
+    }
+    if (wrapped) atomic_or(overflow + voxel, 1u << c);
+  }
+  const uint fs[3] = {f.x, f.y, f.z};
+  for (uint i = 0; i < 3u; ++i)
+    if (fs[i] != 0u) atomic_add(accum + RP_VOXEL_ACCUM_WORDS * voxel + 4u + i, fs[i]);
+}
 #endif
 
 /* Adds (rgb * a, a) and the facing words f to voxel `voxel`. */
@@ -828,15 +848,28 @@ inline VxVec vx_shade_span(const VxSetup* s, const VxLight* L, __global const fl
   return vx_radiance_span(L, shadow, &albedo, p, &s->nw, &s->emission, active, n_lanes);
 }
 
+#ifndef RP_VOXEL_FRAGMENTS
+/* vx_facing_words(n, 1) of every lane (the same arithmetic as vectors), words x, y, z. */
+inline void vx_facing_words_span(const VxVec* n, uint* wx, uint* wy, uint* wz) {
+  const rp_spanf ax = fabs(n->x), ay = fabs(n->y), az = fabs(n->z);
+  const rp_spanf scale = (1.0f * RP_VOXEL_FACING_UNIT) / fmax(fmax(ax, ay), az);
+#define VX_FACING_WORD_SPAN(a, s, out)                                                      \
+  {                                                                                         \
+    const rp_spanu q = rp_span_convert_uint(fmin((a) * scale, RP_VOXEL_FACING_UNIT) + 0.5f); \
+    RP_SPAN_TO_ARRAY(select(q << 16, q, (s) > 0.0f), out);                                  \
+  }
+  VX_FACING_WORD_SPAN(ax, n->x, wx)
+  VX_FACING_WORD_SPAN(ay, n->y, wy)
+  VX_FACING_WORD_SPAN(az, n->z, wz)
+#undef VX_FACING_WORD_SPAN
+}
+#endif
+
 /* Adds (radiance, opacity 1) to voxel `voxel` of every lane in `hit`. */
 inline void vx_accumulate_span(volatile __global uint* accum, volatile __global uint* overflow,
                                rp_spanu voxel, const VxVec* radiance_p, const VxVec* normal_p,
                                rp_spani hit, int n_lanes) {
   const VxVec radiance = *radiance_p;
-  float nx[RP_SPAN], ny[RP_SPAN], nz[RP_SPAN];
-  RP_SPAN_TO_ARRAY(normal_p->x, nx);
-  RP_SPAN_TO_ARRAY(normal_p->y, ny);
-  RP_SPAN_TO_ARRAY(normal_p->z, nz);
   int lh[RP_SPAN];
   RP_SPAN_TO_ARRAY(hit, lh);
   uint lv[RP_SPAN], lr[RP_SPAN], lg[RP_SPAN], lb[RP_SPAN];
@@ -850,6 +883,10 @@ inline void vx_accumulate_span(volatile __global uint* accum, volatile __global 
   RP_SPAN_TO_ARRAY(voxel, lv);
   const uint one = vx_fixed(1.0f);
 #ifdef RP_VOXEL_FRAGMENTS
+  float nx[RP_SPAN], ny[RP_SPAN], nz[RP_SPAN];
+  RP_SPAN_TO_ARRAY(normal_p->x, nx);
+  RP_SPAN_TO_ARRAY(normal_p->y, ny);
+  RP_SPAN_TO_ARRAY(normal_p->z, nz);
   /* one slot reservation for the span's fragments (the counter is the pass's hot spot: one
    * atomic per fragment otherwise); every such fragment has opacity one, never all zero */
   uint hits = 0;
@@ -866,11 +903,34 @@ inline void vx_accumulate_span(volatile __global uint* accum, volatile __global 
     ++slot;
   }
 #else
-  for (int i = 0; i < n_lanes; ++i)
-    if (lh[i]) {
-      vx_sink(accum, overflow, lv[i], (uint4)(lr[i], lg[i], lb[i], one),
-              vx_facing_words((float3)(nx[i], ny[i], nz[i]), 1.0f));
+  /* Neighbouring lanes of one voxel (the static cache is sorted by voxel) add their sums
+   * before one set of atomics: the same words as one atomic per lane (sums mod 2^32, and
+   * vx_add_wide flags the total's overflow as the lanes' adds would). */
+  /* (scalars, not vectors: a uint3 sum kept in memory stalled each lane on its reload) */
+  uint lf0[RP_SPAN], lf1[RP_SPAN], lf2[RP_SPAN];
+  vx_facing_words_span(normal_p, lf0, lf1, lf2);
+  uint voxel_run = 0u, f0 = 0u, f1 = 0u, f2 = 0u;
+  ulong r_run = 0ul, g_run = 0ul, b_run = 0ul, a_run = 0ul;
+  for (int i = 0; i < n_lanes; ++i) {
+    if (!lh[i]) continue;
+    if (a_run != 0ul && lv[i] != voxel_run) {
+      vx_add_wide(accum, overflow, voxel_run, (ulong4)(r_run, g_run, b_run, a_run),
+                  (uint3)(f0, f1, f2));
+      r_run = g_run = b_run = a_run = 0ul;
+      f0 = f1 = f2 = 0u;
     }
+    voxel_run = lv[i];
+    r_run += lr[i];
+    g_run += lg[i];
+    b_run += lb[i];
+    a_run += one;
+    f0 += lf0[i];
+    f1 += lf1[i];
+    f2 += lf2[i];
+  }
+  if (a_run != 0ul)
+    vx_add_wide(accum, overflow, voxel_run, (ulong4)(r_run, g_run, b_run, a_run),
+                (uint3)(f0, f1, f2));
 #endif
 }
 
