@@ -16,6 +16,7 @@
 #include "render/frame_memory.h"
 #include "render/gpu_scene.h"
 #include "render/render_settings.h"
+#include "render/still_volume.h"
 #include "render/svo_volume.h"
 #include "render/voxel_volume.h"
 #include "scene/frame_scene.h"
@@ -161,9 +162,16 @@ class Renderer {
   // The fast mode refreshes the voxelizer's cached static samples' bounce light a quarter per
   // frame (VoxelizePass::set_bounce_refresh_stride): 0.5 ms of the 720x720 busy frame.
   static constexpr uint32_t kBounceRefreshFast = 4;
+  // Frames of unchanged inputs (StillVolume) after which the fast mode keeps its GI volume and
+  // bounce grid instead of building them: by then every face of the grid has blended its whole
+  // 16-cone set once from the still scene (one face in RP_BOUNCE_FACE_STRIDE = 4 a frame). With
+  // one bounce the volume is kept from the first still frame (the same volume, bit for bit).
+  static constexpr uint32_t kStillFramesBeforeKeep = 16 * 4;
 
   // Voxelizes the frame and builds the mips; with several bounces, also the bounce gathers.
+  // Keeps the last frame's volume instead where StillVolume allows (see above).
   void build_voxels();
+
   // The GI volume the cones read: the dense chain or the octree buffer, its resolution and
   // levels (log2 R + 1 for both).
   const ::cl::Buffer& gi_buffer() const;
@@ -217,6 +225,8 @@ class Renderer {
   VoxelVolume voxels_;                  // kDense
   SvoVolume svo_;                       // kSvo
   std::unique_ptr<passes::SvoPass> svo_pass_;  // kSvo
+  StillVolume still_volume_;  // whether the GI volume's inputs changed (build_voxels)
+  bool volume_built_ = false;  // a GI volume has been built since the start or a reset
   ::cl::Buffer hdr_;    // float4 per pixel: the light pass's output
   // The reference mode's screen-space reflections: the previous frame's hdr_, copied
   // before the light pass overwrites it (float4 per pixel; not allocated in the fast mode, whose
