@@ -80,7 +80,7 @@ inline float8 rp_punctual_view_visibility8(__global const float* shadow,
  * p with unit normals n, for the lanes in `on`: intensity * cos * attenuation * visibility into
  * (kr, kg, kb), the direction towards the light into (lx, ly, lz) ((0, 1, 0) where a point
  * light sits on the point). 0 elsewhere and where the surface faces away. Returns false when
- * no lane receives light. */
+ * no lane receives light (facing away, out of reach or in its shadow). */
 inline bool rp_punctual_direct8(__global const FrameConstants* frame,
                                 __global const float* shadow, uint i, float8 px, float8 py,
                                 float8 pz, float8 nx, float8 ny, float8 nz, int8 on,
@@ -185,6 +185,9 @@ inline bool rp_punctual_direct8(__global const FrameConstants* frame,
       }
     }
   }
+  /* every lit lane in the light's shadow: nothing to add (the caller skips the surface model,
+   * whose terms would all be scaled by 0) */
+  if (!any(lit & (vis > 0.0f))) return false;
   const float8 k = select(zero, c * atten * vis, lit);
   *kr = L->intensity.x * k;
   *kg = L->intensity.y * k;
