@@ -110,6 +110,34 @@ struct ViewState {
   std::vector<uint32_t> draw_host;
 };
 
+// Whether the box `bounds` (world space; lo > hi: empty) lies wholly outside one plane of
+// view_proj's clip volume (-w <= x, y, z <= w), widened by (mx, my) in NDC units across x and
+// y: then none of its triangles can cover a pixel centre or the depth range, and the
+// rasterizer need not set them up. Conservative: a box straddling the planes' corners is kept.
+bool outside_frustum(const glm::mat4& view_proj, const std::pair<glm::vec3, glm::vec3>& bounds,
+                     float mx, float my) {
+  const auto& [lo, hi] = bounds;
+  if (lo.x > hi.x) return true;
+  // per plane, whether every corner is beyond it (a small relative margin: rounding)
+  bool beyond[6] = {true, true, true, true, true, true};
+  for (int k = 0; k < 8; ++k) {
+    const glm::vec4 c = view_proj * glm::vec4(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y,
+                                             k & 4 ? hi.z : lo.z, 1.0f);
+    const float a = std::abs(c.w);
+    const float wx = c.w + (1.0e-4f + mx) * a, wy = c.w + (1.0e-4f + my) * a;
+    const float wz = c.w + 1.0e-4f * a;
+    beyond[0] = beyond[0] && c.x < -wx;
+    beyond[1] = beyond[1] && c.x > wx;
+    beyond[2] = beyond[2] && c.y < -wy;
+    beyond[3] = beyond[3] && c.y > wy;
+    beyond[4] = beyond[4] && c.z < -wz;
+    beyond[5] = beyond[5] && c.z > wz;
+  }
+  for (bool b : beyond)
+    if (b) return true;
+  return false;
+}
+
 struct VisibilityPass::Impl {
   const rp::cl::Context* context = nullptr;
   int span = 1;
@@ -153,25 +181,38 @@ struct VisibilityPass::Impl {
     v.unused = ::cl::Buffer(ctx, CL_MEM_READ_WRITE, 2 * sizeof(uint32_t));
   }
 
-  void update_draw_items(ViewState& v, const render::GpuScene& scene) {
+  // The camera view culls the instances outside its frustum: the unjittered one widened by two
+  // pixels (the jitter moves it by at most half a pixel), so the draw list changes only when
+  // the camera or an object moves, not with the jitter. Depth-only views draw every caster.
+  void update_draw_items(ViewState& v, const render::GpuScene& scene, uint32_t width,
+                         uint32_t height) {
+    const glm::mat4 view_proj = to_glm(scene.constants.view_proj_unjittered);
+    const float mx = 4.0f / float(std::max(width, 1u)), my = 4.0f / float(std::max(height, 1u));
     const std::vector<gpu::Instance>& instances = scene.host_instances;
     ensure(context->context, v.draw_items, v.draw_cap, 1, 2 * sizeof(uint32_t));  // never unset
-    // the triangles this view draws of instance i (none: a depth-only view's non-caster)
-    auto range = [&](const gpu::Instance& inst) -> std::pair<uint32_t, uint32_t> {
-      if (!v.depth_only) return {inst.first_triangle, inst.triangle_count};
+    // the triangles this view draws of instance i (none: a depth-only view's non-caster, an
+    // instance outside the camera's frustum)
+    auto range = [&](size_t i) -> std::pair<uint32_t, uint32_t> {
+      const gpu::Instance& inst = instances[i];
+      if (!v.depth_only) {
+        if (i < scene.host_instance_bounds.size() &&
+            outside_frustum(view_proj, scene.host_instance_bounds[i], mx, my))
+          return {0u, 0u};
+        return {inst.first_triangle, inst.triangle_count};
+      }
       if ((inst.casts_shadow & v.params.caster_mask) == 0u) return {0u, 0u};
       return {inst.shadow_first_triangle, inst.shadow_triangle_count};
     };
     bool same = v.draw_key.size() == 2 * instances.size();
     for (size_t i = 0; same && i < instances.size(); ++i) {
-      const auto [first, count] = range(instances[i]);
+      const auto [first, count] = range(i);
       same = v.draw_key[2 * i] == first && v.draw_key[2 * i + 1] == count;
     }
     if (same) return;
     v.draw_key.clear();
     v.draw_host.clear();
     for (uint32_t i = 0; i < instances.size(); ++i) {
-      const auto [first, count] = range(instances[i]);
+      const auto [first, count] = range(i);
       v.draw_key.push_back(first);
       v.draw_key.push_back(count);
       if (uint64_t(first) + count > scene.triangle_count)
@@ -196,7 +237,7 @@ struct VisibilityPass::Impl {
                 const ::cl::Buffer& bary_out) {
     const ::cl::Context& ctx = context->context;
     ::cl::CommandQueue& queue = profiler.queue();
-    update_draw_items(v, scene);
+    update_draw_items(v, scene, width, height);
     const uint32_t tiles_x = static_cast<uint32_t>((width + kTile - 1) / kTile);
     const uint32_t tiles_y = static_cast<uint32_t>((height + kTile - 1) / kTile);
     const uint32_t tiles = tiles_x * tiles_y;

@@ -15,7 +15,9 @@ class VisibilityPass {
  public:
   VisibilityPass(const rp::cl::Context& context, rp::cl::ProgramCache& programs);
 
-  // Camera view (FrameConstants.view_proj, width x height of `out`). Pass name "visibility".
+  // Camera view (FrameConstants.view_proj, width x height of `out`). Instances whose world
+  // bounds (GpuScene::host_instance_bounds) lie outside FrameConstants.view_proj_unjittered's
+  // frustum, widened by two pixels, are not set up. Pass name "visibility".
   void render(rp::cl::Profiler& profiler, const render::GpuScene& scene,
               render::VisibilityBuffer& out);
 

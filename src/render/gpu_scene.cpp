@@ -2,6 +2,7 @@
 
 #include "shading/brdf_tables.h"
 
+#include <limits>
 #include <algorithm>
 #include <chrono>
 #include <cstring>
@@ -332,6 +333,7 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
   update_sky(f.environment);
 
   host_instances.clear();
+  host_instance_bounds.clear();
   instance_triangle_count = 0;
   voxel_triangle_count = 0;
   for (const scene::MeshInstance& inst : f.instances) {
@@ -354,6 +356,20 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
     g.shadow_first_triangle = shadow.first_triangle;
     g.shadow_triangle_count = shadow.triangle_count;
     host_instances.push_back(g);
+    const MeshRange& range = meshes[inst.mesh];
+    std::pair<glm::vec3, glm::vec3> world{glm::vec3(1.0f), glm::vec3(-1.0f)};
+    if (range.lo.x <= range.hi.x) {
+      world = {glm::vec3(std::numeric_limits<float>::infinity()),
+               glm::vec3(-std::numeric_limits<float>::infinity())};
+      for (int k = 0; k < 8; ++k) {
+        const glm::vec3 corner(k & 1 ? range.hi.x : range.lo.x, k & 2 ? range.hi.y : range.lo.y,
+                               k & 4 ? range.hi.z : range.lo.z);
+        const glm::vec3 p = glm::vec3(inst.model * glm::vec4(corner, 1.0f));
+        world.first = glm::min(world.first, p);
+        world.second = glm::max(world.second, p);
+      }
+    }
+    host_instance_bounds.push_back(world);
     instance_triangle_count += g.triangle_count;
     voxel_triangle_count += g.voxel_triangle_count;
   }

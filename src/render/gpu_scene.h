@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <CL/opencl.hpp>
@@ -125,6 +126,9 @@ class GpuScene {
   // This frame's punctual lights and shadow views (also in `constants`), for the shadow pass.
   PunctualSetup punctual;
   std::vector<gpu::Instance> host_instances;
+  // Per instance, its mesh's bounds in world space (8 corners transformed; lo > hi: an empty
+  // mesh): what the camera's rasterizer tests against its frustum.
+  std::vector<std::pair<glm::vec3, glm::vec3>> host_instance_bounds;
   std::vector<gpu::Sphere> host_spheres;
 
  private:

@@ -74,6 +74,7 @@ class Harness {
     scene_.update(frame, w, h, 64);
     if (replace) {
       scene_.constants.view_proj = gpu::to_gpu(replace->view_proj);
+      scene_.constants.view_proj_unjittered = scene_.constants.view_proj;  // what culls
       scene_.constants.inv_view_proj = gpu::to_gpu(replace->inv_view_proj);
     }
     if (vb_.width != w || vb_.height != h) vb_.resize(context().context, w, h);
