@@ -348,6 +348,8 @@ uint64_t VisibilityPass::tile_list_bytes(uint32_t width, uint32_t height) {
   return 3 * 2 * tiles * sizeof(uint32_t);
 }
 
+uint32_t VisibilityPass::camera_triangles() const { return impl_->camera.draw_count; }
+
 uint64_t VisibilityPass::camera_tile_bytes() const {
   const ViewState& v = impl_->camera;
   return buffer_bytes({&v.counts, &v.start, &v.cursor});

@@ -38,6 +38,8 @@ class VisibilityPass {
   // for triangles and one for spheres; passes/frame_memory.h), and what the camera's and the
   // lamp's views hold now (they only grow). The triangle lists follow the scene.
   static uint64_t tile_list_bytes(uint32_t width, uint32_t height);
+  // Triangles the camera view set up in its last render (its draw list, after the culling).
+  uint32_t camera_triangles() const;
   uint64_t camera_tile_bytes() const;
   uint64_t lamp_tile_bytes() const;
 

@@ -114,6 +114,7 @@ class Harness {
   }
 
   const rp::cl::PassTimes& times() const { return times_; }
+  uint32_t camera_triangles() const { return pass_.camera_triangles(); }
 
  private:
   render::GpuScene scene_;
@@ -565,6 +566,30 @@ TEST(Visibility, TileListGrowsAndInstanceSetChanges) {
   frame.instances = {big};
   g = h.render(frame, 80, 32);  // and a resize
   expect_matches_reference(g, reference_raster(assets, frame, h.view()));
+}
+
+// The camera leaves out instances wholly outside its frustum (not set up at all), and keeps
+// one that straddles its edge: the picture is the reference's, which draws every instance.
+TEST(Visibility, InstancesOutsideTheFrustumAreNotSetUp) {
+  scene::SceneAssets assets = make_test_assets({random_triangles(11u, 12)});
+  scene::FrameScene frame = make_test_frame();
+  scene::MeshInstance inside, right, behind, edge;
+  right.model = glm::translate(glm::mat4(1.0f), glm::vec3(40.0f, 0.0f, 0.0f));
+  behind.model = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 12.0f));
+  edge.model = glm::translate(glm::mat4(1.0f), glm::vec3(2.2f, 0.0f, 0.0f));
+  frame.instances = {inside, right, behind, edge};
+  Harness h(assets);
+  GpuImage g = h.render(frame, 64, 48);
+  expect_matches_reference(g, reference_raster(assets, frame, h.view()));
+  EXPECT_EQ(h.camera_triangles(), 2u * 12u) << "the inside and the edge instance";
+  bool edge_seen = false;
+  for (const glm::uvec2& id : g.ids) edge_seen = edge_seen || id.x == 3u;
+  EXPECT_TRUE(edge_seen) << "the edge instance should show (the test's set-up)";
+
+  frame.instances[1].model = glm::mat4(1.0f);  // moved into view: set up again
+  g = h.render(frame, 64, 48);
+  expect_matches_reference(g, reference_raster(assets, frame, h.view()));
+  EXPECT_EQ(h.camera_triangles(), 3u * 12u);
 }
 
 // ---- alpha masks (scene/frame_scene.h AlphaMode::kMask, kernels/common/alpha_mask.h) ----
