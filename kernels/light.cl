@@ -96,7 +96,7 @@ inline bool rp_lamp_on(__global const FrameConstants* restrict frame) {
 /* Surface-model weights of eight lanes (common/brdf.h) for the lamp at frame->light_pos seen
  * from camera_pos: w* lamp diffuse weight, s* lamp specular (pi f), e* coat albedo toward the
  * view, i* indirect diffuse weight. Chunks without a coated lane skip the model (w = i = 1,
- * s = e = 0). */
+ * s = e = 0); without the lamp only e and i are computed (w = 1, s = 0). */
 inline void light_surface8(__global const FrameConstants* restrict frame,
                            __global const float4* restrict brdf_table, float8 code, float8 ar,
                            float8 ag, float8 ab, float8 px, float8 py, float8 pz, float8 nx,
@@ -110,6 +110,20 @@ inline void light_surface8(__global const FrameConstants* restrict frame,
     return;
   }
   const float4 lp = frame->light_pos, cam = frame->camera_pos;
+  if (!rp_lamp_on(frame)) {
+    /* no lamp (a file scene): its weights are scaled by 0; only the view's part is needed */
+    float8 vx = cam.x - px, vy = cam.y - py, vz = cam.z - pz;
+    const float8 inv_v = rsqrt(vx * vx + vy * vy + vz * vz);
+    rp_brdf_view8(brdf_table, code, ar, ag, ab, nx, ny, nz, vx * inv_v, vy * inv_v, vz * inv_v,
+                  er, eg, eb);
+    *wr = *wg = *wb = one;
+    *sr = *sg = *sb = zero;
+    const int8 metal = convert_int8(code) >= RP_GLOSS_METAL;
+    *ir = select(1.0f - *er, zero, metal);
+    *ig = select(1.0f - *eg, zero, metal);
+    *ib = select(1.0f - *eb, zero, metal);
+    return;
+  }
   float8 lx = lp.x - px, ly = lp.y - py, lz = lp.z - pz;
   const float8 inv_l = rsqrt(lx * lx + ly * ly + lz * lz);
   lx *= inv_l;

@@ -154,4 +154,29 @@ inline void rp_brdf_lamp8(__global const float4* restrict table, float8 code, fl
 #undef RP_BRDF_CHANNEL
 }
 
+/* rp_brdf_lamp8's coat albedo toward the view alone (e*), for frames without the lamp: the
+ * view's table entry and the same arithmetic (the table's E_avg does not vary with mu, so the
+ * light's lookup, which rp_brdf_lamp8 takes it from, gives the same value). */
+inline void rp_brdf_view8(__global const float4* restrict table, float8 code, float8 ar,
+                          float8 ag, float8 ab, float8 nx, float8 ny, float8 nz, float8 vx,
+                          float8 vy, float8 vz, float8* er, float8* eg, float8* eb) {
+  const int8 c = convert_int8(code);
+  const int8 coated = c != 0, metal = c >= RP_GLOSS_METAL;
+  const float8 rough = convert_float8(c & 255) * (1.0f / 255.0f);
+  const float8 f0d = convert_float8((c >> 8) & 255) * (1.0f / RP_GLOSS_F0_SCALE);
+  const float8 f0r = select(f0d, ar, metal), f0g = select(f0d, ag, metal),
+               f0b = select(f0d, ab, metal);
+  const float8 mo = fmax(nx * vx + ny * vy + nz * vz, RP_BRDF_MIN_COS);
+  float8 eo, so, e_avg, s_avg;
+  rp_brdf_table8(table, mo, rough, &eo, &so, &e_avg, &s_avg);
+  float8 fadd, so_r, si_r, sa_r, so_g, si_g, sa_g, so_b, si_b, sa_b;
+  const float8 zero = 0.0f;
+  rp_brdf_coat8(f0r, eo, so, eo, so, e_avg, s_avg, &fadd, &so_r, &si_r, &sa_r);
+  *er = select(zero, so_r, coated);
+  rp_brdf_coat8(f0g, eo, so, eo, so, e_avg, s_avg, &fadd, &so_g, &si_g, &sa_g);
+  *eg = select(zero, so_g, coated);
+  rp_brdf_coat8(f0b, eo, so, eo, so, e_avg, s_avg, &fadd, &so_b, &si_b, &sa_b);
+  *eb = select(zero, so_b, coated);
+}
+
 #endif
