@@ -973,8 +973,8 @@ inline void vx_accumulate_span(volatile __global uint* accum, volatile __global 
 #else
   /* Neighbouring lanes of one voxel (the static cache is sorted by voxel) add their sums
    * before one set of atomics: the same words as one atomic per lane (sums mod 2^32, and
-   * vx_add_wide flags the total's overflow as the lanes' adds would). */
-  /* (scalars, not vectors: a uint3 sum kept in memory stalled each lane on its reload) */
+   * vx_add_wide flags the total's overflow as the lanes' adds would). The running sums are
+   * scalars: a uint3 kept in memory stalled each lane on its reload. */
   uint lf0[RP_SPAN], lf1[RP_SPAN], lf2[RP_SPAN];
   vx_facing_words_span(normal_p, lf0, lf1, lf2);
   uint voxel_run = 0u, f0 = 0u, f1 = 0u, f2 = 0u;

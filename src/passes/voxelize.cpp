@@ -104,11 +104,17 @@ void sort_cache_by_voxel(::cl::CommandQueue& queue, const ::cl::Buffer& cache, s
     k.index = uint32_t(i);
   }
   std::sort(keys.begin(), keys.end());
-  std::vector<float> sorted(data.size());
-  for (size_t i = 0; i < samples; ++i)
-    std::memcpy(sorted.data() + i * kFloats, data.data() + size_t(keys[i].index) * kFloats,
-                kSampleBytes);
-  queue.enqueueWriteBuffer(cache, CL_TRUE, 0, sorted.size() * sizeof(float), sorted.data());
+  // written back in chunks of 64k samples (5 MiB), not as a second copy of the whole cache
+  constexpr size_t kChunk = size_t(1) << 16;
+  std::vector<float> chunk(std::min(samples, kChunk) * kFloats);
+  for (size_t first = 0; first < samples; first += kChunk) {
+    const size_t count = std::min(kChunk, samples - first);
+    for (size_t i = 0; i < count; ++i)
+      std::memcpy(chunk.data() + i * kFloats,
+                  data.data() + size_t(keys[first + i].index) * kFloats, kSampleBytes);
+    queue.enqueueWriteBuffer(cache, CL_TRUE, first * kSampleBytes, count * kSampleBytes,
+                             chunk.data());
+  }
 }
 
 }  // namespace
