@@ -292,23 +292,7 @@ bool VoxelizePass::update_direct_key(const render::GpuScene& scene,
   // 2^-64 likely. The depth buffer is held, so its handle cannot come back as another
   // buffer's.
   io::Fnv1a h;
-  const gpu::FrameConstants& c = scene.constants;
-  h.value(c.light_view_proj);
-  h.value(c.light_pos);
-  h.value(c.light_intensity);
-  h.value(c.clip.z);
-  h.value(c.clip.w);
-  h.value(c.shadow_size);
-  h.value(c.punctual_count);
-  h.bytes(c.punctual, std::min<size_t>(c.punctual_count, RP_MAX_PUNCTUAL_LIGHTS) *
-                          sizeof(c.punctual[0]));
-  h.value(c.shadow_view_count);
-  h.bytes(c.shadow_views, std::min<size_t>(c.shadow_view_count, RP_MAX_SHADOW_VIEWS) *
-                              sizeof(c.shadow_views[0]));
-  h.value(uint64_t(scene.host_instances.size()));
-  h.bytes(scene.host_instances.data(), scene.host_instances.size() * sizeof(gpu::Instance));
-  h.value(uint64_t(scene.host_spheres.size()));
-  h.bytes(scene.host_spheres.data(), scene.host_spheres.size() * sizeof(gpu::Sphere));
+  scene.hash_lights_and_objects(h);
   const bool fresh =
       direct_key_valid_ && h.get() == direct_key_ && direct_shadow_() == shadow.depth();
   direct_key_ = h.get();

@@ -270,6 +270,26 @@ void GpuScene::update_sky(const scene::Environment& environment) {
   if (!sky_diffuse_cones_) constants.sky.diffuse_cones = 0;
 }
 
+void GpuScene::hash_lights_and_objects(io::Fnv1a& h) const {
+  const gpu::FrameConstants& c = constants;
+  h.value(c.light_view_proj);
+  h.value(c.light_pos);
+  h.value(c.light_intensity);
+  h.value(c.clip.z);
+  h.value(c.clip.w);
+  h.value(c.shadow_size);
+  h.value(c.punctual_count);
+  h.bytes(c.punctual, std::min<size_t>(c.punctual_count, RP_MAX_PUNCTUAL_LIGHTS) *
+                          sizeof(c.punctual[0]));
+  h.value(c.shadow_view_count);
+  h.bytes(c.shadow_views, std::min<size_t>(c.shadow_view_count, RP_MAX_SHADOW_VIEWS) *
+                              sizeof(c.shadow_views[0]));
+  h.value(uint64_t(host_instances.size()));
+  h.bytes(host_instances.data(), host_instances.size() * sizeof(gpu::Instance));
+  h.value(uint64_t(host_spheres.size()));
+  h.bytes(host_spheres.data(), host_spheres.size() * sizeof(gpu::Sphere));
+}
+
 ShadowBounds GpuScene::frame_bounds(const scene::FrameScene& f) const {
   ShadowBounds b;
   for (const scene::MeshInstance& inst : f.instances) {

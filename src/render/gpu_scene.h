@@ -10,6 +10,7 @@
 #include <CL/opencl.hpp>
 #include <glm/glm.hpp>
 
+#include "io/fnv1a.h"
 #include "render/gpu_types.h"
 #include "render/punctual_shadows.h"
 #include "scene/frame_scene.h"
@@ -130,6 +131,12 @@ class GpuScene {
   // mesh): what the camera's rasterizer tests against its frustum.
   std::vector<std::pair<glm::vec3, glm::vec3>> host_instance_bounds;
   std::vector<gpu::Sphere> host_spheres;
+
+  // Adds to `h` what light reaches the scene's surfaces from and what is lit: the lamp (position,
+  // intensity, shadow projection and planes), the punctual lights and their shadow views, every
+  // instance and sphere (the shadow maps are drawn from these). The voxelizer's cached direct
+  // light and the kept GI volume (render/still_volume.h) are keyed by it.
+  void hash_lights_and_objects(io::Fnv1a& h) const;
 
  private:
   ::cl::Context context_;
