@@ -2,10 +2,10 @@
 
 #include "shading/brdf_tables.h"
 
-#include <limits>
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -48,6 +48,23 @@ uint32_t gpu_wrap(scene::TextureWrap wrap) {
   }
   return RP_WRAP_REPEAT;
 }
+
+// The box around mesh `m`'s bounds placed by `model` (its 8 corners transformed); lo > hi for
+// an empty mesh.
+std::pair<glm::vec3, glm::vec3> world_box(const MeshRange& m, const glm::mat4& model) {
+  if (m.lo.x > m.hi.x) return {glm::vec3(1.0f), glm::vec3(-1.0f)};
+  std::pair<glm::vec3, glm::vec3> box{glm::vec3(std::numeric_limits<float>::infinity()),
+                                      glm::vec3(-std::numeric_limits<float>::infinity())};
+  for (int k = 0; k < 8; ++k) {
+    const glm::vec3 corner(k & 1 ? m.hi.x : m.lo.x, k & 2 ? m.hi.y : m.lo.y,
+                           k & 4 ? m.hi.z : m.lo.z);
+    const glm::vec3 p = glm::vec3(model * glm::vec4(corner, 1.0f));
+    box.first = glm::min(box.first, p);
+    box.second = glm::max(box.second, p);
+  }
+  return box;
+}
+
 
 }  // namespace
 
@@ -294,14 +311,8 @@ ShadowBounds GpuScene::frame_bounds(const scene::FrameScene& f) const {
   ShadowBounds b;
   for (const scene::MeshInstance& inst : f.instances) {
     if (inst.mesh >= meshes.size()) continue;  // update() reports it
-    const MeshRange& m = meshes[inst.mesh];
-    if (m.lo.x > m.hi.x) continue;
-    for (int k = 0; k < 8; ++k) {
-      const glm::vec3 corner(k & 1 ? m.hi.x : m.lo.x, k & 2 ? m.hi.y : m.lo.y,
-                             k & 4 ? m.hi.z : m.lo.z);
-      const glm::vec3 p = glm::vec3(inst.model * glm::vec4(corner, 1.0f));
-      b.add(p, p);
-    }
+    const auto [lo, hi] = world_box(meshes[inst.mesh], inst.model);
+    if (lo.x <= hi.x) b.add(lo, hi);
   }
   for (const scene::Sphere& s : f.spheres) b.add(s.center - s.radius, s.center + s.radius);
   return b;
@@ -376,20 +387,7 @@ void GpuScene::update(const scene::FrameScene& f, uint32_t width, uint32_t heigh
     g.shadow_first_triangle = shadow.first_triangle;
     g.shadow_triangle_count = shadow.triangle_count;
     host_instances.push_back(g);
-    const MeshRange& range = meshes[inst.mesh];
-    std::pair<glm::vec3, glm::vec3> world{glm::vec3(1.0f), glm::vec3(-1.0f)};
-    if (range.lo.x <= range.hi.x) {
-      world = {glm::vec3(std::numeric_limits<float>::infinity()),
-               glm::vec3(-std::numeric_limits<float>::infinity())};
-      for (int k = 0; k < 8; ++k) {
-        const glm::vec3 corner(k & 1 ? range.hi.x : range.lo.x, k & 2 ? range.hi.y : range.lo.y,
-                               k & 4 ? range.hi.z : range.lo.z);
-        const glm::vec3 p = glm::vec3(inst.model * glm::vec4(corner, 1.0f));
-        world.first = glm::min(world.first, p);
-        world.second = glm::max(world.second, p);
-      }
-    }
-    host_instance_bounds.push_back(world);
+    host_instance_bounds.push_back(world_box(meshes[inst.mesh], inst.model));
     instance_triangle_count += g.triangle_count;
     voxel_triangle_count += g.voxel_triangle_count;
   }

@@ -422,12 +422,11 @@ uint32_t Renderer::gi_levels() const {
 
 void Renderer::build_voxels() {
   const uint32_t still = still_volume_.update(*scene_, shadow_, settings_);
-  const bool keep =
-      volume_built_ && (bounce_ ? settings_.quality == Quality::kFast && bounce_->valid() &&
-                                      still >= kStillFramesBeforeKeep
-                                : still >= 1);
+  // (still >= 1 means the last frame saw these inputs and built or kept a volume from them)
+  const bool keep = bounce_ ? settings_.quality == Quality::kFast && bounce_->valid() &&
+                                  still >= kStillFramesBeforeKeep
+                            : still >= 1;
   if (keep) return;
-  volume_built_ = true;
   // bounce_refresh: the static surface cache's bounce-light refresh stride (VoxelizePass).
   const auto voxelize = [&](bool with_bounce, uint32_t bounce_refresh = 1) {
     const ::cl::Buffer* grid = with_bounce ? &bounce_->grid() : nullptr;

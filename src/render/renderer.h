@@ -226,7 +226,6 @@ class Renderer {
   SvoVolume svo_;                       // kSvo
   std::unique_ptr<passes::SvoPass> svo_pass_;  // kSvo
   StillVolume still_volume_;  // whether the GI volume's inputs changed (build_voxels)
-  bool volume_built_ = false;  // a GI volume has been built since the start or a reset
   ::cl::Buffer hdr_;    // float4 per pixel: the light pass's output
   // The reference mode's screen-space reflections: the previous frame's hdr_, copied
   // before the light pass overwrites it (float4 per pixel; not allocated in the fast mode, whose
