@@ -86,6 +86,35 @@ TEST(MipChain, Level0UnchangedRgbLinearAlphaLinear) {
   EXPECT_EQ(c.texels[2], 188u | 188u << 8 | 188u << 16 | 128u << 24);
 }
 
+// A data map (normals, roughness: Texture::srgb false) stands for code / 255, so its levels
+// average the codes: the same two texels give 128 in every channel, not sRGB's 188; a 4x2 map's
+// level 1 holds the means of its 2x2 blocks (rounded to nearest), level 2 the mean of all.
+TEST(MipChain, DataMapsAverageTheirCodes) {
+  rp::scene::Texture t{"two", 2, 1, {0, 0, 0, 0, 255, 255, 255, 255}};
+  t.srgb = false;
+  const MipChain c = rp::render::build_mip_chain(t);
+  ASSERT_EQ(c.texels.size(), 3u);
+  EXPECT_EQ(c.texels[0], 0x00000000u);
+  EXPECT_EQ(c.texels[1], 0xFFFFFFFFu);
+  EXPECT_EQ(c.texels[2], 128u | 128u << 8 | 128u << 16 | 128u << 24);
+
+  rp::scene::Texture n{"normals", 4, 2, {}};
+  n.srgb = false;
+  const uint8_t codes[8] = {10, 20, 200, 210, 30, 41, 220, 231};  // row 0 then row 1, red
+  for (uint8_t code : codes) n.rgba.insert(n.rgba.end(), {code, uint8_t(255 - code), 128, 255});
+  const MipChain m = rp::render::build_mip_chain(n);
+  ASSERT_EQ(m.levels.size(), 3u);
+  const auto red = [&m](int level, int i) { return int(m.texels[m.levels[level].offset + i] & 0xFF); };
+  const auto green = [&m](int level, int i) {
+    return int((m.texels[m.levels[level].offset + i] >> 8) & 0xFF);
+  };
+  EXPECT_EQ(red(1, 0), 25);   // (10 + 20 + 30 + 41) / 4 = 25.25
+  EXPECT_EQ(red(1, 1), 215);  // (200 + 210 + 220 + 231) / 4 = 215.25
+  EXPECT_EQ(green(1, 0), 230);  // 255 - 25.25 = 229.75
+  EXPECT_EQ(red(2, 0), 120);    // 962 / 8 = 120.25
+  EXPECT_EQ(green(2, 0), 135);  // 255 - 120.25 = 134.75
+}
+
 // Each level against an explicit 2D area box filter of the previous level (the reference keeps
 // linear doubles like the chain does): output texel (i, j) of an m x n level covers the input
 // rectangle [i W / m, (i + 1) W / m] x [j H / n, (j + 1) H / n]; every input texel counts with
