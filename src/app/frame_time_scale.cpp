@@ -10,6 +10,10 @@ FrameTimeScale::FrameTimeScale(double target_ms, float start)
 
 float FrameTimeScale::update(double frame_ms) {
   if (!(frame_ms >= 0.0) || !std::isfinite(frame_ms)) return scale_;  // a bogus time says nothing
+  if (first_at_size_) {  // the size's first frame restarts the histories: not its usual time
+    first_at_size_ = false;
+    return scale_;
+  }
   smoothed_ms_ = frames_ == 0 ? frame_ms : 0.75 * smoothed_ms_ + 0.25 * frame_ms;
   if (++frames_ < kSettleFrames) return scale_;
   const double ratio = smoothed_ms_ / target_ms_;
@@ -29,6 +33,7 @@ float FrameTimeScale::update(double frame_ms) {
   if (next != scale_) {
     scale_ = next;
     frames_ = 0;
+    first_at_size_ = true;
   }
   return scale_;
 }
