@@ -37,8 +37,10 @@
  *     sample pixel centre) = 1.5 - O(f) pixels; the 2x2 previous blocks around that point,
  *     bilinear weights times the geometry weights of their (previous) samples for this sample,
  *     give the history H and its age a (weighted means). A still camera lands exactly on the
- *     block's own history. Total weight < RP_INDIRECT_MIN_HISTORY (moved,
- *     disoccluded, off screen) or history_valid = 0 (reset, camera cut, resize): no history,
+ *     block's own history. After a change of the render size the previous frame's planes
+ *     have the old size's layout (IndirectFilterParams.prev_planes) and are read as such, so
+ *     the blocks keep their light across the change. Total weight < RP_INDIRECT_MIN_HISTORY
+ *     (moved, disoccluded, off screen) or history_valid = 0 (reset, camera cut): no history,
  *     a = 0. out = H + alpha (S - H), age min(a + 1, 255), alpha = max(1 / (a + 1), alpha_c):
  *     a plain running mean for the first frames after a reset, then an exponential one whose
  *     weight alpha_c grows from alpha_min (a still scene: low flicker) to RP_INDIRECT_ALPHA_FAST
@@ -64,7 +66,7 @@
 #endif
 
 /* 1: indirect_trace traces all 16 cones per block and averages them (the build used while there
- * is no history: first frame, reset, camera cut, resize); 0: one cone per block (steady state). */
+ * is no history: first frame, reset, camera cut); 0: one cone per block (steady state). */
 #ifndef RP_INDIRECT_WARM_START
 #define RP_INDIRECT_WARM_START 0
 #endif
@@ -159,7 +161,7 @@ __kernel void indirect_trace(__global const FrameConstants* frame,
     rp_cone_sky_basis(frame, n, &t, &b);
     const RpSkyCells cells = rp_sky_cells(frame, n);
 #if RP_INDIRECT_WARM_START
-    /* No history yet (first frame, reset, camera cut, resize): every cone of the set, so the
+    /* No history yet (first frame, reset, camera cut): every cone of the set, so the
      * first frame shows the whole estimate instead of one cone per block. */
     for (uint k = 0u; k < 16u; ++k)
       c += indirect_cone(frame, sky, voxels, voxel_resolution, voxel_levels, p, n, t, b, cells,
@@ -348,7 +350,8 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
       fb = select(fb, select(mb * inv_m, ab * inv_a, geo), hole);
     }
     /* Still camera (specular_history, set by the host only when this frame's unjittered view
-     * equals the previous one and the history is valid): the reflection seen from a block
+     * equals the previous one, the history is valid and the size unchanged: prev_geom is
+     * read at this frame's index): the reflection seen from a block
      * stays where it was, so the previous frame's filled value at the same block is blended in
      * with weight 1 - RP_INDIRECT_SPEC_ALPHA where the block still sees the same surface, so
      * that the sample point's rotation through the block (and the TAA jitter) no longer
@@ -376,22 +379,28 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
     indirect_store8(specular_out + 2 * pl + c, lanes, fb);
   }
 
-  /* Temporal: the previous frame's samples around the reprojected positions. */
+  /* Temporal: the previous frame's samples around the reprojected positions, in the previous
+   * frame's planes (prev_planes: another layout when the render size changed, the history
+   * then resampled to the new blocks instead of dropped). */
+  const int pst = (int)params.prev_planes.stride, ppl = (int)params.prev_planes.plane;
+  const uint prev_lr_width = params.prev_planes.width, prev_lr_height = params.prev_planes.height;
   const rp_mat4 m = frame->prev_view_proj_unjittered;
   const float8 cx = m.c[0].x * px + m.c[1].x * py + m.c[2].x * pz + m.c[3].x;
   const float8 cy = m.c[0].y * px + m.c[1].y * py + m.c[2].y * pz + m.c[3].y;
   const float8 cw = m.c[0].w * px + m.c[1].w * py + m.c[2].w * pz + m.c[3].w;
   const int8 in_front = cw > 0.0f;
   const float8 iw = 1.0f / select((float8)(1.0f), cw, in_front);
-  const float w_px = (float)frame->width, h_px = (float)frame->height;
+  const float w_px = (float)params.prev_width, h_px = (float)params.prev_height;
   const float8 sx = (cx * iw * 0.5f + 0.5f) * w_px; /* previous pixel coordinates */
   const float8 sy = (0.5f - cy * iw * 0.5f) * h_px;
   /* History lives at block centres (4 i + 2 in pixels): shift the reprojected sample by its
-   * block's centre minus the sample pixel's centre, 1.5 - O(f), so that with a still camera
+   * block's centre minus the sample pixel's centre, 1.5 - O(f) (this frame's pixels, times
+   * the previous pixels per pixel: 1 at an unchanged size), so that with a still camera
    * every block finds exactly its own history (no resampling blur, whichever pixel sampled). */
+  const float rx = w_px / (float)frame->width, ry = h_px / (float)frame->height;
   const uint cell = rp_indirect_sample_cell(frame->frame_index);
-  const float8 ux = (sx - (float)(cell & 3u) - 0.5f) * (1.0f / RP_INDIRECT_SCALE);
-  const float8 uy = (sy - (float)(cell >> 2) - 0.5f) * (1.0f / RP_INDIRECT_SCALE);
+  const float8 ux = (sx - (float)(cell & 3u) * rx - 0.5f * rx) * (1.0f / RP_INDIRECT_SCALE);
+  const float8 uy = (sy - (float)(cell >> 2) * ry - 0.5f * ry) * (1.0f / RP_INDIRECT_SCALE);
   /* The 3x3 previous blocks around the nearest one (clamped into the padding, weight 0, before
    * the int conversion: far-off positions find no history). Tap weight: the bilinear tent
    * max(0, 1 - |u - t|) per axis plus a ring weight RP_INDIRECT_RING * (1 - g), g the nearest
@@ -400,32 +409,33 @@ __kernel void indirect_filter(__global const FrameConstants* restrict frame,
    * the block still sees its surface; the ring lets a block whose sample moved onto another
    * surface (TAA jitter at a silhouette) continue its neighbours' history of that surface
    * instead of starting over (measured: less flicker at silhouettes, no blur elsewhere). */
-  const float8 ur = floor(clamp(ux, -1.0f, (float)lr_width) + 0.5f);
-  const float8 vr = floor(clamp(uy, -1.0f, (float)lr_height) + 0.5f);
-  const int8 t11 = (convert_int8(vr) + RP_INDIRECT_PAD) * st + convert_int8(ur) + RP_INDIRECT_PAD;
+  const float8 ur = floor(clamp(ux, -1.0f, (float)prev_lr_width) + 0.5f);
+  const float8 vr = floor(clamp(uy, -1.0f, (float)prev_lr_height) + 0.5f);
+  const int8 t11 =
+      (convert_int8(vr) + RP_INDIRECT_PAD) * pst + convert_int8(ur) + RP_INDIRECT_PAD;
   const int seq = all(t11 == t11.s0 + (int8)(0, 1, 2, 3, 4, 5, 6, 7));
   const float8 g11 = rp_indirect_geometry_weight8(
       nx, ny, nz, px, py, pz, indirect_load8(prev_geom, t11, seq),
-      indirect_load8(prev_geom + pl, t11, seq), indirect_load8(prev_geom + 2 * pl, t11, seq),
-      indirect_load8(prev_geom + 3 * pl, t11, seq), inv_sigma);
+      indirect_load8(prev_geom + ppl, t11, seq), indirect_load8(prev_geom + 2 * ppl, t11, seq),
+      indirect_load8(prev_geom + 3 * ppl, t11, seq), inv_sigma);
   const float8 ring = RP_INDIRECT_RING * (1.0f - g11);
   float8 hr = 0.0f, hg = 0.0f, hb = 0.0f, ha = 0.0f, hm = 0.0f, hw = 0.0f;
   for (int b = -1; b <= 1; ++b) {
     const float8 wy = fmax(1.0f - fabs(uy - (vr + (float)b)), 0.0f) + ring;
     for (int a = -1; a <= 1; ++a) {
-      const int8 t = t11 + (b * st + a);
+      const int8 t = t11 + (b * pst + a);
       const float8 wx = fmax(1.0f - fabs(ux - (ur + (float)a)), 0.0f) + ring;
       const float8 w = wx * wy *
                        rp_indirect_geometry_weight8(
                            nx, ny, nz, px, py, pz, indirect_load8(prev_geom, t, seq),
-                           indirect_load8(prev_geom + pl, t, seq),
-                           indirect_load8(prev_geom + 2 * pl, t, seq),
-                           indirect_load8(prev_geom + 3 * pl, t, seq), inv_sigma);
+                           indirect_load8(prev_geom + ppl, t, seq),
+                           indirect_load8(prev_geom + 2 * ppl, t, seq),
+                           indirect_load8(prev_geom + 3 * ppl, t, seq), inv_sigma);
       hr += w * indirect_load8(prev_history, t, seq);
-      hg += w * indirect_load8(prev_history + pl, t, seq);
-      hb += w * indirect_load8(prev_history + 2 * pl, t, seq);
-      ha += w * indirect_load8(prev_history + 3 * pl, t, seq);
-      hm += w * indirect_load8(prev_history + 4 * pl, t, seq);
+      hg += w * indirect_load8(prev_history + ppl, t, seq);
+      hb += w * indirect_load8(prev_history + 2 * ppl, t, seq);
+      ha += w * indirect_load8(prev_history + 3 * ppl, t, seq);
+      hm += w * indirect_load8(prev_history + 4 * ppl, t, seq);
       hw += w;
     }
   }

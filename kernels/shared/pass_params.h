@@ -31,13 +31,18 @@ typedef struct {
   rp_uint ssr_history; /* 1: prev_hdr holds the previous frame's light output */
 } IndirectTraceParams;
 
-/* indirect_filter (kernels/indirect.cl). 48 bytes. */
+/* indirect_filter (kernels/indirect.cl). prev_planes: the previous frame's planes
+ * (prev_geom, prev_history), of its render size prev_width x prev_height pixels: this frame's
+ * unless the render size changed. 96 bytes. */
 typedef struct {
   LowResPlanes planes;
   rp_uint history_valid;    /* 0: the previous frame's planes are not read */
   rp_float alpha_min;       /* the history blend's floor */
   rp_uint specular_history; /* 1: the reflections' history is blended (a still camera) */
   rp_uint pad;
+  LowResPlanes prev_planes;
+  rp_uint prev_width, prev_height;
+  rp_uint pad1, pad2;
 } IndirectFilterParams;
 
 /* light_shade (kernels/light.cl). 16 bytes. */

@@ -113,7 +113,18 @@ void IndirectPass::resize(uint32_t width, uint32_t height) {
   context_->queue.enqueueFillBuffer(dummy_, 0.0f, 0, 16);
   width_ = width;
   height_ = height;
+  prev_width_ = width;
+  prev_height_ = height;
+  stale_slot_ = false;
   history_valid_ = false;
+}
+
+void IndirectPass::reallocate_slot(int slot) {
+  const size_t plane = size_t(plane_size(low_res(width_), low_res(height_))) * sizeof(float);
+  geometry_[slot] = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 4 * plane);
+  history_[slot] = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 5 * plane);
+  for (::cl::Buffer* b : {&geometry_[slot], &history_[slot]})
+    context_->queue.enqueueFillBuffer(*b, 0.0f, 0, b->getInfo<CL_MEM_SIZE>());
 }
 
 LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
@@ -128,11 +139,31 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
                         ")");
   check_voxel_chain("indirect pass", voxels, voxel_resolution, voxel_levels, octree_);
   if (w == 0 || h == 0) return {};
-  if (w != width_ || h != height_) resize(w, h);
+  const int cur = current_, prev = current_ ^ 1;
+  if (w != width_ || h != height_) {
+    // A new render size (the render scale moved): the previous frame's geometry and history
+    // planes are kept in their old layout and resampled by this frame's filter, so the blocks
+    // keep their light instead of starting over (a start traces all 16 cones: a frame many
+    // times slower, which a held frame rate would feel at every change of scale).
+    const bool carry = history_valid_ && width_ != 0;
+    const ::cl::Buffer old_geometry = geometry_[prev], old_history = history_[prev];
+    const uint32_t old_w = width_, old_h = height_;
+    resize(w, h);
+    if (carry) {
+      geometry_[prev] = old_geometry;
+      history_[prev] = old_history;
+      prev_width_ = old_w;
+      prev_height_ = old_h;
+      history_valid_ = true;
+    }
+  } else if (stale_slot_) {
+    reallocate_slot(cur);  // the old size's planes, read last frame: this frame writes here
+    stale_slot_ = false;
+  }
+  const bool resampled = prev_width_ != w || prev_height_ != h;
   const uint32_t lw = low_res(w), lh = low_res(h);
   const uint32_t stride = plane_stride(lw), plane = plane_size(lw, lh);
   const float scale = pixel_scale(scene);
-  const int cur = current_, prev = current_ ^ 1;
   const ::cl::NDRange local(kGroup, kGroup);
 
   // The min-Z pyramid for the screen-space reflections, finest level first.
@@ -151,7 +182,7 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   }
 
   // Without history the block traces the whole cone set (a converged-looking first frame after
-  // a start, reset, camera cut or resize, at 16x the trace cost for that one frame).
+  // a start, reset or camera cut, at 16x the trace cost for that one frame).
   ::cl::Kernel& trace = trace_kernel(!history_valid_, scene.constants.sky.diffuse_cones != 0);
   gpu::LowResPlanes planes{};
   planes.width = lw;
@@ -164,7 +195,9 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   trace_params.voxel_resolution = voxel_resolution;
   trace_params.voxel_levels = voxel_levels;
   trace_params.ssr_top = top;
-  trace_params.ssr_history = ssr && history_valid_ ? 1u : 0u;
+  // after a change of size the previous light output is not of this size (Renderer: a new
+  // buffer)
+  trace_params.ssr_history = ssr && history_valid_ && !resampled ? 1u : 0u;
   rp::cl::bind_args(trace, scene.frame, gbuffer.normal_depth, gbuffer.position, gbuffer.emission,
                     voxels, scene.sky, radiance_, position_, geometry_[cur], specular_,
                     ssr ? *ssr->depth : dummy_, ssr ? hiz_ : dummy_,
@@ -181,7 +214,15 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
   filter_params.planes = planes;
   filter_params.history_valid = history_valid_ ? 1u : 0u;
   filter_params.alpha_min = kAlphaMin;
-  filter_params.specular_history = history_valid_ && still ? 1u : 0u;
+  filter_params.specular_history = history_valid_ && still && !resampled ? 1u : 0u;
+  const uint32_t plw = low_res(prev_width_), plh = low_res(prev_height_);
+  filter_params.prev_planes = planes;
+  filter_params.prev_planes.width = plw;
+  filter_params.prev_planes.height = plh;
+  filter_params.prev_planes.stride = plane_stride(plw);
+  filter_params.prev_planes.plane = plane_size(plw, plh);
+  filter_params.prev_width = prev_width_;
+  filter_params.prev_height = prev_height_;
   // 8 samples of a row per work-item (kernels/common/indirect_simd.h).
   rp::cl::bind_args(filter_, scene.frame, radiance_, position_, geometry_[cur], geometry_[prev],
                     history_[prev], history_[cur], specular_, specular_filled_[prev],
@@ -192,6 +233,11 @@ LowResIndirect IndirectPass::run(rp::cl::Profiler& profiler, const render::GpuSc
 
   history_valid_ = true;
   current_ = prev;  // this frame's planes become the previous ones
+  if (resampled) {  // the old size's slot is written next frame: reallocated then
+    prev_width_ = w;
+    prev_height_ = h;
+    stale_slot_ = true;
+  }
   LowResIndirect out;
   out.width = lw;
   out.height = lh;

@@ -58,8 +58,9 @@ class IndirectPass {
 
   // Traces, filters and accumulates this frame's indirect light; the result stays valid until
   // the next run. voxels: the radiance chain (kernels/shared/voxel_layout.h), checked by the
-  // light pass's rules. Reallocates its planes (and drops the history) when the frame size
-  // changes.
+  // light pass's rules. Reallocates its planes when the frame size changes; the history
+  // carries over (the previous frame's planes resampled to the new blocks; no SSR history and
+  // no still-camera reflection history on that frame).
   // ssr: screen-space reflections for the sharp coats (null: reflection cones only). Pass
   // "ssr_min_z" builds the min-Z pyramid when ssr is given.
   LowResIndirect run(rp::cl::Profiler& profiler, const render::GpuScene& scene,
@@ -101,6 +102,8 @@ class IndirectPass {
 
  private:
   void resize(uint32_t width, uint32_t height);
+  // geometry_[slot] and history_[slot] anew at width_ x height_, zeroed.
+  void reallocate_slot(int slot);
 
   // The trace kernel: all 16 cones per block (warm: no history yet) or one; with the diffuse
   // cones' sky code (sky) or without (render/sky_texture.h: kNoDiffuseSkyOption). Built on
@@ -128,6 +131,12 @@ class IndirectPass {
   ::cl::Buffer history_[2];          // 5 planes each, likewise
   int current_ = 0;
   bool history_valid_ = false;
+  // The full-resolution size the previous frame's planes (geometry_ and history_ of the slot
+  // that is not current_) were made for: width_ x height_ except on the first frame after a
+  // change of size, which resamples them (indirect_filter) instead of starting over.
+  uint32_t prev_width_ = 0, prev_height_ = 0;
+  // The current_ slot still has the old size's layout (the frame after a change of size).
+  bool stale_slot_ = false;
 };
 
 // World size of one pixel per unit of view depth for a frame `height` pixels tall: 2 / (height *

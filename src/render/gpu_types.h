@@ -27,7 +27,7 @@ static_assert(sizeof(Material) == 80);
 static_assert(sizeof(TextureInfo) == 32 + 4 * RP_TEXTURE_MAX_LEVELS);
 static_assert(sizeof(LowResPlanes) == 32);
 static_assert(sizeof(IndirectTraceParams) == 48);
-static_assert(sizeof(IndirectFilterParams) == 48);
+static_assert(sizeof(IndirectFilterParams) == 96);
 static_assert(sizeof(LightShadeParams) == 16);
 static_assert(sizeof(MinZLevel) == 32);
 static_assert(sizeof(MotionBlurParams) == 48);

@@ -230,10 +230,8 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
       const float scale = final_view ? settings_.render_scale : 1.0f;
       const uint32_t rw = scaled_side(settings_.width, scale);
       const uint32_t rh = scaled_side(settings_.height, scale);
-      if (rw != render_width_ || rh != render_height_) {
-        resize_render(rw, rh);
-        if (indirect_) indirect_->reset_history();  // its history is per render pixel
-      }
+      // the indirect pass resamples its history to the new size itself (passes/indirect.h)
+      if (rw != render_width_ || rh != render_height_) resize_render(rw, rh);
     }
     const uint32_t jitter_frames =
         fx.taa && final_view

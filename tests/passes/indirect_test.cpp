@@ -73,23 +73,26 @@ struct Pixel {
 };
 
 // Surfaces inside the box: a floor-like plane, a tilted plane and a few background pixels, so
-// that blocks see one surface, two, or none.
-std::vector<Pixel> make_gbuffer() {
-  std::vector<Pixel> px(size_t(kW) * kH);
+// that blocks see one surface, two, or none. At another frame size w x h the same surfaces,
+// pixel (x, y) standing for (x kW / w, y kH / h) of the kW x kH frame.
+std::vector<Pixel> make_gbuffer(uint32_t w = kW, uint32_t h = kH) {
+  std::vector<Pixel> px(size_t(w) * h);
   std::mt19937 rng(17);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   const glm::vec3 tilted = glm::normalize(glm::vec3(0.3f, 0.8f, 0.5f));
-  for (uint32_t y = 0; y < kH; ++y)
-    for (uint32_t x = 0; x < kW; ++x) {
-      Pixel& q = px[y * kW + x];
-      q.covered = !(x >= 11 && y >= 8);  // a background corner
-      const bool plane_a = x + y < 12;
+  const float sx = float(kW) / float(w), sy = float(kH) / float(h);
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      Pixel& q = px[y * w + x];
+      const float fx = float(x) * sx, fy = float(y) * sy;
+      q.covered = !(fx >= 11.0f && fy >= 8.0f);  // a background corner
+      const bool plane_a = fx + fy < 12.0f;
       q.n = plane_a ? glm::vec3(0, 1, 0) : tilted;
-      const glm::vec3 base(-0.6f + 0.09f * float(x), -0.5f + 0.05f * float(y), -0.3f + 0.04f * float(y));
+      const glm::vec3 base(-0.6f + 0.09f * fx, -0.5f + 0.05f * fy, -0.3f + 0.04f * fy);
       q.p = plane_a ? glm::vec3(base.x, -0.55f, base.z) : base - tilted * (glm::dot(base, tilted) - 0.1f);
       q.albedo = glm::vec3(0.3f + 0.5f * u(rng), 0.3f + 0.5f * u(rng), 0.3f + 0.5f * u(rng));
       q.emission = x == 3 && y == 2 ? glm::vec3(0.5f, 0.2f, 0.1f) : glm::vec3(0.0f);
-      q.depth = 2.0f + 0.1f * float(y);
+      q.depth = 2.0f + 0.1f * fy;
       if (!q.covered) q = Pixel{glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f), 10.0f, false};
     }
   return px;
@@ -124,24 +127,7 @@ class IndirectFixture {
       }
     auto& ctx = rp::test::context();
     scene_ = std::make_unique<rp::render::GpuScene>(ctx.context, ctx.queue, rp::scene::SceneAssets{});
-    gbuffer_.resize(ctx.context, kW, kH);
-    const size_t n = size_t(kW) * kH;
-    std::vector<float> albedo(n * 4), nd(n * 4), pos(n * 4), em(n * 4);
-    for (size_t i = 0; i < n; ++i) {
-      const Pixel& q = pixels_[i];
-      std::memcpy(&albedo[4 * i], &q.albedo, 12);
-      albedo[4 * i + 3] = q.covered ? 1.0f : 0.0f;
-      std::memcpy(&nd[4 * i], &q.n, 12);
-      nd[4 * i + 3] = q.depth;
-      std::memcpy(&pos[4 * i], &q.p, 12);
-      pos[4 * i + 3] = q.covered ? 1.0f : 0.0f;
-      std::memcpy(&em[4 * i], &q.emission, 12);
-      em[4 * i + 3] = q.gloss;
-    }
-    ctx.queue.enqueueWriteBuffer(gbuffer_.albedo, CL_TRUE, 0, n * 16, albedo.data());
-    ctx.queue.enqueueWriteBuffer(gbuffer_.normal_depth, CL_TRUE, 0, n * 16, nd.data());
-    ctx.queue.enqueueWriteBuffer(gbuffer_.position, CL_TRUE, 0, n * 16, pos.data());
-    ctx.queue.enqueueWriteBuffer(gbuffer_.emission, CL_TRUE, 0, n * 16, em.data());
+    upload_gbuffer();
     voxels_ = ::cl::Buffer(ctx.context, CL_MEM_READ_ONLY, chain_.voxels.size() * 16);
     ctx.queue.enqueueWriteBuffer(voxels_, CL_TRUE, 0, chain_.voxels.size() * 16, chain_.voxels.data());
     shadow_.resize(ctx.context, 32);
@@ -150,12 +136,21 @@ class IndirectFixture {
     pass_ = std::make_unique<IndirectPass>(ctx, rp::test::programs());
   }
 
+  // The same surfaces drawn at w x h pixels (make_gbuffer): the next run() is of that size (the
+  // render scale changed). Only run() and history-based checks follow the new size.
+  void regrid(uint32_t w, uint32_t h) {
+    width_ = w;
+    height_ = h;
+    pixels_ = make_gbuffer(w, h);
+    upload_gbuffer();
+  }
+
   // Runs the indirect pass for frame f (still camera) and reads every plane back.
   rp::passes::LowResIndirect run(uint32_t f) {
     rp::scene::FrameScene frame;
     frame.frame_index = f;
     frame.light.intensity = glm::vec3(3.0f, 2.5f, 2.0f);
-    scene_->update(frame, kW, kH, 32, kRes);
+    scene_->update(frame, width_, height_, 32, kRes);
     rp::cl::Profiler profiler(rp::test::context().queue);
     rp::passes::LowResIndirect lr = pass_->run(profiler, *scene_, gbuffer_, voxels_, kRes, 5);
     const auto times = profiler.collect();
@@ -218,11 +213,36 @@ class IndirectFixture {
     rp::test::context().queue.enqueueWriteBuffer(voxels_, CL_TRUE, 0, v.size() * 16, v.data());
   }
   float pixel_scale() const { return rp::passes::pixel_scale(*scene_); }
+  void reset_history() { pass_->reset_history(); }
   const rp::render::GpuScene& scene() const { return *scene_; }
 
   std::vector<float> radiance, position, geom, history, specular, specular_filled;
 
  private:
+  // pixels_ into gbuffer_ (width_ x height_).
+  void upload_gbuffer() {
+    auto& ctx = rp::test::context();
+    gbuffer_.resize(ctx.context, width_, height_);
+    const size_t n = size_t(width_) * height_;
+    std::vector<float> albedo(n * 4), nd(n * 4), pos(n * 4), em(n * 4);
+    for (size_t i = 0; i < n; ++i) {
+      const Pixel& q = pixels_[i];
+      std::memcpy(&albedo[4 * i], &q.albedo, 12);
+      albedo[4 * i + 3] = q.covered ? 1.0f : 0.0f;
+      std::memcpy(&nd[4 * i], &q.n, 12);
+      nd[4 * i + 3] = q.depth;
+      std::memcpy(&pos[4 * i], &q.p, 12);
+      pos[4 * i + 3] = q.covered ? 1.0f : 0.0f;
+      std::memcpy(&em[4 * i], &q.emission, 12);
+      em[4 * i + 3] = q.gloss;
+    }
+    ctx.queue.enqueueWriteBuffer(gbuffer_.albedo, CL_TRUE, 0, n * 16, albedo.data());
+    ctx.queue.enqueueWriteBuffer(gbuffer_.normal_depth, CL_TRUE, 0, n * 16, nd.data());
+    ctx.queue.enqueueWriteBuffer(gbuffer_.position, CL_TRUE, 0, n * 16, pos.data());
+    ctx.queue.enqueueWriteBuffer(gbuffer_.emission, CL_TRUE, 0, n * 16, em.data());
+  }
+
+  uint32_t width_ = kW, height_ = kH;
   std::vector<Pixel> pixels_;
   rp::test::cone::Chain chain_;
   std::unique_ptr<rp::render::GpuScene> scene_;
@@ -345,7 +365,7 @@ TEST(Indirect, EachBlockTracesItsConeOfTheSet) {
   expect_traced_blocks(fx, lr, f, false);
 }
 
-// Without history (a fresh pass: first frame, reset, camera cut, resize) every block traces all
+// Without history (a fresh pass: first frame, reset, camera cut) every block traces all
 // 16 cones of the set and stores their mean.
 TEST(Indirect, WarmStartTracesTheWholeSetPerBlock) {
   IndirectFixture fx;
@@ -468,6 +488,76 @@ TEST(Indirect, SecondFrameBlendsWithTheReprojectedHistory) {
     }
   EXPECT_GE(with_history, 5);
   EXPECT_GE(elsewhere, 5);
+}
+
+// A change of the render size (the render scale under --target-ms) keeps the history: the
+// previous frame's planes, in the old size's layout, are resampled to the new blocks. Eight
+// frames at 13x10, then the same surfaces at 19x14 (larger) and at 9x7 (smaller): samples that
+// reproject onto their surface in the old grid continue their age (a fresh start would give 1
+// everywhere, as reset_history() still does), blend into values between the old history's and
+// the new estimate's, and the frame after a change (the old layout's slot reallocated) goes on.
+TEST(Indirect, AChangeOfSizeResamplesTheHistory) {
+  for (const auto& [w, h] : {std::pair{19u, 14u}, std::pair{9u, 7u}}) {
+    IndirectFixture fx;
+    for (uint32_t f = 1; f <= 8; ++f) fx.run(f);
+    float old_lo = 1e30f, old_hi = -1e30f;
+    {
+      const size_t plane = IndirectPass::plane_size(lr_w(), lr_h());
+      for (int j = 0; j < int(lr_h()); ++j)
+        for (int i = 0; i < int(lr_w()); ++i)
+          if (fx.history[3 * plane + at(i, j)] > 0.0f)
+            for (int c = 0; c < 3; ++c) {
+              old_lo = std::min(old_lo, fx.history[c * plane + at(i, j)]);
+              old_hi = std::max(old_hi, fx.history[c * plane + at(i, j)]);
+            }
+    }
+    fx.regrid(w, h);
+    for (uint32_t f = 9; f <= 10; ++f) {
+      const auto lr = fx.run(f);
+      ASSERT_EQ(lr.width, IndirectPass::low_res(w));
+      // this frame's spatial estimates are weighted means of its cone radiances
+      float new_lo = 1e30f, new_hi = -1e30f;
+      for (uint32_t j = 0; j < lr.height; ++j)
+        for (uint32_t i = 0; i < lr.width; ++i)
+          for (int c = 0; c < 3; ++c) {
+            const float e = fx.radiance[c * lr.plane + size_t(j + 2) * lr.stride + i + 2];
+            new_lo = std::min(new_lo, e);
+            new_hi = std::max(new_hi, e);
+          }
+      const float lo = std::min(old_lo, new_lo), hi = std::max(old_hi, new_hi);
+      int carried = 0;
+      for (uint32_t j = 0; j < lr.height; ++j)
+        for (uint32_t i = 0; i < lr.width; ++i) {
+          const size_t s = size_t(j + 2) * lr.stride + i + 2;
+          const float age = fx.history[3 * lr.plane + s];
+          if (age == 0.0f) continue;  // background
+          EXPECT_LE(age, float(f) + 1e-3f) << w << "x" << h << " frame " << f;  // weighted means
+          if (age > float(f - 8)) {  // older than the new size: history from before the change
+            ++carried;
+            for (int c = 0; c < 3; ++c) {
+              // history + alpha (estimate - history): between the two ranges (alpha <= 1)
+              const float v = fx.history[c * lr.plane + s];
+              EXPECT_GE(v, lo - 1e-5f) << w << "x" << h << " sample " << i << "," << j;
+              EXPECT_LE(v, hi + 1e-5f) << w << "x" << h << " sample " << i << "," << j;
+            }
+          }
+        }
+      EXPECT_GE(carried, 3) << w << "x" << h << " frame " << f << ": the history is kept";
+      old_lo = lo;  // the next frame's history lies within this frame's range
+      old_hi = hi;
+    }
+  }
+  // A reset (camera cut) still starts over at the new size.
+  IndirectFixture fx;
+  for (uint32_t f = 1; f <= 8; ++f) fx.run(f);
+  fx.regrid(19, 14);
+  fx.reset_history();
+  const auto lr = fx.run(9);
+  for (uint32_t j = 0; j < lr.height; ++j)
+    for (uint32_t i = 0; i < lr.width; ++i) {
+      const float age = fx.history[3 * lr.plane + size_t(j + 2) * lr.stride + i + 2];
+      EXPECT_TRUE(age == 0.0f || age == 1.0f) << i << "," << j;
+    }
 }
 
 // light_compose = light_shade's direct term and emission + albedo * the upsampled irradiance:
