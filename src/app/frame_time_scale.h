@@ -4,10 +4,11 @@
 // - the times are smoothed (exponential, a quarter of each new frame), and the scale changes at
 //   most every kSettleFrames frames, after which the smoothing restarts (the frames before a
 //   change say nothing about the new size);
-// - the first frame at a size, the renderer's first included, is left out: the new buffers
-//   start without history, and such a frame traces every indirect cone (the static demo at
-//   720x720: about 25 ms more), which had made the scale cycle, each change's slow frame
-//   pushing it back down;
+// - the first frame at a size, the renderer's first included, is left out: it allocates and
+//   first touches the size's buffers and is slower than the size's usual frame (it also traced
+//   every indirect cone once, about 25 ms more on the static demo at 720x720, before the
+//   indirect pass kept its history across sizes); counted, such frames had made the scale
+//   cycle, each step's slow first frame pushing it back down;
 // - inside [kLow, kHigh] x target nothing changes; outside, the scale moves toward the size the
 //   smoothed time predicts for kAim x target, taking the time as proportional to the pixels
 //   (scale^2), by at most kMaxStep down or up per change, in steps of kQuantum (so that noise

@@ -54,11 +54,11 @@ TEST(FrameTimeScale, StepsAreSmallAndWaitForTheNewSize) {
   }
 }
 
-// A new render size restarts the histories, and its first frame traces every indirect cone
-// (the static demo at 720x720: 25 ms more than a frame with history). That frame must not steer
-// the scale: the static demo under --target-ms 33 cycled between 0.575 and 0.6 with a slow
-// frame at every change (p95 46 ms against a 25 ms median). The same cost model plus 21 ms on
-// the first frame at each size (the one the renderer starts with included) must settle as
+// The first frame at a new render size is slow (new buffers; it once traced every indirect
+// cone too: the static demo at 720x720, 25 ms more than a frame with history). That frame must
+// not steer the scale: the static demo under --target-ms 33 cycled between 0.575 and 0.6 with a
+// slow frame at every change (p95 46 ms against a 25 ms median). The same cost model plus 21 ms
+// on the first frame at each size (the one the renderer starts with included) must settle as
 // without it, after few changes, and stay.
 TEST(FrameTimeScale, TheFirstFrameAtANewSizeDoesNotSteer) {
   FrameTimeScale c(33.0, 0.6f);
