@@ -1,6 +1,7 @@
 // `rolypoly bench`: the device x size x voxels matrix of frame times on the scene of --scene
 // (bench/src/bench_scene.h), or one of its other reports (--compare-visibility here;
 // --quality-report, --accuracy and --quality pathtraced elsewhere).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -70,11 +71,20 @@ PassStats measure(const CommonOptions& common, const BenchOptions& options,
   std::vector<uint8_t> rgba;
   ProgressBar progress("bench", size_t(options.warmup) + options.frames);
   progress.update(0);
+  float scale_min = 1.0f, scale_max = 0.0f, last_scale = -1.0f;
+  uint32_t scale_changes = 0;
   for (uint32_t i = 0; i < options.warmup + options.frames; ++i) {
     throw_if_interrupted(kBenchInterrupted);
+    const float scale = session.render_scale();  // this frame's (--target-ms moves it after)
     double frame_ms = 0.0;
     rp::cl::PassTimes times = frames->render(session, rgba, frame_ms);
-    if (i >= options.warmup) stats.add(times, frame_ms);
+    if (i >= options.warmup) {
+      stats.add(times, frame_ms);
+      scale_min = std::min(scale_min, scale);
+      scale_max = std::max(scale_max, scale);
+      scale_changes += last_scale >= 0.0f && scale != last_scale;
+      last_scale = scale;
+    }
     progress.update(i + 1);
   }
   progress.finish();
@@ -122,11 +132,20 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
                 voxels_or_default(voxels));
   ProgressBar progress(label, size_t(options.warmup) + options.frames);
   progress.update(0);
+  float scale_min = 1.0f, scale_max = 0.0f, last_scale = -1.0f;
+  uint32_t scale_changes = 0;
   for (uint32_t i = 0; i < options.warmup + options.frames; ++i) {
     throw_if_interrupted(kBenchInterrupted);
+    const float scale = session.render_scale();  // this frame's (--target-ms moves it after)
     double frame_ms = 0.0;
     rp::cl::PassTimes times = frames->render(session, rgba, frame_ms);
-    if (i >= options.warmup) stats.add(times, frame_ms);
+    if (i >= options.warmup) {
+      stats.add(times, frame_ms);
+      scale_min = std::min(scale_min, scale);
+      scale_max = std::max(scale_max, scale);
+      scale_changes += last_scale >= 0.0f && scale != last_scale;
+      last_scale = scale;
+    }
     progress.update(i + 1);
   }
   progress.finish();
@@ -166,10 +185,19 @@ RunResult measure_run(const CommonOptions& common, const BenchOptions& options,
   run.render_scale = session.render_scale();
   run.render_width = session.render_width();
   run.render_height = session.render_height();
+  if (options.frames > 0) {
+    run.scale_min = scale_min;
+    run.scale_max = scale_max;
+    run.scale_changes = scale_changes;
+  }
   if (run.render_width != width || run.render_height != height || common.target_ms > 0.0)
     std::printf("  render scale %.3f: rendered at %ux%u for the %ux%u output%s\n",
                 double(run.render_scale), run.render_width, run.render_height, width, height,
                 common.target_ms > 0.0 ? " (where --target-ms left it)" : "");
+  if (common.target_ms > 0.0)
+    std::printf("  the measured frames at scales %.3f-%.3f, %u change%s of scale among them\n",
+                double(run.scale_min), double(run.scale_max), run.scale_changes,
+                run.scale_changes == 1 ? "" : "s");
   const render::FrameMemory held = session.renderer().frame_device_memory();
   for (const auto& [part, bytes] : held.parts)
     if (bytes > 0) run.frame_memory.emplace_back(std::string(part), bytes);

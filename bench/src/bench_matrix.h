@@ -44,6 +44,10 @@ struct RunResult {
   // left it); 1 and the output size without either.
   float render_scale = 1.0f;
   uint32_t render_width = 0, render_height = 0;
+  // The scales the measured frames were rendered at: the smallest, the largest, and how often
+  // it changed from one measured frame to the next (under --target-ms; 1, 1, 0 without).
+  float scale_min = 1.0f, scale_max = 1.0f;
+  uint32_t scale_changes = 0;
   // svo only (0 otherwise): the octree path's device memory after the last frame and its peak
   // (pools + build scratch, CL_MEM_SIZE), the pools alone, in bytes
   uint64_t octree_device_bytes = 0, octree_peak_bytes = 0, octree_pool_bytes = 0;

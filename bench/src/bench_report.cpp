@@ -60,6 +60,8 @@ Json run_json(const RunResult& r) {
   j["gi_volume"] = r.gi_volume;
   j["render_scale"] = r.render_scale;
   j["render_size"] = {r.render_width, r.render_height};
+  j["render_scale_range"] = {r.scale_min, r.scale_max};
+  j["render_scale_changes"] = r.scale_changes;
   if (r.gi_volume == "svo")
     j["octree_memory"] = {{"device_bytes", r.octree_device_bytes},
                           {"peak_bytes", r.octree_peak_bytes},
@@ -110,6 +112,13 @@ RunResult parse_run(const Json& j) {
   r.render_scale = j.value("render_scale", 1.0f);  // files before the render scale: 1
   r.render_width = j.contains("render_size") ? j.at("render_size").at(0).get<uint32_t>() : r.width;
   r.render_height = j.contains("render_size") ? j.at("render_size").at(1).get<uint32_t>() : r.height;
+  if (j.contains("render_scale_range")) {  // files before it: the last frame's scale
+    r.scale_min = j.at("render_scale_range").at(0).get<float>();
+    r.scale_max = j.at("render_scale_range").at(1).get<float>();
+  } else {
+    r.scale_min = r.scale_max = r.render_scale;
+  }
+  r.scale_changes = j.value("render_scale_changes", 0u);
   if (j.contains("octree_memory")) {
     const Json& m = j.at("octree_memory");
     r.octree_device_bytes = m.at("device_bytes");
