@@ -71,20 +71,11 @@ PassStats measure(const CommonOptions& common, const BenchOptions& options,
   std::vector<uint8_t> rgba;
   ProgressBar progress("bench", size_t(options.warmup) + options.frames);
   progress.update(0);
-  float scale_min = 1.0f, scale_max = 0.0f, last_scale = -1.0f;
-  uint32_t scale_changes = 0;
   for (uint32_t i = 0; i < options.warmup + options.frames; ++i) {
     throw_if_interrupted(kBenchInterrupted);
-    const float scale = session.render_scale();  // this frame's (--target-ms moves it after)
     double frame_ms = 0.0;
     rp::cl::PassTimes times = frames->render(session, rgba, frame_ms);
-    if (i >= options.warmup) {
-      stats.add(times, frame_ms);
-      scale_min = std::min(scale_min, scale);
-      scale_max = std::max(scale_max, scale);
-      scale_changes += last_scale >= 0.0f && scale != last_scale;
-      last_scale = scale;
-    }
+    if (i >= options.warmup) stats.add(times, frame_ms);
     progress.update(i + 1);
   }
   progress.finish();
