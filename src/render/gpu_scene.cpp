@@ -65,7 +65,6 @@ std::pair<glm::vec3, glm::vec3> world_box(const MeshRange& m, const glm::mat4& m
   return box;
 }
 
-
 }  // namespace
 
 // On the device every texel of every mip level takes 4 bytes (packed sRGB, one buffer for all

@@ -25,7 +25,7 @@ uint8_t encode(double linear) {
 }
 
 // Linear [0, 1] -> the nearest 8-bit code (alpha, and the rgb of data maps).
-uint8_t encode_alpha(double a) {
+uint8_t encode_linear(double a) {
   return static_cast<uint8_t>(std::lround(std::clamp(a, 0.0, 1.0) * 255.0));
 }
 
@@ -93,7 +93,7 @@ MipChain build_mip_chain(const scene::Texture& t) {
   // Colour (sRGB) rgb is filtered as light; data maps' codes (normals, roughness) as the
   // values they stand for, code / 255, which is how the kernels read them.
   const auto to_linear = [&t](uint8_t code) { return t.srgb ? decode(code) : code / 255.0; };
-  const auto to_code = [&t](double v) { return t.srgb ? encode(v) : encode_alpha(v); };
+  const auto to_code = [&t](double v) { return t.srgb ? encode(v) : encode_linear(v); };
   Plane linear(t.rgba.size());
   for (size_t i = 0; i < t.rgba.size(); i += 4) {
     for (int c = 0; c < 3; ++c) linear[i + c] = to_linear(t.rgba[i + c]);
@@ -110,7 +110,7 @@ MipChain build_mip_chain(const scene::Texture& t) {
     } else {
       for (size_t i = 0; i < linear.size(); i += 4)
         chain.texels.push_back(pack(to_code(linear[i]), to_code(linear[i + 1]),
-                                    to_code(linear[i + 2]), encode_alpha(linear[i + 3])));
+                                    to_code(linear[i + 2]), encode_linear(linear[i + 3])));
     }
     if (k + 1 < levels) {
       uint32_t nw = 0, nh = 0;

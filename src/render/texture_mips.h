@@ -7,8 +7,9 @@
 //
 // Filtering, in linear light: the sRGB rgb codes are decoded (exact sRGB curve), alpha is
 // code / 255 (alpha is linear, never sRGB), and so is the rgb of a data map (Texture::srgb
-// false: normal and metallic-roughness maps, read as code / 255); level k + 1 is the AREA-WEIGHTED box filter of
-// level k (kept in float, so the rounding to 8 bits happens once per level, not compounded):
+// false: normal and metallic-roughness maps, read as code / 255); level k + 1 is the
+// AREA-WEIGHTED box filter of level k (kept in float, so the rounding to 8 bits happens once per
+// level, not compounded):
 // along an axis of n texels that halves to m = max(1, n / 2):
 //   n even:        output i = mean of inputs 2i, 2i + 1 (the usual 2x2 box);
 //   n odd, n > 1:  output i covers the input interval [i s, (i + 1) s], s = n / m (= 2 + 1/m),
@@ -18,7 +19,8 @@
 //                  2x2 box would drop the last column and shift the image by 1/(2n));
 //   n = 1:         kept (the other axis may still halve).
 // The 2D filter is the product of the two axes' weights (separable). Each level is then
-// re-encoded to RGBA8 (sRGB, or linear for data maps; round to nearest code), the format of the shared texel buffer.
+// re-encoded to RGBA8 (sRGB, or linear for alpha and data maps; round to nearest code), the
+// format of the shared texel buffer.
 #pragma once
 
 #include <cstdint>
