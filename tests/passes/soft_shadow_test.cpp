@@ -258,7 +258,7 @@ void expect_plate_penumbra(ShadowMode filter, double max_mean_error, double widt
 }
 
 TEST(SoftShadow, PcssPenumbraMatchesTheLampDisk) {
-  expect_plate_penumbra(ShadowMode::kPcss, 0.03, 0.10, 0.2);
+  expect_plate_penumbra(ShadowMode::kPcss, 0.012, 0.10, 0.2);
 }
 
 // VSSM's penumbra on the plate comes out about 0.4x the reference's width (a bilinear mip
@@ -288,7 +288,7 @@ TEST(SoftShadow, PcssPooledQuadsMatchTheLampDisk) {
     sum_error += std::abs(vis[i] - row.truth[i % 96]);
     EXPECT_NEAR(vis[i], row.truth[i % 96], 0.2) << i;
   }
-  EXPECT_LT(sum_error / double(pts.size()), 0.03);
+  EXPECT_LT(sum_error / double(pts.size()), 0.011);
   const std::vector<double> top(vis.begin(), vis.begin() + 96);
   const double want = crossing(row.xs, row.truth, 0.9) - crossing(row.xs, row.truth, 0.1);
   const double got = crossing(row.xs, top, 0.9) - crossing(row.xs, top, 0.1);
@@ -722,7 +722,7 @@ TEST(SoftShadow, BallOnTheFloorMatchesTheLampDisk) {
     const double width = crossing(xs, vis, 0.9) - crossing(xs, vis, 0.1);
     std::printf("%s ball: mean |error| %.4f, 10-90 %% width %.4f (reference %.4f)\n",
                 pcss ? "pcss" : "vssm", sum / double(pts.size()), width, want_width);
-    EXPECT_LT(sum / double(pts.size()), pcss ? 0.02 : 0.05);
+    EXPECT_LT(sum / double(pts.size()), pcss ? 0.009 : 0.05);
     EXPECT_NEAR(width, want_width, (pcss ? 0.25 : 0.5) * want_width);
     EXPECT_LT(vis[0], 0.01);  // the umbra under the ball
   }
@@ -793,9 +793,12 @@ TEST(SoftShadow, ColumnOnTheFloorMatchesTheLampDisk) {
     std::printf("%s column: mean |error| %.4f, bias %+.4f, 10-90 %% width %.4f (reference %.4f)\n",
                 pcss ? "pcss" : "vssm", sum / double(pts.size()), bias / double(pts.size()),
                 width, want_width);
-    // PCSS's one blocker depth and a single-layer map: the inner penumbra of a thick blocker
-    // comes out a little lit (+0.04 on average here; VSSM also bleeds light at the contact)
-    EXPECT_LT(sum / double(pts.size()), pcss ? 0.05 : 0.1);
+    // PCSS: mean |error| 0.011, bias +0.000 with filter taps uniform over the lamp's disk
+    // (0.025 and +0.021 with the rim-heavy Poisson set); VSSM bleeds light at the contact
+    EXPECT_LT(sum / double(pts.size()), pcss ? 0.018 : 0.1);
+    if (pcss) {
+      EXPECT_LT(std::abs(bias / double(pts.size())), 0.01);
+    }
     EXPECT_NEAR(width, want_width, (pcss ? 0.15 : 0.6) * want_width);
     EXPECT_LT(vis[0], pcss ? 0.01 : 0.4);  // at the column's foot
   }
