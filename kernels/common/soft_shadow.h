@@ -108,9 +108,9 @@
  *      margin 0 32.1, 0.02 35.3, 0.05 34.4 (with the lamp's disk model of
  *      common/direct_light.h); with the filter taps uniform over the disk, floor / penumbra
  *      PSNR: margin 0 36.1 / 30.7, 0.005 36.5 / 31.2, 0.01 36.6 / 31.3, 0.015 36.4 / 31.1,
- *      0.02 36.1 / 30.7 (the wider margin darkened the inner penumbra). Visibility = 1 - blocked taps / taps. (Not the search's cone
- *      test: the disk already is the cone at z_b, and the lamp rays cross texels diagonally:
- *      a ball's umbra came out 25 % lit.)
+ *      0.02 36.1 / 30.7 (the wider margin darkened the inner penumbra). Visibility = 1 -
+ *      blocked taps / taps. (Not the search's cone test: the disk already is the cone at z_b,
+ *      and the lamp rays cross texels diagonally: a ball's umbra came out 25 % lit.)
  *   Tap counts: 8 search taps missed the small blockers of a penumbra's outer half (the
  *   tumbler's 10-90 % penumbra came out 0.76 x the truth's); 12 search and 6 filter taps
  *   give 0.93 x and 35.4 dB for about the time of 8 and 8 (16 search taps: 0.93 x, 35.5 dB).
