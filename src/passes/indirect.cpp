@@ -87,32 +87,27 @@ uint64_t IndirectPass::frame_device_bytes() const {
 }
 
 void IndirectPass::resize(uint32_t width, uint32_t height) {
+  width_ = width;
+  height_ = height;
   const size_t plane = size_t(plane_size(low_res(width), low_res(height))) * sizeof(float);
   radiance_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
   specular_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
   for (::cl::Buffer& b : specular_filled_) b = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 3 * plane);
   const size_t bytes = 4 * plane;
   position_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
-  for (int k = 0; k < 2; ++k) {
-    geometry_[k] = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, bytes);
-    history_[k] = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 5 * plane);
-  }
+  for (int slot = 0; slot < 2; ++slot) reallocate_slot(slot);
   // Defined contents from the start (the filter ignores the previous frame's planes until
   // history_valid_, but they are read).
   // The padding must stay zero (kernels/common/indirect.h); the kernels write only samples.
   // Except in the traced reflections, which only indirect_filter reads: -3 there marks "no
   // surface", like the background's samples, so that every value >= 0 is a traced coat.
-  for (::cl::Buffer* b :
-       {&radiance_, &specular_filled_[0], &specular_filled_[1], &position_, &geometry_[0],
-        &geometry_[1], &history_[0], &history_[1]})
+  for (::cl::Buffer* b : {&radiance_, &specular_filled_[0], &specular_filled_[1], &position_})
     context_->queue.enqueueFillBuffer(*b, 0.0f, 0, b->getInfo<CL_MEM_SIZE>());
   context_->queue.enqueueFillBuffer(specular_, -3.0f, 0, specular_.getInfo<CL_MEM_SIZE>());
   hiz_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE,
                       size_t(hiz_floats(width, height)) * sizeof(float));
   dummy_ = ::cl::Buffer(context_->context, CL_MEM_READ_WRITE, 16);
   context_->queue.enqueueFillBuffer(dummy_, 0.0f, 0, 16);
-  width_ = width;
-  height_ = height;
   prev_width_ = width;
   prev_height_ = height;
   stale_slot_ = false;
