@@ -42,13 +42,13 @@
 #include "shared/pass_params.h"
 #include "common/bloom_composite.h" /* before the pragma: same contraction as bloom.cl */
 #include "common/random.h"
+#include "common/depth_speed.h"
 
 /* Keep a * b + c as two rounded operations so the C++ reference reproduces the sample
  * positions and magnitudes bit for bit (tests/passes/motion_blur_reference.*). */
 #pragma OPENCL FP_CONTRACT OFF
 
 #define RP_MB_TILE 20u
-#define RP_MB_MAX_RADIUS 20.0f
 #ifndef RP_MB_SAMPLES
 #define RP_MB_SAMPLES 15 /* odd: the middle sample (the pixel itself) is skipped */
 #endif
@@ -62,8 +62,6 @@
  * step ends at distance / radius = 1.05 < 1 / 0.95) and the samples on the pixel itself give its
  * own colour, so the filter returns the pixel (up to rounding) and the block is copied. */
 #define RP_MB_QUIET_SPEED 0.95f
-/* Depths above this go to the half plane as this (half max is 65504; inf - inf would be NaN). */
-#define RP_MB_MAX_DEPTH 60000.0f
 
 inline float rp_mb_len2(float2 v) { return v.x * v.x + v.y * v.y; }
 
@@ -206,25 +204,6 @@ __kernel void motion_blur_neighbour_max(__global const float2* restrict tile_max
     }
   }
   neighbour_max[ty * (int)tiles_x + tx] = best;
-}
-
-/* Float to IEEE binary16 bits, round to nearest even (what vstore_half does by default), for
- * finite values in [0, 65504] on 16 + 4 lanes (the plane's depths and speeds are such values;
- * done in vector arithmetic because a per-lane vstore_half2 costs more than the rest of the
- * prepass on PoCL). */
-inline uint16 rp_mb_float_to_half16(float16 x) {
-  const uint16 bits = as_uint16(x);
-  /* Normal halves (x >= 2^-14): drop 13 mantissa bits with round-half-even, rebias by 112. */
-  const uint16 normal = (bits + 0x0FFFu + ((bits >> 13) & 1u) - 0x38000000u) >> 13;
-  /* Subnormal halves: x / 2^-24 rounded to the nearest even integer. */
-  const uint16 tiny = convert_uint16(rint(x * 16777216.0f));
-  return select(normal, tiny, bits < 0x38800000u);
-}
-inline uint4 rp_mb_float_to_half4(float4 x) {
-  const uint4 bits = as_uint4(x);
-  const uint4 normal = (bits + 0x0FFFu + ((bits >> 13) & 1u) - 0x38000000u) >> 13;
-  const uint4 tiny = convert_uint4(rint(x * 16777216.0f));
-  return select(normal, tiny, bits < 0x38800000u);
 }
 
 /* Step 3, the prepass: the depth/speed plane, one half2 per pixel (linear depth clamped to

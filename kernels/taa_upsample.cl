@@ -44,7 +44,10 @@
  *   history_out   float  ow x oh  this resolved frame, same layout
  *   hdr_out       float4 ow x oh  this resolved frame in linear HDR
  *   velocity_out  float2 ow x oh  step 3's motion in output pixels (motion blur at output size)
- *   depth_out     float4 ow x oh  w: the linear depth of the pixel nearest p (xyz 0)
+ *   depth_speed   half2  ow x oh  the motion blur's depth/speed plane (common/depth_speed.h)
+ *                                 from velocity_out and the linear depth of the render pixel
+ *                                 nearest p, for params.blur_half = shutter / 2; not written
+ *                                 when blur_half is 0 (no motion blur)
  * Eight output pixels of a row per work-item, one float8 per channel (common/taa.h says why):
  * pixels x0 .. x0+7 with x0 = 8 * get_global_id(0), row get_global_id(1). Every tap of step 1
  * and step 0's values of the nearest render pixel are one float4 load per lane, each lane
@@ -58,6 +61,7 @@
 #include "shared/pass_params.h"
 #include "common/colour.h"
 #include "common/taa.h"
+#include "common/depth_speed.h"
 
 /* A sample's weight from its squared distance from the output pixel centre (output pixels):
  * (1 - d^2 / 1.43)^2 inside 1.2 pixels, 0 beyond; close to a Gaussian of sigma 0.47 (about
@@ -217,11 +221,11 @@ __kernel void taa_upsample(__global const float4* restrict colour,
                            __global float* restrict history_out,
                            __global float4* restrict hdr_out,
                            __global float2* restrict velocity_out,
-                           __global float4* restrict depth_out, const TaaParams params) {
+                           __global half* restrict depth_speed, const TaaParams params) {
   const uint render_width = params.render_width, render_height = params.render_height;
   const uint out_width = params.out_width, out_height = params.out_height;
   const float jitter_x = params.jitter_x, jitter_y = params.jitter_y;
-  const float history_weight = params.history_weight;
+  const float history_weight = params.history_weight, blur_half = params.blur_half;
   const uint history_valid = params.history_valid;
   const int ow = (int)out_width, oh = (int)out_height;
   const int x0 = 8 * (int)get_global_id(0), oy = (int)get_global_id(1);
@@ -272,13 +276,11 @@ __kernel void taa_upsample(__global const float4* restrict colour,
       cb += w * b;
     }
   }
-  /* the nearest render pixel's own colour, its box and its nearest surface's velocity (step 0),
-   * and its depth */
-  float8 nr, ng, nb, alpha, my, mo, mg, vx, ey, eo, eg, vy, centre_depth, unused;
+  /* the nearest render pixel's own colour, its box and its nearest surface's velocity (step 0) */
+  float8 nr, ng, nb, alpha, my, mo, mg, vx, ey, eo, eg, vy;
   RP_TAAU_GATHER4(colour, nearest, nr, ng, nb, alpha);
   RP_TAAU_GATHER4(box_centre, nearest, my, mo, mg, vx);
   RP_TAAU_GATHER4(box_extent, nearest, ey, eo, eg, vy);
-  RP_TAAU_GATHER4(normal_depth, nearest, unused, unused, unused, centre_depth);
   /* no sample within reach (at scales < 0.7 the nearest can be up to 0.5 / scale * sqrt 2
    * output pixels away): the nearest sample, and max_w = 0 keeps the history as it is */
   const int8 reached = sum_w > 1.0e-6f;
@@ -323,14 +325,23 @@ __kernel void taa_upsample(__global const float4* restrict colour,
   const float8 rb = select(cb, rp_clamp8(qb + (cb - qb) * k, 0.0f, 1.0f), use_history);
 
   const int row = oy * ow;
-  const float8 zero = 0.0f;
+  /* the motion blur's plane: this motion and the nearest render pixel's depth */
+  float16 plane_value = 0.0f;
+  if (blur_half > 0.0f) {
+    const float8 centre_depth =
+        (float8)(normal_depth[nearest.s0].w, normal_depth[nearest.s1].w,
+                 normal_depth[nearest.s2].w, normal_depth[nearest.s3].w,
+                 normal_depth[nearest.s4].w, normal_depth[nearest.s5].w,
+                 normal_depth[nearest.s6].w, normal_depth[nearest.s7].w);
+    plane_value = rp_mb_depth_speed8(mvx, mvy, centre_depth, blur_half);
+  }
   if (x0 + 8 <= ow) {
     RP_STORE_PLANE8(history_out, row, x0, rr);
     RP_STORE_PLANE8(history_out + plane, row, x0, rg);
     RP_STORE_PLANE8(history_out + 2 * plane, row, x0, rb);
     RP_STORE_PX8(hdr_out, row, x0, rp_tone_map_inverse8(rr), rp_tone_map_inverse8(rg),
                  rp_tone_map_inverse8(rb), alpha);
-    RP_STORE_PX8(depth_out, row, x0, zero, zero, zero, centre_depth);
+    if (blur_half > 0.0f) vstore_half16(plane_value, 0, depth_speed + 2 * (row + x0));
     vstore16((float16)(mvx.s0, mvy.s0, mvx.s1, mvy.s1, mvx.s2, mvy.s2, mvx.s3, mvy.s3, mvx.s4,
                        mvy.s4, mvx.s5, mvy.s5, mvx.s6, mvy.s6, mvx.s7, mvy.s7),
              0, (__global float*)(velocity_out + row + x0));
@@ -341,10 +352,12 @@ __kernel void taa_upsample(__global const float4* restrict colour,
     RP_STORE_PLANE8_FIRST(history_out + 2 * plane, row, x0, n, rb);
     RP_STORE_PX8_FIRST(hdr_out, row, x0, n, rp_tone_map_inverse8(rr), rp_tone_map_inverse8(rg),
                        rp_tone_map_inverse8(rb), alpha);
-    RP_STORE_PX8_FIRST(depth_out, row, x0, n, zero, zero, zero, centre_depth);
-    float u_[8], v_[8];
+    float u_[8], v_[8], p_[16];
     vstore8(mvx, 0, u_);
     vstore8(mvy, 0, v_);
+    vstore16(plane_value, 0, p_);
     for (int i = 0; i < n; ++i) velocity_out[row + x0 + i] = (float2)(u_[i], v_[i]);
+    if (blur_half > 0.0f)
+      for (int i = 0; i < 2 * n; ++i) vstore_half(p_[i], 0, depth_speed + 2 * (row + x0) + i);
   }
 }

@@ -78,11 +78,13 @@ typedef struct {
  * out_width x out_height; jitter in render pixels; out = hist * history_weight + c * (1 -
  * history_weight) with the clip box mean +- gamma * stddev; history_valid 0: the history is
  * not read. taa_resolve only: unjitter (resample the current frame at pixel centres) and
- * x_first (the first column of its grid: its border build runs the last columns). 48 bytes. */
+ * x_first (the first column of its grid: its border build runs the last columns). taa_upsample
+ * only: blur_half, the motion blur's shutter / 2 (0: no depth/speed plane). 48 bytes. */
 typedef struct {
   rp_uint render_width, render_height, out_width, out_height;
   rp_float jitter_x, jitter_y, history_weight, gamma;
-  rp_uint history_valid, unjitter, x_first, pad;
+  rp_uint history_valid, unjitter, x_first;
+  rp_float blur_half;
 } TaaParams;
 
 /* One step of the bloom chain (kernels/bloom.cl): from a source of src_width x src_height

@@ -45,11 +45,8 @@ void TaaUpsamplePass::run(rp::cl::Profiler& profiler, const render::GpuScene& sc
     const size_t n = size_t(out_width) * out_height;
     history_[0] = ::cl::Buffer(context_, CL_MEM_READ_WRITE, n * 3 * sizeof(float));
     history_[1] = ::cl::Buffer(context_, CL_MEM_READ_WRITE, n * 3 * sizeof(float));
-    motion_ = {};
-    motion_.width = out_width;
-    motion_.height = out_height;
-    motion_.velocity = ::cl::Buffer(context_, CL_MEM_READ_WRITE, n * 2 * sizeof(float));
-    motion_.normal_depth = ::cl::Buffer(context_, CL_MEM_READ_WRITE, n * 4 * sizeof(float));
+    velocity_ = ::cl::Buffer(context_, CL_MEM_READ_WRITE, n * 2 * sizeof(float));
+    depth_speed_ = ::cl::Buffer(context_, CL_MEM_READ_WRITE, n * sizeof(cl_uint));
     width_ = out_width;
     height_ = out_height;
     history_valid_ = false;
@@ -78,6 +75,7 @@ void TaaUpsamplePass::run(rp::cl::Profiler& profiler, const render::GpuScene& sc
   params.history_weight = settings_.history_weight;
   params.gamma = settings_.gamma;
   params.history_valid = history_valid_ ? 1u : 0u;
+  params.blur_half = blur_shutter_ > 0.0f ? blur_shutter_ * 0.5f : 0.0f;  // as motion_blur.cl's
   rp::cl::bind_args(box_kernel_, hdr_in, gbuffer.velocity, gbuffer.normal_depth, colour_,
                     box_centre_, box_extent_, params);
   profiler.enqueue(pass_name::kTaa, box_kernel_,
@@ -86,8 +84,8 @@ void TaaUpsamplePass::run(rp::cl::Profiler& profiler, const render::GpuScene& sc
                                  rp::cl::round_up(h, kGroupY)),
                    ::cl::NDRange(kGroupX, kGroupY));
   rp::cl::bind_args(kernel_, colour_, box_centre_, box_extent_, gbuffer.normal_depth,
-                    history_[current_], history_[next], hdr_out, motion_.velocity,
-                    motion_.normal_depth, params);
+                    history_[current_], history_[next], hdr_out, velocity_, depth_speed_,
+                    params);
   profiler.enqueue(pass_name::kTaa, kernel_,
                    ::cl::NDRange(rp::cl::round_up((out_width + kPixelsPerItem - 1) / kPixelsPerItem,
                                                   kGroupX),

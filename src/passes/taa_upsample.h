@@ -7,7 +7,8 @@
 // run() after the light pass every frame, reset_history() on camera cuts. The pass owns its
 // history (three float planes at the output size, two buffers ping-pong: 24 bytes per output
 // pixel), what motion blur reads at the output size (motion(): velocity in output pixels and
-// the linear depth), allocated on first use and when the output size changes, and its first
+// the motion blur's depth/speed plane, 12 bytes), allocated on first use and when the output
+// size changes, and its first
 // kernel's per-render-pixel colour and neighbourhood box (three float4: 48 bytes per render
 // pixel), allocated when the render size changes.
 #pragma once
@@ -17,6 +18,7 @@
 #include "cl/profiler.h"
 #include "cl/program_cache.h"
 #include "passes/frame_memory.h"
+#include "passes/motion_blur.h"
 #include "passes/taa.h"
 #include "render/frame_buffers.h"
 #include "render/gpu_scene.h"
@@ -43,21 +45,36 @@ class TaaUpsamplePass {
   // The next run() blends a history (false on the first frame and after reset_history()).
   bool history_valid() const { return history_valid_; }
 
-  // What the last run() wrote at the output size for motion blur: velocity (float2, output
-  // pixels) and normal_depth (float4, w the linear depth); the other planes are not allocated.
-  const render::GBuffer& motion() const { return motion_; }
+  // The shutter of the motion blur that reads motion() from the next run() on: run() then
+  // writes the depth/speed plane for it (kernels/common/depth_speed.h) beside the velocity;
+  // 0 (the default): no motion blur, no plane.
+  void set_motion_blur_shutter(float shutter) { blur_shutter_ = shutter; }
+
+  // What the last run() wrote at the output size for motion blur: the velocity (float2, output
+  // pixels) and, with a shutter set, the depth/speed plane made for it.
+  MotionInputs motion() const {
+    MotionInputs m;
+    m.width = width_;
+    m.height = height_;
+    m.velocity = &velocity_;
+    if (blur_shutter_ > 0.0f) {
+      m.depth_speed = &depth_speed_;
+      m.plane_shutter = blur_shutter_;
+    }
+    return m;
+  }
 
   // Device memory for an out_width x out_height output from a render_width x render_height
   // frame (passes/frame_memory.h): the two histories of three float planes, motion()'s velocity
-  // and normal_depth, and the per-render-pixel colour and box; what the pass holds now.
+  // and depth/speed plane, and the per-render-pixel colour and box; what the pass holds now.
   static uint64_t frame_bytes(uint32_t out_width, uint32_t out_height, uint32_t render_width,
                               uint32_t render_height) {
-    return pixel_count(out_width, out_height) * (2 * 3 * sizeof(float) + 8 + 16) +
+    return pixel_count(out_width, out_height) * (2 * 3 * sizeof(float) + 8 + 4) +
            pixel_count(render_width, render_height) * 3 * 16;
   }
   uint64_t frame_device_bytes() const {
-    return buffer_bytes({&history_[0], &history_[1], &colour_, &box_centre_, &box_extent_}) +
-           motion_.device_bytes();
+    return buffer_bytes({&history_[0], &history_[1], &velocity_, &depth_speed_, &colour_,
+                         &box_centre_, &box_extent_});
   }
 
   const TaaSettings& settings() const { return settings_; }
@@ -72,7 +89,9 @@ class TaaUpsamplePass {
   ::cl::Buffer history_[2];          // tone-mapped R, G, B planes; history_[current_] the latest
   int current_ = 0;
   bool history_valid_ = false;
-  render::GBuffer motion_;
+  ::cl::Buffer velocity_;     // float2 per output pixel: motion in output pixels
+  ::cl::Buffer depth_speed_;  // uint per output pixel: motion blur's plane for blur_shutter_
+  float blur_shutter_ = 0.0f;
   uint32_t render_width_ = 0, render_height_ = 0;  // the render size the next three have
   ::cl::Buffer colour_, box_centre_, box_extent_;   // float4 per render pixel (the kernel's step 0)
 };

@@ -78,7 +78,8 @@ FrameMemory frame_memory(const RenderSettings& settings, const FrameMemoryOption
   if (fx.bloom && fx.bloom_strength > 0.0f)
     m.add(pass_name::kBloom, passes::BloomPass::frame_bytes(w, h));
   if (fx.motion_blur && fx.shutter > 0.0f)
-    m.add(pass_name::kMotionBlur, passes::MotionBlurPass::frame_bytes(w, h));
+    // (temporal upsampling makes the depth/speed plane beside its velocity)
+    m.add(pass_name::kMotionBlur, passes::MotionBlurPass::frame_bytes(w, h, !upsampling));
   m.add(kPostBuffers, 2 * output_pixels * 16);
   m.add(pass_name::kToneMap, output_pixels * 4);  // RGBA8, also the debug views' output
   return m;

@@ -296,25 +296,26 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
     if (final_view) {
       const uint32_t w = settings_.width, h = settings_.height;
       const ::cl::Buffer* colour = &hdr_;
-      const GBuffer* motion = &gbuffer_;  // velocity and depth at the output size
+      passes::MotionInputs motion = gbuffer_;  // velocity and depth at the output size
+      const bool bloom_on = fx.bloom && fx.bloom_strength > 0.0f;
+      const bool blur_on = fx.motion_blur && fx.shutter > 0.0f;
       int next = 0;
       if (upsample) {
         // without TAA: the current frame's reconstruction alone (no jitter, no history)
         if (!fx.taa) taa_upsample_->reset_history();
+        taa_upsample_->set_motion_blur_shutter(blur_on ? fx.shutter : 0.0f);
         taa_upsample_->run(profiler_, *scene_, *colour, gbuffer_, w, h, post_[next]);
         colour = &post_[next];
-        motion = &taa_upsample_->motion();
+        motion = taa_upsample_->motion();
         next ^= 1;
       } else if (fx.taa) {
         taa_->run(profiler_, *scene_, *colour, gbuffer_, vis_.depth, post_[next]);
         colour = &post_[next];
         next ^= 1;
       }
-      const bool bloom_on = fx.bloom && fx.bloom_strength > 0.0f;
-      const bool blur_on = fx.motion_blur && fx.shutter > 0.0f;
       if (bloom_on && blur_on) {  // the bloom's full-resolution mix fused into motion blur
         bloom_->run_chain(profiler_, *colour, w, h);
-        motion_blur_->run(profiler_, *colour, *motion, w, h, fx.shutter,
+        motion_blur_->run(profiler_, *colour, motion, w, h, fx.shutter,
                           bloom_->composite(fx.bloom_strength), post_[next]);
         colour = &post_[next];
       } else {
@@ -324,7 +325,7 @@ rp::cl::PassTimes Renderer::render(const scene::FrameScene& frame) {
           next ^= 1;
         }
         if (blur_on) {
-          motion_blur_->run(profiler_, *colour, *motion, w, h, fx.shutter, post_[next]);
+          motion_blur_->run(profiler_, *colour, motion, w, h, fx.shutter, post_[next]);
           colour = &post_[next];
         }
       }

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <vector>
 
+#include "cl/error.h"
 #include "passes/motion_blur.h"
 #include "passes/pass_names.h"
 #include "render/frame_buffers.h"
@@ -382,6 +383,49 @@ TEST(MotionBlurKernels, DepthSpeedPlaneRoundTrip) {
     EXPECT_NEAR(half_to_float(out.depth_speed[2 * i + 1]), speed, speed * (1.0f / 2048.0f) + 1e-6f)
         << "pixel " << i;
   }
+}
+
+// A depth/speed plane brought with the inputs (temporal upsampling makes one) is read as the
+// pass's own: the pass's plane handed to a second pass gives the same image, bit for bit, and
+// the second pass makes none.
+TEST(MotionBlurKernels, APlaneBroughtAlongIsReadAsItsOwn) {
+  const Inputs in = make_inputs(61, 43, 12, 9u);
+  const float shutter = 0.7f;
+  const Outputs own = run_device(in, shutter);
+  auto& ctx = rp::test::context();
+  const size_t n = size_t(in.w) * in.h;
+  ::cl::Buffer velocity(ctx.context, CL_MEM_READ_WRITE, n * 8);
+  ::cl::Buffer plane(ctx.context, CL_MEM_READ_WRITE, n * 4);
+  ::cl::Buffer hdr_in(ctx.context, CL_MEM_READ_WRITE, n * 16);
+  ::cl::Buffer hdr_out(ctx.context, CL_MEM_READ_WRITE, n * 16);
+  ctx.queue.enqueueWriteBuffer(velocity, CL_TRUE, 0, n * 8, in.velocity.data());
+  ctx.queue.enqueueWriteBuffer(plane, CL_TRUE, 0, n * 4, own.depth_speed.data());
+  ctx.queue.enqueueWriteBuffer(hdr_in, CL_TRUE, 0, n * 16, in.hdr.data());
+  rp::passes::MotionInputs motion;
+  motion.width = in.w;
+  motion.height = in.h;
+  motion.velocity = &velocity;
+  motion.depth_speed = &plane;
+  motion.plane_shutter = shutter;
+  MotionBlurPass pass(ctx, rp::test::programs());
+  rp::cl::Profiler profiler(ctx.queue);
+  pass.run(profiler, hdr_in, motion, in.w, in.h, shutter, hdr_out);
+  profiler.collect();
+  std::vector<V4> hdr(n);
+  ctx.queue.enqueueReadBuffer(hdr_out, CL_TRUE, 0, n * 16, hdr.data());
+  size_t moved = 0;
+  for (size_t i = 0; i < n; ++i) {
+    EXPECT_EQ(std::memcmp(&hdr[i], &own.hdr[i], sizeof(V4)), 0) << "pixel " << i;
+    moved += std::memcmp(&hdr[i], &in.hdr[i], sizeof(V4)) != 0;
+  }
+  EXPECT_GT(moved, n / 2);  // the blur did run
+  EXPECT_EQ(pass.frame_device_bytes(), MotionBlurPass::frame_bytes(in.w, in.h, false));
+  // a plane made for another shutter, or no depth at all: refused
+  motion.plane_shutter = 0.5f;
+  EXPECT_THROW(pass.run(profiler, hdr_in, motion, in.w, in.h, shutter, hdr_out), rp::cl::Error);
+  motion.depth_speed = nullptr;
+  EXPECT_THROW(pass.run(profiler, hdr_in, motion, in.w, in.h, shutter, hdr_out), rp::cl::Error);
+  profiler.collect();
 }
 
 TEST(MotionBlurKernels, HalfConversionReferenceIsRoundToNearestEven) {

@@ -1,7 +1,8 @@
 // Temporal upsampling (kernels/taa_upsample.cl, passes/taa_upsample.h) against a plain C++
 // reference written from the kernel's header comment (double precision, one output pixel at a
 // time), and what it is for: jittered frames rendered at half size converge to the full-size
-// picture, closer than any single frame's upscale.
+// picture, closer than any single frame's upscale; and the motion blur's depth/speed plane it
+// writes beside its velocity.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +13,8 @@
 
 #include <glm/glm.hpp>
 
+#include "cl/error.h"
+#include "passes/motion_blur.h"
 #include "passes/taa_upsample.h"
 #include "render/gpu_scene.h"
 #include "support/cl_fixture.h"
@@ -276,6 +279,80 @@ TEST(TaaUpsample, HalfSizeFramesConvergeToTheFullSizePicture) {
   // stripes' edges (the interior converges to the truth)
   EXPECT_LT(last, 0.55 * first);
   EXPECT_LT(last, 0.08);
+}
+
+// With a motion blur shutter set, the pass writes the depth/speed plane (common/depth_speed.h)
+// the motion blur pass would make from the pass's output velocity and the depth of the render
+// pixel nearest each output pixel: the same bits, halves included.
+TEST(TaaUpsample, WritesTheMotionBlurPlaneOfItsVelocity) {
+  const uint32_t rw = 29, rh = 17, ow = 41, oh = 30;
+  const float shutter = 0.6f;
+  std::mt19937 rng(7);
+  LowFrame f = random_frame(rw, rh, rng, 3.0f);
+  // every output pixel's blur radius over half a pixel, so that the motion blur pass makes its
+  // plane in every tile (it skips still ones)
+  for (glm::vec2& v : f.velocity) v.x = 2.0f + std::abs(v.x) * (2.0f / 3.0f);
+  f.depth[3] = 1e9f;  // beyond the half range: the clamp depth
+  Harness pass(ow, oh);
+  pass.pass().set_motion_blur_shutter(shutter);
+  pass.run(f);
+  const passes::MotionInputs motion = pass.pass().motion();
+  ASSERT_NE(motion.depth_speed, nullptr);
+  EXPECT_EQ(motion.plane_shutter, shutter);
+  auto& ctx = context();
+  const size_t n = size_t(ow) * oh;
+  std::vector<uint32_t> plane(n);
+  std::vector<glm::vec2> velocity(n);
+  ctx.queue.enqueueReadBuffer(*motion.depth_speed, CL_TRUE, 0, n * 4, plane.data());
+  ctx.queue.enqueueReadBuffer(*motion.velocity, CL_TRUE, 0, n * 8, velocity.data());
+
+  // The same velocity and the nearest render pixel's depth through the motion blur pass.
+  // Output pixels whose centre lies within 1e-3 render pixels of a render pixel boundary
+  // (after the jitter) are left out: float and double may pick different neighbours there.
+  render::GBuffer g;
+  g.resize(ctx.context, ow, oh);
+  std::vector<glm::vec4> nd(n, glm::vec4(0.0f, 0.0f, 1.0f, 1.0f));
+  std::vector<bool> decided(n, true);
+  for (uint32_t oy = 0; oy < oh; ++oy)
+    for (uint32_t ox = 0; ox < ow; ++ox) {
+      const double px = (ox + 0.5) * rw / ow + f.jitter.x, py = (oy + 0.5) * rh / oh + f.jitter.y;
+      const auto tie = [](double v) { return std::abs(v - std::round(v)) < 1e-3; };
+      const int cx = std::clamp(int(std::floor(px)), 0, int(rw) - 1);
+      const int cy = std::clamp(int(std::floor(py)), 0, int(rh) - 1);
+      decided[size_t(oy) * ow + ox] = !tie(px) && !tie(py);
+      nd[size_t(oy) * ow + ox].w = f.depth[size_t(cy) * rw + size_t(cx)];
+    }
+  ctx.queue.enqueueWriteBuffer(g.velocity, CL_TRUE, 0, n * 8, velocity.data());
+  ctx.queue.enqueueWriteBuffer(g.normal_depth, CL_TRUE, 0, n * 16, nd.data());
+  ::cl::Buffer hdr_in(ctx.context, CL_MEM_READ_WRITE, n * 16);
+  ::cl::Buffer hdr_out(ctx.context, CL_MEM_READ_WRITE, n * 16);
+  std::vector<glm::vec4> black(n, glm::vec4(0.0f));
+  ctx.queue.enqueueWriteBuffer(hdr_in, CL_TRUE, 0, n * 16, black.data());
+  passes::MotionBlurPass blur(ctx, programs());
+  rp::cl::Profiler profiler(ctx.queue);
+  blur.run(profiler, hdr_in, g, ow, oh, shutter, hdr_out);
+  profiler.collect();
+  std::vector<uint32_t> want(n);
+  ctx.queue.enqueueReadBuffer(blur.depth_speed(), CL_TRUE, 0, n * 4, want.data());
+  size_t compared = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (!decided[i]) continue;
+    ++compared;
+    EXPECT_EQ(plane[i], want[i]) << "output pixel " << i;
+  }
+  EXPECT_GT(compared, n * 9 / 10);
+  // the far render pixel's output pixels hold the clamp depth, 60000 (0x7B53 as a half)
+  EXPECT_TRUE(std::any_of(plane.begin(), plane.end(),
+                          [](uint32_t v) { return (v & 0xFFFFu) == 0x7B53u; }));
+
+  // A motion blur with another shutter cannot use the plane; without a shutter there is none.
+  EXPECT_THROW(blur.run(profiler, hdr_in, motion, ow, oh, 0.5f, hdr_out), rp::cl::Error);
+  pass.pass().set_motion_blur_shutter(0.0f);
+  pass.run(f);
+  EXPECT_EQ(pass.pass().motion().depth_speed, nullptr);
+  EXPECT_THROW(blur.run(profiler, hdr_in, pass.pass().motion(), ow, oh, shutter, hdr_out),
+               rp::cl::Error);
+  profiler.collect();
 }
 
 TEST(TaaUpsample, JitterPhasesGrowAsTheScaleFalls) {
