@@ -1,11 +1,11 @@
-/* The motion blur's depth/speed plane (kernels/motion_blur.cl, step 3): one uint per pixel, the
- * low half the linear depth clamped to [0, RP_MB_MAX_DEPTH], the high half the blur radius |V|
- * in pixels clamped to RP_MB_MAX_RADIUS (V = velocity * shutter / 2, non-finite velocities count
- * as still), both IEEE binary16 rounded to nearest even, as vstore_half2 would store them on the
- * little-endian devices OpenCL runs on. motion_blur.cl makes the plane from the output-size
- * velocity and depth; the temporal upsampling (kernels/taa_upsample.cl), which makes that
- * velocity and knows the depth, writes it directly. OpenCL C only; tests/passes hold the C++
- * reference both are checked against bit for bit.
+/* The motion blur's depth/speed plane (kernels/motion_blur.cl, step 3): a half2 per pixel, the
+ * linear depth clamped to [0, RP_MB_MAX_DEPTH], then the blur radius |V| in pixels clamped to
+ * RP_MB_MAX_RADIUS (V = velocity * shutter / 2; non-finite velocities count as still), both
+ * rounded to nearest even. motion_blur.cl makes it from the output-size velocity and depth
+ * (rp_mb_float_to_half16 / 4 below); the temporal upsampling (kernels/taa_upsample.cl), which
+ * makes that velocity and knows the depth, writes it itself (rp_mb_depth_speed8). The two give
+ * the same bits (tests/passes/taa_upsample_test.cpp; motion_blur_reference_test.cpp holds the
+ * C++ reference). OpenCL C only.
  */
 #ifndef ROLYPOLY_COMMON_DEPTH_SPEED_H
 #define ROLYPOLY_COMMON_DEPTH_SPEED_H
@@ -34,10 +34,12 @@ inline uint4 rp_mb_float_to_half4(float4 x) {
 
 /* The plane's values for eight pixels from their velocity (pixels per frame), linear depth and
  * half_shutter = shutter * 0.5 (the host's float product), before the rounding to halves:
- * depth and radius of pixel k in lanes 2k and 2k + 1, for vstore_half16 (whose default
- * rounding is to nearest even; on PoCL cheaper than the integer conversion above: the busy
- * 720x720 frame's taa pass at scale 0.5 took 4.22 against 4.45 ms). One rounded operation per
- * statement: motion_blur.cl computes the same values with FP_CONTRACT OFF. */
+ * depth and radius of pixel k in lanes 2k and 2k + 1, for vstore_half16 (its default rounding
+ * is to nearest even; in the upsampling's resolve on PoCL cheaper than the integer rounding
+ * above: the busy 720x720 frame's taa pass at scale 0.5 took 4.22 against 4.45 ms; in
+ * motion_blur.cl's prepass, 16 pixels a work-item through this function cost half as much again
+ * as its 20-pixel rows). One rounded operation per statement: motion_blur.cl computes the same
+ * values with FP_CONTRACT OFF. */
 inline float16 rp_mb_depth_speed8(float8 vx, float8 vy, float8 depth, float half_shutter) {
   float8 hx = vx * half_shutter;
   float8 hy = vy * half_shutter;
