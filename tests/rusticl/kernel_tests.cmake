@@ -4,7 +4,7 @@
 # shader cache. Skipped (exit 77) where `rolypoly devices` lists no rusticl device, failed under
 # CI=true.
 #   rusticl.kernel_tests: the test_passes suites whose kernels build and run in seconds on
-#     llvmpipe (34 tests, ~36 s with the frame's cache); the others (visibility, voxelize,
+#     llvmpipe (43 tests, 11-16 s with the frame's cache); the others (visibility, voxelize,
 #     light and the cone tracer: minutes of builds, 35x PoCL's run time) are reached by the
 #     frame test's render instead.
 #   rusticl.visibility_repeats: the compute rasterizer on the demo ten times against the C++
@@ -24,8 +24,9 @@ ROLYPOLY_TEST_DEVICE=rusticl exec \"$2\" --gtest_filter=\"$3\"" sh
     ENVIRONMENT "${RP_RUSTICL_ENV}")
 endfunction()
 
-rp_rusticl_gtest(kernel_tests test_passes
-  "ToneMap.*:TaaPass.*:TaaHelpers.*:Bloom.*:MotionBlurKernels.*:VoxelMips.*:MipChain.*")
+string(JOIN ":" RP_RUSTICL_KERNEL_TESTS ToneMap.* TaaPass.* TaaHelpers.* TaaUpsample.* Bloom.*
+       MotionBlurKernels.* VoxelMips.* MipChain.*)
+rp_rusticl_gtest(kernel_tests test_passes "${RP_RUSTICL_KERNEL_TESTS}")
 rp_rusticl_gtest(visibility_repeats test_passes "VisibilityDemo.MatchesReference")
 set_property(TEST rusticl.visibility_repeats APPEND PROPERTY ENVIRONMENT GTEST_REPEAT=10)
 rp_rusticl_gtest(profiler test_cl "Profiler.*")
