@@ -8,9 +8,8 @@
 // history (three float planes at the output size, two buffers ping-pong: 24 bytes per output
 // pixel), what motion blur reads at the output size (motion(): velocity in output pixels and
 // the motion blur's depth/speed plane, 12 bytes), allocated on first use and when the output
-// size changes, and its first
-// kernel's per-render-pixel colour and neighbourhood box (three float4: 48 bytes per render
-// pixel), allocated when the render size changes.
+// size changes, and its first kernel's per-render-pixel colour and neighbourhood box (three
+// float4: 48 bytes per render pixel), allocated when the render size changes.
 #pragma once
 
 #include <cstdint>
