@@ -14,6 +14,7 @@
 #include "app/progress.h"
 #include "app/truth_cache.h"
 #include "bench/src/accuracy_metrics.h"
+#include "bench/src/accuracy_penumbra.h"
 #include "scene/demo_scene.h"
 
 namespace rp::bench {
@@ -258,6 +259,15 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
   }
   penumbra = dilate(penumbra, w, h, 1);
   for (size_t i = 0; i < labels.size(); ++i) penumbra[i] = penumbra[i] && image[i];
+  // The penumbra taken apart (accuracy_penumbra.h): by where the floor shows, and by the
+  // truth's lamp fraction.
+  std::vector<uint8_t> floor_material(labels.size());
+  std::vector<float> lamp_fraction(labels.size());
+  for (size_t i = 0; i < labels.size(); ++i) {
+    floor_material[i] = hits[i].material == scene::demo::kFloorMaterial ? 1 : 0;
+    lamp_fraction[i] = hits[i].lamp_fraction;
+  }
+  const PenumbraParts parts = penumbra_parts(penumbra, floor_material, w, h);
   // The normaliser: the truth's mean direct luminance over floor pixels the whole lamp reaches.
   double lit_sum = 0.0;
   uint64_t lit_n = 0, floor_n = 0, penumbra_n = 0;
@@ -410,6 +420,8 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
     mj["direct_psnr_db_unjittered"] = psnrs(rt.direct_one, true);
     mj["direct_psnr_db_lit_floor_scale"] = psnrs(rt.direct_avg, false);
     mj["direct_bias_floor"] = num(bias(rt.direct_avg, truth.direct, floor));
+    mj["penumbra_breakdown"] = penumbra_breakdown(rt.direct_avg, truth.direct, parts,
+                                                  lamp_fraction);
     double ratio[2];
     for (int k = 0; k < 2; ++k) {
       const std::vector<ProfileSample> p =
@@ -443,6 +455,7 @@ DirectResult measure_direct(const CommonOptions& common, const scene::SceneAsset
   j["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   j["texture_filter"] = name_of(common.render.texture_filter).data();
   const nlohmann::json& dm = j["modes"][default_name];
+  table += penumbra_breakdown_text(default_name, dm["penumbra_breakdown"]);
   std::snprintf(line, sizeof line,
                 "albedo view (%s, one unjittered frame) against the truth's pixel-averaged "
                 "albedo: %.2f dB image, %.2f dB floor (jittered average: %.2f / %.2f dB)\n",

@@ -24,7 +24,10 @@
 //                 the lamp's foot (0, -1, 0): direct / (albedo * I * unshadowed light of the
 //                 image's own lamp model), bilinear in each image; error = |rt / truth - 1|;
 //   albedo        srgb_psnr of the unjittered frame's albedo against the truth's pixel-averaged
-//                 albedo (texture filtering), image and floor.
+//                 albedo (texture filtering), image and floor;
+//   the penumbra taken apart (accuracy_penumbra.h): its PSNR on the open floor, on the floor
+//                 beside objects' outlines and on the objects, and the open floor's error by the
+//                 truth's lamp fraction (JSON penumbra_breakdown; the default mode's in the text).
 #pragma once
 
 #include <cstdint>

@@ -230,6 +230,35 @@ double masked_tone_mapped_psnr(const std::vector<float>& a, const std::vector<fl
   return psnr_over(a, truth, mask, [](float v) { return tone_map_srgb(v); });
 }
 
+std::vector<ErrorBin> tone_mapped_error_by_key(const std::vector<float>& a,
+                                               const std::vector<float>& truth,
+                                               const std::vector<uint8_t>& mask,
+                                               const std::vector<float>& key, int bins) {
+  if (a.size() != truth.size() || a.size() != 3 * mask.size() || key.size() != mask.size())
+    throw std::invalid_argument("accuracy: images, mask and key differ in size");
+  if (bins < 1) throw std::invalid_argument("accuracy: error bins must be at least 1");
+  std::vector<ErrorBin> out(static_cast<size_t>(bins));
+  std::vector<double> sum(static_cast<size_t>(bins), 0.0);
+  for (size_t i = 0; i < mask.size(); ++i) {
+    if (!mask[i]) continue;
+    const int b = std::clamp(int(std::floor(double(key[i]) * bins)), 0, bins - 1);
+    ErrorBin& e = out[size_t(b)];
+    ++e.pixels;
+    for (size_t c = 0; c < 3; ++c) {
+      const double d = tone_map_srgb(a[3 * i + c]) - tone_map_srgb(truth[3 * i + c]);
+      sum[size_t(b)] += d;
+      e.squared_sum += d * d;
+    }
+  }
+  for (size_t b = 0; b < out.size(); ++b) {
+    if (out[b].pixels == 0) continue;
+    const double n = 3.0 * double(out[b].pixels);
+    out[b].mean = sum[b] / n;
+    out[b].rms = std::sqrt(out[b].squared_sum / n);
+  }
+  return out;
+}
+
 double srgb_psnr(const std::vector<float>& a, const std::vector<float>& truth,
                  const std::vector<uint8_t>& mask) {
   return psnr_over(a, truth, mask, [](float v) { return srgb_encode(v); });

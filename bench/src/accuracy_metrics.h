@@ -105,6 +105,20 @@ double masked_psnr(const std::vector<float>& a, const std::vector<float>& truth,
 // tone_mapped_psnr), over the pixels where mask != 0.
 double masked_tone_mapped_psnr(const std::vector<float>& a, const std::vector<float>& truth,
                                const std::vector<uint8_t>& mask);
+// The tone-mapped error of `a` against `truth` (masked_tone_mapped_psnr's tone map and sRGB
+// encode) over the pixels where mask != 0, sorted into `bins` equal bins of `key` (one value
+// per pixel): bin b holds keys in [b / bins, (b + 1) / bins), keys below 0 fall into the first
+// and keys from 1 on into the last. Per bin, over its pixels' RGB channels: the mean signed
+// difference (a - truth), the RMS difference and the sum of squared differences (a bin's share
+// of the masked MSE is its sum over the sum of all bins').
+struct ErrorBin {
+  uint64_t pixels = 0;
+  double mean = 0.0, rms = 0.0, squared_sum = 0.0;
+};
+std::vector<ErrorBin> tone_mapped_error_by_key(const std::vector<float>& a,
+                                               const std::vector<float>& truth,
+                                               const std::vector<uint8_t>& mask,
+                                               const std::vector<float>& key, int bins);
 // PSNR (dB, peak 1) of two albedo images (linear, 3 floats per pixel) after the exact sRGB encode
 // of each channel clamped to [0, 1] (the albedo view's encode without its quantisation), over
 // the pixels where mask != 0.

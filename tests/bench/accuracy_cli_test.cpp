@@ -95,7 +95,17 @@ TEST(AccuracyCli, WritesTheReportAndReusesTheCachedTruth) {
     EXPECT_TRUE(direct["modes"][mode]["albedo_psnr_db"]["image"].is_number()) << mode;
     EXPECT_TRUE(direct["modes"][mode]["penumbra"].contains("tumbler")) << mode;
     EXPECT_TRUE(direct["modes"][mode]["penumbra"].contains("marble")) << mode;
+    const nlohmann::json& parts = direct["modes"][mode]["penumbra_breakdown"]["parts"];
+    EXPECT_EQ(parts["open_floor"]["pixels"].get<int>() +
+                  parts["floor_beside_objects"]["pixels"].get<int>() +
+                  parts["objects"]["pixels"].get<int>(),
+              direct["pixels"]["penumbra"].get<int>())
+        << mode;
+    EXPECT_EQ(direct["modes"][mode]["penumbra_breakdown"]["open_floor_by_lamp_fraction"].size(),
+              10u)
+        << mode;
   }
+  EXPECT_NE(first.out.find("penumbra by part: open floor"), std::string::npos) << first.out;
   EXPECT_TRUE(direct["lines"]["tumbler"]["length"].is_number());
   EXPECT_TRUE(direct["default_shadows"].is_string());
 

@@ -177,6 +177,31 @@ TEST(AccuracyMetrics, MaskedPsnrOfKnownImages) {
   EXPECT_THROW(masked_psnr(a, t, {1, 1}, 1.0), std::invalid_argument);
 }
 
+TEST(AccuracyMetrics, ToneMappedErrorByKeyBins) {
+  // Tone map and sRGB: 1 -> 0.7353569, 3 -> 0.8808250, 0 -> 0. Four pixels, the last masked
+  // out; keys 0.05 and -1 fall into bin 0 of 2, key 1 into bin 1.
+  const std::vector<float> truth = {1, 1, 1, 1, 1, 1, 3, 3, 3, 0, 0, 0};
+  const std::vector<float> a = {3, 3, 3, 1, 1, 1, 1, 1, 1, 9, 9, 9};
+  const std::vector<uint8_t> mask = {1, 1, 1, 0};
+  const std::vector<float> key = {0.05f, -1.0f, 1.0f, 0.5f};
+  const std::vector<ErrorBin> bins = tone_mapped_error_by_key(a, truth, mask, key, 2);
+  ASSERT_EQ(bins.size(), 2u);
+  const double d = 0.8808250 - 0.7353569;
+  EXPECT_EQ(bins[0].pixels, 2u);  // +d on three channels, 0 on three
+  EXPECT_NEAR(bins[0].mean, d / 2.0, 1e-6);
+  EXPECT_NEAR(bins[0].rms, d / std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(bins[0].squared_sum, 3.0 * d * d, 1e-6);
+  EXPECT_EQ(bins[1].pixels, 1u);  // -d on three channels
+  EXPECT_NEAR(bins[1].mean, -d, 1e-6);
+  EXPECT_NEAR(bins[1].rms, d, 1e-6);
+  // The bins' squared sums make the masked PSNR.
+  const double mse = (bins[0].squared_sum + bins[1].squared_sum) / 9.0;
+  EXPECT_NEAR(masked_tone_mapped_psnr(a, truth, mask), 10.0 * std::log10(1.0 / mse), 1e-6);
+  EXPECT_EQ(tone_mapped_error_by_key(a, truth, {0, 0, 0, 0}, key, 3)[2].pixels, 0u);
+  EXPECT_THROW(tone_mapped_error_by_key(a, truth, mask, {0.0f}, 2), std::invalid_argument);
+  EXPECT_THROW(tone_mapped_error_by_key(a, truth, mask, key, 0), std::invalid_argument);
+}
+
 TEST(AccuracyMetrics, SrgbPsnrEncodesEachChannel) {
   // Linear 0.5 -> sRGB 0.735357; linear 0.2 -> 0.484529; one pixel, three equal channels.
   const std::vector<float> a = {0.5f, 0.5f, 0.5f}, t = {0.2f, 0.2f, 0.2f};
