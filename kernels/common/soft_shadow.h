@@ -228,10 +228,26 @@ inline float8 rp_shadow_gather8(__global const float* restrict shadow, int8 idx)
                   shadow[idx.s5], shadow[idx.s6], shadow[idx.s7]);
 }
 
-/* Visibility of the texels at (tx, ty) (texel coordinates, clamped to the map): 1 where the
- * stored depth is not in front of the receiver plane, for pcf. */
+/* The texels at (tx, ty) (texel coordinates, clamped to the map): their casters' inverse
+ * depths (*inv_tap) and where those lie in front of the receiver plane (pcf's test). */
+inline int8 rp_soft_plane_test(__global const float* restrict shadow, const RpShadow8* s,
+                               float8 tx, float8 ty, float8* inv_tap) {
+  const float8 hi = (float8)(s->size - 1.0f), lo = (float8)(0.0f);
+  const int8 idx = convert_int8(fmin(fmax(ty, lo), hi)) * s->isize +
+                   convert_int8(fmin(fmax(tx, lo), hi));
+  const float8 d = rp_shadow_gather8(shadow, idx);
+  *inv_tap = s->inv_a - d * s->inv_b;
+  const float8 thr = fmax(s->inv0 + s->gx0 * (tx - s->sx) + s->gy0 * (ty - s->sy), s->inv0);
+  return (*inv_tap > thr) & (d < 1.0f);
+}
+
+/* Visibility of the texels at (tx, ty): 1 where the stored depth is not in front of the
+ * receiver plane, for pcf. */
 inline float8 rp_soft_plane_lit(__global const float* restrict shadow, const RpShadow8* s,
-                                float8 tx, float8 ty);
+                                float8 tx, float8 ty) {
+  float8 inv_tap;
+  return select((float8)(1.0f), (float8)(0.0f), rp_soft_plane_test(shadow, s, tx, ty, &inv_tap));
+}
 
 /* 1 where a pcss filter tap at (tx, ty) (texel coordinates) is blocked at the blocker plane
  * (inverse depth iavg): the texel fails pcf's receiver-plane test AND its caster's front lies
@@ -240,25 +256,10 @@ inline float8 rp_soft_plane_lit(__global const float* restrict shadow, const RpS
  * the plane: whether the ray meets it farther on is the march's question (step 4). */
 inline float8 rp_pcss_plane_blocked(__global const float* restrict shadow, const RpShadow8* s,
                                     float8 tx, float8 ty, float8 iavg) {
-  const float8 hi = (float8)(s->size - 1.0f), lo = (float8)(0.0f);
-  const int8 idx = convert_int8(fmin(fmax(ty, lo), hi)) * s->isize +
-                   convert_int8(fmin(fmax(tx, lo), hi));
-  const float8 d = rp_shadow_gather8(shadow, idx);
-  const float8 inv_tap = s->inv_a - d * s->inv_b;
-  const float8 thr = fmax(s->inv0 + s->gx0 * (tx - s->sx) + s->gy0 * (ty - s->sy), s->inv0);
+  float8 inv_tap;
+  const int8 in_front = rp_soft_plane_test(shadow, s, tx, ty, &inv_tap);
   return select((float8)(0.0f), (float8)(1.0f),
-                (inv_tap > thr) & (d < 1.0f) & (inv_tap >= iavg * RP_PCSS_PLANE_SLACK));
-}
-
-inline float8 rp_soft_plane_lit(__global const float* restrict shadow, const RpShadow8* s,
-                                float8 tx, float8 ty) {
-  const float8 hi = (float8)(s->size - 1.0f), lo = (float8)(0.0f);
-  const int8 idx = convert_int8(fmin(fmax(ty, lo), hi)) * s->isize +
-                   convert_int8(fmin(fmax(tx, lo), hi));
-  const float8 d = rp_shadow_gather8(shadow, idx);
-  const float8 inv_tap = s->inv_a - d * s->inv_b;
-  const float8 thr = fmax(s->inv0 + s->gx0 * (tx - s->sx) + s->gy0 * (ty - s->sy), s->inv0);
-  return select((float8)(1.0f), (float8)(0.0f), (inv_tap > thr) & (d < 1.0f));
+                in_front & (inv_tap >= iavg * RP_PCSS_PLANE_SLACK));
 }
 
 /* Rotated Poisson point k (of 16) for lanes with rotation (c, s). */
